@@ -1,0 +1,266 @@
+"""Co-simulation algorithms: fixed-step Jacobi and Gauss-Seidel, multi-rate, optional iterative coupling.
+
+The master advances in base steps of size ``h``. Component ``c`` has a communication step ``n_c * h``; it fires
+at the end of each of its windows, i.e. at base step ``k`` when ``(k + 1) % n_c == 0``, stepping over
+``[t_{k+1} - n_c h, t_{k+1}]``. Within a base step, components fire in the given order (Gauss-Seidel: each
+sees the outputs its predecessors have just produced) or all from the outputs at the start of the base step
+(Jacobi). Ordering the fast components first lets a slow consumer see the whole of its window.
+
+Inputs crossing rates (per connection):
+* fast producer -> slow consumer: the mean (or RMS) of the producer's outputs over the consumer's window,
+  weighted by the producer's step, so that a power signal (itself a step mean) delivers its exact energy;
+* slow producer -> fast consumer: hold the last output, or extrapolate linearly from the last two outputs to
+  the middle of the consumer's step.
+
+Iterative coupling (single rate only): each base step is repeated from the snapshot taken by ``get_state``
+until the exchanged inputs change by less than ``tolerance`` (relative), up to ``iterations`` passes.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Sequence
+
+import numpy as np
+
+from rotorcosim.components.contract import Component, ContractError
+
+from .system import Connection, System
+
+ALGORITHMS = ("gauss-seidel", "jacobi")
+
+
+class SimulationDiverged(RuntimeError):
+    """A component produced a non-finite value or raised during a step; what was recorded is kept."""
+
+
+class _Link:
+    """Run-time state of one connection."""
+
+    __slots__ = ("con", "src", "sport", "dst", "dport", "mode", "acc", "acc2", "weight", "prev", "prev_t",
+                 "cur_t", "frozen", "ring", "ring_pos", "ring_count", "ring_t", "_last")
+
+    SAME, FAST_TO_SLOW, SLOW_TO_FAST = 0, 1, 2
+
+    def __init__(self, con: Connection, src: Component, dst: Component):
+        self.con = con
+        self.src, self.sport = src, con.src_port
+        self.dst, self.dport = dst, con.dst_port
+        self.mode = self.SAME
+        self.frozen = None
+        self.ring = None
+        self.ring_t = None
+        self.reset()
+
+    def reset(self):
+        self.acc = None
+        self.acc2 = None
+        self.weight = 0.0
+        self.prev = None
+        self.prev_t = self.cur_t = None
+        self._last = None
+
+    def value(self, t_mid: float) -> np.ndarray:
+        if self.frozen is not None:
+            return self.frozen
+        y = self.src.y[self.sport]
+        if self.mode == self.FAST_TO_SLOW and self.con.average != "last" and self.weight > 0.0:
+            if self.con.average == "mean":
+                out = self.acc / self.weight
+            else:
+                out = np.sqrt(self.acc2 / self.weight)
+            self.acc = self.acc2 = None
+            self.weight = 0.0
+            return out
+        if (self.mode == self.SLOW_TO_FAST and self.con.extrapolation == "linear" and self.prev is not None
+                and self.cur_t > self.prev_t):
+            return y + (y - self.prev) * ((t_mid - self.cur_t) / (self.cur_t - self.prev_t))
+        return np.array(y, dtype=float)
+
+    def produced(self, h_src: float, t_end: float) -> None:
+        """Called after the producer has stepped."""
+        y = self.src.y[self.sport]
+        if self.mode == self.FAST_TO_SLOW:
+            if self.acc is None:
+                self.acc = y * h_src
+                self.acc2 = y * y * h_src
+            else:
+                self.acc = self.acc + y * h_src
+                self.acc2 = self.acc2 + y * y * h_src
+            self.weight += h_src
+        elif self.mode == self.SLOW_TO_FAST:
+            self.prev = None if self.cur_t is None else self._last
+            self.prev_t = self.cur_t
+            self._last = np.array(y, dtype=float)
+            self.cur_t = t_end
+        if self.ring is not None:
+            if self.ring_t == t_end:  # a repeated iteration of the same step replaces its sample
+                self.ring_pos = (self.ring_pos - 1) % len(self.ring)
+                self.ring_count -= 1
+            self.ring_t = t_end
+            self.ring[self.ring_pos] = y
+            self.ring_pos = (self.ring_pos + 1) % len(self.ring)
+            self.ring_count = min(self.ring_count + 1, len(self.ring))
+
+    def start_ring(self, n: int, size: int) -> None:
+        self.ring = np.zeros((max(1, n), size))
+        self.ring_pos = 0
+        self.ring_count = 0
+        self.ring_t = None
+
+    def ring_statistic(self, how: str) -> np.ndarray:
+        """RMS, mean or last of the producer's outputs kept in the ring buffer (the last N rotor cycles)."""
+        if self.ring is None or self.ring_count == 0:
+            return np.array(self.src.y[self.sport], dtype=float)
+        data = self.ring if self.ring_count == len(self.ring) else self.ring[: self.ring_count]
+        if how == "rms":
+            return np.sqrt(np.mean(data * data, axis=0))
+        if how == "mean":
+            return data.mean(axis=0)
+        return np.array(self.src.y[self.sport], dtype=float)
+
+
+@dataclass
+class EngineSettings:
+    algorithm: str = "gauss-seidel"
+    iterations: int = 1
+    tolerance: float = 1e-10
+    check_every: int = 64
+
+    def __post_init__(self):
+        if self.algorithm not in ALGORITHMS:
+            raise ContractError(f"algorithm {self.algorithm!r} not in {ALGORITHMS}")
+        if int(self.iterations) < 1:
+            raise ContractError(f"algorithm: iterations must be >= 1, got {self.iterations}")
+        if not (self.tolerance > 0 and math.isfinite(self.tolerance)):
+            raise ContractError(f"algorithm: tolerance must be positive, got {self.tolerance}")
+
+
+class Engine:
+    """Steps the active components of a system over base steps (one interval at a time)."""
+
+    def __init__(self, system: System, order: Sequence[str], settings: EngineSettings):
+        unknown = [n for n in order if n not in system.components]
+        if unknown:
+            raise ContractError(f"algorithm order names unknown component(s) {unknown}")
+        rest = [n for n in system.components if n not in order]
+        self.order = list(order) + rest
+        self.system = system
+        self.settings = settings
+        self.links = [_Link(c, system.components[c.src_component], system.components[c.dst_component])
+                      for c in system.connections]
+        self.steps_taken = {n: 0 for n in self.order}
+
+    # -- interval preparation ------------------------------------------------------------------------
+    def prepare(self, active: Sequence[str], multiples: dict[str, int], h: float) -> None:
+        self.h = h
+        self.active = [n for n in self.order if n in set(active)]
+        self.mult = {n: int(multiples.get(n, 1)) for n in self.active}
+        if self.settings.iterations > 1 and any(m != 1 for m in self.mult.values()):
+            raise ContractError("iterative coupling needs all components at the same communication step")
+        comps = self.system.components
+        self._inputs = {n: [] for n in self.active}
+        self._outgoing = {n: [] for n in self.active}
+        for link in self.links:
+            s, d = link.con.src_component, link.con.dst_component
+            link.reset()
+            if d not in self.mult:
+                continue
+            if s in self.mult:
+                link.frozen = None
+                ms, md = self.mult[s], self.mult[d]
+                link.mode = _Link.SAME if ms == md else (_Link.FAST_TO_SLOW if ms < md else _Link.SLOW_TO_FAST)
+                self._outgoing[s].append(link)
+            self._inputs[d].append(link)
+        for link in self.links:  # links recording for a later thermal-only hold
+            s = link.con.src_component
+            if link.ring is not None and s in self.mult and link not in self._outgoing[s]:
+                self._outgoing[s].append(link)
+        self._comp = {n: comps[n] for n in self.active}
+
+    # -- stepping ------------------------------------------------------------------------------------
+    def _gather(self, name: str, t_mid: float) -> dict:
+        return {link.dport: link.value(t_mid) for link in self._inputs[name]}
+
+    def _fire(self, name: str, values: dict, t: float, hc: float) -> None:
+        comp = self._comp[name]
+        try:
+            if values:
+                comp.set_inputs(values)
+            comp.do_step(t, hc)
+        except SimulationDiverged:
+            raise
+        except Exception as exc:  # a component's own failure: stop with its name and the time
+            raise SimulationDiverged(f"{name} failed in do_step at t = {t:.9g} s: {exc}") from exc
+        self.steps_taken[name] += 1
+        t_end = t + hc
+        for link in self._outgoing[name]:
+            link.produced(hc, t_end)
+
+    def base_step(self, t0: float, k: int) -> None:
+        """Base step k of the interval that starts at t0 (from t0 + k h to t0 + (k+1) h)."""
+        h = self.h
+        t_end = t0 + (k + 1) * h
+        firing = [n for n in self.active if (k + 1) % self.mult[n] == 0]
+        if self.settings.iterations == 1:
+            self._pass(firing, t_end)
+        else:
+            self._iterate(firing, t_end)
+        if (k + 1) % self.settings.check_every == 0:
+            self.check_finite(t_end)
+
+    def _pass(self, firing: list[str], t_end: float) -> None:
+        h = self.h
+        if self.settings.algorithm == "gauss-seidel":
+            for n in firing:
+                hc = self.mult[n] * h
+                t = t_end - hc
+                self._fire(n, self._gather(n, t + 0.5 * hc), t, hc)
+        else:
+            gathered = []
+            for n in firing:
+                hc = self.mult[n] * h
+                gathered.append((n, self._gather(n, t_end - 0.5 * hc), t_end - hc, hc))
+            for n, values, t, hc in gathered:
+                self._fire(n, values, t, hc)
+
+    def _iterate(self, firing: list[str], t_end: float) -> None:
+        rank = {n: i for i, n in enumerate(self.active)}
+        jacobi = self.settings.algorithm == "jacobi"
+        snapshot = {n: self._comp[n].get_state() for n in firing}
+        fired = set(firing)
+        override: dict[_Link, np.ndarray] = {}
+        for it in range(self.settings.iterations):
+            if it:
+                for n in firing:
+                    self._comp[n].set_state(snapshot[n])
+                    self.steps_taken[n] -= 1
+                for link, val in override.items():
+                    link.frozen = val
+            try:
+                self._pass(firing, t_end)
+            finally:
+                for link in override:
+                    link.frozen = None
+            # inputs fed back from components that fire later in the order (all of them for Jacobi)
+            fresh = {}
+            for n in firing:
+                for link in self._inputs[n]:
+                    s = link.con.src_component
+                    if link.frozen is None and s in fired and (jacobi or rank[s] >= rank[n]):
+                        fresh[link] = np.array(link.src.y[link.sport], dtype=float)
+            worst = 0.0 if override else math.inf
+            for link, val in override.items():
+                ref = fresh[link]
+                scale = max(float(np.max(np.abs(ref))), float(np.max(np.abs(val))), 1e-300)
+                worst = max(worst, float(np.max(np.abs(val - ref))) / scale)
+            override = fresh
+            if not fresh or worst < self.settings.tolerance:
+                break
+        self.iterations_used = it + 1
+
+    def check_finite(self, t: float) -> None:
+        for n in self.active:
+            for port, y in self._comp[n].y.items():
+                if not np.all(np.isfinite(y)):
+                    raise SimulationDiverged(f"{n}.{port} is not finite at t = {t:.9g} s: the simulation diverged")

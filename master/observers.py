@@ -1,0 +1,229 @@
+"""Observers: they watch a run without changing it (libcosim's split).
+
+* :class:`Recorder`: decimated time series streamed to disk while the run goes (HDF5 by h5py, or CSV), flushed
+  in chunks, so a crash loses nothing already flushed; readable without this project.
+* :class:`Progress`: a tqdm bar over simulated time.
+* :class:`SteadyWindows`: the last ``cycles`` rotor cycles of chosen signals at the end of every TM interval,
+  kept in memory for result extraction (the paper's Table 4 is read from the steady state).
+"""
+from __future__ import annotations
+
+import csv
+import math
+import os
+from pathlib import Path
+from typing import Sequence
+
+import numpy as np
+
+PHASE_CODE = {"TM": 0, "TO": 1}
+
+
+class Observer:
+    stride = 1
+
+    def start(self, sim, schedule) -> None:
+        pass
+
+    def interval_start(self, sim, phase: str, step: float) -> None:
+        pass
+
+    def step(self, sim, t: float) -> None:
+        pass
+
+    def interval_end(self, sim, used) -> None:
+        pass
+
+    def end(self, sim, error: BaseException | None) -> None:
+        pass
+
+
+class Recorder(Observer):
+    """Records ``signals`` ("component.port") every ``record_step`` seconds of a TM interval and at every step
+    of a TO interval, into ``path`` (``.h5`` / ``.hdf5``: one dataset per signal plus ``time`` and ``phase``;
+    ``.csv``: one column per vector element, ``component.port[i]``, 1-based)."""
+
+    def __init__(self, path: str | os.PathLike, signals: Sequence[str], record_step: float = 1e-4,
+                 chunk: int = 2048):
+        self.path = Path(path)
+        self.signals = list(signals)
+        if not (record_step > 0 and math.isfinite(record_step)):
+            raise ValueError(f"record_step must be positive, got {record_step}")
+        self.record_step = float(record_step)
+        self.chunk = int(chunk)
+        self.rows = 0
+        self._buf_t: list[float] = []
+        self._buf_phase: list[int] = []
+        self._buf: dict[str, list[np.ndarray]] = {s: [] for s in self.signals}
+        self._file = None
+
+    # -- observer hooks --------------------------------------------------------------------------------
+    def start(self, sim, schedule):
+        sizes = {}
+        units = {}
+        for ref in self.signals:
+            comp, _, port = ref.partition(".")
+            v = sim.system._port(ref, "output") if comp in sim.system.components else None
+            if v is None:
+                raise ValueError(f"recorder: unknown signal {ref!r}")
+            sizes[ref], units[ref] = v.size, v.unit
+        self.sizes, self.units = sizes, units
+        self.path.parent.mkdir(parents=True, exist_ok=True)
+        tmp = self.path.with_name(self.path.name + ".part")
+        self._tmp = tmp
+        if self.path.suffix.lower() in (".h5", ".hdf5"):
+            import h5py
+
+            self._file = h5py.File(tmp, "w")
+            self._file.attrs["description"] = "rotorcosim time series: SI units; phase 0 = thermo-mechanical, 1 = thermal-only"
+            self._file.create_dataset("time", shape=(0,), maxshape=(None,), dtype="f8", chunks=(self.chunk,))
+            self._file["time"].attrs["unit"] = "s"
+            self._file.create_dataset("phase", shape=(0,), maxshape=(None,), dtype="i1", chunks=(self.chunk,))
+            for ref in self.signals:
+                ds = self._file.create_dataset(ref, shape=(0, sizes[ref]), maxshape=(None, sizes[ref]),
+                                               dtype="f8", chunks=(self.chunk, sizes[ref]))
+                ds.attrs["unit"] = units[ref]
+            self._kind = "hdf5"
+        elif self.path.suffix.lower() == ".csv":
+            self._file = open(tmp, "w", newline="")
+            self._csv = csv.writer(self._file)
+            header = ["time", "phase"]
+            for ref in self.signals:
+                header += [f"{ref}[{i + 1}] ({units[ref]})" for i in range(sizes[ref])]
+            self._csv.writerow(header)
+            self._kind = "csv"
+        else:
+            raise ValueError(f"recorder: unknown format of {self.path} (use .h5 or .csv)")
+        self._sample(sim, sim.t)
+
+    def interval_start(self, sim, phase, step):
+        self.stride = 1 if phase == "TO" else max(1, int(round(self.record_step / step)))
+
+    def step(self, sim, t):
+        self._sample(sim, t)
+
+    def _sample(self, sim, t):
+        self._buf_t.append(t)
+        self._buf_phase.append(PHASE_CODE.get(sim.phase, 0))
+        for ref in self.signals:
+            self._buf[ref].append(np.array(sim.value(ref), dtype=float))
+        if len(self._buf_t) >= self.chunk:
+            self.flush()
+
+    def flush(self):
+        n = len(self._buf_t)
+        if not n or self._file is None:
+            return
+        if self._kind == "hdf5":
+            f = self._file
+            r = self.rows
+            for name, data in (("time", np.asarray(self._buf_t)), ("phase", np.asarray(self._buf_phase))):
+                f[name].resize((r + n,))
+                f[name][r:] = data
+            for ref in self.signals:
+                ds = f[ref]
+                ds.resize((r + n, self.sizes[ref]))
+                ds[r:] = np.vstack(self._buf[ref])
+            f.flush()
+        else:
+            rows = np.column_stack([np.asarray(self._buf_t), np.asarray(self._buf_phase)]
+                                   + [np.vstack(self._buf[ref]) for ref in self.signals])
+            for row in rows:
+                self._csv.writerow([f"{x:.10g}" for x in row])
+            self._file.flush()
+        self.rows += n
+        self._buf_t.clear()
+        self._buf_phase.clear()
+        for ref in self.signals:
+            self._buf[ref].clear()
+
+    def end(self, sim, error):
+        if self._file is None:
+            return
+        self.flush()
+        if self._kind == "hdf5":
+            self._file.attrs["complete"] = error is None
+            if error is not None:
+                self._file.attrs["error"] = str(error)
+        self._file.close()
+        self._file = None
+        # the final name appears only when the file is whole (the .part file is what a crash leaves)
+        os.replace(self._tmp, self.path)
+
+
+class Progress(Observer):
+    """A progress bar over simulated time (updated every ``every`` seconds of simulated time at most)."""
+
+    stride = 64
+
+    def __init__(self, total: float, disable: bool = False, desc: str = "simulating"):
+        self.total = total
+        self.disable = disable
+        self.desc = desc
+        self.bar = None
+
+    def start(self, sim, schedule):
+        from tqdm import tqdm
+
+        self.bar = tqdm(total=self.total, unit="s", desc=self.desc, disable=self.disable,
+                        bar_format="{l_bar}{bar}| {n:.3f}/{total:.3f} s simulated [{elapsed}<{remaining}]")
+        self.t0 = sim.t
+
+    def interval_start(self, sim, phase, step):
+        self.stride = 1 if phase == "TO" else 256
+        if self.bar is not None:
+            self.bar.set_postfix_str(phase)
+
+    def step(self, sim, t):
+        if self.bar is not None:
+            self.bar.n = min(self.total, t - self.t0)
+            self.bar.refresh()
+
+    def end(self, sim, error):
+        if self.bar is not None:
+            self.bar.n = min(self.total, sim.t - self.t0)
+            self.bar.close()
+
+
+class SteadyWindows(Observer):
+    """Keeps the last ``cycles`` rotor cycles (at the given speed) of ``signals`` in each TM interval; at the
+    interval end, the window is stored in ``windows`` as a dict with ``t`` and one array per signal."""
+
+    def __init__(self, signals: Sequence[str], speed_rpm: float, cycles: float = 5.0, sample_step: float | None = None):
+        self.signals = list(signals)
+        self.window = cycles * 60.0 / speed_rpm
+        self.sample_step = sample_step
+        self.windows: list[dict] = []
+
+    def interval_start(self, sim, phase, step):
+        self.active = phase == "TM"
+        self.stride = 1 if self.sample_step is None else max(1, int(round(self.sample_step / step)))
+        n = int(math.ceil(self.window / (self.stride * step))) + 1
+        self._n = n
+        self._t = np.full(n, np.nan)
+        self._data = {r: None for r in self.signals}
+        self._pos = 0
+        self._count = 0
+
+    def step(self, sim, t):
+        if not self.active:
+            return
+        i = self._pos
+        self._t[i] = t
+        for r in self.signals:
+            y = sim.value(r)
+            buf = self._data[r]
+            if buf is None:
+                buf = self._data[r] = np.zeros((self._n, len(y)))
+            buf[i] = y
+        self._pos = (i + 1) % self._n
+        self._count = min(self._count + 1, self._n)
+
+    def interval_end(self, sim, used):
+        if not getattr(self, "active", False) or self._count == 0:
+            return
+        order = np.arange(self._pos - self._count, self._pos) % self._n
+        win = {"t": self._t[order].copy(), "t_start": used.t_start, "t_end": used.t_end}
+        for r in self.signals:
+            win[r] = self._data[r][order].copy()
+        self.windows.append(win)

@@ -1,0 +1,237 @@
+"""Scenarios: TOML files naming the components, their parameters, the connections, the schedule and outputs.
+
+::
+
+    [scenario]
+    name = "two masses"
+
+    [components.m1]
+    implementation = "testing.mass"      # a registry name, or: fmu = "path/to/model.fmu"
+    step = 1e-3                          # optional communication step (a whole multiple of the interval step)
+    parameters = { m = 1.0, k = 4.0 }
+
+    [[connections]]
+    from = "m1.x"
+    to = "m2.x_in"                       # optional: average = "mean"|"rms"|"last", extrapolation = "hold"|"linear",
+                                         # hold = "rms"|"mean"|"last" (thermal-only substitute)
+    [inputs]
+    "m1.F_ext" = 0.0                     # constant inputs
+
+    [algorithm]
+    kind = "gauss-seidel"                # or "jacobi"
+    order = ["m1", "m2"]
+    iterations = 1
+    tolerance = 1e-10
+
+    [schedule]                           # see master/schedule.py: timeline | monolithic | auto
+    kind = "monolithic"
+    duration = 1.0
+    step = 1e-3
+    speed_rpm = 16000                    # rotor cycle for the thermal-only holds and the automatic schedule
+    hold = "rms"
+    hold_cycles = 5
+
+    [outputs]
+    record = ["m1.x", "m2.x"]
+    record_step = 1e-3
+    format = "h5"                        # or "csv"
+
+Relative paths (FMU files, model files) are resolved against the scenario file's folder. Everything SI;
+quantities at the edges carry their unit in the key name (``speed_rpm``).
+"""
+from __future__ import annotations
+
+import copy
+import math
+import sys
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any, Mapping
+
+if sys.version_info >= (3, 11):
+    import tomllib
+else:  # pragma: no cover
+    import tomli as tomllib
+
+from rotorcosim.components import registry
+from rotorcosim.components.contract import Component, ContractError
+
+from .algorithm import EngineSettings
+from .schedule import from_spec
+from .simulation import Simulation
+from .system import Connection, System, split_port
+
+
+class ScenarioError(ContractError):
+    """A scenario file that cannot be run; the message names the file and the key."""
+
+
+@dataclass
+class ComponentSpec:
+    name: str
+    implementation: str | None = None
+    fmu: str | None = None
+    parameters: dict[str, Any] = field(default_factory=dict)
+    step: float | None = None
+
+
+@dataclass
+class ConnectionSpec:
+    src: str
+    dst: str
+    average: str = "mean"
+    extrapolation: str = "hold"
+    hold: str | None = None
+
+
+@dataclass
+class Scenario:
+    name: str
+    components: dict[str, ComponentSpec]
+    connections: list[ConnectionSpec]
+    inputs: dict[str, list[float]] = field(default_factory=dict)
+    algorithm: dict = field(default_factory=dict)
+    schedule: dict = field(default_factory=dict)
+    outputs: dict = field(default_factory=dict)
+    source: Path | None = None
+    description: str = ""
+    extra: dict = field(default_factory=dict)
+
+    def copy(self) -> "Scenario":
+        return copy.deepcopy(self)
+
+
+_TOP_KEYS = {"scenario", "components", "connections", "inputs", "algorithm", "schedule", "outputs", "results"}
+_COMPONENT_KEYS = {"implementation", "fmu", "parameters", "step"}
+_CONNECTION_KEYS = {"from", "to", "average", "extrapolation", "hold"}
+
+
+def _fail(where: str, msg: str) -> ScenarioError:
+    return ScenarioError(f"{where}: {msg}")
+
+
+def _check_value(where: str, value: Any) -> None:
+    if isinstance(value, bool) or isinstance(value, str):
+        return
+    if isinstance(value, (int, float)):
+        if not math.isfinite(value):
+            raise _fail(where, f"value {value!r} is not finite")
+        return
+    if isinstance(value, list):
+        for v in value:
+            _check_value(where, v)
+        return
+    raise _fail(where, f"unsupported value {value!r}")
+
+
+def parse(data: Mapping[str, Any], source: Path | None = None) -> Scenario:
+    where = str(source) if source else "scenario"
+    unknown = set(data) - _TOP_KEYS
+    if unknown:
+        raise _fail(where, f"unknown table(s) {sorted(unknown)}; known: {sorted(_TOP_KEYS)}")
+    head = data.get("scenario", {})
+    comps_raw = data.get("components")
+    if not comps_raw:
+        raise _fail(where, "no [components]")
+    base = source.parent if source else Path.cwd()
+    components = {}
+    for name, spec in comps_raw.items():
+        w = f"{where}: [components.{name}]"
+        if not isinstance(spec, Mapping):
+            raise _fail(w, "must be a table")
+        if "." in name or not name:
+            raise _fail(w, "component names must be non-empty and contain no '.'")
+        bad = set(spec) - _COMPONENT_KEYS
+        if bad:
+            raise _fail(w, f"unknown key(s) {sorted(bad)}; known: {sorted(_COMPONENT_KEYS)}")
+        impl, fmu = spec.get("implementation"), spec.get("fmu")
+        if (impl is None) == (fmu is None):
+            raise _fail(w, "give exactly one of 'implementation' (a registry name) or 'fmu' (a file)")
+        if fmu is not None:
+            fmu = str((base / fmu).resolve()) if not Path(fmu).is_absolute() else fmu
+        params = dict(spec.get("parameters", {}))
+        for k, v in params.items():
+            _check_value(f"{w} parameter {k}", v)
+        step = spec.get("step")
+        if step is not None:
+            _check_value(f"{w} step", step)
+            if not isinstance(step, (int, float)) or step <= 0:
+                raise _fail(w, f"step must be a positive number, got {step!r}")
+        components[name] = ComponentSpec(name, impl, fmu, params, None if step is None else float(step))
+    connections = []
+    for i, spec in enumerate(data.get("connections", [])):
+        w = f"{where}: connection #{i + 1}"
+        bad = set(spec) - _CONNECTION_KEYS
+        if bad:
+            raise _fail(w, f"unknown key(s) {sorted(bad)}; known: {sorted(_CONNECTION_KEYS)}")
+        if "from" not in spec or "to" not in spec:
+            raise _fail(w, "needs 'from' and 'to'")
+        split_port(spec["from"]), split_port(spec["to"])
+        connections.append(ConnectionSpec(spec["from"], spec["to"], spec.get("average", "mean"),
+                                          spec.get("extrapolation", "hold"), spec.get("hold")))
+    inputs = {}
+    for ref, value in data.get("inputs", {}).items():
+        split_port(ref)
+        _check_value(f"{where}: [inputs] {ref}", value)
+        inputs[ref] = list(value) if isinstance(value, list) else [value]
+    return Scenario(name=head.get("name", source.stem if source else "scenario"), components=components,
+                    connections=connections, inputs=inputs, algorithm=dict(data.get("algorithm", {})),
+                    schedule=dict(data.get("schedule", {})), outputs=dict(data.get("outputs", {})),
+                    source=source, description=head.get("description", ""),
+                    extra={"results": dict(data.get("results", {}))})
+
+
+def load_scenario(path: str | Path) -> Scenario:
+    path = Path(path)
+    if not path.is_file():
+        raise FileNotFoundError(f"scenario file {path} not found")
+    try:
+        data = tomllib.loads(path.read_text())
+    except tomllib.TOMLDecodeError as exc:
+        raise ScenarioError(f"{path}: not valid TOML: {exc}") from None
+    return parse(data, path.resolve())
+
+
+def create_component(spec: ComponentSpec) -> Component:
+    if spec.fmu is not None:
+        from rotorcosim.fmus.importer import load_fmu_component
+
+        return load_fmu_component(spec.fmu, spec.name, spec.parameters)
+    try:
+        return registry.create(spec.implementation, spec.name, spec.parameters)
+    except ContractError as exc:
+        raise ScenarioError(f"[components.{spec.name}]: {exc}") from None
+
+
+def build_system(sc: Scenario) -> System:
+    comps = {name: create_component(spec) for name, spec in sc.components.items()}
+    cons = [Connection(c.src, c.dst, c.average, c.extrapolation, c.hold) for c in sc.connections]
+    return System(comps, cons, {k: v for k, v in sc.inputs.items()})
+
+
+def engine_settings(sc: Scenario) -> EngineSettings:
+    a = sc.algorithm
+    bad = set(a) - {"kind", "order", "iterations", "tolerance"}
+    if bad:
+        raise ScenarioError(f"[algorithm]: unknown key(s) {sorted(bad)}")
+    return EngineSettings(a.get("kind", "gauss-seidel"), int(a.get("iterations", 1)), float(a.get("tolerance", 1e-10)))
+
+
+def build_simulation(sc: Scenario, observers=(), system: System | None = None) -> Simulation:
+    system = system or build_system(sc)
+    s = sc.schedule
+    return Simulation(system, order=sc.algorithm.get("order"), settings=engine_settings(sc),
+                      steps={n: c.step for n, c in sc.components.items() if c.step is not None},
+                      hold=s.get("hold", "rms"), hold_cycles=float(s.get("hold_cycles", 5)),
+                      speed_rpm=s.get("speed_rpm"), observers=observers)
+
+
+def schedule_of(sc: Scenario, kind: str | None = None, duration: float | None = None):
+    spec = dict(sc.schedule)
+    if kind is not None:
+        spec["kind"] = kind
+        if kind == "monolithic":
+            spec.pop("intervals", None)
+            if duration is None and "duration" not in spec and sc.schedule.get("intervals"):
+                duration = from_spec(sc.schedule).duration
+    return from_spec(spec, duration)

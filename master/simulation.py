@@ -1,0 +1,273 @@
+"""Runs a system through a schedule: intervals, phases, thermal-only holds, observers.
+
+The staggered scheme of the paper (section 3.2): in a thermal-only (TO) interval the components that take no
+part in TO are frozen (not stepped: their state is kept as it was) and their outputs that feed TO components are
+replaced by the RMS (or mean) of those outputs over the last ``hold_cycles`` rotor cycles of the previous
+thermo-mechanical (TM) interval. The next TM interval resumes from the frozen state with the new temperatures.
+"""
+from __future__ import annotations
+
+import math
+import time as _time
+from typing import Callable, Sequence
+
+import numpy as np
+
+from rotorcosim.components.contract import ContractError
+
+from .algorithm import Engine, EngineSettings, SimulationDiverged
+from .schedule import AutoSchedule, Interval, RunReport, ScheduleError, Timeline, UsedInterval
+from .system import HOLDS, System
+
+#: floors of the relative drift test of the automatic schedule, by unit (a change smaller than this is no drift)
+DRIFT_FLOORS = {"K": 0.5, "m": 1e-7, "Pa.s": 1e-4, "W": 1.0, "N": 1.0}
+
+
+class Simulation:
+    def __init__(self, system: System, *, order: Sequence[str] | None = None,
+                 settings: EngineSettings | None = None, steps: dict[str, float] | None = None,
+                 hold: str = "rms", hold_cycles: float = 5.0, speed_rpm: float | None = None,
+                 observers: Sequence = (), t0: float = 0.0):
+        if hold not in HOLDS:
+            raise ContractError(f"hold {hold!r} not in {HOLDS}")
+        if not (hold_cycles > 0 and math.isfinite(hold_cycles)):
+            raise ContractError(f"hold_cycles must be positive, got {hold_cycles}")
+        if speed_rpm is not None and not (speed_rpm > 0 and math.isfinite(speed_rpm)):
+            raise ContractError(f"speed_rpm must be positive, got {speed_rpm}")
+        self.system = system
+        self.settings = settings or EngineSettings()
+        self.engine = Engine(system, list(order or system.components), self.settings)
+        self.steps = dict(steps or {})
+        for name, s in self.steps.items():
+            system.component(name)
+            if not (s > 0 and math.isfinite(s)):
+                raise ContractError(f"communication step of {name} must be positive, got {s}")
+        self.hold = hold
+        self.hold_cycles = float(hold_cycles)
+        self.speed_rpm = speed_rpm
+        self.observers = list(observers)
+        self.t = float(t0)
+        self.t0 = float(t0)
+        self.phase = None
+        self.report = RunReport()
+        self._initialised = False
+
+    # -- helpers ---------------------------------------------------------------------------------------
+    @property
+    def cycle(self) -> float | None:
+        return 60.0 / self.speed_rpm if self.speed_rpm else None
+
+    def value(self, ref: str) -> np.ndarray:
+        comp, _, port = ref.partition(".")
+        return self.system.components[comp].y[port]
+
+    def components_in(self, phase: str) -> list[str]:
+        return [n for n in self.engine.order if phase in self.system.components[n].phases]
+
+    def initialise(self) -> None:
+        if self._initialised:
+            return
+        by_comp: dict[str, dict] = {}
+        for ref, value in self.system.inputs.items():
+            comp, _, port = ref.partition(".")
+            by_comp.setdefault(comp, {})[port] = value
+        for name in self.engine.order:
+            comp = self.system.components[name]
+            if name in by_comp:
+                comp.set_inputs(by_comp[name])
+            comp.setup(self.t)
+            if name in by_comp:  # setup may reset inputs to their start values
+                comp.set_inputs(by_comp[name])
+        self._initialised = True
+
+    def _multiples(self, names: Sequence[str], h: float) -> dict[str, int]:
+        out = {}
+        for n in names:
+            s = self.steps.get(n)
+            if s is None or self.phase == "TO":
+                out[n] = 1
+                continue
+            m = s / h
+            if m < 1 - 1e-9 or abs(m - round(m)) > 1e-6 * m:
+                raise ContractError(f"communication step of {n} ({s} s) is not a whole multiple of the "
+                                    f"interval step {h} s")
+            out[n] = int(round(m))
+        return out
+
+    # -- one interval ----------------------------------------------------------------------------------
+    def run_interval(self, phase: str, duration: float, step: float, stop: "_StopTest | None" = None,
+                     reason: str = "") -> UsedInterval:
+        """Run one interval of ``phase``; ``stop`` (automatic schedule) may end it early."""
+        self.initialise()
+        self.phase = phase
+        active = self.components_in(phase)
+        if not active:
+            raise ScheduleError(f"no component takes part in phase {phase}")
+        mult = self._multiples(active, step)
+        lcm = math.lcm(*mult.values())
+        nsteps = max(1, round(duration / step))
+        nsteps = int(math.ceil(nsteps / lcm) * lcm)
+        links = self.engine.links
+        if phase == "TO":
+            for link in links:
+                s, d = link.con.src_component, link.con.dst_component
+                if d in active and s not in active:
+                    link.frozen = link.ring_statistic(link.con.hold or self.hold)
+        else:
+            for link in links:
+                link.frozen = None
+                s, d = link.con.src_component, link.con.dst_component
+                src_comp = self.system.components[s]
+                dst_comp = self.system.components[d]
+                if "TO" not in src_comp.phases and "TO" in dst_comp.phases and self.cycle:
+                    n = int(math.ceil(self.hold_cycles * self.cycle / (mult.get(s, 1) * step) - 1e-9))
+                    link.start_ring(n, src_comp.variable(link.sport).size)
+                else:
+                    link.ring = None
+        self.engine.prepare(active, mult, step)
+        t_start = self.t
+        for obs in self.observers:
+            obs.interval_start(self, phase, step)
+        strides = [max(1, int(getattr(obs, "stride", 1))) for obs in self.observers]
+        k = 0
+        why = reason
+        try:
+            while k < nsteps:
+                self.engine.base_step(t_start, k)
+                k += 1
+                self.t = t_start + k * step
+                for obs, stride in zip(self.observers, strides):
+                    if k % stride == 0:
+                        obs.step(self, self.t)
+                if stop is not None:
+                    stop.sample(self)
+                    if k % stop.every == 0 and k % lcm == 0:
+                        why = stop.check(self, self.t) or ""
+                        if why:
+                            break
+            self.engine.check_finite(self.t)
+        finally:
+            used = UsedInterval(phase, t_start, self.t, step, k, why)
+            if k:
+                self.report.timeline.append(used)
+            self.report.t_end = self.t
+            self.report.component_steps = dict(self.engine.steps_taken)
+        for obs in self.observers:
+            obs.interval_end(self, used)
+        return used
+
+    # -- whole runs ------------------------------------------------------------------------------------
+    def run(self, schedule: Timeline | AutoSchedule) -> RunReport:
+        t_wall = _time.perf_counter()
+        for obs in self.observers:
+            obs.start(self, schedule)
+        error = None
+        try:
+            if isinstance(schedule, Timeline):
+                if any(iv.phase == "TO" for iv in schedule.intervals) and not self.speed_rpm:
+                    raise ScheduleError("a schedule with thermal-only intervals needs speed_rpm (the rotor cycle "
+                                        "over which the held outputs are averaged)")
+                for iv in schedule.intervals:
+                    self.run_interval(iv.phase, iv.duration, iv.step)
+            else:
+                self._run_auto(schedule)
+        except BaseException as exc:
+            error = exc
+            self.report.error = f"{type(exc).__name__}: {exc}"
+            raise
+        finally:
+            self.report.wall_time_s = _time.perf_counter() - t_wall
+            for obs in self.observers:
+                obs.end(self, error)
+        return self.report
+
+    def _run_auto(self, sch: AutoSchedule) -> None:
+        if not self.speed_rpm:
+            raise ScheduleError("the automatic schedule needs speed_rpm (its steadiness test works cycle by cycle)")
+        end = self.t0 + sch.duration
+        eps = 1e-9
+        while self.t < end - eps:
+            remaining = end - self.t
+            d_tm = remaining if remaining <= sch.tm_max + sch.to_min else sch.tm_max
+            self.run_interval("TM", d_tm, sch.step, _SteadyTest(self, sch), reason="tm_max")
+            remaining = end - self.t
+            if remaining <= eps:
+                break
+            # keep room for a final thermo-mechanical interval, where the results are read
+            d_to = min(sch.to_max, remaining - sch.tm_max)
+            if d_to < sch.to_min:
+                continue
+            self.run_interval("TO", d_to, sch.thermal_step, _DriftTest(self, sch), reason="to_max")
+
+
+class _StopTest:
+    every = 1
+
+    def sample(self, sim: Simulation) -> None:
+        pass
+
+    def check(self, sim: Simulation, t: float) -> str | None:
+        return None
+
+
+class _SteadyTest(_StopTest):
+    """Steady when the RMS of the tracked outputs over a rotor cycle changes by less than the tolerance
+    (relative) for ``steady_cycles`` consecutive cycles, after ``tm_min``."""
+
+    def __init__(self, sim: Simulation, sch: AutoSchedule):
+        self.sch = sch
+        self.refs = list(sch.tracked) or sorted({l.con.src for l in sim.engine.links if (
+            "TO" not in sim.system.components[l.con.src_component].phases
+            and "TO" in sim.system.components[l.con.dst_component].phases)})
+        for r in self.refs:
+            sim.system._port(r, "output")
+        self.every = max(1, int(round(sim.cycle / sch.step)))
+        self.t_begin = sim.t
+        self.acc = None
+        self.n = 0
+        self.last = None
+        self.steady = 0
+
+    def sample(self, sim):
+        if not self.refs:
+            return
+        vals = np.concatenate([np.ravel(sim.value(r)) for r in self.refs])
+        self.acc = vals * vals if self.acc is None else self.acc + vals * vals
+        self.n += 1
+
+    def check(self, sim, t):
+        if self.acc is None:
+            return "steady" if t - self.t_begin >= self.sch.tm_min - 1e-12 else None
+        rms = np.sqrt(self.acc / self.n)
+        self.acc, self.n = None, 0
+        if self.last is not None:
+            scale = np.maximum(np.abs(self.last), 1e-12)
+            change = float(np.max(np.abs(rms - self.last) / scale))
+            self.steady = self.steady + 1 if change < self.sch.steady_tolerance else 0
+        self.last = rms
+        if t - self.t_begin >= self.sch.tm_min - 1e-12 and self.steady >= self.sch.steady_cycles:
+            return "steady"
+        return None
+
+
+class _DriftTest(_StopTest):
+    """Ends a thermal-only interval when an output of a thermal component that feeds a frozen (mechanical)
+    component has drifted from its value at the interval start by more than the tolerance, after ``to_min``."""
+
+    def __init__(self, sim: Simulation, sch: AutoSchedule):
+        self.sch = sch
+        self.refs = sorted({l.con.src for l in sim.engine.links
+                            if "TO" in sim.system.components[l.con.src_component].phases
+                            and "TO" not in sim.system.components[l.con.dst_component].phases})
+        self.start = {r: np.array(sim.value(r), dtype=float) for r in self.refs}
+        self.floors = {r: DRIFT_FLOORS.get(sim.system._port(r, "output").unit, 0.0) for r in self.refs}
+        self.t_begin = sim.t
+
+    def check(self, sim, t):
+        if t - self.t_begin < self.sch.to_min - 1e-12:
+            return None
+        for r in self.refs:
+            d = np.abs(sim.value(r) - self.start[r])
+            if np.any(d > self.sch.drift_tolerance * np.abs(self.start[r]) + self.floors[r]):
+                return f"drift of {r}"
+        return None

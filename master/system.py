@@ -1,0 +1,131 @@
+"""A system: components plus connections, checked when built.
+
+Checks (each error names the ports): unknown component or port, causality (an output drives an input), vector
+size, unit, an input driven twice, an input left unconnected (unless the scenario gives it a constant value).
+An output driving nothing is fine.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Mapping, Sequence
+
+import numpy as np
+
+from rotorcosim.components.contract import Component, ContractError
+
+AVERAGES = ("mean", "rms", "last")
+EXTRAPOLATIONS = ("hold", "linear")
+HOLDS = ("rms", "mean", "last")
+
+
+class SystemError_(ContractError):
+    """A system that cannot be built: the message names the offending ports."""
+
+
+@dataclass
+class Connection:
+    """``src`` output drives ``dst`` input; both written ``component.port``.
+
+    ``average``: how a slower consumer sees a faster producer (mean or RMS over its step, or the last value);
+    ``extrapolation``: how a faster consumer sees a slower producer (hold or linear);
+    ``hold``: what replaces a frozen producer's output in a thermal-only interval (None: the schedule default).
+    """
+
+    src: str
+    dst: str
+    average: str = "mean"
+    extrapolation: str = "hold"
+    hold: str | None = None
+
+    def __post_init__(self):
+        for label, value, allowed in (("average", self.average, AVERAGES),
+                                      ("extrapolation", self.extrapolation, EXTRAPOLATIONS)):
+            if value not in allowed:
+                raise SystemError_(f"connection {self.src} -> {self.dst}: {label} {value!r} not in {allowed}")
+        if self.hold is not None and self.hold not in HOLDS:
+            raise SystemError_(f"connection {self.src} -> {self.dst}: hold {self.hold!r} not in {HOLDS}")
+
+    @property
+    def src_component(self) -> str:
+        return split_port(self.src)[0]
+
+    @property
+    def src_port(self) -> str:
+        return split_port(self.src)[1]
+
+    @property
+    def dst_component(self) -> str:
+        return split_port(self.dst)[0]
+
+    @property
+    def dst_port(self) -> str:
+        return split_port(self.dst)[1]
+
+
+def split_port(ref: str) -> tuple[str, str]:
+    comp, dot, port = str(ref).partition(".")
+    if not dot or not comp or not port:
+        raise SystemError_(f"port reference {ref!r} must be written 'component.port'")
+    return comp, port
+
+
+@dataclass
+class System:
+    components: dict[str, Component]
+    connections: list[Connection]
+    inputs: dict[str, np.ndarray] = field(default_factory=dict)
+
+    def __post_init__(self):
+        self.check()
+
+    def component(self, name: str) -> Component:
+        try:
+            return self.components[name]
+        except KeyError:
+            raise SystemError_(f"unknown component {name!r}; components: {', '.join(self.components)}") from None
+
+    def _port(self, ref: str, causality: str):
+        comp, port = split_port(ref)
+        c = self.component(comp)
+        try:
+            v = c.variable(port)
+        except ContractError:
+            known = ", ".join(x.name for x in c.variables if x.causality == causality)
+            raise SystemError_(f"{ref}: component {comp!r} has no {causality} {port!r} (its {causality}s: {known})") from None
+        if v.causality != causality:
+            raise SystemError_(f"{ref} is an {v.causality}, used as an {causality}")
+        return v
+
+    def check(self) -> None:
+        driven: dict[str, str] = {}
+        for con in self.connections:
+            out = self._port(con.src, "output")
+            inp = self._port(con.dst, "input")
+            if out.size != inp.size:
+                raise SystemError_(f"{con.src} (size {out.size}) -> {con.dst} (size {inp.size}): sizes differ")
+            if out.unit != inp.unit:
+                raise SystemError_(f"{con.src} [{out.unit}] -> {con.dst} [{inp.unit}]: units differ")
+            if con.dst in driven:
+                raise SystemError_(f"{con.dst} is driven twice: by {driven[con.dst]} and by {con.src}")
+            driven[con.dst] = con.src
+        for ref, value in list(self.inputs.items()):
+            inp = self._port(ref, "input")
+            if ref in driven:
+                raise SystemError_(f"{ref} has a constant value and is also driven by {driven[ref]}")
+            arr = np.broadcast_to(np.asarray(value, dtype=float), (inp.size,)).copy()
+            if not np.all(np.isfinite(arr)):
+                raise SystemError_(f"constant input {ref}: value {value!r} is not finite")
+            self.inputs[ref] = arr
+        missing = [f"{name}.{v.name}" for name, c in self.components.items() for v in c.variables
+                   if v.causality == "input" and f"{name}.{v.name}" not in driven and f"{name}.{v.name}" not in self.inputs]
+        if missing:
+            raise SystemError_("inputs left unconnected (connect them or give a constant under [inputs]): "
+                               + ", ".join(missing))
+
+    def connections_into(self, component: str) -> list[Connection]:
+        return [c for c in self.connections if c.dst_component == component]
+
+
+def build(components: Mapping[str, Component], connections: Sequence[Connection],
+          inputs: Mapping[str, Sequence[float]] | None = None) -> System:
+    return System(dict(components), list(connections), dict(inputs or {}))
