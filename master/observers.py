@@ -165,9 +165,10 @@ class Progress(Observer):
     def start(self, sim, schedule):
         from tqdm import tqdm
 
-        self.bar = tqdm(total=self.total, unit="s", desc=self.desc, disable=self.disable,
+        self.bar = tqdm(total=self.total, unit="s", desc=self.desc, disable=self.disable, mininterval=1.0,
                         bar_format="{l_bar}{bar}| {n:.3f}/{total:.3f} s simulated [{elapsed}<{remaining}]")
         self.t0 = sim.t
+        self.shown = 0.0
 
     def interval_start(self, sim, phase, step):
         self.stride = 1 if phase == "TO" else 256
@@ -176,12 +177,13 @@ class Progress(Observer):
 
     def step(self, sim, t):
         if self.bar is not None:
-            self.bar.n = min(self.total, t - self.t0)
-            self.bar.refresh()
+            done = min(self.total, t - self.t0)
+            self.bar.update(done - self.shown)  # tqdm redraws at most once per mininterval
+            self.shown = done
 
     def end(self, sim, error):
         if self.bar is not None:
-            self.bar.n = min(self.total, sim.t - self.t0)
+            self.step(sim, sim.t)
             self.bar.close()
 
 
