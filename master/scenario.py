@@ -36,6 +36,9 @@
     record_step = 1e-3
     format = "h5"                        # or "csv"
 
+A scenario may start from another one: ``[scenario] extends = "base.toml"`` (relative to the file) merges the
+base's tables under its own (tables merge key by key, anything else, lists included, is replaced).
+
 Relative paths (FMU files, model files) are resolved against the scenario file's folder. Everything SI;
 quantities at the edges carry their unit in the key name (``speed_rpm``).
 """
@@ -181,15 +184,33 @@ def parse(data: Mapping[str, Any], source: Path | None = None) -> Scenario:
                     extra={"results": dict(data.get("results", {}))})
 
 
-def load_scenario(path: str | Path) -> Scenario:
-    path = Path(path)
+def _merge(base: dict, top: Mapping) -> dict:
+    out = dict(base)
+    for k, v in top.items():
+        out[k] = _merge(out[k], v) if isinstance(v, Mapping) and isinstance(out.get(k), Mapping) else v
+    return out
+
+
+def _read(path: Path, seen: tuple = ()) -> dict:
     if not path.is_file():
         raise FileNotFoundError(f"scenario file {path} not found")
+    if path in seen:
+        raise ScenarioError(f"{path}: 'extends' loops back on itself ({' -> '.join(map(str, seen))})")
     try:
         data = tomllib.loads(path.read_text())
     except tomllib.TOMLDecodeError as exc:
         raise ScenarioError(f"{path}: not valid TOML: {exc}") from None
-    return parse(data, path.resolve())
+    base = data.get("scenario", {}).get("extends")
+    if base:
+        parent = _read((path.parent / base).resolve(), seen + (path,))
+        data = _merge(parent, data)
+        data["scenario"] = {k: v for k, v in data["scenario"].items() if k != "extends"}
+    return data
+
+
+def load_scenario(path: str | Path) -> Scenario:
+    path = Path(path).resolve()
+    return parse(_read(path), path)
 
 
 def create_component(spec: ComponentSpec) -> Component:

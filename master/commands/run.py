@@ -14,7 +14,7 @@ from pathlib import Path
 
 from rotorcosim import scenarios
 from rotorcosim.master.algorithm import SimulationDiverged
-from rotorcosim.master.observers import Progress, Recorder, SteadyWindows
+from rotorcosim.master.observers import Progress, Recorder
 from rotorcosim.master.outputs import write_json
 from rotorcosim.master.scenario import Scenario, build_simulation, load_scenario, schedule_of
 from rotorcosim.master.schedule import Timeline
@@ -90,11 +90,13 @@ def execute(sc: Scenario, out: Path, schedule_kind: str | None = None, duration:
     series = out / f"timeseries.{fmt}"
     if record:
         observers.append(Recorder(series, record, float(o.get("record_step", 1e-4))))
-    windows = None
+    post_obs = []
     speed = sc.schedule.get("speed_rpm")
-    if post is not None and speed:
-        windows = SteadyWindows(post.window_signals(sc), speed, float(sc.extra["results"].get("cycles", 5)))
-        observers.append(windows)
+    if post is not None:
+        if not speed:
+            raise ValueError(f"scenario {sc.name!r}: [results] needs schedule.speed_rpm (steady windows in rotor cycles)")
+        post_obs = post.observers(sc, speed)
+        observers += post_obs
     observers.append(Progress(total, disable=quiet, desc=sc.name))
     sim = build_simulation(sc, observers)
     t_wall = time.perf_counter()
@@ -116,10 +118,10 @@ def execute(sc: Scenario, out: Path, schedule_kind: str | None = None, duration:
         "timeseries": series.name if record else None,
         "error": None if error is None else str(error),
     }
-    if post is not None and windows is not None and windows.windows:
-        summary.update(post.extract(sc, sim, windows, report))
+    if post is not None:
+        summary.update(post.extract(sc, sim, post_obs, report))
         if figures:
-            summary["figures"] = post.figures(sc, sim, windows, out / series.name if record else None, out)
+            summary["figures"] = post.figures(sc, series if record else None, out)
     else:
         summary["final_outputs"] = {f"{n}.{k}": v for n, c in sim.system.components.items() for k, v in c.y.items()}
     write_json(out / "summary.json", summary)
