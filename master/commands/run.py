@@ -72,13 +72,17 @@ def postprocessor(sc: Scenario):
 
 
 def execute(sc: Scenario, out: Path, schedule_kind: str | None = None, duration: float | None = None,
-            figures: bool = True, quiet: bool = True) -> dict:
-    """Run ``sc`` into ``out``; returns the summary (also written to out/summary.json)."""
+            figures: bool = True, quiet: bool = True, schedule=None) -> dict:
+    """Run ``sc`` into ``out``; returns the summary (also written to out/summary.json).
+
+    ``schedule`` (a Timeline or AutoSchedule) overrides the scenario's; otherwise ``schedule_kind`` and
+    ``duration`` adjust it."""
     if duration is not None and not (duration > 0 and duration < float("inf")):
         raise ValueError(f"--duration must be a positive number of seconds, got {duration}")
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
-    schedule = schedule_of(sc, schedule_kind, duration)
+    if schedule is None:
+        schedule = schedule_of(sc, schedule_kind, duration)
     total = schedule.duration
     post = postprocessor(sc)
     o = sc.outputs
