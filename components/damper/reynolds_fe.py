@@ -1,0 +1,155 @@
+"""Finite-element Reynolds equation of a non-rotating squeeze-film damper journal (paper section 4.1, Fig. 7).
+
+Reynolds equation of the squeeze film (no journal spin), in the unrolled film x = R theta, axial z:
+
+    d/dx (h^3/(12 mu) dp/dx) + d/dz (h^3/(12 mu) dp/dz) = dh/dt,
+    h = c - e cos(theta'),   dh/dt = -v_r cos(theta') - v_t sin(theta'),
+
+in the frame rotated to the eccentricity direction (theta' = theta - phi, v_r along and v_t normal to it).
+Galerkin with linear triangles (assembled here with numpy + scipy.sparse, no scikit-fem):
+
+    sum_j [ int h^3/12 grad N_i . grad N_j dA ] P_j = int N_i (-dh/dt) dA,     p - p_s = mu P,
+
+on half the journal (z from the journal end, z = 0, to the axial mid-plane, z = L/2), periodic in theta,
+Dirichlet p = p_s (P = 0) at z = 0, natural zero flux (q_n = 0) at the mid-plane: the paper's Fig. 7(b).
+The mesh is n_theta x n_z rectangles, each split into two right triangles (so "128 x 64" means 128 x 64 cells,
+16 384 triangles, 128 x 65 nodes). h^3 is integrated per element as the mean of its nodal values (exact for the
+linear interpolant of h^3). The first node column lies on the minimum film (theta' = 0): the mesh is aligned
+with the eccentricity, which is the best-resolved placement and makes the solution a function of the
+eccentricity ratio only (what the fast model tabulates).
+
+Because P is linear in (v_r, v_t) and p - p_s in mu, one factorisation and two unit solves give P_r, P_t;
+the film force of the whole journal (both halves) is F = -2 sum_i p_i W_i with W_i = int N_i (cos, sin) dA.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from functools import lru_cache
+
+import numpy as np
+import scipy.sparse as sp
+from scipy.sparse.linalg import splu
+
+
+@dataclass(frozen=True)
+class Mesh:
+    """Structured triangulation of the unrolled half film; node n = j * n_theta + i (i around, j axial)."""
+
+    radius: float
+    half_length: float
+    n_theta: int
+    n_z: int
+    theta: np.ndarray        # (n_nodes,) angle from the minimum film, rad
+    tri: np.ndarray          # (n_el, 3) node indices
+    orient: np.ndarray       # (n_el,) 0 or 1: which of the two triangle shapes
+    Ke: np.ndarray           # (2, 3, 3) stiffness of a unit-coefficient triangle of each shape
+    Wc: np.ndarray           # (n_nodes,) int N_i cos(theta') dA over the half film
+    Ws: np.ndarray           # (n_nodes,) int N_i sin(theta') dA
+    free: np.ndarray         # (n_free,) node indices off the Dirichlet end
+    rows: np.ndarray         # COO pattern of the element matrices (n_el * 9)
+    cols: np.ndarray
+
+    @property
+    def n_nodes(self) -> int:
+        return self.n_theta * (self.n_z + 1)
+
+
+def _tri_stiffness(xy: np.ndarray) -> np.ndarray:
+    """Stiffness int grad N_i . grad N_j dA of a linear triangle with vertices xy (3, 2)."""
+    (x1, y1), (x2, y2), (x3, y3) = xy
+    area2 = (x2 - x1) * (y3 - y1) - (x3 - x1) * (y2 - y1)
+    b = np.array([y2 - y3, y3 - y1, y1 - y2])
+    c = np.array([x3 - x2, x1 - x3, x2 - x1])
+    return (np.outer(b, b) + np.outer(c, c)) / (2.0 * abs(area2))
+
+
+@lru_cache(maxsize=8)
+def build_mesh(radius: float, length: float, n_theta: int, n_z: int) -> Mesh:
+    """The mesh, its element shapes and the load/force weights (depend on geometry only; cached)."""
+    if n_theta < 8 or n_z < 2:
+        raise ValueError(f"mesh too coarse: n_theta={n_theta} (>= 8), n_z={n_z} (>= 2)")
+    dth = 2.0 * math.pi / n_theta
+    dx, dz = radius * dth, 0.5 * length / n_z
+    i = np.arange(n_theta)
+    j = np.arange(n_z)
+    I, J = np.meshgrid(i, j)                       # cells
+    I, J = I.ravel(), J.ravel()
+    ip = (I + 1) % n_theta                           # periodic in theta
+    n00, n10, n11, n01 = J * n_theta + I, J * n_theta + ip, (J + 1) * n_theta + ip, (J + 1) * n_theta + I
+    tri = np.concatenate([np.stack([n00, n10, n11], 1), np.stack([n00, n11, n01], 1)])
+    orient = np.concatenate([np.zeros(len(I), np.int64), np.ones(len(I), np.int64)])
+    Ke = np.stack([
+        _tri_stiffness(np.array([[0, 0], [dx, 0], [dx, dz]], float)),
+        _tri_stiffness(np.array([[0, 0], [dx, dz], [0, dz]], float)),
+    ])
+    theta = np.tile(i * dth, n_z + 1)
+    # consistent mass matrix (area/12 * [2 1 1; 1 2 1; 1 1 2]) times nodal cos/sin: int N_i cos dA of the
+    # linear interpolant; the same weights give the load vector of a unit radial / tangential velocity
+    area = 0.5 * dx * dz
+    Me = area / 12.0 * (np.ones((3, 3)) + np.eye(3))
+    n_nodes = n_theta * (n_z + 1)
+    rows = np.repeat(tri, 3, axis=1).ravel()
+    cols = np.tile(tri, (1, 3)).ravel()
+    M = sp.csr_matrix((np.tile(Me.ravel(), len(tri)), (rows, cols)), shape=(n_nodes, n_nodes))
+    Wc, Ws = M @ np.cos(theta), M @ np.sin(theta)
+    free = np.arange(n_theta, n_nodes)
+    for a in (theta, Wc, Ws, tri, orient, Ke, free, rows, cols):
+        a.setflags(write=False)
+    return Mesh(radius, 0.5 * length, n_theta, n_z, theta, tri, orient, Ke, Wc, Ws, free, rows, cols)
+
+
+def unit_fields(mesh: Mesh, clearance: float, eps: float) -> tuple[np.ndarray, np.ndarray]:
+    """P_r, P_t (n_nodes each, Pa per (Pa s . m/s)): p - p_s = mu (v_r P_r + v_t P_t) at eccentricity ratio eps.
+
+    One sparse LU of the Reynolds operator with h^3/12 (unit viscosity), two right-hand sides.
+    """
+    if not 0.0 <= eps < 1.0:
+        raise ValueError(f"eccentricity ratio {eps} outside [0, 1)")
+    h = clearance * (1.0 - eps * np.cos(mesh.theta))
+    h3e = (h**3)[mesh.tri].mean(axis=1) / 12.0
+    data = (h3e[:, None, None] * mesh.Ke[mesh.orient]).ravel()
+    n = mesh.n_nodes
+    K = sp.csc_matrix((data, (mesh.rows, mesh.cols)), shape=(n, n))
+    f = mesh.free
+    Kff = K[f][:, f].tocsc()
+    rhs = np.stack([mesh.Wc[f], mesh.Ws[f]], axis=1)   # int N_i (-dh/dt) for v_r = 1 and v_t = 1
+    # symmetric positive definite: symmetric ordering, no pivoting (measured ~1.5x faster than COLAMD)
+    lu = splu(Kff, permc_spec="MMD_AT_PLUS_A", diag_pivot_thresh=0.0, options={"SymmetricMode": True})
+    sol = lu.solve(rhs)
+    Pr = np.zeros(n)
+    Pt = np.zeros(n)
+    Pr[f], Pt[f] = sol[:, 0], sol[:, 1]
+    return Pr, Pt
+
+
+def film_force_aligned(mesh: Mesh, p_rel: np.ndarray) -> tuple[float, float]:
+    """(F_r, F_t) on the whole journal from the half-film nodal pressure p - p_s (uniform p_s has no net force)."""
+    return -2.0 * float(mesh.Wc @ p_rel), -2.0 * float(mesh.Ws @ p_rel)
+
+
+def rotate_in(dx: float, dy: float, dvx: float, dvy: float) -> tuple[float, float, float, float, float]:
+    """(e, cos phi, sin phi, v_r, v_t): the eccentricity frame (phi = 0 for a centred journal)."""
+    e = math.hypot(dx, dy)
+    if e > 0.0:
+        c, s = dx / e, dy / e
+    else:
+        c, s = 1.0, 0.0
+    return e, c, s, c * dvx + s * dvy, -s * dvx + c * dvy
+
+
+def fe_film_force(mesh: Mesh, clearance: float, dx: float, dy: float, dvx: float, dvy: float, mu: float,
+                  supply_pressure: float, cavitation_pressure: float, cavitation: bool,
+                  return_field: bool = False):
+    """Direct FE film force (Fx, Fy) on the journal at position (dx, dy) and velocity (dvx, dvy) relative to
+    the housing: one assembly + factorisation + solve, Guembel clipping after the solve when ``cavitation``."""
+    from .cavitation import guembel
+
+    e, c, s, vr, vt = rotate_in(dx, dy, dvx, dvy)
+    Pr, Pt = unit_fields(mesh, clearance, e / clearance)
+    p_rel = mu * (vr * Pr + vt * Pt)
+    if cavitation:
+        p_rel = guembel(p_rel, supply_pressure, cavitation_pressure)
+    Fr, Ft = film_force_aligned(mesh, p_rel)
+    F = (c * Fr - s * Ft, s * Fr + c * Ft)
+    return (F, p_rel) if return_field else F
