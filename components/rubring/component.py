@@ -1,0 +1,117 @@
+"""The rub-ring component: rotor/ring contact with Coulomb friction and the friction power of eq. (11).
+
+Paper section 2.3 (eq. 11) and Table 3 (clearance 0.508 mm); the contact law and its sign conventions are in
+contact.py. The ring is carried by the housing (casing node): forces act on the rotor (``F_rotor``) and, equal and
+opposite, on the housing (``F_housing``).
+
+Inputs are the rotor's and the housing's displacement and velocity at the ring (absolute, m and m/s); the force is
+evaluated at the inputs given for the step (the rotor's state at the end of the step, Gauss-Seidel order) and held
+over it. The component is memoryless, so ``P_rub`` evaluated at those held inputs is also the mean friction power
+over the step that those forces deliver (the held force times the held sliding speed).
+
+Parameters default to ring #0 (``bearing = 0``); ``bearing = 5`` picks ring #5's clearance and radius. Values and
+reasons in data/rubrings.toml: stiffness 2e8 N/m, damping 4000 N s/m, friction 0.2, clearance 0.508 mm, radius
+25.4 mm (41.9 mm at #5), omega = 16 000 rev/min (power-turbine speed).
+"""
+from __future__ import annotations
+
+import math
+import tomllib
+from pathlib import Path
+
+import numpy as np
+
+from ..contract import Component, ContractError, Variable
+from .contact import rub_force
+
+DATA = Path(__file__).with_name("data") / "rubrings.toml"
+with open(DATA, "rb") as _f:
+    _DATA = tomllib.load(_f)
+RINGS = {int(k): v for k, v in _DATA["ring"].items()}
+CONTACT = _DATA["contact"]
+PT_OMEGA = 16000.0 * 2.0 * math.pi / 60.0   # power-turbine speed (paper section 4), rad/s
+#: parameters that follow the ``bearing`` selection unless set explicitly
+GEOMETRY = {"clearance": "clearance_mm", "radius": "radius_mm"}
+
+
+class RubRing(Component):
+    """Rotor / rub-ring contact at bearing #0 or #5."""
+
+    description = "Rub ring: penalty contact with damping, Coulomb friction (spin + whirl), friction power eq. (11)"
+    variables = (
+        Variable("bearing", "parameter", unit="1", start=0, type="Integer",
+                 description="which ring (at bearing 0 or 5) gives the clearance and radius not set explicitly"),
+        Variable("clearance", "parameter", unit="m", start=RINGS[0]["clearance_mm"] * 1e-3,
+                 description="radial clearance between the rotor and the ring"),
+        Variable("stiffness", "parameter", unit="N/m", start=CONTACT["stiffness"], description="contact stiffness"),
+        Variable("damping", "parameter", unit="N.s/m", start=CONTACT["damping"],
+                 description="contact damping on the penetration rate"),
+        Variable("friction", "parameter", unit="1", start=CONTACT["friction"], description="Coulomb coefficient"),
+        Variable("radius", "parameter", unit="m", start=RINGS[0]["radius_mm"] * 1e-3,
+                 description="rotor surface radius at the ring (spin surface speed omega * radius)"),
+        Variable("omega", "parameter", unit="rad/s", start=PT_OMEGA, description="rotor spin speed (counter-clockwise +)"),
+        Variable("slip_regularisation", "parameter", unit="m/s", start=CONTACT["slip_regularisation"],
+                 description="sliding speed below which the friction force is proportional to the slip"),
+        Variable("X_rotor", "input", 2, "m", "rotor displacement at the ring (absolute)"),
+        Variable("V_rotor", "input", 2, "m/s", "rotor velocity at the ring (absolute)"),
+        Variable("X_housing", "input", 2, "m", "housing (ring) displacement (absolute)"),
+        Variable("V_housing", "input", 2, "m/s", "housing (ring) velocity (absolute)"),
+        Variable("F_rotor", "output", 2, "N", "contact + friction force on the rotor"),
+        Variable("F_housing", "output", 2, "N", "reaction on the housing, -F_rotor"),
+        Variable("P_rub", "output", 1, "W", "friction power, eq. (11) (mean over the step)"),
+        Variable("F_normal", "output", 1, "N", "normal contact force magnitude"),
+    )
+    preferred_step = 1e-5
+    phases = frozenset({"TM"})
+
+    def set_parameter(self, name, value):
+        super().set_parameter(name, value)
+        self.__dict__.setdefault("_explicit", set()).add(name)
+
+    def setup(self, t0=0.0):
+        super().setup(t0)
+        p = self.p
+        if p["bearing"] not in RINGS:
+            raise ContractError(f"{self.name}.bearing must be one of {sorted(RINGS)}, got {p['bearing']}")
+        explicit = self.__dict__.get("_explicit", set())
+        for key, data_key in GEOMETRY.items():
+            if key not in explicit:
+                p[key] = RINGS[p["bearing"]][data_key] * 1e-3
+        for key in ("clearance", "stiffness", "radius", "slip_regularisation"):
+            if not p[key] > 0.0:
+                raise ContractError(f"{self.name}.{key} must be > 0, got {p[key]}")
+        for key in ("damping", "friction"):
+            if p[key] < 0.0:
+                raise ContractError(f"{self.name}.{key} must be >= 0, got {p[key]}")
+        self._args = (p["clearance"], p["stiffness"], p["damping"], p["friction"], p["radius"], p["omega"],
+                      p["slip_regularisation"])
+        self.state = {}
+        self._evaluate(t0)
+
+    def _evaluate(self, t):
+        u = self.u
+        xr, vr, xh, vh = u["X_rotor"], u["V_rotor"], u["X_housing"], u["V_housing"]
+        dx, dy = float(xr[0] - xh[0]), float(xr[1] - xh[1])
+        wx, wy = float(vr[0] - vh[0]), float(vr[1] - vh[1])
+        if not math.isfinite(dx + dy + wx + wy):
+            raise ContractError(f"{self.name}: non-finite rotor/housing motion at t = {t:.9g} s")
+        fx, fy, power, fn = rub_force(dx, dy, wx, wy, *self._args)
+        y = self.y
+        y["F_rotor"] = np.array([fx, fy])
+        y["F_housing"] = np.array([-fx, -fy])
+        y["P_rub"] = np.array([power])
+        y["F_normal"] = np.array([fn])
+
+    def do_step(self, t, h):
+        self._evaluate(t + h)
+        self.time = t + h
+
+    def get_state(self):
+        # memoryless: the snapshot is the time and the current inputs/outputs
+        return (self.time, {k: v.copy() for k, v in self.u.items()}, {k: v.copy() for k, v in self.y.items()})
+
+    def set_state(self, snapshot):
+        t, u, y = snapshot
+        self.time = t
+        self.u = {k: v.copy() for k, v in u.items()}
+        self.y = {k: v.copy() for k, v in y.items()}

@@ -1,0 +1,62 @@
+"""``rotorcosim thermal-steady``: the steady state of a bearing's thermal network under constant powers."""
+from __future__ import annotations
+
+import json
+import math
+
+from .component import ThermalNetwork
+from .geometry import BEARINGS, NODES
+
+KELVIN = 273.15
+
+
+def add_arguments(parser):
+    parser.add_argument("--bearing", type=int, choices=sorted(BEARINGS), required=True,
+                        help="bearing #0 or #5 (Table 3 geometry)")
+    parser.add_argument("--drag-power", type=float, required=True, metavar="W", help="bearing drag-torque power, W")
+    parser.add_argument("--sfd-power", type=float, required=True, metavar="W", help="damper film viscous power, W")
+    parser.add_argument("--rub-power", type=float, default=0.0, metavar="W", help="rub friction power, W (default 0)")
+    parser.add_argument("--ambient", type=float, default=30.0, metavar="C",
+                        help="ambient, oil supply and initial (zero-growth) temperature, degrees C (default 30)")
+    parser.add_argument("--json", action="store_true", help="print a JSON object")
+
+
+def steady(bearing: int, drag_power: float, sfd_power: float, rub_power: float = 0.0,
+           ambient_C: float = 30.0) -> dict:
+    """Steady node temperatures (C) and growths (m) of bearing 0 or 5 under constant powers (W)."""
+    values = {"drag power": drag_power, "sfd power": sfd_power, "rub power": rub_power, "ambient": ambient_C}
+    for name, v in values.items():
+        if not math.isfinite(v):
+            raise ValueError(f"{name} must be a finite number, got {v}")
+    for name in ("drag power", "sfd power", "rub power"):
+        if values[name] < 0.0:
+            raise ValueError(f"{name} must be >= 0 W, got {values[name]}")
+    Ta = ambient_C + KELVIN
+    if Ta <= 0.0:
+        raise ValueError(f"ambient must be above absolute zero, got {ambient_C} C")
+    net = ThermalNetwork(f"thermal{bearing}", {"bearing": bearing, "T_ambient": Ta, "T_initial": Ta, "T_supply": Ta})
+    net.setup(0.0)
+    T = net.steady_state(drag_power, sfd_power, rub_power)
+    eps = net.growths_at(T)
+    return {
+        "bearing": bearing,
+        "powers_W": {"drag": drag_power, "sfd": sfd_power, "rub": rub_power},
+        "temperatures_C": {name: float(T[i] - KELVIN) for i, name in enumerate(NODES)},
+        "bearing_oil_C": float(0.5 * (T[2] + T[4]) - KELVIN),
+        "growths_m": {"inner": float(eps[0]), "outer": float(eps[1]), "ball": float(eps[2])},
+    }
+
+
+def run(args) -> int:
+    out = steady(args.bearing, args.drag_power, args.sfd_power, args.rub_power, args.ambient)
+    if args.json:
+        print(json.dumps(out))
+        return 0
+    pw = out["powers_W"]
+    print(f"bearing #{out['bearing']} steady state: drag {pw['drag']:g} W, film {pw['sfd']:g} W, rub {pw['rub']:g} W")
+    for name, value in out["temperatures_C"].items():
+        print(f"  {name:<11s} {value:9.2f} C")
+    g = out["growths_m"]
+    print(f"  growths: inner race {g['inner'] * 1e6:.3f} um, outer race {g['outer'] * 1e6:.3f} um,"
+          f" ball {g['ball'] * 1e6:.3f} um")
+    return 0

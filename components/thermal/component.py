@@ -1,0 +1,138 @@
+"""The bearing thermal network component (paper section 2.3: Fig. 5, Table 1, eqs. (12)-(15)).
+
+Nine lumped nodes per bearing (``T_nodes`` order: shaft, inner_race, lub_inner, ball, lub_outer, outer_race,
+journal, sfd_oil, housing), eq. (12) at each, the Table 1 resistances from the Table 3 geometry (geometry.py), heat
+sources from the three power inputs, and the growths of eqs. (13)-(15) (growth.py).
+
+Inputs (W), each the mean over the step (so the heat of a step is input x h, energy-preserving):
+``P_drag`` the bearing drag-torque power, split between the inner and outer ball/race contacts (half each by
+default) and at each contact between race and ball (half each); ``P_sfd`` the damper film's viscous power, into the
+squeeze-film oil; ``P_rub`` the rub friction power of eq. (11), into the shaft node (the rotor at the ring).
+
+Outputs: ``eps`` = [eps_i, eps_e, eps_b] (m), the radial growths of the inner raceway, the outer raceway and the
+ball radius, positive = expansion, from the temperature rise over ``T_initial`` (eqs. 14, 13, 15; see growth.py);
+``T_oil``, the bearing oil temperature for the drag-torque viscosity = the mean of the two lubricant nodes
+(lub_inner, lub_outer); ``T_sfd_oil`` the squeeze-film oil node; ``T_inner_race``, ``T_ball``, ``T_outer_race``;
+``T_nodes`` all nine (K).
+
+Integration: the exact solution for inputs held over the step (network.py, "exact", the default), with the step
+matrices cached per step size, so that 1 ms thermo-mechanical steps and 0.1 s thermal-only steps are both stable
+and exact for the held powers; ``method = "backward-euler"`` is available for comparison.
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from ..contract import Component, ContractError, Variable
+from .geometry import (BEARINGS, BALL, IR, JOURNAL, LE, LI, NODES, OR, SFD, SHAFT, _DATA, build_network,
+                       default_sources, radii)
+from .growth import growths
+from .network import METHODS
+
+_SRC = default_sources()
+_LMIN = 1e-3 / 60.0
+PT_OMEGA = 16000.0 * 2.0 * math.pi / 60.0  # power-turbine speed (paper section 4), rad/s
+
+
+class ThermalNetwork(Component):
+    """Bearing thermal network of bearing #0 or #5 (nine nodes, eqs. 12-15)."""
+
+    description = "Bearing thermal network (9 lumped nodes, Table 1 resistances) and thermal growths eqs. (13)-(15)"
+    variables = (
+        Variable("bearing", "parameter", unit="1", start=0, type="Integer",
+                 description="which bearing of Table 3 (0 or 5) gives the geometry"),
+        Variable("T_ambient", "parameter", unit="K", start=303.15, description="ambient temperature (30 C)"),
+        Variable("T_initial", "parameter", unit="K", start=303.15,
+                 description="initial temperature of all nodes, and the zero-growth reference of eqs. (13)-(15)"),
+        Variable("T_supply", "parameter", unit="K", start=303.15,
+                 description="temperature of the oil supplied to the bearing and the damper"),
+        Variable("omega", "parameter", unit="rad/s", start=PT_OMEGA,
+                 description="shaft speed, for the shaft-end convection of R_sa"),
+        Variable("drag_inner_fraction", "parameter", unit="1", start=_SRC["drag_inner_fraction"],
+                 description="share of the drag power at the inner ball/race contacts (rest at the outer ones)"),
+        Variable("contact_race_fraction", "parameter", unit="1", start=_SRC["contact_race_fraction"],
+                 description="share of a contact's heat entering the race (rest into the ball)"),
+        Variable("rub_shaft_fraction", "parameter", unit="1", start=_SRC["rub_shaft_fraction"],
+                 description="share of the rub power entering the shaft (rest into the housing)"),
+        Variable("bearing_oil_flow", "parameter", unit="m3/s", start=_DATA["oil_flow"]["bearing_L_per_min"] * _LMIN,
+                 description="bearing lubricant flow (renewal of the lubricant nodes)"),
+        Variable("sfd_oil_flow", "parameter", unit="m3/s", start=_DATA["oil_flow"]["sfd_L_per_min"] * _LMIN,
+                 description="squeeze-film damper oil flow (renewal of the SFD oil node)"),
+        Variable("method", "parameter", unit="1", start="exact", type="String",
+                 description="integration: 'exact' (held-input exact solution) or 'backward-euler'"),
+        Variable("P_drag", "input", 1, "W", "bearing drag-torque power (mean over the step)"),
+        Variable("P_sfd", "input", 1, "W", "squeeze film viscous power (mean over the step)"),
+        Variable("P_rub", "input", 1, "W", "rub friction power, eq. (11) (mean over the step)"),
+        Variable("eps", "output", 3, "m",
+                 "thermal growths [eps_i, eps_e, eps_b]: inner raceway, outer raceway, ball radius; + = expansion"),
+        Variable("T_oil", "output", 1, "K", "bearing oil temperature (mean of the lubricant nodes)", start=303.15),
+        Variable("T_sfd_oil", "output", 1, "K", "squeeze-film oil temperature", start=303.15),
+        Variable("T_inner_race", "output", 1, "K", "inner race temperature", start=303.15),
+        Variable("T_ball", "output", 1, "K", "ball temperature", start=303.15),
+        Variable("T_outer_race", "output", 1, "K", "outer race temperature", start=303.15),
+        Variable("T_nodes", "output", 9, "K", "all nodes: " + ", ".join(NODES), start=303.15),
+    )
+    preferred_step = 1e-3
+    phases = frozenset({"TM", "TO"})
+
+    def setup(self, t0=0.0):
+        super().setup(t0)
+        p = self.p
+        if p["bearing"] not in BEARINGS:
+            raise ContractError(f"{self.name}.bearing must be one of {sorted(BEARINGS)}, got {p['bearing']}")
+        if p["method"] not in METHODS:
+            raise ContractError(f"{self.name}.method must be one of {METHODS}, got {p['method']!r}")
+        for key in ("T_ambient", "T_initial", "T_supply"):
+            if not p[key] > 0.0:
+                raise ContractError(f"{self.name}.{key} must be > 0 K, got {p[key]}")
+        try:
+            self.network = build_network(
+                p["bearing"], p["omega"], p["T_ambient"], p["T_supply"], p["drag_inner_fraction"],
+                p["contact_race_fraction"], p["rub_shaft_fraction"], p["bearing_oil_flow"], p["sfd_oil_flow"])
+        except ValueError as exc:
+            raise ContractError(f"{self.name}: {exc}") from None
+        g = radii(p["bearing"])
+        st = _DATA["steel"]
+        self._growth_args = (p["T_initial"], st["expansion"], st["poisson"], g["r_i"], g["r_e"], g["r_j"], g["r_b"])
+        self._method = p["method"]
+        self.state = {"T": np.full(9, p["T_initial"])}
+        self._publish(self.state["T"])
+
+    def _publish(self, T):
+        y = self.y
+        y["T_nodes"] = T.copy()
+        y["eps"] = np.array(growths(T[SHAFT], T[LI], T[BALL], T[LE], T[JOURNAL], *self._growth_args))
+        y["T_oil"] = np.array([0.5 * (T[LI] + T[LE])])
+        y["T_sfd_oil"] = np.array([T[SFD]])
+        y["T_inner_race"] = np.array([T[IR]])
+        y["T_ball"] = np.array([T[BALL]])
+        y["T_outer_race"] = np.array([T[OR]])
+
+    def powers(self) -> np.ndarray:
+        u = self.u
+        q = np.array([u["P_drag"][0], u["P_sfd"][0], u["P_rub"][0]])
+        if not (math.isfinite(q[0]) and math.isfinite(q[1]) and math.isfinite(q[2])):
+            raise ContractError(f"{self.name}: non-finite power input P_drag, P_sfd, P_rub = {q.tolist()} W")
+        if q.min() < -1e-6:
+            bad = [n for n, v in zip(("P_drag", "P_sfd", "P_rub"), q) if v < -1e-6]
+            raise ContractError(f"{self.name}: negative heat source {', '.join(bad)} = {q.min()} W (must be >= 0)")
+        return q
+
+    def do_step(self, t, h):
+        if not h > 0.0:
+            raise ContractError(f"{self.name}: step size must be > 0, got {h}")
+        T = self.network.step(self.state["T"], self.powers(), h, self._method)
+        self.state["T"] = T
+        self.time = t + h
+        self._publish(T)
+
+    def steady_state(self, P_drag: float, P_sfd: float, P_rub: float) -> np.ndarray:
+        """Node temperatures (K) of the steady state under constant powers (the linear solve K T = b + S u)."""
+        self.set_inputs({"P_drag": [P_drag], "P_sfd": [P_sfd], "P_rub": [P_rub]})
+        return self.network.steady(self.powers())
+
+    def growths_at(self, T) -> np.ndarray:
+        """eps = [eps_i, eps_e, eps_b] (m) of node temperatures T (K)."""
+        return np.array(growths(T[SHAFT], T[LI], T[BALL], T[LE], T[JOURNAL], *self._growth_args))

@@ -1,0 +1,214 @@
+"""The bearing heat-transfer network of the paper's Fig. 5: geometry, Table 1 resistances, heat masses, sources.
+
+Nodes (this order everywhere): 0 shaft, 1 inner_race, 2 lub_inner, 3 ball, 4 lub_outer, 5 outer_race, 6 journal,
+7 sfd_oil, 8 housing; grounds: the ambient and the oil supply.
+
+Radii: r_s = bore/2 (shaft), r_i = (d_m - D)/2 and r_e = (d_m + D)/2 (inner/outer raceway, d_m = (bore + OD)/2),
+r_o = OD/2 (outer race outside = journal bore), r_j = damper radius (journal outside), r_hi = r_j + c_sf (housing
+bore), r_h = r_hi + wall (housing outside); r_b = D/2; W_i = W_e = bearing width.
+
+Branches (Table 1 resistances; a lubricant node sits in the middle of its layer, so each side gets half of R_L):
+
+    shaft  - ambient      R_sa = L_s/(k_s pi r_s^2) + 1/(h_s pi r_s^2)
+    shaft  - inner_race   R_sr + R_i,  R_sr = 1/(pi k_s W_i),  R_i = ln(r_i/r_s)/(2 pi k_i W_i)
+    inner_race - lub_inner - ball          R_Li/2 + R_Li/2,  R_Li = r_b / (k_l (2 pi r_i W_i - pi n r_b^2))
+    inner_race - ball, ball - outer_race   R_b = 1/(n k_b pi r_b) each (ball centre to each contact)
+    ball - lub_outer - outer_race          R_Le/2 + R_Le/2,  R_Le = r_b / (k_l (2 pi r_e W_e - pi n r_b^2))
+    outer_race - journal  R_e + R_j,   R_e = ln(r_o/r_e)/(2 pi k_e W_e),  R_j = ln(r_j/r_o)/(2 pi k_j W_e)
+    journal - sfd_oil     R_sf1 = ln((r_j + c_sf/2)/r_j) / (2 pi k_sf L_j)
+    sfd_oil - housing     R_sf2 = ln(r_hi/(r_j + c_sf/2)) / (2 pi k_sf L_j)
+    housing - ambient     R_h = R_hr R_ha / (R_hr + R_ha)
+                          R_hr = ln(r_h/r_hi)/(2 pi k_h L_h) + 1/(h_h 2 pi r_h L_h)
+                          R_ha = L_h/(2 pi k_h (r_h^2 - r_hi^2)) + 1/(pi h_h (r_h^2 - r_hi^2))
+
+Table 1 prints R_hr, R_ha with r_o (the outer race radius): with the damper between the journal and the housing,
+the housing's bore is r_hi, used here. Added to Table 1 (the oils are supplied, see data/thermal.toml): the oil
+renewal conductances rho c_p Q from each lubricant node (half the bearing flow each) and from the SFD oil to the
+oil supply.
+
+Heat masses m c_p (eq. 12): shaft, solid cylinder r_s over L_s; inner race, annulus r_s..r_i over W_i; balls,
+n (4/3) pi r_b^3; lubricant, the free annulus r_i..r_e over W minus the balls, half to each lubricant node;
+outer race, annulus r_e..r_o over W_e; journal, annulus r_o..r_j over L_j; SFD oil, the film 2 pi r_j c_sf L_j;
+housing, annulus r_hi..r_h over L_h.
+
+Heat sources (the three power inputs, W):
+
+* P_drag (bearing drag torque): a fraction ``drag_inner_fraction`` at the inner ball/race contacts, the rest at
+  the outer ones; the heat of a contact is shared between the race (``contact_race_fraction``) and the ball.
+* P_sfd (film viscous power): all into the SFD oil node, where it is dissipated.
+* P_rub (rub friction, eq. 11): ``rub_shaft_fraction`` into the shaft node (the rotor at the ring, next to the
+  bearing), the rest into the housing (which carries the ring).
+"""
+from __future__ import annotations
+
+import math
+import tomllib
+from pathlib import Path
+
+import numpy as np
+
+from .network import LinearNetwork
+
+DATA = Path(__file__).with_name("data") / "thermal.toml"
+with open(DATA, "rb") as _f:
+    _DATA = tomllib.load(_f)
+BEARINGS = {int(k): v for k, v in _DATA["bearing"].items()}
+
+NODES = ("shaft", "inner_race", "lub_inner", "ball", "lub_outer", "outer_race", "journal", "sfd_oil", "housing")
+SHAFT, IR, LI, BALL, LE, OR, JOURNAL, SFD, HOUSING = range(9)
+INPUTS = ("P_drag", "P_sfd", "P_rub")
+
+
+def bearing_data(bearing: int) -> dict:
+    if bearing not in BEARINGS:
+        raise ValueError(f"bearing must be one of {sorted(BEARINGS)}, got {bearing!r}")
+    return dict(BEARINGS[bearing])
+
+
+def radii(bearing: int) -> dict:
+    """Radii and lengths (m) of the bearing, journal and housing used by Table 1 and eqs. (13)-(15)."""
+    d = bearing_data(bearing)
+    mm = 1e-3
+    bore, od, D = d["bore_diameter_mm"] * mm, d["outside_diameter_mm"] * mm, d["ball_diameter_mm"] * mm
+    dm = 0.5 * (bore + od)   # pitch diameter ~ mean of bore and OD (Harris & Kotzalas)
+    g = {
+        "r_s": bore / 2, "r_i": (dm - D) / 2, "r_e": (dm + D) / 2, "r_o": od / 2, "r_b": D / 2,
+        "W": d["width_mm"] * mm, "n": int(d["n_balls"]),
+        "r_j": d["damper_radius_mm"] * mm, "L_j": d["damper_length_mm"] * mm, "c_sf": d["damper_clearance_mm"] * mm,
+        "L_s": d["shaft_length_mm"] * mm, "L_h": d["housing_length_mm"] * mm,
+    }
+    g["r_hi"] = g["r_j"] + g["c_sf"]
+    g["r_h"] = g["r_hi"] + d["housing_wall_mm"] * mm
+    for key, value in g.items():
+        if not (math.isfinite(value) and value > 0):
+            raise ValueError(f"bearing {bearing}: {key} must be > 0, got {value}")
+    if not g["r_s"] < g["r_i"] < g["r_e"] < g["r_o"] < g["r_j"] < g["r_hi"] < g["r_h"]:
+        raise ValueError(f"bearing {bearing}: radii are not nested (shaft < races < journal < housing): {g}")
+    return g
+
+
+def shaft_convection(omega: float, r: float) -> float:
+    """h of a rotating cylinder in air, W/(m^2 K) (data/thermal.toml [convection])."""
+    c = _DATA["convection"]
+    return c["shaft_a"] * abs(omega) ** c["shaft_b"] * r ** c["shaft_c"]
+
+
+def resistances(bearing: int, omega: float) -> dict:
+    """The Table 1 resistances (K/W) of bearing 0 or 5 at shaft speed omega (rad/s)."""
+    g = radii(bearing)
+    st, oil = _DATA["steel"], _DATA["oil"]
+    k, kl = st["conductivity"], oil["conductivity"]
+    r_s, r_i, r_e, r_o, r_b, W, n = g["r_s"], g["r_i"], g["r_e"], g["r_o"], g["r_b"], g["W"], g["n"]
+    r_j, L_j, c_sf, r_hi, r_h, L_h, L_s = g["r_j"], g["L_j"], g["c_sf"], g["r_hi"], g["r_h"], g["L_h"], g["L_s"]
+    h_s = shaft_convection(omega, r_s)
+    h_h = _DATA["convection"]["housing"]
+    a_i = 2 * math.pi * r_i * W - math.pi * n * r_b ** 2
+    a_e = 2 * math.pi * r_e * W - math.pi * n * r_b ** 2
+    if a_i <= 0 or a_e <= 0:
+        raise ValueError(f"bearing {bearing}: the balls cover the raceway (lubricant area <= 0)")
+    ann = r_h ** 2 - r_hi ** 2
+    R = {
+        "R_Li": r_b / (kl * a_i),
+        "R_Le": r_b / (kl * a_e),
+        "R_b": 1.0 / (n * k * math.pi * r_b),
+        "R_i": math.log(r_i / r_s) / (2 * math.pi * k * W),
+        "R_sr": 1.0 / (math.pi * k * W),
+        "R_sa": L_s / (k * math.pi * r_s ** 2) + 1.0 / (h_s * math.pi * r_s ** 2) if h_s > 0 else math.inf,
+        "R_e": math.log(r_o / r_e) / (2 * math.pi * k * W),
+        "R_j": math.log(r_j / r_o) / (2 * math.pi * k * W),
+        "R_sf1": math.log((r_j + c_sf / 2) / r_j) / (2 * math.pi * kl * L_j),
+        "R_sf2": math.log(r_hi / (r_j + c_sf / 2)) / (2 * math.pi * kl * L_j),
+        "R_hr": math.log(r_h / r_hi) / (2 * math.pi * k * L_h) + 1.0 / (h_h * 2 * math.pi * r_h * L_h),
+        "R_ha": L_h / (2 * math.pi * k * ann) + 1.0 / (math.pi * h_h * ann),
+    }
+    R["R_h"] = R["R_hr"] * R["R_ha"] / (R["R_hr"] + R["R_ha"])
+    return R
+
+
+def heat_masses(bearing: int) -> np.ndarray:
+    """m c_p of the nine nodes, J/K."""
+    g = radii(bearing)
+    st, oil = _DATA["steel"], _DATA["oil"]
+    rc_s, rc_o = st["density"] * st["specific_heat"], oil["density"] * oil["specific_heat"]
+    pi = math.pi
+    v_balls = g["n"] * 4.0 / 3.0 * pi * g["r_b"] ** 3
+    v_free = pi * (g["r_e"] ** 2 - g["r_i"] ** 2) * g["W"] - v_balls
+    C = np.empty(9)
+    C[SHAFT] = rc_s * pi * g["r_s"] ** 2 * g["L_s"]
+    C[IR] = rc_s * pi * (g["r_i"] ** 2 - g["r_s"] ** 2) * g["W"]
+    C[LI] = C[LE] = rc_o * 0.5 * v_free
+    C[BALL] = rc_s * v_balls
+    C[OR] = rc_s * pi * (g["r_o"] ** 2 - g["r_e"] ** 2) * g["W"]
+    C[JOURNAL] = rc_s * pi * (g["r_j"] ** 2 - g["r_o"] ** 2) * g["L_j"]
+    C[SFD] = rc_o * 2 * pi * g["r_j"] * g["c_sf"] * g["L_j"]
+    C[HOUSING] = rc_s * pi * (g["r_h"] ** 2 - g["r_hi"] ** 2) * g["L_h"]
+    return C
+
+
+def source_map(drag_inner_fraction: float, contact_race_fraction: float, rub_shaft_fraction: float) -> np.ndarray:
+    """S (9 x 3): node heat sources per watt of [P_drag, P_sfd, P_rub]; each column sums to 1."""
+    for name, f in (("drag_inner_fraction", drag_inner_fraction), ("contact_race_fraction", contact_race_fraction),
+                    ("rub_shaft_fraction", rub_shaft_fraction)):
+        if not (math.isfinite(f) and 0.0 <= f <= 1.0):
+            raise ValueError(f"{name} must be within [0, 1], got {f}")
+    S = np.zeros((9, 3))
+    fi, fr = drag_inner_fraction, contact_race_fraction
+    S[IR, 0] = fi * fr
+    S[OR, 0] = (1 - fi) * fr
+    S[BALL, 0] = 1 - fr
+    S[SFD, 1] = 1.0
+    S[SHAFT, 2] = rub_shaft_fraction
+    S[HOUSING, 2] = 1 - rub_shaft_fraction
+    return S
+
+
+def default_sources() -> dict:
+    return dict(_DATA["sources"])
+
+
+def build_network(bearing: int, omega: float, T_ambient: float, T_supply: float,
+                  drag_inner_fraction: float | None = None, contact_race_fraction: float | None = None,
+                  rub_shaft_fraction: float | None = None, bearing_oil_flow: float | None = None,
+                  sfd_oil_flow: float | None = None) -> LinearNetwork:
+    """The network of bearing 0 or 5 (flows in m^3/s; None: the data-file value)."""
+    src = default_sources()
+    flows = _DATA["oil_flow"]
+    Lmin = 1e-3 / 60.0
+    q_b = flows["bearing_L_per_min"] * Lmin if bearing_oil_flow is None else bearing_oil_flow
+    q_s = flows["sfd_L_per_min"] * Lmin if sfd_oil_flow is None else sfd_oil_flow
+    for name, v in (("bearing_oil_flow", q_b), ("sfd_oil_flow", q_s), ("T_ambient", T_ambient),
+                    ("T_supply", T_supply)):
+        if not (math.isfinite(v) and v >= 0.0):
+            raise ValueError(f"{name} must be finite and >= 0, got {v}")
+    if T_ambient <= 0 or T_supply <= 0:
+        raise ValueError(f"temperatures must be > 0 K, got T_ambient={T_ambient}, T_supply={T_supply}")
+    R = resistances(bearing, omega)
+    oil = _DATA["oil"]
+    rc_o = oil["density"] * oil["specific_heat"]
+    branches = [
+        (SHAFT, IR, R["R_sr"] + R["R_i"]),
+        (IR, LI, R["R_Li"] / 2), (LI, BALL, R["R_Li"] / 2),
+        (IR, BALL, R["R_b"]), (BALL, OR, R["R_b"]),
+        (BALL, LE, R["R_Le"] / 2), (LE, OR, R["R_Le"] / 2),
+        (OR, JOURNAL, R["R_e"] + R["R_j"]),
+        (JOURNAL, SFD, R["R_sf1"]), (SFD, HOUSING, R["R_sf2"]),
+    ]
+    K = np.zeros((9, 9))
+    for a, b, r in branches:
+        g = 1.0 / r
+        K[a, a] += g
+        K[b, b] += g
+        K[a, b] -= g
+        K[b, a] -= g
+    ground = np.zeros(9)
+    T_ground = np.full(9, float(T_ambient))
+    ground[SHAFT] = 1.0 / R["R_sa"]
+    ground[HOUSING] = 1.0 / R["R_h"]
+    for node, q in ((LI, 0.5 * q_b), (LE, 0.5 * q_b), (SFD, q_s)):
+        ground[node] = rc_o * q
+        T_ground[node] = T_supply
+    K[np.diag_indices(9)] += ground
+    S = source_map(src["drag_inner_fraction"] if drag_inner_fraction is None else drag_inner_fraction,
+                   src["contact_race_fraction"] if contact_race_fraction is None else contact_race_fraction,
+                   src["rub_shaft_fraction"] if rub_shaft_fraction is None else rub_shaft_fraction)
+    return LinearNetwork(C=heat_masses(bearing), K=K, b=ground * T_ground, S=S, ground=ground, T_ground=T_ground)
