@@ -115,3 +115,15 @@ def test_non_finite_motion_is_rejected():
     r.set_inputs({"X_rotor": [float("nan"), 0.0]})
     with pytest.raises(ContractError, match="non-finite"):
         r.do_step(0.0, 1e-5)
+
+
+def test_interface_jacobian_radial_stiffness():
+    """On a static contact at +x without friction, dF_x/dx = -k (the contact stiffness) and dF_x/dv_x = -c_d;
+    the normal force turns with the position, so dF_y/dy = -F_n / r = -k (r - c) / r (by hand)."""
+    r = ring(friction=0.0)
+    evaluate(r, [0.6e-3, 0.0], [0.0, 0.0])
+    J = r.interface_jacobian()
+    JX, JV = J[("F_rotor", "X_rotor")], J[("F_rotor", "V_rotor")]
+    assert JX[0, 0] == pytest.approx(-K, rel=1e-6)
+    assert JX[1, 1] == pytest.approx(-K * (0.6e-3 - CLR) / 0.6e-3, rel=1e-6)
+    assert JV[0, 0] == pytest.approx(-C_D, rel=1e-6)
