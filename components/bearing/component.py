@@ -1,0 +1,201 @@
+"""Nonlinear Hertzian ball bearing (#0 or #5 of the power turbine), paper section 2.2, eqs. (1)-(10), Table 3.
+
+Model (kernel.py):
+* inner race = the rotor node at the bearing, motion given by the inputs X_inner, V_inner (3: x, y, z);
+* Z balls, each with its own radial and axial DOF and mass in its r-z plane, eq. (4), with the centrifugal force
+  F_c = m_b (d_m/2) omega_c^2; the balls' angles advance at the cage speed omega_c = omega/2 (1 - D cos a0 / d_m);
+* outer race + damper journal: a 2-DOF body, eq. (5), driven by the ball contacts and the damper force input
+  F_journal (film + centering spring), axially fixed;
+* contact geometry eqs. (1), (6)-(8) with the thermal growths eps = [eps_i, eps_e, eps_b] (eqs. 13-15): the radial
+  growth of the inner race, of the outer race and of the ball radius, positive = expansion. Inner race and ball
+  growth close the contacts (raise the loads), outer race growth opens them, as in eqs. (6)-(7);
+* Hertz contact with the contact damping of eq. (9) (no tensile force: Q >= 0), stress at the centre of the contact
+  ellipse, eq. (10), reported as a positive compressive stress;
+* force on the rotor, eq. (2): F_rotor = sum T^T Q + (0, 0, P). The axial preload P is applied by placing the
+  inner race axially at z0, the offset at which the balls carry P at speed omega with no radial load; the preload's
+  reaction closes through the shaft and the housing, so F_rotor is zero at the preloaded rest state X_inner = 0 and
+  only the change from it reaches the rotor;
+* drag torque after Palmgren (drag.py) with the SAE 30 viscosity at T_oil (oil.py), at the mean of the step's
+  sub-step values; P_drag = M omega, omega the inner race speed (the outer race does not rotate).
+
+Integration inside do_step: symplectic Euler sub-steps of cfl / omega_ball (omega_ball the highest linearised
+ball-contact frequency at the start of the step), the journal linearly implicit in the damper force
+F_journal + K_journal (x - x0) + C_journal (v - v0) about the journal state x0, v0 at the start of the step
+(where the damper evaluated F_journal); with K_journal = C_journal = 0 this is the held force.
+
+The inner race moves linearly over the step: with ``inner_motion = "step_end"`` (default) X_inner, V_inner are the
+rotor's state at the END of the step (Gauss-Seidel with the rotor first, as in scenarios/blade_loss.toml), and the
+path is X_inner - V_inner (h - tau); with ``"step_start"`` they are at the start and the path is X_inner + V_inner tau.
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from ..contract import Component, ContractError, Variable
+from .drag import static_load_rating
+from .geometry import DATA, BEARINGS, build_geometry
+from .kernel import step_outputs
+from .oil import sae30_kinematic_viscosity
+from .static import preload_offset
+
+RPM = math.pi / 30.0
+_DESIGN, _DRAG, _NUM = DATA["design"], DATA["drag"], DATA["numerics"]
+#: parameters that follow the ``bearing`` selection unless set explicitly
+_FROM_BEARING = ("preload", "m_journal")
+INNER_MOTION = ("step_end", "step_start")
+
+
+class BallBearing(Component):
+    """Ball bearing #0 / #5 with ball dynamics, journal body and thermal growth (eqs. 1-10)."""
+
+    description = ("Nonlinear Hertzian angular-contact ball bearing with ball dynamics, outer race + SFD journal "
+                   "body, thermal growths and Palmgren drag torque (paper eqs. 1-10, Table 3)")
+    preferred_step = 1e-5
+    phases = frozenset({"TM"})
+    variables = (
+        Variable("bearing", "parameter", start=0, type="Integer",
+                 description="which bearing of Table 3 (0 or 5) gives the geometry and defaults"),
+        Variable("omega", "parameter", unit="rad/s", start=16000.0 * RPM,
+                 description="inner race (power turbine) speed; outer race stationary"),
+        Variable("groove_curvature_inner", "parameter", start=_DESIGN["groove_curvature_inner"],
+                 description="inner groove radius / ball diameter f_i"),
+        Variable("groove_curvature_outer", "parameter", start=_DESIGN["groove_curvature_outer"],
+                 description="outer groove radius / ball diameter f_o"),
+        Variable("contact_damping", "parameter", unit="s/m", start=_DESIGN["contact_damping"],
+                 description="Hertz contact damping alpha of eq. (9) (paper: 0.08-0.32 s/m)"),
+        Variable("m_journal", "parameter", unit="kg", start=0.0,
+                 description="outer race + journal mass of eq. (5); default: solid steel rings from Table 3"),
+        Variable("preload", "parameter", unit="N", start=BEARINGS[0]["preload_N"],
+                 description="axial preload (default Table 3: 800 N for #0, 1100 N for #5)"),
+        Variable("f0", "parameter", start=_DRAG["f0"], description="Palmgren lubrication factor of the drag torque"),
+        Variable("inner_motion", "parameter", start="step_end", type="String",
+                 description="X_inner/V_inner are the rotor state at the 'step_end' (Gauss-Seidel, rotor first) "
+                             "or 'step_start' (Jacobi) of the step"),
+        Variable("substeps", "parameter", start=0, type="Integer",
+                 description="sub-steps per do_step; 0 = automatic from the ball-contact frequency and cfl"),
+        Variable("cfl", "parameter", start=_NUM["cfl"],
+                 description="automatic sub-step: dt = cfl / highest ball-contact frequency (stable below 2)"),
+        Variable("X_inner", "input", 3, "m", "inner race (rotor node) displacement x, y, z"),
+        Variable("V_inner", "input", 3, "m/s", "inner race (rotor node) velocity"),
+        Variable("F_journal", "input", 2, "N", "damper film + centering spring force on the journal"),
+        Variable("K_journal", "input", 4, "N/m", "dF_journal/dX_journal, row-major [xx, xy, yx, yy]"),
+        Variable("C_journal", "input", 4, "N.s/m", "dF_journal/dV_journal, row-major [xx, xy, yx, yy]"),
+        Variable("eps", "input", 3, "m", "thermal radial growths [inner race, outer race, ball], + = expansion"),
+        Variable("T_oil", "input", 1, "K", "bearing oil temperature (drag torque viscosity)", start=303.15),
+        Variable("F_rotor", "output", 3, "N", "force of the bearing on the rotor (eq. 2), zero at preloaded rest"),
+        Variable("X_journal", "output", 2, "m", "outer race + journal displacement (absolute)"),
+        Variable("V_journal", "output", 2, "m/s", "outer race + journal velocity (absolute)"),
+        Variable("Q_max", "output", 2, "N", "max contact load over the balls [inner, outer], end of step"),
+        Variable("Q_max_step", "output", 2, "N", "max contact load over the balls and the sub-steps of the step"),
+        Variable("sigma_max", "output", 2, "Pa", "max contact stress eq. (10) [inner, outer], end of step"),
+        Variable("sigma_max_step", "output", 2, "Pa", "max contact stress over the sub-steps of the step"),
+        Variable("P_drag", "output", 1, "W", "drag torque power loss M omega, mean over the step"),
+    )
+
+    def set_parameter(self, name, value):
+        super().set_parameter(name, value)
+        self.__dict__.setdefault("_explicit", set()).add(name)
+
+    # -- set-up --------------------------------------------------------------------------------------------
+    def setup(self, t0=0.0):
+        super().setup(t0)
+        p = self.p
+        explicit = self.__dict__.get("_explicit", set())
+        if p["bearing"] not in BEARINGS:
+            raise ContractError(f"{self.name}.bearing: unknown bearing number {p['bearing']!r}; "
+                                f"Table 3 has {sorted(BEARINGS)}")
+        if "preload" not in explicit:
+            p["preload"] = float(BEARINGS[p["bearing"]]["preload_N"])
+        for key, lo in (("omega", 0.0), ("preload", 0.0), ("contact_damping", 0.0), ("f0", 0.0)):
+            if not p[key] >= lo:
+                raise ContractError(f"{self.name}.{key} must be >= {lo}, got {p[key]}")
+        if p["inner_motion"] not in INNER_MOTION:
+            raise ContractError(f"{self.name}.inner_motion must be one of {INNER_MOTION}, got {p['inner_motion']!r}")
+        if p["substeps"] < 0 or not p["cfl"] > 0.0 or p["cfl"] >= 2.0:
+            raise ContractError(f"{self.name}: substeps must be >= 0 (0 = automatic) and 0 < cfl < 2, "
+                                f"got substeps={p['substeps']}, cfl={p['cfl']}")
+        try:
+            g = build_geometry(p["bearing"], f_i=p["groove_curvature_inner"], f_o=p["groove_curvature_outer"],
+                               preload=p["preload"])
+        except ValueError as exc:
+            raise ContractError(f"{self.name}: {exc}") from None
+        if "m_journal" not in explicit:
+            p["m_journal"] = g.m_outer_race + g.m_journal
+        if not p["m_journal"] > 0.0:
+            raise ContractError(f"{self.name}.m_journal must be > 0 kg, got {p['m_journal']}")
+        self.geometry = g
+        omega = p["omega"]
+        Fc = g.centrifugal_force(omega)
+        self.z0, st = preload_offset(g, Fc)
+        self.C0 = static_load_rating(g.Z, g.alpha0, max(g.inner.stress_coeff, g.outer.stress_coeff),
+                                     _DRAG["static_rating_stress_MPa"] * 1e6, _DRAG["static_rating_stribeck"])
+        self._geo = np.array([g.l_oi, g.l_oe, math.cos(g.alpha0), math.sin(g.alpha0), g.K_i, g.K_e,
+                              p["contact_damping"], Fc, g.m_b, p["m_journal"], g.cage_speed(omega),
+                              g.preload, g.inner.stress_coeff, g.outer.stress_coeff, omega, 0.05 * g.D])
+        self._drag = np.array([0.0, omega, g.d_m, p["f0"], _DRAG["f1_z"], _DRAG["f1_y"], _DRAG["X0"],
+                               _DRAG["Y0"], self.C0])
+        self._num = np.array([p["cfl"], float(_NUM["min_substeps"]), float(p["substeps"]),
+                              1.0 if p["inner_motion"] == "step_end" else 0.0])
+        phi = 2.0 * math.pi * np.arange(g.Z) / g.Z
+        self._cb, self._sb = np.cos(phi), np.sin(phi)
+        self._T = None
+        self.state = {
+            "balls": np.vstack([st.v, np.zeros((2, g.Z))]),
+            "journal": np.zeros(4),
+            "phi": np.zeros(1),
+        }
+        self.substeps_used = 0
+        # outputs of the rest state: one zero-length evaluation
+        self._advance(0.0, self.time, update_state=False)
+
+    # -- stepping ------------------------------------------------------------------------------------------
+    def _nu(self, T):
+        if T != self._T:
+            try:
+                self._drag[0] = sae30_kinematic_viscosity(T)
+            except ValueError as exc:
+                raise ContractError(f"{self.name}.T_oil: {exc}") from None
+            self._T = T
+        return self._drag[0]
+
+    def _advance(self, h, t, update_state=True):
+        u = self.u
+        self._nu(float(u["T_oil"][0]))
+        if update_state:
+            balls, jour, phi = self.state["balls"], self.state["journal"], self.state["phi"]
+        else:
+            balls, jour, phi = (self.state["balls"].copy(), self.state["journal"].copy(),
+                                self.state["phi"].copy())
+        out = np.empty(18)
+        step_outputs(h, u["X_inner"], u["V_inner"], self.z0, u["eps"], u["F_journal"], u["K_journal"],
+                     u["C_journal"], balls, jour, phi, self._cb, self._sb, self._geo, self._drag, self._num, out)
+        if out[16] != 0.0:
+            self._fail(out[16], t + h)
+        y = self.y
+        y["F_rotor"] = out[0:3]
+        y["X_journal"] = out[3:5]
+        y["V_journal"] = out[5:7]
+        y["Q_max"] = out[7:9]
+        y["Q_max_step"] = out[9:11]
+        y["sigma_max"] = out[11:13]
+        y["sigma_max_step"] = out[13:15]
+        y["P_drag"] = out[15:16]
+        self.substeps_used = int(out[17])
+
+    def _fail(self, flag, t):
+        if flag == 1.0:
+            bad = [k for k in ("X_inner", "V_inner", "F_journal", "K_journal", "C_journal", "eps")
+                   if not np.all(np.isfinite(self.u[k]))]
+            raise ContractError(f"{self.name}: non-finite input {', '.join(bad)} at t = {t:.9g} s")
+        if flag == 2.0:
+            raise ContractError(f"{self.name}.eps: thermal growths {self.u['eps']} m exceed 5 % of the ball "
+                                f"diameter ({self._geo[15]:.3g} m); not a thermal growth")
+        raise RuntimeError(f"{self.name}: the bearing state became non-finite at t = {t:.9g} s")
+
+    def do_step(self, t, h):
+        if not (h > 0.0 and math.isfinite(h)):
+            raise ContractError(f"{self.name}: step size must be a finite number > 0, got {h!r}")
+        self._advance(h, t)
+        self.time = t + h

@@ -1,0 +1,275 @@
+"""The time-stepping kernel of the ball bearing (numba): balls, cage and outer race + journal over one
+communication step, eqs. (1)-(9).
+
+Per ball j at angle phi_j = phi_cage + 2 pi j / Z, in its r-z plane (eq. 1, u_r = x cos phi + y sin phi,
+u_z = z, w_r = x_e cos phi + y_e sin phi):
+    A = (l_oi cos a0 + u_r + eps_i - v_r,  l_oi sin a0 + u_z - v_z)        inner groove centre p - ball centre
+    B = (l_oe cos a0 + v_r - w_r - eps_e,  l_oe sin a0 + v_z)              ball centre - outer groove centre q
+    l = eps_b + |A|,  tan alpha = A_z / A_r  (eqs. 6, 7);  delta = l - l_o (eq. 8);
+    Q = K delta^1.5 (1 + 1.5 alpha_d d(delta)/dt) for delta > 0, else 0; never tensile (eq. 9);
+    m_b dv/dt = Q_i n_i - Q_e n_e + (F_c, 0)                                 (eq. 4);
+    force on the inner race  -Q_i (cos alpha_i cos phi, cos alpha_i sin phi, sin alpha_i)   (eqs. 2, 3);
+    force on the outer race  +Q_e cos alpha_e (cos phi, sin phi)                             (eq. 5).
+Integration: symplectic (semi-implicit) Euler sub-steps for the balls; the journal (eq. 5) with the damper force
+linearised about the start of the step, F0 + K (x - x0) + C (v - v0), taken implicitly in each sub-step.
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numba import njit
+
+from .drag import palmgren_torque
+
+
+@njit(cache=True)
+def _forces(Xx, Xy, Xz, Vx, Vy, Vz, xe, ye, vxe, vye, cphi, sphi, wc, balls, Z, c_b, s_b, l_oi, l_oe, ca0, sa0,
+            Ki, Ke, ad, Fc, m_b, eps_i, eps_e, eps_b, acc, out):
+    """Contact forces of all balls at one instant. Writes ball accelerations into ``acc`` (2, Z) and into
+    ``out``: [Fx, Fy, Fz on the inner race, Fx, Fy on the outer race, Qi_max, Qe_max, Fr, Fa, kmax]."""
+    Fx = 0.0
+    Fy = 0.0
+    Fz = 0.0
+    Gx = 0.0
+    Gy = 0.0
+    qi_max = 0.0
+    qe_max = 0.0
+    kmax = 0.0
+    for j in range(Z):
+        c = cphi * c_b[j] - sphi * s_b[j]
+        s = sphi * c_b[j] + cphi * s_b[j]
+        vr = balls[0, j]
+        vz = balls[1, j]
+        dvr = balls[2, j]
+        dvz = balls[3, j]
+        ur = Xx * c + Xy * s
+        dur = Vx * c + Vy * s + wc * (-Xx * s + Xy * c)
+        wr = xe * c + ye * s
+        dwr = vxe * c + vye * s + wc * (-xe * s + ye * c)
+        # inner contact
+        Ar = l_oi * ca0 + ur + eps_i - vr
+        Az = l_oi * sa0 + Xz - vz
+        Li = math.sqrt(Ar * Ar + Az * Az)
+        di = eps_b + Li - l_oi
+        Qi = 0.0
+        ki = 0.0
+        if di > 0.0:
+            ddi = ((dur - dvr) * Ar + (Vz - dvz) * Az) / Li
+            sq = math.sqrt(di)
+            Qi = Ki * di * sq * (1.0 + 1.5 * ad * ddi)
+            if Qi < 0.0:
+                Qi = 0.0
+            ki = 1.5 * Ki * sq
+        # outer contact
+        Br = l_oe * ca0 + vr - wr - eps_e
+        Bz = l_oe * sa0 + vz
+        Le = math.sqrt(Br * Br + Bz * Bz)
+        de = eps_b + Le - l_oe
+        Qe = 0.0
+        ke = 0.0
+        if de > 0.0:
+            dde = ((dvr - dwr) * Br + dvz * Bz) / Le
+            sq = math.sqrt(de)
+            Qe = Ke * de * sq * (1.0 + 1.5 * ad * dde)
+            if Qe < 0.0:
+                Qe = 0.0
+            ke = 1.5 * Ke * sq
+        ci = Ar / Li
+        si = Az / Li
+        ce = Br / Le
+        se = Bz / Le
+        acc[0, j] = (Qi * ci - Qe * ce + Fc) / m_b
+        acc[1, j] = (Qi * si - Qe * se) / m_b
+        Fx -= Qi * ci * c
+        Fy -= Qi * ci * s
+        Fz -= Qi * si
+        Gx += Qe * ce * c
+        Gy += Qe * ce * s
+        if Qi > qi_max:
+            qi_max = Qi
+        if Qe > qe_max:
+            qe_max = Qe
+        if ki + ke > kmax:
+            kmax = ki + ke
+    out[0] = Fx
+    out[1] = Fy
+    out[2] = Fz
+    out[3] = Gx
+    out[4] = Gy
+    out[5] = qi_max
+    out[6] = qe_max
+    out[7] = math.sqrt(Fx * Fx + Fy * Fy)
+    out[8] = abs(Fz)
+    out[9] = kmax
+
+
+@njit(cache=True)
+def _bad(a, lim):
+    for v in a:
+        if not (abs(v) <= lim):
+            return True
+    return False
+
+
+@njit(cache=True)
+def step_outputs(h, X, V, z0, eps, F0, Kj, Cj, balls, jour, phi, c_b, s_b, geo, drag, num, out):
+    """:func:`step` plus the component's outputs in one call (the per-step Python overhead is most of the cost).
+
+    The inner race path is X - V lag + V tau with lag = num[3] (h: inputs at the end of the step; 0: start).
+    geo[11:15] = [preload, stress coefficient inner, outer, omega].
+    out (18) <- F_rotor (3), X_journal (2), V_journal (2), Q_max (2), Q_max_step (2), sigma_max (2),
+    sigma_max_step (2), P_drag (1), a flag: 0 ok, 1 non-finite input, 2 eps beyond +-geo[15],
+    3 non-finite state, and the number of sub-steps."""
+    flag = 0.0
+    if (_bad(X, 1e300) or _bad(V, 1e300) or _bad(F0, 1e300) or _bad(Kj, 1e300) or _bad(Cj, 1e300)
+            or _bad(eps, 1e300)):
+        flag = 1.0
+    elif _bad(eps, geo[15]):
+        flag = 2.0
+    if flag != 0.0:
+        out[16] = flag
+        return
+    lag = h if num[3] > 0.0 else 0.0
+    Xa = np.empty(3)
+    for k in range(3):
+        Xa[k] = X[k] - V[k] * lag
+    res = np.empty(9)
+    step(h, Xa, V, z0, eps, F0, Kj, Cj, balls, jour, phi, c_b, s_b, geo, drag, num, res)
+    out[0] = res[0]
+    out[1] = res[1]
+    out[2] = res[2] + geo[11]
+    out[3] = jour[0]
+    out[4] = jour[1]
+    out[5] = jour[2]
+    out[6] = jour[3]
+    for k in range(4):
+        out[7 + k] = res[3 + k]
+    out[11] = geo[12] * res[3] ** (1.0 / 3.0)
+    out[12] = geo[13] * res[4] ** (1.0 / 3.0)
+    out[13] = geo[12] * res[5] ** (1.0 / 3.0)
+    out[14] = geo[13] * res[6] ** (1.0 / 3.0)
+    out[15] = res[7] * geo[14]
+    ok = True
+    for k in range(16):
+        if not (abs(out[k]) < 1e300):
+            ok = False
+    for v in balls.ravel():
+        if not (abs(v) < 1e300):
+            ok = False
+    out[16] = 0.0 if ok else 3.0
+    out[17] = res[8]
+
+
+@njit(cache=True)
+def step(h, Xa, Va, z0, eps, F0, Kj, Cj, balls, jour, phi, c_b, s_b, geo, drag, num, res):
+    """Advance balls, cage angle and journal over h with the inner race on X(tau) = Xa + Va tau (+ z0 axially).
+
+    geo  = [l_oi, l_oe, cos a0, sin a0, K_i, K_e, alpha_d, F_c, m_b, m_journal, omega_c, ...]
+    drag = [nu, omega, d_m, f0, z, y, X0, Y0, C0]
+    num  = [cfl, min_substeps, fixed_substeps (0: automatic), ...]
+    balls (4, Z) [v_r, v_z, dv_r/dt, dv_z/dt] and jour (4) [x, y, vx, vy] are updated in place; phi (1) too.
+    res <- [Fx, Fy, Fz on the inner race (end), Qi, Qe (end), Qi, Qe (max over the step), mean drag torque,
+            substeps used]."""
+    Z = balls.shape[1]
+    l_oi, l_oe, ca0, sa0, Ki, Ke, ad, Fc, m_b, m_j, wc = (geo[0], geo[1], geo[2], geo[3], geo[4], geo[5], geo[6],
+                                                       geo[7], geo[8], geo[9], geo[10])
+    eps_i = eps[0]
+    eps_e = eps[1]
+    eps_b = eps[2]
+    acc = np.empty((2, Z))
+    out = np.empty(10)
+    x0 = jour[0]
+    y0 = jour[1]
+    vx0 = jour[2]
+    vy0 = jour[3]
+    _forces(Xa[0], Xa[1], Xa[2] + z0, Va[0], Va[1], Va[2], jour[0], jour[1], jour[2], jour[3],
+            math.cos(phi[0]), math.sin(phi[0]), wc, balls, Z, c_b, s_b, l_oi, l_oe, ca0, sa0, Ki, Ke, ad, Fc, m_b,
+            eps_i, eps_e, eps_b, acc, out)
+    if h <= 0.0:
+        # outputs of the present state only (set-up)
+        M = palmgren_torque(out[7], out[8], drag[0], drag[1], drag[2], drag[3], drag[4], drag[5], drag[6],
+                            drag[7], drag[8])
+        res[0] = out[0]
+        res[1] = out[1]
+        res[2] = out[2]
+        res[3] = out[5]
+        res[4] = out[6]
+        res[5] = out[5]
+        res[6] = out[6]
+        res[7] = M
+        res[8] = 0
+        return
+    n = int(num[2])
+    if n <= 0:
+        w = math.sqrt(out[9] / m_b)
+        n = int(math.ceil(h * w / num[0]))
+        if n < int(num[1]):
+            n = int(num[1])
+    dt = h / n
+    # journal: (m/dt - dt K - C) v+ = m/dt v + F_contact + F0 + K (x - x0) - C v0, x+ = x + dt v+
+    a11 = m_j / dt - dt * Kj[0] - Cj[0]
+    a12 = -dt * Kj[1] - Cj[1]
+    a21 = -dt * Kj[2] - Cj[2]
+    a22 = m_j / dt - dt * Kj[3] - Cj[3]
+    det = a11 * a22 - a12 * a21
+    qi_step = out[5]
+    qe_step = out[6]
+    drag_sum = 0.0
+    cdt = math.cos(wc * dt)
+    sdt = math.sin(wc * dt)
+    cphi = math.cos(phi[0])
+    sphi = math.sin(phi[0])
+    for k in range(n):
+        if k > 0:
+            tau = k * dt
+            _forces(Xa[0] + Va[0] * tau, Xa[1] + Va[1] * tau, Xa[2] + z0 + Va[2] * tau, Va[0], Va[1], Va[2],
+                    jour[0], jour[1], jour[2], jour[3], cphi, sphi, wc, balls, Z, c_b, s_b, l_oi, l_oe, ca0, sa0,
+                    Ki, Ke, ad, Fc, m_b, eps_i, eps_e, eps_b, acc, out)
+            if out[5] > qi_step:
+                qi_step = out[5]
+            if out[6] > qe_step:
+                qe_step = out[6]
+        M = palmgren_torque(out[7], out[8], drag[0], drag[1], drag[2], drag[3], drag[4], drag[5], drag[6],
+                            drag[7], drag[8])
+        drag_sum += M if k > 0 else 0.5 * M
+        for j in range(Z):
+            balls[2, j] += dt * acc[0, j]
+            balls[3, j] += dt * acc[1, j]
+            balls[0, j] += dt * balls[2, j]
+            balls[1, j] += dt * balls[3, j]
+        dx = jour[0] - x0
+        dy = jour[1] - y0
+        r1 = m_j / dt * jour[2] + out[3] + F0[0] + Kj[0] * dx + Kj[1] * dy - Cj[0] * vx0 - Cj[1] * vy0
+        r2 = m_j / dt * jour[3] + out[4] + F0[1] + Kj[2] * dx + Kj[3] * dy - Cj[2] * vx0 - Cj[3] * vy0
+        vxn = (a22 * r1 - a12 * r2) / det
+        vyn = (a11 * r2 - a21 * r1) / det
+        jour[2] = vxn
+        jour[3] = vyn
+        jour[0] += dt * vxn
+        jour[1] += dt * vyn
+        c = cphi * cdt - sphi * sdt
+        sphi = sphi * cdt + cphi * sdt
+        cphi = c
+    phi[0] = (phi[0] + wc * h) % (2.0 * math.pi)
+    cphi = math.cos(phi[0])
+    sphi = math.sin(phi[0])
+    _forces(Xa[0] + Va[0] * h, Xa[1] + Va[1] * h, Xa[2] + z0 + Va[2] * h, Va[0], Va[1], Va[2], jour[0], jour[1],
+            jour[2], jour[3], cphi, sphi, wc, balls, Z, c_b, s_b, l_oi, l_oe, ca0, sa0, Ki, Ke, ad, Fc, m_b,
+            eps_i, eps_e, eps_b, acc, out)
+    if out[5] > qi_step:
+        qi_step = out[5]
+    if out[6] > qe_step:
+        qe_step = out[6]
+    M = palmgren_torque(out[7], out[8], drag[0], drag[1], drag[2], drag[3], drag[4], drag[5], drag[6], drag[7],
+                        drag[8])
+    drag_sum += 0.5 * M
+    res[0] = out[0]
+    res[1] = out[1]
+    res[2] = out[2]
+    res[3] = out[5]
+    res[4] = out[6]
+    res[5] = qi_step
+    res[6] = qe_step
+    res[7] = drag_sum / n
+    res[8] = n
