@@ -1,0 +1,137 @@
+"""Finish pythonfmu's modelDescription.xml, and read back what rotorcosim puts in it.
+
+pythonfmu writes variables without units, a random GUID, the build time, and a ModelStructure without
+InitialUnknowns (fmpy's validation rejects it: outputs with ``initial="calculated"`` must be listed there).
+:func:`finish` rewrites it deterministically from the component's declared variables:
+
+* ``<UnitDefinitions>`` with the SI base-unit exponents of every unit used (see units.py), and the ``unit``
+  attribute on each Real (dimensionless ``"1"``: none);
+* descriptions on every variable (pythonfmu drops empty ones);
+* ``<DefaultExperiment stepSize>`` = the component's preferred communication step;
+* ``<VendorAnnotations><Tool name="rotorcosim"><Component .../>``: the implementation name, the phases
+  (``"TM"``, ``"TO"``, comma-separated), the preferred step, and the private code package and slave module of
+  the bundle (the importer uses these to tidy ``sys.modules`` when the FMU is freed);
+* ``<ModelStructure>``: Outputs and InitialUnknowns, both listing every output;
+* a GUID that is a hash of the FMU's content (same content, same GUID), no generation date.
+"""
+from __future__ import annotations
+
+import uuid
+import xml.etree.ElementTree as ET
+from dataclasses import dataclass
+
+from .units import BASE, base_units, is_dimensionless
+
+TOOL = "rotorcosim"
+_ORDER = ("UnitDefinitions", "TypeDefinitions", "LogCategories", "DefaultExperiment", "VendorAnnotations",
+          "ModelVariables", "ModelStructure")
+
+
+def _fmt(x: float) -> str:
+    return repr(float(x))
+
+
+def _unit_element(name: str) -> ET.Element:
+    unit = ET.Element("Unit", {"name": name})
+    parsed = base_units(name)
+    if parsed is not None:
+        exps, factor = parsed
+        attrib = {k: str(exps[k]) for k in BASE if exps.get(k)}
+        if factor != 1.0:
+            attrib["factor"] = _fmt(factor)
+        ET.SubElement(unit, "BaseUnit", attrib)
+    return unit
+
+
+def finish(xml: bytes, variables: list[dict], *, implementation: str, phases: list[str], preferred_step: float,
+           package: str, slave_module: str, content_hash: str) -> bytes:
+    """The finished modelDescription.xml (bytes) for pythonfmu's ``xml`` and our ``variables`` (config dicts)."""
+    root = ET.fromstring(xml)
+    by_name = {}
+    for v in variables:
+        size = v["size"]
+        names = [v["name"]] if size == 1 else [f"{v['name']}[{i + 1}]" for i in range(size)]
+        for n in names:
+            by_name[n] = v
+    mv = root.find("ModelVariables")
+    outputs = []
+    units = set()
+    for index, sv in enumerate(mv.findall("ScalarVariable"), start=1):
+        v = by_name[sv.get("name")]
+        if v["description"]:
+            sv.set("description", v["description"])
+        typ = sv[0]
+        if typ.tag == "Real" and not is_dimensionless(v["unit"]):
+            # attribute order: unit first, then pythonfmu's start (cosmetic, but keeps files diff-able)
+            start = typ.attrib.pop("start", None)
+            typ.set("unit", v["unit"])
+            if start is not None:
+                typ.set("start", start)
+            units.add(v["unit"])
+        if sv.get("causality") == "output":
+            outputs.append(index)
+    # drop the children we regenerate, then re-insert everything in the schema's order
+    for tag in ("UnitDefinitions", "DefaultExperiment", "VendorAnnotations", "ModelStructure"):
+        for el in root.findall(tag):
+            root.remove(el)
+    new = {}
+    if units:
+        ud = ET.Element("UnitDefinitions")
+        for u in sorted(units):
+            ud.append(_unit_element(u))
+        new["UnitDefinitions"] = ud
+    new["DefaultExperiment"] = ET.Element("DefaultExperiment", {"startTime": "0.0", "stepSize": _fmt(preferred_step)})
+    va = ET.Element("VendorAnnotations")
+    tool = ET.SubElement(va, "Tool", {"name": TOOL})
+    ET.SubElement(tool, "Component", {"implementation": implementation, "phases": ",".join(sorted(phases)),
+                                      "preferredStep": _fmt(preferred_step), "package": package,
+                                      "slaveModule": slave_module})
+    new["VendorAnnotations"] = va
+    ms = ET.Element("ModelStructure")
+    if outputs:
+        for tag in ("Outputs", "InitialUnknowns"):
+            block = ET.SubElement(ms, tag)
+            for i in outputs:
+                ET.SubElement(block, "Unknown", {"index": str(i)})
+    new["ModelStructure"] = ms
+    children = {c.tag: c for c in list(root)}
+    for c in list(root):
+        root.remove(c)
+    cosim = children.pop("CoSimulation")
+    root.append(cosim)
+    children.update(new)
+    for tag in _ORDER:
+        if tag in children:
+            root.append(children[tag])
+    root.attrib.pop("generationDateAndTime", None)
+    root.set("guid", "{" + str(uuid.uuid5(uuid.NAMESPACE_URL, f"rotorcosim:{content_hash}")) + "}")
+    ET.indent(root, space="  ")
+    return ET.tostring(root, encoding="UTF-8", xml_declaration=True) + b"\n"
+
+
+@dataclass
+class Annotation:
+    """What an FMU exported by rotorcosim says about itself (None fields: not one of ours)."""
+
+    implementation: str | None = None
+    phases: frozenset[str] | None = None
+    preferred_step: float | None = None
+    package: str | None = None
+    slave_module: str | None = None
+
+
+def read_annotation(xml: bytes) -> Annotation:
+    """Our vendor annotation from a modelDescription.xml, or an empty Annotation when there is none."""
+    root = ET.fromstring(xml)
+    for tool in root.findall("VendorAnnotations/Tool"):
+        if tool.get("name") != TOOL:
+            continue
+        comp = tool.find("Component")
+        if comp is None:
+            continue
+        phases = comp.get("phases")
+        step = comp.get("preferredStep")
+        return Annotation(comp.get("implementation"),
+                          frozenset(p for p in phases.split(",") if p) if phases else None,
+                          float(step) if step else None, comp.get("package"), comp.get("slaveModule"))
+    return Annotation()

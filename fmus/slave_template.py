@@ -1,0 +1,150 @@
+"""The generic pythonfmu slave that puts one rotorcosim component behind the FMI 2.0 co-simulation boundary.
+
+This file is *copied* into every exported FMU's resources under a module name unique to that FMU (two FMUs
+loaded in one Python process must not share a module in ``sys.modules``), next to a JSON file of the same
+stem that says which component class to build, from which bundled private package, with which parameters and
+which declared variables. It must therefore import nothing from rotorcosim: only the standard library,
+numpy, pythonfmu and the bundled package (named in the JSON).
+
+Mapping of the contract onto FMI 2.0:
+
+* a vector port ``X`` of size n becomes the scalars ``X[1]`` .. ``X[n]`` (1-based, structured naming);
+  a size-1 port keeps its plain name;
+* parameters are ``causality="parameter"``, ``variability="fixed"``: they may be set between instantiation
+  and the end of initialisation; the component is built at ``exit_initialization_mode`` from the parameters
+  *set* (those baked in at export plus those set through FMI), so that a component which derives defaults
+  from other parameters (the damper's Table 3 geometry) behaves exactly as it does natively;
+* inputs are held over ``do_step`` and pushed with ``set_inputs``; outputs are read from ``component.y``;
+* ``get/set FMU state`` snapshots the component's own ``get_state()`` plus the slave's copies of the
+  inputs/outputs (the object stays in memory: no serialisation, ``canSerializeFMUstate`` is false).
+"""
+import copy
+import importlib
+import json
+import os
+
+import numpy as np
+from pythonfmu import Boolean, Fmi2Causality, Fmi2Slave, Fmi2Variability, Integer, Real, String
+
+_TYPES = {"Real": Real, "Integer": Integer, "Boolean": Boolean, "String": String}
+_CONVERT = {"Real": float, "Integer": int, "Boolean": bool, "String": str}
+
+
+def _scalar_names(name, size):
+    return [name] if size == 1 else [f"{name}[{i + 1}]" for i in range(size)]
+
+
+class RotorcosimSlave(Fmi2Slave):
+    """One rotorcosim component as a pythonfmu co-simulation slave (configured by the JSON beside it)."""
+
+    def __init__(self, **kwargs):
+        super().__init__(**kwargs)
+        with open(os.path.join(self.resources, __name__ + ".json"), encoding="utf-8") as f:
+            cfg = json.load(f)
+        self._cfg = cfg
+        self.modelName = cfg["model_identifier"]
+        self.description = cfg["description"]
+        self.author = "rotorcosim"
+        self.version = cfg["version"]
+        self._component = None
+        self._t0 = 0.0
+        self._explicit = set(cfg["parameters"])        # parameters passed to the constructor
+        self._par, self._u, self._y, self._type = {}, {}, {}, {}
+        for v in cfg["variables"]:
+            name, size, kind = v["name"], v["size"], v["type"]
+            self._type[name] = kind
+            if v["causality"] == "parameter":
+                start = cfg["parameters"].get(name, v["start"])
+                self._par[name] = (list(np.broadcast_to(np.asarray(start), (size,)).tolist())
+                                   if kind != "String" else [start])
+                store = "_par"
+            elif v["causality"] == "input":
+                self._u[name] = np.broadcast_to(np.asarray(v["start"], dtype=float), (size,)).copy()
+                store = "_u"
+            else:
+                self._y[name] = np.broadcast_to(np.asarray(v["start"], dtype=float), (size,)).copy()
+                store = "_y"
+            for i, scalar in enumerate(_scalar_names(name, size)):
+                self.register_variable(self._make(v, scalar, store, name, i), nested=False)
+
+    def _make(self, v, scalar, store, name, i):
+        # the getter/setter look the store up by attribute name each time: set_fmu_state replaces the dicts
+        cls = _TYPES[v["type"]]
+        convert = _CONVERT[v["type"]]
+        causality = getattr(Fmi2Causality, v["causality"])
+        if v["causality"] == "parameter":
+            variability = Fmi2Variability.fixed
+
+            def setter(value):
+                getattr(self, store)[name][i] = convert(value)
+                self._explicit.add(name)
+        elif v["causality"] == "input":
+            variability = Fmi2Variability.continuous
+
+            def setter(value):
+                getattr(self, store)[name][i] = float(value)
+        else:
+            variability = Fmi2Variability.continuous
+            setter = None
+
+        def getter():
+            return convert(getattr(self, store)[name][i])
+
+        return cls(scalar, causality=causality, variability=variability, description=v["description"] or None,
+                   getter=getter, setter=setter)
+
+    # -- the FMI calls ----------------------------------------------------------------------------------
+    def setup_experiment(self, start_time, stop_time=None, tolerance=None):
+        self._t0 = float(start_time)
+
+    def exit_initialization_mode(self):
+        pkg = importlib.import_module(self._cfg["package"])
+        module = importlib.import_module(pkg.__name__ + "." + self._cfg["module"])
+        cls = getattr(module, self._cfg["class"])
+        params = {}
+        for v in self._cfg["variables"]:
+            n = v["name"]
+            if v["causality"] == "parameter" and n in self._explicit:
+                params[n] = self._par[n][0] if v["size"] == 1 else list(self._par[n])
+        comp = cls(self._cfg["instance_name"], params)
+        comp.set_inputs({k: v.copy() for k, v in self._u.items()})
+        comp.setup(self._t0)
+        comp.set_inputs({k: v.copy() for k, v in self._u.items()})   # setup may reset inputs to their starts
+        self._component = comp
+        self._read_outputs()
+
+    def _read_outputs(self):
+        y = self._component.get_outputs()
+        for name in self._y:
+            self._y[name] = np.array(y[name], dtype=float).reshape(-1)
+
+    def do_step(self, current_time, step_size):
+        comp = self._component
+        comp.set_inputs(self._u)
+        comp.do_step(float(current_time), float(step_size))
+        self._read_outputs()
+        return True
+
+    def terminate(self):
+        if self._component is not None:
+            self._component.terminate()
+
+    # -- FMU state: the component's own snapshot plus the slave's port copies ---------------------------
+    def _get_fmu_state(self):
+        return {
+            "component": None if self._component is None else self._component.get_state(),
+            "u": copy.deepcopy(self._u),
+            "y": copy.deepcopy(self._y),
+            "par": copy.deepcopy(self._par),
+            "explicit": set(self._explicit),
+        }
+
+    def _set_fmu_state(self, state):
+        if (state["component"] is None) != (self._component is None):
+            raise RuntimeError("FMU state taken before initialisation cannot be restored after it (or back)")
+        if self._component is not None:
+            self._component.set_state(state["component"])
+        self._u = copy.deepcopy(state["u"])
+        self._y = copy.deepcopy(state["y"])
+        self._par = copy.deepcopy(state["par"])
+        self._explicit = set(state["explicit"])
