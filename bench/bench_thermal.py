@@ -53,6 +53,7 @@ def timing():
 
     r_free = per_call(lambda: rub(out_in), 50000)
     r_contact = per_call(lambda: rub(contact), 50000)
+    r_step = per_call(lambda: rr.do_step(0.0, 1e-5), 50000)
     total = 2 * (75000 * r_contact + 750 * t_ms + 1193 * t_to)
     print("cost per call (this machine, one process):")
     print(f"  thermal do_step, h = 1 ms         {t_ms * 1e6:8.2f} us")
@@ -60,6 +61,7 @@ def timing():
     print(f"  thermal new step size (expm)      {t_new * 1e6:8.2f} us (once per step size, then cached)")
     print(f"  rub ring set_inputs + do_step     {r_free * 1e6:8.2f} us (inside the clearance)")
     print(f"  rub ring set_inputs + do_step     {r_contact * 1e6:8.2f} us (in contact)")
+    print(f"  rub ring do_step alone            {r_step * 1e6:8.2f} us (in contact)")
     print(f"  blade-loss run share (2 rings in contact at every TM step, 2 networks): {total:.2f} s")
 
 

@@ -90,17 +90,19 @@ class RubRing(Component):
 
     def _evaluate(self, t):
         u = self.u
-        xr, vr, xh, vh = u["X_rotor"], u["V_rotor"], u["X_housing"], u["V_housing"]
-        dx, dy = float(xr[0] - xh[0]), float(xr[1] - xh[1])
-        wx, wy = float(vr[0] - vh[0]), float(vr[1] - vh[1])
+        (xr0, xr1), (vr0, vr1) = u["X_rotor"].tolist(), u["V_rotor"].tolist()
+        (xh0, xh1), (vh0, vh1) = u["X_housing"].tolist(), u["V_housing"].tolist()
+        dx, dy, wx, wy = xr0 - xh0, xr1 - xh1, vr0 - vh0, vr1 - vh1
         if not math.isfinite(dx + dy + wx + wy):
             raise ContractError(f"{self.name}: non-finite rotor/housing motion at t = {t:.9g} s")
         fx, fy, power, fn = rub_force(dx, dy, wx, wy, *self._args)
+        # one fresh buffer per step (cheaper than four arrays); the outputs are views of it
+        buf = np.array((fx, fy, -fx, -fy, power, fn))
         y = self.y
-        y["F_rotor"] = np.array([fx, fy])
-        y["F_housing"] = np.array([-fx, -fy])
-        y["P_rub"] = np.array([power])
-        y["F_normal"] = np.array([fn])
+        y["F_rotor"] = buf[0:2]
+        y["F_housing"] = buf[2:4]
+        y["P_rub"] = buf[4:5]
+        y["F_normal"] = buf[5:6]
 
     def do_step(self, t, h):
         self._evaluate(t + h)

@@ -101,24 +101,28 @@ class ThermalNetwork(Component):
         self._publish(self.state["T"])
 
     def _publish(self, T):
+        Tl = T.tolist()
+        eps = growths(Tl[SHAFT], Tl[LI], Tl[BALL], Tl[LE], Tl[JOURNAL], *self._growth_args)
+        # one fresh buffer per step; the outputs are views of it
+        buf = np.array((*Tl, *eps, 0.5 * (Tl[LI] + Tl[LE]), Tl[SFD], Tl[IR], Tl[BALL], Tl[OR]))
         y = self.y
-        y["T_nodes"] = T.copy()
-        y["eps"] = np.array(growths(T[SHAFT], T[LI], T[BALL], T[LE], T[JOURNAL], *self._growth_args))
-        y["T_oil"] = np.array([0.5 * (T[LI] + T[LE])])
-        y["T_sfd_oil"] = np.array([T[SFD]])
-        y["T_inner_race"] = np.array([T[IR]])
-        y["T_ball"] = np.array([T[BALL]])
-        y["T_outer_race"] = np.array([T[OR]])
+        y["T_nodes"] = buf[0:9]
+        y["eps"] = buf[9:12]
+        y["T_oil"] = buf[12:13]
+        y["T_sfd_oil"] = buf[13:14]
+        y["T_inner_race"] = buf[14:15]
+        y["T_ball"] = buf[15:16]
+        y["T_outer_race"] = buf[16:17]
 
     def powers(self) -> np.ndarray:
         u = self.u
-        q = np.array([u["P_drag"][0], u["P_sfd"][0], u["P_rub"][0]])
-        if not (math.isfinite(q[0]) and math.isfinite(q[1]) and math.isfinite(q[2])):
-            raise ContractError(f"{self.name}: non-finite power input P_drag, P_sfd, P_rub = {q.tolist()} W")
-        if q.min() < -1e-6:
+        q = (u["P_drag"][0].item(), u["P_sfd"][0].item(), u["P_rub"][0].item())
+        if not math.isfinite(q[0] + q[1] + q[2]):
+            raise ContractError(f"{self.name}: non-finite power input P_drag, P_sfd, P_rub = {list(q)} W")
+        if min(q) < -1e-6:
             bad = [n for n, v in zip(("P_drag", "P_sfd", "P_rub"), q) if v < -1e-6]
-            raise ContractError(f"{self.name}: negative heat source {', '.join(bad)} = {q.min()} W (must be >= 0)")
-        return q
+            raise ContractError(f"{self.name}: negative heat source {', '.join(bad)} = {min(q)} W (must be >= 0)")
+        return np.array(q)
 
     def do_step(self, t, h):
         if not h > 0.0:

@@ -103,5 +103,10 @@ class LinearNetwork:
         return out
 
     def step(self, T, u, h: float, method: str = "exact") -> np.ndarray:
-        Phi, gb, GS = self.step_matrices(h, method)
+        last = self.__dict__.get("_last")
+        if last is not None and last[0] == h and last[1] == method:
+            Phi, gb, GS = last[2]
+        else:
+            Phi, gb, GS = self.step_matrices(h, method)
+            self._last = (h, method, (Phi, gb, GS))
         return Phi @ T + gb + GS @ u
