@@ -4,12 +4,16 @@ The film force comes from the Reynolds equation of the non-rotating journal (rey
 cavitation (cavitation) and the SAE 30 viscosity at the oil temperature input (viscosity); the O-ring centering
 spring acts in parallel. Two implementations share the ports and parameters:
 
-* ``damper.fe`` (:class:`FEDamper`): the paper's direct FE solve at every call (milliseconds);
+* ``damper.fe`` (:class:`FEDamper`): the paper's direct FE solve at every call (tens of milliseconds);
 * ``damper.fast`` (:class:`FastDamper`): the exact FE structure plus a table over the eccentricity ratio (fast).
 
 Conventions: positions and velocities of the journal relative to the housing, d = X_journal - X_housing,
 w = V_journal - V_housing. F_film is the pressure force on the journal, F_spring = -k_spring d,
-F_journal = F_film + F_spring, F_housing = -F_journal. P_film = -F_film . w (>= 0), the film's viscous power
+F_contact is the wall contact beyond the clearance (wall.py: a stiff radial spring, or an error with k_wall = 0),
+F_journal = F_film + F_spring + F_contact, F_housing = -F_journal. K_film = dF_journal/dX_journal (film +
+spring + contact) and C_film = dF_journal/dV_journal (row-major 2x2) at the evaluated state feed the bearing's
+linearly implicit journal integration (frame.py: exact derivatives of each model, no finite differences).
+P_film = -F_film . w (>= 0), the film's viscous power
 loss; the damper is memoryless (film inertia neglected) and its inputs are held over a step, so this is also the
 mean power over the step. The film force is evaluated at the inputs given for the step (end of step).
 """
@@ -22,8 +26,9 @@ from pathlib import Path
 import numpy as np
 
 from ..contract import Component, ContractError, Variable
-from .fast import fast_film_force, film_table
-from .reynolds_fe import build_mesh, fe_film_force
+from . import wall
+from .fast import fast_step, film_table
+from .reynolds_fe import build_mesh, fe_film_eval
 from .viscosity import sae30_viscosity
 
 DATA = Path(__file__).with_name("data") / "dampers.toml"
@@ -67,6 +72,9 @@ class _Damper(Component):
                  description="FE elements around the circumference"),
         Variable("n_z", "parameter", unit="1", start=FILM["n_z"], type="Integer",
                  description="FE elements along the half length"),
+        Variable("k_wall", "parameter", unit="N/m", start=FILM["k_wall"],
+                 description="journal-housing contact stiffness beyond the clearance (0: touching the wall is an"
+                             " error)"),
         Variable("X_journal", "input", 2, "m", "journal displacement (absolute)"),
         Variable("V_journal", "input", 2, "m/s", "journal velocity (absolute)"),
         Variable("X_housing", "input", 2, "m", "housing displacement (absolute)"),
@@ -76,6 +84,10 @@ class _Damper(Component):
         Variable("F_housing", "output", 2, "N", "reaction on the housing, -F_journal"),
         Variable("F_film", "output", 2, "N", "squeeze film pressure force on the journal"),
         Variable("F_spring", "output", 2, "N", "centering spring force on the journal"),
+        Variable("F_contact", "output", 2, "N", "journal-housing wall contact force on the journal"),
+        Variable("K_film", "output", 4, "N/m",
+                 "dF_journal/dX_journal, row-major [dFx/dx, dFx/dy, dFy/dx, dFy/dy] (film + spring + contact)"),
+        Variable("C_film", "output", 4, "N.s/m", "dF_journal/dV_journal, row-major (film)"),
         Variable("P_film", "output", 1, "W", "viscous power loss of the film (mean over the step)"),
         Variable("mu", "output", 1, "Pa.s", "oil viscosity at T_oil"),
     )
@@ -86,11 +98,18 @@ class _Damper(Component):
         super().set_parameter(name, value)
         self.__dict__.setdefault("_explicit", set()).add(name)
 
+    #: layout of the evaluation vector: name -> slice (F_housing and mu are added separately)
+    OUT = {"F_film": slice(0, 2), "K_film": slice(2, 6), "C_film": slice(6, 10), "F_spring": slice(10, 12),
+           "F_contact": slice(12, 14), "F_journal": slice(14, 16), "P_film": slice(16, 17)}
+    N_OUT = 19
+
     # -- set-up ----------------------------------------------------------------------------------------
     def setup(self, t0=0.0):
         super().setup(t0)
         p = self.p
         explicit = self.__dict__.get("_explicit", set())
+        if p["damper"] not in DAMPERS:
+            raise ContractError(f"{self.name}.damper must be one of {sorted(DAMPERS)} (Table 3), got {p['damper']}")
         data = table3(p["damper"])
         for key in GEOMETRY:
             if key not in explicit:
@@ -98,13 +117,16 @@ class _Damper(Component):
         for key in ("radius", "length", "clearance"):
             if not p[key] > 0.0:
                 raise ContractError(f"{self.name}.{key} must be > 0, got {p[key]}")
-        if p["k_spring"] < 0.0:
-            raise ContractError(f"{self.name}.k_spring must be >= 0, got {p['k_spring']}")
+        for key in ("k_spring", "k_wall", "supply_pressure"):
+            if p[key] < 0.0:
+                raise ContractError(f"{self.name}.{key} must be >= 0, got {p[key]}")
         if p["n_theta"] < 8 or p["n_z"] < 2:
             raise ContractError(f"{self.name}: mesh n_theta={p['n_theta']} (>= 8), n_z={p['n_z']} (>= 2)")
         self._c = p["clearance"]
         self._k = p["k_spring"]
+        self._kw = p["k_wall"]
         self._ps, self._pcav, self._cav = p["supply_pressure"], p["cavitation_pressure"], bool(p["cavitation"])
+        self._floor = self._pcav - self._ps
         self._T = None
         self._mu = 0.0
         self._prepare()
@@ -114,8 +136,8 @@ class _Damper(Component):
     def _prepare(self):
         raise NotImplementedError
 
-    def film_force(self, dx, dy, dvx, dvy, mu):
-        """(Fx, Fy) of the film at relative position/velocity (journal minus housing)."""
+    def _compute(self, mu: float, out: np.ndarray) -> int:
+        """Fill ``out`` (layout OUT) from the inputs at viscosity mu; return a wall.* status code."""
         raise NotImplementedError
 
     # -- stepping --------------------------------------------------------------------------------------
@@ -128,32 +150,38 @@ class _Damper(Component):
             self._T = T
         return self._mu
 
-    def _relative(self, t):
+    def _relative(self):
         u = self.u
-        xj, vj, xh, vh = u["X_journal"], u["V_journal"], u["X_housing"], u["V_housing"]
-        dx, dy = float(xj[0] - xh[0]), float(xj[1] - xh[1])
-        dvx, dvy = float(vj[0] - vh[0]), float(vj[1] - vh[1])
-        if not math.isfinite(dx + dy + dvx + dvy):
-            raise ContractError(f"{self.name}: non-finite journal/housing motion at t = {t:.9g} s")
-        eps = math.hypot(dx, dy) / self._c
-        if eps >= 1.0:
-            raise WallContactError(
-                f"{self.name}: the journal hit the damper wall at t = {t:.9g} s (eccentricity ratio {eps:.4f} >= 1,"
-                f" clearance {self._c * 1e3:.4g} mm)")
-        return dx, dy, dvx, dvy
+        d = u["X_journal"] - u["X_housing"]
+        w = u["V_journal"] - u["V_housing"]
+        return float(d[0]), float(d[1]), float(w[0]), float(w[1])
 
     def _evaluate(self, t):
-        dx, dy, dvx, dvy = self._relative(t)
         mu = self.viscosity(float(self.u["T_oil"][0]))
-        fx, fy = self.film_force(dx, dy, dvx, dvy, mu)
-        sx, sy = -self._k * dx, -self._k * dy
+        out = np.empty(self.N_OUT)   # fresh each call: the outputs below are views of it
+        status = self._compute(mu, out)
+        if status != wall.OK:
+            self._fail(status, t)
         y = self.y
-        y["F_film"] = np.array([fx, fy])
-        y["F_spring"] = np.array([sx, sy])
-        y["F_journal"] = np.array([fx + sx, fy + sy])
-        y["F_housing"] = np.array([-fx - sx, -fy - sy])
-        y["P_film"] = np.array([-(fx * dvx + fy * dvy)])
+        for key, sl in self.OUT.items():
+            y[key] = out[sl]
+        y["F_housing"] = -out[14:16]
         y["mu"] = np.array([mu])
+
+    def _fail(self, status, t):
+        if status == wall.NOT_FINITE:
+            raise ContractError(f"{self.name}: non-finite journal/housing motion at t = {t:.9g} s "
+                                f"(X_journal={self.u['X_journal']}, V_journal={self.u['V_journal']}, "
+                                f"X_housing={self.u['X_housing']}, V_housing={self.u['V_housing']})")
+        dx, dy, _, _ = self._relative()
+        eps = math.hypot(dx, dy) / self._c
+        if status == wall.WALL_ERROR:
+            raise WallContactError(
+                f"{self.name}: the journal hit the damper wall at t = {t:.9g} s (eccentricity ratio {eps:.4f} >= 1,"
+                f" clearance {self._c * 1e3:.4g} mm) and the wall contact is off (k_wall = 0)")
+        raise WallContactError(
+            f"{self.name}: the journal is {(eps - 1.0) * self._c * 1e3:.4g} mm into the damper wall at t = {t:.9g} s"
+            f" (eccentricity ratio {eps:.3f} >= {wall.EPS_DIVERGED}): the simulation diverged")
 
     def do_step(self, t, h):
         self._evaluate(t + h)
@@ -169,28 +197,17 @@ class _Damper(Component):
         self.u = {k: v.copy() for k, v in u.items()}
         self.y = {k: v.copy() for k, v in y.items()}
 
+    def film_force(self, dx, dy, dvx, dvy, mu):
+        """(Fx, Fy) of the film alone at relative position/velocity (journal minus housing)."""
+        out = np.empty(self.N_OUT)
+        self._film(dx, dy, dvx, dvy, mu, out)
+        return float(out[0]), float(out[1])
+
     def interface_jacobian(self):
-        """d F_journal / d X_journal and d F_journal / d V_journal (2x2) by central differences of the film
-        model (steps 1e-6 clearance and 1e-6 of the velocity scale) plus the exact spring term -k I."""
-        dx, dy, dvx, dvy = self._relative(self.time)
-        mu = self.viscosity(float(self.u["T_oil"][0]))
-        c = self._c
-        hx = 1e-6 * c
-        eps = math.hypot(dx, dy) / c
-        if eps + 2e-6 >= 1.0:
-            hx = 0.25 * (1.0 - eps) * c
-        hv = 1e-6 * max(math.hypot(dvx, dvy), 1e-3)
-        base = np.array([dx, dy, dvx, dvy])
-        J = np.empty((2, 4))
-        for m, step in enumerate((hx, hx, hv, hv)):
-            a, b = base.copy(), base.copy()
-            a[m] += step
-            b[m] -= step
-            fa = np.array(self.film_force(*a, mu))
-            fb = np.array(self.film_force(*b, mu))
-            J[:, m] = (fa - fb) / (2.0 * step)
-        JX = J[:, :2] - self._k * np.eye(2)
-        return {("F_journal", "X_journal"): JX, ("F_journal", "V_journal"): J[:, 2:].copy()}
+        """d F_journal / d X_journal and d F_journal / d V_journal (2x2) at the last evaluation: the K_film and
+        C_film outputs (the same derivatives act on X_housing, V_housing with the opposite sign)."""
+        return {("F_journal", "X_journal"): self.y["K_film"].reshape(2, 2).copy(),
+                ("F_journal", "V_journal"): self.y["C_film"].reshape(2, 2).copy()}
 
 
 class FEDamper(_Damper):
@@ -202,8 +219,18 @@ class FEDamper(_Damper):
         p = self.p
         self._mesh = build_mesh(p["radius"], p["length"], int(p["n_theta"]), int(p["n_z"]))
 
-    def film_force(self, dx, dy, dvx, dvy, mu):
-        return fe_film_force(self._mesh, self._c, dx, dy, dvx, dvy, mu, self._ps, self._pcav, self._cav)
+    def _film(self, dx, dy, dvx, dvy, mu, out):
+        fe_film_eval(self._mesh, self._c, dx, dy, dvx, dvy, mu, self._floor, self._cav, out)
+
+    def _compute(self, mu, out):
+        dx, dy, dvx, dvy = self._relative()
+        if not math.isfinite(dx + dy + dvx + dvy):
+            return wall.NOT_FINITE
+        out[:] = 0.0
+        if math.hypot(dx, dy) < wall.EPS_DIVERGED * self._c:
+            self._film(dx, dy, dvx, dvy, mu, out)
+        out[16] = -(out[0] * dvx + out[1] * dvy)
+        return wall.spring_and_wall(dx, dy, self._c, self._k, self._kw, out)
 
 
 class FastDamper(_Damper):
@@ -214,6 +241,13 @@ class FastDamper(_Damper):
     def _prepare(self):
         p = self.p
         self._table = film_table(p["radius"], p["length"], p["clearance"], int(p["n_theta"]), int(p["n_z"]))
+        t = self._table
+        self._args = (t.TR, t.TT, t.ftab, t.Wc, t.Ws, t.u0, t.du, t.n, t.eps_max, t.clearance)
 
-    def film_force(self, dx, dy, dvx, dvy, mu):
-        return fast_film_force(self._table, dx, dy, dvx, dvy, mu, self._ps, self._pcav, self._cav)
+    def _film(self, dx, dy, dvx, dvy, mu, out):
+        self._table.evaluate(dx, dy, dvx, dvy, mu, self._floor, self._cav, out)
+
+    def _compute(self, mu, out):
+        u = self.u
+        return fast_step(*self._args, u["X_journal"], u["V_journal"], u["X_housing"], u["V_housing"], mu,
+                         self._floor, self._cav, self._k, self._kw, out)

@@ -14,9 +14,15 @@ with 4-point Lagrange polynomials in u. Then:
   (and with p_s != p_cav not even homogeneous in |v|), so it is evaluated exactly on the interpolated nodal
   field by a numba kernel (one pass over the nodes, the same force weights as the FE model).
 
+The same pass gives the exact derivatives of that force with respect to (mu v_r, mu v_t) (the full-film nodes'
+unit fields) and to eps (the Lagrange weights' derivatives), from which frame.to_housing_axes makes the
+K_film = dF/dd and C_film = dF/dw outputs: no extra evaluation, so the bearing's linearly implicit
+integration costs nothing more here. Without cavitation dF/dw is exactly the tabulated unit forces.
+
 The only difference from the direct FE model is the interpolation in eps (measured in bench_damper.py and the
-tests). Above eps_max the model calls the direct FE solve (slow, exact). Tables are built lazily once per
-process and geometry (cache key: radius, length, clearance, mesh, table size): about a second.
+tests). Above eps_max (the FE film's own limit, reynolds_fe.EPS_FILM_MAX) the film is held at its eps_max
+value (wall.py). Tables are built lazily once per process and geometry (cache key: radius, length,
+clearance, mesh, table size): 60 sparse factorisations, about 3 s.
 """
 from __future__ import annotations
 
@@ -26,15 +32,17 @@ from functools import lru_cache
 import numpy as np
 from numba import njit
 
-from .reynolds_fe import build_mesh, film_force_aligned, unit_fields
+from .frame import EPS_DIFF, EPS_NEAR_CENTRE, frame, to_housing_axes
+from .wall import NOT_FINITE, spring_and_wall
+from .reynolds_fe import EPS_FILM_MAX, build_mesh, film_force_aligned, unit_fields
 
-EPS_MAX = 0.99      # table end; beyond it the direct FE solve is used
+EPS_MAX = EPS_FILM_MAX   # table end = the film model's limit (reynolds_fe); the film saturates beyond it
 N_TABLE = 60        # table points in u = -ln(1 - eps); step 0.078 (convergence: see the tests / bench)
 
 
 @njit(cache=True)
 def _lagrange4(u, u0, du, n):
-    """Start index and 4-point Lagrange weights at u on the uniform grid u0 + k du, k < n."""
+    """Start index, 4-point Lagrange weights and their u-derivatives at u on the grid u0 + k du, k < n."""
     s = (u - u0) / du
     k = int(math.floor(s)) - 1
     if k < 0:
@@ -46,37 +54,136 @@ def _lagrange4(u, u0, du, n):
     w1 = x * (x - 2.0) * (x - 3.0) / 2.0
     w2 = -x * (x - 1.0) * (x - 3.0) / 2.0
     w3 = x * (x - 1.0) * (x - 2.0) / 6.0
-    return k, w0, w1, w2, w3
+    d0 = -(3.0 * x * x - 12.0 * x + 11.0) / 6.0 / du
+    d1 = (3.0 * x * x - 10.0 * x + 6.0) / 2.0 / du
+    d2 = -(3.0 * x * x - 8.0 * x + 3.0) / 2.0 / du
+    d3 = (3.0 * x * x - 6.0 * x + 2.0) / 6.0 / du
+    return k, w0, w1, w2, w3, d0, d1, d2, d3
 
 
-@njit(cache=True)
-def _clipped_force(tab, Wc, Ws, k, w0, w1, w2, w3, a, b, floor):
-    """(F_r, F_t) = -2 sum_i max(a P_r,i + b P_t,i, floor) (Wc_i, Ws_i), P interpolated in the table.
+@njit(cache=True, fastmath=True)
+def _clipped(TR, TT, Wc, Ws, eps, u0, du, n, a, b, floor):
+    """Aligned force of the Guembel-clipped interpolated field and its derivatives, in one pass over the nodes.
 
-    tab has shape (n_table, n_nodes, 2): (P_r, P_t) per node; a = mu v_r, b = mu v_t, floor = p_cav - p_s.
+    F = -2 sum_i max(a P_r,i + b P_t,i, floor) (Wc_i, Ws_i) with P_r, P_t interpolated at eps in the tables
+    TR, TT (n_table, n_nodes). Returns F_r, F_t, dF_r/da, dF_r/db, dF_t/da, dF_t/db, dF_r/deps, dF_t/deps
+    (derivatives of the clipped sum: only the nodes above the floor move). fastmath lets the sums vectorise
+    (reassociation: the result is still the same for the same inputs on the same machine).
     """
-    sc = 0.0
-    ss = 0.0
-    t0 = tab[k]
-    t1 = tab[k + 1]
-    t2 = tab[k + 2]
-    t3 = tab[k + 3]
-    for n in range(Wc.shape[0]):
-        pr = w0 * t0[n, 0] + w1 * t1[n, 0] + w2 * t2[n, 0] + w3 * t3[n, 0]
-        pt = w0 * t0[n, 1] + w1 * t1[n, 1] + w2 * t2[n, 1] + w3 * t3[n, 1]
+    u = -math.log1p(-eps)
+    k, w0, w1, w2, w3, d0, d1, d2, d3 = _lagrange4(u, u0, du, n)
+    r0 = TR[k]
+    r1 = TR[k + 1]
+    r2 = TR[k + 2]
+    r3 = TR[k + 3]
+    q0 = TT[k]
+    q1 = TT[k + 1]
+    q2 = TT[k + 2]
+    q3 = TT[k + 3]
+    fc = 0.0
+    fs = 0.0
+    rc = 0.0
+    rs = 0.0
+    tc = 0.0
+    ts = 0.0
+    uc = 0.0
+    us = 0.0
+    for i in range(Wc.shape[0]):
+        pr = w0 * r0[i] + w1 * r1[i] + w2 * r2[i] + w3 * r3[i]
+        pt = w0 * q0[i] + w1 * q1[i] + w2 * q2[i] + w3 * q3[i]
         p = a * pr + b * pt
-        if p < floor:
-            p = floor
-        sc += Wc[n] * p
-        ss += Ws[n] * p
-    return -2.0 * sc, -2.0 * ss
+        # branch-free (vectorises): m = 1 on the full-film nodes, 0 on the clipped ones
+        m = 1.0 if p >= floor else 0.0
+        q = m * p + (1.0 - m) * floor
+        wc = Wc[i]
+        ws = Ws[i]
+        fc += wc * q
+        fs += ws * q
+        mwc = m * wc
+        mws = m * ws
+        rc += mwc * pr
+        rs += mws * pr
+        tc += mwc * pt
+        ts += mws * pt
+        dp = (a * (d0 * r0[i] + d1 * r1[i] + d2 * r2[i] + d3 * r3[i])
+              + b * (d0 * q0[i] + d1 * q1[i] + d2 * q2[i] + d3 * q3[i]))
+        uc += mwc * dp
+        us += mws * dp
+    du_deps = 1.0 / (1.0 - eps)
+    return (-2.0 * fc, -2.0 * fs, -2.0 * rc, -2.0 * tc, -2.0 * rs, -2.0 * ts,
+            -2.0 * uc * du_deps, -2.0 * us * du_deps)
 
 
 @njit(cache=True)
-def _linear_force(ftab, k, w0, w1, w2, w3, a, b):
-    """(F_r, F_t) without cavitation: ftab (n_table, 4) = unit forces [F_r(v_r), F_t(v_r), F_r(v_t), F_t(v_t)]."""
+def _linear(ftab, eps, u0, du, n, a, b):
+    """Like _clipped without cavitation, from the unit forces ftab (n_table, 4) =
+    [F_r(v_r), F_t(v_r), F_r(v_t), F_t(v_t)] per unit mu v: the force is exactly linear in (a, b)."""
+    u = -math.log1p(-eps)
+    k, w0, w1, w2, w3, d0, d1, d2, d3 = _lagrange4(u, u0, du, n)
     f = w0 * ftab[k] + w1 * ftab[k + 1] + w2 * ftab[k + 2] + w3 * ftab[k + 3]
-    return a * f[0] + b * f[2], a * f[1] + b * f[3]
+    g = (d0 * ftab[k] + d1 * ftab[k + 1] + d2 * ftab[k + 2] + d3 * ftab[k + 3]) / (1.0 - eps)
+    return (a * f[0] + b * f[2], a * f[1] + b * f[3], f[0], f[2], f[1], f[3],
+            a * g[0] + b * g[2], a * g[1] + b * g[3])
+
+
+@njit(cache=True)
+def _aligned(TR, TT, ftab, Wc, Ws, eps, u0, du, n, a, b, floor, cavitation):
+    if cavitation:
+        return _clipped(TR, TT, Wc, Ws, eps, u0, du, n, a, b, floor)
+    return _linear(ftab, eps, u0, du, n, a, b)
+
+
+@njit(cache=True)
+def film_eval(TR, TT, ftab, Wc, Ws, u0, du, n, eps_max, clearance, dx, dy, dvx, dvy, mu, floor, cavitation, out):
+    """Film force F (2), K = dF/dd (4) and C = dF/dw (4) in the housing axes into out[0:10].
+
+    d = (dx, dy), w = (dvx, dvy): journal minus housing. Beyond eps_max the film is evaluated at eps_max in
+    the direction of d (the saturated film of the component's wall model), so dF/de = 0 there.
+    """
+    e, c, s = frame(dx, dy)
+    eps = e / clearance
+    saturated = eps > eps_max
+    ef = eps_max if saturated else eps
+    vr = c * dvx + s * dvy
+    vt = -s * dvx + c * dvy
+    a = mu * vr
+    b = mu * vt
+    r = _aligned(TR, TT, ftab, Wc, Ws, ef, u0, du, n, a, b, floor, cavitation)
+    Fr, Ft, Jra, Jrb, Jta, Jtb, dr, dt = r
+    if saturated:
+        dr = 0.0
+        dt = 0.0
+    gr = -Ft + Jra * b - Jrb * a
+    gt = Fr + Jta * b - Jtb * a
+    e_div = e
+    if eps < EPS_NEAR_CENTRE:
+        r0 = _aligned(TR, TT, ftab, Wc, Ws, 0.0, u0, du, n, a, b, floor, cavitation)
+        g0r = -r0[1] + r0[2] * b - r0[3] * a
+        g0t = r0[0] + r0[4] * b - r0[5] * a
+        if e == 0.0:
+            r1 = _aligned(TR, TT, ftab, Wc, Ws, EPS_DIFF, u0, du, n, a, b, floor, cavitation)
+            gr = -r1[1] + r1[2] * b - r1[3] * a
+            gt = r1[0] + r1[4] * b - r1[5] * a
+            e_div = EPS_DIFF * clearance
+        gr -= g0r
+        gt -= g0t
+    to_housing_axes(c, s, e_div, clearance, mu, Fr, Ft, Jra, Jrb, Jta, Jtb, dr, dt, gr, gt, out)
+
+
+@njit(cache=True)
+def fast_step(TR, TT, ftab, Wc, Ws, u0, du, n, eps_max, clearance, xj, vj, xh, vh, mu, floor, cavitation, k_spring,
+              k_wall, out):
+    """One damper evaluation in a single call: film (F, K, C), spring, wall, F_journal and P_film into out
+    (the component's layout: see component._Damper.OUT). Returns a wall.* status code."""
+    dx = xj[0] - xh[0]
+    dy = xj[1] - xh[1]
+    dvx = vj[0] - vh[0]
+    dvy = vj[1] - vh[1]
+    if not math.isfinite(dx + dy + dvx + dvy + mu):
+        return NOT_FINITE
+    film_eval(TR, TT, ftab, Wc, Ws, u0, du, n, eps_max, clearance, dx, dy, dvx, dvy, mu, floor, cavitation, out)
+    out[16] = -(out[0] * dvx + out[1] * dvy)
+    return spring_and_wall(dx, dy, clearance, k_spring, k_wall, out)
 
 
 class FilmTable:
@@ -92,24 +199,22 @@ class FilmTable:
         self.du = -math.log(1.0 - eps_max) / (n_table - 1)
         self.n = n_table
         self.eps = 1.0 - np.exp(-self.du * np.arange(n_table))
-        tab = np.empty((n_table, self.mesh.n_nodes, 2))
+        # P_r and P_t in separate contiguous tables: unit-stride loads let the clipped-force loop vectorise
+        TR = np.empty((n_table, self.mesh.n_nodes))
+        TT = np.empty((n_table, self.mesh.n_nodes))
         ftab = np.empty((n_table, 4))
         for k, e in enumerate(self.eps):
-            Pr, Pt = unit_fields(self.mesh, clearance, float(e))
-            tab[k, :, 0], tab[k, :, 1] = Pr, Pt
-            ftab[k, :2] = film_force_aligned(self.mesh, Pr)
-            ftab[k, 2:] = film_force_aligned(self.mesh, Pt)
-        self.tab, self.ftab = tab, ftab
+            TR[k], TT[k] = unit_fields(self.mesh, clearance, float(e))
+            ftab[k, :2] = film_force_aligned(self.mesh, TR[k])
+            ftab[k, 2:] = film_force_aligned(self.mesh, TT[k])
+        self.TR, self.TT, self.ftab = TR, TT, ftab
         self.Wc = np.ascontiguousarray(self.mesh.Wc)
         self.Ws = np.ascontiguousarray(self.mesh.Ws)
 
-    def force_aligned(self, eps, a, b, floor, cavitation):
-        """(F_r, F_t) at eccentricity ratio eps < eps_max, a = mu v_r, b = mu v_t, floor = p_cav - p_s."""
-        u = -math.log1p(-eps)
-        k, w0, w1, w2, w3 = _lagrange4(u, self.u0, self.du, self.n)
-        if cavitation:
-            return _clipped_force(self.tab, self.Wc, self.Ws, k, w0, w1, w2, w3, a, b, floor)
-        return _linear_force(self.ftab, k, w0, w1, w2, w3, a, b)
+    def evaluate(self, dx, dy, dvx, dvy, mu, floor, cavitation, out):
+        """F (2), K_film (4), C_film (4) of the film into out[0:10] (see film_eval)."""
+        film_eval(self.TR, self.TT, self.ftab, self.Wc, self.Ws, self.u0, self.du, self.n, self.eps_max, self.clearance,
+                  dx, dy, dvx, dvy, mu, floor, cavitation, out)
 
 
 @lru_cache(maxsize=4)
@@ -120,17 +225,8 @@ def film_table(radius, length, clearance, n_theta, n_z, n_table=N_TABLE, eps_max
 
 
 def fast_film_force(table: FilmTable, dx, dy, dvx, dvy, mu, supply_pressure, cavitation_pressure, cavitation):
-    """(Fx, Fy) like reynolds_fe.fe_film_force, from the table (direct FE above the table's eps_max)."""
-    e = math.hypot(dx, dy)
-    if e > 0.0:
-        c, s = dx / e, dy / e
-    else:
-        c, s = 1.0, 0.0
-    eps = e / table.clearance
-    if eps > table.eps_max:
-        from .reynolds_fe import fe_film_force
-        return fe_film_force(table.mesh, table.clearance, dx, dy, dvx, dvy, mu, supply_pressure,
-                             cavitation_pressure, cavitation)
-    vr, vt = c * dvx + s * dvy, -s * dvx + c * dvy
-    Fr, Ft = table.force_aligned(eps, mu * vr, mu * vt, cavitation_pressure - supply_pressure, cavitation)
-    return c * Fr - s * Ft, s * Fr + c * Ft
+    """(Fx, Fy) like reynolds_fe.fe_film_force, from the table (film saturated at the table's eps_max)."""
+    out = np.empty(10)
+    table.evaluate(float(dx), float(dy), float(dvx), float(dvy), float(mu),
+                   float(cavitation_pressure - supply_pressure), bool(cavitation), out)
+    return float(out[0]), float(out[1])

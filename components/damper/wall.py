@@ -1,0 +1,57 @@
+"""The O-ring centering spring and the journal-housing wall contact, in parallel with the film.
+
+Spring (paper Table 3, 5254 N/mm): F_spring = -k_spring d, d = X_journal - X_housing.
+
+Wall contact: when the journal has used up the radial clearance c (e = |d| >= c, eccentricity ratio >= 1),
+it touches the housing bore. The film model no longer applies there (h_min -> 0); a stiff radial penalty
+spring acts instead, F_contact = -k_wall (e - c) d / e, frictionless (the damper journal does not spin: it is
+held by anti-rotation pins, so sliding is only the slow whirl). Between the film model's limit eps_max and
+the wall the film is held at its eps_max value (reynolds_fe.EPS_FILM_MAX). With k_wall = 0 touching the
+wall is an error instead. A penetration larger than the clearance itself (e >= 2 c) is not a contact but a
+diverged simulation and is an error in any case.
+"""
+from __future__ import annotations
+
+import math
+
+from numba import njit
+
+#: e / c at which the wall penetration is taken as a diverged simulation
+EPS_DIVERGED = 2.0
+
+#: status codes of :func:`spring_and_wall`
+OK, NOT_FINITE, WALL_ERROR, DIVERGED = 0, 1, 2, 3
+
+
+@njit(cache=True)
+def spring_and_wall(dx, dy, clearance, k_spring, k_wall, out):
+    """Spring and contact forces into out[10:14], their stiffness added to out[2:6] (row-major dF/dd),
+    F_journal = film + spring + contact into out[14:16]. Returns a status code."""
+    e = math.sqrt(dx * dx + dy * dy)
+    eps = e / clearance
+    out[17] = eps
+    out[10] = -k_spring * dx
+    out[11] = -k_spring * dy
+    out[2] -= k_spring
+    out[5] -= k_spring
+    out[12] = 0.0
+    out[13] = 0.0
+    if eps >= EPS_DIVERGED:
+        return DIVERGED
+    if eps >= 1.0:
+        if k_wall <= 0.0:
+            return WALL_ERROR
+        cx = dx / e
+        cy = dy / e
+        pen = e - clearance
+        out[12] = -k_wall * pen * cx
+        out[13] = -k_wall * pen * cy
+        # d(-k (e - c) n)/dd = -k [n n^T + (1 - c/e)(I - n n^T)]
+        t = 1.0 - clearance / e
+        out[2] -= k_wall * (cx * cx + t * (1.0 - cx * cx))
+        out[3] -= k_wall * (cx * cy - t * cx * cy)
+        out[4] -= k_wall * (cx * cy - t * cx * cy)
+        out[5] -= k_wall * (cy * cy + t * (1.0 - cy * cy))
+    out[14] = out[0] + out[10] + out[12]
+    out[15] = out[1] + out[11] + out[13]
+    return OK
