@@ -11,6 +11,9 @@ Model (kernel.py):
   growth close the contacts (raise the loads), outer race growth opens them, as in eqs. (6)-(7);
 * Hertz contact with the contact damping of eq. (9) (no tensile force: Q >= 0), stress at the centre of the contact
   ellipse, eq. (10), reported as a positive compressive stress;
+* an addition to the paper: a light viscous damping of each ball against the mean motion of its two races
+  (``ball_damping``; oil film and cage). Eq. (9) damps only the normal approach, so without it the ball's
+  tangential (rocking) mode, at ~2-3 kHz, would ring undamped for ever;
 * force on the rotor, eq. (2): F_rotor = sum T^T Q + (0, 0, P). The axial preload P is applied by placing the
   inner race axially at z0, the offset at which the balls carry P at speed omega with no radial load; the preload's
   reaction closes through the shaft and the housing, so F_rotor is zero at the preloaded rest state X_inner = 0 and
@@ -65,6 +68,8 @@ class BallBearing(Component):
                  description="outer groove radius / ball diameter f_o"),
         Variable("contact_damping", "parameter", unit="s/m", start=_DESIGN["contact_damping"],
                  description="Hertz contact damping alpha of eq. (9) (paper: 0.08-0.32 s/m)"),
+        Variable("ball_damping", "parameter", unit="N.s/m", start=_DESIGN["ball_damping"],
+                 description="viscous damping of each ball against the mean race motion (oil/cage; not in the paper)"),
         Variable("m_journal", "parameter", unit="kg", start=0.0,
                  description="outer race + journal mass of eq. (5); default: solid steel rings from Table 3"),
         Variable("preload", "parameter", unit="N", start=BEARINGS[0]["preload_N"],
@@ -108,7 +113,8 @@ class BallBearing(Component):
                                 f"Table 3 has {sorted(BEARINGS)}")
         if "preload" not in explicit:
             p["preload"] = float(BEARINGS[p["bearing"]]["preload_N"])
-        for key, lo in (("omega", 0.0), ("preload", 0.0), ("contact_damping", 0.0), ("f0", 0.0)):
+        for key, lo in (("omega", 0.0), ("preload", 0.0), ("contact_damping", 0.0), ("ball_damping", 0.0),
+                         ("f0", 0.0)):
             if not p[key] >= lo:
                 raise ContractError(f"{self.name}.{key} must be >= {lo}, got {p[key]}")
         if p["inner_motion"] not in INNER_MOTION:
@@ -133,7 +139,8 @@ class BallBearing(Component):
                                      _DRAG["static_rating_stress_MPa"] * 1e6, _DRAG["static_rating_stribeck"])
         self._geo = np.array([g.l_oi, g.l_oe, math.cos(g.alpha0), math.sin(g.alpha0), g.K_i, g.K_e,
                               p["contact_damping"], Fc, g.m_b, p["m_journal"], g.cage_speed(omega),
-                              g.preload, g.inner.stress_coeff, g.outer.stress_coeff, omega, 0.05 * g.D])
+                              g.preload, g.inner.stress_coeff, g.outer.stress_coeff, omega, 0.05 * g.D,
+                              p["ball_damping"]])
         self._drag = np.array([0.0, omega, g.d_m, p["f0"], _DRAG["f1_z"], _DRAG["f1_y"], _DRAG["X0"],
                                _DRAG["Y0"], self.C0])
         self._num = np.array([p["cfl"], float(_NUM["min_substeps"]), float(p["substeps"]),

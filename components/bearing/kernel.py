@@ -9,7 +9,9 @@ u_z = z, w_r = x_e cos phi + y_e sin phi):
     Q = K delta^1.5 (1 + 1.5 alpha_d d(delta)/dt) for delta > 0, else 0; never tensile (eq. 9);
     m_b dv/dt = Q_i n_i - Q_e n_e + (F_c, 0)                                 (eq. 4);
     force on the inner race  -Q_i (cos alpha_i cos phi, cos alpha_i sin phi, sin alpha_i)   (eqs. 2, 3);
-    force on the outer race  +Q_e cos alpha_e (cos phi, sin phi)                             (eq. 5).
+    force on the outer race  +Q_e cos alpha_e (cos phi, sin phi)                             (eq. 5);
+    plus a light viscous ball damping c_b (ball velocity minus the mean of the two groove centres' velocities,
+    reacted half by each race; not in the paper, see data/bearings.toml).
 Integration: symplectic (semi-implicit) Euler sub-steps for the balls; the journal (eq. 5) with the damper force
 linearised about the start of the step, F0 + K (x - x0) + C (v - v0), taken implicitly in each sub-step.
 """
@@ -25,7 +27,7 @@ from .drag import palmgren_torque
 
 @njit(cache=True)
 def _forces(Xx, Xy, Xz, Vx, Vy, Vz, xe, ye, vxe, vye, cphi, sphi, wc, balls, Z, c_b, s_b, l_oi, l_oe, ca0, sa0,
-            Ki, Ke, ad, Fc, m_b, eps_i, eps_e, eps_b, acc, out):
+            Ki, Ke, ad, Fc, m_b, eps_i, eps_e, eps_b, cb, acc, out):
     """Contact forces of all balls at one instant. Writes ball accelerations into ``acc`` (2, Z) and into
     ``out``: [Fx, Fy, Fz on the inner race, Fx, Fy on the outer race, Qi_max, Qe_max, Fr, Fa, kmax]."""
     Fx = 0.0
@@ -79,13 +81,16 @@ def _forces(Xx, Xy, Xz, Vx, Vy, Vz, xe, ye, vxe, vye, cphi, sphi, wc, balls, Z, 
         si = Az / Li
         ce = Br / Le
         se = Bz / Le
-        acc[0, j] = (Qi * ci - Qe * ce + Fc) / m_b
-        acc[1, j] = (Qi * si - Qe * se) / m_b
-        Fx -= Qi * ci * c
-        Fy -= Qi * ci * s
-        Fz -= Qi * si
-        Gx += Qe * ce * c
-        Gy += Qe * ce * s
+        # ball damping against the mean motion of the two races, reacted half by each race
+        fbr = -cb * (dvr - 0.5 * (dur + dwr))
+        fbz = -cb * (dvz - 0.5 * Vz)
+        acc[0, j] = (Qi * ci - Qe * ce + Fc + fbr) / m_b
+        acc[1, j] = (Qi * si - Qe * se + fbz) / m_b
+        Fx -= (Qi * ci + 0.5 * fbr) * c
+        Fy -= (Qi * ci + 0.5 * fbr) * s
+        Fz -= Qi * si + 0.5 * fbz
+        Gx += (Qe * ce - 0.5 * fbr) * c
+        Gy += (Qe * ce - 0.5 * fbr) * s
         if Qi > qi_max:
             qi_max = Qi
         if Qe > qe_max:
@@ -165,7 +170,8 @@ def step_outputs(h, X, V, z0, eps, F0, Kj, Cj, balls, jour, phi, c_b, s_b, geo, 
 def step(h, Xa, Va, z0, eps, F0, Kj, Cj, balls, jour, phi, c_b, s_b, geo, drag, num, res):
     """Advance balls, cage angle and journal over h with the inner race on X(tau) = Xa + Va tau (+ z0 axially).
 
-    geo  = [l_oi, l_oe, cos a0, sin a0, K_i, K_e, alpha_d, F_c, m_b, m_journal, omega_c, ...]
+    geo  = [l_oi, l_oe, cos a0, sin a0, K_i, K_e, alpha_d, F_c, m_b, m_journal, omega_c, (5 outputs' constants),
+            ball damping]
     drag = [nu, omega, d_m, f0, z, y, X0, Y0, C0]
     num  = [cfl, min_substeps, fixed_substeps (0: automatic), ...]
     balls (4, Z) [v_r, v_z, dv_r/dt, dv_z/dt] and jour (4) [x, y, vx, vy] are updated in place; phi (1) too.
@@ -185,7 +191,7 @@ def step(h, Xa, Va, z0, eps, F0, Kj, Cj, balls, jour, phi, c_b, s_b, geo, drag, 
     vy0 = jour[3]
     _forces(Xa[0], Xa[1], Xa[2] + z0, Va[0], Va[1], Va[2], jour[0], jour[1], jour[2], jour[3],
             math.cos(phi[0]), math.sin(phi[0]), wc, balls, Z, c_b, s_b, l_oi, l_oe, ca0, sa0, Ki, Ke, ad, Fc, m_b,
-            eps_i, eps_e, eps_b, acc, out)
+            eps_i, eps_e, eps_b, geo[16], acc, out)
     if h <= 0.0:
         # outputs of the present state only (set-up)
         M = palmgren_torque(out[7], out[8], drag[0], drag[1], drag[2], drag[3], drag[4], drag[5], drag[6],
@@ -225,7 +231,7 @@ def step(h, Xa, Va, z0, eps, F0, Kj, Cj, balls, jour, phi, c_b, s_b, geo, drag, 
             tau = k * dt
             _forces(Xa[0] + Va[0] * tau, Xa[1] + Va[1] * tau, Xa[2] + z0 + Va[2] * tau, Va[0], Va[1], Va[2],
                     jour[0], jour[1], jour[2], jour[3], cphi, sphi, wc, balls, Z, c_b, s_b, l_oi, l_oe, ca0, sa0,
-                    Ki, Ke, ad, Fc, m_b, eps_i, eps_e, eps_b, acc, out)
+                    Ki, Ke, ad, Fc, m_b, eps_i, eps_e, eps_b, geo[16], acc, out)
             if out[5] > qi_step:
                 qi_step = out[5]
             if out[6] > qe_step:
@@ -256,7 +262,7 @@ def step(h, Xa, Va, z0, eps, F0, Kj, Cj, balls, jour, phi, c_b, s_b, geo, drag, 
     sphi = math.sin(phi[0])
     _forces(Xa[0] + Va[0] * h, Xa[1] + Va[1] * h, Xa[2] + z0 + Va[2] * h, Va[0], Va[1], Va[2], jour[0], jour[1],
             jour[2], jour[3], cphi, sphi, wc, balls, Z, c_b, s_b, l_oi, l_oe, ca0, sa0, Ki, Ke, ad, Fc, m_b,
-            eps_i, eps_e, eps_b, acc, out)
+            eps_i, eps_e, eps_b, geo[16], acc, out)
     if out[5] > qi_step:
         qi_step = out[5]
     if out[6] > qe_step:

@@ -64,7 +64,7 @@ def _contacts(g: BearingGeometry, p, q, v, eps_b):
 
 
 def solve_balls(g: BearingGeometry, ur, uz, wr, eps=(0.0, 0.0, 0.0), Fc: float = 0.0, v0=None,
-                tol: float = 1e-10, max_iter: int = 100) -> tuple[np.ndarray, tuple]:
+                tol: float = 1e-10, max_iter: int = 200) -> tuple[np.ndarray, tuple]:
     """Ball centre displacements (2, n) in equilibrium for inner groove displacements (ur, uz) and outer groove
     radial displacement wr (arrays over the balls): Newton on eq. (4) with the analytic 2x2 Jacobian, started from
     the collinear solution (exact when F_c = 0)."""
@@ -106,9 +106,11 @@ def solve_balls(g: BearingGeometry, ur, uz, wr, eps=(0.0, 0.0, 0.0), Fc: float =
         S[1, 1] += 1.0                  # keeps a ball in its gap (F_c > 0) from a singular step
         det = S[0, 0] * S[1, 1] - S[0, 1] * S[1, 0]
         dv = np.array([(S[1, 1] * R[0] - S[0, 1] * R[1]) / det, (S[0, 0] * R[1] - S[1, 0] * R[0]) / det])
-        # no step longer than 2 um: the contact law has a kink at delta = 0
+        # no step longer than 2 um while in contact (the contact law has a kink at delta = 0); a free ball may
+        # travel a fifth of the groove-centre distance per iteration
         mag = np.hypot(dv[0], dv[1])
-        dv *= np.minimum(1.0, 2e-6 / np.maximum(mag, 1e-300))
+        cap = np.where((di > 0.0) | (de > 0.0), 2e-6, 0.2 * min(g.l_oi, g.l_oe))
+        dv *= np.minimum(1.0, cap / np.maximum(mag, 1e-300))
         v = v + dv
     else:
         raise RuntimeError(f"ball equilibrium did not converge (residual {np.max(np.abs(R)):.3e} N)")
@@ -150,6 +152,8 @@ def static_equilibrium(g: BearingGeometry, F, Xe=(0.0, 0.0), eps=(0.0, 0.0, 0.0)
     if F.shape != (3,) or not np.all(np.isfinite(F)):
         raise ValueError(f"external load must be 3 finite numbers (Fx, Fy, Fz) in N, got {F}")
     X = _initial_guess(g, F) if X0 is None else np.array(X0, dtype=float)
+    if X0 is None:
+        X[:2] += np.asarray(Xe, dtype=float)
     st = ball_state(g, X, Xe, eps, Fc)
     G = F + st.race_force()
     scale = max(float(np.max(np.abs(F))), g.K_i * (1e-6) ** 1.5)
