@@ -24,6 +24,8 @@ FMI 3.0 FMUs are refused with a clear error for now (see the report of issue 8).
 from __future__ import annotations
 
 import ctypes
+import io
+import os
 import shutil
 import sys
 import weakref
@@ -76,8 +78,6 @@ def describe(path: str | Path):
             xml = zf.read("modelDescription.xml")
     except ArchiveError as exc:
         raise FMUError(str(exc)) from None
-    import io
-
     try:
         md = read_model_description(io.BytesIO(_zip_of({"modelDescription.xml": xml})), validate=False)
     except Exception as exc:  # lxml / fmpy parse errors: an unreadable description
@@ -93,7 +93,7 @@ def describe(path: str | Path):
 
 
 def _zip_of(entries: Mapping[str, bytes]) -> bytes:
-    import io
+    """A zip in memory (fmpy reads a model description from a zip or a folder, not from bare bytes)."""
     import zipfile
 
     buf = io.BytesIO()
@@ -275,10 +275,12 @@ class FMUComponent(Component):
         h = self._handle
         ident = md.coSimulation.modelIdentifier
         binary = h.folder / "binaries"
+        cwd = os.getcwd()
         try:
             h.fmu = FMU2Slave(guid=md.guid, unzipDirectory=str(h.folder), modelIdentifier=ident,
                               instanceName=self.name)
         except Exception as exc:
+            os.chdir(cwd)   # fmpy changes into the binaries folder and stays there when loading fails
             found = sorted(str(p.relative_to(h.folder)) for p in binary.rglob("*") if p.is_file()) \
                 if binary.is_dir() else []
             raise FMUError(f"{where}: its binary (model identifier {ident!r}) does not load on this platform: "

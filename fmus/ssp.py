@@ -1,0 +1,338 @@
+"""A scenario's system as an SSP 1.0 archive, and an SSP archive back as a scenario our master runs.
+
+Archive layout (``write_ssp``)::
+
+    SystemStructure.ssd      the system (SSP 1.0 namespaces, valid against the SSP 1.0 XSDs fmpy ships)
+    resources/<comp>.fmu     one FMU per component (fmus/export.py), parameters baked in as start values
+
+In ``SystemStructure.ssd``: one ``ssd:Component`` per component with a ``ssd:Connector`` per FMU scalar
+(``X[1]``.., kind input/output/parameter, ``ssc:Real unit``), its parameter values (and the scenario's constant
+inputs) inline in ``ssd:ParameterBindings`` as an ``ssv:ParameterSet`` named ``initialValues`` (engines such
+as Ecos apply it by that name), one ``ssd:Connection`` per scalar of every port-to-port connection, the units
+(``ssd:Units``, SI base-unit exponents), ``ssd:DefaultExperiment`` (the schedule's duration), and an
+annotation of type ``org.rotorcosim.scenario`` holding what SSP has no words for, as JSON: the master's
+algorithm, schedule, outputs, results, per-component communication steps and each connection's
+averaging/extrapolation/hold settings.
+
+``read_ssp`` reads any SSP 1.0 archive of FMI co-simulation FMUs (flat system): without our annotation it
+uses Gauss-Seidel in element order and a monolithic schedule over the DefaultExperiment with the smallest
+DefaultExperiment stepSize of the FMUs. The archive is extracted (safely: safezip.py) into a temporary
+folder that lives until the process ends, since the scenario's components point at the FMUs in it.
+"""
+from __future__ import annotations
+
+import atexit
+import json
+import shutil
+import tempfile
+import xml.etree.ElementTree as ET
+from pathlib import Path
+
+from rotorcosim.master.scenario import ComponentSpec, ConnectionSpec, Scenario, ScenarioError, schedule_of
+
+from . import export
+from .flatten import scalar_names
+from .importer import FMUError, describe, ports_of
+from .model_description import _unit_element
+from .safezip import ArchiveError, open_zip, safe_extract
+from .units import is_dimensionless
+
+NS = {
+    "ssd": "http://ssp-standard.org/SSP1/SystemStructureDescription",
+    "ssc": "http://ssp-standard.org/SSP1/SystemStructureCommon",
+    "ssv": "http://ssp-standard.org/SSP1/SystemStructureParameterValues",
+}
+ANNOTATION = "org.rotorcosim.scenario"
+PARAMETER_SET = "initialValues"
+FMU_TYPE = "application/x-fmu-sharedlibrary"
+ET.register_namespace("rc", "urn:rotorcosim:ssp:1")
+for _p, _u in NS.items():
+    ET.register_namespace(_p, _u)
+
+
+class SSPError(ScenarioError):
+    """An SSP archive that cannot be written or read; the message names the file and the element."""
+
+
+def _q(prefix: str, tag: str) -> str:
+    return f"{{{NS[prefix]}}}{tag}"
+
+
+def _num(x) -> str:
+    return repr(float(x))
+
+
+# -- writing -------------------------------------------------------------------------------------------
+def _ssv_value(parent: ET.Element, name: str, typ: str, value) -> None:
+    p = ET.SubElement(parent, _q("ssv", "Parameter"), {"name": name})
+    if typ == "Real":
+        ET.SubElement(p, _q("ssv", "Real"), {"value": _num(value)})
+    elif typ == "Integer":
+        ET.SubElement(p, _q("ssv", "Integer"), {"value": str(int(value))})
+    elif typ == "Boolean":
+        ET.SubElement(p, _q("ssv", "Boolean"), {"value": "true" if value else "false"})
+    else:
+        ET.SubElement(p, _q("ssv", "String"), {"value": str(value)})
+
+
+def _flat_values(var, value) -> list:
+    if var.type == "String":
+        return [value]
+    import numpy as np
+
+    return list(np.broadcast_to(np.asarray(value), (var.size,)).tolist())
+
+
+def system_description(sc: Scenario, fmus: dict[str, Path]) -> bytes:
+    """SystemStructure.ssd (bytes) for scenario ``sc`` whose components are the FMUs ``fmus``."""
+    root = ET.Element(_q("ssd", "SystemStructureDescription"), {"version": "1.0", "name": sc.name})
+    system = ET.SubElement(root, _q("ssd", "System"), {"name": sc.name})
+    if sc.description:
+        system.set("description", sc.description)
+    elements = ET.SubElement(system, _q("ssd", "Elements"))
+    units = set()
+    ports = {}
+    for name, path in fmus.items():
+        _, md = describe(path)
+        variables, _ = ports_of(md, str(path))
+        ports[name] = {v.name: v for v in variables}
+        comp = ET.SubElement(elements, _q("ssd", "Component"),
+                             {"name": name, "type": FMU_TYPE, "source": f"resources/{name}.fmu"})
+        cons = ET.SubElement(comp, _q("ssd", "Connectors"))
+        for v in variables:
+            for s in scalar_names(v.name, v.size):
+                c = ET.SubElement(cons, _q("ssd", "Connector"), {"name": s, "kind": v.causality})
+                attrib = {}
+                if v.type == "Real" and not is_dimensionless(v.unit):
+                    attrib["unit"] = v.unit
+                    units.add(v.unit)
+                ET.SubElement(c, _q("ssc", v.type), attrib)
+        values = []
+        for key, value in sc.components[name].parameters.items():
+            v = ports[name].get(key)
+            if v is None or v.causality != "parameter":
+                raise SSPError(f"scenario {sc.name!r}: component {name} has no parameter {key!r}")
+            values += [(s, v.type, x) for s, x in zip(scalar_names(v.name, v.size), _flat_values(v, value))]
+        for ref, value in sc.inputs.items():
+            cname, _, port = ref.partition(".")
+            if cname == name:
+                v = ports[name].get(port)
+                if v is None or v.causality != "input":
+                    raise SSPError(f"scenario {sc.name!r}: [inputs] {ref}: component {name} has no input {port!r}")
+                values += [(s, "Real", x) for s, x in zip(scalar_names(v.name, v.size), _flat_values(v, value))]
+        if values:
+            bindings = ET.SubElement(comp, _q("ssd", "ParameterBindings"))
+            binding = ET.SubElement(bindings, _q("ssd", "ParameterBinding"),
+                                    {"type": "application/x-ssp-parameter-set"})
+            pv = ET.SubElement(binding, _q("ssd", "ParameterValues"))
+            pset = ET.SubElement(pv, _q("ssv", "ParameterSet"), {"version": "1.0", "name": PARAMETER_SET})
+            params = ET.SubElement(pset, _q("ssv", "Parameters"))
+            for s, typ, x in values:
+                _ssv_value(params, s, typ, x)
+    connections = ET.SubElement(system, _q("ssd", "Connections"))
+    for con in sc.connections:
+        (sa, sp), (da, dp) = con.src.split(".", 1), con.dst.split(".", 1)
+        try:
+            out, inp = ports[sa][sp], ports[da][dp]
+        except KeyError:
+            raise SSPError(f"scenario {sc.name!r}: connection {con.src} -> {con.dst} names a port its FMU "
+                           "does not have") from None
+        if out.size != inp.size:
+            raise SSPError(f"scenario {sc.name!r}: connection {con.src} -> {con.dst}: sizes differ")
+        for s, d in zip(scalar_names(sp, out.size), scalar_names(dp, inp.size)):
+            ET.SubElement(connections, _q("ssd", "Connection"),
+                          {"startElement": sa, "startConnector": s, "endElement": da, "endConnector": d})
+    if units:
+        ud = ET.SubElement(root, _q("ssd", "Units"))
+        for u in sorted(units):
+            unit = _unit_element(u)
+            unit.tag = _q("ssc", "Unit")
+            for b in unit:
+                b.tag = _q("ssc", "BaseUnit")
+            ud.append(unit)
+    try:
+        duration = schedule_of(sc).duration
+        ET.SubElement(root, _q("ssd", "DefaultExperiment"), {"startTime": "0.0", "stopTime": _num(duration)})
+    except Exception:  # no usable schedule: the experiment is the engine's choice
+        ET.SubElement(root, _q("ssd", "DefaultExperiment"), {"startTime": "0.0"})
+    annotations = ET.SubElement(root, _q("ssd", "Annotations"))
+    ann = ET.SubElement(annotations, _q("ssc", "Annotation"), {"type": ANNOTATION})
+    payload = {
+        "name": sc.name, "description": sc.description, "algorithm": sc.algorithm, "schedule": sc.schedule,
+        "outputs": sc.outputs, "results": sc.extra.get("results", {}),
+        "steps": {n: c.step for n, c in sc.components.items() if c.step is not None},
+        "implementations": {n: c.implementation for n, c in sc.components.items() if c.implementation},
+        "connections": [{"from": c.src, "to": c.dst, "average": c.average, "extrapolation": c.extrapolation,
+                         "hold": c.hold} for c in sc.connections],
+        "inputs": sc.inputs,
+    }
+    ET.SubElement(ann, "{urn:rotorcosim:ssp:1}Scenario").text = json.dumps(payload, sort_keys=True)
+    ET.indent(root, space="  ")
+    return ET.tostring(root, encoding="UTF-8", xml_declaration=True) + b"\n"
+
+
+def write_ssp(sc: Scenario, path: str | Path) -> Path:
+    """Write scenario ``sc`` as an SSP 1.0 archive at ``path`` (atomically; the FMUs are exported afresh)."""
+    path = Path(path)
+    if path.suffix.lower() != ".ssp":
+        raise SSPError(f"{path}: an SSP archive's name must end in .ssp")
+    if not path.parent.is_dir():
+        raise SSPError(f"output folder {path.parent} does not exist")
+    with tempfile.TemporaryDirectory(prefix="rcs_ssp_") as tmp:
+        fmus = export.export_scenario(sc, Path(tmp))
+        entries = {f"resources/{n}.fmu": p.read_bytes() for n, p in fmus.items()}
+        entries["SystemStructure.ssd"] = system_description(sc, fmus)
+    return export.write_deterministic_zip(entries, path)
+
+
+# -- reading -------------------------------------------------------------------------------------------
+_extracted: list[Path] = []
+
+
+@atexit.register
+def _cleanup() -> None:
+    for folder in _extracted:
+        shutil.rmtree(folder, ignore_errors=True)
+
+
+def _value(p: ET.Element, where: str):
+    for child in p:
+        tag = child.tag.split("}")[-1]
+        v = child.get("value")
+        if tag in ("Real", "Float64", "Float32"):
+            return float(v)
+        if tag in ("Integer", "Int32", "Enumeration"):
+            return int(v)
+        if tag == "Boolean":
+            return v.strip().lower() in ("true", "1")
+        if tag == "String":
+            return v
+    raise SSPError(f"{where}: parameter {p.get('name')!r} has no value this reader understands")
+
+
+def _parameter_values(comp: ET.Element, folder: Path, where: str) -> dict[str, object]:
+    """All values of a component's parameter bindings (inline or from .ssv files), later ones winning."""
+    out = {}
+    for b in comp.findall("ssd:ParameterBindings/ssd:ParameterBinding", NS):
+        if b.get("prefix"):
+            raise SSPError(f"{where}: parameter bindings with a prefix are not supported")
+        source = b.get("source")
+        if source:
+            target = (folder / source).resolve()
+            if folder.resolve() not in target.parents or not target.is_file():
+                raise SSPError(f"{where}: parameter source {source!r} is not a file inside the archive")
+            pset = ET.parse(target).getroot()
+        else:
+            pset = b.find("ssd:ParameterValues/ssv:ParameterSet", NS)
+            if pset is None:
+                continue
+        for p in pset.findall("ssv:Parameters/ssv:Parameter", NS):
+            out[p.get("name")] = _value(p, where)
+    return out
+
+
+def read_ssp(path: str | Path) -> Scenario:
+    """The scenario of the SSP archive at ``path`` (components given as the FMUs inside it)."""
+    path = Path(path)
+    try:
+        with open_zip(path, "SSP archive") as zf:
+            if "SystemStructure.ssd" not in zf.namelist():
+                raise SSPError(f"{path}: no SystemStructure.ssd at the top of the archive: not an SSP archive")
+        folder = safe_extract(path, "SSP archive", prefix="rcs_ssp_")
+    except ArchiveError as exc:
+        raise SSPError(str(exc)) from None
+    _extracted.append(folder)
+    where = str(path)
+    try:
+        root = ET.parse(folder / "SystemStructure.ssd").getroot()
+    except ET.ParseError as exc:
+        raise SSPError(f"{where}: SystemStructure.ssd is not valid XML: {exc}") from None
+    if root.tag != _q("ssd", "SystemStructureDescription"):
+        raise SSPError(f"{where}: SystemStructure.ssd is not an SSP 1.0 system structure description "
+                       f"(root element {root.tag})")
+    system = root.find("ssd:System", NS)
+    if system is None:
+        raise SSPError(f"{where}: SystemStructure.ssd has no ssd:System")
+    payload = {}
+    for ann in root.findall("ssd:Annotations/ssc:Annotation", NS):
+        if ann.get("type") == ANNOTATION and len(ann):
+            payload = json.loads(ann[0].text or "{}")
+    components: dict[str, ComponentSpec] = {}
+    scalars: dict[str, dict[str, tuple]] = {}
+    inputs: dict[str, list] = {}
+    steps = []
+    for comp in system.findall("ssd:Elements/*", NS):
+        tag = comp.tag.split("}")[-1]
+        cname = comp.get("name")
+        w = f"{where}: component {cname!r}"
+        if tag != "Component":
+            raise SSPError(f"{w}: nested {tag} elements are not supported (flat systems of FMUs only)")
+        if comp.get("type", FMU_TYPE) != FMU_TYPE:
+            raise SSPError(f"{w}: type {comp.get('type')!r} is not an FMU")
+        source = comp.get("source", "")
+        fmu = (folder / source).resolve()
+        if folder.resolve() not in fmu.parents or not fmu.is_file():
+            raise SSPError(f"{w}: source {source!r} is not an FMU inside the archive")
+        try:
+            _, md = describe(fmu)
+            variables, _ = ports_of(md, f"{w} ({source})")
+        except FMUError as exc:
+            raise SSPError(str(exc)) from None
+        if md.defaultExperiment is not None and md.defaultExperiment.stepSize:
+            steps.append(float(md.defaultExperiment.stepSize))
+        scalars[cname] = {s: (v, i) for v in variables for i, s in enumerate(scalar_names(v.name, v.size))}
+        params: dict[str, list] = {}
+        for sname, value in _parameter_values(comp, folder, w).items():
+            if sname not in scalars[cname]:
+                continue   # SSP: names that match no variable are ignored
+            v, i = scalars[cname][sname]
+            if v.causality == "parameter":
+                params.setdefault(v.name, [None] * v.size)[i] = value
+            elif v.causality == "input":
+                inputs.setdefault(f"{cname}.{v.name}", list(v.start_array()))[i] = float(value)
+        parameters = {}
+        for pname, values in params.items():
+            v = scalars[cname][scalar_names(pname, len(values))[0]][0]
+            full = [x if x is not None else s for x, s in zip(values, _flat_values(v, v.start))]
+            parameters[pname] = full[0] if len(full) == 1 else full
+        components[cname] = ComponentSpec(cname, fmu=str(fmu), parameters=parameters,
+                                          step=payload.get("steps", {}).get(cname))
+    if not components:
+        raise SSPError(f"{where}: the system has no components")
+    # scalar connections back to port connections
+    grouped: dict[tuple, list] = {}
+    for c in system.findall("ssd:Connections/ssd:Connection", NS):
+        se, sc_, ee, ec = (c.get(k) for k in ("startElement", "startConnector", "endElement", "endConnector"))
+        if not se or not ee:
+            raise SSPError(f"{where}: connection {sc_} -> {ec} touches the system's own connectors: "
+                           "only component-to-component connections are supported")
+        for e, n in ((se, sc_), (ee, ec)):
+            if e not in scalars or n not in scalars[e]:
+                raise SSPError(f"{where}: connection {se}.{sc_} -> {ee}.{ec}: {e}.{n} is not a variable of "
+                               f"its FMU")
+        (sv, si), (dv, di) = scalars[se][sc_], scalars[ee][ec]
+        grouped.setdefault((se, sv.name, ee, dv.name), []).append((si, di, sv.size, dv.size))
+    settings = {(c["from"], c["to"]): c for c in payload.get("connections", [])}
+    connections = []
+    for (se, sp, ee, dp), pairs in grouped.items():
+        src, dst = f"{se}.{sp}", f"{ee}.{dp}"
+        ssize, dsize = pairs[0][2], pairs[0][3]
+        if ssize != dsize or sorted((a, b) for a, b, _, _ in pairs) != [(i, i) for i in range(ssize)]:
+            raise SSPError(f"{where}: the scalar connections from {src} to {dst} do not connect the two "
+                           f"ports element by element (sizes {ssize} and {dsize})")
+        s = settings.get((src, dst), {})
+        connections.append(ConnectionSpec(src, dst, s.get("average", "mean"), s.get("extrapolation", "hold"),
+                                          s.get("hold")))
+    schedule = payload.get("schedule")
+    if not schedule:
+        de = root.find("ssd:DefaultExperiment", NS)
+        start = float(de.get("startTime", 0.0)) if de is not None else 0.0
+        stop = float(de.get("stopTime")) if de is not None and de.get("stopTime") else start + 1.0
+        schedule = {"kind": "monolithic", "duration": stop - start, "step": min(steps) if steps else 1e-3}
+    algorithm = payload.get("algorithm") or {"kind": "gauss-seidel", "order": list(components)}
+    for ref, values in payload.get("inputs", {}).items():
+        inputs[ref] = list(values)
+    return Scenario(name=payload.get("name", system.get("name", path.stem)), components=components,
+                    connections=connections, inputs=inputs, algorithm=algorithm, schedule=schedule,
+                    outputs=payload.get("outputs", {}), source=path, description=payload.get("description", ""),
+                    extra={"results": payload.get("results", {})})

@@ -1,0 +1,167 @@
+"""The whole system as an SSP 1.0 archive: valid, read back into a scenario our master runs identically, and run
+by a co-simulation engine that is not ours (Ecos) within 1 % of our master at the same fixed step."""
+from __future__ import annotations
+
+import ctypes.util
+import os
+import subprocess
+import sys
+import zipfile
+from pathlib import Path
+
+import numpy as np
+import pytest
+from fmu_helpers import TOY, max_rel_diff, run_intervals
+
+from rotorcosim.fmus.ssp import SSPError, read_ssp, write_ssp
+from rotorcosim.master.scenario import load_scenario, parse
+
+TM = [("TM", 0.3, 1e-3)]           # the toy's thermo-mechanical interval
+
+
+@pytest.fixture(scope="module")
+def toy_ssp(fmu_dir) -> Path:
+    return write_ssp(load_scenario(TOY), fmu_dir / "toy.ssp")
+
+
+def test_ssd_is_valid_ssp_1_0(toy_ssp):
+    from lxml import etree
+    import fmpy.ssp.ssd as ssd
+
+    schema = etree.XMLSchema(file=os.path.join(os.path.dirname(ssd.__file__), "schema",
+                                               "SystemStructureDescription.xsd"))
+    with zipfile.ZipFile(toy_ssp) as zf:
+        assert sorted(zf.namelist()) == ["SystemStructure.ssd", "resources/node.fmu", "resources/osc.fmu"]
+        root = etree.fromstring(zf.read("SystemStructure.ssd"))
+    assert schema.validate(root), schema.error_log
+    ns = {"ssd": ssd.ns["ssd"], "ssc": ssd.ns["ssc"], "ssv": ssd.ns["ssv"]}
+    # connectors carry units, parameters carry the scenario's values, connections are there
+    assert root.find(".//ssd:Component[@name='node']/ssd:Connectors/ssd:Connector[@name='T']/ssc:Real",
+                     ns).get("unit") == "K"
+    c = root.find(".//ssd:Component[@name='node']//ssv:Parameter[@name='C']/ssv:Real", ns)
+    assert float(c.get("value")) == 10.0
+    cons = {(e.get("startElement"), e.get("startConnector"), e.get("endElement"), e.get("endConnector"))
+            for e in root.findall(".//ssd:Connection", ns)}
+    assert cons == {("osc", "P", "node", "P"), ("node", "T", "osc", "T")}
+
+
+def test_read_ssp_gives_back_the_scenario(toy_ssp):
+    native = load_scenario(TOY)
+    sc = read_ssp(toy_ssp)
+    assert sc.name == native.name and list(sc.components) == list(native.components)
+    assert all(Path(c.fmu).is_file() and c.implementation is None for c in sc.components.values())
+    assert {n: c.parameters for n, c in sc.components.items()} == {n: c.parameters
+                                                                   for n, c in native.components.items()}
+    assert [(c.src, c.dst, c.average, c.hold) for c in sc.connections] == \
+        [(c.src, c.dst, c.average, c.hold) for c in native.connections]
+    assert sc.schedule == native.schedule and sc.algorithm == native.algorithm
+
+
+def test_ssp_runs_in_our_master_like_the_toml(toy_ssp):
+    intervals = [("TM", 0.1, 1e-3), ("TO", 0.5, 0.05), ("TM", 0.1, 1e-3)]
+    a = run_intervals(load_scenario(TOY), intervals)
+    b = run_intervals(read_ssp(toy_ssp), intervals)
+    assert max_rel_diff(a, b, list(a.rows[0])) < 1e-9
+
+
+def test_cli_export_fmus_export_ssp_and_run(tmp_path):
+    from fmpy.validation import validate_fmu
+
+    from rotorcosim.master.cli import main
+
+    assert main(["export-fmus", str(tmp_path / "fmus"), "--scenario", str(TOY)]) == 0
+    written = sorted(p.name for p in (tmp_path / "fmus").iterdir())
+    assert written == ["node.fmu", "osc.fmu"]
+    assert all(validate_fmu(str(p)) == [] for p in (tmp_path / "fmus").iterdir())
+    assert main(["export-fmus", str(tmp_path / "one"), "--scenario", str(TOY), "--component", "node"]) == 0
+    assert sorted(p.name for p in (tmp_path / "one").iterdir()) == ["node.fmu"]
+    assert main(["export-ssp", str(tmp_path / "toy.ssp"), str(TOY)]) == 0
+    assert main(["run", str(tmp_path / "toy.ssp"), "--out", str(tmp_path / "out"), "--quiet",
+                 "--duration", "0.5"]) == 0
+    assert (tmp_path / "out" / "summary.json").is_file()
+
+
+def test_cli_errors_name_the_problem(tmp_path, capsys):
+    from rotorcosim.master.cli import main
+
+    assert main(["export-fmus", str(tmp_path / "x"), "--scenario", str(TOY), "--component", "nope"]) == 2
+    assert "has no component 'nope'; its components: osc, node" in capsys.readouterr().err
+    sc = tmp_path / "future.toml"
+    sc.write_text(TOY.read_text().replace('implementation = "testing.thermal_node"',
+                                          'implementation = "thermal.future_model"'))
+    assert main(["export-fmus", str(tmp_path / "y"), "--scenario", str(sc)]) == 2
+    assert "unknown component implementation 'thermal.future_model'" in capsys.readouterr().err
+    assert not (tmp_path / "y").exists()     # checked before anything was written
+    assert main(["export-ssp", str(tmp_path / "toy.zip"), str(TOY)]) == 2
+    assert "must end in .ssp" in capsys.readouterr().err
+
+
+def test_bad_ssp_archives(tmp_path, toy_ssp):
+    bad = tmp_path / "text.ssp"
+    bad.write_text("no zip")
+    with pytest.raises(SSPError, match="not a zip archive"):
+        read_ssp(bad)
+    empty = tmp_path / "empty.ssp"
+    with zipfile.ZipFile(empty, "w") as zf:
+        zf.writestr("readme.txt", "x")
+    with pytest.raises(SSPError, match="no SystemStructure.ssd"):
+        read_ssp(empty)
+    slip = tmp_path / "slip.ssp"
+    with zipfile.ZipFile(toy_ssp) as zin, zipfile.ZipFile(slip, "w") as zout:
+        for i in zin.infolist():
+            zout.writestr(i, zin.read(i))
+        zout.writestr("../../evil.txt", "x")
+    with pytest.raises(SSPError, match="climbs out of the folder"):
+        read_ssp(slip)
+    outside = tmp_path / "outside.ssp"
+    with zipfile.ZipFile(toy_ssp) as zin, zipfile.ZipFile(outside, "w") as zout:
+        for i in zin.infolist():
+            data = zin.read(i)
+            if i.filename == "SystemStructure.ssd":
+                data = data.replace(b'source="resources/osc.fmu"', b'source="/etc/passwd"')
+            zout.writestr(i, data)
+    with pytest.raises(SSPError, match="source '/etc/passwd' is not an FMU inside the archive"):
+        read_ssp(outside)
+
+
+# -- Ecos ---------------------------------------------------------------------------------------------------
+def _ecos_missing() -> str | None:
+    try:
+        import ecospy  # noqa: F401
+    except ImportError as exc:
+        return f"ecospy is not installed (pip install ecospy): {exc}"
+    except OSError as exc:
+        return f"ecospy's library does not load (Debian's libtbb12 missing? apt-get install libtbb12): {exc}"
+    return None
+
+
+def ecos_run(ssp: Path, step: float, n: int, signals: list[str]) -> dict[str, np.ndarray]:
+    """Run ``ssp`` in Ecos for ``n`` fixed steps, sampling ``signals`` ("comp.var") after every step."""
+    from ecospy import EcosSimulation
+
+    out = {s: np.empty(n) for s in signals}
+    with EcosSimulation(ssp_path=str(ssp), step_size=step) as sim:
+        sim.init(parameter_set="initialValues")
+        for k in range(n):
+            sim.step()
+            for s in signals:
+                out[s][k] = sim.get_real(s.replace(".", "::", 1))
+        sim.terminate()
+    return out
+
+
+@pytest.mark.skipif(_ecos_missing() is not None, reason=str(_ecos_missing()))
+def test_ecos_runs_the_exported_ssp_like_our_master(toy_ssp):
+    (phase, duration, step), = TM
+    n = round(duration / step)
+    signals = ["osc.x", "osc.v", "osc.P", "node.T"]
+    ecos = ecos_run(toy_ssp, step, n, signals)
+    sc = read_ssp(toy_ssp)
+    sc.algorithm = {"kind": "jacobi", "order": ["osc", "node"]}   # Ecos exchanges values Jacobi-style
+    ours = run_intervals(sc, TM)
+    assert len(ours.rows) == n
+    # the oscillator swings through several periods and the node warms: the comparison is not trivial
+    assert np.ptp(ecos["osc.x"]) > 1e-3 and np.ptp(ecos["node.T"]) > 0.5
+    for s in signals:
+        mine = ours.series(s).reshape(n)
+        assert np.max(np.abs(mine - ecos[s])) <= 0.01 * np.max(np.abs(mine)), s
