@@ -1,0 +1,85 @@
+"""``rotorcosim critical-speeds``: synchronous critical speeds (and Campbell diagram) of the rotor model.
+
+The gas generator turns at the scenario's speed ratio (15 000 / 16 000) of the power turbine; bearings #0 and #5
+are represented by their linearised supports (data file [linear_support]).
+"""
+from __future__ import annotations
+
+import json
+
+import numpy as np
+
+from . import critical
+from . import model as fem
+
+
+def add_arguments(parser):
+    parser.add_argument("--model-file", default="", metavar="FILE",
+                        help="model data file (TOML); default: the shipped data/engine.toml")
+    parser.add_argument("--count", type=int, default=6, metavar="N", help="how many of each kind to list (default 6)")
+    parser.add_argument("--json", action="store_true", help="print a JSON object")
+    parser.add_argument("--campbell", metavar="FILE.png", help="also draw the Campbell diagram into this file")
+    parser.add_argument("--max-rpm", type=float, default=30000.0, metavar="RPM",
+                        help="highest power-turbine speed of the Campbell diagram and the list (default 30000)")
+
+
+def critical_speeds(model_file: str = "", count: int = 6, max_rpm: float = 30000.0) -> dict:
+    if count < 1:
+        raise ValueError(f"--count must be >= 1, got {count}")
+    if not (np.isfinite(max_rpm) and max_rpm > 0):
+        raise ValueError(f"--max-rpm must be > 0, got {max_rpm}")
+    m = fem.load(model_file or None)
+    out = critical.synchronous_critical_speeds(m, n=count, max_rpm=max_rpm)
+    out["speed_ratio_gg_pt"] = critical.speed_ratio(m)
+    out["target_rpm"] = list(m.data.get("calibration", {}).get("target_rpm", []))
+    out["model_file"] = str(model_file or fem.DEFAULT_FILE)
+    return out
+
+
+def draw_campbell(path: str, model_file: str = "", max_rpm: float = 30000.0, crit: dict | None = None) -> None:
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    m = fem.load(model_file or None)
+    rpm = np.linspace(0.0, max_rpm, 61)
+    f, fwd = critical.campbell(m, rpm)
+    fig, ax = plt.subplots(figsize=(7, 5))
+    for j in range(f.shape[1]):
+        ax.scatter(rpm[fwd[:, j]], f[fwd[:, j], j], s=6, c="tab:blue")
+        ax.scatter(rpm[~fwd[:, j]], f[~fwd[:, j], j], s=6, c="tab:orange")
+    ax.plot(rpm, rpm / 60.0, "k--", lw=1, label="1x (PT spin)")
+    ax.scatter([], [], s=6, c="tab:blue", label="forward whirl")
+    ax.scatter([], [], s=6, c="tab:orange", label="backward whirl")
+    if crit:
+        for r in crit["forward_synchronous_rpm"]:
+            ax.plot(r, r / 60.0, "o", mfc="none", mec="tab:red", ms=9)
+    ax.set_xlabel("power-turbine speed [rev/min] (gas generator at 15/16)")
+    ax.set_ylabel("whirl frequency [Hz]")
+    ax.set_xlim(0, max_rpm)
+    ax.set_ylim(0, 1.2 * max_rpm / 60.0)
+    ax.legend(loc="upper left")
+    ax.set_title("Campbell diagram (linearised #0/#5 supports, undamped)")
+    fig.tight_layout()
+    fig.savefig(path, dpi=120)
+    plt.close(fig)
+
+
+def run(args) -> int:
+    out = critical_speeds(args.model_file, args.count, args.max_rpm)
+    if args.campbell:
+        draw_campbell(args.campbell, args.model_file, args.max_rpm, out)
+        out["campbell"] = args.campbell
+    if args.json:
+        print(json.dumps(out))
+    else:
+        print("synchronous critical speeds of the power turbine (gas generator at "
+              f"{out['speed_ratio_gg_pt']:.4f} x), rev/min:")
+        print("  forward :", ", ".join(f"{v:.0f}" for v in out["forward_synchronous_rpm"]))
+        print("  backward:", ", ".join(f"{v:.0f}" for v in out["backward_synchronous_rpm"]))
+        if out["target_rpm"]:
+            print("  paper (lowest two forward):", ", ".join(f"{v:.0f}" for v in out["target_rpm"]))
+        if args.campbell:
+            print(f"Campbell diagram: {args.campbell}")
+    return 0

@@ -1,0 +1,215 @@
+"""The rotor component: the linear engine structure, MTA-reduced, stepped by Newmark-beta.
+
+Paper sections 2.1, 3.1 and 4.1: the flexible power turbine + gas generator + casing (model), reduced by modal
+truncation augmentation, eqs. (16)-(22) (mta), integrated by the Newmark-beta method (newmark) at constant speeds
+(16 000 / 15 000 rev/min), with the blade-loss force rotating at the power-turbine speed at the outboard end.
+
+Conventions:
+* the reduced basis is [lowest ``n_modes`` modes of the model without bearings #0/#5, augmentation vectors for
+  every DOF where a force enters]: PT node at bearing #0 and #5 (x y z), the two housing hubs (x y), the PT nodes
+  at the rub rings (x y) and the blade-loss node (x y): 16 vectors;
+* inputs are held over a step; the unbalance force is evaluated at the end of the step (t + h), where Newmark's
+  equilibrium is enforced; outputs are the displacements/velocities at t + h;
+* unbalance: F_u(t) = F_residual (cos Wt, sin Wt) from t = 0 plus, from ``t_blade_loss`` on, a step onset of
+  F_unbalance (cos(Wt + phase), sin(Wt + phase)) (W = omega_pt); the residual default 100 N is ISO 21940-11
+  balance grade G 2.5 (gas turbines) for the 23.8 kg power turbine at 16 000 rev/min (F = m G W), all put at the
+  outboard end; the output ``F_u`` is the total applied rotating force vector (residual + blade loss): it
+  cannot be called F_unbalance like the amplitude parameter, since variable names are unique (FMI, contract);
+* the structure starts at rest at t0 (no gravity, the paper has none).
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from ..contract import Component, ContractError, Variable
+from . import model as fem
+from .mta import mta_basis, project
+from .newmark import check_parameters, initial_acceleration, step_operator
+
+RPM = fem.RPM
+
+# input ports -> (port DOF group of the model, size), in the order of the input vector
+_INPUTS = (("F_brg0", "brg0", 3), ("F_brg5", "brg5", 3),
+           ("F_sfd_housing0", "housing0", 2), ("F_rub_housing0", "housing0", 2),
+           ("F_sfd_housing5", "housing5", 2), ("F_rub_housing5", "housing5", 2),
+           ("F_rub0", "rub0", 2), ("F_rub5", "rub5", 2))
+_OUTPUTS = (("brg0", "X_brg0", "V_brg0", 3), ("brg5", "X_brg5", "V_brg5", 3),
+            ("housing0", "X_housing0", "V_housing0", 2), ("housing5", "X_housing5", "V_housing5", 2),
+            ("rub0", "X_rub0", "V_rub0", 2), ("rub5", "X_rub5", "V_rub5", 2))
+LOAD_GROUPS = ("brg0", "brg5", "housing0", "housing5", "rub0", "rub5", "unbalance")
+
+# reduced models, per process: (file digest, n_modes, omega_pt, omega_gg) -> dict
+_REDUCED: dict[tuple, dict] = {}
+_FULL: dict[tuple, fem.FullModel] = {}
+
+
+def full_model(model_file: str = "", omega_pt=None, omega_gg=None) -> fem.FullModel:
+    data, digest = fem.load_data(model_file or None)
+    key = (digest, omega_pt, omega_gg)
+    if key not in _FULL:
+        _FULL[key] = fem.build(data, digest, omega_pt, omega_gg)
+    return _FULL[key]
+
+
+def reduced_model(model_file: str, n_modes: int, omega_pt: float, omega_gg: float) -> dict:
+    """MTA-reduced matrices (eqs. 20-22) and the port rows of the basis; cached per process."""
+    full = full_model(model_file, omega_pt, omega_gg)
+    key = (full.digest, int(n_modes), float(omega_pt), float(omega_gg))
+    red = _REDUCED.get(key)
+    if red is None:
+        load_dofs = np.concatenate([full.ports[g] for g in LOAD_GROUPS])
+        basis, n_aug = mta_basis(full.K, full.M, int(n_modes), load_dofs)
+        C = full.C + omega_pt * full.G_pt + omega_gg * full.G_gg
+        Mr, Cr, Kr = project(basis, full.M, C, full.K)
+        in_dofs = np.concatenate([full.ports[g] for _, g, _ in _INPUTS] + [full.ports["unbalance"]])
+        out_dofs = np.concatenate([full.ports[g] for g, _, _, _ in _OUTPUTS])
+        red = {"M": Mr, "C": Cr, "K": Kr, "B_in": basis[in_dofs].T.copy(), "O": basis[out_dofs].copy(),
+               "n": basis.shape[1], "n_aug": n_aug, "basis": basis}
+        _REDUCED[key] = red
+    return red
+
+
+class Rotor(Component):
+    """Flexible dual-rotor engine + casing (MTA-reduced FE model, Newmark-beta), blade-loss force."""
+
+    description = ("Flexible dual-rotor gas turbine engine with casing: Timoshenko FE model reduced by modal "
+                   "truncation augmentation, Newmark-beta integration, rotating blade-loss force")
+    variables = (
+        Variable("F_unbalance", "parameter", unit="N", start=2850.0,
+                 description="blade-loss force amplitude (rotating at the PT speed, PT outboard end)"),
+        Variable("F_residual", "parameter", unit="N", start=100.0,
+                 description="residual unbalance force before the blade loss (ISO 21940-11 G 2.5), same node"),
+        Variable("unbalance_phase", "parameter", unit="rad", start=0.0,
+                 description="angle of the lost blade relative to the residual unbalance"),
+        Variable("t_blade_loss", "parameter", unit="s", start=0.01, description="blade-loss time (step onset)"),
+        Variable("omega_pt", "parameter", unit="rad/s", start=16000.0 * RPM, description="power-turbine speed"),
+        Variable("omega_gg", "parameter", unit="rad/s", start=15000.0 * RPM, description="gas-generator speed"),
+        Variable("n_modes", "parameter", unit="1", start=20, type="Integer",
+                 description="retained eigenmodes (the reduced size adds 16 augmentation vectors)"),
+        Variable("model_file", "parameter", unit="1", start="", type="String",
+                 description="TOML model data file ('' = the shipped data/engine.toml)"),
+        Variable("newmark_beta", "parameter", unit="1", start=0.25, description="Newmark beta"),
+        Variable("newmark_gamma", "parameter", unit="1", start=0.5, description="Newmark gamma"),
+        Variable("F_brg0", "input", 3, "N", "bearing #0 force on the PT node (x y z)"),
+        Variable("F_brg5", "input", 3, "N", "bearing #5 force on the PT node (x y z)"),
+        Variable("F_sfd_housing0", "input", 2, "N", "damper #0 reaction on the casing hub under bearing #0"),
+        Variable("F_sfd_housing5", "input", 2, "N", "damper #5 reaction on the casing hub under bearing #5"),
+        Variable("F_rub_housing0", "input", 2, "N", "rub ring #0 reaction on the casing hub under bearing #0"),
+        Variable("F_rub_housing5", "input", 2, "N", "rub ring #5 reaction on the casing hub under bearing #5"),
+        Variable("F_rub0", "input", 2, "N", "rub force on the PT node at rub ring #0"),
+        Variable("F_rub5", "input", 2, "N", "rub force on the PT node at rub ring #5"),
+        Variable("X_brg0", "output", 3, "m", "PT displacement at bearing #0 (x y z)"),
+        Variable("X_brg5", "output", 3, "m", "PT displacement at bearing #5 (x y z)"),
+        Variable("V_brg0", "output", 3, "m/s", "PT velocity at bearing #0 (x y z)"),
+        Variable("V_brg5", "output", 3, "m/s", "PT velocity at bearing #5 (x y z)"),
+        Variable("X_housing0", "output", 2, "m", "casing hub displacement under bearing #0"),
+        Variable("X_housing5", "output", 2, "m", "casing hub displacement under bearing #5"),
+        Variable("V_housing0", "output", 2, "m/s", "casing hub velocity under bearing #0"),
+        Variable("V_housing5", "output", 2, "m/s", "casing hub velocity under bearing #5"),
+        Variable("X_rub0", "output", 2, "m", "PT displacement at rub ring #0"),
+        Variable("X_rub5", "output", 2, "m", "PT displacement at rub ring #5"),
+        Variable("V_rub0", "output", 2, "m/s", "PT velocity at rub ring #0"),
+        Variable("V_rub5", "output", 2, "m/s", "PT velocity at rub ring #5"),
+        Variable("F_u", "output", 2, "N", "applied rotating unbalance force vector (residual + blade loss)"),
+    )
+    preferred_step = 1e-5
+    phases = frozenset({"TM"})
+
+    # -- parameters ------------------------------------------------------------------------------------
+    def _check_parameters(self):
+        p = self.p
+        for k in ("F_unbalance", "F_residual", "t_blade_loss"):
+            if p[k] < 0.0:
+                raise ContractError(f"{self.name}.{k} must be >= 0, got {p[k]}")
+        for k in ("omega_pt", "omega_gg"):
+            if p[k] <= 0.0:
+                raise ContractError(f"{self.name}.{k} must be > 0 rad/s, got {p[k]}")
+        if p["n_modes"] < 1:
+            raise ContractError(f"{self.name}.n_modes must be >= 1, got {p['n_modes']}")
+        try:
+            check_parameters(p["newmark_beta"], p["newmark_gamma"])
+        except ValueError as exc:
+            raise ContractError(f"{self.name}: {exc}") from None
+
+    def setup(self, t0=0.0):
+        super().setup(t0)
+        self._check_parameters()
+        p = self.p
+        try:
+            red = reduced_model(p["model_file"], p["n_modes"], p["omega_pt"], p["omega_gg"])
+        except (ValueError, FileNotFoundError) as exc:
+            raise ContractError(f"{self.name}: {exc}") from None
+        self._red = red
+        self._ops: dict[float, tuple] = {}
+        self._W = p["omega_pt"]
+        n, O = red["n"], red["O"]
+        # outputs (X, V at the port DOFs) = Oxv @ (x, v, a)
+        self._Oxv = np.zeros((2 * O.shape[0], 3 * n))
+        self._Oxv[:O.shape[0], :n] = O
+        self._Oxv[O.shape[0]:, n:2 * n] = O
+        x0 = np.zeros(n)
+        f0 = red["B_in"] @ self._input_vector(t0)
+        a0 = initial_acceleration(red["M"], red["C"], red["K"], x0, x0, f0)
+        self.state = {"s": np.concatenate([x0, x0, a0])}
+        self._write_outputs(self.state["s"], t0)
+
+    # -- stepping --------------------------------------------------------------------------------------
+    def _unbalance(self, t):
+        p = self.p
+        W = self._W
+        fx = p["F_residual"] * math.cos(W * t)
+        fy = p["F_residual"] * math.sin(W * t)
+        if t >= p["t_blade_loss"]:
+            ph = W * t + p["unbalance_phase"]
+            fx += p["F_unbalance"] * math.cos(ph)
+            fy += p["F_unbalance"] * math.sin(ph)
+        return fx, fy
+
+    def _input_vector(self, t):
+        u = self.u
+        f = np.concatenate([u[name] for name, _, _ in _INPUTS] + [self._unbalance(t)])
+        if not np.all(np.isfinite(f)):
+            bad = [name for name, _, _ in _INPUTS if not np.all(np.isfinite(u[name]))]
+            raise ContractError(f"{self.name}: non-finite input force(s) {bad} at t = {t:.9g} s")
+        return f
+
+    def _operators(self, h):
+        ops = self._ops.get(h)
+        if ops is None:
+            red = self._red
+            T, B = step_operator(red["M"], red["C"], red["K"], h, self.p["newmark_beta"], self.p["newmark_gamma"])
+            ops = (T, B @ red["B_in"])
+            self._ops[h] = ops
+        return ops
+
+    def _write_outputs(self, s, t):
+        self._publish(self._Oxv @ s, t)
+
+    def _publish(self, xv, t):
+        y = self.y
+        y["X_brg0"], y["X_brg5"] = xv[0:3], xv[3:6]
+        y["X_housing0"], y["X_housing5"] = xv[6:8], xv[8:10]
+        y["X_rub0"], y["X_rub5"] = xv[10:12], xv[12:14]
+        y["V_brg0"], y["V_brg5"] = xv[14:17], xv[17:20]
+        y["V_housing0"], y["V_housing5"] = xv[20:22], xv[22:24]
+        y["V_rub0"], y["V_rub5"] = xv[24:26], xv[26:28]
+        y["F_u"] = np.array(self._unbalance(t))
+
+    def do_step(self, t, h):
+        T, Bf = self._operators(h)
+        s = T @ self.state["s"] + Bf @ self._input_vector(t + h)
+        if not np.all(np.isfinite(s)):
+            raise ContractError(f"{self.name}: the rotor response became non-finite at t = {t + h:.9g} s")
+        self.state["s"] = s
+        self._publish(self._Oxv @ s, t + h)
+        self.time = t + h
+
+    # -- helpers for checks and the CLI ------------------------------------------------------------------
+    @property
+    def reduced(self) -> dict:
+        return self._red
+
+    def full_model(self) -> fem.FullModel:
+        return full_model(self.p["model_file"], self.p["omega_pt"], self.p["omega_gg"])

@@ -1,0 +1,84 @@
+"""Synchronous critical speeds and the Campbell diagram of the engine model.
+
+At a synchronous critical speed the whirl frequency equals the power-turbine spin Omega (the gas generator turning
+at r Omega, r = 15000/16000). With q = phi exp(i Omega t) the undamped equation of motion
+M q'' + Omega (G_pt + r G_gg) q' + K q = 0 becomes
+
+    K phi = Omega^2 (M - i G~) phi,     G~ = G_pt + r G_gg,
+
+a linear generalized eigenproblem in s = Omega^2 with K symmetric positive definite and M - i G~ Hermitian
+(G~ is real skew-symmetric), solved exactly as the Hermitian-definite problem (M - i G~) phi = (1/s) K phi.
+Each real root s > 0 is a critical speed; its mode whirls forward (with the spin) or backward, classified by the
+rotor nodes' orbit: x + i y = a_f exp(i Omega t) + a_b exp(-i Omega t), a_f = (X + iY)/2, a_b = conj(X - iY)/2.
+Damping is left out (undamped critical speeds, the usual definition; Genta, Dynamics of Rotating Systems, 4.7).
+Roots whose mode has almost no lateral rotor motion (torsional and axial rotor modes, casing-only modes: rotor
+lateral share of the kinetic energy below ``min_share``) are not whirl modes and are not listed.
+"""
+from __future__ import annotations
+
+import numpy as np
+import scipy.linalg as sla
+
+from .model import RPM, FullModel
+
+
+def speed_ratio(model: FullModel) -> float:
+    return model.omega_gg / model.omega_pt
+
+
+def synchronous_critical_speeds(model: FullModel, linear_support: bool = True, n: int = 12,
+                                max_rpm: float = 60000.0, min_share: float = 0.05) -> dict:
+    """Forward and backward synchronous critical speeds (rev/min of the power turbine), ascending."""
+    K = model.K.copy()
+    if linear_support:
+        K += model.linear_support()[0]
+    Gt = model.G_pt + speed_ratio(model) * model.G_gg
+    B = model.M - 1j * Gt
+    nn = K.shape[0]
+    mu, vec = sla.eigh(B, K, subset_by_index=[max(nn - 4 * n, 0), nn - 1])
+    out = {"forward_synchronous_rpm": [], "backward_synchronous_rpm": []}
+    lat = model.rotor_lateral
+    Mlat = model.M[np.ix_(lat, lat)]
+    for m, v in zip(mu[::-1], vec[:, ::-1].T):
+        if m <= 0:
+            continue
+        rpm = 1.0 / np.sqrt(m) / RPM
+        if rpm > max_rpm:
+            continue
+        share = np.real(v[lat].conj() @ Mlat @ v[lat]) / np.real(v.conj() @ model.M @ v)
+        if share < min_share:
+            continue
+        X, Y = v[lat[0::2]], v[lat[1::2]]
+        af = np.sum(np.abs(X + 1j * Y) ** 2)
+        ab = np.sum(np.abs(X - 1j * Y) ** 2)
+        key = "forward_synchronous_rpm" if af >= ab else "backward_synchronous_rpm"
+        out[key].append(float(rpm))
+    for k in out:
+        out[k] = sorted(out[k])[:n]
+    return out
+
+
+def campbell(model: FullModel, rpm_values, n_modes: int = 40, n_show: int = 10, linear_support: bool = True):
+    """Damped-free whirl frequencies (Hz) vs PT speed, with forward/backward flags, on a modal basis of the
+    lowest ``n_modes`` non-spinning modes (enough for the lowest ``n_show`` whirl frequencies)."""
+    K = model.K + (model.linear_support()[0] if linear_support else 0.0)
+    w2, Phi = sla.eigh(K, model.M, subset_by_index=[0, n_modes - 1])
+    Gt = Phi.T @ (model.G_pt + speed_ratio(model) * model.G_gg) @ Phi
+    lat = model.rotor_lateral
+    freqs, fwd = [], []
+    for rpm in rpm_values:
+        Om = rpm * RPM
+        A = np.block([[np.zeros((n_modes, n_modes)), np.eye(n_modes)], [-np.diag(w2), -Om * Gt]])
+        lam, V = np.linalg.eig(A)
+        keep = lam.imag > 1e-6
+        lam, V = lam[keep], V[:n_modes, keep]
+        order = np.argsort(lam.imag)[:n_show]
+        f, d = [], []
+        for k in order:
+            q = Phi @ V[:, k]
+            X, Y = q[lat[0::2]], q[lat[1::2]]
+            f.append(lam[k].imag / (2 * np.pi))
+            d.append(np.sum(np.abs(X + 1j * Y) ** 2) >= np.sum(np.abs(X - 1j * Y) ** 2))
+        freqs.append(f)
+        fwd.append(d)
+    return np.asarray(freqs), np.asarray(fwd)
