@@ -1,0 +1,163 @@
+"""Damper viscosity fit, spring, wall contact, bad inputs and the ``damper-force`` command."""
+import json
+import math
+
+import numpy as np
+import pytest
+
+from rotorcosim.components.contract import ContractError
+from rotorcosim.components.damper.component import FastDamper, FEDamper, WallContactError
+from rotorcosim.components.damper.viscosity import sae30_viscosity, walther_constants
+from rotorcosim.master.cli import main
+
+C = 0.635e-3
+
+
+@pytest.fixture(scope="module")
+def fast0():
+    d = FastDamper("damper0", {"damper": 0})
+    d.setup(0.0)
+    return d
+
+
+def _step(d, x, v=(0.0, 0.0), T=343.15):
+    d.set_inputs({"X_journal": x, "V_journal": v, "T_oil": [T]})
+    d.do_step(0.0, 1e-5)
+    return d.y
+
+
+# -- viscosity ------------------------------------------------------------------------------------------
+def test_viscosity_through_the_paper_points():
+    """SAE 30 (paper Table 3): 92 cP at 40 C and 11 cP at 100 C."""
+    assert sae30_viscosity(313.15) == pytest.approx(0.092, rel=1e-9)
+    assert sae30_viscosity(373.15) == pytest.approx(0.011, rel=1e-9)
+
+
+def test_viscosity_between_points_matches_vogel_and_constants():
+    """Independent checks from physics-notes: its Walther constants (A = 8.4882, B = 3.2784, to the printed
+    digits) and the Vogel fit mu = 9.873e-5 exp(910.4 / (T - 180)) Pa s, which must agree with the Walther fit
+    within 3 % at 70 C and 85 C (two standard fits through the same data)."""
+    A, B = walther_constants()
+    assert A == pytest.approx(8.4882, abs=2e-3) and B == pytest.approx(3.2784, abs=1e-3)
+    for T in (343.15, 358.15):
+        vogel = 9.873e-5 * math.exp(910.4 / (T - 180.0))
+        assert sae30_viscosity(T) == pytest.approx(vogel, rel=0.03)
+    assert sae30_viscosity(350.0) < sae30_viscosity(340.0)
+
+
+# -- spring, outputs ----------------------------------------------------------------------------------------
+def test_spring_and_reactions(fast0):
+    """O-ring spring of Table 3 (5254 N/mm) in parallel with the film, reactions equal and opposite, and the
+    housing's motion enters only relative to the journal."""
+    x = np.array([1e-4, -2e-4])
+    y = _step(fast0, x, (0.1, 0.05))
+    assert np.allclose(y["F_spring"], -5254e3 * x, rtol=1e-12)
+    assert np.allclose(y["F_journal"], y["F_film"] + y["F_spring"], rtol=1e-12)
+    assert np.allclose(y["F_housing"], -y["F_journal"], rtol=0, atol=0)
+    assert float(y["P_film"][0]) == pytest.approx(-float(y["F_film"] @ [0.1, 0.05]), rel=1e-12)
+    F = y["F_journal"].copy()
+    fast0.set_inputs({"X_journal": x + 3e-5, "V_journal": [0.2, 0.1], "X_housing": [3e-5, 3e-5],
+                      "V_housing": [0.1, 0.05]})
+    fast0.do_step(0.0, 1e-5)
+    assert np.allclose(fast0.y["F_journal"], F, rtol=1e-12)
+    fast0.set_inputs({"X_housing": [0.0, 0.0], "V_housing": [0.0, 0.0]})
+
+
+def test_state_snapshot_roundtrip(fast0):
+    """get_state / set_state restore the outputs exactly (the component is memoryless)."""
+    _step(fast0, [1e-4, 0.0], (0.1, 0.2))
+    snap = fast0.get_state()
+    F = fast0.y["F_journal"].copy()
+    _step(fast0, [3e-4, 1e-4], (0.3, -0.2))
+    fast0.set_state(snap)
+    assert np.array_equal(fast0.y["F_journal"], F)
+
+
+# -- the journal at the wall ----------------------------------------------------------------------------
+def test_wall_contact_spring(fast0):
+    """Beyond the clearance a radial contact spring k_wall acts: F_contact = -k_wall (e - c) e_hat, with its
+    stiffness -k_wall e_hat e_hat^T (+ the tangential term (1 - c/e)) in K_film."""
+    k = fast0.p["k_wall"]
+    ang = 0.4
+    n = np.array([math.cos(ang), math.sin(ang)])
+    e = 1.002 * C
+    y = _step(fast0, e * n, (0.0, 0.0))
+    assert np.allclose(y["F_contact"], -k * (e - C) * n, rtol=1e-9)
+    K = y["K_film"].reshape(2, 2)
+    t = np.array([-n[1], n[0]])
+    # radial stiffness: spring + contact (the film is held at eps_max: no radial film stiffness, no velocity)
+    assert n @ K @ n == pytest.approx(-fast0.p["k_spring"] - k, rel=1e-9)
+    assert t @ K @ t == pytest.approx(-fast0.p["k_spring"] - k * (1 - C / e), rel=1e-6)
+
+
+def test_wall_contact_off_is_an_error():
+    d = FastDamper("damper5", {"damper": 5, "k_wall": 0.0})
+    d.setup(0.0)
+    _step(d, [0.98 * C, 0.0])
+    with pytest.raises(WallContactError, match=r"hit the damper wall .*eccentricity ratio 1\.0010"):
+        _step(d, [1.001 * C, 0.0])
+
+
+def test_deep_penetration_is_divergence(fast0):
+    with pytest.raises(WallContactError, match="into the damper wall .* the simulation diverged"):
+        _step(fast0, [0.0, -2.5 * C])
+
+
+# -- bad inputs -----------------------------------------------------------------------------------------
+@pytest.mark.parametrize("port,value", [("X_journal", [math.nan, 0.0]), ("V_housing", [0.0, math.inf])])
+def test_non_finite_motion(port, value):
+    d = FastDamper("damper0", {"damper": 0})
+    d.setup(0.0)
+    d.set_inputs({port: value})
+    with pytest.raises(ContractError, match="damper0: non-finite journal/housing motion at t = 1e-05 s"):
+        d.do_step(0.0, 1e-5)
+
+
+@pytest.mark.parametrize("T", [math.nan, 150.0, 700.0])
+def test_bad_oil_temperature(fast0, T):
+    with pytest.raises(ContractError, match=r"damper0\.T_oil: oil temperature .* outside the viscosity fit"):
+        _step(fast0, [0.0, 0.0], T=T)
+    _step(fast0, [0.0, 0.0])
+
+
+@pytest.mark.parametrize("params,match", [
+    ({"damper": 3}, r"damper must be one of \[0, 5\]"),
+    ({"clearance": -1e-4}, r"clearance must be > 0"),
+    ({"length": 0.0}, r"length must be > 0"),
+    ({"k_spring": -1.0}, r"k_spring must be >= 0"),
+    ({"k_wall": -1.0}, r"k_wall must be >= 0"),
+    ({"n_theta": 4}, r"mesh n_theta=4"),
+])
+def test_bad_parameters(params, match):
+    d = FEDamper("dmp", params)
+    with pytest.raises(ContractError, match=match):
+        d.setup(0.0)
+
+
+def test_nan_parameter_rejected():
+    with pytest.raises(ContractError, match="not finite"):
+        FastDamper("dmp", {"radius": math.nan})
+
+
+# -- command line ---------------------------------------------------------------------------------------
+def test_cli_json(capsys):
+    """rotorcosim damper-force --json: keys and units as the issue states (film force, spring force, power,
+    viscosity), the same numbers as the component."""
+    assert main(["damper-force", "--damper", "0", "--position", "2e-4", "1e-4", "--velocity", "0.1", "-0.2",
+                 "--temperature", "70", "--json"]) in (0, None)
+    out = json.loads(capsys.readouterr().out)
+    assert {"force_N", "spring_force_N", "power_W", "viscosity_Pa_s"} <= set(out)
+    d = FastDamper("damper0", {"damper": 0})
+    d.setup(0.0)
+    y = _step(d, [2e-4, 1e-4], (0.1, -0.2), T=343.15)
+    assert out["force_N"] == pytest.approx(list(y["F_film"]), rel=1e-12)
+    assert out["spring_force_N"] == pytest.approx([-5254e3 * 2e-4, -5254e3 * 1e-4], rel=1e-12)
+    assert out["power_W"] == pytest.approx(float(y["P_film"][0]), rel=1e-12)
+    assert out["viscosity_Pa_s"] == pytest.approx(sae30_viscosity(343.15), rel=1e-12)
+
+
+def test_cli_bad_input(capsys):
+    code = main(["damper-force", "--damper", "0", "--position", "nan", "0", "--velocity", "0", "0",
+                 "--temperature", "70", "--json"])
+    assert code != 0
+    assert "must be finite numbers" in capsys.readouterr().err
