@@ -1,0 +1,151 @@
+"""Cost of the FMI boundary: a component step behind its exported FMU against the same component native.
+
+    python bench/bench_fmu.py [--steps N] [--only NAME ...]
+
+For every registered component whose implementation imports (the engine's, as they land, and the test
+components), in this one process: export it (fmus/export.py), load the FMU back (fmus/importer.py), set both up
+the same way, and time ``set_inputs`` + ``do_step`` (what the master does per communication step) over N steps.
+Prints microseconds per step native and through the FMU, their ratio, and the added cost per step; then the
+whole toy thermo-mechanical scenario run natively and with every component swapped for its FMU; then the largest
+difference of the exported toy SSP run in Ecos against our master (Jacobi and Gauss-Seidel, same fixed step).
+"""
+from __future__ import annotations
+
+import argparse
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+import numpy as np
+
+from rotorcosim.components import registry
+from rotorcosim.fmus.export import export_component, export_scenario
+from rotorcosim.fmus.importer import load_fmu_component
+
+ROOT = Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(ROOT / "tests" / "fmus"))
+
+#: inputs held at typical non-zero values (others at their declared start values)
+TYPICAL = {"damper.fast": {"X_journal": [1e-4, 0.0], "V_journal": [0.0, 0.05]},
+           "damper.fe": {"X_journal": [1e-4, 0.0], "V_journal": [0.0, 0.05]},
+           "testing.mass": {"F": [1.0]}, "testing.thermal_node": {"P": [100.0]}}
+#: the FE damper solves the Reynolds equation at every call: a coarser mesh keeps the bench short
+PARAMS = {"damper.fe": {"n_theta": 32, "n_z": 8}}
+
+
+def time_steps(comp, inputs: dict, h: float, n: int) -> float:
+    """Seconds per (set_inputs + do_step), after 20 warm-up steps (JIT compilation, caches)."""
+    t = 0.0
+    for _ in range(20):
+        comp.set_inputs(inputs)
+        comp.do_step(t, h)
+        t += h
+    t0 = time.perf_counter()
+    for _ in range(n):
+        comp.set_inputs(inputs)
+        comp.do_step(t, h)
+        t += h
+    return (time.perf_counter() - t0) / n
+
+
+def component_costs(names, steps: int, folder: Path):
+    rows = []
+    for name in names:
+        try:
+            registry.lookup(name)
+        except ImportError as exc:
+            print(f"  {name:28s} skipped: implementation not importable yet ({exc})")
+            continue
+        params = PARAMS.get(name, {})
+        native = registry.create(name, name, params)
+        inputs = {v.name: v.start_array() for v in native.variables if v.causality == "input"}
+        inputs.update({k: np.asarray(v, dtype=float) for k, v in TYPICAL.get(name, {}).items()})
+        path = export_component(name, folder / f"{name.replace('.', '_')}.fmu", parameters=params)
+        fmu = load_fmu_component(path, name)
+        h = native.preferred_step
+        n = steps if "fe" not in name else max(50, steps // 50)
+        for c in (native, fmu):
+            c.set_inputs(inputs)
+            c.setup(0.0)
+        t_nat = time_steps(native, inputs, h, n)
+        t_fmu = time_steps(fmu, inputs, h, n)
+        same = all(np.array_equal(native.y[k], fmu.y[k]) for k in native.y)
+        fmu.terminate()
+        rows.append((name, t_nat, t_fmu, same))
+        print(f"  {name:28s} native {t_nat * 1e6:9.2f} us   FMU {t_fmu * 1e6:9.2f} us   ratio {t_fmu / t_nat:6.2f}"
+              f"   added {(t_fmu - t_nat) * 1e6:7.2f} us/step   same outputs: {same}")
+    return rows
+
+
+def toy_scenario(folder: Path):
+    from fmu_helpers import TOY, run_intervals
+
+    from rotorcosim.master.scenario import load_scenario
+
+    sc = load_scenario(TOY)
+    fmus = export_scenario(sc, folder / "toy")
+    swapped = sc.copy()
+    for name, path in fmus.items():
+        spec = swapped.components[name]
+        spec.implementation, spec.fmu, spec.parameters = None, str(path), {}
+    intervals = [("TM", 0.3, 1e-3), ("TO", 4.7, 0.05)] * 3
+    t0 = time.perf_counter()
+    run_intervals(sc, intervals)
+    t_nat = time.perf_counter() - t0
+    t0 = time.perf_counter()
+    run_intervals(swapped, intervals)
+    t_fmu = time.perf_counter() - t0
+    print(f"  toy scenario, 3 x (TM 0.3 s + TO 4.7 s): native {t_nat:.3f} s, all FMUs {t_fmu:.3f} s, "
+          f"ratio {t_fmu / t_nat:.2f}")
+
+
+def ecos_vs_master(folder: Path):
+    try:
+        from test_ssp import ecos_run
+    except Exception as exc:  # pragma: no cover
+        print(f"  Ecos: cannot import the helper ({exc})")
+        return
+    try:
+        import ecospy  # noqa: F401
+    except (ImportError, OSError) as exc:
+        print(f"  Ecos: not available ({exc})")
+        return
+    from fmu_helpers import TOY, run_intervals
+
+    from rotorcosim.fmus.ssp import read_ssp, write_ssp
+    from rotorcosim.master.scenario import load_scenario
+
+    ssp = write_ssp(load_scenario(TOY), folder / "toy.ssp")
+    step, n = 1e-3, 300
+    signals = ["osc.x", "osc.v", "osc.P", "node.T"]
+    ecos = ecos_run(ssp, step, n, signals)
+    for kind in ("jacobi", "gauss-seidel"):
+        sc = read_ssp(ssp)
+        sc.algorithm = {"kind": kind, "order": ["osc", "node"]}
+        ours = run_intervals(sc, [("TM", n * step, step)])
+        worst = {s: float(np.max(np.abs(ours.series(s).reshape(n) - ecos[s])) / np.max(np.abs(ours.series(s))))
+                 for s in signals}
+        print(f"  Ecos vs our master ({kind}, TM 0.3 s at 1 ms), max |diff| / max |ours|: "
+              + ", ".join(f"{s} {v:.2e}" for s, v in worst.items()))
+
+
+def main(argv=None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--steps", type=int, default=5000, help="timed steps per component (default 5000)")
+    ap.add_argument("--only", nargs="*", default=None, help="component implementation names (default: all)")
+    args = ap.parse_args(argv)
+    names = args.only or registry.available()
+    with tempfile.TemporaryDirectory(prefix="bench_fmu_") as tmp:
+        folder = Path(tmp)
+        print("cost of one communication step (set_inputs + do_step), native vs behind the FMU boundary:")
+        component_costs(names, args.steps, folder)
+        print("whole scenario:")
+        toy_scenario(folder)
+        print("another engine:")
+        ecos_vs_master(folder)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
