@@ -26,6 +26,7 @@ import numpy as np
 from ..contract import Component, ContractError, Variable
 from . import model as fem
 from .mta import mta_basis, project
+from .kernel import gather, pack, step
 from .newmark import check_parameters, initial_acceleration, step_operator
 
 RPM = fem.RPM
@@ -149,6 +150,8 @@ class Rotor(Component):
         self._Oxv = np.zeros((2 * O.shape[0], 3 * n))
         self._Oxv[:O.shape[0], :n] = O
         self._Oxv[O.shape[0]:, n:2 * n] = O
+        self._Oxv = np.asfortranarray(self._Oxv)
+        self._f = np.zeros(red["B_in"].shape[1])
         x0 = np.zeros(n)
         f0 = red["B_in"] @ self._input_vector(t0)
         a0 = initial_acceleration(red["M"], red["C"], red["K"], x0, x0, f0)
@@ -180,14 +183,14 @@ class Rotor(Component):
         if ops is None:
             red = self._red
             T, B = step_operator(red["M"], red["C"], red["K"], h, self.p["newmark_beta"], self.p["newmark_gamma"])
-            ops = (T, B @ red["B_in"])
+            ops = pack(T, B @ red["B_in"])
             self._ops[h] = ops
         return ops
 
     def _write_outputs(self, s, t):
         self._publish(self._Oxv @ s, t)
 
-    def _publish(self, xv, t):
+    def _publish(self, xv, t, fux=None, fuy=None):
         y = self.y
         y["X_brg0"], y["X_brg5"] = xv[0:3], xv[3:6]
         y["X_housing0"], y["X_housing5"] = xv[6:8], xv[8:10]
@@ -195,15 +198,22 @@ class Rotor(Component):
         y["V_brg0"], y["V_brg5"] = xv[14:17], xv[17:20]
         y["V_housing0"], y["V_housing5"] = xv[20:22], xv[22:24]
         y["V_rub0"], y["V_rub5"] = xv[24:26], xv[26:28]
-        y["F_u"] = np.array(self._unbalance(t))
+        y["F_u"] = np.array(self._unbalance(t) if fux is None else (fux, fuy))
 
     def do_step(self, t, h):
-        T, Bf = self._operators(h)
-        s = T @ self.state["s"] + Bf @ self._input_vector(t + h)
-        if not np.all(np.isfinite(s)):
+        TB = self._operators(h)
+        u = self.u
+        f = self._f
+        fux, fuy = self._unbalance(t + h)
+        if not math.isfinite(gather(f, u["F_brg0"], u["F_brg5"], u["F_sfd_housing0"], u["F_rub_housing0"],
+                                    u["F_sfd_housing5"], u["F_rub_housing5"], u["F_rub0"], u["F_rub5"], fux, fuy)):
+            self._input_vector(t + h)          # names the offending input
+        s_new = np.empty_like(self.state["s"])
+        xv = np.empty(self._Oxv.shape[0])
+        if not math.isfinite(step(TB, self._Oxv, self.state["s"], f, s_new, xv)):
             raise ContractError(f"{self.name}: the rotor response became non-finite at t = {t + h:.9g} s")
-        self.state["s"] = s
-        self._publish(self._Oxv @ s, t + h)
+        self.state["s"] = s_new
+        self._publish(xv, t + h, fux, fuy)
         self.time = t + h
 
     # -- helpers for checks and the CLI ------------------------------------------------------------------
