@@ -189,8 +189,7 @@ def fe_film_eval(mesh: Mesh, clearance: float, dx: float, dy: float, dvx: float,
     saturated = eps > eps_max
     vr, vt = c * dvx + s * dvy, -s * dvx + c * dvy
     a, b = mu * vr, mu * vt
-    r = aligned_force(mesh, unit_fields(mesh, clearance, min(eps, eps_max), derivative=True), a, b, floor,
-                      cavitation)
+    r = aligned_force(mesh, _fields(mesh, clearance, min(eps, eps_max)), a, b, floor, cavitation)
     Fr, Ft, Jra, Jrb, Jta, Jtb, dr, dt = r
     if saturated:
         dr = dt = 0.0
@@ -199,7 +198,7 @@ def fe_film_eval(mesh: Mesh, clearance: float, dx: float, dy: float, dvx: float,
     if eps < EPS_NEAR_CENTRE:
         g0 = gphi(*aligned_force(mesh, _centred_fields(mesh, clearance), a, b, floor, cavitation)[:6], a, b)
         if e == 0.0:
-            fields = unit_fields(mesh, clearance, EPS_DIFF, derivative=True)
+            fields = _fields(mesh, clearance, EPS_DIFF)
             gr, gt = gphi(*aligned_force(mesh, fields, a, b, floor, cavitation)[:6], a, b)
             e_div = EPS_DIFF * clearance
         gr, gt = gr - g0[0], gt - g0[1]
@@ -208,12 +207,19 @@ def fe_film_eval(mesh: Mesh, clearance: float, dx: float, dy: float, dvx: float,
 
 
 def _centred_fields(mesh: Mesh, clearance: float):
-    return _centred_fields_of(mesh.radius, 2.0 * mesh.half_length, mesh.n_theta, mesh.n_z, clearance)
+    return _fields(mesh, clearance, 0.0)
 
 
-@lru_cache(maxsize=8)
-def _centred_fields_of(radius, length, n_theta, n_z, clearance):
-    return unit_fields(build_mesh(radius, length, n_theta, n_z), clearance, 0.0, derivative=True)
+def _fields(mesh: Mesh, clearance: float, eps: float):
+    """unit_fields with derivatives, remembered for the last few (geometry, eps): the fields do not depend on
+    the velocities or the viscosity, so calls at the same position (the centred fields, a CLI sweep over
+    velocities) solve once."""
+    return _fields_of(mesh.radius, 2.0 * mesh.half_length, mesh.n_theta, mesh.n_z, clearance, eps)
+
+
+@lru_cache(maxsize=6)
+def _fields_of(radius, length, n_theta, n_z, clearance, eps):
+    return unit_fields(build_mesh(radius, length, n_theta, n_z), clearance, eps, derivative=True)
 
 
 def fe_film_force(mesh: Mesh, clearance: float, dx: float, dy: float, dvx: float, dvy: float, mu: float,
