@@ -26,6 +26,10 @@ ball-contact frequency at the start of the step), the journal linearly implicit 
 F_journal + K_journal (x - x0) + C_journal (v - v0) about the journal state x0, v0 at the start of the step
 (where the damper evaluated F_journal); with K_journal = C_journal = 0 this is the held force.
 
+``axial_direction = -1`` mirrors the bearing axially (z -> -z of X_inner, V_inner and F_rotor): with one bearing
+of each direction on a shaft the pair is preloaded against each other (back-to-back / face-to-face), and thermal
+growth then raises the axial load of both; with the same direction a free axial rotor DOF lets them relax.
+
 The inner race moves linearly over the step: with ``inner_motion = "step_end"`` (default) X_inner, V_inner are the
 rotor's state at the END of the step (Gauss-Seidel with the rotor first, as in scenarios/blade_loss.toml), and the
 path is X_inner - V_inner (h - tau); with ``"step_start"`` they are at the start and the path is X_inner + V_inner tau.
@@ -78,6 +82,9 @@ class BallBearing(Component):
         Variable("inner_motion", "parameter", start="step_end", type="String",
                  description="X_inner/V_inner are the rotor state at the 'step_end' (Gauss-Seidel, rotor first) "
                              "or 'step_start' (Jacobi) of the step"),
+        Variable("axial_direction", "parameter", start=1, type="Integer",
+                 description="+1: the preload pushes the inner race towards +z (contact line as in eq. 6); -1: the "
+                             "bearing is mounted the other way round (z mirrored), e.g. the second of a pair"),
         Variable("substeps", "parameter", start=0, type="Integer",
                  description="sub-steps per do_step; 0 = automatic from the ball-contact frequency and cfl"),
         Variable("cfl", "parameter", start=_NUM["cfl"],
@@ -117,6 +124,8 @@ class BallBearing(Component):
                          ("f0", 0.0)):
             if not p[key] >= lo:
                 raise ContractError(f"{self.name}.{key} must be >= {lo}, got {p[key]}")
+        if p["axial_direction"] not in (1, -1):
+            raise ContractError(f"{self.name}.axial_direction must be +1 or -1, got {p['axial_direction']}")
         if p["inner_motion"] not in INNER_MOTION:
             raise ContractError(f"{self.name}.inner_motion must be one of {INNER_MOTION}, got {p['inner_motion']!r}")
         if p["substeps"] < 0 or not p["cfl"] > 0.0 or p["cfl"] >= 2.0:
@@ -140,7 +149,7 @@ class BallBearing(Component):
         self._geo = np.array([g.l_oi, g.l_oe, math.cos(g.alpha0), math.sin(g.alpha0), g.K_i, g.K_e,
                               p["contact_damping"], Fc, g.m_b, p["m_journal"], g.cage_speed(omega),
                               g.preload, g.inner.stress_coeff, g.outer.stress_coeff, omega, 0.05 * g.D,
-                              p["ball_damping"]])
+                              p["ball_damping"], float(p["axial_direction"])])
         self._drag = np.array([0.0, omega, g.d_m, p["f0"], _DRAG["f1_z"], _DRAG["f1_y"], _DRAG["X0"],
                                _DRAG["Y0"], self.C0])
         self._num = np.array([p["cfl"], float(_NUM["min_substeps"]), float(p["substeps"]),

@@ -122,7 +122,8 @@ def step_outputs(h, X, V, z0, eps, F0, Kj, Cj, balls, jour, phi, c_b, s_b, geo, 
     """:func:`step` plus the component's outputs in one call (the per-step Python overhead is most of the cost).
 
     The inner race path is X - V lag + V tau with lag = num[3] (h: inputs at the end of the step; 0: start).
-    geo[11:15] = [preload, stress coefficient inner, outer, omega].
+    geo[11:16] = [preload, stress coefficient inner, outer, omega, eps limit], geo[16] ball damping,
+    geo[17] = axial direction (+1, or -1 for a bearing mounted the other way round: z is mirrored).
     out (18) <- F_rotor (3), X_journal (2), V_journal (2), Q_max (2), Q_max_step (2), sigma_max (2),
     sigma_max_step (2), P_drag (1), a flag: 0 ok, 1 non-finite input, 2 eps beyond +-geo[15],
     3 non-finite state, and the number of sub-steps."""
@@ -136,14 +137,20 @@ def step_outputs(h, X, V, z0, eps, F0, Kj, Cj, balls, jour, phi, c_b, s_b, geo, 
         out[16] = flag
         return
     lag = h if num[3] > 0.0 else 0.0
+    ax = geo[17]
+    Vb = np.empty(3)
     Xa = np.empty(3)
     for k in range(3):
+        Vb[k] = V[k]
+    Vb[2] = ax * V[2]
+    for k in range(3):
         Xa[k] = X[k] - V[k] * lag
+    Xa[2] *= ax
     res = np.empty(9)
-    step(h, Xa, V, z0, eps, F0, Kj, Cj, balls, jour, phi, c_b, s_b, geo, drag, num, res)
+    step(h, Xa, Vb, z0, eps, F0, Kj, Cj, balls, jour, phi, c_b, s_b, geo, drag, num, res)
     out[0] = res[0]
     out[1] = res[1]
-    out[2] = res[2] + geo[11]
+    out[2] = ax * (res[2] + geo[11])
     out[3] = jour[0]
     out[4] = jour[1]
     out[5] = jour[2]

@@ -298,3 +298,21 @@ def test_separating_contact_pulls_nothing():
     _forces(-20e-6, 0.0, b.z0, 0.0, 0.0, 0.0, 20e-6, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, balls, *args)
     assert acc[0, 0] == 0.0 and acc[1, 0] == 0.0
     assert out[5] > 0.0                     # the balls on the other side carry the load
+
+
+def test_axial_direction_mirrors_z():
+    """axial_direction = -1 is the same bearing mounted the other way round: the response to (x, y, -z) is the
+    mirror image of the response of the +1 bearing to (x, y, z)."""
+    a, m = make(bearing=0), make(bearing=0, axial_direction=-1)
+    X = np.array([3e-6, -2e-6, 1.5e-6])
+    V = np.array([0.01, 0.02, -0.004])
+    flip = np.array([1.0, 1.0, -1.0])
+    for i in range(30):
+        a.set_inputs({"X_inner": X, "V_inner": V})
+        m.set_inputs({"X_inner": X * flip, "V_inner": V * flip})
+        a.do_step(i * H, H)
+        m.do_step(i * H, H)
+    assert np.allclose(m.y["F_rotor"], a.y["F_rotor"] * flip, rtol=1e-12, atol=1e-9)
+    assert np.allclose(m.y["X_journal"], a.y["X_journal"], rtol=1e-12, atol=1e-18)
+    with pytest.raises(ContractError, match="axial_direction"):
+        make(bearing=0, axial_direction=0)
