@@ -242,7 +242,7 @@ class FastDamper(_Damper):
         p = self.p
         self._table = film_table(p["radius"], p["length"], p["clearance"], int(p["n_theta"]), int(p["n_z"]))
         t = self._table
-        self._args = (t.TR, t.TT, t.ftab, t.Wc, t.Ws, t.u0, t.du, t.n, t.eps_max, t.clearance)
+        self._args = (t.TR, t.TT, t.ftab, t.bounds, t.Wc, t.Ws, t.u0, t.du, t.n, t.eps_max, t.clearance)
 
     def _film(self, dx, dy, dvx, dvy, mu, out):
         self._table.evaluate(dx, dy, dvx, dvy, mu, self._floor, self._cav, out)

@@ -127,14 +127,24 @@ def _linear(ftab, eps, u0, du, n, a, b):
 
 
 @njit(cache=True)
-def _aligned(TR, TT, ftab, Wc, Ws, eps, u0, du, n, a, b, floor, cavitation):
+def _aligned(TR, TT, ftab, bounds, Wc, Ws, eps, u0, du, n, a, b, floor, cavitation):
+    """Aligned force and derivatives. With cavitation, when no node can fall below the floor the clipped sum
+    is the linear one (the same interpolated field, summed in the other order), so the cheap path is exact:
+    |P_i(eps)| <= sum_k |w_k| max_i |P_k,i| (bounds[k] = (max |P_r|, max |P_t|) of table point k)."""
     if cavitation:
-        return _clipped(TR, TT, Wc, Ws, eps, u0, du, n, a, b, floor)
+        u = -math.log1p(-eps)
+        k, w0, w1, w2, w3, d0, d1, d2, d3 = _lagrange4(u, u0, du, n)
+        mr = abs(w0) * bounds[k, 0] + abs(w1) * bounds[k + 1, 0] + abs(w2) * bounds[k + 2, 0] \
+            + abs(w3) * bounds[k + 3, 0]
+        mt = abs(w0) * bounds[k, 1] + abs(w1) * bounds[k + 1, 1] + abs(w2) * bounds[k + 2, 1] \
+            + abs(w3) * bounds[k + 3, 1]
+        if -(abs(a) * mr + abs(b) * mt) < floor:
+            return _clipped(TR, TT, Wc, Ws, eps, u0, du, n, a, b, floor)
     return _linear(ftab, eps, u0, du, n, a, b)
 
 
 @njit(cache=True)
-def film_eval(TR, TT, ftab, Wc, Ws, u0, du, n, eps_max, clearance, dx, dy, dvx, dvy, mu, floor, cavitation, out):
+def film_eval(TR, TT, ftab, bounds, Wc, Ws, u0, du, n, eps_max, clearance, dx, dy, dvx, dvy, mu, floor, cavitation, out):
     """Film force F (2), K = dF/dd (4) and C = dF/dw (4) in the housing axes into out[0:10].
 
     d = (dx, dy), w = (dvx, dvy): journal minus housing. Beyond eps_max the film is evaluated at eps_max in
@@ -148,7 +158,7 @@ def film_eval(TR, TT, ftab, Wc, Ws, u0, du, n, eps_max, clearance, dx, dy, dvx, 
     vt = -s * dvx + c * dvy
     a = mu * vr
     b = mu * vt
-    r = _aligned(TR, TT, ftab, Wc, Ws, ef, u0, du, n, a, b, floor, cavitation)
+    r = _aligned(TR, TT, ftab, bounds, Wc, Ws, ef, u0, du, n, a, b, floor, cavitation)
     Fr, Ft, Jra, Jrb, Jta, Jtb, dr, dt = r
     if saturated:
         dr = 0.0
@@ -157,11 +167,11 @@ def film_eval(TR, TT, ftab, Wc, Ws, u0, du, n, eps_max, clearance, dx, dy, dvx, 
     gt = Fr + Jta * b - Jtb * a
     e_div = e
     if eps < EPS_NEAR_CENTRE:
-        r0 = _aligned(TR, TT, ftab, Wc, Ws, 0.0, u0, du, n, a, b, floor, cavitation)
+        r0 = _aligned(TR, TT, ftab, bounds, Wc, Ws, 0.0, u0, du, n, a, b, floor, cavitation)
         g0r = -r0[1] + r0[2] * b - r0[3] * a
         g0t = r0[0] + r0[4] * b - r0[5] * a
         if e == 0.0:
-            r1 = _aligned(TR, TT, ftab, Wc, Ws, EPS_DIFF, u0, du, n, a, b, floor, cavitation)
+            r1 = _aligned(TR, TT, ftab, bounds, Wc, Ws, EPS_DIFF, u0, du, n, a, b, floor, cavitation)
             gr = -r1[1] + r1[2] * b - r1[3] * a
             gt = r1[0] + r1[4] * b - r1[5] * a
             e_div = EPS_DIFF * clearance
@@ -171,7 +181,7 @@ def film_eval(TR, TT, ftab, Wc, Ws, u0, du, n, eps_max, clearance, dx, dy, dvx, 
 
 
 @njit(cache=True)
-def fast_step(TR, TT, ftab, Wc, Ws, u0, du, n, eps_max, clearance, xj, vj, xh, vh, mu, floor, cavitation, k_spring,
+def fast_step(TR, TT, ftab, bounds, Wc, Ws, u0, du, n, eps_max, clearance, xj, vj, xh, vh, mu, floor, cavitation, k_spring,
               k_wall, out):
     """One damper evaluation in a single call: film (F, K, C), spring, wall, F_journal and P_film into out
     (the component's layout: see component._Damper.OUT). Returns a wall.* status code."""
@@ -181,7 +191,7 @@ def fast_step(TR, TT, ftab, Wc, Ws, u0, du, n, eps_max, clearance, xj, vj, xh, v
     dvy = vj[1] - vh[1]
     if not math.isfinite(dx + dy + dvx + dvy + mu):
         return NOT_FINITE
-    film_eval(TR, TT, ftab, Wc, Ws, u0, du, n, eps_max, clearance, dx, dy, dvx, dvy, mu, floor, cavitation, out)
+    film_eval(TR, TT, ftab, bounds, Wc, Ws, u0, du, n, eps_max, clearance, dx, dy, dvx, dvy, mu, floor, cavitation, out)
     out[16] = -(out[0] * dvx + out[1] * dvy)
     return spring_and_wall(dx, dy, clearance, k_spring, k_wall, out)
 
@@ -208,12 +218,13 @@ class FilmTable:
             ftab[k, :2] = film_force_aligned(self.mesh, TR[k])
             ftab[k, 2:] = film_force_aligned(self.mesh, TT[k])
         self.TR, self.TT, self.ftab = TR, TT, ftab
+        self.bounds = np.stack([np.abs(TR).max(axis=1), np.abs(TT).max(axis=1)], axis=1)
         self.Wc = np.ascontiguousarray(self.mesh.Wc)
         self.Ws = np.ascontiguousarray(self.mesh.Ws)
 
     def evaluate(self, dx, dy, dvx, dvy, mu, floor, cavitation, out):
         """F (2), K_film (4), C_film (4) of the film into out[0:10] (see film_eval)."""
-        film_eval(self.TR, self.TT, self.ftab, self.Wc, self.Ws, self.u0, self.du, self.n, self.eps_max, self.clearance,
+        film_eval(self.TR, self.TT, self.ftab, self.bounds, self.Wc, self.Ws, self.u0, self.du, self.n, self.eps_max, self.clearance,
                   dx, dy, dvx, dvy, mu, floor, cavitation, out)
 
 
