@@ -127,6 +127,28 @@ def film_coupling(quick):
               f"held force: stable, Q_max differs by {dq * 100:.2f} %")
 
 
+def film_coupling_accuracy(quick):
+    global H
+    print("2c. accuracy of the journal/film coupling: bearing #0, r = 0.5 mm, 10 ms; error at the end against the "
+          "master step h = 1e-6 s with the Jacobian")
+    T, keep = (0.004 if quick else 0.01), H
+    out = {}
+    try:
+        for h in (1e-6, 1e-5):
+            H = h
+            for jac in (True, False):
+                b, _, _, _ = whirl_loop(0, int(round(T / h)), 0.5e-3, jacobian=jac)
+                out[(h, jac)] = (b.y["Q_max"].copy(), b.y["F_rotor"].copy())
+    finally:
+        H = keep
+    ref = out[(1e-6, True)]
+    for (h, jac), (q, f) in out.items():
+        eq = np.max(np.abs(q - ref[0]) / ref[0])
+        ef = np.linalg.norm(f - ref[1]) / np.linalg.norm(ref[1])
+        print(f"   h = {h:.0e} s, {'with' if jac else 'without'} Jacobian: Q_max error {eq * 100:.2f} %, "
+              f"F_rotor error {ef * 100:.2f} %")
+
+
 def convergence(quick):
     print("3. sub-step convergence, bearing #0, whirl r = 0.25 mm on the damper, 5 ms from rest; "
           "error vs 512 sub-steps")
@@ -171,5 +193,6 @@ if __name__ == "__main__":
     stiffness_at_preload()
     step_cost(quick)
     film_coupling(quick)
+    film_coupling_accuracy(quick)
     convergence(quick)
     static_cost()
