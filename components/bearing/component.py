@@ -49,8 +49,6 @@ from .static import preload_offset
 
 RPM = math.pi / 30.0
 _DESIGN, _DRAG, _NUM = DATA["design"], DATA["drag"], DATA["numerics"]
-#: parameters that follow the ``bearing`` selection unless set explicitly
-_FROM_BEARING = ("preload", "m_journal")
 INNER_MOTION = ("step_end", "step_start")
 
 
@@ -75,7 +73,7 @@ class BallBearing(Component):
         Variable("ball_damping", "parameter", unit="N.s/m", start=_DESIGN["ball_damping"],
                  description="viscous damping of each ball against the mean race motion (oil/cage; not in the paper)"),
         Variable("m_journal", "parameter", unit="kg", start=0.0,
-                 description="outer race + journal mass of eq. (5); default: solid steel rings from Table 3"),
+                 description="outer race + journal mass of eq. (5); 0 (default): solid steel rings from Table 3"),
         Variable("preload", "parameter", unit="N", start=BEARINGS[0]["preload_N"],
                  description="axial preload (default Table 3: 800 N for #0, 1100 N for #5)"),
         Variable("f0", "parameter", start=_DRAG["f0"], description="Palmgren lubrication factor of the drag torque"),
@@ -136,7 +134,7 @@ class BallBearing(Component):
                                preload=p["preload"])
         except ValueError as exc:
             raise ContractError(f"{self.name}: {exc}") from None
-        if "m_journal" not in explicit:
+        if "m_journal" not in explicit or p["m_journal"] == 0.0:
             p["m_journal"] = g.m_outer_race + g.m_journal
         if not p["m_journal"] > 0.0:
             raise ContractError(f"{self.name}.m_journal must be > 0 kg, got {p['m_journal']}")
