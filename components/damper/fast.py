@@ -22,7 +22,8 @@ integration costs nothing more here. Without cavitation dF/dw is exactly the tab
 The only difference from the direct FE model is the interpolation in eps (measured in bench_damper.py and the
 tests). Above eps_max (the FE film's own limit, reynolds_fe.EPS_FILM_MAX) the film is held at its eps_max
 value (wall.py). Tables are built lazily once per process and geometry (cache key: radius, length,
-clearance, mesh, table size): 60 sparse factorisations, about 3 s.
+clearance, mesh, table size): 60 sparse factorisations, about 3 s, or read from the on-disk cache
+(table_cache.py) in milliseconds.
 """
 from __future__ import annotations
 
@@ -32,6 +33,7 @@ from functools import lru_cache
 import numpy as np
 from numba import njit
 
+from . import table_cache
 from .frame import EPS_DIFF, EPS_NEAR_CENTRE, frame, to_housing_axes
 from .wall import NOT_FINITE, spring_and_wall
 from .reynolds_fe import EPS_FILM_MAX, build_mesh, film_force_aligned, unit_fields
@@ -209,14 +211,20 @@ class FilmTable:
         self.du = -math.log(1.0 - eps_max) / (n_table - 1)
         self.n = n_table
         self.eps = 1.0 - np.exp(-self.du * np.arange(n_table))
-        # P_r and P_t in separate contiguous tables: unit-stride loads let the clipped-force loop vectorise
-        TR = np.empty((n_table, self.mesh.n_nodes))
-        TT = np.empty((n_table, self.mesh.n_nodes))
-        ftab = np.empty((n_table, 4))
-        for k, e in enumerate(self.eps):
-            TR[k], TT[k] = unit_fields(self.mesh, clearance, float(e))
-            ftab[k, :2] = film_force_aligned(self.mesh, TR[k])
-            ftab[k, 2:] = film_force_aligned(self.mesh, TT[k])
+        key = table_cache.key(radius, length, clearance, n_theta, n_z, n_table, eps_max)
+        cached = table_cache.load(key)
+        if cached is not None:
+            TR, TT, ftab = cached["TR"], cached["TT"], cached["ftab"]
+        else:
+            # P_r and P_t in separate contiguous tables: unit-stride loads let the clipped-force loop vectorise
+            TR = np.empty((n_table, self.mesh.n_nodes))
+            TT = np.empty((n_table, self.mesh.n_nodes))
+            ftab = np.empty((n_table, 4))
+            for k, e in enumerate(self.eps):
+                TR[k], TT[k] = unit_fields(self.mesh, clearance, float(e))
+                ftab[k, :2] = film_force_aligned(self.mesh, TR[k])
+                ftab[k, 2:] = film_force_aligned(self.mesh, TT[k])
+            table_cache.save(key, {"TR": TR, "TT": TT, "ftab": ftab})
         self.TR, self.TT, self.ftab = TR, TT, ftab
         self.bounds = np.stack([np.abs(TR).max(axis=1), np.abs(TT).max(axis=1)], axis=1)
         self.Wc = np.ascontiguousarray(self.mesh.Wc)

@@ -136,3 +136,18 @@ def test_table_interpolation_converges():
     ratio = errs[0] / errs[1]
     print(f"table 12 -> 24 points: worst errors {errs}, ratio {ratio:.1f}")
     assert ratio > 8.0
+
+
+def test_disk_cache_is_bit_for_bit(tmp_path, monkeypatch):
+    """A table read from the on-disk cache is identical to a freshly built one (same numbers with or
+    without the cache), and ROTORCOSIM_CACHE=off builds without writing."""
+    from rotorcosim.components.damper.fast import FilmTable
+    monkeypatch.setenv("ROTORCOSIM_CACHE", str(tmp_path))
+    built = FilmTable(0.08, 0.032, C, 32, 8, n_table=8)
+    assert len(list((tmp_path / "damper").glob("table_*.npz"))) == 1
+    read = FilmTable(0.08, 0.032, C, 32, 8, n_table=8)
+    for name in ("TR", "TT", "ftab", "bounds"):
+        assert np.array_equal(getattr(built, name), getattr(read, name))
+    monkeypatch.setenv("ROTORCOSIM_CACHE", "off")
+    off = FilmTable(0.08, 0.032, C, 32, 8, n_table=8)
+    assert np.array_equal(off.TR, built.TR)
