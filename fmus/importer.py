@@ -228,9 +228,8 @@ class FMUComponent(Component):
         xml, md = describe(self.path)
         self.model_description = md
         ann = mdx.read_annotation(xml)
-        self.variables = tuple(ports_of(md, where)[0])
-        _, scalars = ports_of(md, where)
-        self._scalars = scalars
+        variables, self._scalars = ports_of(md, where)
+        self.variables = tuple(variables)
         self._by_name = {v.name: v for v in self.variables}
         self.phases = ann.phases or frozenset({"TM"})
         step = ann.preferred_step or (md.defaultExperiment.stepSize if md.defaultExperiment else None)

@@ -34,5 +34,6 @@ def mass_fmu(fmu_dir) -> Path:
 def damper_fmu(fmu_dir) -> Path:
     from rotorcosim.fmus.export import export_component
 
+    # a coarse film mesh: the table of the fast damper is then built in about a second
     return export_component("damper.fast", fmu_dir / "damper5.fmu", instance_name="damper5",
-                            parameters={"damper": 5})
+                            parameters={"damper": 5, "n_theta": 32, "n_z": 8})

@@ -110,3 +110,28 @@ def test_export_errors_name_the_problem(tmp_path):
     with pytest.raises(ExportError, match="does not exist"):
         export_component("testing.mass", tmp_path / "missing" / "m.fmu")
     assert list(tmp_path.iterdir()) == []   # nothing half-written
+
+
+_NO_ROTORCOSIM = r"""
+import sys
+class Block:
+    def find_spec(self, name, path=None, target=None):
+        if name == "rotorcosim" or name.startswith("rotorcosim."):
+            raise ImportError("rotorcosim is blocked in this process")
+sys.meta_path.insert(0, Block())
+import fmpy, numpy as np
+res = fmpy.simulate_fmu(sys.argv[1], stop_time=0.1, output_interval=1e-3, start_values={"F": 1.0})
+assert not any(m == "rotorcosim" or m.startswith("rotorcosim.") for m in sys.modules)
+print(float(np.max(np.abs(res["x"] - 0.1))))
+"""
+
+
+def test_exported_fmu_needs_no_rotorcosim(mass_fmu, tmp_path):
+    """The FMU carries its code: it runs in a process where importing rotorcosim is impossible."""
+    import subprocess
+    import sys
+
+    out = subprocess.run([sys.executable, "-I", "-c", _NO_ROTORCOSIM, str(mass_fmu)], cwd=tmp_path,
+                         capture_output=True, text=True, timeout=300)
+    assert out.returncode == 0, out.stderr[-2000:]
+    assert float(out.stdout.strip().splitlines()[-1]) > 1e-3    # the mass (x0 = 0.1 m, k = 40 N/m) moved

@@ -46,7 +46,7 @@ class Journal(Component):
         self.time = t + h
 
 
-DAMPER_PARAMS = {"damper": 5, "n_theta": 32, "n_z": 8}
+DAMPER_PARAMS = {"damper": 5, "n_theta": 32, "n_z": 8}   # as the damper_fmu fixture (conftest.py)
 
 
 def damper_scenario(damper_fmu=None):
@@ -72,17 +72,9 @@ def damper_scenario(damper_fmu=None):
 STAGGERED_DAMPER = [("TM", 0.01, 1e-5), ("TO", 0.2, 0.02), ("TM", 0.005, 1e-5)]
 
 
-@pytest.fixture(scope="module")
-def damper_fmu_small(fmu_dir):
-    from rotorcosim.fmus.export import export_component
-
-    return export_component("damper.fast", fmu_dir / "damper5_small.fmu", instance_name="damper5",
-                            parameters=DAMPER_PARAMS)
-
-
-def test_damper_swapped_for_its_fmu_gives_the_same_run(damper_fmu_small):
+def test_damper_swapped_for_its_fmu_gives_the_same_run(damper_fmu):
     native = run_intervals(damper_scenario(), STAGGERED_DAMPER)
-    fmu = run_intervals(damper_scenario(damper_fmu_small), STAGGERED_DAMPER)
+    fmu = run_intervals(damper_scenario(damper_fmu), STAGGERED_DAMPER)
     refs = [r for r in native.rows[0] if not r.startswith("journal.")] + ["journal.X", "journal.V"]
     # the run must actually move: a journal orbit of some micrometres and a warming film
     assert np.max(np.abs(native.series("journal.X"))) > 1e-6
