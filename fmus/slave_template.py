@@ -50,6 +50,7 @@ class RotorcosimSlave(Fmi2Slave):
         self._t0 = 0.0
         self._explicit = set(cfg["parameters"])        # parameters passed to the constructor
         self._par, self._u, self._y, self._type = {}, {}, {}, {}
+        self._real = {}     # value reference -> (store, port, index): the fast path of get_real/set_real
         for v in cfg["variables"]:
             name, size, kind = v["name"], v["size"], v["type"]
             self._type[name] = kind
@@ -65,7 +66,10 @@ class RotorcosimSlave(Fmi2Slave):
                 self._y[name] = np.broadcast_to(np.asarray(v["start"], dtype=float), (size,)).copy()
                 store = "_y"
             for i, scalar in enumerate(_scalar_names(name, size)):
-                self.register_variable(self._make(v, scalar, store, name, i), nested=False)
+                var = self._make(v, scalar, store, name, i)
+                self.register_variable(var, nested=False)
+                if kind == "Real":
+                    self._real[var.value_reference] = (store, name, i)
 
     def _make(self, v, scalar, store, name, i):
         # the getter/setter look the store up by attribute name each time: set_fmu_state replaces the dicts
@@ -92,6 +96,27 @@ class RotorcosimSlave(Fmi2Slave):
 
         return cls(scalar, causality=causality, variability=variability, description=v["description"] or None,
                    getter=getter, setter=setter)
+
+    # -- Real values: the hot path of every communication step (pythonfmu's generic version calls a
+    #    getter closure and an isinstance check per scalar; this reads the port arrays directly) ------------
+    def get_real(self, vrs):
+        real = self._real
+        try:
+            return [float(getattr(self, a)[n][i]) for a, n, i in map(real.__getitem__, vrs)]
+        except KeyError:
+            return super().get_real(vrs)   # not a Real: pythonfmu's error message
+
+    def set_real(self, vrs, values):
+        real = self._real
+        for vr, value in zip(vrs, values):
+            ref = real.get(vr)
+            if ref is None or ref[0] == "_y":
+                super().set_real([vr], [value])   # an output or not a Real: pythonfmu's handling
+                continue
+            a, n, i = ref
+            getattr(self, a)[n][i] = float(value)
+            if a == "_par":
+                self._explicit.add(n)
 
     # -- the FMI calls ----------------------------------------------------------------------------------
     def setup_experiment(self, start_time, stop_time=None, tolerance=None):
