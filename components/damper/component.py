@@ -148,6 +148,7 @@ class _Damper(Component):
             except ValueError as exc:
                 raise ContractError(f"{self.name}.T_oil: {exc}") from None
             self._T = T
+            self._mu_out = np.array([self._mu])   # a new array when mu changes: held outputs stay valid
         return self._mu
 
     def _relative(self):
@@ -163,10 +164,15 @@ class _Damper(Component):
         if status != wall.OK:
             self._fail(status, t)
         y = self.y
-        for key, sl in self.OUT.items():
-            y[key] = out[sl]
+        y["F_film"] = out[0:2]
+        y["K_film"] = out[2:6]
+        y["C_film"] = out[6:10]
+        y["F_spring"] = out[10:12]
+        y["F_contact"] = out[12:14]
+        y["F_journal"] = out[14:16]
+        y["P_film"] = out[16:17]
         y["F_housing"] = -out[14:16]
-        y["mu"] = np.array([mu])
+        y["mu"] = self._mu_out
 
     def _fail(self, status, t):
         if status == wall.NOT_FINITE:
@@ -242,12 +248,12 @@ class FastDamper(_Damper):
         p = self.p
         self._table = film_table(p["radius"], p["length"], p["clearance"], int(p["n_theta"]), int(p["n_z"]))
         t = self._table
-        self._args = (t.TR, t.TT, t.ftab, t.bounds, t.Wc, t.Ws, t.u0, t.du, t.n, t.eps_max, t.clearance)
+        prm = np.array([t.u0, t.du, t.n, t.eps_max, t.clearance, self._floor, float(self._cav), self._k, self._kw])
+        self._args = (t.TR, t.TT, t.ftab, t.bounds, t.Wc, t.Ws, prm)
 
     def _film(self, dx, dy, dvx, dvy, mu, out):
         self._table.evaluate(dx, dy, dvx, dvy, mu, self._floor, self._cav, out)
 
     def _compute(self, mu, out):
         u = self.u
-        return fast_step(*self._args, u["X_journal"], u["V_journal"], u["X_housing"], u["V_housing"], mu,
-                         self._floor, self._cav, self._k, self._kw, out)
+        return fast_step(*self._args, u["X_journal"], u["V_journal"], u["X_housing"], u["V_housing"], mu, out)

@@ -183,10 +183,15 @@ def film_eval(TR, TT, ftab, bounds, Wc, Ws, u0, du, n, eps_max, clearance, dx, d
 
 
 @njit(cache=True)
-def fast_step(TR, TT, ftab, bounds, Wc, Ws, u0, du, n, eps_max, clearance, xj, vj, xh, vh, mu, floor, cavitation, k_spring,
-              k_wall, out):
+def fast_step(TR, TT, ftab, bounds, Wc, Ws, prm, xj, vj, xh, vh, mu, out):
     """One damper evaluation in a single call: film (F, K, C), spring, wall, F_journal and P_film into out
-    (the component's layout: see component._Damper.OUT). Returns a wall.* status code."""
+    (the component's layout: see component._Damper.OUT). Returns a wall.* status code.
+
+    prm = [u0, du, n_table, eps_max, clearance, floor, cavitation, k_spring, k_wall] (one array: fewer
+    arguments to type-check on each call from Python).
+    """
+    u0, du, n, eps_max, clearance = prm[0], prm[1], int(prm[2]), prm[3], prm[4]
+    floor, cavitation, k_spring, k_wall = prm[5], prm[6] != 0.0, prm[7], prm[8]
     dx = xj[0] - xh[0]
     dy = xj[1] - xh[1]
     dvx = vj[0] - vh[0]
