@@ -21,6 +21,9 @@ Model (kernel.py):
 * drag torque after Palmgren (drag.py) with the SAE 30 viscosity at T_oil (oil.py), at the mean of the step's
   sub-step values; P_drag = M omega, omega the inner race speed (the outer race does not rotate).
 
+A jump of the thermal growths between two steps larger than any thermal rate can give (the TO -> TM restart
+of the staggered scheme) re-seats the balls quasi-statically first (:meth:`BallBearing._reseat`).
+
 Integration inside do_step: symplectic Euler sub-steps of cfl / omega_ball (omega_ball the highest linearised
 ball-contact frequency at the start of the step), the journal linearly implicit in the damper force
 F_journal + K_journal (x - x0) + C_journal (v - v0) about the journal state x0, v0 at the start of the step
@@ -45,7 +48,7 @@ from .drag import static_load_rating
 from .geometry import DATA, BEARINGS, build_geometry
 from .kernel import step_outputs
 from .oil import sae30_kinematic_viscosity
-from .static import preload_offset
+from .static import preload_offset, solve_balls
 
 RPM = math.pi / 30.0
 _DESIGN, _DRAG, _NUM = DATA["design"], DATA["drag"], DATA["numerics"]
@@ -155,10 +158,12 @@ class BallBearing(Component):
         phi = 2.0 * math.pi * np.arange(g.Z) / g.Z
         self._cb, self._sb = np.cos(phi), np.sin(phi)
         self._T = None
+        self._eps_jump = float(_NUM["eps_jump"])
         self.state = {
             "balls": np.vstack([st.v, np.zeros((2, g.Z))]),
             "journal": np.zeros(4),
             "phi": np.zeros(1),
+            "eps_seated": np.zeros(3),     # the growths the balls were last seated for
         }
         self.substeps_used = 0
         # outputs of the rest state: one zero-length evaluation
@@ -179,6 +184,10 @@ class BallBearing(Component):
         self._nu(float(u["T_oil"][0]))
         if update_state:
             balls, jour, phi = self.state["balls"], self.state["journal"], self.state["phi"]
+            eps = u["eps"]
+            if np.all(np.isfinite(eps)) and np.max(np.abs(eps - self.state["eps_seated"])) > self._eps_jump:
+                self._reseat(h)
+            self.state["eps_seated"] = np.array(eps, dtype=float)
         else:
             balls, jour, phi = (self.state["balls"].copy(), self.state["journal"].copy(),
                                 self.state["phi"].copy())
@@ -197,6 +206,27 @@ class BallBearing(Component):
         y["sigma_max_step"] = out[13:15]
         y["P_drag"] = out[15:16]
         self.substeps_used = int(out[17])
+
+    def _reseat(self, h):
+        """Put the balls at their quasi-static positions (eq. 4 without acceleration) for the present race
+        positions and the new thermal growths, keeping their velocities.
+
+        Thermal growth is slow (um/s): a jump of eps between two steps only happens when the thermal network ran
+        on while the mechanics were frozen (a thermal-only interval of the staggered scheme). The balls would have
+        followed it quasi-statically; taking the jump as a sudden overlap instead would start the next
+        thermo-mechanical interval with an artificial impact of every ball."""
+        g, u, s = self.geometry, self.u, self.state
+        ax = float(self.p["axial_direction"])
+        lag = h if self.p["inner_motion"] == "step_end" else 0.0
+        X = np.array(u["X_inner"], dtype=float) - lag * np.array(u["V_inner"], dtype=float)
+        phi = s["phi"][0] + 2.0 * np.pi * np.arange(g.Z) / g.Z
+        c, sn = np.cos(phi), np.sin(phi)
+        xe, ye = s["journal"][0], s["journal"][1]
+        ur = X[0] * c + X[1] * sn
+        wr = xe * c + ye * sn
+        v, _ = solve_balls(g, ur, ax * X[2] + self.z0, wr, tuple(u["eps"]), float(self._geo[7]),
+                           v0=s["balls"][:2].copy())
+        s["balls"][:2] = v
 
     def _fail(self, flag, t):
         if flag == 1.0:

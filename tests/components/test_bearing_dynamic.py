@@ -316,3 +316,30 @@ def test_axial_direction_mirrors_z():
     assert np.allclose(m.y["X_journal"], a.y["X_journal"], rtol=1e-12, atol=1e-18)
     with pytest.raises(ContractError, match="axial_direction"):
         make(bearing=0, axial_direction=0)
+
+
+@pytest.mark.parametrize("omega_rpm", [0.0, 16000.0])
+def test_eps_jump_reseats_the_balls(omega_rpm):
+    """A jump of the thermal growths (the TO -> TM restart of the staggered scheme: eps = [6, 4, 2] um at once)
+    puts the balls at their new quasi-static positions instead of starting an impact transient: the contact
+    loads over the next step equal the quasi-static solver's (eqs. 4, 6-9 at rest) with the new growths.
+    A slow ramp of eps (thermal rates) does not trigger it and follows the same solution."""
+    eps = np.array([6e-6, 4e-6, 2e-6])
+    b = make(bearing=0, omega=omega_rpm * RPM)
+    g = b.geometry
+    run(b, 10, k=5.254e6, c=1e4)
+    b.set_inputs({"eps": eps})
+    run(b, 1, k=5.254e6, c=1e4)
+    Fc = g.centrifugal_force(b.p["omega"])
+    st = ball_state(g, [0, 0, b.z0], eps=tuple(eps), Fc=Fc, phi0=float(b.state["phi"][0]))
+    assert b.y["Q_max_step"][0] == pytest.approx(st.Q_i.max(), rel=2e-3)
+    assert b.y["Q_max_step"][1] == pytest.approx(st.Q_e.max(), rel=2e-3)
+    assert np.max(np.abs(b.y["F_rotor"][:2])) < 1e-3 * st.Q_i.max()
+    if omega_rpm == 0.0:
+        # the same growths reached by a ramp at 6 nm per step (below the jump threshold), then settled
+        r = make(bearing=0, omega=0.0)
+        for i in range(1000):
+            r.set_inputs({"eps": eps * (i + 1) / 1000})
+            run(r, 1, k=5.254e6, c=1e4, t0=i * H)
+        run(r, 500, k=5.254e6, c=1e4, t0=1000 * H)
+        assert r.y["Q_max"][0] == pytest.approx(st.Q_i.max(), rel=1e-4)
