@@ -44,14 +44,14 @@ def draw_campbell(path: str, model_file: str = "", max_rpm: float = 30000.0, cri
 
     m = fem.load(model_file or None)
     rpm = np.linspace(0.0, max_rpm, 61)
-    f, fwd = critical.campbell(m, rpm)
+    f, kind = critical.campbell(m, rpm)
     fig, ax = plt.subplots(figsize=(7, 5))
-    for j in range(f.shape[1]):
-        ax.scatter(rpm[fwd[:, j]], f[fwd[:, j], j], s=6, c="tab:blue")
-        ax.scatter(rpm[~fwd[:, j]], f[~fwd[:, j], j], s=6, c="tab:orange")
+    styles = ((1, "tab:blue", "forward whirl"), (-1, "tab:orange", "backward whirl"),
+              (0, "0.75", "no rotor whirl (axial, torsion, casing)"))
+    for code, colour, label in styles:
+        sel = kind == code
+        ax.scatter(np.broadcast_to(rpm[:, None], f.shape)[sel], f[sel], s=5, c=colour, label=label)
     ax.plot(rpm, rpm / 60.0, "k--", lw=1, label="1x (PT spin)")
-    ax.scatter([], [], s=6, c="tab:blue", label="forward whirl")
-    ax.scatter([], [], s=6, c="tab:orange", label="backward whirl")
     if crit:
         for r in crit["forward_synchronous_rpm"]:
             ax.plot(r, r / 60.0, "o", mfc="none", mec="tab:red", ms=9)
@@ -59,7 +59,7 @@ def draw_campbell(path: str, model_file: str = "", max_rpm: float = 30000.0, cri
     ax.set_ylabel("whirl frequency [Hz]")
     ax.set_xlim(0, max_rpm)
     ax.set_ylim(0, 1.2 * max_rpm / 60.0)
-    ax.legend(loc="upper left")
+    ax.legend(loc="upper left", fontsize=8, framealpha=0.9)
     ax.set_title("Campbell diagram (linearised #0/#5 supports, undamped)")
     fig.tight_layout()
     fig.savefig(path, dpi=120)

@@ -58,14 +58,16 @@ def synchronous_critical_speeds(model: FullModel, linear_support: bool = True, n
     return out
 
 
-def campbell(model: FullModel, rpm_values, n_modes: int = 40, n_show: int = 10, linear_support: bool = True):
-    """Damped-free whirl frequencies (Hz) vs PT speed, with forward/backward flags, on a modal basis of the
-    lowest ``n_modes`` non-spinning modes (enough for the lowest ``n_show`` whirl frequencies)."""
+def campbell(model: FullModel, rpm_values, n_modes: int = 80, n_show: int = 24, linear_support: bool = True,
+             min_share: float = 0.05):
+    """Undamped whirl frequencies (Hz) vs PT speed on a modal basis of the lowest ``n_modes`` non-spinning modes,
+    with a flag per frequency: +1 forward, -1 backward, 0 not a rotor whirl (lateral rotor share < min_share)."""
     K = model.K + (model.linear_support()[0] if linear_support else 0.0)
     w2, Phi = sla.eigh(K, model.M, subset_by_index=[0, n_modes - 1])
     Gt = Phi.T @ (model.G_pt + speed_ratio(model) * model.G_gg) @ Phi
     lat = model.rotor_lateral
-    freqs, fwd = [], []
+    Mlat = model.M[np.ix_(lat, lat)]
+    freqs, kind = [], []
     for rpm in rpm_values:
         Om = rpm * RPM
         A = np.block([[np.zeros((n_modes, n_modes)), np.eye(n_modes)], [-np.diag(w2), -Om * Gt]])
@@ -78,7 +80,11 @@ def campbell(model: FullModel, rpm_values, n_modes: int = 40, n_show: int = 10, 
             q = Phi @ V[:, k]
             X, Y = q[lat[0::2]], q[lat[1::2]]
             f.append(lam[k].imag / (2 * np.pi))
-            d.append(np.sum(np.abs(X + 1j * Y) ** 2) >= np.sum(np.abs(X - 1j * Y) ** 2))
+            share = np.real(q[lat].conj() @ Mlat @ q[lat]) / np.real(q.conj() @ model.M @ q)
+            if share < min_share:
+                d.append(0)
+            else:
+                d.append(1 if np.sum(np.abs(X + 1j * Y) ** 2) >= np.sum(np.abs(X - 1j * Y) ** 2) else -1)
         freqs.append(f)
-        fwd.append(d)
-    return np.asarray(freqs), np.asarray(fwd)
+        kind.append(d)
+    return np.asarray(freqs), np.asarray(kind)
