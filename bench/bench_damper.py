@@ -118,7 +118,8 @@ def main(argv=None):
             print(f"  of which the numba kernel: best {min(kern) * 1e6:.1f} us")
     print(f"fast model do_step incl. K_film/C_film, cavitation on, the paper's 0.2 mm steady whirl (no clipping):"
           f" best {steady[0] * 1e6:.1f} us, median {steady[1] * 1e6:.1f} us")
-    print(f"ratio FE / fast per call (cavitation on, the default; clipped orbit, the fast model's slow path): best/best {fe_best / res[True][0]:.0f},"
+    print("ratio FE / fast per call (cavitation on, the default; clipped orbit, the fast model's slow path):")
+    print(f"  best/best {fe_best / res[True][0]:.0f},"
           f" median/median {fe_med / res[True][1]:.0f}  (target >= 100)")
     n_steps = 75_000
     print(f"2 dampers x {n_steps} steps, all on the clipped orbit (upper bound): {2 * n_steps * res[True][1]:.1f} s;"

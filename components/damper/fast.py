@@ -146,7 +146,8 @@ def _aligned(TR, TT, ftab, bounds, Wc, Ws, eps, u0, du, n, a, b, floor, cavitati
 
 
 @njit(cache=True)
-def film_eval(TR, TT, ftab, bounds, Wc, Ws, u0, du, n, eps_max, clearance, dx, dy, dvx, dvy, mu, floor, cavitation, out):
+def film_eval(TR, TT, ftab, bounds, Wc, Ws, u0, du, n, eps_max, clearance, dx, dy, dvx, dvy, mu, floor, cavitation,
+              out):
     """Film force F (2), K = dF/dd (4) and C = dF/dw (4) in the housing axes into out[0:10].
 
     d = (dx, dy), w = (dvx, dvy): journal minus housing. Beyond eps_max the film is evaluated at eps_max in
@@ -237,8 +238,8 @@ class FilmTable:
 
     def evaluate(self, dx, dy, dvx, dvy, mu, floor, cavitation, out):
         """F (2), K_film (4), C_film (4) of the film into out[0:10] (see film_eval)."""
-        film_eval(self.TR, self.TT, self.ftab, self.bounds, self.Wc, self.Ws, self.u0, self.du, self.n, self.eps_max, self.clearance,
-                  dx, dy, dvx, dvy, mu, floor, cavitation, out)
+        film_eval(self.TR, self.TT, self.ftab, self.bounds, self.Wc, self.Ws, self.u0, self.du, self.n,
+                  self.eps_max, self.clearance, dx, dy, dvx, dvy, mu, floor, cavitation, out)
 
 
 @lru_cache(maxsize=4)

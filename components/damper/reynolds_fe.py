@@ -20,6 +20,11 @@ eccentricity ratio only (what the fast model tabulates).
 
 Because P is linear in (v_r, v_t) and p - p_s in mu, one factorisation and two unit solves give P_r, P_t;
 the film force of the whole journal (both halves) is F = -2 sum_i p_i W_i with W_i = int N_i (cos, sin) dA.
+
+For the interface Jacobian (K_film, C_film: see frame) the same factorisation gives the exact sensitivity of
+the discrete solution to the eccentricity, dP/deps = -K^-1 (dK/deps) P, and the force derivatives follow
+from the full-film (unclipped) nodes. The film is evaluated up to EPS_FILM_MAX; beyond it the component
+holds it there (wall.py).
 """
 from __future__ import annotations
 
