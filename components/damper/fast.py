@@ -208,15 +208,18 @@ class FilmTable:
     """Tabulated unit fields of one damper geometry and mesh (build with :func:`film_table`)."""
 
     def __init__(self, radius, length, clearance, n_theta, n_z, n_table=N_TABLE, eps_max=EPS_MAX):
-        if n_table < 4:
-            raise ValueError(f"n_table must be >= 4, got {n_table}")
+        if n_table < 10:   # also keeps the point below eps = 0 above eps = -1 (du < ln 2)
+            raise ValueError(f"n_table must be >= 10, got {n_table}")
         self.mesh = build_mesh(radius, length, n_theta, n_z)
         self.clearance = clearance
         self.eps_max = eps_max
-        self.u0 = 0.0
-        self.du = -math.log(1.0 - eps_max) / (n_table - 1)
+        # one point below eps = 0 (journal displaced the other way in the aligned frame) so that the stencil
+        # about the centre is centred: the forces are even in eps, and a one-sided stencil would give them a
+        # spurious slope at eps = 0 (a kink in K_film through the centre)
+        self.du = -math.log(1.0 - eps_max) / (n_table - 2)
+        self.u0 = -self.du
         self.n = n_table
-        self.eps = 1.0 - np.exp(-self.du * np.arange(n_table))
+        self.eps = 1.0 - np.exp(-(self.u0 + self.du * np.arange(n_table)))
         key = table_cache.key(radius, length, clearance, n_theta, n_z, n_table, eps_max)
         cached = table_cache.load(key)
         if cached is not None:

@@ -122,13 +122,14 @@ def _reduced_operator(mesh: Mesh, clearance: float, coeff: np.ndarray) -> sp.csc
 
 
 def unit_fields(mesh: Mesh, clearance: float, eps: float, derivative: bool = False):
-    """P_r, P_t (n_nodes each, Pa per (Pa s . m/s)): p - p_s = mu (v_r P_r + v_t P_t) at eccentricity ratio eps.
+    """P_r, P_t (n_nodes each, Pa per (Pa s . m/s)): p - p_s = mu (v_r P_r + v_t P_t) at eccentricity ratio eps
+    (eps < 0: the journal displaced towards theta' = pi).
 
     One sparse LU of the Reynolds operator with h^3/12 (unit viscosity), two right-hand sides. With
     ``derivative`` also dP_r/deps, dP_t/deps of the discrete solution (K dP = -dK/deps P, same LU).
     """
-    if not 0.0 <= eps < 1.0:
-        raise ValueError(f"eccentricity ratio {eps} outside [0, 1)")
+    if not -1.0 < eps < 1.0:
+        raise ValueError(f"eccentricity ratio {eps} outside (-1, 1)")
     cos = np.cos(mesh.theta)
     h = clearance * (1.0 - eps * cos)
     Kff = _reduced_operator(mesh, clearance, (h**3)[mesh.tri].mean(axis=1) / 12.0)

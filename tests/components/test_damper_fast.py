@@ -70,7 +70,7 @@ def _finite_difference(d, x, v):
 
 STATES = [  # (position / c, velocity m/s)
     ((0.3, 0.4), (0.1, -0.2)),
-    ((0.54, -0.72), (-0.3, 1.5)),     # eps 0.9, strongly clipped film
+    ((0.55, -0.72), (-0.3, 1.5)),     # eps 0.906, strongly clipped film
     ((0.004, 0.002), (0.2, 0.1)),     # near the centre (the g_phi / e limit)
     ((-0.98, 0.1), (0.5, 0.5)),       # eps 0.985, near the table's end
     ((1.003, 0.0), (0.0, 0.2)),       # in wall contact (film saturated at eps_max)
@@ -81,7 +81,10 @@ STATES = [  # (position / c, velocity m/s)
 @pytest.mark.parametrize("pos,vel", STATES)
 def test_fast_jacobian_matches_finite_differences(pos, vel, cav):
     """K_film = dF_journal/dX_journal (film + spring + wall) and C_film = dF_journal/dV_journal are the exact
-    derivatives of the fast model's force: compared with central finite differences of the force itself."""
+    derivatives of the fast model's force: compared with central finite differences of the force itself.
+    The states lie off the table's nodes: there the 4-point Lagrange interpolant is only continuous (its slope
+    in eps jumps by ~1e-4 relative, e.g. at eps = 0.9), and a difference quotient across a node is neither
+    one-sided derivative."""
     d = FastDamper("fast", {"damper": 0, "cavitation": cav, "supply_pressure": 0.0 if cav else 0.2e6})
     d.setup(0.0)
     x, v = C * np.array(pos), np.array(vel)
@@ -143,11 +146,11 @@ def test_disk_cache_is_bit_for_bit(tmp_path, monkeypatch):
     without the cache), and ROTORCOSIM_CACHE=off builds without writing."""
     from rotorcosim.components.damper.fast import FilmTable
     monkeypatch.setenv("ROTORCOSIM_CACHE", str(tmp_path))
-    built = FilmTable(0.08, 0.032, C, 32, 8, n_table=8)
+    built = FilmTable(0.08, 0.032, C, 32, 8, n_table=10)
     assert len(list((tmp_path / "damper").glob("table_*.npz"))) == 1
-    read = FilmTable(0.08, 0.032, C, 32, 8, n_table=8)
+    read = FilmTable(0.08, 0.032, C, 32, 8, n_table=10)
     for name in ("TR", "TT", "ftab", "bounds"):
         assert np.array_equal(getattr(built, name), getattr(read, name))
     monkeypatch.setenv("ROTORCOSIM_CACHE", "off")
-    off = FilmTable(0.08, 0.032, C, 32, 8, n_table=8)
+    off = FilmTable(0.08, 0.032, C, 32, 8, n_table=10)
     assert np.array_equal(off.TR, built.TR)
