@@ -81,12 +81,11 @@ class _Link:
         """Called after the producer has stepped."""
         y = self.src.y[self.sport]
         if self.mode == self.FAST_TO_SLOW:
-            if self.acc is None:
-                self.acc = y * h_src
-                self.acc2 = y * y * h_src
-            else:
-                self.acc = self.acc + y * h_src
-                self.acc2 = self.acc2 + y * y * h_src
+            how = self.con.average
+            if how == "mean":
+                self.acc = y * h_src if self.acc is None else self.acc + y * h_src
+            elif how == "rms":
+                self.acc2 = y * y * h_src if self.acc2 is None else self.acc2 + y * y * h_src
             self.weight += h_src
         elif self.mode == self.SLOW_TO_FAST:
             self.prev = None if self.cur_t is None else self._last
@@ -176,7 +175,23 @@ class Engine:
             s = link.con.src_component
             if link.ring is not None and s in self.mult and link not in self._outgoing[s]:
                 self._outgoing[s].append(link)
+        # only links that average, extrapolate or record need to hear about each production
+        for n in self._outgoing:
+            self._outgoing[n] = [link for link in self._outgoing[n]
+                                 if link.mode != _Link.SAME or link.ring is not None]
         self._comp = {n: comps[n] for n in self.active}
+        self._all_single = self.active if all(m == 1 for m in self.mult.values()) else None
+        # Fast path of the hot loop: a component that keeps the contract's own set_inputs gets its same-rate,
+        # unfrozen inputs copied straight into its input arrays (sizes were checked when the system was built),
+        # the others through value(); an overriding set_inputs (an FMU) always gets the dict.
+        self._direct = {}
+        for n in self.active:
+            if type(comps[n]).set_inputs is not Component.set_inputs or self.settings.iterations > 1:
+                continue
+            same = [(link.src, link.sport, link.dport) for link in self._inputs[n]
+                    if link.mode == _Link.SAME and link.frozen is None]
+            other = [link for link in self._inputs[n] if not (link.mode == _Link.SAME and link.frozen is None)]
+            self._direct[n] = (same, other)
 
     # -- stepping ------------------------------------------------------------------------------------
     def _gather(self, name: str, t_mid: float) -> dict:
@@ -201,7 +216,7 @@ class Engine:
         """Base step k of the interval that starts at t0 (from t0 + k h to t0 + (k+1) h)."""
         h = self.h
         t_end = t0 + (k + 1) * h
-        firing = [n for n in self.active if (k + 1) % self.mult[n] == 0]
+        firing = self._all_single or [n for n in self.active if (k + 1) % self.mult[n] == 0]
         if self.settings.iterations == 1:
             self._pass(firing, t_end)
         else:
@@ -209,13 +224,26 @@ class Engine:
         if (k + 1) % self.settings.check_every == 0:
             self.check_finite(t_end)
 
+    def _fire_direct(self, name: str, t: float, hc: float) -> None:
+        same, other = self._direct[name]
+        u = self._comp[name].u
+        for src, sport, dport in same:
+            u[dport] = src.y[sport].copy()
+        for link in other:
+            u[link.dport] = np.asarray(link.value(t + 0.5 * hc), dtype=float).reshape(-1)
+        self._fire(name, None, t, hc)
+
     def _pass(self, firing: list[str], t_end: float) -> None:
         h = self.h
         if self.settings.algorithm == "gauss-seidel":
+            direct = self._direct
             for n in firing:
                 hc = self.mult[n] * h
                 t = t_end - hc
-                self._fire(n, self._gather(n, t + 0.5 * hc), t, hc)
+                if n in direct:
+                    self._fire_direct(n, t, hc)
+                else:
+                    self._fire(n, self._gather(n, t + 0.5 * hc), t, hc)
         else:
             gathered = []
             for n in firing:
