@@ -11,11 +11,12 @@ Conventions:
 * inputs are held over a step; the unbalance force is evaluated at the end of the step (t + h), where Newmark's
   equilibrium is enforced; outputs are the displacements/velocities at t + h;
 * unbalance: F_u(t) = F_residual (cos Wt, sin Wt) from t = 0 plus, from ``t_blade_loss`` on, a step onset of
-  F_unbalance (cos(Wt + phase), sin(Wt + phase)) (W = omega_pt); the residual default 100 N is ISO 21940-11
-  balance grade G 2.5 (gas turbines) for the 23.8 kg power turbine at 16 000 rev/min (F = m G W), all put at the
-  outboard end; the output ``F_u`` is the total applied rotating force vector (residual + blade loss): it
+  F_unbalance (cos(Wt + phase), sin(Wt + phase)) (W = omega_pt); the residual default 80 N is ISO 21940-11
+  balance grade G 2.5 (gas turbines: e W <= 2.5 mm/s) for the 19.1 kg power turbine of the model at 16 000 rev/min
+  (F = m G W = 79.8 N), all put at the outboard end (conservative: the whole residual at the blade-loss node); the output ``F_u`` is the total applied rotating force vector (residual + blade loss): it
   cannot be called F_unbalance like the amplitude parameter, since variable names are unique (FMI, contract);
-* the structure starts at rest at t0 (no gravity, the paper has none).
+* the structure starts at rest at t0 (no gravity, the paper has none); both rotors spin in the +z sense
+  (co-rotating; the paper does not say), which fixes the sign of the gyroscopic terms.
 """
 from __future__ import annotations
 
@@ -80,7 +81,7 @@ class Rotor(Component):
     variables = (
         Variable("F_unbalance", "parameter", unit="N", start=2850.0,
                  description="blade-loss force amplitude (rotating at the PT speed, PT outboard end)"),
-        Variable("F_residual", "parameter", unit="N", start=100.0,
+        Variable("F_residual", "parameter", unit="N", start=80.0,
                  description="residual unbalance force before the blade loss (ISO 21940-11 G 2.5), same node"),
         Variable("unbalance_phase", "parameter", unit="rad", start=0.0,
                  description="angle of the lost blade relative to the residual unbalance"),

@@ -1,4 +1,5 @@
-"""Newmark-beta integration of M x'' + C x' + K x = f (Newmark 1959; Bathe, Finite Element Procedures, 9.2.4).
+"""Newmark-beta integration of M x'' + C x' + K x = f, the paper's integrator (section 4.1, its ref. [19]:
+Newmark 1959; the algebra as in Bathe, Finite Element Procedures, 9.2.4), applied to the reduced eq. (21).
 
 Displacement form with (beta, gamma) = (1/4, 1/2) by default (average acceleration: unconditionally stable, no
 numerical damping, second order, period error ~ (w h)^2 / 12). The matrices are constant (constant speeds, so
