@@ -1,0 +1,8 @@
+"""The rotor component (issue 3): the flexible dual-rotor engine + casing, MTA-reduced, Newmark-beta.
+
+Modules: ``beam`` (Timoshenko shaft element, disk), ``hexa`` (8-node solid), ``model`` (the full FE model from
+``data/engine.toml``), ``mta`` (eqs. 16-22), ``newmark`` (the integrator), ``kernel`` (the compiled step),
+``component`` (:class:`Rotor`, registered as ``rotor.mta``), ``critical`` (synchronous critical speeds, Campbell),
+``calibration`` (the two-knob fit to 8500 / 10 200 rev/min), ``verification`` (full vs reduced transient),
+``cli`` (``rotorcosim critical-speeds``).
+"""
