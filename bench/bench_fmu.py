@@ -1,13 +1,14 @@
 """Cost of the FMI boundary: a component step behind its exported FMU against the same component native.
 
-    python bench/bench_fmu.py [--steps N] [--only NAME ...]
+    python bench/bench_fmu.py [--steps N] [--only NAME ...] [--blade-loss]
 
 For every registered component whose implementation imports (the engine's, as they land, and the test
 components), in this one process: export it (fmus/export.py), load the FMU back (fmus/importer.py), set both up
 the same way, and time ``set_inputs`` + ``do_step`` (what the master does per communication step) over N steps.
 Prints microseconds per step native and through the FMU, their ratio, and the added cost per step; then the
 whole toy thermo-mechanical scenario run natively and with every component swapped for its FMU; then the largest
-difference of the exported toy SSP run in Ecos against our master (Jacobi and Gauss-Seidel, same fixed step).
+difference of the exported toy SSP run in Ecos against our master (Jacobi and Gauss-Seidel, same fixed step);
+with ``--blade-loss``, the same two comparisons on the paper's whole system over 200 TM steps.
 """
 from __future__ import annotations
 
@@ -130,10 +131,55 @@ def ecos_vs_master(folder: Path):
               + ", ".join(f"{s} {v:.2e}" for s, v in worst.items()))
 
 
+def blade_loss(folder: Path, n: int = 200):
+    """The paper's whole system: native vs every component an FMU (our master), and the SSP in Ecos."""
+    from fmu_helpers import max_rel_diff, run_intervals
+
+    from rotorcosim import scenarios
+    from rotorcosim.fmus.ssp import read_ssp, write_ssp
+    from rotorcosim.master.scenario import load_scenario
+
+    sc = load_scenario(scenarios.path("blade_loss"))
+    h = float(sc.schedule.get("step", 1e-5))
+    t0 = time.perf_counter()
+    ssp = write_ssp(sc, folder / "blade_loss.ssp")
+    print(f"  export-ssp blade_loss: {time.perf_counter() - t0:.1f} s, {ssp.stat().st_size / 1e6:.1f} MB")
+    iv = [("TM", n * h, h)]
+    t0 = time.perf_counter()
+    native = run_intervals(sc, iv)
+    t_nat = time.perf_counter() - t0
+    t0 = time.perf_counter()
+    fmu = run_intervals(read_ssp(ssp), iv)
+    t_fmu = time.perf_counter() - t0
+    print(f"  blade_loss TM {n} steps of {h:g} s: native {t_nat:.1f} s, SSP of FMUs in our master {t_fmu:.1f} s "
+          f"(both with set-up); max relative difference {max_rel_diff(native, fmu, list(native.rows[0])):.3g}")
+    try:
+        from test_ssp import ecos_run
+    except (ImportError, OSError) as exc:
+        print(f"  Ecos: not available ({exc})")
+        return
+    signals = ["rotor.X_brg0[1]", "bearing0.F_rotor[1]", "damper0.F_journal[1]", "rubring0.P_rub",
+               "thermal0.T_oil"]
+    signals = [s for s in signals if s.partition("[")[0] in native.rows[0]]
+    ecos = ecos_run(ssp, h, n, signals)
+    jac = read_ssp(ssp)
+    jac.algorithm = {"kind": "jacobi", "order": jac.algorithm.get("order")}
+    ours = run_intervals(jac, iv)
+    diffs = []
+    for s in signals:
+        port, _, idx = s.partition("[")
+        mine = ours.series(port)[:, int(idx[:-1]) - 1 if idx else 0]
+        scale = np.max(np.abs(mine))
+        diffs.append(f"{s} {np.max(np.abs(mine - ecos[s])) / scale if scale else 0.0:.2e}")
+    print(f"  Ecos vs our master (jacobi), blade_loss TM {n} steps, max |diff| / max |ours|: " + ", ".join(diffs))
+
+
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--steps", type=int, default=5000, help="timed steps per component (default 5000)")
     ap.add_argument("--only", nargs="*", default=None, help="component implementation names (default: all)")
+    ap.add_argument("--blade-loss", action="store_true",
+                    help="also the whole blade-loss system: native vs FMUs, and in Ecos (a few minutes)")
     args = ap.parse_args(argv)
     names = args.only or registry.available()
     with tempfile.TemporaryDirectory(prefix="bench_fmu_") as tmp:
@@ -144,6 +190,9 @@ def main(argv=None) -> int:
         toy_scenario(folder)
         print("another engine:")
         ecos_vs_master(folder)
+        if args.blade_loss:
+            print("the blade-loss system:")
+            blade_loss(folder)
     return 0
 
 

@@ -1,4 +1,4 @@
-"""Any FMI 2.0 co-simulation FMU as a rotorcosim component (through fmpy).
+"""Any FMI 2.0 (or 3.0) co-simulation FMU as a rotorcosim component (through fmpy).
 
 ``load_fmu_component(path, name, params)`` is what the master calls for a scenario component given as
 ``fmu = "file.fmu"``. The FMU is checked and extracted into a fresh temporary folder (safezip.py: nothing can be
@@ -10,16 +10,17 @@ Mapping onto the contract (components/contract.py):
 
 * parameters are set right away (before initialisation, as FMI requires); unknown names, wrong sizes or
   non-parameters are clear errors naming the FMU;
-* ``setup(t0)``: setupExperiment, enterInitializationMode, inputs, exitInitializationMode, outputs read;
-* ``do_step(t, h)``: all inputs set, fmi2DoStep, all outputs read into ``self.y`` (the master reads ``y``);
-* ``get_state``/``set_state``: fmi2GetFMUstate / fmi2SetFMUstate when the FMU declares
+* ``setup(t0)``: (setupExperiment,) enterInitializationMode, inputs, exitInitializationMode, outputs read;
+* ``do_step(t, h)``: all inputs set, DoStep, all outputs read into ``self.y`` (the master reads ``y``);
+* ``get_state``/``set_state``: Get/SetFMUstate when the FMU declares
   ``canGetAndSetFMUstate``; otherwise a clear error (rollback is impossible with that FMU);
 * ``phases`` and ``preferred_step``: from rotorcosim's vendor annotation when the FMU is one of ours, else
   ``{"TM"}`` and the DefaultExperiment stepSize (model_description.py documents the annotation).
 
 The hot path calls the FMU's C functions directly with preallocated ctypes buffers (fmpy's convenience
 wrappers build new arrays on every call): the FMU boundary should cost what FMI costs, not what the glue costs.
-FMI 3.0 FMUs are refused with a clear error for now (see the report of issue 8).
+FMI 3.0 co-simulation FMUs are read the same way for scalar variables of types Float64 (Real), Int32
+(Integer), Boolean and String; FMI 3.0 array variables and other integer widths are refused with a clear error.
 """
 from __future__ import annotations
 
@@ -41,9 +42,22 @@ from . import model_description as mdx
 from .flatten import FlattenError, regroup
 from .safezip import ArchiveError, check_entries, open_zip, safe_extract
 
-_FMI2_OK_STATUS = 1  # fmi2OK = 0, fmi2Warning = 1: anything above is a failure
-_TYPE_OF = {"Real": "Real", "Integer": "Integer", "Enumeration": "Integer", "Boolean": "Boolean", "String": "String"}
-_CTYPE = {"Real": ctypes.c_double, "Integer": ctypes.c_int, "Boolean": ctypes.c_int}
+_OK_STATUS = 1  # OK = 0, Warning = 1 (FMI 2.0 and 3.0): anything above is a failure
+_TYPE_OF = {"Real": "Real", "Integer": "Integer", "Enumeration": "Integer", "Boolean": "Boolean", "String": "String",
+            "Float64": "Real", "Int32": "Integer"}
+#: per FMI version: contract type -> (ctypes value type, set function, get function); the state functions
+_API = {
+    "2": {"Real": (ctypes.c_double, "fmi2SetReal", "fmi2GetReal"),
+          "Integer": (ctypes.c_int, "fmi2SetInteger", "fmi2GetInteger"),
+          "Boolean": (ctypes.c_int, "fmi2SetBoolean", "fmi2GetBoolean"),
+          "state": ("fmi2GetFMUstate", "fmi2SetFMUstate", "fmi2FreeFMUstate"),
+          "setters": {"Real": "setReal", "Integer": "setInteger", "Boolean": "setBoolean", "String": "setString"}},
+    "3": {"Real": (ctypes.c_double, "fmi3SetFloat64", "fmi3GetFloat64"),
+          "Integer": (ctypes.c_int32, "fmi3SetInt32", "fmi3GetInt32"),
+          "Boolean": (ctypes.c_bool, "fmi3SetBoolean", "fmi3GetBoolean"),
+          "state": ("fmi3GetFMUState", "fmi3SetFMUState", "fmi3FreeFMUState"),
+          "setters": {"Real": "setFloat64", "Integer": "setInt32", "Boolean": "setBoolean", "String": "setString"}},
+}
 
 
 class FMUError(ContractError):
@@ -66,7 +80,7 @@ def describe(path: str | Path):
     """Check ``path`` as an FMU and return ``(model description xml bytes, fmpy ModelDescription)``.
 
     Raises FMUError for: a file that is not a zip, unsafe entries, no modelDescription.xml, an unreadable model
-    description, a version other than FMI 2.0, an FMU without co-simulation (model exchange only)."""
+    description, a version other than FMI 2.0 / 3.0, an FMU without co-simulation (model exchange only)."""
     from fmpy import read_model_description
 
     path = Path(path)
@@ -82,13 +96,11 @@ def describe(path: str | Path):
         md = read_model_description(io.BytesIO(_zip_of({"modelDescription.xml": xml})), validate=False)
     except Exception as exc:  # lxml / fmpy parse errors: an unreadable description
         raise FMUError(f"{path}: modelDescription.xml cannot be read: {exc}") from None
-    if md.fmiVersion.startswith("3."):
-        raise FMUError(f"{path}: FMI {md.fmiVersion} FMU: this importer supports FMI 2.0 co-simulation FMUs only")
-    if md.fmiVersion != "2.0":
-        raise FMUError(f"{path}: FMI {md.fmiVersion} FMU: rotorcosim imports FMI 2.0 co-simulation FMUs")
+    if md.fmiVersion != "2.0" and not md.fmiVersion.startswith("3."):
+        raise FMUError(f"{path}: FMI {md.fmiVersion} FMU: rotorcosim imports FMI 2.0 and 3.0 co-simulation FMUs")
     if md.coSimulation is None:
         raise FMUError(f"{path}: the FMU offers model exchange only, no co-simulation interface: rotorcosim "
-                       "needs a co-simulation FMU (one that integrates itself in fmi2DoStep)")
+                       "needs a co-simulation FMU (one that integrates itself in DoStep)")
     return xml, md
 
 
@@ -123,6 +135,11 @@ def ports_of(md, where: str) -> tuple[list[Variable], dict[str, list]]:
         if len(units) > 1:
             raise FMUError(f"{where}: the elements of {port!r} have different units {sorted(units)}")
         typ = _TYPE_OF.get(first.type)
+        if md.fmiVersion.startswith("3.") and first.type == "Enumeration":
+            typ = None
+        if getattr(first, "dimensions", None):
+            raise FMUError(f"{where}: variable {first.name!r} is an FMI 3.0 array: not supported (use scalars "
+                           "named X[1]..X[n])")
         if typ is None:
             raise FMUError(f"{where}: variable {first.name!r} has type {first.type}, which rotorcosim cannot map")
         if first.causality != "parameter" and typ == "String":
@@ -141,8 +158,9 @@ def ports_of(md, where: str) -> tuple[list[Variable], dict[str, list]]:
 class _Handle:
     """What must be released when the component goes away: kept apart from the component for weakref.finalize."""
 
-    def __init__(self, folder: Path, annotation: mdx.Annotation):
+    def __init__(self, folder: Path, annotation: mdx.Annotation, version: str):
         self.folder = folder
+        self.version = version
         self.annotation = annotation
         self.fmu = None
         self.instantiated = False
@@ -155,7 +173,7 @@ class _Handle:
         if fmu is not None:
             try:
                 if self.instantiated:
-                    fmu.fmi2FreeInstance(fmu.component)
+                    getattr(fmu, f"fmi{self.version}FreeInstance")(fmu.component)
                 fmu.freeLibrary()
             except Exception:  # best effort while tearing down
                 pass
@@ -167,11 +185,10 @@ class _Handle:
 def _forget_python_modules(folder: Path, ann: mdx.Annotation) -> None:
     """pythonfmu puts the FMU's resources folder first on sys.path and imports the slave there: undo that for
     a freed FMU of ours, so that the process does not keep stale modules pointing at a deleted folder."""
-    root = str(folder)
-    sys.path[:] = [p for p in sys.path if not str(p).startswith(root)]
+    root = str(folder) + os.sep
+    sys.path[:] = [p for p in sys.path if not (str(p) + os.sep).startswith(root)]
     for key in list(sys.modules):
-        mod = sys.modules.get(key)
-        f = getattr(mod, "__file__", None) or ""
+        f = getattr(sys.modules.get(key), "__file__", None) or ""
         if f.startswith(root):
             del sys.modules[key]
 
@@ -185,7 +202,7 @@ def _purge_cached(ann: mdx.Annotation) -> None:
 
 
 class _FMUState:
-    """An fmi2FMUstate, freed with the FMU when it is no longer referenced."""
+    """An FMU state pointer, freed with the FMU when it is no longer referenced."""
 
     def __init__(self, comp: "FMUComponent", state):
         self.state = state
@@ -196,7 +213,7 @@ def _free_state(handle: _Handle, state) -> None:
     fmu = handle.fmu
     if fmu is not None and handle.instantiated:
         try:
-            fmu.fmi2FreeFMUstate(fmu.component, ctypes.byref(state))
+            fmu._functions[_API[handle.version]["state"][2]](fmu.component, ctypes.byref(state))
         except Exception:
             pass
 
@@ -204,7 +221,7 @@ def _free_state(handle: _Handle, state) -> None:
 class _Transfer:
     """Preallocated value references and values of one FMI type, for a set of ports."""
 
-    def __init__(self, typ: str, ports: list[tuple[str, list[int]]]):
+    def __init__(self, typ: str, ports: list[tuple[str, list[int]]], ctype):
         self.typ = typ
         self.ports = []
         vrs = []
@@ -213,12 +230,12 @@ class _Transfer:
             vrs.extend(refs)
         self.n = len(vrs)
         self.vr = (ctypes.c_uint * self.n)(*vrs)
-        self.values = (_CTYPE[typ] * self.n)()
+        self.values = (ctype * self.n)()
         self.view = np.ctypeslib.as_array(self.values)
 
 
 class FMUComponent(Component):
-    """An FMI 2.0 co-simulation FMU following the component contract."""
+    """An FMI 2.0 / 3.0 co-simulation FMU following the component contract."""
 
     def __init__(self, path: str | Path, name: str = "component", parameters: Mapping[str, Any] | None = None):
         self.path = Path(path)
@@ -242,13 +259,15 @@ class FMUComponent(Component):
         self.y = {v.name: v.start_array() for v in self.variables if v.causality == "output"}
         self.state = {}
         self.time = 0.0
+        self._version = "3" if md.fmiVersion.startswith("3.") else "2"
+        self._api = _API[self._version]
         self._in = self._transfers("input", where)
         self._out = self._transfers("output", where)
         try:
             folder = safe_extract(self.path, "FMU", prefix="rcs_fmu_")
         except ArchiveError as exc:
             raise FMUError(str(exc)) from None
-        self._handle = _Handle(folder, ann)
+        self._handle = _Handle(folder, ann, self._version)
         self._finalizer = weakref.finalize(self, self._handle.release)
         try:
             self._instantiate(md, where)
@@ -264,28 +283,57 @@ class FMUComponent(Component):
         for v in self.variables:
             if v.causality == causality:
                 by_type.setdefault(v.type, []).append((v.name, [e.valueReference for e in self._scalars[v.name]]))
-        return [_Transfer(t, ports) for t, ports in sorted(by_type.items())]
+        return [_Transfer(t, ports, self._api[t][0]) for t, ports in sorted(by_type.items())]
 
     def _instantiate(self, md, where: str) -> None:
-        from fmpy.fmi2 import (FMU2Slave, calloc, fmi2CallbackAllocateMemoryTYPE, fmi2CallbackFreeMemoryTYPE,
-                               fmi2CallbackFunctions, fmi2CallbackLoggerTYPE, free)
-        from fmpy.logging import addLoggerProxy
+        from fmpy.fmi2 import FMU2Slave
+        from fmpy.fmi3 import FMU3Slave
 
         h = self._handle
         ident = md.coSimulation.modelIdentifier
         binary = h.folder / "binaries"
         cwd = os.getcwd()
         try:
-            h.fmu = FMU2Slave(guid=md.guid, unzipDirectory=str(h.folder), modelIdentifier=ident,
-                              instanceName=self.name)
+            if self._version == "2":
+                h.fmu = FMU2Slave(guid=md.guid, unzipDirectory=str(h.folder), modelIdentifier=ident,
+                                  instanceName=self.name)
+            else:
+                h.fmu = FMU3Slave(guid=md.instantiationToken, unzipDirectory=str(h.folder),
+                                  modelIdentifier=ident, instanceName=self.name)
         except Exception as exc:
             os.chdir(cwd)   # fmpy changes into the binaries folder and stays there when loading fails
             found = sorted(str(p.relative_to(h.folder)) for p in binary.rglob("*") if p.is_file()) \
                 if binary.is_dir() else []
             raise FMUError(f"{where}: its binary (model identifier {ident!r}) does not load on this platform: "
                            f"{exc} (binaries in the FMU: {', '.join(found) or 'none'})") from None
-
         log = h.log
+        _purge_cached(h.annotation)
+        try:
+            if self._version == "2":
+                self._instantiate2(log)
+            else:
+                def logger(env, status, category, message):
+                    log.append((int(status), (category or b"").decode("utf-8", "replace"),
+                                (message or b"").decode("utf-8", "replace")))
+
+                h.callbacks = logger
+                h.fmu.instantiate(loggingOn=False, logMessage=logger)
+        except Exception as exc:
+            raise FMUError(f"{where}: instantiation failed ({exc}){self._log_text()}") from None
+        h.instantiated = True
+        f = h.fmu._functions
+        self._c = h.fmu.component
+        self._set = {t: f[self._api[t][1]] for t in ("Real", "Integer", "Boolean")}
+        self._get = {t: f[self._api[t][2]] for t in ("Real", "Integer", "Boolean")}
+        self._do_step = f[f"fmi{self._version}DoStep"]
+        if self._version == "3":
+            self._flags = [ctypes.c_bool(), ctypes.c_bool(), ctypes.c_bool(), ctypes.c_double()]
+            self._flag_refs = [ctypes.byref(x) for x in self._flags]
+
+    def _instantiate2(self, log) -> None:
+        from fmpy.fmi2 import (calloc, fmi2CallbackAllocateMemoryTYPE, fmi2CallbackFreeMemoryTYPE,
+                               fmi2CallbackFunctions, fmi2CallbackLoggerTYPE, free)
+        from fmpy.logging import addLoggerProxy
 
         def logger(env, instance, status, category, message):
             log.append((int(status), (category or b"").decode("utf-8", "replace"),
@@ -296,25 +344,15 @@ class FMUComponent(Component):
         cb.allocateMemory = fmi2CallbackAllocateMemoryTYPE(calloc)
         cb.freeMemory = fmi2CallbackFreeMemoryTYPE(free)
         addLoggerProxy(ctypes.byref(cb))
-        h.callbacks = (cb, logger)
-        _purge_cached(h.annotation)
-        try:
-            h.fmu.instantiate(callbacks=cb, loggingOn=False)
-        except Exception as exc:
-            raise FMUError(f"{where}: fmi2Instantiate failed ({exc}){self._log_text()}") from None
-        h.instantiated = True
-        f = h.fmu._functions
-        self._c = h.fmu.component
-        self._set = {"Real": f["fmi2SetReal"], "Integer": f["fmi2SetInteger"], "Boolean": f["fmi2SetBoolean"]}
-        self._get = {"Real": f["fmi2GetReal"], "Integer": f["fmi2GetInteger"], "Boolean": f["fmi2GetBoolean"]}
-        self._do_step = f["fmi2DoStep"]
+        self._handle.callbacks = (cb, logger)     # kept alive as long as the instance
+        self._handle.fmu.instantiate(callbacks=cb, loggingOn=False)
 
     def _log_text(self) -> str:
         msgs = [m for _, _, m in self._handle.log if m.strip()]
         return (": " + " | ".join(msgs[-5:])) if msgs else ""
 
     def _check(self, status: int, what: str) -> None:
-        if status > _FMI2_OK_STATUS:
+        if status > _OK_STATUS:
             label = {2: "discard", 3: "error", 4: "fatal", 5: "pending"}.get(status, str(status))
             raise FMUError(f"{self._where}: {what} failed (status {label}){self._log_text()}")
 
@@ -334,15 +372,9 @@ class FMUComponent(Component):
         refs = [e.valueReference for e in self._scalars[name]]
         fmu = self._handle.fmu
         values = list(np.atleast_1d(coerced)) if v.type != "String" else [coerced]
+        convert = {"Real": float, "Integer": int, "Boolean": bool, "String": str}[v.type]
         try:
-            if v.type == "Real":
-                fmu.setReal(refs, [float(x) for x in values])
-            elif v.type == "Integer":
-                fmu.setInteger(refs, [int(x) for x in values])
-            elif v.type == "Boolean":
-                fmu.setBoolean(refs, [bool(x) for x in values])
-            else:
-                fmu.setString(refs, [str(x) for x in values])
+            getattr(fmu, self._api["setters"][v.type])(refs, [convert(x) for x in values])
         except Exception as exc:
             raise FMUError(f"{self._where}: setting parameter {name!r} failed ({exc}){self._log_text()}") from None
         self.p[name] = coerced
@@ -352,11 +384,13 @@ class FMUComponent(Component):
         for tr in self._in:
             for name, a, b in tr.ports:
                 tr.view[a:b] = self.u[name]
-            self._check(self._set[tr.typ](self._c, tr.vr, tr.n, tr.values), f"fmi2Set{tr.typ}")
+            args = (self._c, tr.vr, tr.n, tr.values) + ((tr.n,) if self._version == "3" else ())
+            self._check(self._set[tr.typ](*args), self._api[tr.typ][1])
 
     def _pull_outputs(self) -> None:
         for tr in self._out:
-            self._check(self._get[tr.typ](self._c, tr.vr, tr.n, tr.values), f"fmi2Get{tr.typ}")
+            args = (self._c, tr.vr, tr.n, tr.values) + ((tr.n,) if self._version == "3" else ())
+            self._check(self._get[tr.typ](*args), self._api[tr.typ][2])
             for name, a, b in tr.ports:
                 self.y[name] = tr.view[a:b].astype(float)
 
@@ -369,8 +403,11 @@ class FMUComponent(Component):
         self.time = float(t0)
         fmu = h.fmu
         try:
-            fmu.setupExperiment(startTime=self.time)
-            fmu.enterInitializationMode()
+            if self._version == "2":
+                fmu.setupExperiment(startTime=self.time)
+                fmu.enterInitializationMode()
+            else:
+                fmu.enterInitializationMode(startTime=self.time)
             self._push_inputs()
             fmu.exitInitializationMode()
         except FMUError:
@@ -382,7 +419,14 @@ class FMUComponent(Component):
 
     def do_step(self, t: float, h: float) -> None:
         self._push_inputs()
-        self._check(self._do_step(self._c, float(t), float(h), 1), f"fmi2DoStep(t = {t:.9g} s, h = {h:.3g} s)")
+        if self._version == "2":
+            status = self._do_step(self._c, float(t), float(h), 1)
+        else:
+            status = self._do_step(self._c, float(t), float(h), True, *self._flag_refs)
+            if status <= _OK_STATUS and (self._flags[1].value or self._flags[2].value):
+                raise FMUError(f"{self._where}: fmi3DoStep(t = {t:.9g} s) returned early or asked to terminate "
+                               f"(at t = {self._flags[3].value:.9g} s): not supported{self._log_text()}")
+        self._check(status, f"DoStep(t = {t:.9g} s, h = {h:.3g} s)")
         self.time = t + h
         self._pull_outputs()
 
@@ -403,19 +447,17 @@ class FMUComponent(Component):
 
     def get_state(self) -> Any:
         self._require_state()
-        from fmpy.fmi2 import fmi2FMUstate
-
-        state = fmi2FMUstate()
-        f = self._handle.fmu._functions["fmi2GetFMUstate"]
-        self._check(f(self._c, ctypes.byref(state)), "fmi2GetFMUstate")
+        state = ctypes.c_void_p()
+        name = self._api["state"][0]
+        self._check(self._handle.fmu._functions[name](self._c, ctypes.byref(state)), name)
         return (self.time, {k: v.copy() for k, v in self.u.items()}, {k: v.copy() for k, v in self.y.items()},
                 _FMUState(self, state))
 
     def set_state(self, snapshot: Any) -> None:
         self._require_state()
         t, u, y, handle = snapshot
-        f = self._handle.fmu._functions["fmi2SetFMUstate"]
-        self._check(f(self._c, handle.state), "fmi2SetFMUstate")
+        name = self._api["state"][1]
+        self._check(self._handle.fmu._functions[name](self._c, handle.state), name)
         self.time = t
         self.u = {k: v.copy() for k, v in u.items()}
         self.y = {k: v.copy() for k, v in y.items()}
