@@ -75,6 +75,11 @@ class Component:
     variables: tuple[Variable, ...] = ()
     preferred_step: float = 1e-4
     phases: frozenset[str] = frozenset({"TM"})
+    #: True for a component that takes part in thermal-only (TO) intervals only to update the outputs that depend
+    #: on its thermal inputs (the bearing's drag power follows the oil viscosity) while its mechanical state stays
+    #: frozen: the master treats it as mechanical (its inputs from frozen components are held at their last
+    #: value, and the automatic schedule watches the thermal outputs it receives). See :meth:`enter_phase`.
+    holds_state_in_TO: bool = False
     #: short description shown by ``rotorcosim`` and written to exported FMUs
     description: str = ""
 
@@ -163,6 +168,12 @@ class Component:
 
     def set_state(self, snapshot: Any) -> None:
         self.time, self.state, self.u, self.y = copy.deepcopy(snapshot)
+
+    def enter_phase(self, phase: str) -> None:
+        """Called by the master at the start of every interval with its phase (``"TM"`` or ``"TO"``), for
+        every component, stepped or frozen. Components that behave differently in thermal-only intervals
+        (``holds_state_in_TO``) override it."""
+        self.phase = phase
 
     # -- optional -----------------------------------------------------------------------------------
     def interface_jacobian(self) -> dict[tuple[str, str], np.ndarray] | None:

@@ -108,6 +108,8 @@ class Simulation:
         nsteps = max(1, round(duration / step))
         nsteps = int(math.ceil(nsteps / lcm) * lcm)
         links = self.engine.links
+        for comp in self.system.components.values():
+            comp.enter_phase(phase)
         if phase == "TO":
             for link in links:
                 s, d = link.con.src_component, link.con.dst_component
@@ -119,7 +121,7 @@ class Simulation:
                 s, d = link.con.src_component, link.con.dst_component
                 src_comp = self.system.components[s]
                 dst_comp = self.system.components[d]
-                if "TO" not in src_comp.phases and "TO" in dst_comp.phases and self.cycle:
+                if feeds_thermal(src_comp, dst_comp) and self.cycle:
                     n = int(math.ceil(self.hold_cycles * self.cycle / (mult.get(s, 1) * step) - 1e-9))
                     link.start_ring(n, src_comp.variable(link.sport).size)
                 else:
@@ -200,6 +202,16 @@ class Simulation:
             self.run_interval("TO", d_to, sch.thermal_step, _DriftTest(self, sch), reason="to_max")
 
 
+def _mechanical(comp) -> bool:
+    return "TO" not in comp.phases or comp.holds_state_in_TO
+
+
+def feeds_thermal(src, dst) -> bool:
+    """True for a connection from a mechanical component (frozen, or holding its state, in thermal-only
+    intervals) to a thermal one (stepped in them): the outputs held over a thermal-only interval."""
+    return _mechanical(src) and not _mechanical(dst)
+
+
 class _StopTest:
     every = 1
 
@@ -216,9 +228,9 @@ class _SteadyTest(_StopTest):
 
     def __init__(self, sim: Simulation, sch: AutoSchedule):
         self.sch = sch
-        self.refs = list(sch.tracked) or sorted({l.con.src for l in sim.engine.links if (
-            "TO" not in sim.system.components[l.con.src_component].phases
-            and "TO" in sim.system.components[l.con.dst_component].phases)})
+        comps = sim.system.components
+        self.refs = list(sch.tracked) or sorted({l.con.src for l in sim.engine.links if feeds_thermal(
+            comps[l.con.src_component], comps[l.con.dst_component])})
         for r in self.refs:
             sim.system._port(r, "output")
         self.every = max(1, int(round(sim.cycle / sch.step)))
@@ -256,9 +268,9 @@ class _DriftTest(_StopTest):
 
     def __init__(self, sim: Simulation, sch: AutoSchedule):
         self.sch = sch
+        comps = sim.system.components
         self.refs = sorted({l.con.src for l in sim.engine.links
-                            if "TO" in sim.system.components[l.con.src_component].phases
-                            and "TO" not in sim.system.components[l.con.dst_component].phases})
+                            if feeds_thermal(comps[l.con.dst_component], comps[l.con.src_component])})
         self.start = {r: np.array(sim.value(r), dtype=float) for r in self.refs}
         self.floors = {r: DRIFT_FLOORS.get(sim.system._port(r, "output").unit, 0.0) for r in self.refs}
         self.t_begin = sim.t

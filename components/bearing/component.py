@@ -44,7 +44,7 @@ import math
 import numpy as np
 
 from ..contract import Component, ContractError, Variable
-from .drag import static_load_rating
+from .drag import palmgren_torque, static_load_rating
 from .geometry import DATA, BEARINGS, build_geometry
 from .kernel import step_outputs
 from .oil import sae30_kinematic_viscosity
@@ -75,6 +75,9 @@ class BallBearing(Component):
                  description="Hertz contact damping alpha of eq. (9) (paper: 0.08-0.32 s/m)"),
         Variable("ball_damping", "parameter", unit="N.s/m", start=_DESIGN["ball_damping"],
                  description="viscous damping of each ball against the mean race motion (oil/cage; not in the paper)"),
+        Variable("drag_in_thermal_only", "parameter", start=True, type="Boolean",
+                 description="in thermal-only intervals, update the drag power with the oil viscosity (load term "
+                             "held at its mean over the last cycles); false: the master holds P_drag (the paper)"),
         Variable("m_journal", "parameter", unit="kg", start=0.0,
                  description="outer race + journal mass of eq. (5); 0 (default): solid steel rings from Table 3"),
         Variable("preload", "parameter", unit="N", start=BEARINGS[0]["preload_N"],
@@ -166,6 +169,13 @@ class BallBearing(Component):
             "eps_seated": np.zeros(3),     # the growths the balls were last seated for
         }
         self.substeps_used = 0
+        self.phases = frozenset({"TM", "TO"}) if p["drag_in_thermal_only"] else frozenset({"TM"})
+        self.holds_state_in_TO = bool(p["drag_in_thermal_only"])
+        self.phase = "TM"
+        # the averaging time of the load part of the drag power carried into thermal-only intervals: the master's
+        # hold window (5 rotor cycles, paper section 3.2)
+        self._tau_load = 5.0 * 2.0 * math.pi / omega if omega > 0.0 else 0.0
+        self.state["P_load"] = np.full(1, np.nan)
         # outputs of the rest state: one zero-length evaluation
         self._advance(0.0, self.time, update_state=False)
 
@@ -238,8 +248,36 @@ class BallBearing(Component):
                                 f"diameter ({self._geo[15]:.3g} m); not a thermal growth")
         raise RuntimeError(f"{self.name}: the bearing state became non-finite at t = {t:.9g} s")
 
+    def _viscous_power(self, T):
+        """omega M_v: the load-independent (viscous) part of the Palmgren drag power at oil temperature T."""
+        d = self._drag
+        nu = self._nu(T)
+        return d[1] * palmgren_torque(0.0, 0.0, nu, d[1], d[2], d[3], d[4], d[5], d[6], d[7], d[8])
+
     def do_step(self, t, h):
         if not (h > 0.0 and math.isfinite(h)):
             raise ContractError(f"{self.name}: step size must be a finite number > 0, got {h!r}")
+        if self.phase == "TO" and self.holds_state_in_TO:
+            self._thermal_only_step(t, h)
+            return
         self._advance(h, t)
+        self.time = t + h
+        if self.holds_state_in_TO:
+            # mean of the load part of the drag power over the last rotor cycles, for thermal-only intervals
+            load = float(self.y["P_drag"][0]) - self._viscous_power(float(self.u["T_oil"][0]))
+            P = self.state["P_load"]
+            P[0] = load if not math.isfinite(P[0]) else P[0] + (load - P[0]) * (min(1.0, h / self._tau_load) if self._tau_load > 0.0 else 1.0)
+
+    def _thermal_only_step(self, t, h):
+        """Thermal-only interval: the balls, races and journal stay frozen; the drag power follows the oil
+        temperature input (the viscous term of Palmgren's torque, the only one that depends on it) on top of
+        the load term's mean over the last cycles of the previous thermo-mechanical interval. Holding the
+        whole drag power instead (the paper) keeps the cold-oil drag of the first interval, about three times
+        the warm value, for the whole of the next thermal-only interval."""
+        T = float(self.u["T_oil"][0])
+        if not math.isfinite(T):
+            raise ContractError(f"{self.name}: non-finite input T_oil at t = {t:.9g} s")
+        load = self.state["P_load"][0]
+        load = 0.0 if not math.isfinite(load) else load
+        self.y["P_drag"] = np.array([load + self._viscous_power(T)])
         self.time = t + h
