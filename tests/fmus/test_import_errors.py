@@ -175,3 +175,9 @@ def test_state_rollback_and_clean_up(mass_fmu, private_tmp):
     c.terminate()
     assert not folder.exists()
     assert not any(str(p).startswith(str(folder)) for p in sys.path)
+
+
+def test_unreadable_model_description(mass_fmu, tmp_path):
+    bad = rewrite(mass_fmu, tmp_path / "garbled.fmu", {"modelDescription.xml": b"<fmiModelDescription fmiVer"})
+    with pytest.raises(FMUError, match="modelDescription.xml cannot be read"):
+        load_fmu_component(bad, "c")

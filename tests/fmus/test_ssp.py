@@ -45,6 +45,11 @@ def test_ssd_is_valid_ssp_1_0(toy_ssp):
     assert cons == {("osc", "P", "node", "P"), ("node", "T", "osc", "T")}
 
 
+def test_ssp_archive_is_deterministic(toy_ssp, tmp_path):
+    again = write_ssp(load_scenario(TOY), tmp_path / "again.ssp")
+    assert again.read_bytes() == toy_ssp.read_bytes()
+
+
 def test_read_ssp_gives_back_the_scenario(toy_ssp):
     native = load_scenario(TOY)
     sc = read_ssp(toy_ssp)
