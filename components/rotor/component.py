@@ -13,8 +13,11 @@ Conventions:
 * unbalance: F_u(t) = F_residual (cos Wt, sin Wt) from t = 0 plus, from ``t_blade_loss`` on, a step onset of
   F_unbalance (cos(Wt + phase), sin(Wt + phase)) (W = omega_pt); the residual default 80 N is ISO 21940-11
   balance grade G 2.5 (gas turbines: e W <= 2.5 mm/s) for the 19.1 kg power turbine of the model at 16 000 rev/min
-  (F = m G W = 79.8 N), all put at the outboard end (conservative: the whole residual at the blade-loss node); the output ``F_u`` is the total applied rotating force vector (residual + blade loss): it
-  cannot be called F_unbalance like the amplitude parameter, since variable names are unique (FMI, contract);
+  (F = m G W = 79.8 N), all put at the outboard end (conservative: the whole residual at the blade-loss node);
+* the output ``F_u`` is the total applied rotating force vector (residual + blade loss); it cannot be called
+  F_unbalance like the amplitude parameter, since variable names are unique (FMI, contract);
+* the Newmark step map is formed once per step size (sizes equal to 12 significant digits share it, so round-off
+  in the master's interval arithmetic does not rebuild it) and kept for the life of the instance;
 * the structure starts at rest at t0 (no gravity, the paper has none); both rotors spin in the +z sense
   (co-rotating; the paper does not say), which fixes the sign of the gyroscopic terms.
 """
@@ -182,9 +185,16 @@ class Rotor(Component):
     def _operators(self, h):
         ops = self._ops.get(h)
         if ops is None:
-            red = self._red
-            T, B = step_operator(red["M"], red["C"], red["K"], h, self.p["newmark_beta"], self.p["newmark_gamma"])
-            ops = pack(T, B @ red["B_in"])
+            key = float(f"{h:.12g}")
+            ops = self._ops.get(key)
+            if ops is None:
+                red = self._red
+                T, B = step_operator(red["M"], red["C"], red["K"], key, self.p["newmark_beta"],
+                                     self.p["newmark_gamma"])
+                ops = pack(T, B @ red["B_in"])
+                if len(self._ops) > 32:        # many distinct steps (a variable-step master): do not grow forever
+                    self._ops.clear()
+                self._ops[key] = ops
             self._ops[h] = ops
         return ops
 
