@@ -31,6 +31,7 @@ def run(args) -> int:
     for name, path in written.items():
         problems = validate_fmu(str(path))
         if problems:
-            raise ValueError(f"{path} does not pass fmpy's validation: " + "; ".join(problems))
+            path.unlink()   # an FMU other tools may reject is not left behind as if it were good
+            raise ValueError(f"{path} does not pass fmpy's validation (removed): " + "; ".join(problems))
         print(f"{name}: {path}")
     return 0

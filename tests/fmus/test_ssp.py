@@ -135,7 +135,7 @@ def _ecos_missing() -> str | None:
         import ecospy  # noqa: F401
     except ImportError as exc:
         return f"ecospy is not installed (pip install ecospy): {exc}"
-    except OSError as exc:
+    except Exception as exc:  # ecospy loads its native library at import: OSError when libtbb12 is missing
         return f"ecospy's library does not load (Debian's libtbb12 missing? apt-get install libtbb12): {exc}"
     return None
 
