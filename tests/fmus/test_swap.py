@@ -19,7 +19,6 @@ from rotorcosim.master.scenario import load_scenario, parse
 TOL = 1e-9
 
 
-@registry.register("testing_fmus.journal")
 class Journal(Component):
     """A 2-D journal mass m under a rotating force F_u (cos wt, sin wt) and the damper's force (test only)."""
 
@@ -72,7 +71,13 @@ def damper_scenario(damper_fmu=None):
 STAGGERED_DAMPER = [("TM", 0.01, 1e-5), ("TO", 0.2, 0.02), ("TM", 0.005, 1e-5)]
 
 
-def test_damper_swapped_for_its_fmu_gives_the_same_run(damper_fmu):
+@pytest.fixture
+def journal(monkeypatch):
+    """The test journal registered for this test only (other tests iterate over the registry)."""
+    monkeypatch.setitem(registry._extra, "testing_fmus.journal", Journal)
+
+
+def test_damper_swapped_for_its_fmu_gives_the_same_run(damper_fmu, journal):
     native = run_intervals(damper_scenario(), STAGGERED_DAMPER)
     fmu = run_intervals(damper_scenario(damper_fmu), STAGGERED_DAMPER)
     refs = [r for r in native.rows[0] if not r.startswith("journal.")] + ["journal.X", "journal.V"]
