@@ -106,6 +106,11 @@ class Simulation:
         mult = self._multiples(active, step)
         lcm = math.lcm(*mult.values())
         nsteps = max(1, round(duration / step))
+        if lcm == 1 and abs(nsteps * step - duration) > 1e-9 * duration:
+            # single rate (thermal-only intervals): keep the interval's duration exact with the nearest step
+            # not larger than the one asked for, rather than a duration rounded to whole steps
+            nsteps = int(math.ceil(duration / step - 1e-9))
+            step = duration / nsteps
         nsteps = int(math.ceil(nsteps / lcm) * lcm)
         links = self.engine.links
         for comp in self.system.components.values():

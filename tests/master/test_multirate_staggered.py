@@ -118,3 +118,15 @@ def test_auto_schedule_switches_and_reports():
     # contiguous timeline
     for a, b in zip(rep.timeline, rep.timeline[1:]):
         assert abs(a.t_end - b.t_start) < 1e-12
+
+
+def test_thermal_only_interval_keeps_its_duration():
+    """A thermal-only interval whose duration is not a whole number of thermal steps (23.85 s at 0.1 s) ends at
+    exactly its duration, with the nearest smaller step (239 steps of 0.0998 s), and the report says so."""
+    s = toy()
+    sim = Simulation(s, order=["osc", "node"], speed_rpm=SPEED_RPM)
+    sim.run_interval("TM", 0.1, 1e-3)
+    used = sim.run_interval("TO", 23.85, 0.1)
+    assert used.steps == 239
+    assert used.t_end == pytest.approx(0.1 + 23.85, abs=1e-9)
+    assert used.step == pytest.approx(23.85 / 239, rel=1e-12) and used.step <= 0.1
