@@ -1,0 +1,80 @@
+"""The whole blade-loss system (rotor, bearings, dampers, rub rings, thermal networks) through the master, on a
+short staggered timeline: it runs, its results are complete and finite, it is deterministic, and the figures and
+the time series are written. The physics of each component is verified in tests/components; the long runs are in
+bench/."""
+import json
+import math
+
+import h5py
+import numpy as np
+import pytest
+
+from rotorcosim.master.commands.run import apply_unbalance, execute, resolve
+from rotorcosim.master.results_blade_loss import RESULT_KEYS
+from rotorcosim.master.schedule import Interval, Timeline
+
+SHORT = Timeline([Interval("TM", 0.03, 1e-5), Interval("TO", 2.0, 0.1), Interval("TM", 0.02, 1e-5)])
+
+
+def _run(tmp_path, name, unbalance=2850.0, figures=False, **params):
+    sc = resolve("blade_loss")
+    apply_unbalance(sc, unbalance)
+    for ref, value in params.items():
+        comp, _, p = ref.partition("__")
+        sc.components[comp].parameters[p] = value
+    return execute(sc, tmp_path / name, figures=figures, schedule=SHORT)
+
+
+@pytest.fixture(scope="module")
+def first(tmp_path_factory):
+    tmp = tmp_path_factory.mktemp("blade_loss")
+    return tmp, _run(tmp, "a", figures=True)
+
+
+def test_results_complete_and_finite(first):
+    tmp, s = first
+    assert s["error"] is None
+    assert s["t_end_s"] == pytest.approx(2.05, abs=1e-9)
+    assert [u["phase"] for u in s["timeline"]] == ["TM", "TO", "TM"]
+    for b in ("0", "5"):
+        r = s["bearings"][b]
+        for key in RESULT_KEYS:
+            assert isinstance(r[key], float) and math.isfinite(r[key]), (b, key)
+        # temperatures start at 30 C and the bearings only heat
+        for key in ("T_inner_race_C", "T_ball_C", "T_outer_race_C", "T_sfd_oil_C"):
+            assert r[key] > 30.0
+        assert r["drag_power_W"] > 0 and r["sfd_power_W"] >= 0
+    # the blade loss is at the bearing #0 end: it whirls more than #5
+    assert s["bearings"]["0"]["whirl_amplitude_mm"] > s["bearings"]["5"]["whirl_amplitude_mm"]
+    saved = json.loads((tmp / "a" / "summary.json").read_text())
+    assert saved["bearings"] == s["bearings"]
+
+
+def test_time_series_and_figures(first):
+    tmp, s = first
+    with h5py.File(tmp / "a" / "timeseries.h5") as f:
+        assert f.attrs["complete"]
+        t = f["time"][:]
+        assert t[-1] == pytest.approx(2.05, abs=1e-6)
+        F = f["rotor.F_u"][:]
+        # the blade-loss force: the residual unbalance before t = 0.01 s, F_u (plus residual) after
+        after = np.hypot(F[:, 0], F[:, 1])[(t > 0.011) & (f["phase"][:] == 0)]
+        assert np.all(np.abs(after - 2850.0) < 200.0)
+    for name in s["figures"]:
+        assert (tmp / "a" / name).stat().st_size > 10_000
+
+
+def test_deterministic(first, tmp_path):
+    """The same scenario gives the same numbers, run after run."""
+    _, s = first
+    again = _run(tmp_path, "b")
+    assert again["bearings"] == s["bearings"]
+
+
+def test_paper_drag_hold_runs(tmp_path):
+    """drag_in_thermal_only = false (the paper's scheme: the whole drag power held over thermal-only intervals)
+    holds a larger, cold-oil drag power over the thermal-only interval: the bearings end hotter."""
+    held = _run(tmp_path, "held", bearing0__drag_in_thermal_only=False, bearing5__drag_in_thermal_only=False)
+    upd = _run(tmp_path, "upd")
+    for b in ("0", "5"):
+        assert held["bearings"][b]["T_ball_C"] > upd["bearings"][b]["T_ball_C"]
