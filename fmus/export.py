@@ -29,6 +29,9 @@ from rotorcosim.components.contract import Component, ContractError
 from . import bundle, model_description
 
 TEMPLATE = Path(__file__).with_name("slave_template.py")
+#: the schedule phase in, and the phases a component takes part in out (slave_template.py explains)
+PHASE_INPUT = "_rcs_phase"
+PHASES_OUTPUT = "_rcs_phases"
 #: fixed timestamp of every zip entry (the zip format's epoch): deterministic archives
 ZIP_DATE = (1980, 1, 1, 0, 0, 0)
 
@@ -135,6 +138,8 @@ def export_component(implementation: str, dest: str | Path, *, instance_name: st
         "variables": variables,
         "preferred_step": float(comp.preferred_step),
         "phases": sorted(comp.phases),
+        "phase_input": PHASE_INPUT,
+        "phases_output": PHASES_OUTPUT,
     }
     code_hash = bundle.digest(files)
     content_hash = hashlib.sha256(json.dumps(config, sort_keys=True).encode() + code_hash.encode()
@@ -162,8 +167,11 @@ def export_component(implementation: str, dest: str | Path, *, instance_name: st
                 if info.is_dir() or "__pycache__" in info.filename.split("/"):
                     continue
                 entries[info.filename] = zf.read(info)
+    phase_vars = [{"name": n, "causality": c, "size": 1, "unit": "1", "description": "", "start": 0,
+                   "type": "Integer"} for n, c in ((PHASE_INPUT, "input"), (PHASES_OUTPUT, "output"))]
     entries["modelDescription.xml"] = model_description.finish(
-        entries["modelDescription.xml"], variables, implementation=implementation, phases=config["phases"],
+        entries["modelDescription.xml"], variables + phase_vars, implementation=implementation,
+        phases=config["phases"], phase_input=PHASE_INPUT, phases_output=PHASES_OUTPUT,
         preferred_step=config["preferred_step"], package=package, slave_module=slave_module,
         content_hash=content_hash)
     return write_deterministic_zip(entries, dest)

@@ -115,9 +115,12 @@ def _zip_of(entries: Mapping[str, bytes]) -> bytes:
     return buf.getvalue()
 
 
-def ports_of(md, where: str) -> tuple[list[Variable], dict[str, list]]:
-    """Contract variables regrouped from the FMU's scalars, and ``{port: [fmpy variables by index]}``."""
-    by_name = {v.name: v for v in md.modelVariables if v.causality in ("parameter", "input", "output")}
+def ports_of(md, where: str, hidden=frozenset()) -> tuple[list[Variable], dict[str, list]]:
+    """Contract variables regrouped from the FMU's scalars, and ``{port: [fmpy variables by index]}``.
+
+    ``hidden``: variables that are not ports (our FMUs' schedule phase variables)."""
+    by_name = {v.name: v for v in md.modelVariables
+               if v.causality in ("parameter", "input", "output") and v.name not in hidden}
     try:
         groups = regroup(by_name, where)
     except FlattenError as exc:
@@ -245,10 +248,15 @@ class FMUComponent(Component):
         xml, md = describe(self.path)
         self.model_description = md
         ann = mdx.read_annotation(xml)
-        variables, self._scalars = ports_of(md, where)
+        variables, self._scalars = ports_of(md, where, ann.hidden)
+        refs = {v.name: v.valueReference for v in md.modelVariables}
+        self._phase_in = refs.get(ann.phase_input) if ann.phase_input else None
+        self._phases_out = refs.get(ann.phases_output) if ann.phases_output else None
         self.variables = tuple(variables)
         self._by_name = {v.name: v for v in self.variables}
         self.phases = ann.phases or frozenset({"TM"})
+        self.holds_state_in_TO = False
+        self.phase = None
         step = ann.preferred_step or (md.defaultExperiment.stepSize if md.defaultExperiment else None)
         self.preferred_step = float(step) if step else Component.preferred_step
         self.description = md.description or ""
@@ -416,6 +424,25 @@ class FMUComponent(Component):
             raise FMUError(f"{self._where}: initialisation failed ({exc}){self._log_text()}") from None
         h.initialised = True
         self._pull_outputs()
+        if self._phases_out is not None:
+            # the phases the component decided on in its set-up (they may follow its parameters)
+            bits = self._get_integer(self._phases_out)
+            self.phases = frozenset(p for p, b in (("TM", 1), ("TO", 2)) if bits & b)
+            self.holds_state_in_TO = bool(bits & 4)
+
+    def _get_integer(self, vr: int) -> int:
+        vrs, val = (ctypes.c_uint * 1)(vr), (self._api["Integer"][0] * 1)()
+        args = (self._c, vrs, 1, val) + ((1,) if self._version == "3" else ())
+        self._check(self._get["Integer"](*args), self._api["Integer"][2])
+        return int(val[0])
+
+    def enter_phase(self, phase: str) -> None:
+        """Passed to one of our FMUs through its phase input (the component's own ``enter_phase``)."""
+        self.phase = phase
+        if self._phase_in is not None and self._handle.initialised and self._handle.fmu is not None:
+            vrs, val = (ctypes.c_uint * 1)(self._phase_in), (self._api["Integer"][0] * 1)(int(phase == "TO"))
+            args = (self._c, vrs, 1, val) + ((1,) if self._version == "3" else ())
+            self._check(self._set["Integer"](*args), self._api["Integer"][1])
 
     def do_step(self, t: float, h: float) -> None:
         self._push_inputs()

@@ -9,8 +9,9 @@ InitialUnknowns (fmpy's validation rejects it: outputs with ``initial="calculate
 * descriptions on every variable (pythonfmu drops empty ones);
 * ``<DefaultExperiment stepSize>`` = the component's preferred communication step;
 * ``<VendorAnnotations><Tool name="rotorcosim"><Component .../>``: the implementation name, the phases
-  (``"TM"``, ``"TO"``, comma-separated), the preferred step, and the private code package and slave module of
-  the bundle (the importer uses these to tidy ``sys.modules`` when the FMU is freed);
+  (``"TM"``, ``"TO"``, comma-separated; as declared before set-up), the preferred step, the private code
+  package and slave module of the bundle (the importer uses these to tidy ``sys.modules`` when the FMU is
+  freed), and the names of the phase input / phases output variables (slave_template.py);
 * ``<ModelStructure>``: Outputs and InitialUnknowns, both listing every output;
 * a GUID that is a hash of the FMU's content (same content, same GUID), no generation date.
 """
@@ -44,7 +45,8 @@ def _unit_element(name: str) -> ET.Element:
 
 
 def finish(xml: bytes, variables: list[dict], *, implementation: str, phases: list[str], preferred_step: float,
-           package: str, slave_module: str, content_hash: str) -> bytes:
+           package: str, slave_module: str, content_hash: str, phase_input: str = "",
+           phases_output: str = "") -> bytes:
     """The finished modelDescription.xml (bytes) for pythonfmu's ``xml`` and our ``variables`` (config dicts)."""
     root = ET.fromstring(xml)
     by_name = {}
@@ -60,6 +62,8 @@ def finish(xml: bytes, variables: list[dict], *, implementation: str, phases: li
         v = by_name[sv.get("name")]
         if v["description"]:
             sv.set("description", v["description"])
+        if sv.get("causality") == "input" and sv[0].tag != "Real":
+            sv.set("variability", "discrete")
         typ = sv[0]
         if typ.tag == "Real" and not is_dimensionless(v["unit"]):
             # attribute order: unit first, then pythonfmu's start (cosmetic, but keeps files diff-able)
@@ -85,7 +89,8 @@ def finish(xml: bytes, variables: list[dict], *, implementation: str, phases: li
     tool = ET.SubElement(va, "Tool", {"name": TOOL})
     ET.SubElement(tool, "Component", {"implementation": implementation, "phases": ",".join(sorted(phases)),
                                       "preferredStep": _fmt(preferred_step), "package": package,
-                                      "slaveModule": slave_module})
+                                      "slaveModule": slave_module, "phaseInput": phase_input,
+                                      "phasesOutput": phases_output})
     new["VendorAnnotations"] = va
     ms = ET.Element("ModelStructure")
     if outputs:
@@ -118,6 +123,13 @@ class Annotation:
     preferred_step: float | None = None
     package: str | None = None
     slave_module: str | None = None
+    phase_input: str | None = None
+    phases_output: str | None = None
+
+    @property
+    def hidden(self) -> set[str]:
+        """FMU variables that carry the schedule, not component ports."""
+        return {n for n in (self.phase_input, self.phases_output) if n}
 
 
 def read_annotation(xml: bytes) -> Annotation:
@@ -133,5 +145,6 @@ def read_annotation(xml: bytes) -> Annotation:
         step = comp.get("preferredStep")
         return Annotation(comp.get("implementation"),
                           frozenset(p for p in phases.split(",") if p) if phases else None,
-                          float(step) if step else None, comp.get("package"), comp.get("slaveModule"))
+                          float(step) if step else None, comp.get("package"), comp.get("slaveModule"),
+                          comp.get("phaseInput") or None, comp.get("phasesOutput") or None)
     return Annotation()

@@ -16,7 +16,12 @@ Mapping of the contract onto FMI 2.0:
   from other parameters (the damper's Table 3 geometry) behaves exactly as it does natively;
 * inputs are held over ``do_step`` and pushed with ``set_inputs``; outputs are read from ``component.y``;
 * ``get/set FMU state`` snapshots the component's own ``get_state()`` plus the slave's copies of the
-  inputs/outputs (the object stays in memory: no serialisation, ``canSerializeFMUstate`` is false).
+  inputs/outputs (the object stays in memory: no serialisation, ``canSerializeFMUstate`` is false);
+* the staggered schedule's phase crosses as two extra Integer variables named in the JSON (and in the
+  vendor annotation): an input (0 = thermo-mechanical, 1 = thermal-only) whose every setting calls the
+  component's ``enter_phase``, and an output, the phases the component takes part in after its set-up
+  (bit 1: TM, bit 2: TO, bit 4: ``holds_state_in_TO``), since a component may decide them from its
+  parameters. Other tools leave the input at 0: the component then always runs thermo-mechanically.
 """
 import copy
 import importlib
@@ -70,6 +75,26 @@ class RotorcosimSlave(Fmi2Slave):
                 self.register_variable(var, nested=False)
                 if kind == "Real":
                     self._real[var.value_reference] = (store, name, i)
+        self._phase = 0
+        self.register_variable(Integer(cfg["phase_input"], causality=Fmi2Causality.input,
+                                       variability=Fmi2Variability.discrete, description=(
+                                           "rotorcosim schedule phase: 0 thermo-mechanical, 1 thermal-only"),
+                                       getter=lambda: self._phase, setter=self._enter_phase), nested=False)
+        self.register_variable(Integer(cfg["phases_output"], causality=Fmi2Causality.output,
+                                       variability=Fmi2Variability.discrete, description=(
+                                           "phases taken part in: 1 TM + 2 TO + 4 holds its state in TO"),
+                                       getter=self._phase_bits), nested=False)
+
+    def _enter_phase(self, value):
+        self._phase = int(value)
+        if self._component is not None:
+            self._component.enter_phase("TO" if self._phase else "TM")
+
+    def _phase_bits(self):
+        c = self._component
+        phases = c.phases if c is not None else self._cfg["phases"]
+        holds = c.holds_state_in_TO if c is not None else False
+        return ("TM" in phases) * 1 + ("TO" in phases) * 2 + bool(holds) * 4
 
     def _make(self, v, scalar, store, name, i):
         # the getter/setter look the store up by attribute name each time: set_fmu_state replaces the dicts

@@ -33,7 +33,7 @@ from rotorcosim.master.scenario import ComponentSpec, ConnectionSpec, Scenario, 
 from . import export
 from .flatten import scalar_names
 from .importer import FMUError, describe, ports_of
-from .model_description import _unit_element
+from .model_description import _unit_element, read_annotation
 from .safezip import ArchiveError, open_zip, safe_extract
 from .units import is_dimensionless
 
@@ -93,8 +93,8 @@ def system_description(sc: Scenario, fmus: dict[str, Path]) -> bytes:
     units = set()
     ports = {}
     for name, path in fmus.items():
-        _, md = describe(path)
-        variables, _ = ports_of(md, str(path))
+        xml, md = describe(path)
+        variables, _ = ports_of(md, str(path), read_annotation(xml).hidden)
         ports[name] = {v.name: v for v in variables}
         comp = ET.SubElement(elements, _q("ssd", "Component"),
                              {"name": name, "type": FMU_TYPE, "source": f"resources/{name}.fmu"})
@@ -274,8 +274,8 @@ def read_ssp(path: str | Path) -> Scenario:
         if folder.resolve() not in fmu.parents or not fmu.is_file():
             raise SSPError(f"{w}: source {source!r} is not an FMU inside the archive")
         try:
-            _, md = describe(fmu)
-            variables, _ = ports_of(md, f"{w} ({source})")
+            xml, md = describe(fmu)
+            variables, _ = ports_of(md, f"{w} ({source})", read_annotation(xml).hidden)
         except FMUError as exc:
             raise SSPError(str(exc)) from None
         if md.defaultExperiment is not None and md.defaultExperiment.stepSize:

@@ -120,3 +120,37 @@ def test_parameters_set_through_fmi_act_as_natively(damper_fmu):
         np.testing.assert_array_equal(fmu.y["F_film"], native.y["F_film"])
     finally:
         fmu.terminate()
+
+
+def bearing_scenario(bearing_fmu=None):
+    bearing = {"fmu": str(bearing_fmu)} if bearing_fmu else {"implementation": "bearing.hertz",
+                                                             "parameters": {"bearing": 5}}
+    return parse({
+        "components": {
+            "bearing5": bearing,
+            "node": {"implementation": "testing.thermal_node", "parameters": {"C": 100.0, "R": 0.05}},
+        },
+        "connections": [{"from": "bearing5.P_drag", "to": "node.P"}, {"from": "node.T", "to": "bearing5.T_oil"}],
+        "inputs": {"bearing5.X_inner": [2e-6, -1e-6, 0.0], "bearing5.V_inner": [0.0, 0.0, 0.0],
+                   "bearing5.F_journal": [0.0, 0.0], "bearing5.K_journal": [0.0] * 4,
+                   "bearing5.C_journal": [0.0] * 4, "bearing5.eps": [0.0, 0.0, 0.0]},
+        "algorithm": {"kind": "gauss-seidel", "order": ["bearing5", "node"]},
+        "schedule": {"kind": "monolithic", "duration": 0.002, "step": 1e-5, "speed_rpm": 16000.0},
+    })
+
+
+def test_bearing_swapped_for_its_fmu_follows_the_phases(fmu_dir):
+    """The bearing decides its phases in its set-up and keeps its drag following the oil temperature in
+    thermal-only intervals (``enter_phase``): both must cross the FMU boundary."""
+    from rotorcosim.fmus.export import export_component
+
+    pytest.importorskip("rotorcosim.components.bearing.component")
+    fmu_path = export_component("bearing.hertz", fmu_dir / "bearing5.fmu", instance_name="bearing5",
+                                parameters={"bearing": 5})
+    intervals = [("TM", 0.002, 1e-5), ("TO", 0.5, 0.05), ("TM", 0.001, 1e-5)]
+    native = run_intervals(bearing_scenario(), intervals)
+    fmu = run_intervals(bearing_scenario(fmu_path), intervals)
+    # the thermal-only steps (200 TM steps, then 10 TO steps) change the drag with the warming oil
+    drag_to = native.series("bearing5.P_drag")[200:210, 0]
+    assert np.ptp(drag_to) > 0.0
+    assert max_rel_diff(native, fmu, list(native.rows[0])) < TOL
