@@ -15,6 +15,9 @@ Modules:
 
 What an exported FMU carries besides standard FMI: ``<DefaultExperiment stepSize>`` is the component's preferred
 communication step, and ``<VendorAnnotations><Tool name="rotorcosim"><Component implementation=... phases="TM"
-or "TM,TO" preferredStep=... package=... slaveModule=.../>`` tells our importer the phases it takes part in (other
-FMUs default to ``{"TM"}``: mechanical, frozen in thermal-only intervals).
+or "TM,TO" preferredStep=... package=... slaveModule=... phaseInput="_rcs_phase" phasesOutput="_rcs_phases"/>``
+tells our importer the phases it takes part in and names two Integer variables that are not ports: the schedule
+phase in (0 TM, 1 TO: the component's ``enter_phase``) and, after set-up, the phases the component chose (bits
+1 TM, 2 TO, 4 ``holds_state_in_TO``). Other FMUs default to ``{"TM"}`` (mechanical: frozen in thermal-only
+intervals); other tools leave the phase input at 0 (always thermo-mechanical).
 """
