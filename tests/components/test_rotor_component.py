@@ -114,9 +114,9 @@ def test_state_rollback_reproduces_the_run():
 
 
 def test_reduced_model_is_cached_per_process():
-    a = reduced_model("", 20, W_PT, 15000 * 2 * math.pi / 60)
-    b = reduced_model("", 20, W_PT, 15000 * 2 * math.pi / 60)
-    assert a is b and a["n"] == 36
+    a = reduced_model("", 30, W_PT, 15000 * 2 * math.pi / 60)
+    b = reduced_model("", 30, W_PT, 15000 * 2 * math.pi / 60)
+    assert a is b and a["n"] == 46
 
 
 @pytest.mark.parametrize("params,message", [

@@ -18,10 +18,10 @@ def test_mta_basis_is_mass_orthonormal_and_static_complete(full):
     K^-1 M Phi = Phi w^-2), K~ is diagonal, and a static load at any port DOF is reproduced exactly by the reduced
     model (the span contains K^-1 F_o): the property that makes MTA better than modal truncation."""
     load_dofs = np.concatenate([full.ports[g] for g in LOAD_GROUPS])
-    phi, n_aug = mta_basis(full.K, full.M, 20, load_dofs)
-    assert n_aug == 16 and phi.shape[1] == 36
+    phi, n_aug = mta_basis(full.K, full.M, 30, load_dofs)
+    assert n_aug == 16 and phi.shape[1] == 46
     Mr, Kr = project(phi, full.M, full.K)
-    np.testing.assert_allclose(Mr, np.eye(36), atol=1e-9)
+    np.testing.assert_allclose(Mr, np.eye(46), atol=1e-9)
     off = Kr - np.diag(np.diag(Kr))
     assert np.max(np.abs(off)) < 1e-8 * np.max(np.abs(Kr))
     F = unit_loads(full.n, load_dofs)
@@ -33,7 +33,7 @@ def test_mta_basis_is_mass_orthonormal_and_static_complete(full):
 def test_static_blade_loss_deflection_on_linear_supports_mta_exact_modal_not(full):
     """Static deflection at bearings #0/#5 under the blade-loss force with bearings #0/#5 as linear springs:
     exact solution (K + Ks)^-1 f of the full model. MTA is exact (the support forces act at port DOFs, inside its
-    span); plain modal truncation of the same size (36 modes) is not."""
+    span); plain modal truncation of the same size (46 modes) is not."""
     M, C, K = ver.linear_system(full)
     f = np.zeros(full.n)
     f[full.ports["unbalance"][0]] = 2850.0
@@ -41,7 +41,7 @@ def test_static_blade_loss_deflection_on_linear_supports_mta_exact_modal_not(ful
     exact = np.linalg.solve(K, f)[rows]
     out = {}
     for kind in ("mta", "modal"):
-        phi = ver.basis(full, kind, 20)
+        phi = ver.basis(full, kind, 30)
         Kr = phi.T @ K @ phi
         out[kind] = phi[rows] @ np.linalg.solve(Kr, phi.T @ f)
     err = {k: np.max(np.abs(v - exact)) / np.max(np.abs(exact)) for k, v in out.items()}
@@ -51,21 +51,25 @@ def test_static_blade_loss_deflection_on_linear_supports_mta_exact_modal_not(ful
 
 def test_blade_loss_transient_mta_vs_full_and_modal(full):
     """Blade-loss transient (2850 N rotating at 16 000 rev/min from t = 0, 0.03 s, Newmark h = 2e-5 s) on linear
-    #0/#5 supports: peak radial displacement at bearings #0 and #5 of the MTA model (20 modes + 16 vectors = 36)
-    within 1 % of the full 580-DOF model, and closer than plain modal truncation with 36 modes (same size)."""
+    #0/#5 supports: peak radial displacement at bearings #0 and #5 of the MTA model (30 modes + 16 vectors = 46,
+    the component's default) within 1 % of the full 580-DOF model, and closer than plain modal truncation with 46
+    modes (same size); the same for the RMS error of the whole x, y histories at both bearings."""
     ref = ver.blade_loss_transient(full, "full")
-    mta = ver.blade_loss_transient(full, "mta", 20)
-    modal = ver.blade_loss_transient(full, "modal", 20)
-    assert mta["size"] == modal["size"] == 36 and ref["size"] == full.n
+    mta = ver.blade_loss_transient(full, "mta", 30)
+    modal = ver.blade_loss_transient(full, "modal", 30)
+    assert mta["size"] == modal["size"] == 46 and ref["size"] == full.n
     e_mta = [abs(mta[k] / ref[k] - 1) for k in ("peak0", "peak5")]
     e_modal = [abs(modal[k] / ref[k] - 1) for k in ("peak0", "peak5")]
     print(f"\npeaks full {ref['peak0'] * 1e3:.5f} / {ref['peak5'] * 1e3:.5f} mm; rel. error MTA {e_mta}, "
           f"modal {e_modal}")
     assert max(e_mta) < 0.01
     assert e_mta[0] < e_modal[0] and e_mta[1] < e_modal[1]
-    # the whole history too, not just the peaks (RMS error relative to the RMS response)
-    err = np.sqrt(np.mean((mta["x"] - ref["x"]) ** 2)) / np.sqrt(np.mean(ref["x"] ** 2))
-    assert err < 0.01
+    # the whole history too, not just the peaks (RMS error relative to the RMS response, per bearing)
+    def rms(r, cols):
+        return np.sqrt(np.mean((r["x"][:, cols] - ref["x"][:, cols]) ** 2)) / np.sqrt(np.mean(ref["x"][:, cols] ** 2))
+    for cols in (slice(0, 2), slice(2, 4)):
+        assert rms(mta, cols) < 0.01
+        assert rms(mta, cols) < rms(modal, cols)
 
 
 def test_dependent_load_vectors_are_dropped():
