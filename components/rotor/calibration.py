@@ -37,7 +37,7 @@ def calibrate(data: dict, tol_rpm: float = 1.0, max_iter: int = 10) -> tuple[np.
     x = np.array([float(data["calibration"][k]) for k in KNOBS])
     for _ in range(max_iter):
         f = forward_criticals(data, x)
-        print(f"  {dict(zip(KNOBS, x.round(4)))} -> {f.round(1)} rev/min", flush=True)
+        print(f"  {dict(zip(KNOBS, x.round(4).tolist()))} -> {f.round(1)} rev/min", flush=True)
         if np.max(np.abs(f - target)) < tol_rpm:
             break
         J = np.empty((2, 2))
@@ -90,8 +90,8 @@ def layout_search(data: dict) -> list[dict]:
         fw = critical.synchronous_critical_speeds(model.build(d), n=5)["forward_synchronous_rpm"]
         r0, r5 = linear_response(d)
         row = {"strut": strut, "mounts": mounts, "tube": tube, "knobs": x.round(4).tolist(),
-               "forward_rpm": [round(v) for v in fw], "x0_mm": round(r0, 4), "x5_mm": round(r5, 4),
-               "nearest_to_16000": round(min(abs(v / 16000 - 1) for v in fw), 3)}
+               "forward_rpm": [round(v) for v in fw], "x0_mm": round(float(r0), 4), "x5_mm": round(float(r5), 4),
+               "nearest_to_16000": round(float(min(abs(v / 16000 - 1) for v in fw)), 3)}
         print(row, flush=True)
         rows.append(row)
     return rows
