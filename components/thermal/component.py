@@ -4,15 +4,22 @@ Nine lumped nodes per bearing (``T_nodes`` order: shaft, inner_race, lub_inner, 
 journal, sfd_oil, housing), eq. (12) at each, the Table 1 resistances from the Table 3 geometry (geometry.py), heat
 sources from the three power inputs, and the growths of eqs. (13)-(15) (growth.py).
 
+Added to the paper's network (geometry.py, data/thermal.toml): the oil-wetted convection between the races / balls
+and the bearing lubricant (Harris's film coefficient), the renewal of the lubricant by the oil jet and of the damper
+oil by its feed (rho c_p Q to the supply), the oil-wetted bearing-chamber cooling of the housing, and the Blok
+partition of the rub heat between the rotor and the ring/housing.
+
 Inputs (W), each the mean over the step (so the heat of a step is input x h, energy-preserving):
 ``P_drag`` the bearing drag-torque power, split between the inner and outer ball/race contacts (half each by
 default) and at each contact between race and ball (half each); ``P_sfd`` the damper film's viscous power, into the
-squeeze-film oil; ``P_rub`` the rub friction power of eq. (11), into the shaft node (the rotor at the ring).
+squeeze-film oil; ``P_rub`` the rub friction power of eq. (11), ``rub_shaft_fraction`` of it into the shaft node (the
+rotor at the ring; default the Blok partition, ~1-2 %) and the rest into the housing node (which carries the ring).
 
 Outputs: ``eps`` = [eps_i, eps_e, eps_b] (m), the radial growths of the inner raceway, the outer raceway and the
 ball radius, positive = expansion, from the temperature rise over ``T_initial`` (eqs. 14, 13, 15; see growth.py);
 ``T_oil``, the bearing oil temperature for the drag-torque viscosity = the mean of the two lubricant nodes
-(lub_inner, lub_outer); ``T_sfd_oil`` the squeeze-film oil node; ``T_inner_race``, ``T_ball``, ``T_outer_race``;
+(lub_inner, lub_outer): the oil in the bearing, which (well mixed) is also the temperature at which the jet oil
+leaves it; ``T_sfd_oil`` the squeeze-film oil node; ``T_inner_race``, ``T_ball``, ``T_outer_race``;
 ``T_nodes`` all nine (K).
 
 Integration: the exact solution for inputs held over the step (network.py, "exact", the default), with the step
@@ -55,9 +62,11 @@ class ThermalNetwork(Component):
         Variable("contact_race_fraction", "parameter", unit="1", start=_SRC["contact_race_fraction"],
                  description="share of a contact's heat entering the race (rest into the ball)"),
         Variable("rub_shaft_fraction", "parameter", unit="1", start=_SRC["rub_shaft_fraction"],
-                 description="share of the rub power entering the shaft (rest into the housing)"),
-        Variable("bearing_oil_flow", "parameter", unit="m3/s", start=_DATA["oil_flow"]["bearing_L_per_min"] * _LMIN,
-                 description="bearing lubricant flow (renewal of the lubricant nodes)"),
+                 description="share of the rub power entering the shaft (rest into the housing carrying the ring);"
+                             " < 0: the Blok partition of the data file (~1-2 %)"),
+        Variable("bearing_oil_flow", "parameter", unit="m3/s", start=-1.0,
+                 description="oil-jet flow through the bearing (renewal of the lubricant nodes);"
+                             " < 0: the data-file value of the bearing (2 L/min at #0, 3 L/min at #5)"),
         Variable("sfd_oil_flow", "parameter", unit="m3/s", start=_DATA["oil_flow"]["sfd_L_per_min"] * _LMIN,
                  description="squeeze-film damper oil flow (renewal of the SFD oil node)"),
         Variable("method", "parameter", unit="1", start="exact", type="String",

@@ -1,7 +1,8 @@
 """The bearing heat-transfer network of the paper's Fig. 5: geometry, Table 1 resistances, heat masses, sources.
 
 Nodes (this order everywhere): 0 shaft, 1 inner_race, 2 lub_inner, 3 ball, 4 lub_outer, 5 outer_race, 6 journal,
-7 sfd_oil, 8 housing; grounds: the ambient and the oil supply.
+7 sfd_oil, 8 housing; grounds: the ambient (secondary air, at the shaft end) and the oil supply (jet, damper feed,
+chamber oil on the housing).
 
 Radii: r_s = bore/2 (shaft), r_i = (d_m - D)/2 and r_e = (d_m + D)/2 (inner/outer raceway, d_m = (bore + OD)/2),
 r_o = OD/2 (outer race outside = journal bore), r_j = damper radius (journal outside), r_hi = r_j + c_sf (housing
@@ -17,18 +18,29 @@ Branches (Table 1 resistances; a lubricant node sits in the middle of its layer,
     outer_race - journal  R_e + R_j,   R_e = ln(r_o/r_e)/(2 pi k_e W_e),  R_j = ln(r_j/r_o)/(2 pi k_j W_e)
     journal - sfd_oil     R_sf1 = ln((r_j + c_sf/2)/r_j) / (2 pi k_sf L_j)
     sfd_oil - housing     R_sf2 = ln(r_hi/(r_j + c_sf/2)) / (2 pi k_sf L_j)
-    housing - ambient     R_h = R_hr R_ha / (R_hr + R_ha)
+    housing - oil supply  R_h = R_hr R_ha / (R_hr + R_ha)   (oil-wetted in the bearing chamber, see below)
                           R_hr = ln(r_h/r_hi)/(2 pi k_h L_h) + 1/(h_h 2 pi r_h L_h)
                           R_ha = L_h/(2 pi k_h (r_h^2 - r_hi^2)) + 1/(pi h_h (r_h^2 - r_hi^2))
 
 Table 1 prints R_hr, R_ha with r_o (the outer race radius): with the damper between the journal and the housing,
-the housing's bore is r_hi, used here. Added to Table 1 (the oils are supplied, see data/thermal.toml): the oil
-renewal conductances rho c_p Q from each lubricant node (half the bearing flow each) and from the SFD oil to the
-oil supply.
+the housing's bore is r_hi, used here. Its h_h is the oil-wetted bearing-chamber wall value and its sink the oil
+supply (data/thermal.toml [convection]).
+
+Added to Table 1 (physically real paths of a jet-lubricated bearing, values and sources in data/thermal.toml):
+
+    inner_race - lub_inner   1/(h_i A_i)          oil-wetted convection (Harris), in parallel with R_Li/2
+    ball - lub_inner         1/(h_b A_b/2)        A_b = n 4 pi r_b^2, half of it facing each lubricant node
+    ball - lub_outer         1/(h_b A_b/2)
+    lub_outer - outer_race   1/(h_e A_e)          in parallel with R_Le/2
+    lub_inner, lub_outer - supply   rho c_p Q_jet / 2 each   oil renewal by the jet (well-mixed nodes)
+    sfd_oil - supply                rho c_p Q_sfd            damper feed
+
+with A_i = 2 pi r_i W - pi n r_b^2 and A_e = 2 pi r_e W - pi n r_b^2 (the lubricated areas of Table 1).
 
 Heat masses m c_p (eq. 12): shaft, solid cylinder r_s over L_s; inner race, annulus r_s..r_i over W_i; balls,
 n (4/3) pi r_b^3; lubricant, the free annulus r_i..r_e over W minus the balls, half to each lubricant node;
-outer race, annulus r_e..r_o over W_e; journal, annulus r_o..r_j over L_j; SFD oil, the film 2 pi r_j c_sf L_j;
+(only the oil actually in the bearing: ``lubricant_fill_fraction`` of that free volume); outer race, annulus
+r_e..r_o over W_e; journal, annulus r_o..r_j over L_j; SFD oil, the film 2 pi r_j c_sf L_j;
 housing, annulus r_hi..r_h over L_h.
 
 Heat sources (the three power inputs, W):
@@ -37,7 +49,9 @@ Heat sources (the three power inputs, W):
   the outer ones; the heat of a contact is shared between the race (``contact_race_fraction``) and the ball.
 * P_sfd (film viscous power): all into the SFD oil node, where it is dissipated.
 * P_rub (rub friction, eq. 11): ``rub_shaft_fraction`` into the shaft node (the rotor at the ring, next to the
-  bearing), the rest into the housing (which carries the ring).
+  bearing), the rest into the housing (which carries the ring); by default the Blok partition of
+  :func:`rub_partition` (~1-2 % into the rotor: in synchronous whirl the contact is a stationary source on the
+  rotor and a fast-moving one on the ring).
 """
 from __future__ import annotations
 
@@ -93,6 +107,56 @@ def shaft_convection(omega: float, r: float) -> float:
     return c["shaft_a"] * abs(omega) ** c["shaft_b"] * r ** c["shaft_c"]
 
 
+def oil_viscosity(T: float) -> float:
+    """Kinematic viscosity (m^2/s) of the SAE 30 oil at T (K): Walther / ASTM D341 fit of data/thermal.toml."""
+    c = _DATA["convection"]
+    return (10.0 ** (10.0 ** (c["walther_A"] - c["walther_B"] * math.log10(T))) - 0.7) * 1e-6
+
+
+def oil_convection(bearing: int, omega: float) -> dict:
+    """Harris's film coefficients (W/(m^2 K)) of the inner race, outer race and balls in the bearing oil at shaft
+    speed omega (rad/s), at the oil film temperature of data/thermal.toml, and the wetted areas (m^2)."""
+    g, d = radii(bearing), bearing_data(bearing)
+    c, oil = _DATA["convection"], _DATA["oil"]
+    nu = oil_viscosity(c["oil_film_temperature_C"] + 273.15)
+    k = oil["conductivity"]
+    pr = nu * oil["density"] * oil["specific_heat"] / k
+    n_rpm = abs(omega) * 60.0 / (2.0 * math.pi)
+    dm = g["r_i"] + g["r_e"]
+    gamma = 2.0 * g["r_b"] * math.cos(math.radians(d["contact_angle_deg"])) / dm
+    h_i = c["harris_coefficient"] * math.sqrt(n_rpm / nu * (1.0 + gamma)) * k * pr ** (1.0 / 3.0)
+    h_e = c["harris_coefficient"] * math.sqrt(n_rpm / nu * (1.0 - gamma)) * k * pr ** (1.0 / 3.0)
+    r_b, W, n = g["r_b"], g["W"], g["n"]
+    return {
+        "h_i": h_i, "h_e": h_e, "h_b": 0.5 * (h_i + h_e), "nu": nu, "Pr": pr, "gamma": gamma,
+        "A_i": 2 * math.pi * g["r_i"] * W - math.pi * n * r_b ** 2,
+        "A_e": 2 * math.pi * g["r_e"] * W - math.pi * n * r_b ** 2,
+        "A_b": n * 4.0 * math.pi * r_b ** 2,
+    }
+
+
+def rub_partition(bearing: int, omega: float) -> float:
+    """Blok partition: the fraction of the rub heat entering the rotor (data/thermal.toml [rub]).
+
+    Rotor: stationary uniform disk source of radius a (synchronous whirl), mean rise per flux R_1 = 8 a/(3 pi k);
+    ring: fast-moving source at V = omega R_r, R_2 = (4/3) sqrt(2 kappa a/(pi V)) / k; f = R_2 / (R_1 + R_2)."""
+    d, st = bearing_data(bearing), _DATA["steel"]
+    a = _DATA["rub"]["contact_half_width_mm"] * 1e-3
+    V = abs(omega) * d["rub_ring_radius_mm"] * 1e-3
+    if not V > 0.0:
+        return 1.0          # no sliding speed: no moving source, nothing to partition by speed (and no rub heat)
+    k = st["conductivity"]
+    kappa = k / (st["density"] * st["specific_heat"])
+    R1 = 8.0 * a / (3.0 * math.pi * k)
+    R2 = 4.0 / 3.0 * math.sqrt(2.0 * kappa * a / (math.pi * V)) / k
+    return R2 / (R1 + R2)
+
+
+def jet_flow(bearing: int) -> float:
+    """The bearing's oil-jet flow from the data file, m^3/s."""
+    return bearing_data(bearing)["jet_L_per_min"] * 1e-3 / 60.0
+
+
 def resistances(bearing: int, omega: float) -> dict:
     """The Table 1 resistances (K/W) of bearing 0 or 5 at shaft speed omega (rad/s)."""
     g = radii(bearing)
@@ -136,7 +200,7 @@ def heat_masses(bearing: int) -> np.ndarray:
     C = np.empty(9)
     C[SHAFT] = rc_s * pi * g["r_s"] ** 2 * g["L_s"]
     C[IR] = rc_s * pi * (g["r_i"] ** 2 - g["r_s"] ** 2) * g["W"]
-    C[LI] = C[LE] = rc_o * 0.5 * v_free
+    C[LI] = C[LE] = rc_o * 0.5 * v_free * _DATA["oil_flow"]["lubricant_fill_fraction"]
     C[BALL] = rc_s * v_balls
     C[OR] = rc_s * pi * (g["r_o"] ** 2 - g["r_e"] ** 2) * g["W"]
     C[JOURNAL] = rc_s * pi * (g["r_j"] ** 2 - g["r_o"] ** 2) * g["L_j"]
@@ -163,18 +227,22 @@ def source_map(drag_inner_fraction: float, contact_race_fraction: float, rub_sha
 
 
 def default_sources() -> dict:
-    return dict(_DATA["sources"])
+    """drag_inner_fraction, contact_race_fraction from the data file; rub_shaft_fraction -1 (= rub_partition)."""
+    return {**_DATA["sources"], "rub_shaft_fraction": -1.0}
 
 
 def build_network(bearing: int, omega: float, T_ambient: float, T_supply: float,
                   drag_inner_fraction: float | None = None, contact_race_fraction: float | None = None,
                   rub_shaft_fraction: float | None = None, bearing_oil_flow: float | None = None,
                   sfd_oil_flow: float | None = None) -> LinearNetwork:
-    """The network of bearing 0 or 5 (flows in m^3/s; None: the data-file value)."""
+    """The network of bearing 0 or 5 (flows in m^3/s; None or < 0: the data-file value; rub_shaft_fraction None or
+    < 0: the Blok partition of :func:`rub_partition`)."""
     src = default_sources()
     flows = _DATA["oil_flow"]
     Lmin = 1e-3 / 60.0
-    q_b = flows["bearing_L_per_min"] * Lmin if bearing_oil_flow is None else bearing_oil_flow
+    q_b = jet_flow(bearing) if bearing_oil_flow is None or bearing_oil_flow < 0.0 else bearing_oil_flow
+    if rub_shaft_fraction is None or rub_shaft_fraction < 0.0:
+        rub_shaft_fraction = rub_partition(bearing, omega)
     q_s = flows["sfd_L_per_min"] * Lmin if sfd_oil_flow is None else sfd_oil_flow
     for name, v in (("bearing_oil_flow", q_b), ("sfd_oil_flow", q_s), ("T_ambient", T_ambient),
                     ("T_supply", T_supply)):
@@ -193,6 +261,13 @@ def build_network(bearing: int, omega: float, T_ambient: float, T_supply: float,
         (OR, JOURNAL, R["R_e"] + R["R_j"]),
         (JOURNAL, SFD, R["R_sf1"]), (SFD, HOUSING, R["R_sf2"]),
     ]
+    if omega != 0.0:                      # oil-wetted convection (Harris), in parallel with the Table 1 layers
+        h = oil_convection(bearing, omega)
+        branches += [
+            (IR, LI, 1.0 / (h["h_i"] * h["A_i"])),
+            (BALL, LI, 2.0 / (h["h_b"] * h["A_b"])), (BALL, LE, 2.0 / (h["h_b"] * h["A_b"])),
+            (LE, OR, 1.0 / (h["h_e"] * h["A_e"])),
+        ]
     K = np.zeros((9, 9))
     for a, b, r in branches:
         g = 1.0 / r
@@ -204,11 +279,12 @@ def build_network(bearing: int, omega: float, T_ambient: float, T_supply: float,
     T_ground = np.full(9, float(T_ambient))
     ground[SHAFT] = 1.0 / R["R_sa"]
     ground[HOUSING] = 1.0 / R["R_h"]
+    T_ground[HOUSING] = T_supply          # oil-wetted in the bearing chamber (data/thermal.toml [convection])
     for node, q in ((LI, 0.5 * q_b), (LE, 0.5 * q_b), (SFD, q_s)):
         ground[node] = rc_o * q
         T_ground[node] = T_supply
     K[np.diag_indices(9)] += ground
     S = source_map(src["drag_inner_fraction"] if drag_inner_fraction is None else drag_inner_fraction,
                    src["contact_race_fraction"] if contact_race_fraction is None else contact_race_fraction,
-                   src["rub_shaft_fraction"] if rub_shaft_fraction is None else rub_shaft_fraction)
+                   rub_shaft_fraction)
     return LinearNetwork(C=heat_masses(bearing), K=K, b=ground * T_ground, S=S, ground=ground, T_ground=T_ground)

@@ -44,28 +44,39 @@ def test_integration_reaches_the_analytic_steady_state(bearing, method):
 
 
 def test_energy_balance_over_a_transient():
-    """Heat in = heat out + heat stored over a 300 s transient with power steps (10 ms steps): heat in is the sum
-    of P h, heat out the trapezoidal integral of the ground flows sum g (T - T_ground) of the recorded temperatures,
-    stored the sum of m c_p dT; within 0.1 % of the heat in."""
+    """Heat in = heat out + heat stored over a 60 s transient with power steps (5 ms steps): heat in is the sum
+    of P h, heat out the trapezoidal integral of the ground flows sum g (T - T_ground) of the recorded temperatures
+    (ambient air at the shaft; the oil supply at the jet-renewed lubricant nodes, the damper feed and the
+    oil-wetted housing), stored the sum of m c_p dT; within 0.1 % of the heat in. The jet oil (advection from the
+    lubricant nodes) carries a real share of it."""
     c = make(0)
     net = c.network
-    h, n = 0.01, 30000
-    e_in = e_out = 0.0
+    h, n = 0.005, 12000
+    e_in = e_out = e_jet = 0.0
     T0 = c.y["T_nodes"].copy()
-    q_prev = net.heat_out(T0)
+    jet = np.zeros(9)
+    jet[[2, 4]] = net.ground[[2, 4]]
+
+    def q_jet(T):
+        return float(jet @ (T - net.T_ground))
+
+    q_prev, j_prev = net.heat_out(T0), q_jet(T0)
     for i in range(n):
         t = i * h
-        drag = 350.0 if t < 100.0 else 500.0
-        sfd = 600.0 if t < 200.0 else 50.0
-        rub = 2000.0 if 50.0 <= t < 150.0 else 0.0
+        drag = 350.0 if t < 20.0 else 500.0
+        sfd = 600.0 if t < 40.0 else 50.0
+        rub = 2000.0 if 10.0 <= t < 30.0 else 0.0
         powers(c, drag, sfd, rub)
         c.do_step(t, h)
         e_in += (drag + sfd + rub) * h
-        q = net.heat_out(c.y["T_nodes"])
+        T = c.y["T_nodes"]
+        q, j = net.heat_out(T), q_jet(T)
         e_out += 0.5 * (q + q_prev) * h
-        q_prev = q
+        e_jet += 0.5 * (j + j_prev) * h
+        q_prev, j_prev = q, j
     stored = net.stored(c.y["T_nodes"], T0)
-    assert stored > 0.5 * e_in          # a genuine transient: most of the heat is still stored
+    assert stored > 0.25 * e_in         # a genuine transient: a large share of the heat is still stored
+    assert e_jet > 0.05 * e_in          # the jet renewal is one of the ways out
     assert abs(e_in - e_out - stored) / e_in < 1e-3
 
 
