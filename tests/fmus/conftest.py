@@ -8,7 +8,7 @@ import pytest
 
 sys.path.insert(0, str(Path(__file__).parent))
 
-from fmu_helpers import TOY, export_toy  # noqa: E402
+from fmu_helpers import export_toy  # noqa: E402
 
 
 @pytest.fixture(scope="session")

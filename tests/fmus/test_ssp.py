@@ -2,10 +2,7 @@
 by a co-simulation engine that is not ours (Ecos) within 1 % of our master at the same fixed step."""
 from __future__ import annotations
 
-import ctypes.util
 import os
-import subprocess
-import sys
 import zipfile
 from pathlib import Path
 
@@ -14,7 +11,7 @@ import pytest
 from fmu_helpers import TOY, max_rel_diff, run_intervals
 
 from rotorcosim.fmus.ssp import SSPError, read_ssp, write_ssp
-from rotorcosim.master.scenario import load_scenario, parse
+from rotorcosim.master.scenario import load_scenario
 
 TM = [("TM", 0.3, 1e-3)]           # the toy's thermo-mechanical interval
 
