@@ -161,17 +161,23 @@ class Rotor(Component):
         x0 = np.zeros(n)
         f0 = red["B_in"] @ self._input_vector(t0)
         a0 = initial_acceleration(red["M"], red["C"], red["K"], x0, x0, f0)
-        self.state = {"s": np.concatenate([x0, x0, a0])}
+        self.state = {"s": np.concatenate([x0, x0, a0]), "tau": float(t0)}
         self._write_outputs(self.state["s"], t0)
 
     # -- stepping --------------------------------------------------------------------------------------
-    def _unbalance(self, t):
+    def _unbalance(self, t, tau=None):
+        """The rotating unbalance force at time t. Its angle is the rotor's own angle W tau, where tau is the
+        mechanical time (the time the rotor has actually been stepped, part of its state): over a thermal-only
+        interval the frozen rotor keeps its angle with its frozen whirl, so the next thermo-mechanical interval
+        resumes the same phase-locked orbit. Using the global time instead would turn the unbalance by W x (the
+        thermal-only duration) against the frozen orbit and start every interval with an artificial transient."""
         p = self.p
         W = self._W
-        fx = p["F_residual"] * math.cos(W * t)
-        fy = p["F_residual"] * math.sin(W * t)
+        a = W * (t if tau is None else tau)
+        fx = p["F_residual"] * math.cos(a)
+        fy = p["F_residual"] * math.sin(a)
         if t >= p["t_blade_loss"]:
-            ph = W * t + p["unbalance_phase"]
+            ph = a + p["unbalance_phase"]
             fx += p["F_unbalance"] * math.cos(ph)
             fy += p["F_unbalance"] * math.sin(ph)
         return fx, fy
@@ -218,7 +224,8 @@ class Rotor(Component):
         self._last_h = h
         u = self.u
         f = self._f
-        fux, fuy = self._unbalance(t + h)
+        tau = self.state["tau"] + h
+        fux, fuy = self._unbalance(t + h, tau)
         if not math.isfinite(gather(f, u["F_brg0"], u["F_brg5"], u["F_sfd_housing0"], u["F_rub_housing0"],
                                     u["F_sfd_housing5"], u["F_rub_housing5"], u["F_rub0"], u["F_rub5"], fux, fuy)):
             self._input_vector(t + h)          # names the offending input
@@ -227,6 +234,7 @@ class Rotor(Component):
         if not math.isfinite(step(TB, self._Oxv, self.state["s"], f, s_new, xv)):
             raise ContractError(f"{self.name}: the rotor response became non-finite at t = {t + h:.9g} s")
         self.state["s"] = s_new
+        self.state["tau"] = tau
         self._publish(xv, t + h, fux, fuy)
         self.time = t + h
 
