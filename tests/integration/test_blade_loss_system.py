@@ -107,3 +107,24 @@ def test_thermal_only_interval_resumes_the_frozen_orbit():
         after.append(radius())
     ref = float(np.mean(before))
     assert max(abs(r - ref) for r in after) < 0.02 * ref
+
+
+def test_compare_writes_table6(tmp_path):
+    """`rotorcosim compare` (shortened: 0.1 s, 12 revolutions): the staggered run has 3 thermo-mechanical
+    intervals of at most 12 revolutions in all and 2 thermal-only ones, and table6.json has the contract's keys."""
+    from rotorcosim.master.cli import main
+
+    assert main(["compare", "--duration", "0.1", "--revolutions", "12", "--no-figures", "--out", str(tmp_path)]) == 0
+    t = json.loads((tmp_path / "table6.json").read_text())
+    assert set(t["wall_time_s"]) == {"staggered", "monolithic"}
+    assert t["speedup"] == pytest.approx(t["wall_time_s"]["monolithic"] / t["wall_time_s"]["staggered"])
+    for key, row in t["results"].items():
+        assert set(row) == {"staggered", "monolithic", "rel_error_pct"}
+        if row["monolithic"]:
+            assert row["rel_error_pct"] == pytest.approx(
+                100 * abs(row["staggered"] - row["monolithic"]) / abs(row["monolithic"]))
+    phases = [u["phase"] for u in t["timeline_staggered"]]
+    assert phases == ["TM", "TO", "TM", "TO", "TM"]
+    tm = sum(u["t_end"] - u["t_start"] for u in t["timeline_staggered"] if u["phase"] == "TM")
+    assert tm * 16000 / 60 <= 12 + 1e-9
+    assert t["timeline_staggered"][-1]["t_end"] == pytest.approx(0.1, abs=1e-9)
