@@ -172,3 +172,28 @@ def test_ecos_runs_the_exported_ssp_like_our_master(toy_ssp):
     for s in signals:
         mine = ours.series(s).reshape(n)
         assert np.max(np.abs(mine - ecos[s])) <= 0.01 * np.max(np.abs(mine)), s
+
+
+def test_parameter_values_from_an_ssv_file(toy_ssp, tmp_path):
+    """Parameter bindings may point at an .ssv file instead of carrying the values inline."""
+    import xml.etree.ElementTree as ET
+
+    from rotorcosim.fmus.ssp import NS
+
+    with zipfile.ZipFile(toy_ssp) as zf:
+        entries = {n: zf.read(n) for n in zf.namelist()}
+    root = ET.fromstring(entries["SystemStructure.ssd"])
+    binding = root.find(".//ssd:Component[@name='node']/ssd:ParameterBindings/ssd:ParameterBinding", NS)
+    values = binding.find("ssd:ParameterValues", NS)
+    pset = values.find("ssv:ParameterSet", NS)
+    for p in pset.iter(f"{{{NS['ssv']}}}Real"):
+        p.set("value", str(2 * float(p.get("value"))))        # C = 20, R = 2: not the scenario's values
+    binding.remove(values)
+    binding.set("source", "resources/node.ssv")
+    entries["resources/node.ssv"] = ET.tostring(pset, encoding="UTF-8", xml_declaration=True)
+    entries["SystemStructure.ssd"] = ET.tostring(root, encoding="UTF-8", xml_declaration=True)
+    out = tmp_path / "ssv.ssp"
+    with zipfile.ZipFile(out, "w") as zf:
+        for n, data in entries.items():
+            zf.writestr(n, data)
+    assert read_ssp(out).components["node"].parameters == {"C": 20.0, "R": 2.0}
