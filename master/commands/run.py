@@ -57,7 +57,11 @@ def apply_unbalance(sc: Scenario, force: float) -> None:
     comp, _, param = ref.partition(".")
     if comp not in sc.components:
         raise ValueError(f"[results] unbalance_parameter {ref!r}: no component {comp!r}")
+    old = sc.components[comp].parameters.get(param)
     sc.components[comp].parameters[param] = float(force)
+    if old is None or float(old) != float(force):
+        # the run's name says what was run (the shipped level files are named blade_loss_<F_u>)
+        sc.name = f"{sc.name.rsplit('_', 1)[0] if sc.name.rsplit('_', 1)[-1].isdigit() else sc.name}_{force:g}"
 
 
 def postprocessor(sc: Scenario):
