@@ -53,7 +53,6 @@ def run_case(scenario: str, force: float, out: str, schedule: str | None, durati
     """One level (runs in a Dask worker): returns its summary."""
     sc = resolve(scenario)
     apply_unbalance(sc, force)
-    sc.name = f"{sc.name}_F{force:g}"
     try:
         return execute(sc, Path(out), schedule, duration, figures=True, quiet=True)
     except Exception as exc:  # one diverging level must not lose the others
