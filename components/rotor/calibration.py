@@ -12,6 +12,12 @@ combination of bearing-frame strut stiffness (x1, x3), mount planes and PT tube 
 knobs are fitted, then the linear 2850 N response at 16 000 rev/min at bearings #0/#5 is printed (the paper has
 about 0.2 mm at #0 and less than 0.01 mm at #5) with the distance of the nearest forward critical speed to the
 running speed. Slow (minutes): a design study, not a test.
+
+``--response-study`` reruns the later study that calibrated the layout on the paper's 2850 N response (data file,
+[calibration], item 2): from the shipped layout, the span between bearing #0 and the forward intermediate bearing
+(everything aft of it moved with it), the PT tube and the neck between bearing #0 and the forward intermediate
+bearing are varied, each variant refitted to the critical speeds, and the linear response at #0/#5 (whirl,
+relative to the housing, transmissibility |F_spring + F_film| / F_u) printed (:func:`linear_response_detail`).
 """
 from __future__ import annotations
 
@@ -67,6 +73,78 @@ def linear_response(data: dict, rpm: float = 16000.0, F_u: float = 2850.0) -> tu
     return amp(m.ports["brg0"]), amp(m.ports["brg5"])
 
 
+def linear_response_detail(data: dict, rpm: float = 16000.0, F_u: float = 2850.0) -> dict:
+    """Like :func:`linear_response`, per bearing "0"/"5": whirl of the PT node (mm), its orbit relative to the
+    housing hub (mm) and the transmissibility of eq. (23), |F_spring + F_film| / F_u, of the linearised support
+    (contact in series with the centering spring, film damping in parallel: the largest force over the orbit)."""
+    m = model.build(data)
+    Ks, Cs = m.linear_support()
+    W = rpm * model.RPM
+    A = m.K + Ks - W ** 2 * m.M + 1j * W * (m.C + Cs + W * m.G_pt + W * critical.speed_ratio(m) * m.G_gg)
+    f = np.zeros(m.n, complex)
+    ux, uy = m.ports["unbalance"]
+    f[ux], f[uy] = F_u, -1j * F_u
+    X = np.linalg.solve(A, f)
+
+    def amp(x, y):
+        return (abs(x + 1j * y) + abs(x - 1j * y)) / 2
+
+    out = {}
+    for key, brg, hub in (("0", "brg0", "housing0"), ("5", "brg5", "housing5")):
+        s = data["linear_support"]["h" + key]
+        k = 1.0 / (1.0 / s["k_contact"] + 1.0 / s["k_spring"])
+        (i, j), (hi, hj) = m.ports[brg][:2], m.ports[hub]
+        rx, ry = X[i] - X[hi], X[j] - X[hj]
+        # force of the support: (k + i W c) times the relative orbit; its largest value over the orbit
+        out[key] = {"whirl_mm": 1e3 * amp(X[i], X[j]), "relative_mm": 1e3 * amp(rx, ry),
+                    "transmissibility": amp((k + 1j * W * s["c"]) * rx, (k + 1j * W * s["c"]) * ry) / F_u}
+    return out
+
+
+def response_study(data: dict) -> list[dict]:
+    """The 2850 N response study behind the shipped layout (module docstring, ``--response-study``)."""
+    pt = data["power_turbine"]
+    i0, i5 = int(pt["bearing0_node"]), 5                   # bearing #0 node, forward intermediate bearing node
+    z0 = float(pt["z_mm"][i0])
+    span0 = float(pt["z_mm"][i5]) - z0
+
+    def variant(span, tube, neck):
+        d = copy.deepcopy(data)
+        D = span - span0
+        p, g, cas = d["power_turbine"], d["gas_generator"], d["casing"]
+        p["z_mm"] = [z for z in p["z_mm"][:i0 + 1]] + [z0 + span / 2, z0 + span] + [z + D for z in p["z_mm"][i5 + 1:]]
+        g["z_mm"] = [z + D for z in g["z_mm"]]
+        cas["ring_z_mm"] = [z if z <= z0 else z + D for z in cas["ring_z_mm"]]
+        for hv in cas["hubs"].values():
+            if hv["z_mm"] > z0:
+                hv["z_mm"] += D
+        for e in range(i5, 16):
+            p["d_out_mm"][e], p["d_in_mm"][e] = tube
+        p["d_out_mm"][i0 + 1] = neck
+        return d
+
+    tube0 = (pt["d_out_mm"][i5], pt["d_in_mm"][i5])
+    neck0 = pt["d_out_mm"][i0 + 1]
+    rows = []
+    cases = [(s, tube0, neck0) for s in (160.0, 250.0, 300.0, 350.0, 400.0)]
+    cases += [(span0, t, neck0) for t in ((60, 44), (70, 54))] + [(span0, tube0, n) for n in (60.0, 50.8, 40.0)]
+    for span, tube, neck in cases:
+        d = variant(span, tube, neck)
+        try:
+            x, f = calibrate(d, tol_rpm=10.0, max_iter=10)
+        except (np.linalg.LinAlgError, ValueError) as exc:
+            print(f"span {span} mm, tube {tube}, neck {neck}: fit failed ({exc})")
+            continue
+        d["calibration"].update(dict(zip(KNOBS, x)))
+        r = linear_response_detail(d)
+        row = {"span_mm": span, "tube": tube, "neck_mm": neck, "knobs": x.round(4).tolist(),
+               "forward_rpm": [round(v) for v in f],
+               **{f"{k}_{b}": round(float(v), 4) for b in r for k, v in r[b].items()}}
+        print(row, flush=True)
+        rows.append(row)
+    return rows
+
+
 def layout_search(data: dict) -> list[dict]:
     import itertools
 
@@ -103,9 +181,14 @@ if __name__ == "__main__":
     if "--layout-search" in sys.argv:
         layout_search(d)
         sys.exit(0)
+    if "--response-study" in sys.argv:
+        response_study(d)
+        sys.exit(0)
     x, f = calibrate(d)
     for k, v in zip(KNOBS, x):
         print(f"{k} = {v:.4f}")
     print("forward synchronous critical speeds:", f.round(1))
-    r0, r5 = linear_response(d)
-    print(f"linear 2850 N response at 16 000 rev/min: {r0:.4f} mm at #0, {r5:.4f} mm at #5")
+    d["calibration"].update(dict(zip(KNOBS, x)))
+    for b, r in linear_response_detail(d).items():
+        print(f"linear 2850 N response at 16 000 rev/min, #{b}: whirl {r['whirl_mm']:.4f} mm (relative to the housing "
+              f"{r['relative_mm']:.4f} mm), transmissibility {r['transmissibility']:.3f}")

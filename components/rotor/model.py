@@ -230,8 +230,11 @@ def build(data: dict, digest: str = "", omega_pt: float | None = None, omega_gg:
 
     # hubs and struts (spring elements in the local radial / tangential / axial frame)
     st = cas["struts"]
-    kr, kt, ka = (_positive(f"casing.struts.{k}", st[k]) for k in ("k_r", "k_t", "k_a"))
     for h, hv in cas["hubs"].items():
+        # a hub may have its own bearing frame (``struts = {k_r, k_t, k_a}``), else the casing's common one
+        sth = hv.get("struts", st)
+        kr, kt, ka = (_positive(f"casing.hubs.{h}.struts.{k}" if "struts" in hv else f"casing.struts.{k}", sth[k])
+                      for k in ("k_r", "k_t", "k_a"))
         zh = float(hv["z_mm"]) * 1e-3
         hit = np.nonzero(np.abs(rings - zh) < 1e-9)[0]
         if hit.size != 1:

@@ -148,7 +148,8 @@ def test_bad_model_file_content(tmp_path):
     """A model file with a negative shaft diameter is refused with a message naming the entry."""
     src = (Path(__file__).resolve().parents[2] / "components" / "rotor" / "data" / "engine.toml").read_text()
     bad = tmp_path / "bad.toml"
-    bad.write_text(src.replace("d_in_mm = [80, 80,", "d_in_mm = [-80, 80,", 1))
+    assert "d_in_mm = [95, 95," in src
+    bad.write_text(src.replace("d_in_mm = [95, 95,", "d_in_mm = [-95, 95,", 1))
     r = create("rotor.mta", "rotor", {"model_file": str(bad)})
     with pytest.raises(ContractError, match=r"d_in_mm\[0\]"):
         r.setup(0.0)
