@@ -203,7 +203,10 @@ class SteadyWindows(Observer):
         n = int(math.ceil(self.window / (self.stride * step))) + 1
         self._n = n
         self._t = np.full(n, np.nan)
-        self._data = {r: None for r in self.signals}
+        self._data = {r: np.zeros((n, len(sim.value(r)))) for r in self.signals}
+        comps = sim.system.components
+        # (component, port, buffer) resolved once: this runs at every step of a thermo-mechanical interval
+        self._taps = [(comps[r.partition(".")[0]], r.partition(".")[2], self._data[r]) for r in self.signals]
         self._pos = 0
         self._count = 0
 
@@ -212,12 +215,8 @@ class SteadyWindows(Observer):
             return
         i = self._pos
         self._t[i] = t
-        for r in self.signals:
-            y = sim.value(r)
-            buf = self._data[r]
-            if buf is None:
-                buf = self._data[r] = np.zeros((self._n, len(y)))
-            buf[i] = y
+        for comp, port, buf in self._taps:
+            buf[i] = comp.y[port]
         self._pos = (i + 1) % self._n
         self._count = min(self._count + 1, self._n)
 
