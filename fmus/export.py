@@ -32,6 +32,8 @@ TEMPLATE = Path(__file__).with_name("slave_template.py")
 #: the schedule phase in, and the phases a component takes part in out (slave_template.py explains)
 PHASE_INPUT = "_rcs_phase"
 PHASES_OUTPUT = "_rcs_phases"
+#: the component's last error message (a local String variable)
+ERROR_VARIABLE = "_rcs_error"
 #: fixed timestamp of every zip entry (the zip format's epoch): deterministic archives
 ZIP_DATE = (1980, 1, 1, 0, 0, 0)
 
@@ -140,6 +142,7 @@ def export_component(implementation: str, dest: str | Path, *, instance_name: st
         "phases": sorted(comp.phases),
         "phase_input": PHASE_INPUT,
         "phases_output": PHASES_OUTPUT,
+        "error_variable": ERROR_VARIABLE,
     }
     code_hash = bundle.digest(files)
     content_hash = hashlib.sha256(json.dumps(config, sort_keys=True).encode() + code_hash.encode()
@@ -168,10 +171,12 @@ def export_component(implementation: str, dest: str | Path, *, instance_name: st
                     continue
                 entries[info.filename] = zf.read(info)
     phase_vars = [{"name": n, "causality": c, "size": 1, "unit": "1", "description": "", "start": 0,
-                   "type": "Integer"} for n, c in ((PHASE_INPUT, "input"), (PHASES_OUTPUT, "output"))]
+                   "type": t} for n, c, t in ((PHASE_INPUT, "input", "Integer"), (ERROR_VARIABLE, "local", "String"),
+                                              (PHASES_OUTPUT, "output", "Integer"))]
     entries["modelDescription.xml"] = model_description.finish(
         entries["modelDescription.xml"], variables + phase_vars, implementation=implementation,
         phases=config["phases"], phase_input=PHASE_INPUT, phases_output=PHASES_OUTPUT,
+        error_variable=ERROR_VARIABLE,
         preferred_step=config["preferred_step"], package=package, slave_module=slave_module,
         content_hash=content_hash)
     return write_deterministic_zip(entries, dest)

@@ -60,6 +60,10 @@ _API = {
 }
 
 
+#: logger callbacks handed to FMUs (see _instantiate2)
+_CALLBACKS: list = []
+
+
 class FMUError(ContractError):
     """An FMU that cannot be used as a component; the message names the file and the problem."""
 
@@ -169,7 +173,6 @@ class _Handle:
         self.instantiated = False
         self.initialised = False
         self.log: deque = deque(maxlen=40)
-        self.callbacks = None
 
     def release(self) -> None:
         fmu, self.fmu = self.fmu, None
@@ -252,6 +255,7 @@ class FMUComponent(Component):
         refs = {v.name: v.valueReference for v in md.modelVariables}
         self._phase_in = refs.get(ann.phase_input) if ann.phase_input else None
         self._phases_out = refs.get(ann.phases_output) if ann.phases_output else None
+        self._error_vr = refs.get(ann.error_variable) if ann.error_variable else None
         self.variables = tuple(variables)
         self._by_name = {v.name: v for v in self.variables}
         self.phases = ann.phases or frozenset({"TM"})
@@ -324,8 +328,8 @@ class FMUComponent(Component):
                     log.append((int(status), (category or b"").decode("utf-8", "replace"),
                                 (message or b"").decode("utf-8", "replace")))
 
-                h.callbacks = logger
                 h.fmu.instantiate(loggingOn=False, logMessage=logger)
+                _CALLBACKS.append((h.fmu.logMessage, logger))
         except Exception as exc:
             raise FMUError(f"{where}: instantiation failed ({exc}){self._log_text()}") from None
         h.instantiated = True
@@ -352,11 +356,30 @@ class FMUComponent(Component):
         cb.allocateMemory = fmi2CallbackAllocateMemoryTYPE(calloc)
         cb.freeMemory = fmi2CallbackFreeMemoryTYPE(free)
         addLoggerProxy(ctypes.byref(cb))
-        self._handle.callbacks = (cb, logger)     # kept alive as long as the instance
+        # kept alive for the life of the process, not of the instance: an FMU that failed fatally may still
+        # log while the interpreter shuts down, and a freed callback there is a crash
+        _CALLBACKS.append((cb, logger))
+        # logging off: pythonfmu 0.7 reports a Python exception to the logger only with logging on, and that
+        # path corrupts the interpreter (a crash at exit); our FMUs keep the message in a variable instead
         self._handle.fmu.instantiate(callbacks=cb, loggingOn=False)
 
+    def _error_text(self) -> str:
+        """Our FMUs' own error variable (the component's last error message), or ""."""
+        fmu = self._handle.fmu
+        if self._error_vr is None or fmu is None or not self._handle.instantiated:
+            return ""
+        try:
+            text = fmu.getString([self._error_vr])[0]
+        except Exception:
+            return ""
+        return text.decode("utf-8", "replace") if isinstance(text, bytes) else (text or "")
+
     def _log_text(self) -> str:
+        """What the FMU said about a failure: our FMUs' error variable, else its last log messages."""
         msgs = [m for _, _, m in self._handle.log if m.strip()]
+        own = self._error_text()
+        if own:
+            msgs.append(own)
         return (": " + " | ".join(msgs[-5:])) if msgs else ""
 
     def _check(self, status: int, what: str) -> None:
@@ -422,6 +445,9 @@ class FMUComponent(Component):
             raise
         except Exception as exc:
             raise FMUError(f"{self._where}: initialisation failed ({exc}){self._log_text()}") from None
+        if self._error_text():
+            # one of our FMUs whose component failed to set up (it reports through its error variable)
+            raise FMUError(f"{self._where}: initialisation failed{self._log_text()}")
         h.initialised = True
         self._pull_outputs()
         if self._phases_out is not None:

@@ -11,7 +11,7 @@ InitialUnknowns (fmpy's validation rejects it: outputs with ``initial="calculate
 * ``<VendorAnnotations><Tool name="rotorcosim"><Component .../>``: the implementation name, the phases
   (``"TM"``, ``"TO"``, comma-separated; as declared before set-up), the preferred step, the private code
   package and slave module of the bundle (the importer uses these to tidy ``sys.modules`` when the FMU is
-  freed), and the names of the phase input / phases output variables (slave_template.py);
+  freed), and the names of the phase input / phases output / last-error variables (slave_template.py);
 * ``<ModelStructure>``: Outputs and InitialUnknowns, both listing every output;
 * a GUID that is a hash of the FMU's content (same content, same GUID), no generation date.
 """
@@ -46,7 +46,7 @@ def _unit_element(name: str) -> ET.Element:
 
 def finish(xml: bytes, variables: list[dict], *, implementation: str, phases: list[str], preferred_step: float,
            package: str, slave_module: str, content_hash: str, phase_input: str = "",
-           phases_output: str = "") -> bytes:
+           phases_output: str = "", error_variable: str = "") -> bytes:
     """The finished modelDescription.xml (bytes) for pythonfmu's ``xml`` and our ``variables`` (config dicts)."""
     root = ET.fromstring(xml)
     by_name = {}
@@ -90,7 +90,7 @@ def finish(xml: bytes, variables: list[dict], *, implementation: str, phases: li
     ET.SubElement(tool, "Component", {"implementation": implementation, "phases": ",".join(sorted(phases)),
                                       "preferredStep": _fmt(preferred_step), "package": package,
                                       "slaveModule": slave_module, "phaseInput": phase_input,
-                                      "phasesOutput": phases_output})
+                                      "phasesOutput": phases_output, "errorVariable": error_variable})
     new["VendorAnnotations"] = va
     ms = ET.Element("ModelStructure")
     if outputs:
@@ -125,6 +125,7 @@ class Annotation:
     slave_module: str | None = None
     phase_input: str | None = None
     phases_output: str | None = None
+    error_variable: str | None = None
 
     @property
     def hidden(self) -> set[str]:
@@ -146,5 +147,6 @@ def read_annotation(xml: bytes) -> Annotation:
         return Annotation(comp.get("implementation"),
                           frozenset(p for p in phases.split(",") if p) if phases else None,
                           float(step) if step else None, comp.get("package"), comp.get("slaveModule"),
-                          comp.get("phaseInput") or None, comp.get("phasesOutput") or None)
+                          comp.get("phaseInput") or None, comp.get("phasesOutput") or None,
+                          comp.get("errorVariable") or None)
     return Annotation()

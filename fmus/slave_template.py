@@ -17,6 +17,8 @@ Mapping of the contract onto FMI 2.0:
 * inputs are held over ``do_step`` and pushed with ``set_inputs``; outputs are read from ``component.y``;
 * ``get/set FMU state`` snapshots the component's own ``get_state()`` plus the slave's copies of the
   inputs/outputs (the object stays in memory: no serialisation, ``canSerializeFMUstate`` is false);
+* a failure inside the component fails the FMI call, and its own message is kept in a local String variable
+  (named in the JSON and the vendor annotation) that the importer reads to report it;
 * the staggered schedule's phase crosses as two extra Integer variables named in the JSON (and in the
   vendor annotation): an input (0 = thermo-mechanical, 1 = thermal-only) whose every setting calls the
   component's ``enter_phase``, and an output, the phases the component takes part in after its set-up
@@ -80,6 +82,11 @@ class RotorcosimSlave(Fmi2Slave):
                                        variability=Fmi2Variability.discrete, description=(
                                            "rotorcosim schedule phase: 0 thermo-mechanical, 1 thermal-only"),
                                        getter=lambda: self._phase, setter=self._enter_phase), nested=False)
+        self._error = ""
+        self.register_variable(String(cfg["error_variable"], causality=Fmi2Causality.local,
+                                      variability=Fmi2Variability.discrete, description=(
+                                          "the last error of the component (its own message)"),
+                                      getter=lambda: self._error), nested=False)
         self.register_variable(Integer(cfg["phases_output"], causality=Fmi2Causality.output,
                                        variability=Fmi2Variability.discrete, description=(
                                            "phases taken part in: 1 TM + 2 TO + 4 holds its state in TO"),
@@ -147,7 +154,23 @@ class RotorcosimSlave(Fmi2Slave):
     def setup_experiment(self, start_time, stop_time=None, tolerance=None):
         self._t0 = float(start_time)
 
+    def _guard(self, call, *args):
+        """Run ``call``; a failure is *not* raised into pythonfmu (its native exception path corrupts the
+        interpreter's reference counts: crashes later, in the garbage collector), but kept as the component's
+        own message for the importer, and the call reports failure by its return value."""
+        try:
+            call(*args)
+            return True
+        except Exception as exc:  # noqa: BLE001 - every failure of the component becomes an FMI error
+            self._error = f"{type(exc).__name__}: {exc}"
+            return False
+
     def exit_initialization_mode(self):
+        # pythonfmu ignores this call's return value: a failed set-up leaves no component, the importer reads
+        # the error variable, and any later doStep fails
+        self._guard(self._initialise)
+
+    def _initialise(self):
         pkg = importlib.import_module(self._cfg["package"])
         module = importlib.import_module(pkg.__name__ + "." + self._cfg["module"])
         cls = getattr(module, self._cfg["class"])
@@ -156,7 +179,8 @@ class RotorcosimSlave(Fmi2Slave):
             n = v["name"]
             if v["causality"] == "parameter" and n in self._explicit:
                 params[n] = self._par[n][0] if v["size"] == 1 else list(self._par[n])
-        comp = cls(self._cfg["instance_name"], params)
+        # the FMI instance name (the importing scenario's component name) names the component in its messages
+        comp = cls(self.instance_name or self._cfg["instance_name"], params)
         comp.set_inputs({k: v.copy() for k, v in self._u.items()})
         comp.setup(self._t0)
         comp.set_inputs({k: v.copy() for k, v in self._u.items()})   # setup may reset inputs to their starts
@@ -165,11 +189,17 @@ class RotorcosimSlave(Fmi2Slave):
 
     def _read_outputs(self):
         y = self._component.get_outputs()
+        self._error = ""
         for name in self._y:
             self._y[name] = np.array(y[name], dtype=float).reshape(-1)
 
     def do_step(self, current_time, step_size):
+        return self._guard(self._step, current_time, step_size)
+
+    def _step(self, current_time, step_size):
         comp = self._component
+        if comp is None:
+            raise RuntimeError(self._error or "the component was not set up (exitInitializationMode failed?)")
         comp.set_inputs(self._u)
         comp.do_step(float(current_time), float(step_size))
         self._read_outputs()

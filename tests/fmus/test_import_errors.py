@@ -181,3 +181,25 @@ def test_unreadable_model_description(mass_fmu, tmp_path):
     bad = rewrite(mass_fmu, tmp_path / "garbled.fmu", {"modelDescription.xml": b"<fmiModelDescription fmiVer"})
     with pytest.raises(FMUError, match="modelDescription.xml cannot be read"):
         load_fmu_component(bad, "c")
+
+
+def test_component_errors_inside_the_fmu_reach_the_user(damper_fmu):
+    """A bad parameter value is found by the component inside the FMU: its own message must come out."""
+    c = load_fmu_component(damper_fmu, "damper_x", {"damper": 7})
+    try:
+        with pytest.raises(FMUError, match=r"initialisation failed.*damper_x\.damper must be one of \[0, 5\]"):
+            c.setup(0.0)
+    finally:
+        c.terminate()
+
+
+def test_component_errors_in_a_step_reach_the_user(damper_fmu):
+    """The journal pushed through the film (wall contact switched off): the damper's own error comes out."""
+    c = load_fmu_component(damper_fmu, "damper_y", {"k_wall": 0.0})
+    try:
+        c.setup(0.0)
+        c.set_inputs({"X_journal": [1e-3, 0.0]})        # beyond the 0.635 mm clearance
+        with pytest.raises(FMUError, match=r"DoStep\(t = 0 s.*damper_y.*wall"):
+            c.do_step(0.0, 1e-5)
+    finally:
+        c.terminate()
