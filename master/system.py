@@ -91,9 +91,10 @@ class System:
             v = c.variable(port)
         except ContractError:
             known = ", ".join(x.name for x in c.variables if x.causality == causality)
-            raise SystemError_(f"{ref}: component {comp!r} has no {causality} {port!r} (its {causality}s: {known})") from None
+            raise SystemError_(f"{ref}: component {comp!r} ({c!r}) has no {causality} {port!r} "
+                               f"(its {causality}s: {known})") from None
         if v.causality != causality:
-            raise SystemError_(f"{ref} is an {v.causality}, used as an {causality}")
+            raise SystemError_(f"{ref} is a {v.causality} of {c!r}, used as an {causality}")
         return v
 
     def check(self) -> None:

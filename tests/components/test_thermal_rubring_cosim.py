@@ -39,12 +39,12 @@ class CircularOrbit(Component):
 
 
 def test_rub_power_of_a_circular_orbit_heats_the_network_like_the_held_power():
-    """By hand (rub ring defaults: k = 2e8 N/m, mu = 0.2, R = 25.4 mm, c = 0.508 mm): F_n = 2e8 * 0.092e-3 =
-    18 400 N, P_rub = 0.2 * 18 400 * OMEGA (0.0254 + 0.0006) = 160 313 W, constant on the orbit. Through the master
+    """By hand (rub ring defaults: k = 2.2e7 N/m, mu = 0.2, R = 25.4 mm, c = 0.508 mm): F_n = 2.2e7 * 0.092e-3 =
+    2024 N, P_rub = 0.2 * 2024 * OMEGA (0.0254 + 0.0006) = 17 634 W, constant on the orbit. Through the master
     (TM 20 ms at 1e-5 s, thermal at 1 ms with mean averaging; TO 5 s at 0.1 s with the RMS hold; TM 20 ms) the
     network must end where a stand-alone network under the same constant powers ends after 5.04 s (1e-9 relative
     in the temperature rises)."""
-    p_hand = 0.2 * 18400.0 * OMEGA * (0.0254 + ORBIT)
+    p_hand = 0.2 * 2.2e7 * (ORBIT - 0.508e-3) * OMEGA * (0.0254 + ORBIT)
     data = {
         "scenario": {"name": "rub_thermal"},
         "components": {
