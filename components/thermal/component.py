@@ -64,6 +64,9 @@ class ThermalNetwork(Component):
         Variable("rub_shaft_fraction", "parameter", unit="1", start=_SRC["rub_shaft_fraction"],
                  description="share of the rub power entering the shaft (rest into the housing carrying the ring);"
                              " < 0: the Blok partition of the data file (~1-2 %)"),
+        Variable("rub_ring_housing_fraction", "parameter", unit="1", start=-1.0,
+                 description="share of the ring's part of the rub power entering the housing node (rest stays in "
+                             "the ring and casing, not modelled); < 0: the data-file value (0)"),
         Variable("bearing_oil_flow", "parameter", unit="m3/s", start=-1.0,
                  description="oil-jet flow through the bearing (renewal of the lubricant nodes);"
                              " < 0: the data-file value of the bearing (2 L/min at #0, 3 L/min at #5)"),
@@ -99,7 +102,8 @@ class ThermalNetwork(Component):
         try:
             self.network = build_network(
                 p["bearing"], p["omega"], p["T_ambient"], p["T_supply"], p["drag_inner_fraction"],
-                p["contact_race_fraction"], p["rub_shaft_fraction"], p["bearing_oil_flow"], p["sfd_oil_flow"])
+                p["contact_race_fraction"], p["rub_shaft_fraction"], p["bearing_oil_flow"], p["sfd_oil_flow"],
+                p["rub_ring_housing_fraction"])
         except ValueError as exc:
             raise ContractError(f"{self.name}: {exc}") from None
         g = radii(p["bearing"])

@@ -209,10 +209,14 @@ def heat_masses(bearing: int) -> np.ndarray:
     return C
 
 
-def source_map(drag_inner_fraction: float, contact_race_fraction: float, rub_shaft_fraction: float) -> np.ndarray:
-    """S (9 x 3): node heat sources per watt of [P_drag, P_sfd, P_rub]; each column sums to 1."""
+def source_map(drag_inner_fraction: float, contact_race_fraction: float, rub_shaft_fraction: float,
+               rub_ring_housing_fraction: float = 1.0) -> np.ndarray:
+    """S (9 x 3): node heat sources per watt of [P_drag, P_sfd, P_rub]. The drag and film columns sum to 1; the
+    rub column to rub_shaft_fraction + (1 - rub_shaft_fraction) rub_ring_housing_fraction: the rest of the ring's
+    share stays in the ring and the casing, which are not nodes of this network."""
     for name, f in (("drag_inner_fraction", drag_inner_fraction), ("contact_race_fraction", contact_race_fraction),
-                    ("rub_shaft_fraction", rub_shaft_fraction)):
+                    ("rub_shaft_fraction", rub_shaft_fraction),
+                    ("rub_ring_housing_fraction", rub_ring_housing_fraction)):
         if not (math.isfinite(f) and 0.0 <= f <= 1.0):
             raise ValueError(f"{name} must be within [0, 1], got {f}")
     S = np.zeros((9, 3))
@@ -222,7 +226,7 @@ def source_map(drag_inner_fraction: float, contact_race_fraction: float, rub_sha
     S[BALL, 0] = 1 - fr
     S[SFD, 1] = 1.0
     S[SHAFT, 2] = rub_shaft_fraction
-    S[HOUSING, 2] = 1 - rub_shaft_fraction
+    S[HOUSING, 2] = (1 - rub_shaft_fraction) * rub_ring_housing_fraction
     return S
 
 
@@ -234,7 +238,7 @@ def default_sources() -> dict:
 def build_network(bearing: int, omega: float, T_ambient: float, T_supply: float,
                   drag_inner_fraction: float | None = None, contact_race_fraction: float | None = None,
                   rub_shaft_fraction: float | None = None, bearing_oil_flow: float | None = None,
-                  sfd_oil_flow: float | None = None) -> LinearNetwork:
+                  sfd_oil_flow: float | None = None, rub_ring_housing_fraction: float | None = None) -> LinearNetwork:
     """The network of bearing 0 or 5 (flows in m^3/s; None or < 0: the data-file value; rub_shaft_fraction None or
     < 0: the Blok partition of :func:`rub_partition`)."""
     src = default_sources()
@@ -243,6 +247,8 @@ def build_network(bearing: int, omega: float, T_ambient: float, T_supply: float,
     q_b = jet_flow(bearing) if bearing_oil_flow is None or bearing_oil_flow < 0.0 else bearing_oil_flow
     if rub_shaft_fraction is None or rub_shaft_fraction < 0.0:
         rub_shaft_fraction = rub_partition(bearing, omega)
+    if rub_ring_housing_fraction is None or rub_ring_housing_fraction < 0.0:
+        rub_ring_housing_fraction = _DATA["rub"]["ring_housing_fraction"]
     q_s = flows["sfd_L_per_min"] * Lmin if sfd_oil_flow is None else sfd_oil_flow
     for name, v in (("bearing_oil_flow", q_b), ("sfd_oil_flow", q_s), ("T_ambient", T_ambient),
                     ("T_supply", T_supply)):
@@ -286,5 +292,5 @@ def build_network(bearing: int, omega: float, T_ambient: float, T_supply: float,
     K[np.diag_indices(9)] += ground
     S = source_map(src["drag_inner_fraction"] if drag_inner_fraction is None else drag_inner_fraction,
                    src["contact_race_fraction"] if contact_race_fraction is None else contact_race_fraction,
-                   rub_shaft_fraction)
+                   rub_shaft_fraction, rub_ring_housing_fraction)
     return LinearNetwork(C=heat_masses(bearing), K=K, b=ground * T_ground, S=S, ground=ground, T_ground=T_ground)

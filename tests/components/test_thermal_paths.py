@@ -14,6 +14,9 @@ TA = 303.15
 
 
 def make(bearing=0, **params):
+    # every watt of rub into the network (the ring's share into the housing node), so that the energy checks see
+    # all the input power; the shipped default keeps the ring's share out (test_ring_share_leaves_the_network)
+    params.setdefault("rub_ring_housing_fraction", 1.0)
     c = ThermalNetwork(f"thermal{bearing}", {"bearing": bearing, **params})
     c.setup(0.0)
     return c
@@ -134,3 +137,15 @@ def test_the_largest_rub_stays_bounded_and_conserves_energy():
     assert stored + e_out == pytest.approx(P.sum() * 120.0, rel=2e-3)
     assert np.all(T - TA <= P.sum() * 120.0 / net.C)
     assert np.all(np.linalg.eigvalsh(0.5 * (net.K + net.K.T)) > 0.0)
+
+
+def test_ring_share_leaves_the_network():
+    """Shipped default (data/thermal.toml [rub] ring_housing_fraction = 0): only the rotor's Blok share of the rub
+    power enters the network (the ring and the casing are not nodes of Fig. 5); the drag and film columns still
+    put every watt in. With the fraction 1 the ring's share enters the housing node."""
+    c = ThermalNetwork("thermal0", {"bearing": 0})
+    c.setup(0.0)
+    f = rub_partition(0, PT_OMEGA)
+    np.testing.assert_allclose(c.network.S.sum(axis=0), [1.0, 1.0, f], rtol=1e-12)
+    half = make(0, rub_ring_housing_fraction=0.5)
+    assert half.network.S[HOUSING, 2] == pytest.approx(0.5 * (1 - f), rel=1e-12)
