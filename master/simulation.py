@@ -195,8 +195,12 @@ class Simulation:
         eps = 1e-9
         while self.t < end - eps:
             remaining = end - self.t
-            d_tm = remaining if remaining <= sch.tm_max + sch.to_min else sch.tm_max
-            self.run_interval("TM", d_tm, sch.step, _SteadyTest(self, sch), reason="tm_max")
+            if remaining <= sch.tm_max + sch.to_min:
+                # no room left for a thermal-only interval: one thermo-mechanical interval to the end (stopping
+                # it early when steady would only start another one)
+                self.run_interval("TM", remaining, sch.step, reason="end")
+                break
+            self.run_interval("TM", sch.tm_max, sch.step, _SteadyTest(self, sch), reason="tm_max")
             remaining = end - self.t
             if remaining <= eps:
                 break
