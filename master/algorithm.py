@@ -60,7 +60,7 @@ class _Link:
         self.prev_t = self.cur_t = None
         self._last = None
 
-    def value(self, t_mid: float) -> np.ndarray:
+    def value(self, t_mid: float, t_end: float | None = None) -> np.ndarray:
         if self.frozen is not None:
             return self.frozen
         y = self.src.y[self.sport]
@@ -72,9 +72,13 @@ class _Link:
             self.acc = self.acc2 = None
             self.weight = 0.0
             return out
-        if (self.mode == self.SLOW_TO_FAST and self.con.extrapolation == "linear" and self.prev is not None
-                and self.cur_t > self.prev_t):
-            return y + (y - self.prev) * ((t_mid - self.cur_t) / (self.cur_t - self.prev_t))
+        ex = self.con.extrapolation
+        if ex != "hold" and self.prev is not None and self.cur_t > self.prev_t:
+            if ex == "linear" and self.mode == self.SLOW_TO_FAST:
+                return y + (y - self.prev) * ((t_mid - self.cur_t) / (self.cur_t - self.prev_t))
+            if ex == "linear-end" and self.mode != self.FAST_TO_SLOW:
+                t_end = t_mid if t_end is None else t_end
+                return y + (y - self.prev) * ((t_end - self.cur_t) / (self.cur_t - self.prev_t))
         return np.array(y, dtype=float)
 
     def produced(self, h_src: float, t_end: float) -> None:
@@ -87,7 +91,7 @@ class _Link:
             elif how == "rms":
                 self.acc2 = y * y * h_src if self.acc2 is None else self.acc2 + y * y * h_src
             self.weight += h_src
-        elif self.mode == self.SLOW_TO_FAST:
+        elif self.mode == self.SLOW_TO_FAST or self.con.extrapolation == "linear-end":
             self.prev = None if self.cur_t is None else self._last
             self.prev_t = self.cur_t
             self._last = np.array(y, dtype=float)
@@ -178,7 +182,8 @@ class Engine:
         # only links that average, extrapolate or record need to hear about each production
         for n in self._outgoing:
             self._outgoing[n] = [link for link in self._outgoing[n]
-                                 if link.mode != _Link.SAME or link.ring is not None]
+                                 if link.mode != _Link.SAME or link.ring is not None
+                                 or link.con.extrapolation == "linear-end"]
         self._comp = {n: comps[n] for n in self.active}
         self._all_single = self.active if all(m == 1 for m in self.mult.values()) else None
         # Fast path of the hot loop: a component that keeps the contract's own set_inputs gets its same-rate,
@@ -188,14 +193,15 @@ class Engine:
         for n in self.active:
             if type(comps[n]).set_inputs is not Component.set_inputs or self.settings.iterations > 1:
                 continue
-            same = [(link.src, link.sport, link.dport) for link in self._inputs[n]
-                    if link.mode == _Link.SAME and link.frozen is None]
-            other = [link for link in self._inputs[n] if not (link.mode == _Link.SAME and link.frozen is None)]
+            plain = [link for link in self._inputs[n] if link.mode == _Link.SAME and link.frozen is None
+                     and link.con.extrapolation != "linear-end"]
+            same = [(link.src, link.sport, link.dport) for link in plain]
+            other = [link for link in self._inputs[n] if link not in plain]
             self._direct[n] = (same, other)
 
     # -- stepping ------------------------------------------------------------------------------------
-    def _gather(self, name: str, t_mid: float) -> dict:
-        return {link.dport: link.value(t_mid) for link in self._inputs[name]}
+    def _gather(self, name: str, t_mid: float, t_end: float | None = None) -> dict:
+        return {link.dport: link.value(t_mid, t_end) for link in self._inputs[name]}
 
     def _fire(self, name: str, values: dict, t: float, hc: float) -> None:
         comp = self._comp[name]
@@ -230,7 +236,7 @@ class Engine:
         for src, sport, dport in same:
             u[dport] = src.y[sport].copy()
         for link in other:
-            u[link.dport] = np.asarray(link.value(t + 0.5 * hc), dtype=float).reshape(-1)
+            u[link.dport] = np.asarray(link.value(t + 0.5 * hc, t + hc), dtype=float).reshape(-1)
         self._fire(name, None, t, hc)
 
     def _pass(self, firing: list[str], t_end: float) -> None:
@@ -243,12 +249,12 @@ class Engine:
                 if n in direct:
                     self._fire_direct(n, t, hc)
                 else:
-                    self._fire(n, self._gather(n, t + 0.5 * hc), t, hc)
+                    self._fire(n, self._gather(n, t + 0.5 * hc, t + hc), t, hc)
         else:
             gathered = []
             for n in firing:
                 hc = self.mult[n] * h
-                gathered.append((n, self._gather(n, t_end - 0.5 * hc), t_end - hc, hc))
+                gathered.append((n, self._gather(n, t_end - 0.5 * hc, t_end), t_end - hc, hc))
             for n, values, t, hc in gathered:
                 self._fire(n, values, t, hc)
 

@@ -12,7 +12,7 @@
 
     [[connections]]
     from = "m1.x"
-    to = "m2.x_in"                       # optional: average = "mean"|"rms"|"last", extrapolation = "hold"|"linear",
+    to = "m2.x_in"                       # optional: average = "mean"|"rms"|"last", extrapolation = "hold"|"linear"|"linear-end",
                                          # hold = "rms"|"mean"|"last" (thermal-only substitute)
     [inputs]
     "m1.F_ext" = 0.0                     # constant inputs

@@ -14,7 +14,7 @@ import numpy as np
 from rotorcosim.components.contract import Component, ContractError
 
 AVERAGES = ("mean", "rms", "last")
-EXTRAPOLATIONS = ("hold", "linear")
+EXTRAPOLATIONS = ("hold", "linear", "linear-end")
 HOLDS = ("rms", "mean", "last")
 
 
@@ -27,7 +27,10 @@ class Connection:
     """``src`` output drives ``dst`` input; both written ``component.port``.
 
     ``average``: how a slower consumer sees a faster producer (mean or RMS over its step, or the last value);
-    ``extrapolation``: how a faster consumer sees a slower producer (hold or linear);
+    ``extrapolation``: how a faster consumer sees a slower producer (hold, or linear to the middle of the
+    consumer's step); ``linear-end`` extrapolates linearly to the END of the consumer's step, for same-rate links
+    too: a consumer that enforces equilibrium at the step end with the held input (Newmark) then sees the
+    producer's force at the right time, which lifts the coupling lag from first to second order;
     ``hold``: what replaces a frozen producer's output in a thermal-only interval (None: the schedule default).
     """
 

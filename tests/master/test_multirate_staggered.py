@@ -130,3 +130,33 @@ def test_thermal_only_interval_keeps_its_duration():
     assert used.steps == 239
     assert used.t_end == pytest.approx(0.1 + 23.85, abs=1e-9)
     assert used.step == pytest.approx(23.85 / 239, rel=1e-12) and used.step <= 0.1
+
+
+def test_linear_end_extrapolation_is_exact_for_a_ramp():
+    """extrapolation = "linear-end" on a same-rate link: the consumer sees the producer's value extrapolated to the
+    end of its own step, exact for a ramp y = 3 t (hold gives the value at the step start: late by one step)."""
+    from rotorcosim.components.contract import Component, Variable
+
+    class Ramp(Component):
+        variables = (Variable("y", "output"),)
+
+        def do_step(self, t, h):
+            self.y["y"] = np.array([3.0 * (t + h)])
+
+    class Probe(Component):
+        variables = (Variable("u", "input"),)
+
+        def setup(self, t0=0.0):
+            super().setup(t0)
+            self.seen = []
+
+        def do_step(self, t, h):
+            self.seen.append((t + h, float(self.u["u"][0])))
+
+    for how, lag in (("linear-end", 0.0), ("hold", 1e-3)):
+        s = System({"ramp": Ramp("ramp"), "probe": Probe("probe")},
+                   [Connection("ramp.y", "probe.u", extrapolation=how)])
+        Simulation(s, order=["probe", "ramp"]).run(Timeline([Interval("TM", 0.01, 1e-3)]))
+        seen = s.components["probe"].seen[2:]  # from the third step on, two past values exist
+        assert len(seen) == 8
+        assert all(abs(u - 3.0 * (t_end - lag)) < 1e-12 for t_end, u in seen), (how, seen)
