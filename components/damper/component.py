@@ -88,7 +88,7 @@ class _Damper(Component):
         Variable("K_film", "output", 4, "N/m",
                  "dF_journal/dX_journal, row-major [dFx/dx, dFx/dy, dFy/dx, dFy/dy] (film + spring + contact)"),
         Variable("C_film", "output", 4, "N.s/m", "dF_journal/dV_journal, row-major (film)"),
-        Variable("P_film", "output", 1, "W", "viscous power loss of the film (mean over the step)"),
+        Variable("P_film", "output", 1, "W", "viscous power loss of the film, -F_film . w, at the end of the step"),
         Variable("mu", "output", 1, "Pa.s", "oil viscosity at T_oil"),
     )
     preferred_step = 1e-5
