@@ -251,8 +251,9 @@ def schedule_of(sc: Scenario, kind: str | None = None, duration: float | None = 
     spec = dict(sc.schedule)
     if kind is not None:
         spec["kind"] = kind
-        if kind == "monolithic":
+        if kind in ("monolithic", "auto"):
             spec.pop("intervals", None)
+            # the same simulated time as the scenario's own timeline, unless told otherwise
             if duration is None and "duration" not in spec and sc.schedule.get("intervals"):
                 duration = from_spec(sc.schedule).duration
     return from_spec(spec, duration)

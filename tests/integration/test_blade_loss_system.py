@@ -125,3 +125,14 @@ def test_compare_writes_table6(tmp_path):
     tm = sum(u["t_end"] - u["t_start"] for u in t["timeline_staggered"] if u["phase"] == "TM")
     assert tm * 16000 / 60 <= 12 + 1e-9
     assert t["timeline_staggered"][-1]["t_end"] == pytest.approx(0.1, abs=1e-9)
+
+
+def test_auto_and_monolithic_schedules_cover_the_scenario_duration():
+    """--schedule auto / monolithic without --duration simulate the scenario's own 120 s (not an error)."""
+    from rotorcosim.master.scenario import schedule_of
+
+    sc = resolve("blade_loss")
+    assert schedule_of(sc).duration == pytest.approx(120.0)
+    assert schedule_of(sc, "auto").duration == pytest.approx(120.0)
+    assert schedule_of(sc, "monolithic").duration == pytest.approx(120.0)
+    assert schedule_of(sc, "auto", 5.0).duration == pytest.approx(5.0)
