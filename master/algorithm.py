@@ -10,7 +10,11 @@ Inputs crossing rates (per connection):
 * fast producer -> slow consumer: the mean (or RMS) of the producer's outputs over the consumer's window,
   weighted by the producer's step, so that a power signal (itself a step mean) delivers its exact energy;
 * slow producer -> fast consumer: hold the last output, or extrapolate linearly from the last two outputs to
-  the middle of the consumer's step.
+  the middle of the consumer's step;
+* ``linear-end`` (any rate but fast -> slow): extrapolate linearly to the END of the consumer's step, for a
+  consumer that enforces equilibrium there with the held input (Newmark): the one-step lag of a Gauss-Seidel
+  feedback becomes second order. Not meant for iterative coupling (a repeated step would shift its history),
+  and unstable on stiff contact forces that switch on and off within a step.
 
 Iterative coupling (single rate only): each base step is repeated from the snapshot taken by ``get_state``
 until the exchanged inputs change by less than ``tolerance`` (relative), up to ``iterations`` passes.
