@@ -89,6 +89,10 @@ class Component:
         if len(self._by_name) != len(self.variables):
             raise ContractError(f"{type(self).__name__}: duplicate variable names")
         self.p: dict[str, Any] = {}
+        #: names of the parameters set by the user (constructor or set_parameter), not left at their start
+        #: value: a component whose defaults depend on another parameter (the bearing/damper/ring number picks
+        #: the Table 3 data) fills in only the ones not in here
+        self.explicit: set[str] = set()
         for v in self.variables:
             if v.causality == "parameter":
                 self.p[v.name] = self._coerce_parameter(v, v.start)
@@ -137,6 +141,7 @@ class Component:
         if v.causality != "parameter":
             raise ContractError(f"{self.name}.{name} is an {v.causality}, not a parameter")
         self.p[name] = self._coerce_parameter(v, value)
+        self.explicit.add(name)
 
     # -- the co-simulation calls --------------------------------------------------------------------
     def setup(self, t0: float = 0.0) -> None:

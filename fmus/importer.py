@@ -261,6 +261,7 @@ class FMUComponent(Component):
         self.phases = ann.phases or frozenset({"TM"})
         self.holds_state_in_TO = False
         self.phase = None
+        self.explicit: set[str] = set()
         step = ann.preferred_step or (md.defaultExperiment.stepSize if md.defaultExperiment else None)
         self.preferred_step = float(step) if step else Component.preferred_step
         self.description = md.description or ""
@@ -409,6 +410,7 @@ class FMUComponent(Component):
         except Exception as exc:
             raise FMUError(f"{self._where}: setting parameter {name!r} failed ({exc}){self._log_text()}") from None
         self.p[name] = coerced
+        self.explicit.add(name)
 
     # -- the co-simulation calls -----------------------------------------------------------------------
     def _push_inputs(self) -> None:

@@ -110,15 +110,11 @@ class BallBearing(Component):
         Variable("P_drag", "output", 1, "W", "drag torque power loss M omega, mean over the step"),
     )
 
-    def set_parameter(self, name, value):
-        super().set_parameter(name, value)
-        self.__dict__.setdefault("_explicit", set()).add(name)
-
     # -- set-up --------------------------------------------------------------------------------------------
     def setup(self, t0=0.0):
         super().setup(t0)
         p = self.p
-        explicit = self.__dict__.get("_explicit", set())
+        explicit = self.explicit
         if p["bearing"] not in BEARINGS:
             raise ContractError(f"{self.name}.bearing: unknown bearing number {p['bearing']!r}; "
                                 f"Table 3 has {sorted(BEARINGS)}")
@@ -161,6 +157,7 @@ class BallBearing(Component):
         phi = 2.0 * math.pi * np.arange(g.Z) / g.Z
         self._cb, self._sb = np.cos(phi), np.sin(phi)
         self._T = None
+        self._Pv_T = None
         self._eps_jump = float(_NUM["eps_jump"])
         self.state = {
             "balls": np.vstack([st.v, np.zeros((2, g.Z))]),
@@ -249,10 +246,15 @@ class BallBearing(Component):
         raise RuntimeError(f"{self.name}: the bearing state became non-finite at t = {t:.9g} s")
 
     def _viscous_power(self, T):
-        """omega M_v: the load-independent (viscous) part of the Palmgren drag power at oil temperature T."""
-        d = self._drag
-        nu = self._nu(T)
-        return d[1] * palmgren_torque(0.0, 0.0, nu, d[1], d[2], d[3], d[4], d[5], d[6], d[7], d[8])
+        """omega M_v: the load-independent (viscous) part of the Palmgren drag power at oil temperature T.
+        Kept for the last T: it is asked at every thermo-mechanical step, and T_oil changes only at the thermal
+        network's (slower) step."""
+        if T != self._Pv_T:
+            d = self._drag
+            nu = self._nu(T)
+            self._Pv = d[1] * palmgren_torque(0.0, 0.0, nu, d[1], d[2], d[3], d[4], d[5], d[6], d[7], d[8])
+            self._Pv_T = T
+        return self._Pv
 
     def do_step(self, t, h):
         if not (h > 0.0 and math.isfinite(h)):

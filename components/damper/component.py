@@ -94,10 +94,6 @@ class _Damper(Component):
     preferred_step = 1e-5
     phases = frozenset({"TM"})
 
-    def set_parameter(self, name, value):
-        super().set_parameter(name, value)
-        self.__dict__.setdefault("_explicit", set()).add(name)
-
     #: layout of the evaluation vector: name -> slice (F_housing and mu are added separately)
     OUT = {"F_film": slice(0, 2), "K_film": slice(2, 6), "C_film": slice(6, 10), "F_spring": slice(10, 12),
            "F_contact": slice(12, 14), "F_journal": slice(14, 16), "P_film": slice(16, 17)}
@@ -107,7 +103,7 @@ class _Damper(Component):
     def setup(self, t0=0.0):
         super().setup(t0)
         p = self.p
-        explicit = self.__dict__.get("_explicit", set())
+        explicit = self.explicit
         if p["damper"] not in DAMPERS:
             raise ContractError(f"{self.name}.damper must be one of {sorted(DAMPERS)} (Table 3), got {p['damper']}")
         data = table3(p["damper"])

@@ -55,9 +55,9 @@ def calibrate(data: dict, tol_rpm: float = 1.0, max_iter: int = 10) -> tuple[np.
     return x, f
 
 
-def linear_response(data: dict, rpm: float = 16000.0, F_u: float = 2850.0) -> tuple[float, float]:
-    """Steady whirl amplitude (mm, major semi-axis bound |a_f| + |a_b|) at bearings #0/#5 for F_u at the
-    blade-loss node, bearings #0/#5 linearised, undamped modes not assumed (direct harmonic solve)."""
+def _harmonic(data: dict, rpm: float, F_u: float):
+    """The model and its steady synchronous response X (complex) to F_u at the blade-loss node, bearings #0/#5
+    linearised, by a direct harmonic solve (undamped modes not assumed)."""
     m = model.build(data)
     Ks, Cs = m.linear_support()
     W = rpm * model.RPM
@@ -65,30 +65,27 @@ def linear_response(data: dict, rpm: float = 16000.0, F_u: float = 2850.0) -> tu
     f = np.zeros(m.n, complex)
     ux, uy = m.ports["unbalance"]
     f[ux], f[uy] = F_u, -1j * F_u
-    X = np.linalg.solve(A, f)
+    return m, np.linalg.solve(A, f)
 
-    def amp(i):
-        return 1e3 * (abs(X[i[0]] + 1j * X[i[1]]) + abs(X[i[0]] - 1j * X[i[1]])) / 2
 
-    return amp(m.ports["brg0"]), amp(m.ports["brg5"])
+def _amp(x, y):
+    """Major semi-axis bound |a_f| + |a_b| of the orbit (x, y) (complex amplitudes)."""
+    return (abs(x + 1j * y) + abs(x - 1j * y)) / 2
+
+
+def linear_response(data: dict, rpm: float = 16000.0, F_u: float = 2850.0) -> tuple[float, float]:
+    """Steady whirl amplitude (mm, major semi-axis bound |a_f| + |a_b|) at bearings #0/#5 for F_u at the
+    blade-loss node, bearings #0/#5 linearised, undamped modes not assumed (direct harmonic solve)."""
+    m, X = _harmonic(data, rpm, F_u)
+    return tuple(1e3 * _amp(X[m.ports[b][0]], X[m.ports[b][1]]) for b in ("brg0", "brg5"))
 
 
 def linear_response_detail(data: dict, rpm: float = 16000.0, F_u: float = 2850.0) -> dict:
     """Like :func:`linear_response`, per bearing "0"/"5": whirl of the PT node (mm), its orbit relative to the
     housing hub (mm) and the transmissibility of eq. (23), |F_spring + F_film| / F_u, of the linearised support
     (contact in series with the centering spring, film damping in parallel: the largest force over the orbit)."""
-    m = model.build(data)
-    Ks, Cs = m.linear_support()
+    m, X = _harmonic(data, rpm, F_u)
     W = rpm * model.RPM
-    A = m.K + Ks - W ** 2 * m.M + 1j * W * (m.C + Cs + W * m.G_pt + W * critical.speed_ratio(m) * m.G_gg)
-    f = np.zeros(m.n, complex)
-    ux, uy = m.ports["unbalance"]
-    f[ux], f[uy] = F_u, -1j * F_u
-    X = np.linalg.solve(A, f)
-
-    def amp(x, y):
-        return (abs(x + 1j * y) + abs(x - 1j * y)) / 2
-
     out = {}
     for key, brg, hub in (("0", "brg0", "housing0"), ("5", "brg5", "housing5")):
         s = data["linear_support"]["h" + key]
@@ -96,8 +93,8 @@ def linear_response_detail(data: dict, rpm: float = 16000.0, F_u: float = 2850.0
         (i, j), (hi, hj) = m.ports[brg][:2], m.ports[hub]
         rx, ry = X[i] - X[hi], X[j] - X[hj]
         # force of the support: (k + i W c) times the relative orbit; its largest value over the orbit
-        out[key] = {"whirl_mm": 1e3 * amp(X[i], X[j]), "relative_mm": 1e3 * amp(rx, ry),
-                    "transmissibility": amp((k + 1j * W * s["c"]) * rx, (k + 1j * W * s["c"]) * ry) / F_u}
+        out[key] = {"whirl_mm": 1e3 * _amp(X[i], X[j]), "relative_mm": 1e3 * _amp(rx, ry),
+                    "transmissibility": _amp((k + 1j * W * s["c"]) * rx, (k + 1j * W * s["c"]) * ry) / F_u}
     return out
 
 

@@ -64,16 +64,12 @@ class RubRing(Component):
     preferred_step = 1e-5
     phases = frozenset({"TM"})
 
-    def set_parameter(self, name, value):
-        super().set_parameter(name, value)
-        self.__dict__.setdefault("_explicit", set()).add(name)
-
     def setup(self, t0=0.0):
         super().setup(t0)
         p = self.p
         if p["bearing"] not in RINGS:
             raise ContractError(f"{self.name}.bearing must be one of {sorted(RINGS)}, got {p['bearing']}")
-        explicit = self.__dict__.get("_explicit", set())
+        explicit = self.explicit
         for key, data_key in GEOMETRY.items():
             if key not in explicit:
                 p[key] = RINGS[p["bearing"]][data_key] * 1e-3
