@@ -1,31 +1,52 @@
-"""``rotorcosim sweep --unbalance LIST --out DIR [--scheduler ADDRESS]``: blade-loss levels in parallel on Dask.
+"""``rotorcosim sweep (--unbalance LIST | --set comp.param=v1,v2,...) --out DIR [--scheduler ADDRESS]``.
 
-Each level runs the blade-loss scenario (``rotorcosim run`` with ``--unbalance``) in its own folder
-``DIR/F_<N>``; the sweep then writes ``DIR/table5.csv`` in the format of the paper's Table 5
-(``result,bearing,<F_u>...``) and ``DIR/table5.md``: our value beside the paper's, cell by cell.
-Without ``--scheduler`` a local Dask cluster (one single-threaded worker process per core) runs the cases.
+A sweep is a grid of cases: the blade-loss levels of ``--unbalance`` (the unbalance parameter of the scenario's
+``[results]``) times every ``--set`` parameter's values. Each case runs the scenario in a folder of its own,
+``DIR/F_<N>`` for an unbalance level, ``DIR/<comp.param>=<value>[_...]`` for a parameter grid.
+
+Cases run on Dask: a local cluster (one single-threaded worker process per core) or, with ``--scheduler``, a
+running cluster whose workers may be other machines. A worker runs its case in a temporary folder of its own and
+sends the files back; the client writes them under ``--out`` (write-then-rename, so a case folder is whole or
+absent). The sweep then writes ``DIR/sweep.json`` (cases, where they ran, wall times, errors), ``DIR/sweep.csv``
+(one row per case: its parameters and its Table 4 results) and, for an unbalance-only sweep of a blade-loss
+scenario, ``DIR/table5.csv`` / ``DIR/table5.md`` in the paper's Table 5 format.
 """
 from __future__ import annotations
 
 import csv
+import itertools
+import os
+import shutil
+import sys
+import tempfile
 import time
+from dataclasses import dataclass, field
 from pathlib import Path
+from typing import Any
 
 from rotorcosim.master.outputs import write_json
 
 from .run import apply_unbalance, execute, resolve
-from .table5 import PAPER_LEVELS, paper_table5, write_table5
+from .table5 import PAPER_LEVELS, write_table5
+
+#: how long the client waits for a scheduler given by --scheduler before saying it cannot reach it [s]
+CONNECT_TIMEOUT_S = 20.0
+
 
 def add_arguments(p):
-    p.add_argument("--unbalance", required=True,
+    p.add_argument("--unbalance", default=None,
                    help="comma-separated blade-loss forces [N], or 'paper' for the seven levels of Table 5")
+    p.add_argument("--set", action="append", default=[], metavar="COMP.PARAM=V1,V2,...",
+                   help="a parameter and its values (repeatable: the sweep is the grid of all of them)")
     p.add_argument("--out", required=True, help="output folder")
-    p.add_argument("--scheduler", default=None, help="address of a running Dask scheduler (default: a local cluster)")
-    p.add_argument("--scenario", default="blade_loss", help="the scenario every level runs (default blade_loss)")
+    p.add_argument("--scheduler", default=None,
+                   help="address of a running Dask scheduler, e.g. tcp://10.0.0.5:8786 (default: a local cluster)")
+    p.add_argument("--scenario", default="blade_loss", help="the scenario every case runs (default blade_loss)")
     p.add_argument("--duration", type=float, default=None, help="simulated duration [s] (cuts the timeline)")
     p.add_argument("--schedule", choices=["paper", "auto", "monolithic"], default="paper")
     p.add_argument("--workers", type=int, default=None, help="local cluster size (default: number of cores)")
-    p.add_argument("--serial", action="store_true", help="run the levels one after another, without Dask")
+    p.add_argument("--serial", action="store_true", help="run the cases one after another, without Dask")
+    p.add_argument("--quiet", action="store_true", help="no line per finished case")
 
 
 def parse_levels(text: str) -> list[float]:
@@ -49,63 +70,236 @@ def parse_levels(text: str) -> list[float]:
     return out
 
 
-def run_case(scenario: str, force: float, out: str, schedule: str | None, duration: float | None) -> dict:
-    """One level (runs in a Dask worker): returns its summary."""
-    sc = resolve(scenario)
-    apply_unbalance(sc, force)
+def _value(text: str, where: str) -> Any:
+    """One value of a ``--set`` list: a number, true/false, or else the bare text (string parameters)."""
+    t = text.strip()
+    if not t:
+        raise ValueError(f"{where}: an empty value")
+    if t.lower() in ("true", "false"):
+        return t.lower() == "true"
     try:
-        return execute(sc, Path(out), schedule, duration, figures=True, quiet=True)
-    except Exception as exc:  # one diverging level must not lose the others
-        return {"scenario": sc.name, "error": f"{type(exc).__name__}: {exc}", "bearings": {}}
+        v = float(t)
+    except ValueError:
+        return t
+    if v != v or v in (float("inf"), float("-inf")):
+        raise ValueError(f"{where}: {t!r} is not a finite number")
+    return v
 
 
-def sweep(levels, out: Path, scenario="blade_loss", scheduler=None, schedule=None, duration=None,
-          workers=None, serial=False) -> dict:
-    out = Path(out)
-    out.mkdir(parents=True, exist_ok=True)
-    resolve(scenario)  # fail early on a bad scenario
-    jobs = [(scenario, f, str(out / f"F_{f:g}"), schedule, duration) for f in levels]
-    t0 = time.perf_counter()
-    if serial:
-        results = [run_case(*j) for j in jobs]
-        where = "serial"
-    else:
-        from dask.distributed import Client, LocalCluster
+def parse_grid(items: list[str]) -> dict[str, list[Any]]:
+    """``["comp.param=v1,v2", ...]`` -> ``{"comp.param": [v1, v2], ...}`` (order kept)."""
+    grid: dict[str, list[Any]] = {}
+    for item in items:
+        ref, eq, values = item.partition("=")
+        ref = ref.strip()
+        where = f"--set {item!r}"
+        comp, dot, param = ref.partition(".")
+        if not eq or not dot or not comp or not param:
+            raise ValueError(f"{where}: expected COMP.PARAM=V1,V2,...")
+        if ref in grid:
+            raise ValueError(f"{where}: {ref} is given twice")
+        vals = [_value(v, where) for v in values.split(",")]
+        if len(set(map(repr, vals))) != len(vals):
+            raise ValueError(f"{where}: a value is repeated")
+        grid[ref] = vals
+    return grid
 
-        if scheduler:
-            client = Client(scheduler)
-            cluster = None
-            where = scheduler
-        else:
-            import os
 
-            n = workers or os.cpu_count() or 1
-            cluster = LocalCluster(n_workers=n, threads_per_worker=1, processes=True, dashboard_address=None)
-            client = Client(cluster)
-            where = f"local cluster, {n} workers"
+@dataclass
+class Case:
+    """One run of the sweep: its folder name and the parameters it sets (``comp.param`` -> value)."""
+    name: str
+    settings: dict[str, Any] = field(default_factory=dict)
+    unbalance_N: float | None = None
+
+
+def _fmt(v: Any) -> str:
+    return f"{v:g}" if isinstance(v, float) else str(v).lower() if isinstance(v, bool) else str(v)
+
+
+def cases_of(levels: list[float] | None, grid: dict[str, list[Any]]) -> list[Case]:
+    """The grid of cases: unbalance levels (outer) times the ``--set`` parameters' values."""
+    if not levels and not grid:
+        raise ValueError("nothing to sweep: give --unbalance and/or --set")
+    out = []
+    refs = list(grid)
+    for f in levels or [None]:
+        for combo in itertools.product(*(grid[r] for r in refs)):
+            parts = ([f"F_{f:g}"] if f is not None else []) + [f"{r}={_fmt(v)}" for r, v in zip(refs, combo)]
+            name = "_".join(parts)
+            if "/" in name or name.startswith("."):
+                raise ValueError(f"case name {name!r} is not a usable folder name: use plainer values")
+            out.append(Case(name, dict(zip(refs, combo)), f))
+    return out
+
+
+def _apply(sc, case: Case) -> None:
+    if case.unbalance_N is not None:
+        apply_unbalance(sc, case.unbalance_N)
+    for ref, value in case.settings.items():
+        comp, _, param = ref.partition(".")
+        if comp not in sc.components:
+            raise ValueError(f"--set {ref}: scenario {sc.name!r} has no component {comp!r} "
+                             f"(components: {', '.join(sc.components)})")
+        sc.components[comp].parameters[param] = value
+    if case.settings:
+        sc.name = f"{sc.name}_{case.name}"
+
+
+def run_case(scenario: str, case: Case, schedule: str | None, duration: float | None) -> dict:
+    """One case, run where it is called (a Dask worker or this process), in a temporary folder of its own.
+
+    Returns ``{"summary": ..., "files": {relative path: bytes}, "host": ...}``: the caller writes the files
+    where it wants them, so a worker needs no access to the client's folders."""
+    import socket
+
+    work = Path(tempfile.mkdtemp(prefix="rotorcosim-case-"))
+    try:
         try:
-            futures = [client.submit(run_case, *j, pure=False) for j in jobs]
-            results = client.gather(futures)
+            sc = resolve(scenario)
+            _apply(sc, case)
+            summary = execute(sc, work, schedule, duration, figures=True, quiet=True)
+        except Exception as exc:  # one failing case must not lose the others
+            summary = {"scenario": case.name, "error": f"{type(exc).__name__}: {exc}", "bearings": {}}
+            written = work / "summary.json"
+            if written.exists():  # a diverged run wrote its summary (with the error) and what it recorded
+                import json
+
+                summary = {**json.loads(written.read_text()), "error": summary["error"]}
+        files = {str(p.relative_to(work)): p.read_bytes() for p in sorted(work.rglob("*")) if p.is_file()}
+        return {"summary": summary, "files": files, "host": socket.gethostname()}
+    finally:
+        shutil.rmtree(work, ignore_errors=True)
+
+
+def _store(out: Path, case: Case, files: dict[str, bytes]) -> None:
+    """Write a case's files into ``out/<case>`` whole: into a hidden folder first, then renamed."""
+    final = out / case.name
+    part = out / f".{case.name}.part"
+    shutil.rmtree(part, ignore_errors=True)
+    part.mkdir(parents=True)
+    for rel, data in files.items():
+        target = (part / rel).resolve()
+        if part.resolve() not in target.parents:  # a worker is trusted to run cases, not to write anywhere
+            raise ValueError(f"case {case.name}: a returned file {rel!r} points outside its folder")
+        target.parent.mkdir(parents=True, exist_ok=True)
+        target.write_bytes(data)
+    if final.exists():
+        shutil.rmtree(final)
+    os.replace(part, final)
+
+
+def _client(scheduler: str | None, workers: int | None):
+    from dask.distributed import Client, LocalCluster
+
+    if scheduler:
+        try:
+            client = Client(scheduler, timeout=CONNECT_TIMEOUT_S)
+        except (OSError, TimeoutError) as exc:
+            raise ValueError(f"--scheduler {scheduler}: cannot reach the Dask scheduler ({exc})") from None
+        n = len(client.scheduler_info().get("workers", {}))
+        return client, None, f"{scheduler}, {n} workers"
+    n = workers or os.cpu_count() or 1
+    cluster = LocalCluster(n_workers=n, threads_per_worker=1, processes=True, dashboard_address=None)
+    return Client(cluster), cluster, f"local cluster, {n} workers"
+
+
+def sweep(levels=None, out: Path = Path("sweep"), scenario="blade_loss", scheduler=None, schedule=None,
+          duration=None, workers=None, serial=False, grid: dict[str, list[Any]] | None = None,
+          progress=None) -> dict:
+    """Run the grid of ``levels`` (unbalance forces [N]) x ``grid`` (``{"comp.param": [values]}``).
+
+    ``progress(done, total, case, result)`` is called as each case finishes. Returns the contents of
+    ``sweep.json``."""
+    if workers is not None and workers < 1:
+        raise ValueError(f"--workers must be at least 1, got {workers}")
+    out = Path(out)
+    grid = dict(grid or {})
+    cases = cases_of(list(levels) if levels else None, grid)
+    for c in cases:  # fail early: a bad scenario or an unknown component, before any worker starts
+        _apply(resolve(scenario), c)
+    out.mkdir(parents=True, exist_ok=True)
+    t0 = time.perf_counter()
+    results: dict[str, dict] = {}
+
+    def finished(case: Case, res: dict) -> None:
+        _store(out, case, res["files"])
+        results[case.name] = res
+        if progress:
+            progress(len(results), len(cases), case, res)
+
+    if serial:
+        where = "serial"
+        for c in cases:
+            finished(c, run_case(scenario, c, schedule, duration))
+    else:
+        from dask.distributed import as_completed
+
+        client, cluster, where = _client(scheduler, workers)
+        try:
+            futures = {client.submit(run_case, scenario, c, schedule, duration, pure=False): c for c in cases}
+            for fut in as_completed(futures):
+                c = futures[fut]
+                try:
+                    res = fut.result()
+                except Exception as exc:  # the worker could not run the task at all (e.g. no rotorcosim there)
+                    res = {"summary": {"scenario": c.name, "error": f"{type(exc).__name__}: {exc}",
+                                       "bearings": {}}, "files": {}, "host": None}
+                finished(c, res)
         finally:
             client.close()
             if cluster is not None:
                 cluster.close()
     wall = time.perf_counter() - t0
-    by_level = dict(zip(levels, results))
-    write_table5(out, by_level)
-    info = {"levels_N": levels, "wall_time_s": wall, "executed_on": where,
-            "case_wall_time_s": {f"{f:g}": r.get("wall_time_s") for f, r in by_level.items()},
-            "errors": {f"{f:g}": r["error"] for f, r in by_level.items() if r.get("error")}}
+    summaries = {c.name: results[c.name]["summary"] for c in cases}
+    if levels and not grid:
+        write_table5(out, {c.unbalance_N: summaries[c.name] for c in cases})
+    _write_csv(out / "sweep.csv", cases, summaries)
+    info = {"cases": [c.name for c in cases], "levels_N": list(levels or []),
+            "parameters": {r: vs for r, vs in grid.items()}, "wall_time_s": wall, "executed_on": where,
+            "case_hosts": {c.name: results[c.name].get("host") for c in cases},
+            "case_wall_time_s": {c.name: summaries[c.name].get("wall_time_s") for c in cases},
+            "errors": {c.name: summaries[c.name]["error"] for c in cases if summaries[c.name].get("error")}}
     write_json(out / "sweep.json", info)
     return info
 
 
+def _write_csv(path: Path, cases: list[Case], summaries: dict[str, dict]) -> None:
+    """One row per case: its parameters, then ``<result>_<bearing>`` for every Table 4 result it has."""
+    params = list(dict.fromkeys(["unbalance_N"] * any(c.unbalance_N is not None for c in cases)
+                                + [r for c in cases for r in c.settings]))
+    results = list(dict.fromkeys(f"{key}_{brg}" for s in summaries.values()
+                                 for brg, vals in s.get("bearings", {}).items() for key in vals
+                                 if isinstance(vals.get(key), (int, float))))
+    tmp = path.with_name(path.name + ".part")
+    with open(tmp, "w", newline="") as fh:
+        w = csv.writer(fh)
+        w.writerow(["case", *params, *results, "error"])
+        for c in cases:
+            s = summaries[c.name]
+            row = [c.name] + [c.unbalance_N if p == "unbalance_N" else c.settings.get(p, "") for p in params]
+            flat = {f"{k}_{b}": v for b, vals in s.get("bearings", {}).items() for k, v in vals.items()}
+            row += [flat.get(r, "") for r in results] + [s.get("error") or ""]
+            w.writerow(row)
+    os.replace(tmp, path)
+
+
 def run(args) -> int:
-    levels = parse_levels(args.unbalance)
+    levels = parse_levels(args.unbalance) if args.unbalance else None
+    grid = parse_grid(args.set)
     kind = {"paper": None, "auto": "auto", "monolithic": "monolithic"}[args.schedule]
-    info = sweep(levels, Path(args.out), args.scenario, args.scheduler, kind, args.duration, args.workers, args.serial)
-    print(f"{len(levels)} levels in {info['wall_time_s']:.3g} s ({info['executed_on']}); "
-          f"{args.out}/table5.csv and table5.md written")
-    for f, e in info["errors"].items():
-        print(f"  level {f} N failed: {e}")
+
+    def progress(done, total, case, res):
+        err = res["summary"].get("error")
+        wall = res["summary"].get("wall_time_s")
+        state = f"failed: {err}" if err else (f"done in {wall:.3g} s" if wall else "done")
+        print(f"[{done}/{total}] {case.name}: {state}", file=sys.stderr, flush=True)
+
+    info = sweep(levels, Path(args.out), args.scenario, args.scheduler, kind, args.duration, args.workers,
+                 args.serial, grid, None if args.quiet else progress)
+    tables = " table5.csv, table5.md," if levels and not grid else ""
+    print(f"{len(info['cases'])} cases in {info['wall_time_s']:.3g} s ({info['executed_on']});"
+          f"{tables} sweep.csv and sweep.json written in {args.out}")
+    for name, e in info["errors"].items():
+        print(f"  case {name} failed: {e}")
     return 1 if info["errors"] else 0

@@ -1,0 +1,130 @@
+"""Sweeps on a Dask cluster of separate processes, and the --set parameter grid.
+
+The cluster test starts ``dask scheduler`` and two ``dask worker`` processes, each worker in a working folder of
+its own (as on other machines), and checks that every case's files come back to the client's --out folder and
+that the numbers equal the same cases run in this process.
+"""
+from __future__ import annotations
+
+import json
+import os
+import socket
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import pytest
+
+from rotorcosim.master.cli import main
+from rotorcosim.master.commands.sweep import cases_of, parse_grid, sweep
+
+
+def _free_port() -> int:
+    with socket.socket() as s:
+        s.bind(("127.0.0.1", 0))
+        return s.getsockname()[1]
+
+
+@pytest.fixture(scope="module")
+def dask_cluster(tmp_path_factory):
+    """``dask scheduler`` + two ``dask worker`` processes on loopback, each worker in its own folder."""
+    pytest.importorskip("distributed")
+    root = tmp_path_factory.mktemp("cluster")
+    port = _free_port()
+    address = f"tcp://127.0.0.1:{port}"
+    env = {**os.environ, "PYTHONUNBUFFERED": "1"}
+    procs = [subprocess.Popen([sys.executable, "-m", "distributed.cli.dask_scheduler", "--host", "127.0.0.1",
+                               "--port", str(port), "--no-dashboard"], cwd=root, env=env,
+                              stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)]
+    for i in range(2):
+        wdir = root / f"worker{i}"
+        wdir.mkdir()
+        procs.append(subprocess.Popen([sys.executable, "-m", "distributed.cli.dask_worker", address,
+                                       "--nthreads", "1", "--nworkers", "1", "--no-dashboard",
+                                       "--local-directory", str(wdir), "--name", f"w{i}"],
+                                      cwd=wdir, env={**env, "TMPDIR": str(wdir)},
+                                      stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL))
+    try:
+        from dask.distributed import Client
+
+        deadline = time.monotonic() + 60
+        while True:
+            try:
+                with Client(address, timeout=5) as c:
+                    if len(c.scheduler_info()["workers"]) == 2:
+                        break
+            except OSError:
+                pass
+            if time.monotonic() > deadline:
+                pytest.fail("the Dask scheduler and two workers did not come up within 60 s")
+            time.sleep(0.5)
+        yield address, root
+    finally:
+        for p in procs[::-1]:
+            p.terminate()
+        for p in procs:
+            try:
+                p.wait(timeout=20)
+            except subprocess.TimeoutExpired:
+                p.kill()
+
+
+def test_sweep_on_separate_scheduler_and_workers(dask_cluster, tmp_path):
+    address, root = dask_cluster
+    out = tmp_path / "client_out"
+    info = sweep([50.0, 100.0], out, "toy_thermomechanical", scheduler=address, duration=5.0,
+                 grid={"node.C": [10.0, 20.0]})
+    assert not info["errors"], info["errors"]
+    assert info["executed_on"].startswith(address)
+    assert len(info["cases"]) == 4
+    ref = sweep([50.0], tmp_path / "serial", "toy_thermomechanical", duration=5.0, serial=True,
+                grid={"node.C": [20.0]})
+    for name in info["cases"]:
+        folder = out / name
+        assert (folder / "summary.json").exists() and (folder / "timeseries.h5").exists(), name
+    a = json.loads((out / "F_50_node.C=20" / "summary.json").read_text())
+    b = json.loads((tmp_path / "serial" / "F_50_node.C=20" / "summary.json").read_text())
+    assert a["final_outputs"] == b["final_outputs"]
+    assert ref["cases"] == ["F_50_node.C=20"]
+    # the workers ran in their own folders and left no case files there or in the client's working folder
+    for i in range(2):
+        leftovers = [p for p in (root / f"worker{i}").rglob("rotorcosim-case-*")]
+        assert not leftovers, leftovers
+    rows = (out / "sweep.csv").read_text().splitlines()
+    assert rows[0].startswith("case,unbalance_N,node.C,") and len(rows) == 5
+
+
+def test_unreachable_scheduler_is_a_clear_error(tmp_path, capsys):
+    port = _free_port()  # nothing listens there
+    rc = main(["sweep", "--unbalance", "50", "--scenario", "toy_thermomechanical", "--duration", "1",
+               "--scheduler", f"tcp://127.0.0.1:{port}", "--out", str(tmp_path / "x")])
+    assert rc == 2
+    assert "cannot reach the Dask scheduler" in capsys.readouterr().err
+
+
+def test_parse_grid_and_cases():
+    grid = parse_grid(["damper0.c=0.1,0.2", "bearing0.mode=fast,exact", "rotor.on=true,false"])
+    assert grid == {"damper0.c": [0.1, 0.2], "bearing0.mode": ["fast", "exact"], "rotor.on": [True, False]}
+    cases = cases_of([712.0], {"damper0.c": [0.1, 0.2]})
+    assert [c.name for c in cases] == ["F_712_damper0.c=0.1", "F_712_damper0.c=0.2"]
+    assert cases[1].settings == {"damper0.c": 0.2} and cases[1].unbalance_N == 712.0
+    for bad, msg in [(["damper0.c"], "COMP.PARAM="), (["c=1"], "COMP.PARAM="), (["a.b=1,1"], "repeated"),
+                     (["a.b=1", "a.b=2"], "twice"), (["a.b=1,,2"], "empty value"), (["a.b=nan"], "finite")]:
+        with pytest.raises(ValueError, match=msg):
+            parse_grid(bad)
+    with pytest.raises(ValueError, match="nothing to sweep"):
+        cases_of(None, {})
+
+
+def test_set_grid_names_unknown_component(tmp_path, capsys):
+    rc = main(["sweep", "--set", "nosuch.C=1,2", "--scenario", "toy_thermomechanical", "--serial",
+               "--out", str(tmp_path / "x")])
+    assert rc == 2
+    assert "no component 'nosuch'" in capsys.readouterr().err
+
+
+def test_workers_must_be_positive(tmp_path):
+    for n in (0, -1):
+        with pytest.raises(ValueError, match="--workers must be at least 1"):
+            sweep([50.0], tmp_path / "x", "toy_thermomechanical", duration=1.0, workers=n)
