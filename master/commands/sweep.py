@@ -189,12 +189,12 @@ def _store(out: Path, case: Case, files: dict[str, bytes]) -> None:
     os.replace(part, final)
 
 
-def _client(scheduler: str | None, workers: int | None):
+def _client(scheduler: str | None, workers: int | None, connect_timeout: float):
     from dask.distributed import Client, LocalCluster
 
     if scheduler:
         try:
-            client = Client(scheduler, timeout=CONNECT_TIMEOUT_S)
+            client = Client(scheduler, timeout=connect_timeout)
         except (OSError, TimeoutError) as exc:
             raise ValueError(f"--scheduler {scheduler}: cannot reach the Dask scheduler ({exc})") from None
         n = len(client.scheduler_info().get("workers", {}))
@@ -206,7 +206,7 @@ def _client(scheduler: str | None, workers: int | None):
 
 def sweep(levels=None, out: Path = Path("sweep"), scenario="blade_loss", scheduler=None, schedule=None,
           duration=None, workers=None, serial=False, grid: dict[str, list[Any]] | None = None,
-          progress=None) -> dict:
+          progress=None, connect_timeout: float = CONNECT_TIMEOUT_S) -> dict:
     """Run the grid of ``levels`` (unbalance forces [N]) x ``grid`` (``{"comp.param": [values]}``).
 
     ``progress(done, total, case, result)`` is called as each case finishes. Returns the contents of
@@ -235,7 +235,7 @@ def sweep(levels=None, out: Path = Path("sweep"), scenario="blade_loss", schedul
     else:
         from dask.distributed import as_completed
 
-        client, cluster, where = _client(scheduler, workers)
+        client, cluster, where = _client(scheduler, workers, connect_timeout)
         try:
             futures = {client.submit(run_case, scenario, c, schedule, duration, pure=False): c for c in cases}
             for fut in as_completed(futures):

@@ -95,12 +95,11 @@ def test_sweep_on_separate_scheduler_and_workers(dask_cluster, tmp_path):
     assert rows[0].startswith("case,unbalance_N,node.C,") and len(rows) == 5
 
 
-def test_unreachable_scheduler_is_a_clear_error(tmp_path, capsys):
+def test_unreachable_scheduler_is_a_clear_error(tmp_path):
     port = _free_port()  # nothing listens there
-    rc = main(["sweep", "--unbalance", "50", "--scenario", "toy_thermomechanical", "--duration", "1",
-               "--scheduler", f"tcp://127.0.0.1:{port}", "--out", str(tmp_path / "x")])
-    assert rc == 2
-    assert "cannot reach the Dask scheduler" in capsys.readouterr().err
+    with pytest.raises(ValueError, match="cannot reach the Dask scheduler"):
+        sweep([50.0], tmp_path / "x", "toy_thermomechanical", scheduler=f"tcp://127.0.0.1:{port}", duration=1.0,
+              connect_timeout=2.0)
 
 
 def test_parse_grid_and_cases():
