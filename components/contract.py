@@ -21,8 +21,10 @@ from typing import Any, Iterable, Mapping
 
 import numpy as np
 
+from .value_types import KINDS, UNCARRIED, check_value, dtype_of
+
 CAUSALITIES = ("parameter", "input", "output")
-TYPES = ("Real", "Integer", "Boolean", "String")
+TYPES = KINDS
 PHASES = ("TM", "TO")
 
 
@@ -30,9 +32,30 @@ class ContractError(ValueError):
     """A component or its use breaks the contract (unknown variable, wrong size, bad value)."""
 
 
+class StopRequested(Exception):
+    """Raised by ``do_step`` when the component asks to end the simulation (FMI 2: ``fmi2Discard`` with the
+    ``fmi2Terminated`` status; FMI 3: ``terminateSimulation`` / early return from ``fmi3DoStep``).
+
+    The component has advanced to ``t_stop`` (at most the step's end) and its outputs are valid there: the
+    master ends the run at that time and keeps what was computed (a stop is an answer, not a failure)."""
+
+    def __init__(self, component: str, t_stop: float, reason: str = ""):
+        self.component = component
+        self.t_stop = float(t_stop)
+        self.reason = reason
+        super().__init__(f"{component} asked to stop the simulation at t = {self.t_stop:.9g} s"
+                         + (f" ({reason})" if reason else ""))
+
+
 @dataclass(frozen=True)
 class Variable:
-    """One declared variable. Ports are vectors of ``size`` reals; parameters may also be strings."""
+    """One declared variable. Ports are vectors of ``size`` values of one kind (value_types.py): Real for every
+    native port; imported FMUs also have Integer, Boolean, String (and uncarried Binary / Clock) ports.
+
+    ``fmi_type`` is the FMI type it came from (``"Float32"``, ``"Int8"``, ``"Enumeration"``...; ``""`` for native
+    variables), ``min``/``max`` its declared range, ``choices`` an enumeration's item values, ``unit_definition``
+    its unit as ``(base-unit exponents, factor, offset)`` when the FMU defines it (else the unit string is parsed,
+    fmus/units.py)."""
 
     name: str
     causality: str
@@ -41,6 +64,11 @@ class Variable:
     description: str = ""
     start: Any = 0.0
     type: str = "Real"
+    fmi_type: str = ""
+    min: float | None = None
+    max: float | None = None
+    choices: tuple | None = None
+    unit_definition: tuple | None = None
 
     def __post_init__(self):
         if self.causality not in CAUSALITIES:
@@ -49,12 +77,19 @@ class Variable:
             raise ContractError(f"variable {self.name!r}: type {self.type!r} not in {TYPES}")
         if int(self.size) < 1:
             raise ContractError(f"variable {self.name!r}: size must be >= 1, got {self.size}")
-        if self.type == "String" and (self.causality != "parameter" or self.size != 1):
-            raise ContractError(f"variable {self.name!r}: String variables must be scalar parameters")
+
+    @property
+    def carried(self) -> bool:
+        """False for Binary and Clock variables: declared, but holding no value the master can pass on."""
+        return self.type not in UNCARRIED
 
     def start_array(self) -> np.ndarray:
-        """The start value as a float vector of ``size`` (a scalar start is broadcast)."""
-        return np.broadcast_to(np.asarray(self.start, dtype=float), (self.size,)).copy()
+        """The start value as a vector of ``size`` of the variable's kind (a scalar start is broadcast)."""
+        dtype = dtype_of(self.type, self.fmi_type)
+        if dtype is object:
+            start = self.start if isinstance(self.start, (list, tuple)) else [self.start] * self.size
+            return np.array(list(start), dtype=object)
+        return np.broadcast_to(np.asarray(self.start, dtype=dtype), (self.size,)).copy()
 
 
 def check_finite(name: str, value: np.ndarray) -> None:
@@ -98,8 +133,8 @@ class Component:
                 self.p[v.name] = self._coerce_parameter(v, v.start)
         for key, value in (parameters or {}).items():
             self.set_parameter(key, value)
-        self.u = {v.name: v.start_array() for v in self.variables if v.causality == "input"}
-        self.y = {v.name: v.start_array() for v in self.variables if v.causality == "output"}
+        self.u = {v.name: v.start_array() for v in self.variables if v.causality == "input" and v.carried}
+        self.y = {v.name: v.start_array() for v in self.variables if v.causality == "output" and v.carried}
         self.state: dict[str, Any] = {}
         self.time = 0.0
 
@@ -117,24 +152,11 @@ class Component:
 
     # -- parameters ---------------------------------------------------------------------------------
     def _coerce_parameter(self, v: Variable, value: Any) -> Any:
-        if v.type == "String":
-            if not isinstance(value, str):
-                raise ContractError(f"{self.name}.{v.name}: expected a string, got {value!r}")
-            return value
-        try:
-            arr = np.asarray(value, dtype=float)
-        except (TypeError, ValueError):
-            raise ContractError(f"{self.name}.{v.name}: expected a number, got {value!r}") from None
-        if arr.size != v.size:
-            raise ContractError(f"{self.name}.{v.name}: expected {v.size} value(s), got {arr.size}")
-        check_finite(f"{self.name}.{v.name}", arr)
-        if v.type == "Boolean":
-            return bool(arr.reshape(-1)[0]) if v.size == 1 else arr.astype(bool)
-        if v.type == "Integer":
-            if not np.all(arr == np.round(arr)):
-                raise ContractError(f"{self.name}.{v.name}: expected an integer, got {value!r}")
-            return int(arr.reshape(-1)[0]) if v.size == 1 else arr.astype(int)
-        return float(arr.reshape(-1)[0]) if v.size == 1 else arr.reshape(-1).copy()
+        """``value`` checked against ``v``'s kind and range (value_types.check_value): a scalar for size 1."""
+        arr = check_value(v, value, f"{self.name}.{v.name}")
+        if v.size == 1:
+            return arr[0].item() if isinstance(arr[0], np.generic) else arr[0]
+        return arr
 
     def set_parameter(self, name: str, value: Any) -> None:
         v = self.variable(name)
@@ -153,7 +175,7 @@ class Component:
             v = self._by_name.get(key)
             if v is None or v.causality != "input":
                 raise ContractError(f"{self.name}: no input {key!r}")
-            arr = np.asarray(value, dtype=float).reshape(-1)
+            arr = np.asarray(value, dtype=float if v.type == "Real" else dtype_of(v.type, v.fmi_type)).reshape(-1)
             if arr.size != v.size:
                 raise ContractError(f"{self.name}.{key}: expected {v.size} value(s), got {arr.size}")
             self.u[key] = arr
@@ -204,6 +226,7 @@ def cycles_to_seconds(cycles: float, speed_rpm: float) -> float:
 __all__ = [
     "Component",
     "ContractError",
+    "StopRequested",
     "Variable",
     "CAUSALITIES",
     "PHASES",

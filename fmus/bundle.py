@@ -3,7 +3,7 @@
 An exported FMU must run without an installed rotorcosim (only the third-party packages its code imports), and
 two FMUs loaded in one Python process must not see each other's code. So the sources of ``components/`` that
 the component needs are copied under a package name private to the FMU (``_rcs_<id>_<hash>``):
-``__init__``, ``contract``, ``registry``, the component's own sub-package (with its data files) and, found by
+``__init__``, ``contract``, ``value_types``, ``registry``, the component's own sub-package (with its data files) and, found by
 reading the imports, every sibling sub-package it uses. Absolute imports of ``rotorcosim.components`` are
 rewritten to the private name; an import of another part of rotorcosim (master, fmus) cannot be bundled and
 is a clear error naming the file and line.
@@ -21,7 +21,7 @@ import rotorcosim.components as _components_pkg
 COMPONENTS_ROOT = Path(_components_pkg.__file__).resolve().parent
 COMPONENTS_PACKAGE = "rotorcosim.components"
 #: modules of components/ every bundle carries (the contract the component subclasses)
-CORE = ("__init__.py", "contract.py", "registry.py")
+CORE = ("__init__.py", "contract.py", "value_types.py", "registry.py")
 _SKIP_DIRS = {"__pycache__"}
 _SKIP_SUFFIXES = {".pyc", ".pyo", ".nbi", ".nbc"}
 

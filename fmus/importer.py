@@ -31,33 +31,38 @@ import shutil
 import sys
 import weakref
 from collections import deque
+from dataclasses import replace
 from pathlib import Path
 from typing import Any, Mapping
 
 import numpy as np
 
-from rotorcosim.components.contract import Component, ContractError, Variable
+from rotorcosim.components.contract import Component, ContractError, StopRequested, Variable
+from rotorcosim.components.value_types import KIND_OF, UNCARRIED, check_value, dtype_of
 
 from . import model_description as mdx
 from .flatten import FlattenError, regroup
+from .units import BASE
 from .safezip import ArchiveError, check_entries, open_zip, safe_extract
 
 _OK_STATUS = 1  # OK = 0, Warning = 1 (FMI 2.0 and 3.0): anything above is a failure
-_TYPE_OF = {"Real": "Real", "Integer": "Integer", "Enumeration": "Integer", "Boolean": "Boolean", "String": "String",
-            "Float64": "Real", "Int32": "Integer"}
-#: per FMI version: contract type -> (ctypes value type, set function, get function); the state functions
-_API = {
-    "2": {"Real": (ctypes.c_double, "fmi2SetReal", "fmi2GetReal"),
-          "Integer": (ctypes.c_int, "fmi2SetInteger", "fmi2GetInteger"),
-          "Boolean": (ctypes.c_int, "fmi2SetBoolean", "fmi2GetBoolean"),
-          "state": ("fmi2GetFMUstate", "fmi2SetFMUstate", "fmi2FreeFMUstate"),
-          "setters": {"Real": "setReal", "Integer": "setInteger", "Boolean": "setBoolean", "String": "setString"}},
-    "3": {"Real": (ctypes.c_double, "fmi3SetFloat64", "fmi3GetFloat64"),
-          "Integer": (ctypes.c_int32, "fmi3SetInt32", "fmi3GetInt32"),
-          "Boolean": (ctypes.c_bool, "fmi3SetBoolean", "fmi3GetBoolean"),
-          "state": ("fmi3GetFMUState", "fmi3SetFMUState", "fmi3FreeFMUState"),
-          "setters": {"Real": "setFloat64", "Integer": "setInt32", "Boolean": "setBoolean", "String": "setString"}},
+_DISCARD = 2
+_FMI2_TERMINATED, _FMI2_LAST_SUCCESSFUL_TIME = 3, 2   # fmi2StatusKind values
+
+#: per FMI version and FMI type: (ctypes value type, the suffix of its Get/Set functions)
+_CTYPES = {
+    "2": {"Real": (ctypes.c_double, "Real"), "Integer": (ctypes.c_int, "Integer"),
+          "Enumeration": (ctypes.c_int, "Integer"), "Boolean": (ctypes.c_int, "Boolean"),
+          "String": (ctypes.c_char_p, "String")},
+    "3": {"Float64": (ctypes.c_double, "Float64"), "Float32": (ctypes.c_float, "Float32"),
+          "Int8": (ctypes.c_int8, "Int8"), "UInt8": (ctypes.c_uint8, "UInt8"), "Int16": (ctypes.c_int16, "Int16"),
+          "UInt16": (ctypes.c_uint16, "UInt16"), "Int32": (ctypes.c_int32, "Int32"),
+          "UInt32": (ctypes.c_uint32, "UInt32"), "Int64": (ctypes.c_int64, "Int64"),
+          "UInt64": (ctypes.c_uint64, "UInt64"), "Enumeration": (ctypes.c_int64, "Int64"),
+          "Boolean": (ctypes.c_bool, "Boolean"), "String": (ctypes.c_char_p, "String")},
 }
+_STATE_FUNCTIONS = {"2": ("fmi2GetFMUstate", "fmi2SetFMUstate", "fmi2FreeFMUstate"),
+                    "3": ("fmi3GetFMUState", "fmi3SetFMUState", "fmi3FreeFMUState")}
 
 
 #: logger callbacks handed to FMUs (see _instantiate2)
@@ -68,16 +73,36 @@ class FMUError(ContractError):
     """An FMU that cannot be used as a component; the message names the file and the problem."""
 
 
-def _convert_start(typ: str, text: str | None) -> Any:
+def _number(text, integer: bool):
+    if text is None or text == "":
+        return None
+    return int(text) if integer else float(text)
+
+
+def _start_values(var: Variable, text: Any) -> Any:
+    """An FMU variable's start attribute (text; space-separated for an FMI 3.0 array) as a contract start."""
+    kind = var.type
+    if kind in UNCARRIED:
+        return None
     if text is None:
-        return "" if typ == "String" else 0.0
-    if typ == "Real":
-        return float(text)
-    if typ == "Integer":
-        return int(text)
-    if typ == "Boolean":
-        return text.strip().lower() in ("true", "1")
-    return text
+        one = {"String": "", "Boolean": False, "Integer": 0}.get(kind, 0.0)
+        if kind == "Integer" and var.choices:
+            one = min(var.choices)
+        return one if var.size == 1 else [one] * var.size
+    parts = [text] if kind == "String" or var.size == 1 else str(text).split()
+
+    def conv(x):
+        if kind == "Real":
+            return float(x)
+        if kind == "Integer":
+            return int(x)
+        if kind == "Boolean":
+            return str(x).strip().lower() in ("true", "1")
+        return x
+    values = [conv(x) for x in parts]
+    if len(values) == 1 and var.size > 1:
+        values = values * var.size
+    return values[0] if var.size == 1 else values
 
 
 def describe(path: str | Path):
@@ -103,8 +128,15 @@ def describe(path: str | Path):
     if md.fmiVersion != "2.0" and not md.fmiVersion.startswith("3."):
         raise FMUError(f"{path}: FMI {md.fmiVersion} FMU: rotorcosim imports FMI 2.0 and 3.0 co-simulation FMUs")
     if md.coSimulation is None:
-        raise FMUError(f"{path}: the FMU offers model exchange only, no co-simulation interface: rotorcosim "
-                       "needs a co-simulation FMU (one that integrates itself in DoStep)")
+        if md.modelExchange is not None:
+            raise FMUError(f"{path}: the FMU offers model exchange only, no co-simulation interface: rotorcosim "
+                           "needs a co-simulation FMU (one that integrates itself in DoStep)")
+        if getattr(md, "scheduledExecution", None) is not None:
+            raise FMUError(f"{path}: the FMU offers FMI 3.0 scheduled execution only (neither co-simulation nor "
+                           "model exchange): rotorcosim needs a co-simulation FMU (one that integrates itself "
+                           "in DoStep); scheduled execution needs a scheduler of model partitions and clocks")
+        raise FMUError(f"{path}: the FMU declares no interface (no co-simulation, model exchange or scheduled "
+                       "execution element)")
     return xml, md
 
 
@@ -119,46 +151,95 @@ def _zip_of(entries: Mapping[str, bytes]) -> bytes:
     return buf.getvalue()
 
 
-def ports_of(md, where: str, hidden=frozenset()) -> tuple[list[Variable], dict[str, list]]:
-    """Contract variables regrouped from the FMU's scalars, and ``{port: [fmpy variables by index]}``.
+def _unit_definitions(md) -> dict[str, tuple]:
+    """``{unit name: (base-unit exponents, factor, offset)}`` from the FMU's <UnitDefinitions>."""
+    out = {}
+    for u in getattr(md, "unitDefinitions", None) or []:
+        b = u.baseUnit
+        if b is None:
+            continue
+        exps = {k: int(getattr(b, k)) for k in BASE if int(getattr(b, k) or 0)}
+        out[u.name] = (exps, float(b.factor), float(b.offset))
+    return out
 
-    ``hidden``: variables that are not ports (our FMUs' schedule phase variables)."""
+
+def _declared(e, attr: str):
+    value = getattr(e, attr, None)
+    if value is None and e.declaredType is not None:
+        value = getattr(e.declaredType, attr, None)
+    return value
+
+
+def ports_of(md, where: str, hidden=frozenset()) -> tuple[list[Variable], dict[str, list]]:
+    """Contract variables from the FMU's variables, and ``{port: [fmpy variables by index]}``.
+
+    FMI 2.0 scalars ``X[1]..X[n]`` are regrouped into a port ``X`` of size n; an FMI 3.0 array variable is one
+    port of size prod(shape) (row-major, as FMI serialises arrays). Every type of FMI 2.0 / 3.0 co-simulation
+    is a port (value_types.py); Binary and Clock ports are declared but carry no value. All the problems found
+    are reported at once. ``hidden``: variables that are not ports (our FMUs' schedule phase variables)."""
     by_name = {v.name: v for v in md.modelVariables
                if v.causality in ("parameter", "input", "output") and v.name not in hidden}
+    units = _unit_definitions(md)
+    problems: list[str] = []
+    arrays = {n for n, v in by_name.items() if getattr(v, "dimensions", None)}
     try:
-        groups = regroup(by_name, where)
+        groups = regroup([n for n in by_name if n not in arrays], where)
     except FlattenError as exc:
         raise FMUError(str(exc)) from None
+    for n in arrays:
+        groups[n] = [n]
     variables, scalars = [], {}
     for port, names in groups.items():
         elems = [by_name[n] for n in names]
         first = elems[0]
+        bad = False
         for attr in ("causality", "type"):
             values = {getattr(e, attr) for e in elems}
             if len(values) > 1:
-                raise FMUError(f"{where}: the elements of {port!r} differ in {attr} ({sorted(values)}): "
-                               "they cannot form one port")
-        units = {e.unit or (e.declaredType.unit if e.declaredType is not None else None) or "1" for e in elems}
-        if len(units) > 1:
-            raise FMUError(f"{where}: the elements of {port!r} have different units {sorted(units)}")
-        typ = _TYPE_OF.get(first.type)
-        if md.fmiVersion.startswith("3.") and first.type == "Enumeration":
-            typ = None
-        if getattr(first, "dimensions", None):
-            raise FMUError(f"{where}: variable {first.name!r} is an FMI 3.0 array: not supported (use scalars "
-                           "named X[1]..X[n])")
-        if typ is None:
-            raise FMUError(f"{where}: variable {first.name!r} has type {first.type}, which rotorcosim cannot map")
-        if first.causality != "parameter" and typ == "String":
-            raise FMUError(f"{where}: {first.causality} {port!r} is a String: only parameters may be strings")
-        starts = [_convert_start(typ, e.start) for e in elems]
-        start = starts[0] if len(starts) == 1 else starts
+                problems.append(f"the elements of {port!r} differ in {attr} ({sorted(values)}): they cannot "
+                                "form one port")
+                bad = True
+        unit_names = {_declared(e, "unit") or "1" for e in elems}
+        if len(unit_names) > 1:
+            problems.append(f"the elements of {port!r} have different units {sorted(unit_names)}")
+            bad = True
+        kind = KIND_OF.get(first.type)
+        if kind is None:
+            problems.append(f"variable {first.name!r} has type {first.type}, which is not an FMI 2.0/3.0 "
+                            "co-simulation type")
+            bad = True
+        if bad:
+            continue
+        size = len(elems)
+        if first.name in arrays:
+            shape = tuple(int(x) for x in (first.shape or ()))
+            size = int(np.prod(shape)) if shape else 1
+            if size < 1:
+                problems.append(f"array {first.name!r} has shape {shape}: no elements")
+                continue
+        unit = unit_names.pop()
+        choices = None
+        if first.type == "Enumeration" and first.declaredType is not None and first.declaredType.items:
+            choices = tuple(sorted(int(i.value) for i in first.declaredType.items))
+        integer = kind == "Integer"
+        lo = _number(_declared(first, "min"), integer) if kind in ("Real", "Integer") else None
+        hi = _number(_declared(first, "max"), integer) if kind in ("Real", "Integer") else None
+        if choices and lo is None:
+            lo, hi = min(choices), max(choices)
+        shell = Variable(port, first.causality, size, unit, first.description or "", None, kind, first.type,
+                         lo, hi, choices, units.get(unit))
         try:
-            variables.append(Variable(port, first.causality, len(elems), units.pop(), first.description or "",
-                                      start, typ))
-        except ContractError as exc:
-            raise FMUError(f"{where}: {exc}") from None
+            starts = [_start_values(Variable(port, first.causality, 1 if first.name not in arrays else size, unit,
+                                             type=kind, fmi_type=first.type, choices=choices), e.start)
+                      for e in elems]
+            start = starts[0] if len(starts) == 1 else starts
+            variables.append(replace(shell, start=start))
+        except (ContractError, ValueError) as exc:
+            problems.append(f"{port!r}: {exc}")
+            continue
         scalars[port] = elems
+    if problems:
+        raise FMUError(f"{where}: " + "; ".join(problems))
     return variables, scalars
 
 
@@ -219,31 +300,40 @@ def _free_state(handle: _Handle, state) -> None:
     fmu = handle.fmu
     if fmu is not None and handle.instantiated:
         try:
-            fmu._functions[_API[handle.version]["state"][2]](fmu.component, ctypes.byref(state))
+            fmu._functions[_STATE_FUNCTIONS[handle.version][2]](fmu.component, ctypes.byref(state))
         except Exception:
             pass
 
 
 class _Transfer:
-    """Preallocated value references and values of one FMI type, for a set of ports."""
+    """Preallocated value references and values of one FMI type, for a set of ports (one Get/Set call)."""
 
-    def __init__(self, typ: str, ports: list[tuple[str, list[int]]], ctype):
-        self.typ = typ
+    def __init__(self, version: str, fmi_type: str, ports: list[tuple[Variable, list[int]]], functions):
+        ctype, suffix = _CTYPES[version][fmi_type]
+        self.fmi3 = version == "3"
+        self.string = fmi_type == "String"
+        self.get_name, self.set_name = f"fmi{version}Get{suffix}", f"fmi{version}Set{suffix}"
+        self.get, self.set = functions[self.get_name], functions[self.set_name]
         self.ports = []
-        vrs = []
-        for name, refs in ports:
-            self.ports.append((name, len(vrs), len(vrs) + len(refs)))
+        vrs: list[int] = []
+        n = 0
+        for var, refs in ports:
+            # an FMI 3.0 array is one value reference for var.size values; scalars one reference each
+            self.ports.append((var.name, n, n + var.size, dtype_of(var.type, var.fmi_type)))
             vrs.extend(refs)
-        self.n = len(vrs)
-        self.vr = (ctypes.c_uint * self.n)(*vrs)
-        self.values = (ctype * self.n)()
-        self.view = np.ctypeslib.as_array(self.values)
+            n += var.size
+        self.nvr, self.n = len(vrs), n
+        self.vr = (ctypes.c_uint * self.nvr)(*vrs)
+        self.values = (ctype * n)()
+        self.view = None if self.string else np.ctypeslib.as_array(self.values)
+        self.args = (self.vr, self.nvr, self.values) + ((n,) if self.fmi3 else ())
 
 
 class FMUComponent(Component):
     """An FMI 2.0 / 3.0 co-simulation FMU following the component contract."""
 
-    def __init__(self, path: str | Path, name: str = "component", parameters: Mapping[str, Any] | None = None):
+    def __init__(self, path: str | Path, name: str = "component", parameters: Mapping[str, Any] | None = None,
+                 start_values: Mapping[str, Any] | None = None):
         self.path = Path(path)
         self.name = name
         where = f"FMU {self.path} (component {name!r})"
@@ -268,14 +358,12 @@ class FMUComponent(Component):
         self.implementation = ann.implementation
         self.can_get_set_state = bool(md.coSimulation.canGetAndSetFMUstate)
         self.p = {v.name: v.start for v in self.variables if v.causality == "parameter"}
-        self.u = {v.name: v.start_array() for v in self.variables if v.causality == "input"}
-        self.y = {v.name: v.start_array() for v in self.variables if v.causality == "output"}
+        self.u = {v.name: v.start_array() for v in self.variables if v.causality == "input" and v.carried}
+        self.y = {v.name: v.start_array() for v in self.variables if v.causality == "output" and v.carried}
         self.state = {}
         self.time = 0.0
         self._version = "3" if md.fmiVersion.startswith("3.") else "2"
-        self._api = _API[self._version]
-        self._in = self._transfers("input", where)
-        self._out = self._transfers("output", where)
+        self.start_values: dict[str, Any] = {}
         try:
             folder = safe_extract(self.path, "FMU", prefix="rcs_fmu_")
         except ArchiveError as exc:
@@ -284,19 +372,24 @@ class FMUComponent(Component):
         self._finalizer = weakref.finalize(self, self._handle.release)
         try:
             self._instantiate(md, where)
+            self._in = self._transfers("input")
+            self._out = self._transfers("output")
             for key, value in (parameters or {}).items():
                 self.set_parameter(key, value)
+            self._set_start_values(start_values or {})
         except BaseException:
             self._finalizer()
             raise
 
     # -- loading ---------------------------------------------------------------------------------------
-    def _transfers(self, causality: str, where: str) -> list[_Transfer]:
+    def _transfers(self, causality: str) -> list[_Transfer]:
         by_type: dict[str, list] = {}
         for v in self.variables:
-            if v.causality == causality:
-                by_type.setdefault(v.type, []).append((v.name, [e.valueReference for e in self._scalars[v.name]]))
-        return [_Transfer(t, ports, self._api[t][0]) for t, ports in sorted(by_type.items())]
+            if v.causality == causality and v.carried:
+                refs = list(dict.fromkeys(e.valueReference for e in self._scalars[v.name]))
+                by_type.setdefault(v.fmi_type, []).append((v, refs))
+        f = self._handle.fmu._functions
+        return [_Transfer(self._version, t, ports, f) for t, ports in sorted(by_type.items())]
 
     def _instantiate(self, md, where: str) -> None:
         from fmpy.fmi2 import FMU2Slave
@@ -336,8 +429,8 @@ class FMUComponent(Component):
         h.instantiated = True
         f = h.fmu._functions
         self._c = h.fmu.component
-        self._set = {t: f[self._api[t][1]] for t in ("Real", "Integer", "Boolean")}
-        self._get = {t: f[self._api[t][2]] for t in ("Real", "Integer", "Boolean")}
+        self._int_get, self._int_set = f[f"fmi{self._version}GetInt{'eger' if self._version == '2' else '32'}"], \
+            f[f"fmi{self._version}SetInt{'eger' if self._version == '2' else '32'}"]
         self._do_step = f[f"fmi{self._version}DoStep"]
         if self._version == "3":
             self._flags = [ctypes.c_bool(), ctypes.c_bool(), ctypes.c_bool(), ctypes.c_double()]
@@ -388,7 +481,25 @@ class FMUComponent(Component):
             label = {2: "discard", 3: "error", 4: "fatal", 5: "pending"}.get(status, str(status))
             raise FMUError(f"{self._where}: {what} failed (status {label}){self._log_text()}")
 
-    # -- parameters ------------------------------------------------------------------------------------
+    # -- parameters and start values ---------------------------------------------------------------------
+    def _write(self, var: Variable, refs: list[int], values: np.ndarray, what: str) -> None:
+        """Set ``values`` (already checked against ``var``) through fmpy's typed setters."""
+        fmu = self._handle.fmu
+        suffix = _CTYPES[self._version][var.fmi_type][1]
+        setter = getattr(fmu, "set" + suffix)
+        if var.type == "String":
+            data = [str(x) for x in values]
+        elif var.type == "Boolean":
+            data = [bool(x) for x in values]
+        elif var.type == "Integer":
+            data = [int(x) for x in values]
+        else:
+            data = [float(x) for x in values]
+        try:
+            setter(refs, data)
+        except Exception as exc:
+            raise FMUError(f"{self._where}: setting {what} failed ({exc}){self._log_text()}") from None
+
     def set_parameter(self, name: str, value: Any) -> None:
         v = self._by_name.get(name)
         if v is None or v.causality != "parameter":
@@ -401,31 +512,85 @@ class FMUComponent(Component):
             raise FMUError(f"{self._where}: {exc}") from None
         if self._handle.initialised:
             raise FMUError(f"{self._where}: parameter {name!r} can only be set before setup()")
-        refs = [e.valueReference for e in self._scalars[name]]
-        fmu = self._handle.fmu
-        values = list(np.atleast_1d(coerced)) if v.type != "String" else [coerced]
-        convert = {"Real": float, "Integer": int, "Boolean": bool, "String": str}[v.type]
-        try:
-            getattr(fmu, self._api["setters"][v.type])(refs, [convert(x) for x in values])
-        except Exception as exc:
-            raise FMUError(f"{self._where}: setting parameter {name!r} failed ({exc}){self._log_text()}") from None
+        refs = list(dict.fromkeys(e.valueReference for e in self._scalars[name]))
+        self._write(v, refs, np.atleast_1d(np.asarray(coerced, dtype=object)), f"parameter {name!r}")
         self.p[name] = coerced
         self.explicit.add(name)
+
+    def _set_start_values(self, values: Mapping[str, Any]) -> None:
+        """Start values of states and other variables with ``initial = "exact"`` (or ``"approx"``), set before
+        initialisation as fmpy's ``start_values`` does; ``name`` is a variable of the FMU or a port ``X`` that
+        stands for ``X[1]..X[n]``. Each value is checked against the variable's type and range."""
+        if not values:
+            return
+        md = self.model_description
+        by_name = {v.name: v for v in md.modelVariables}
+        try:
+            groups = regroup([v.name for v in md.modelVariables if not getattr(v, "dimensions", None)], self._where)
+        except FlattenError:
+            groups = {}
+        problems = []
+        for name, value in values.items():
+            elems = [by_name[name]] if name in by_name else [by_name[n] for n in groups.get(name, [])]
+            if not elems:
+                problems.append(f"{name!r}: no such variable")
+                continue
+            first = elems[0]
+            if first.causality == "parameter":
+                problems.append(f"{name!r} is a parameter: set it under parameters")
+                continue
+            if first.causality == "input":
+                problems.append(f"{name!r} is an input: connect it or give it a constant under [inputs]")
+                continue
+            if first.variability == "constant" or first.initial not in ("exact", "approx"):
+                problems.append(f"{name!r} (causality {first.causality}, variability {first.variability}, initial "
+                                f"{first.initial}) has no start value to set: only variables with initial = "
+                                "\"exact\" or \"approx\" do (states, for instance)")
+                continue
+            kind = KIND_OF.get(first.type)
+            size = int(np.prod(first.shape)) if getattr(first, "dimensions", None) and first.shape else len(elems)
+            integer = kind == "Integer"
+            choices = tuple(sorted(int(i.value) for i in first.declaredType.items)) \
+                if first.type == "Enumeration" and first.declaredType is not None and first.declaredType.items \
+                else None
+            var = Variable(name, "parameter", size, type=kind or "Real", fmi_type=first.type,
+                           min=_number(_declared(first, "min"), integer) if kind in ("Real", "Integer") else None,
+                           max=_number(_declared(first, "max"), integer) if kind in ("Real", "Integer") else None,
+                           choices=choices)
+            try:
+                arr = check_value(var, value, f"{self._where}: start value of {name!r}")
+            except ContractError as exc:
+                problems.append(str(exc).replace(f"{self._where}: ", ""))
+                continue
+            self._write(var, [e.valueReference for e in elems], arr, f"the start value of {name!r}")
+            self.start_values[name] = arr
+        if problems:
+            raise FMUError(f"{self._where}: start values: " + "; ".join(problems))
 
     # -- the co-simulation calls -----------------------------------------------------------------------
     def _push_inputs(self) -> None:
         for tr in self._in:
-            for name, a, b in tr.ports:
-                tr.view[a:b] = self.u[name]
-            args = (self._c, tr.vr, tr.n, tr.values) + ((tr.n,) if self._version == "3" else ())
-            self._check(self._set[tr.typ](*args), self._api[tr.typ][1])
+            if tr.string:
+                keep = []
+                for name, a, b, _ in tr.ports:
+                    for i, x in enumerate(self.u[name]):
+                        keep.append(str(x).encode("utf-8"))
+                        tr.values[a + i] = keep[-1]
+            else:
+                for name, a, b, _ in tr.ports:
+                    tr.view[a:b] = self.u[name]
+            self._check(tr.set(self._c, *tr.args), tr.set_name)
 
     def _pull_outputs(self) -> None:
         for tr in self._out:
-            args = (self._c, tr.vr, tr.n, tr.values) + ((tr.n,) if self._version == "3" else ())
-            self._check(self._get[tr.typ](*args), self._api[tr.typ][2])
-            for name, a, b in tr.ports:
-                self.y[name] = tr.view[a:b].astype(float)
+            self._check(tr.get(self._c, *tr.args), tr.get_name)
+            if tr.string:
+                for name, a, b, _ in tr.ports:
+                    self.y[name] = np.array([(tr.values[i] or b"").decode("utf-8", "replace")
+                                             for i in range(a, b)], dtype=object)
+            else:
+                for name, a, b, dtype in tr.ports:
+                    self.y[name] = tr.view[a:b].astype(dtype)
 
     def setup(self, t0: float = 0.0) -> None:
         h = self._handle
@@ -459,31 +624,67 @@ class FMUComponent(Component):
             self.holds_state_in_TO = bool(bits & 4)
 
     def _get_integer(self, vr: int) -> int:
-        vrs, val = (ctypes.c_uint * 1)(vr), (self._api["Integer"][0] * 1)()
+        vrs, val = (ctypes.c_uint * 1)(vr), (ctypes.c_int32 * 1)()
         args = (self._c, vrs, 1, val) + ((1,) if self._version == "3" else ())
-        self._check(self._get["Integer"](*args), self._api["Integer"][2])
+        self._check(self._int_get(*args), "GetInteger")
         return int(val[0])
 
     def enter_phase(self, phase: str) -> None:
         """Passed to one of our FMUs through its phase input (the component's own ``enter_phase``)."""
         self.phase = phase
         if self._phase_in is not None and self._handle.initialised and self._handle.fmu is not None:
-            vrs, val = (ctypes.c_uint * 1)(self._phase_in), (self._api["Integer"][0] * 1)(int(phase == "TO"))
+            vrs, val = (ctypes.c_uint * 1)(self._phase_in), (ctypes.c_int32 * 1)(int(phase == "TO"))
             args = (self._c, vrs, 1, val) + ((1,) if self._version == "3" else ())
-            self._check(self._set["Integer"](*args), self._api["Integer"][1])
+            self._check(self._int_set(*args), "SetInteger")
 
     def do_step(self, t: float, h: float) -> None:
+        """One DoStep. A stop request (FMI 2: ``fmi2Discard`` and the ``fmi2Terminated`` status true; FMI 3:
+        ``terminateSimulation``, at the last successful time when it also returned early) reads the outputs
+        where the FMU stopped and raises StopRequested; the master ends the run there."""
         self._push_inputs()
         if self._version == "2":
             status = self._do_step(self._c, float(t), float(h), 1)
+            if status == _DISCARD and not self._error_text():   # (our FMUs report their failures by text)
+                self._stop2(t, h)
         else:
             status = self._do_step(self._c, float(t), float(h), True, *self._flag_refs)
-            if status <= _OK_STATUS and (self._flags[1].value or self._flags[2].value):
-                raise FMUError(f"{self._where}: fmi3DoStep(t = {t:.9g} s) returned early or asked to terminate "
-                               f"(at t = {self._flags[3].value:.9g} s): not supported{self._log_text()}")
+            if status <= _DISCARD and (self._flags[1].value or self._flags[2].value):
+                self._stop3(t, h, status)
         self._check(status, f"DoStep(t = {t:.9g} s, h = {h:.3g} s)")
         self.time = t + h
         self._pull_outputs()
+
+    def _stop2(self, t: float, h: float) -> None:
+        f = self._handle.fmu._functions
+        flag = ctypes.c_int(0)
+        try:
+            ok = f["fmi2GetBooleanStatus"](self._c, _FMI2_TERMINATED, ctypes.byref(flag)) <= _OK_STATUS
+        except Exception:
+            ok = False
+        if not (ok and flag.value):
+            raise FMUError(f"{self._where}: DoStep(t = {t:.9g} s, h = {h:.3g} s) returned fmi2Discard without "
+                           "asking to terminate (fmi2Terminated "
+                           + ("false" if ok else "not available") + "): the step was not completed"
+                           + self._log_text())
+        last = ctypes.c_double(t)
+        try:
+            if f["fmi2GetRealStatus"](self._c, _FMI2_LAST_SUCCESSFUL_TIME, ctypes.byref(last)) > _OK_STATUS:
+                last.value = t
+        except Exception:
+            last.value = t
+        self.time = min(max(float(last.value), t), t + h)
+        self._pull_outputs()
+        raise StopRequested(self.name, self.time, "fmi2Discard with fmi2Terminated")
+
+    def _stop3(self, t: float, h: float, status: int) -> None:
+        terminate, early, last = self._flags[1].value, self._flags[2].value, self._flags[3].value
+        if not terminate:
+            raise FMUError(f"{self._where}: fmi3DoStep(t = {t:.9g} s) returned early (at t = {last:.9g} s) "
+                           "without asking to terminate, although early return was not allowed"
+                           + self._log_text())
+        self.time = min(max(float(last), t), t + h) if (early or status == _DISCARD) else t + h
+        self._pull_outputs()
+        raise StopRequested(self.name, self.time, "terminateSimulation" + (" (early return)" if early else ""))
 
     def terminate(self) -> None:
         h = self._handle
@@ -503,7 +704,7 @@ class FMUComponent(Component):
     def get_state(self) -> Any:
         self._require_state()
         state = ctypes.c_void_p()
-        name = self._api["state"][0]
+        name = _STATE_FUNCTIONS[self._version][0]
         self._check(self._handle.fmu._functions[name](self._c, ctypes.byref(state)), name)
         return (self.time, {k: v.copy() for k, v in self.u.items()}, {k: v.copy() for k, v in self.y.items()},
                 _FMUState(self, state))
@@ -511,7 +712,7 @@ class FMUComponent(Component):
     def set_state(self, snapshot: Any) -> None:
         self._require_state()
         t, u, y, handle = snapshot
-        name = self._api["state"][1]
+        name = _STATE_FUNCTIONS[self._version][1]
         self._check(self._handle.fmu._functions[name](self._c, handle.state), name)
         self.time = t
         self.u = {k: v.copy() for k, v in u.items()}
@@ -521,6 +722,8 @@ class FMUComponent(Component):
         return f"<FMUComponent {self.name!r} from {self.path}>"
 
 
-def load_fmu_component(path: str | Path, name: str, params: Mapping[str, Any] | None = None) -> FMUComponent:
-    """The FMU at ``path`` as the component ``name`` with parameters ``params`` (called by master/scenario.py)."""
-    return FMUComponent(path, name, params)
+def load_fmu_component(path: str | Path, name: str, params: Mapping[str, Any] | None = None,
+                       start_values: Mapping[str, Any] | None = None) -> FMUComponent:
+    """The FMU at ``path`` as the component ``name`` with parameters ``params`` and the start values of its
+    states / ``initial = "exact"`` variables ``start_values`` (called by master/scenario.py)."""
+    return FMUComponent(path, name, params, start_values)

@@ -163,7 +163,7 @@ def system_description(sc: Scenario, fmus: dict[str, Path]) -> bytes:
         "steps": {n: c.step for n, c in sc.components.items() if c.step is not None},
         "implementations": {n: c.implementation for n, c in sc.components.items() if c.implementation},
         "connections": [{"from": c.src, "to": c.dst, "average": c.average, "extrapolation": c.extrapolation,
-                         "hold": c.hold} for c in sc.connections],
+                         "hold": c.hold, "convert": c.convert, "unit": c.unit} for c in sc.connections],
         "inputs": sc.inputs,
     }
     ET.SubElement(ann, "{urn:rotorcosim:ssp:1}Scenario").text = json.dumps(payload, sort_keys=True)
@@ -322,7 +322,7 @@ def read_ssp(path: str | Path) -> Scenario:
                            f"ports element by element (sizes {ssize} and {dsize})")
         s = settings.get((src, dst), {})
         connections.append(ConnectionSpec(src, dst, s.get("average", "mean"), s.get("extrapolation", "hold"),
-                                          s.get("hold")))
+                                          s.get("hold"), s.get("convert"), s.get("unit")))
     schedule = payload.get("schedule")
     if not schedule:
         de = root.find("ssd:DefaultExperiment", NS)

@@ -5,6 +5,10 @@ FMI 2.0 expects every ``unit`` attribute to name a ``<Unit>`` of ``<UnitDefiniti
 factors joined by ``.`` (product) and ``/`` (everything after the first ``/`` is in the denominator), each an
 SI symbol with an optional integer exponent (``m2``, ``s^-1``). A unit that does not parse is still defined,
 without a BaseUnit (legal FMI, just not checkable). ``"1"`` is dimensionless: no ``unit`` attribute at all.
+
+:func:`definition` gives a unit as FMI's BaseUnit does, ``(exponents, factor, offset)`` with
+``value_in_base_units = factor * value + offset``: what a connection needs to convert between compatible units
+(also the affine temperature units ``degC`` and ``degF``, which only stand alone).
 """
 from __future__ import annotations
 
@@ -48,3 +52,17 @@ def base_units(unit: str) -> tuple[dict[str, int], float] | None:
 
 def is_dimensionless(unit: str | None) -> bool:
     return unit in (None, "", "1")
+
+
+#: affine units (FMI BaseUnit factor and offset over K); they do not combine with other symbols
+_AFFINE = {"degC": ({"K": 1}, 1.0, 273.15), "degF": ({"K": 1}, 5.0 / 9.0, 273.15 - 32.0 * 5.0 / 9.0)}
+
+
+def definition(unit: str | None) -> tuple[dict[str, int], float, float] | None:
+    """``(exponents, factor, offset)`` of a unit string, or None when it does not parse."""
+    if is_dimensionless(unit):
+        return {}, 1.0, 0.0
+    if unit in _AFFINE:
+        return _AFFINE[unit]
+    parsed = base_units(unit)
+    return None if parsed is None else (parsed[0], parsed[1], 0.0)

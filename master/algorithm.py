@@ -27,7 +27,7 @@ from typing import Sequence
 
 import numpy as np
 
-from rotorcosim.components.contract import Component, ContractError
+from rotorcosim.components.contract import Component, ContractError, StopRequested
 
 from .system import Connection, System
 
@@ -42,14 +42,18 @@ class _Link:
     """Run-time state of one connection."""
 
     __slots__ = ("con", "src", "sport", "dst", "dport", "mode", "acc", "acc2", "weight", "prev", "prev_t",
-                 "cur_t", "frozen", "ring", "ring_pos", "ring_count", "ring_t", "_last")
+                 "cur_t", "frozen", "ring", "ring_pos", "ring_count", "ring_t", "_last", "conv", "real")
 
     SAME, FAST_TO_SLOW, SLOW_TO_FAST = 0, 1, 2
 
-    def __init__(self, con: Connection, src: Component, dst: Component):
+    def __init__(self, con: Connection, src: Component, dst: Component, conv=None):
         self.con = con
         self.src, self.sport = src, con.src_port
         self.dst, self.dport = dst, con.dst_port
+        #: the type/unit conversion of the connection (conversions.py), None for a plain copy
+        self.conv = conv
+        #: averaging, extrapolation and hold statistics apply to Real signals only; the others are held
+        self.real = src.variable(con.src_port).type == "Real"
         self.mode = self.SAME
         self.frozen = None
         self.ring = None
@@ -65,9 +69,16 @@ class _Link:
         self._last = None
 
     def value(self, t_mid: float, t_end: float | None = None) -> np.ndarray:
+        """What the consumer sees, converted (type, unit) when the connection needs it."""
+        raw = self._raw(t_mid, t_end)
+        return raw if self.conv is None else self.conv(raw)
+
+    def _raw(self, t_mid: float, t_end: float | None) -> np.ndarray:
         if self.frozen is not None:
             return self.frozen
         y = self.src.y[self.sport]
+        if not self.real:
+            return np.array(y)
         if self.mode == self.FAST_TO_SLOW and self.con.average != "last" and self.weight > 0.0:
             if self.con.average == "mean":
                 out = self.acc / self.weight
@@ -88,6 +99,8 @@ class _Link:
     def produced(self, h_src: float, t_end: float) -> None:
         """Called after the producer has stepped."""
         y = self.src.y[self.sport]
+        if not self.real:
+            return
         if self.mode == self.FAST_TO_SLOW:
             how = self.con.average
             if how == "mean":
@@ -117,6 +130,8 @@ class _Link:
 
     def ring_statistic(self, how: str) -> np.ndarray:
         """RMS, mean or last of the producer's outputs kept in the ring buffer (the last N rotor cycles)."""
+        if not self.real:
+            return np.array(self.src.y[self.sport])
         if self.ring is None or self.ring_count == 0:
             return np.array(self.src.y[self.sport], dtype=float)
         data = self.ring if self.ring_count == len(self.ring) else self.ring[: self.ring_count]
@@ -154,9 +169,12 @@ class Engine:
         self.order = list(order) + rest
         self.system = system
         self.settings = settings
-        self.links = [_Link(c, system.components[c.src_component], system.components[c.dst_component])
-                      for c in system.connections]
+        conv = getattr(system, "converters", {})
+        self.links = [_Link(c, system.components[c.src_component], system.components[c.dst_component],
+                            conv.get(c.dst)) for c in system.connections]
         self.steps_taken = {n: 0 for n in self.order}
+        #: the first stop request of the run (a StopRequested), or None; see _pass
+        self.stop: StopRequested | None = None
 
     # -- interval preparation ------------------------------------------------------------------------
     def prepare(self, active: Sequence[str], multiples: dict[str, int], h: float) -> None:
@@ -198,7 +216,7 @@ class Engine:
             if type(comps[n]).set_inputs is not Component.set_inputs or self.settings.iterations > 1:
                 continue
             plain = [link for link in self._inputs[n] if link.mode == _Link.SAME and link.frozen is None
-                     and link.con.extrapolation != "linear-end"]
+                     and link.con.extrapolation != "linear-end" and link.conv is None]
             same = [(link.src, link.sport, link.dport) for link in plain]
             other = [link for link in self._inputs[n] if link not in plain]
             self._direct[n] = (same, other)
@@ -215,6 +233,12 @@ class Engine:
             comp.do_step(t, hc)
         except SimulationDiverged:
             raise
+        except StopRequested as req:
+            # the component advanced to req.t_stop and asks to end there: keep its step, remember the request
+            req.t_stop = min(max(req.t_stop, t), t + hc)
+            if self.stop is None or req.t_stop < self.stop.t_stop:
+                self.stop = req
+            hc = req.t_stop - t
         except Exception as exc:  # a component's own failure: stop with its name and the time
             raise SimulationDiverged(f"{name} failed in do_step at t = {t:.9g} s: {exc}") from exc
         self.steps_taken[name] += 1
@@ -244,12 +268,20 @@ class Engine:
         self._fire(name, None, t, hc)
 
     def _pass(self, firing: list[str], t_end: float) -> None:
+        """One pass over the firing components. After a stop request inside the pass, the components still to
+        fire step only up to the requested time (not at all if they are already there), so that the run ends
+        with every component that had not yet fired at that time; those fired before it have completed the
+        base step (without FMU state they cannot be taken back)."""
         h = self.h
         if self.settings.algorithm == "gauss-seidel":
             direct = self._direct
             for n in firing:
                 hc = self.mult[n] * h
                 t = t_end - hc
+                if self.stop is not None:
+                    hc = self.stop.t_stop - t
+                    if hc <= 1e-12 * max(1.0, abs(t)):
+                        continue
                 if n in direct:
                     self._fire_direct(n, t, hc)
                 else:
@@ -260,6 +292,10 @@ class Engine:
                 hc = self.mult[n] * h
                 gathered.append((n, self._gather(n, t_end - 0.5 * hc, t_end), t_end - hc, hc))
             for n, values, t, hc in gathered:
+                if self.stop is not None:
+                    hc = self.stop.t_stop - t
+                    if hc <= 1e-12 * max(1.0, abs(t)):
+                        continue
                 self._fire(n, values, t, hc)
 
     def _iterate(self, firing: list[str], t_end: float) -> None:
@@ -280,16 +316,21 @@ class Engine:
             finally:
                 for link in override:
                     link.frozen = None
+            if self.stop is not None:  # a stop request ends the run: the iterate in hand is kept
+                break
             # inputs fed back from components that fire later in the order (all of them for Jacobi)
             fresh = {}
             for n in firing:
                 for link in self._inputs[n]:
                     s = link.con.src_component
                     if link.frozen is None and s in fired and (jacobi or rank[s] >= rank[n]):
-                        fresh[link] = np.array(link.src.y[link.sport], dtype=float)
+                        fresh[link] = np.array(link.src.y[link.sport])
             worst = 0.0 if override else math.inf
             for link, val in override.items():
                 ref = fresh[link]
+                if ref.dtype.kind not in "fiu":   # Boolean, String: converged when equal
+                    worst = max(worst, 0.0 if np.array_equal(ref, val) else math.inf)
+                    continue
                 scale = max(float(np.max(np.abs(ref))), float(np.max(np.abs(val))), 1e-300)
                 worst = max(worst, float(np.max(np.abs(val - ref))) / scale)
             override = fresh
@@ -300,5 +341,5 @@ class Engine:
     def check_finite(self, t: float) -> None:
         for n in self.active:
             for port, y in self._comp[n].y.items():
-                if not np.all(np.isfinite(y)):
+                if y.dtype.kind == "f" and not np.all(np.isfinite(y)):
                     raise SimulationDiverged(f"{n}.{port} is not finite at t = {t:.9g} s: the simulation diverged")

@@ -9,11 +9,14 @@
     implementation = "testing.mass"      # a registry name, or: fmu = "path/to/model.fmu"
     step = 1e-3                          # optional communication step (a whole multiple of the interval step)
     parameters = { m = 1.0, k = 4.0 }
+    start = { "x" = 0.1 }                # FMUs only: start values of states / initial = "exact" variables
 
     [[connections]]
     from = "m1.x"
     to = "m2.x_in"                       # optional: average = "mean"|"rms"|"last", extrapolation = "hold"|"linear"|"linear-end",
-                                         # hold = "rms"|"mean"|"last" (thermal-only substitute)
+                                         # hold = "rms"|"mean"|"last" (thermal-only substitute),
+                                         # convert = "round"|... (type conversion), unit = "mm" (unit of a
+                                         # unit-less side): see master/conversions.py
     [inputs]
     "m1.F_ext" = 0.0                     # constant inputs
 
@@ -76,6 +79,8 @@ class ComponentSpec:
     fmu: str | None = None
     parameters: dict[str, Any] = field(default_factory=dict)
     step: float | None = None
+    #: start values of an FMU's states and other ``initial = "exact"`` variables (fmpy's ``start_values``)
+    start: dict[str, Any] = field(default_factory=dict)
 
 
 @dataclass
@@ -85,6 +90,8 @@ class ConnectionSpec:
     average: str = "mean"
     extrapolation: str = "hold"
     hold: str | None = None
+    convert: str | None = None
+    unit: str | None = None
 
 
 @dataclass
@@ -105,8 +112,8 @@ class Scenario:
 
 
 _TOP_KEYS = {"scenario", "components", "connections", "inputs", "algorithm", "schedule", "outputs", "results"}
-_COMPONENT_KEYS = {"implementation", "fmu", "parameters", "step"}
-_CONNECTION_KEYS = {"from", "to", "average", "extrapolation", "hold"}
+_COMPONENT_KEYS = {"implementation", "fmu", "parameters", "step", "start"}
+_CONNECTION_KEYS = {"from", "to", "average", "extrapolation", "hold", "convert", "unit"}
 
 
 def _fail(where: str, msg: str) -> ScenarioError:
@@ -160,7 +167,13 @@ def parse(data: Mapping[str, Any], source: Path | None = None) -> Scenario:
             _check_value(f"{w} step", step)
             if not isinstance(step, (int, float)) or step <= 0:
                 raise _fail(w, f"step must be a positive number, got {step!r}")
-        components[name] = ComponentSpec(name, impl, fmu, params, None if step is None else float(step))
+        start = dict(spec.get("start", {}))
+        for k, v in start.items():
+            _check_value(f"{w} start {k}", v)
+        if start and fmu is None:
+            raise _fail(w, "'start' sets start values of an FMU's variables; a native component takes its "
+                           "initial state from its parameters")
+        components[name] = ComponentSpec(name, impl, fmu, params, None if step is None else float(step), start)
     connections = []
     for i, spec in enumerate(data.get("connections", [])):
         w = f"{where}: connection #{i + 1}"
@@ -170,8 +183,12 @@ def parse(data: Mapping[str, Any], source: Path | None = None) -> Scenario:
         if "from" not in spec or "to" not in spec:
             raise _fail(w, "needs 'from' and 'to'")
         split_port(spec["from"]), split_port(spec["to"])
+        for key in ("convert", "unit"):
+            if key in spec and not isinstance(spec[key], str):
+                raise _fail(w, f"{key} must be a string, got {spec[key]!r}")
         connections.append(ConnectionSpec(spec["from"], spec["to"], spec.get("average", "mean"),
-                                          spec.get("extrapolation", "hold"), spec.get("hold")))
+                                          spec.get("extrapolation", "hold"), spec.get("hold"),
+                                          spec.get("convert"), spec.get("unit")))
     inputs = {}
     for ref, value in data.get("inputs", {}).items():
         split_port(ref)
@@ -217,7 +234,7 @@ def create_component(spec: ComponentSpec) -> Component:
     if spec.fmu is not None:
         from rotorcosim.fmus.importer import load_fmu_component
 
-        return load_fmu_component(spec.fmu, spec.name, spec.parameters)
+        return load_fmu_component(spec.fmu, spec.name, spec.parameters, spec.start)
     try:
         return registry.create(spec.implementation, spec.name, spec.parameters)
     except ContractError as exc:
@@ -226,7 +243,7 @@ def create_component(spec: ComponentSpec) -> Component:
 
 def build_system(sc: Scenario) -> System:
     comps = {name: create_component(spec) for name, spec in sc.components.items()}
-    cons = [Connection(c.src, c.dst, c.average, c.extrapolation, c.hold) for c in sc.connections]
+    cons = [Connection(c.src, c.dst, c.average, c.extrapolation, c.hold, c.convert, c.unit) for c in sc.connections]
     return System(comps, cons, {k: v for k, v in sc.inputs.items()})
 
 

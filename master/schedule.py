@@ -181,7 +181,12 @@ class RunReport:
     component_steps: dict[str, int] = field(default_factory=dict)
     t_end: float = 0.0
     error: str | None = None
+    #: "complete", "stopped" (a component asked to stop: see ``stopped``), "failed" or "interrupted"
+    status: str = "complete"
+    #: ``{"component", "t_s", "reason"}`` of the stop request that ended the run, or None
+    stopped: dict | None = None
 
     def as_dict(self) -> dict:
         return {"timeline": [u.as_dict() for u in self.timeline], "wall_time_s": self.wall_time_s,
-                "component_steps": dict(self.component_steps), "t_end": self.t_end, "error": self.error}
+                "component_steps": dict(self.component_steps), "t_end": self.t_end, "error": self.error,
+                "status": self.status, "stopped": self.stopped}

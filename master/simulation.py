@@ -143,6 +143,15 @@ class Simulation:
                 self.engine.base_step(t_start, k)
                 k += 1
                 self.t = t_start + k * step
+                req = self.engine.stop
+                if req is not None:
+                    # a component asked to stop: the run ends at the time it asked for, sampled there
+                    self.t = req.t_stop
+                    self.report.stopped = {"component": req.component, "t_s": req.t_stop, "reason": req.reason}
+                    for obs in self.observers:
+                        obs.step(self, self.t)
+                    why = "stopped"
+                    break
                 for obs, stride in zip(self.observers, strides):
                     if k % stride == 0:
                         obs.step(self, self.t)
@@ -165,22 +174,31 @@ class Simulation:
 
     # -- whole runs ------------------------------------------------------------------------------------
     def run(self, schedule: Timeline | AutoSchedule) -> RunReport:
+        """Run ``schedule``. The components are initialised first, so the first recorded sample (at t0) holds
+        the outputs after initialisation. A stop request of a component ends the run early and cleanly:
+        ``report.status`` is then ``"stopped"`` and ``report.stopped`` names the component and the time."""
         t_wall = _time.perf_counter()
-        for obs in self.observers:
-            obs.start(self, schedule)
         error = None
         try:
+            if isinstance(schedule, Timeline) and any(iv.phase == "TO" for iv in schedule.intervals) \
+                    and not self.speed_rpm:
+                raise ScheduleError("a schedule with thermal-only intervals needs speed_rpm (the rotor cycle "
+                                    "over which the held outputs are averaged)")
+            self.initialise()
+            for obs in self.observers:
+                obs.start(self, schedule)
             if isinstance(schedule, Timeline):
-                if any(iv.phase == "TO" for iv in schedule.intervals) and not self.speed_rpm:
-                    raise ScheduleError("a schedule with thermal-only intervals needs speed_rpm (the rotor cycle "
-                                        "over which the held outputs are averaged)")
                 for iv in schedule.intervals:
                     self.run_interval(iv.phase, iv.duration, iv.step)
+                    if self.report.stopped:
+                        break
             else:
                 self._run_auto(schedule)
+            self.report.status = "stopped" if self.report.stopped else "complete"
         except BaseException as exc:
             error = exc
             self.report.error = f"{type(exc).__name__}: {exc}"
+            self.report.status = "interrupted" if isinstance(exc, KeyboardInterrupt) else "failed"
             raise
         finally:
             self.report.wall_time_s = _time.perf_counter() - t_wall
@@ -201,6 +219,8 @@ class Simulation:
                 self.run_interval("TM", remaining, sch.step, reason="end")
                 break
             self.run_interval("TM", sch.tm_max, sch.step, _SteadyTest(self, sch), reason="tm_max")
+            if self.report.stopped:
+                break
             remaining = end - self.t
             if remaining <= eps:
                 break
@@ -209,6 +229,8 @@ class Simulation:
             if d_to < sch.to_min:
                 continue
             self.run_interval("TO", d_to, sch.thermal_step, _DriftTest(self, sch), reason="to_max")
+            if self.report.stopped:
+                break
 
 
 def _mechanical(comp) -> bool:

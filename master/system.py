@@ -1,8 +1,10 @@
 """A system: components plus connections, checked when built.
 
 Checks (each error names the ports): unknown component or port, causality (an output drives an input), vector
-size, unit, an input driven twice, an input left unconnected (unless the scenario gives it a constant value).
-An output driving nothing is fine.
+size, value type and unit (conversions.py: what converts implicitly, what needs the connection's ``convert`` or
+``unit``, what is refused), an input driven twice, an input left unconnected (unless the scenario gives it a
+constant value, checked against the input's type and range; Binary and Clock inputs, which carry no value, may
+stay unconnected). An output driving nothing is fine.
 """
 from __future__ import annotations
 
@@ -12,6 +14,9 @@ from typing import Mapping, Sequence
 import numpy as np
 
 from rotorcosim.components.contract import Component, ContractError
+from rotorcosim.components.value_types import check_value
+
+from .conversions import ConversionError, link_conversion
 
 AVERAGES = ("mean", "rms", "last")
 EXTRAPOLATIONS = ("hold", "linear", "linear-end")
@@ -31,7 +36,10 @@ class Connection:
     consumer's step); ``linear-end`` extrapolates linearly to the END of the consumer's step, for same-rate links
     too: a consumer that enforces equilibrium at the step end with the held input (Newmark) then sees the
     producer's force at the right time, which lifts the coupling lag from first to second order;
-    ``hold``: what replaces a frozen producer's output in a thermal-only interval (None: the schedule default).
+    ``hold``: what replaces a frozen producer's output in a thermal-only interval (None: the schedule default);
+    averaging, extrapolation and the held statistic apply to Real signals only (others are held as they are);
+    ``convert``: the explicit type conversion of the connection (conversions.py), e.g. ``"round"`` for a Real
+    output into an Integer input; ``unit``: the unit of the side that has none (conversions.py).
     """
 
     src: str
@@ -39,6 +47,8 @@ class Connection:
     average: str = "mean"
     extrapolation: str = "hold"
     hold: str | None = None
+    convert: str | None = None
+    unit: str | None = None
 
     def __post_init__(self):
         for label, value, allowed in (("average", self.average, AVERAGES),
@@ -101,14 +111,20 @@ class System:
         return v
 
     def check(self) -> None:
+        #: input reference -> the conversion its connection applies (only links that need one)
+        self.converters: dict[str, object] = {}
         driven: dict[str, str] = {}
         for con in self.connections:
             out = self._port(con.src, "output")
             inp = self._port(con.dst, "input")
             if out.size != inp.size:
                 raise SystemError_(f"{con.src} (size {out.size}) -> {con.dst} (size {inp.size}): sizes differ")
-            if out.unit != inp.unit:
-                raise SystemError_(f"{con.src} [{out.unit}] -> {con.dst} [{inp.unit}]: units differ")
+            try:
+                fn = link_conversion(out, inp, con.convert, con.unit, f"{con.src} -> {con.dst}")
+            except ConversionError as exc:
+                raise SystemError_(str(exc)) from None
+            if fn is not None:
+                self.converters[con.dst] = fn
             if con.dst in driven:
                 raise SystemError_(f"{con.dst} is driven twice: by {driven[con.dst]} and by {con.src}")
             driven[con.dst] = con.src
@@ -116,12 +132,16 @@ class System:
             inp = self._port(ref, "input")
             if ref in driven:
                 raise SystemError_(f"{ref} has a constant value and is also driven by {driven[ref]}")
-            arr = np.broadcast_to(np.asarray(value, dtype=float), (inp.size,)).copy()
-            if not np.all(np.isfinite(arr)):
-                raise SystemError_(f"constant input {ref}: value {value!r} is not finite")
-            self.inputs[ref] = arr
+            items = list(value) if isinstance(value, (list, tuple, np.ndarray)) else [value]
+            if len(items) == 1 and inp.size > 1:
+                items = items * inp.size   # a scalar constant fills a vector input
+            try:
+                self.inputs[ref] = check_value(inp, items, f"constant input {ref}")
+            except ContractError as exc:
+                raise SystemError_(str(exc)) from None
         missing = [f"{name}.{v.name}" for name, c in self.components.items() for v in c.variables
-                   if v.causality == "input" and f"{name}.{v.name}" not in driven and f"{name}.{v.name}" not in self.inputs]
+                   if v.causality == "input" and v.carried and f"{name}.{v.name}" not in driven
+                   and f"{name}.{v.name}" not in self.inputs]
         if missing:
             raise SystemError_("inputs left unconnected (connect them or give a constant under [inputs]): "
                                + ", ".join(missing))

@@ -3,7 +3,9 @@
 Runs a scenario (a TOML file, a shipped scenario name, or an SSP archive) and writes into DIR:
 ``summary.json`` (the timeline used, the wall time, and the scenario's results: for the blade-loss scenarios
 the paper's Table 4 for bearings 0 and 5), the time series (``timeseries.h5``, HDF5 readable by any HDF5
-tool) and the figures. A diverging run stops with a clear error and keeps what it had recorded.
+tool) and the figures. A diverging run stops with a clear error and keeps what it had recorded. A component
+that asks to stop (an FMU's terminate request) ends the run at the time it asked for: ``status`` "stopped" in
+the summary, with the component and the time under ``stopped``, and the command exits 0 with a one-line notice.
 """
 from __future__ import annotations
 
@@ -124,6 +126,9 @@ def execute(sc: Scenario, out: Path, schedule_kind: str | None = None, duration:
         "wall_time_s": time.perf_counter() - t_wall,
         "component_steps": report.component_steps,
         "timeseries": series.name if record else None,
+        # "complete", "stopped" (a component asked to stop: "stopped" names it and the time) or "failed"
+        "status": "failed" if error is not None else report.status,
+        "stopped": report.stopped,
         "error": None if error is None else str(error),
     }
     if post is not None:
@@ -149,6 +154,10 @@ def run(args) -> int:
         print(f"rotorcosim run: the simulation diverged: {exc}\n"
               f"  what was recorded is in {args.out} (summary.json has the error)", file=sys.stderr)
         return 1
+    stop = summary.get("stopped")
+    if stop:
+        print(f"rotorcosim run: {stop['component']} asked to stop the simulation at t = {stop['t_s']:.9g} s; "
+              f"the run ended there (status \"stopped\")")
     print(f"{sc.name}: {summary['t_end_s']:.4g} s simulated in {summary['wall_time_s']:.3g} s wall time; "
           f"results in {args.out}/summary.json")
     return 0
