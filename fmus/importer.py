@@ -17,10 +17,21 @@ Mapping onto the contract (components/contract.py):
 * ``phases`` and ``preferred_step``: from rotorcosim's vendor annotation when the FMU is one of ours, else
   ``{"TM"}`` and the DefaultExperiment stepSize (model_description.py documents the annotation).
 
-The hot path calls the FMU's C functions directly with preallocated ctypes buffers (fmpy's convenience
-wrappers build new arrays on every call): the FMU boundary should cost what FMI costs, not what the glue costs.
-FMI 3.0 co-simulation FMUs are read the same way for scalar variables of types Float64 (Real), Int32
-(Integer), Boolean and String; FMI 3.0 array variables and other integer widths are refused with a clear error.
+* ``do_step``: a stop request of the FMU (FMI 2: ``fmi2Discard`` with ``fmi2Terminated`` true, at
+  ``fmi2LastSuccessfulTime``; FMI 3: ``terminateSimulation``, at ``lastSuccessfulTime`` after an early return)
+  reads the outputs where the FMU stopped and raises the contract's StopRequested: the master ends the run there;
+* ``start_values``: start values of states and other ``initial = "exact"/"approx"`` variables, checked against
+  their type and range and set before initialisation (fmpy's ``start_values``).
+
+Types: every FMI 2.0 / 3.0 co-simulation type becomes a port (components/value_types.py): Real/Float64/Float32,
+Integer/Enumeration and every FMI 3.0 integer width, Boolean, String; FMI 3.0 arrays are vector ports of
+prod(shape) values (row-major); Binary and Clock ports are declared but not carried (they may stay unconnected).
+Ranges (min/max, enumeration items) and unit definitions (BaseUnit exponents, factor, offset) are kept on the
+contract variables, for the checks of values and the unit conversions of connections (master/conversions.py).
+
+The hot path calls the FMU's C functions directly with preallocated ctypes buffers, one Get/Set call per FMI type
+(fmpy's convenience wrappers build new arrays on every call): the FMU boundary should cost what FMI costs, not
+what the glue costs.
 """
 from __future__ import annotations
 

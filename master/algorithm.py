@@ -69,16 +69,14 @@ class _Link:
         self._last = None
 
     def value(self, t_mid: float, t_end: float | None = None) -> np.ndarray:
-        """What the consumer sees, converted (type, unit) when the connection needs it."""
-        raw = self._raw(t_mid, t_end)
-        return raw if self.conv is None else self.conv(raw)
-
-    def _raw(self, t_mid: float, t_end: float | None) -> np.ndarray:
+        """What the consumer sees, converted (type, unit) when the connection needs it (``conv``; one call,
+        inlined here rather than wrapped so that a plain link costs what it did)."""
+        conv = self.conv
         if self.frozen is not None:
-            return self.frozen
+            return self.frozen if conv is None else conv(self.frozen)
         y = self.src.y[self.sport]
         if not self.real:
-            return np.array(y)
+            return np.array(y) if conv is None else conv(np.array(y))
         if self.mode == self.FAST_TO_SLOW and self.con.average != "last" and self.weight > 0.0:
             if self.con.average == "mean":
                 out = self.acc / self.weight
@@ -86,15 +84,17 @@ class _Link:
                 out = np.sqrt(self.acc2 / self.weight)
             self.acc = self.acc2 = None
             self.weight = 0.0
-            return out
+            return out if conv is None else conv(out)
         ex = self.con.extrapolation
         if ex != "hold" and self.prev is not None and self.cur_t > self.prev_t:
             if ex == "linear" and self.mode == self.SLOW_TO_FAST:
-                return y + (y - self.prev) * ((t_mid - self.cur_t) / (self.cur_t - self.prev_t))
+                out = y + (y - self.prev) * ((t_mid - self.cur_t) / (self.cur_t - self.prev_t))
+                return out if conv is None else conv(out)
             if ex == "linear-end" and self.mode != self.FAST_TO_SLOW:
                 t_end = t_mid if t_end is None else t_end
-                return y + (y - self.prev) * ((t_end - self.cur_t) / (self.cur_t - self.prev_t))
-        return np.array(y, dtype=float)
+                out = y + (y - self.prev) * ((t_end - self.cur_t) / (self.cur_t - self.prev_t))
+                return out if conv is None else conv(out)
+        return np.array(y, dtype=float) if conv is None else conv(np.array(y, dtype=float))
 
     def produced(self, h_src: float, t_end: float) -> None:
         """Called after the producer has stepped."""
@@ -264,7 +264,8 @@ class Engine:
         for src, sport, dport in same:
             u[dport] = src.y[sport].copy()
         for link in other:
-            u[link.dport] = np.asarray(link.value(t + 0.5 * hc, t + hc), dtype=float).reshape(-1)
+            # (typed by the link: a conversion yields the input's kind, a plain link the output's, which then match)
+            u[link.dport] = np.asarray(link.value(t + 0.5 * hc, t + hc)).reshape(-1)
         self._fire(name, None, t, hc)
 
     def _pass(self, firing: list[str], t_end: float) -> None:

@@ -19,11 +19,12 @@ lost:
   A converted value outside the input's range stops the run with an error naming the connection.
 * Binary and Clock ports cannot be connected (no value to carry); String converts to nothing.
 
-Units (Real links). Equal unit strings: as is. Different units of the same dimension (FMI BaseUnit exponents,
+Units (numeric links). Equal unit strings: as is. Different units of the same dimension (FMI BaseUnit exponents,
 from the FMU's unit definitions or parsed from the string, fmus/units.py): converted through the base unit,
 ``y_in = (factor_out * y_out + offset_out - offset_in) / factor_in`` (K <-> degC, m <-> mm). Different
 dimensions: an error. A port without a unit (``"1"``) connects to one with a unit only if the connection says
-which unit the unit-less side is in, ``unit = "mm"`` (then converted like any other pair).
+which unit the unit-less side is in, ``unit = "mm"`` (then converted like any other pair). Only a Real input
+receives converted units (an Integer input needs the same unit on both sides).
 """
 from __future__ import annotations
 
@@ -42,6 +43,10 @@ _ROUNDING = {"round": lambda x: np.sign(x) * np.floor(np.abs(x) + 0.5), "floor":
 
 class ConversionError(ContractError):
     """A connection whose types or units do not match and that says no (valid) conversion."""
+
+
+def _a(word: str) -> str:
+    return ("an " if word[0] in "AEIOU" else "a ") + word
 
 
 def _fmt_dims(exps: dict) -> str:
@@ -112,9 +117,7 @@ def link_conversion(out, inp, convert: str | None, unit: str | None, label: str)
             raise ConversionError(f"{label}: {end} is a {var.fmi_type or var.type} port; rotorcosim does not carry "
                                   f"{var.type} values: leave it unconnected")
     ko, ki = out.type, inp.type
-    need = f"{label}: a {out.fmi_type or ko} output into a {inp.fmi_type or ki} input"
-    if unit is not None and (ko != "Real" or ki != "Real"):
-        raise ConversionError(f"{label}: 'unit' applies to Real connections only")
+    need = f"{label}: {_a(out.fmi_type or ko)} output into {_a(inp.fmi_type or ki)} input"
     if ko == "String" or ki == "String":
         if ko != ki:
             raise ConversionError(f"{need}: strings convert to nothing")
@@ -188,13 +191,14 @@ def link_conversion(out, inp, convert: str | None, unit: str | None, label: str)
         type_fn = lambda x, guard=guard: guard(x.astype(np.int64))  # noqa: E731
     else:  # pragma: no cover - every pair of carried kinds is handled above
         raise ConversionError(f"{need}: no conversion")
-    if ki == "Real":
+    scale = None
+    if ko in ("Real", "Integer") and ki in ("Real", "Integer"):
         scale = unit_scale(out, inp, unit, label)
-    elif out.unit != inp.unit:
-        raise ConversionError(f"{label}: units differ ([{out.unit}] -> [{inp.unit}]); only connections into a "
-                              "Real input convert units")
-    else:
-        scale = None
+        if scale is not None and ki != "Real":
+            raise ConversionError(f"{label}: units differ ([{out.unit}] -> [{inp.unit}]); only connections into a "
+                                  "Real input convert units")
+    elif unit is not None:
+        raise ConversionError(f"{label}: 'unit' applies to numeric connections only")
     if scale is None:
         return type_fn
     a, b = scale

@@ -61,12 +61,18 @@ class Recorder(Observer):
     def start(self, sim, schedule):
         sizes = {}
         units = {}
+        kinds = {}
         for ref in self.signals:
             comp, _, port = ref.partition(".")
             v = sim.system._port(ref, "output") if comp in sim.system.components else None
             if v is None:
                 raise ValueError(f"recorder: unknown signal {ref!r}")
-            sizes[ref], units[ref] = v.size, v.unit
+            if not v.carried:
+                raise ValueError(f"recorder: {ref} is a {v.fmi_type or v.type} output: it holds no value to record")
+            sizes[ref], units[ref], kinds[ref] = v.size, v.unit, (v.type, v.fmi_type)
+        # each signal is stored with its own type: floats as f8, integers as i8 (UInt64 as u8), Booleans as
+        # bool, strings as UTF-8 strings; so an integer beyond 2^53 is kept exactly
+        self._dtypes = {ref: _h5_dtype(*kinds[ref]) for ref in self.signals}
         self.sizes, self.units = sizes, units
         self.path.parent.mkdir(parents=True, exist_ok=True)
         tmp = self.path.with_name(self.path.name + ".part")
@@ -81,7 +87,7 @@ class Recorder(Observer):
             self._file.create_dataset("phase", shape=(0,), maxshape=(None,), dtype="i1", chunks=(self.chunk,))
             for ref in self.signals:
                 ds = self._file.create_dataset(ref, shape=(0, sizes[ref]), maxshape=(None, sizes[ref]),
-                                               dtype="f8", chunks=(self.chunk, sizes[ref]))
+                                               dtype=self._dtypes[ref], chunks=(self.chunk, sizes[ref]))
                 ds.attrs["unit"] = units[ref]
             self._kind = "hdf5"
         elif self.path.suffix.lower() == ".csv":
@@ -106,7 +112,7 @@ class Recorder(Observer):
         self._buf_t.append(t)
         self._buf_phase.append(PHASE_CODE.get(sim.phase, 0))
         for ref in self.signals:
-            self._buf[ref].append(np.array(sim.value(ref), dtype=float))
+            self._buf[ref].append(np.array(sim.value(ref)))
         if len(self._buf_t) >= self.chunk:
             self.flush()
 
@@ -126,10 +132,12 @@ class Recorder(Observer):
                 ds[r:] = np.vstack(self._buf[ref])
             f.flush()
         else:
-            rows = np.column_stack([np.asarray(self._buf_t), np.asarray(self._buf_phase)]
-                                   + [np.vstack(self._buf[ref]) for ref in self.signals])
-            for row in rows:
-                self._csv.writerow([f"{x:.10g}" for x in row])
+            blocks = [np.vstack(self._buf[ref]) for ref in self.signals]
+            for i, (t, ph) in enumerate(zip(self._buf_t, self._buf_phase)):
+                row = [f"{t:.10g}", str(ph)]
+                for b in blocks:
+                    row += [_csv_text(x) for x in b[i]]
+                self._csv.writerow(row)
             self._file.flush()
         self.rows += n
         self._buf_t.clear()
@@ -149,6 +157,26 @@ class Recorder(Observer):
         self._file = None
         # the final name appears only when the file is whole (the .part file is what a crash leaves)
         os.replace(self._tmp, self.path)
+
+
+def _h5_dtype(kind: str, fmi_type: str):
+    if kind == "Real":
+        return "f8"
+    if kind == "Integer":
+        return "u8" if fmi_type == "UInt64" else "i8"
+    if kind == "Boolean":
+        return "?"
+    import h5py
+
+    return h5py.string_dtype("utf-8")
+
+
+def _csv_text(x) -> str:
+    if isinstance(x, (float, np.floating)):
+        return f"{x:.10g}"
+    if isinstance(x, (bool, np.bool_)):
+        return "1" if x else "0"
+    return str(x)
 
 
 class Progress(Observer):

@@ -8,7 +8,8 @@ import pytest
 
 sys.path.insert(0, str(Path(__file__).parent))
 
-from fmu_helpers import export_toy  # noqa: E402
+from fmu_helpers import (build_python_fmu, export_toy, model_description, set_attributes,  # noqa: E402
+                         with_model_description)
 
 
 @pytest.fixture(scope="session")
@@ -37,3 +38,45 @@ def damper_fmu(fmu_dir) -> Path:
     # a coarse film mesh: the table of the fast damper is then built in about a second
     return export_component("damper.fast", fmu_dir / "damper5.fmu", instance_name="damper5",
                             parameters={"damper": 5, "n_theta": 32, "n_z": 8})
+
+
+_TYPES2_DEFINITIONS = """<UnitDefinitions>
+    <Unit name="degC"><BaseUnit K="1" offset="273.15"/></Unit>
+    <Unit name="mm"><BaseUnit m="1" factor="0.001"/></Unit>
+  </UnitDefinitions>
+  <TypeDefinitions>
+    <SimpleType name="Mode"><Enumeration><Item name="low" value="1"/><Item name="mid" value="2"/>
+      <Item name="high" value="3"/></Enumeration></SimpleType>
+  </TypeDefinitions>
+  <LogCategories>"""
+
+
+@pytest.fixture(scope="session")
+def types2_fmu(fmu_dir) -> Path:
+    """FMI 2.0 (pythonfmu): every FMI 2.0 type, units K/degC and m/mm, ranges, an enumeration, a settable state,
+    an output computed at initialisation, a stop request at t_stop. pythonfmu 0.7 declares neither units nor
+    ranges nor enumerations: they are added to its model description here (the binary is not concerned)."""
+    built = build_python_fmu("types2", fmu_dir / "build2", fmi3=False)
+    xml = model_description(built).replace("<LogCategories>", _TYPES2_DEFINITIONS, 1)
+    xml = set_attributes(xml, "u", "Real", 'unit="degC"')
+    xml = set_attributes(xml, "y", "Real", 'unit="mm"')
+    xml = set_attributes(xml, "gain", "Real", 'min="0" max="10"')
+    xml = set_attributes(xml, "n", "Integer", 'min="1" max="5"')
+    for name in ("mode", "ue", "ye"):
+        xml = set_attributes(xml, name, "Integer", 'declaredType="Mode"', new_tag="Enumeration")
+    # outputs computed at initialisation are InitialUnknowns (fmpy's validation asks for them)
+    unknowns = "".join(f'<Unknown index="{i}"/>' for i in range(13, 19))
+    xml = xml.replace("</Outputs>", f"</Outputs><InitialUnknowns>{unknowns}</InitialUnknowns>", 1)
+    return with_model_description(built, fmu_dir / "types2.fmu", xml)
+
+
+@pytest.fixture(scope="session")
+def types3_fmu(fmu_dir) -> Path:
+    """FMI 3.0 (pythonfmu3): Float64, Int32, Int64, UInt64, Boolean, String, Enumeration ports, Float64 arrays,
+    units degC and mm with their definitions, ranges (added to the model description: pythonfmu3 0.3 cannot
+    declare them), a settable state, an output computed at initialisation, a terminate request at t_stop."""
+    built = build_python_fmu("types3", fmu_dir / "build3", fmi3=True)
+    xml = model_description(built)
+    xml = set_attributes(xml, "gain", "Float64", 'min="0" max="10"')
+    xml = set_attributes(xml, "n", "Int32", 'min="1" max="5"')
+    return with_model_description(built, fmu_dir / "types3.fmu", xml)

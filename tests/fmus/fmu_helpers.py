@@ -1,6 +1,10 @@
 """Builders shared by the FMI-boundary tests (not tests themselves)."""
 from __future__ import annotations
 
+import re
+import subprocess
+import sys
+import zipfile
 from pathlib import Path
 
 import numpy as np
@@ -58,3 +62,59 @@ def max_rel_diff(a: Capture, b: Capture, refs) -> float:
             continue
         worst = max(worst, float(np.max(np.abs(x - y)) / scale))
     return worst
+
+
+MODELS = Path(__file__).with_name("models")
+
+
+def build_python_fmu(model: str, dest: Path, fmi3: bool) -> Path:
+    """Build ``models/<model>.py`` into ``dest/<model>.fmu`` with pythonfmu (FMI 2.0) or pythonfmu3 (FMI 3.0)."""
+    dest.mkdir(parents=True, exist_ok=True)
+    tool = "pythonfmu3" if fmi3 else "pythonfmu"
+    out = subprocess.run([sys.executable, "-m", tool, "build", "-f", str(MODELS / f"{model}.py"), "-d", str(dest)],
+                         cwd=dest, capture_output=True, text=True, timeout=300)
+    assert out.returncode == 0, out.stderr[-2000:]
+    return dest / f"{model}.fmu"
+
+
+def model_description(fmu: Path) -> str:
+    with zipfile.ZipFile(fmu) as zf:
+        return zf.read("modelDescription.xml").decode()
+
+
+def with_model_description(src: Path, dst: Path, xml: str) -> Path:
+    """A copy of the FMU ``src`` at ``dst`` whose modelDescription.xml is ``xml`` (the binary is unchanged)."""
+    with zipfile.ZipFile(src) as zin, zipfile.ZipFile(dst, "w", zipfile.ZIP_DEFLATED) as zout:
+        for info in zin.infolist():
+            data = xml.encode() if info.filename == "modelDescription.xml" else zin.read(info)
+            zout.writestr(info, data)
+    return dst
+
+
+def set_attributes(xml: str, name: str, tag: str, attrs: str, new_tag: str | None = None) -> str:
+    """Add ``attrs`` (text) to the type element ``tag`` of the FMI 2.0 variable ``name`` (optionally renaming
+    the element), or to the FMI 3.0 variable element ``tag name="..."``."""
+    fmi2 = re.compile(rf'(<ScalarVariable name="{re.escape(name)}"[^>]*>\s*)<{tag}([ />])')
+    if fmi2.search(xml):
+        return fmi2.sub(lambda m: f"{m[1]}<{new_tag or tag} {attrs}{m[2]}", xml, count=1)
+    fmi3 = re.compile(rf'<{tag} name="{re.escape(name)}"')
+    assert fmi3.search(xml), f"no variable {name} in the model description"
+    return fmi3.sub(f'<{new_tag or tag} name="{name}" {attrs}', xml, count=1)
+
+
+class CaptureAll(Observer):
+    """Every output of every component at every base step, the first sample (after initialisation) included."""
+
+    def __init__(self):
+        self.t: list[float] = []
+        self.rows: list[dict[str, np.ndarray]] = []
+
+    def start(self, sim, schedule):
+        self.step(sim, sim.t)
+
+    def step(self, sim, t):
+        self.t.append(t)
+        self.rows.append({f"{n}.{k}": np.array(v) for n, c in sim.system.components.items() for k, v in c.y.items()})
+
+    def series(self, ref: str) -> np.ndarray:
+        return np.array([r[ref] for r in self.rows])
