@@ -15,8 +15,7 @@ Mapping onto the contract (components/contract.py):
 * ``get_state``/``set_state``: Get/SetFMUstate when the FMU declares
   ``canGetAndSetFMUstate``; otherwise a clear error (rollback is impossible with that FMU);
 * ``phases`` and ``preferred_step``: from rotorcosim's vendor annotation when the FMU is one of ours, else
-  ``{"TM"}`` and the DefaultExperiment stepSize (model_description.py documents the annotation).
-
+  ``{"TM"}`` and the DefaultExperiment stepSize (model_description.py documents the annotation);
 * ``do_step``: a stop request of the FMU (FMI 2: ``fmi2Discard`` with ``fmi2Terminated`` true, at
   ``fmi2LastSuccessfulTime``; FMI 3: ``terminateSimulation``, at ``lastSuccessfulTime`` after an early return)
   reads the outputs where the FMU stopped and raises the contract's StopRequested: the master ends the run there;
