@@ -8,11 +8,16 @@ the same way, and time ``set_inputs`` + ``do_step`` (what the master does per co
 Prints microseconds per step native and through the FMU, their ratio, and the added cost per step; then the
 whole toy thermo-mechanical scenario run natively and with every component swapped for its FMU; then the largest
 difference of the exported toy SSP run in Ecos against our master (Jacobi and Gauss-Seidel, same fixed step);
-with ``--blade-loss``, the same two comparisons on the paper's whole system over 200 TM steps.
+with ``--blade-loss``, the same two comparisons on the paper's whole system over 200 TM steps; with ``--setup``,
+the set-up time of the nine blade-loss FMUs (SSP read, FMUs extracted, loaded, instantiated, initialised) in a
+fresh process with an empty cache and again in another fresh process with the cache the first one left
+(fmus/extraction_cache.py).
 """
 from __future__ import annotations
 
 import argparse
+import os
+import subprocess
 import sys
 import tempfile
 import time
@@ -174,13 +179,50 @@ def blade_loss(folder: Path, n: int = 200):
     print(f"  Ecos vs our master (jacobi), blade_loss TM {n} steps, max |diff| / max |ours|: " + ", ".join(diffs))
 
 
+_SETUP = """
+import sys, time
+t0 = time.perf_counter()
+from rotorcosim.fmus.ssp import read_ssp
+from rotorcosim.master.scenario import build_simulation
+sim = build_simulation(read_ssp(sys.argv[1]), [])
+sim.initialise()
+print(time.perf_counter() - t0)
+"""
+
+
+def setup_time(folder: Path) -> None:
+    """Set-up of the blade-loss SSP's nine FMUs in a fresh process: empty cache, then the cache left behind."""
+    from rotorcosim import scenarios
+    from rotorcosim.fmus.ssp import write_ssp
+    from rotorcosim.master.scenario import load_scenario
+
+    ssp = write_ssp(load_scenario(scenarios.path("blade_loss")), folder / "blade_loss_setup.ssp")
+    env = {**os.environ, "ROTORCOSIM_CACHE": str(folder / "cache")}
+    times = []
+    for label in ("empty cache", "warm cache"):
+        out = subprocess.run([sys.executable, "-c", _SETUP, str(ssp)], env=env, capture_output=True, text=True)
+        if out.returncode:
+            print(f"  set-up failed: {out.stderr.strip().splitlines()[-1:]}")
+            return
+        times.append(float(out.stdout.strip().splitlines()[-1]))
+        print(f"  nine blade-loss FMUs set up ({label}, fresh process, imports included): {times[-1]:.2f} s")
+    print(f"  ratio empty/warm: {times[0] / times[1]:.1f}")
+
+
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--steps", type=int, default=5000, help="timed steps per component (default 5000)")
     ap.add_argument("--only", nargs="*", default=None, help="component implementation names (default: all)")
     ap.add_argument("--blade-loss", action="store_true",
                     help="also the whole blade-loss system: native vs FMUs, and in Ecos (a few minutes)")
+    ap.add_argument("--setup", action="store_true",
+                    help="only the set-up time of the nine blade-loss FMUs, empty cache then warm cache")
     args = ap.parse_args(argv)
+    if args.setup:
+        with tempfile.TemporaryDirectory(prefix="bench_fmu_") as tmp:
+            print("FMU set-up:")
+            setup_time(Path(tmp))
+        return 0
     names = args.only or registry.available()
     with tempfile.TemporaryDirectory(prefix="bench_fmu_") as tmp:
         folder = Path(tmp)

@@ -21,7 +21,7 @@ import rotorcosim.components as _components_pkg
 COMPONENTS_ROOT = Path(_components_pkg.__file__).resolve().parent
 COMPONENTS_PACKAGE = "rotorcosim.components"
 #: modules of components/ every bundle carries (the contract the component subclasses)
-CORE = ("__init__.py", "contract.py", "value_types.py", "registry.py")
+CORE = ("__init__.py", "contract.py", "value_types.py", "registry.py", "cache.py")
 _SKIP_DIRS = {"__pycache__"}
 _SKIP_SUFFIXES = {".pyc", ".pyo", ".nbi", ".nbc"}
 

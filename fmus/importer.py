@@ -1,8 +1,8 @@
 """Any FMI 2.0 (or 3.0) co-simulation FMU as a rotorcosim component (through fmpy).
 
 ``load_fmu_component(path, name, params)`` is what the master calls for a scenario component given as
-``fmu = "file.fmu"``. The FMU is checked and extracted into a fresh temporary folder (safezip.py: nothing can be
-written outside it), its shared library is loaded and instantiated at once (so a binary that does not load is
+``fmu = "file.fmu"``. The FMU is checked and extracted (safezip.py: nothing can be written outside the folder;
+the folder is kept between runs by extraction_cache.py, so an FMU is unpacked and compiled once), its shared library is loaded and instantiated at once (so a binary that does not load is
 reported when the system is built, not in the middle of a run), and its scalar variables are regrouped into the
 contract's vector ports (``X[1]..X[n]`` -> port ``X`` of size n, flatten.py) with their units and descriptions.
 
@@ -37,7 +37,6 @@ from __future__ import annotations
 import ctypes
 import io
 import os
-import shutil
 import sys
 import weakref
 from collections import deque
@@ -50,10 +49,11 @@ import numpy as np
 from rotorcosim.components.contract import Component, ContractError, StopRequested, Variable
 from rotorcosim.components.value_types import KIND_OF, UNCARRIED, check_value, dtype_of
 
+from . import extraction_cache
 from . import model_description as mdx
 from .flatten import FlattenError, regroup
 from .units import BASE
-from .safezip import ArchiveError, check_entries, open_zip, safe_extract
+from .safezip import ArchiveError, check_entries, open_zip
 
 _OK_STATUS = 1  # OK = 0, Warning = 1 (FMI 2.0 and 3.0): anything above is a failure
 _DISCARD = 2
@@ -256,8 +256,10 @@ def ports_of(md, where: str, hidden=frozenset()) -> tuple[list[Variable], dict[s
 class _Handle:
     """What must be released when the component goes away: kept apart from the component for weakref.finalize."""
 
-    def __init__(self, folder: Path, annotation: mdx.Annotation, version: str):
+    def __init__(self, folder: Path, annotation: mdx.Annotation, version: str, cached: bool = False):
         self.folder = folder
+        self.cached = cached  # an extraction kept in the cache between runs (extraction_cache.py)
+        self.failed = False   # an FMU that could not be set up leaves nothing behind, in the cache neither
         self.version = version
         self.annotation = annotation
         self.fmu = None
@@ -276,7 +278,7 @@ class _Handle:
                 pass
         self.instantiated = False
         _forget_python_modules(self.folder, self.annotation)
-        shutil.rmtree(self.folder, ignore_errors=True)
+        extraction_cache.release(self.folder, self.cached and not self.failed)
 
 
 def _forget_python_modules(folder: Path, ann: mdx.Annotation) -> None:
@@ -375,10 +377,11 @@ class FMUComponent(Component):
         self._version = "3" if md.fmiVersion.startswith("3.") else "2"
         self.start_values: dict[str, Any] = {}
         try:
-            folder = safe_extract(self.path, "FMU", prefix="rcs_fmu_")
+            folder, cached = extraction_cache.acquire(self.path, md.guid if self._version == "2"
+                                                      else md.instantiationToken)
         except ArchiveError as exc:
             raise FMUError(str(exc)) from None
-        self._handle = _Handle(folder, ann, self._version)
+        self._handle = _Handle(folder, ann, self._version, cached)
         self._finalizer = weakref.finalize(self, self._handle.release)
         try:
             self._instantiate(md, where)
@@ -388,6 +391,7 @@ class FMUComponent(Component):
                 self.set_parameter(key, value)
             self._set_start_values(start_values or {})
         except BaseException:
+            self._handle.failed = True
             self._finalizer()
             raise
 

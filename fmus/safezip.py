@@ -54,11 +54,12 @@ def check_entries(zf: zipfile.ZipFile, source: str) -> None:
                                      "(it could write outside the extraction folder)")
 
 
-def safe_extract(path: str | Path, what: str = "FMU", prefix: str = "rcs_") -> Path:
-    """Extract ``path`` into a fresh temporary folder (returned); the caller removes it when done."""
+def safe_extract(path: str | Path, what: str = "FMU", prefix: str = "rcs_", parent: Path | None = None) -> Path:
+    """Extract ``path`` into a fresh temporary folder (returned), in ``parent`` or the system's temporary
+    folder; the caller removes it when done."""
     with open_zip(path, what) as zf:
         check_entries(zf, str(path))
-        folder = Path(tempfile.mkdtemp(prefix=prefix))
+        folder = Path(tempfile.mkdtemp(prefix=prefix, dir=parent))
         try:
             root = folder.resolve()
             for info in zf.infolist():

@@ -3,8 +3,8 @@
 Every process of a run or a sweep would otherwise rebuild the same tables. The file name is the SHA-256 of
 the table's arguments and of the source of the modules that compute it (reynolds_fe.py, fast.py), so a
 changed solver never reads an old table; the arrays are stored bit-for-bit (.npz), so a cached run gives the
-same numbers as an uncached one. Location: $ROTORCOSIM_CACHE/damper, else ~/.cache/rotorcosim/damper;
-ROTORCOSIM_CACHE=off disables it. A cache that cannot be written (read-only home) is silently skipped:
+same numbers as an uncached one. Location: the folder ``damper`` of the cache root (components/cache.py).
+A cache that cannot be written (read-only home) is silently skipped:
 the table is then only kept in memory.
 """
 from __future__ import annotations
@@ -16,15 +16,13 @@ from pathlib import Path
 
 import numpy as np
 
+from ..cache import cache_dir
+
 _SOURCES = ("reynolds_fe.py", "fast.py")
 
 
 def _directory() -> Path | None:
-    root = os.environ.get("ROTORCOSIM_CACHE", "")
-    if root.lower() in ("off", "0", "no", "false"):
-        return None
-    base = Path(root) if root else Path.home() / ".cache" / "rotorcosim"
-    return base / "damper"
+    return cache_dir("damper")
 
 
 def key(*args) -> str:

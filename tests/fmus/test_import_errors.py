@@ -38,10 +38,12 @@ def description(fmu: Path) -> str:
 
 @pytest.fixture
 def private_tmp(tmp_path, monkeypatch):
-    """Temporary folders of the importer go under tmp_path/t, so the test can see what is left behind."""
+    """Temporary folders of the importer go under tmp_path/t and its cache under tmp_path/cache, so the test
+    can see what is left behind."""
     t = tmp_path / "t"
     t.mkdir()
     monkeypatch.setattr(tempfile, "tempdir", str(t))
+    monkeypatch.setenv("ROTORCOSIM_CACHE", str(tmp_path / "cache"))
     return t
 
 
@@ -78,6 +80,8 @@ def test_binary_that_does_not_load(mass_fmu, tmp_path, private_tmp):
     with pytest.raises(FMUError, match="does not load.*binaries in the FMU: binaries/win64/m1.dll"):
         load_fmu_component(nobin, "c")
     assert list(private_tmp.iterdir()) == []     # the extraction folders were removed
+    cache = tmp_path / "cache" / "fmu"
+    assert not cache.exists() or list(cache.iterdir()) == []   # nor kept in the cache
 
 
 @pytest.mark.parametrize("entry, why", [
@@ -160,7 +164,13 @@ def test_rollback_needs_fmu_state(mass_fmu, tmp_path):
 def test_state_rollback_and_clean_up(mass_fmu, private_tmp):
     c = load_fmu_component(mass_fmu, "c", {"c": 0.3})
     folder = c._handle.folder
-    assert folder.is_dir() and folder.parent == private_tmp
+    cache = private_tmp.parent / "cache" / "fmu"
+    assert folder.is_dir() and folder.parent == cache       # the first instance uses the cached extraction
+    twin = load_fmu_component(mass_fmu, "twin")              # a second live instance gets a fresh folder
+    twin_folder = twin._handle.folder
+    assert twin_folder.parent == private_tmp
+    twin.terminate()
+    assert not twin_folder.exists()
     c.setup(0.0)
     c.set_inputs({"F": [2.0]})
     snap = c.get_state()
@@ -174,8 +184,11 @@ def test_state_rollback_and_clean_up(mass_fmu, private_tmp):
     np.testing.assert_array_equal(c.y["x"], first)
     assert first[0] != 0.1          # it moved away from x0
     c.terminate()
-    assert not folder.exists()
+    assert folder.is_dir()                                   # kept for the next run (extraction_cache.py)
     assert not any(str(p).startswith(str(folder)) for p in sys.path)
+    again = load_fmu_component(mass_fmu, "again")            # ... which reuses it
+    assert again._handle.folder == folder
+    again.terminate()
 
 
 def test_unreadable_model_description(mass_fmu, tmp_path):
