@@ -80,3 +80,28 @@ def types3_fmu(fmu_dir) -> Path:
     xml = set_attributes(xml, "gain", "Float64", 'min="0" max="10"')
     xml = set_attributes(xml, "n", "Int32", 'min="1" max="5"')
     return with_model_description(built, fmu_dir / "types3.fmu", xml)
+
+
+@pytest.fixture(scope="session")
+def widths3_fmu(fmu_dir) -> Path:
+    """FMI 3.0 in C (models/widths3): Float32 scalar and array, Int8, UInt8, Int16, UInt16, UInt32, a Binary
+    output, for the types pythonfmu3 cannot declare; compiled here with the system's C compiler."""
+    import shutil
+    import subprocess
+    import zipfile
+
+    cc = shutil.which("cc") or shutil.which("gcc")
+    if cc is None or not sys.platform.startswith("linux"):
+        pytest.skip("no C compiler (or not Linux): the FMI 3.0 test FMU in C cannot be built")
+    src = Path(__file__).with_name("models") / "widths3"
+    build = fmu_dir / "widths3"
+    binary = build / "binaries" / "x86_64-linux" / "widths3.so"
+    binary.parent.mkdir(parents=True, exist_ok=True)
+    out = subprocess.run([cc, "-shared", "-fPIC", "-O2", "-o", str(binary), str(src / "widths3.c")],
+                         capture_output=True, text=True, timeout=120)
+    assert out.returncode == 0, out.stderr[-2000:]
+    fmu = fmu_dir / "widths3.fmu"
+    with zipfile.ZipFile(fmu, "w", zipfile.ZIP_DEFLATED) as zf:
+        zf.write(src / "modelDescription.xml", "modelDescription.xml")
+        zf.write(binary, "binaries/x86_64-linux/widths3.so")
+    return fmu

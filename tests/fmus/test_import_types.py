@@ -20,7 +20,9 @@ from rotorcosim.master.system import SystemError_
 
 pytest.importorskip("pythonfmu3", reason="pythonfmu3 builds the FMI 3.0 test FMU")
 
-H = 0.1
+#: a binary fraction: fmpy passes t_{k+1} - t_k as the step size, rotorcosim the nominal step; they are the same
+#: number only when the step is exact in binary (with 0.1 they differ by an ulp, and so do the results, ~1e-16)
+H = 0.125
 PARAMS = {"gain": 3.0, "n": 2, "flag": True, "label": "a", "mode": 2}
 START = {"x": 0.5}
 INPUTS = {"u": 25.0, "ui": 4, "ub": False, "us": "b", "ue": 1}
@@ -112,9 +114,9 @@ def test_stop_request_ends_the_run_where_fmpy_ends_it(typed):
     cap, report, sim = _run(_scenario(fmu, inputs, params), 1.0)
     ref = _fmpy(fmu, inputs, 1.0, params)
     _same_as_fmpy(cap, ref)
-    # FMI 2 (pythonfmu): the step 0.3 -> 0.4 is discarded, the FMU stops at its last successful time 0.3;
-    # FMI 3 (pythonfmu3): the step to 0.4 completes, then the FMU asks to terminate
-    t_stop = 0.3 if fmu.name == "types2.fmu" else 0.4
+    # FMI 2 (pythonfmu): the step 0.25 -> 0.375 is discarded, the FMU stops at its last successful time 0.25;
+    # FMI 3 (pythonfmu3): the step to 0.375 completes, then the FMU asks to terminate
+    t_stop = 0.25 if fmu.name == "types2.fmu" else 0.375
     assert report.status == "stopped" and report.stopped["component"] == "f"
     assert report.stopped["t_s"] == pytest.approx(t_stop, abs=1e-12) and sim.t == report.t_end
     assert cap.t[-1] == pytest.approx(t_stop, abs=1e-12)
@@ -282,3 +284,57 @@ def test_scheduled_execution_only_has_its_own_message(types3_fmu, tmp_path):
     fmu = with_model_description(types3_fmu, tmp_path / "se.fmu", xml)
     with pytest.raises(FMUError, match="scheduled execution only .neither co-simulation nor model exchange"):
         load_fmu_component(fmu, "f")
+
+
+W_INPUTS = {"f32_in": 0.1, "i8_in": -100, "u8_in": 254, "i16_in": -32767, "u16_in": 30000, "u32_in": 294967295}
+
+
+@pytest.mark.parametrize("t_stop, t_end", [(10.0, 0.5), (0.2, 0.25)])
+def test_every_integer_width_and_float32_match_fmpy(widths3_fmu, t_stop, t_end):
+    """Float32 (scalar and array), Int8, UInt8, Int16, UInt16, UInt32 at their range limits, a Binary output
+    left unread, a parameter at its declared minimum, a state's start value; and the stop at the end of the
+    step that reaches t_stop."""
+    params, start = {"k": -5, "t_stop": t_stop}, {"x": 0.5}
+    cap, report, _ = _run(_scenario(widths3_fmu, W_INPUTS, params, start), 0.5)
+    _same_as_fmpy(cap, _fmpy(widths3_fmu, W_INPUTS, 0.5, params, start))
+    assert report.status == ("complete" if t_stop > 1 else "stopped") and cap.t[-1] == pytest.approx(t_end)
+    row = cap.rows[0]
+    assert (row["f.i8"][0], row["f.u8"][0], row["f.i16"][0], row["f.u16"][0], row["f.u32"][0]) == \
+        (-95, 255, 32767, 60000, 2**32 - 1)
+    assert row["f.f32"][0] == np.float32(np.float32(1.5) * np.float32(0.1) + np.float32(0.5))
+    assert "f.blob" not in row
+
+
+@pytest.mark.parametrize("where, value, why", [
+    ("parameters", {"k": 6}, r"6 is outside the range \[-5, 5\]"),
+    ("inputs", {"f.i8_in": 200}, r"200 is outside the range \[-128, 127\] of Int8"),
+    ("inputs", {"f.u32_in": -1}, r"-1 is outside the range \[0, 4294967295\] of UInt32"),
+    ("inputs", {"f.f32_in": 1e39}, "outside the range of Float32"),
+])
+def test_width_ranges_checked(widths3_fmu, where, value, why):
+    inputs = {f"f.{k}": v for k, v in W_INPUTS.items()}
+    spec = {"fmu": str(widths3_fmu)}
+    if where == "parameters":
+        spec["parameters"] = value
+    else:
+        inputs.update(value)
+    with pytest.raises((FMUError, SystemError_), match=why):
+        build_system(parse({"components": {"f": spec}, "inputs": inputs}))
+
+
+def test_integer_widths_connect_only_where_the_values_fit(widths3_fmu):
+    def pair(src, dst, **con):
+        inputs = {f"{c}.{k}": v for c in "ab" for k, v in W_INPUTS.items() if f"{c}.{k}" != dst}
+        return parse({"components": {"a": {"fmu": str(widths3_fmu)}, "b": {"fmu": str(widths3_fmu)}},
+                      "connections": [{"from": src, "to": dst, **con}], "inputs": inputs})
+
+    build_system(pair("a.u8", "b.i16_in"))                     # UInt8 fits Int16
+    build_system(pair("a.x", "b.f32_in"))                      # Float64 -> Float32: Real to Real
+    with pytest.raises(SystemError_, match=r"a\.i16 -> b\.i8_in: .*\[-32768, 32767\] do not all fit the input "
+                                           r"\[-128, 127\]"):
+        build_system(pair("a.i16", "b.i8_in"))
+    sc = pair("a.i16", "b.i8_in", convert="clip")
+    cap, report, sim = _run(sc, 0.2)
+    assert sim.system.components["b"].u["i8_in"].tolist() == [127]       # 32767 saturated
+    with pytest.raises(SystemError_, match="a.blob is a Binary port"):
+        build_system(pair("a.blob", "b.u8_in"))
