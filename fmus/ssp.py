@@ -100,6 +100,8 @@ def system_description(sc: Scenario, fmus: dict[str, Path]) -> bytes:
                              {"name": name, "type": FMU_TYPE, "source": f"resources/{name}.fmu"})
         cons = ET.SubElement(comp, _q("ssd", "Connectors"))
         for v in variables:
+            if not v.carried:
+                continue   # Binary / Clock ports: SSP 1.0 connectors have no Clock type, and we carry neither
             for s in scalar_names(v.name, v.size):
                 c = ET.SubElement(cons, _q("ssd", "Connector"), {"name": s, "kind": v.causality})
                 attrib = {}

@@ -253,14 +253,19 @@ def test_unconnected_binary_ports_do_not_block_and_connected_ones_are_refused(ty
         "</ModelVariables>",
         '<Binary name="blob_in" valueReference="90" causality="input" variability="discrete"><Start value="0a"/>'
         '</Binary><Binary name="blob" valueReference="91" causality="output" variability="discrete" '
-        'initial="exact"><Start value="0b"/></Binary></ModelVariables>')
+        'initial="exact"><Start value="0b"/></Binary><Clock name="tick" valueReference="92" causality="input" '
+        'variability="discrete" intervalVariability="triggered"/></ModelVariables>')
     fmu = with_model_description(types3_fmu, tmp_path / "binary.fmu", xml)
     sc = _scenario(fmu, INPUTS3)
     cap, report, _ = _run(sc, 0.2)            # blob_in unconnected, blob unread: the FMU runs
     assert report.status == "complete" and "f.blob" not in cap.rows[0]
-    sc2 = _pair(fmu, "a.blob", "b.blob_in")
+    assert _run(_scenario(fmu, INPUTS3), 0.2)[0].rows[-1]["f.x"] == cap.rows[-1]["f.x"]
     with pytest.raises(SystemError_, match="a.blob is a Binary port; rotorcosim does not carry Binary values"):
-        build_system(sc2)
+        build_system(_pair(fmu, "a.blob", "b.blob_in"))
+    with pytest.raises(SystemError_, match="b.tick is a Clock port; rotorcosim does not carry Clock values"):
+        build_system(_pair(fmu, "a.x", "b.tick"))
+    with pytest.raises(SystemError_, match="constant input f.tick: a Clock variable cannot be given a value"):
+        build_system(_scenario(fmu, {**INPUTS3, "tick": 1}))
 
 
 def test_every_problem_named_at_once(types2_fmu, tmp_path):
