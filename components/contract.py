@@ -115,6 +115,9 @@ class Component:
     #: frozen: the master treats it as mechanical (its inputs from frozen components are held at their last
     #: value, and the automatic schedule watches the thermal outputs it receives). See :meth:`enter_phase`.
     holds_state_in_TO: bool = False
+    #: parameters a scenario must give: no default is right for all uses (the bearing, damper or ring number
+    #: picks that one's Table 3 data; a forgotten ``bearing = 5`` must not silently give bearing #0's)
+    required_parameters: tuple[str, ...] = ()
     #: short description shown by ``rotorcosim`` and written to exported FMUs
     description: str = ""
 

@@ -8,6 +8,7 @@ from __future__ import annotations
 import argparse
 import importlib
 import sys
+import traceback
 
 COMMANDS: dict[str, tuple[str, str]] = {
     "run": ("rotorcosim.master.commands.run", "run a scenario (TOML or SSP), the 2850 N blade-loss case by default"),
@@ -23,7 +24,11 @@ COMMANDS: dict[str, tuple[str, str]] = {
 
 
 def build_parser() -> argparse.ArgumentParser:
-    parser = argparse.ArgumentParser(prog="rotorcosim", description=__doc__.splitlines()[0])
+    parser = argparse.ArgumentParser(prog="rotorcosim", description=__doc__.splitlines()[0],
+                                     epilog="Errors: one line and exit status 2 for a mistake in the input, 1 for a "
+                                            "run that failed, 130 for an interrupted run; --debug (anywhere on the "
+                                            "line) shows the traceback.")
+    parser.add_argument("--debug", action="store_true", help="show the traceback of an error")
     sub = parser.add_subparsers(dest="command", metavar="COMMAND")
     argv = sys.argv[1:]
     for name, (module, help_text) in COMMANDS.items():
@@ -34,21 +39,49 @@ def build_parser() -> argparse.ArgumentParser:
     return parser
 
 
+#: errors caused by what the user gave (input files, options, folders): exit status 2
+USER_ERRORS = (ValueError, LookupError, FileNotFoundError, IsADirectoryError, NotADirectoryError, FileExistsError)
+
+
+def describe_error(exc: BaseException) -> tuple[int, str]:
+    """(exit status, one-line message) for an error that ended a command."""
+    if isinstance(exc, USER_ERRORS):
+        return 2, str(exc) or type(exc).__name__
+    if isinstance(exc, OSError):  # the environment: disk full, permissions, I/O
+        where = f" ({exc.filename})" if exc.filename else ""
+        return 1, f"{exc.strerror or exc}{where}"
+    if isinstance(exc, MemoryError):
+        return 1, "out of memory"
+    if isinstance(exc, RuntimeError) and type(exc).__module__.startswith("rotorcosim"):
+        return 1, str(exc)
+    return 1, f"unexpected {type(exc).__name__}: {exc} (rerun with --debug for the traceback; it may be a bug)"
+
+
 def main(argv: list[str] | None = None) -> int:
-    if argv is not None:
-        sys.argv = [sys.argv[0], *argv]
+    argv = list(sys.argv[1:] if argv is None else argv)
+    # --debug may stand anywhere on the line
+    debug = "--debug" in argv
+    argv = [a for a in argv if a != "--debug"]
+    sys.argv = [sys.argv[0], *argv]
     parser = build_parser()
-    args = parser.parse_args()
+    args = parser.parse_args(argv)
     if not args.command:
         parser.print_help()
         return 2
-    module = importlib.import_module(COMMANDS[args.command][0])
     try:
+        module = importlib.import_module(COMMANDS[args.command][0])
         return int(module.run(args) or 0)
-    except (ValueError, FileNotFoundError, KeyError) as exc:
-        # bad input: one clear line, no traceback
-        print(f"rotorcosim {args.command}: error: {exc}", file=sys.stderr)
-        return 2
+    except KeyboardInterrupt:
+        if debug:
+            traceback.print_exc()
+        print(f"rotorcosim {args.command}: interrupted", file=sys.stderr)
+        return 130
+    except Exception as exc:
+        status, text = describe_error(exc)
+        if debug:
+            traceback.print_exc()
+        print(f"rotorcosim {args.command}: error: {' '.join(text.split())}", file=sys.stderr)
+        return status
 
 
 if __name__ == "__main__":

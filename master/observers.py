@@ -37,6 +37,14 @@ class Observer:
     def end(self, sim, error: BaseException | None) -> None:
         pass
 
+    # checkpoints (master/checkpoint.py): what the observer needs to continue an interrupted run; components
+    # referenced from it are saved by name. The default keeps the observer's attributes.
+    def checkpoint_state(self):
+        return dict(self.__dict__)
+
+    def restore_checkpoint(self, state) -> None:
+        self.__dict__.update(state)
+
 
 class Recorder(Observer):
     """Records ``signals`` ("component.port") every ``record_step`` seconds of a TM interval and at every step
@@ -56,6 +64,7 @@ class Recorder(Observer):
         self._buf_phase: list[int] = []
         self._buf: dict[str, list[np.ndarray]] = {s: [] for s in self.signals}
         self._file = None
+        self._resume = None
 
     # -- observer hooks --------------------------------------------------------------------------------
     def start(self, sim, schedule):
@@ -77,6 +86,10 @@ class Recorder(Observer):
         self.path.parent.mkdir(parents=True, exist_ok=True)
         tmp = self.path.with_name(self.path.name + ".part")
         self._tmp = tmp
+        resume = getattr(self, "_resume", None)
+        if resume is not None:
+            self._reopen(resume)
+            return
         if self.path.suffix.lower() in (".h5", ".hdf5"):
             import h5py
 
@@ -148,15 +161,68 @@ class Recorder(Observer):
     def end(self, sim, error):
         if self._file is None:
             return
+        try:
+            try:
+                self.flush()
+            except OSError as exc:  # disk full: what was flushed before stays readable
+                error = error or exc
+                self._buf_t.clear()
+            if self._kind == "hdf5":
+                self._file.attrs["complete"] = error is None
+                if error is not None:
+                    self._file.attrs["error"] = f"{type(error).__name__}: {error}"
+        finally:
+            try:
+                self._file.close()
+            finally:
+                self._file = None
+                # the final name appears only when the file is closed (the .part file is what a crash leaves)
+                os.replace(self._tmp, self.path)
+
+    # -- checkpoints (master/checkpoint.py) --------------------------------------------------------------
+    def checkpoint_state(self):
         self.flush()
-        if self._kind == "hdf5":
-            self._file.attrs["complete"] = error is None
-            if error is not None:
-                self._file.attrs["error"] = str(error)
-        self._file.close()
-        self._file = None
-        # the final name appears only when the file is whole (the .part file is what a crash leaves)
-        os.replace(self._tmp, self.path)
+        state = {"rows": self.rows}
+        if self._kind == "csv":
+            state["bytes"] = self._file.tell()
+        return state
+
+    def restore_checkpoint(self, state):
+        if self._file is None:  # before start(): start() reopens the file at the checkpoint's row
+            self._resume = state
+
+    def _reopen(self, state):
+        """Continue the file of an interrupted run, cut back to the rows it had at the checkpoint."""
+        src = self.path if self.path.exists() else self._tmp
+        if not src.exists():
+            raise ValueError(f"recorder: {self.path} is missing: the interrupted run's time series cannot be continued")
+        os.replace(src, self._tmp)
+        n = int(state["rows"])
+        if self.path.suffix.lower() in (".h5", ".hdf5"):
+            import h5py
+
+            try:
+                f = h5py.File(self._tmp, "r+")
+            except OSError as exc:
+                raise ValueError(f"recorder: {self.path} cannot be reopened ({exc}): resume impossible") from None
+            for name in ["time", "phase"] + self.signals:
+                ds = f[name]
+                if ds.shape[0] < n:
+                    f.close()
+                    raise ValueError(f"recorder: {self.path} has fewer rows than its checkpoint: resume impossible")
+                ds.resize((n,) + ds.shape[1:])
+            for key in ("complete", "error"):
+                if key in f.attrs:
+                    del f.attrs[key]
+            self._file, self._kind = f, "hdf5"
+        else:
+            self._file = open(self._tmp, "r+", newline="")
+            self._file.truncate(int(state["bytes"]))
+            self._file.seek(int(state["bytes"]))
+            self._csv = csv.writer(self._file)
+            self._kind = "csv"
+        self.rows = n
+        self._resume = None
 
 
 def _h5_dtype(kind: str, fmi_type: str):
@@ -213,6 +279,12 @@ class Progress(Observer):
         if self.bar is not None:
             self.step(sim, sim.t)
             self.bar.close()
+
+    def checkpoint_state(self):
+        return None
+
+    def restore_checkpoint(self, state):
+        pass
 
 
 class SteadyWindows(Observer):

@@ -49,6 +49,7 @@ from __future__ import annotations
 
 import copy
 import math
+import re
 import sys
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -62,6 +63,7 @@ else:  # pragma: no cover
 from rotorcosim.components import registry
 from rotorcosim.components.contract import Component, ContractError
 
+from . import schema
 from .algorithm import EngineSettings
 from .schedule import from_spec
 from .simulation import Simulation
@@ -135,6 +137,8 @@ def _check_value(where: str, value: Any) -> None:
 
 
 def parse(data: Mapping[str, Any], source: Path | None = None) -> Scenario:
+    """A scenario from its (composed) dict; the strict schema (schema.py) is checked first."""
+    schema.check(data, source)
     where = str(source) if source else "scenario"
     unknown = set(data) - _TOP_KEYS
     if unknown:
@@ -216,7 +220,13 @@ def _read(path: Path, seen: tuple = ()) -> dict:
     try:
         data = tomllib.loads(path.read_text())
     except tomllib.TOMLDecodeError as exc:
-        raise ScenarioError(f"{path}: not valid TOML: {exc}") from None
+        m = re.search(r"\(at line (\d+), column \d+\)", str(exc))
+        where = f"{path}:{m.group(1)}" if m else str(path)
+        raise ScenarioError(f"{where}: not valid TOML: {exc}") from None
+    except UnicodeDecodeError as exc:
+        raise ScenarioError(f"{path}: not a text file ({exc})") from None
+    except OSError as exc:
+        raise ScenarioError(f"{path}: cannot read it ({exc.strerror or exc})") from None
     base = data.get("scenario", {}).get("extends")
     if base:
         parent = _read((path.parent / base).resolve(), seen + (path,))
@@ -242,9 +252,15 @@ def create_component(spec: ComponentSpec) -> Component:
 
 
 def build_system(sc: Scenario) -> System:
-    comps = {name: create_component(spec) for name, spec in sc.components.items()}
-    cons = [Connection(c.src, c.dst, c.average, c.extrapolation, c.hold, c.convert, c.unit) for c in sc.connections]
-    return System(comps, cons, {k: v for k, v in sc.inputs.items()})
+    try:
+        comps = {name: create_component(spec) for name, spec in sc.components.items()}
+        cons = [Connection(c.src, c.dst, c.average, c.extrapolation, c.hold, c.convert, c.unit) for c in sc.connections]
+        return System(comps, cons, {k: v for k, v in sc.inputs.items()})
+    except ContractError as exc:
+        # the file the problem is in, unless the message names it already
+        if sc.source and str(sc.source) not in str(exc):
+            raise ScenarioError(f"{sc.source}: {exc}") from None
+        raise
 
 
 def engine_settings(sc: Scenario) -> EngineSettings:

@@ -51,6 +51,9 @@ class Simulation:
         self.phase = None
         self.report = RunReport()
         self._initialised = False
+        self.interval_index = 0
+        #: set by checkpoint.resume: where an interrupted run continues
+        self.resume_point = None
 
     # -- helpers ---------------------------------------------------------------------------------------
     @property
@@ -135,8 +138,12 @@ class Simulation:
         t_start = self.t
         for obs in self.observers:
             obs.interval_start(self, phase, step)
-        strides = [max(1, int(getattr(obs, "stride", 1))) for obs in self.observers]
         k = 0
+        rp, self.resume_point = self.resume_point, None
+        if rp is not None and rp.k:  # resumed mid-interval: the preparation above reset what the checkpoint holds
+            rp.restore(self)
+            k = rp.k
+        strides = [max(1, int(getattr(obs, "stride", 1))) for obs in self.observers]
         why = reason
         try:
             while k < nsteps:
@@ -185,10 +192,15 @@ class Simulation:
                 raise ScheduleError("a schedule with thermal-only intervals needs speed_rpm (the rotor cycle "
                                     "over which the held outputs are averaged)")
             self.initialise()
+            first = 0
+            if self.resume_point is not None:  # checkpoint.py: an interrupted run continues where it was saved
+                self.resume_point.restore(self)
+                first = self.resume_point.interval
             for obs in self.observers:
                 obs.start(self, schedule)
             if isinstance(schedule, Timeline):
-                for iv in schedule.intervals:
+                for i, iv in enumerate(schedule.intervals[first:], first):
+                    self.interval_index = i
                     self.run_interval(iv.phase, iv.duration, iv.step)
                     if self.report.stopped:
                         break

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import json
 import math
+import sys
 
 import numpy as np
 
@@ -11,6 +12,9 @@ from .geometry import BEARINGS, build_geometry
 from .static import static_equilibrium, stiffness
 
 RPM = math.pi / 30.0
+#: contact stress above which Hertz's elastic theory no longer describes a ball contact: the ISO 76 static load
+#: rating of ball bearings is set at 4200 MPa, where permanent deformation (1e-4 of the ball diameter) begins
+ELASTIC_LIMIT_MPA = 4200.0
 
 
 def add_arguments(parser):
@@ -36,7 +40,12 @@ def evaluate(bearing: int, radial_load: float, axial_load: float | None = None, 
     if Fa == 0.0 and radial_load == 0.0 and speed_rpm == 0.0:
         raise ValueError("no load at all: the balls' positions are undetermined (give a radial or axial load)")
     Fc = g.centrifugal_force(speed_rpm * RPM)
-    X, st = static_equilibrium(g, np.array([radial_load, 0.0, Fa]), Fc=Fc)
+    try:
+        X, st = static_equilibrium(g, np.array([radial_load, 0.0, Fa]), Fc=Fc)
+    except (RuntimeError, FloatingPointError, np.linalg.LinAlgError) as exc:
+        raise ValueError(f"bearing #{bearing}: no static equilibrium found under {radial_load:g} N radial, {Fa:g} N "
+                         f"axial ({exc}); loads this large are far beyond the elastic (Hertz) range of the "
+                         "bearing") from None
     k_r = -stiffness(g, X, Fc=Fc, st=st)[0, 0]
     s_i = np.array([g.inner.max_stress(q) for q in st.Q_i])
     s_e = np.array([g.outer.max_stress(q) for q in st.Q_e])
@@ -53,6 +62,9 @@ def evaluate(bearing: int, radial_load: float, axial_load: float | None = None, 
         "max_contact_load_N": float(max(st.Q_i.max(), st.Q_e.max())),
         "max_contact_stress_MPa": float(max(s_i.max(), s_e.max()) * 1e-6),
         "radial_stiffness_N_per_m": float(k_r),
+        # Hertz contact theory is elastic: beyond ELASTIC_LIMIT_MPA the races deform permanently
+        "elastic_limit_MPa": ELASTIC_LIMIT_MPA,
+        "within_elastic_range": bool(max(s_i.max(), s_e.max()) * 1e-6 <= ELASTIC_LIMIT_MPA),
         "balls": [
             {"phi_deg": float(math.degrees(st.phi[j])), "Q_inner_N": float(st.Q_i[j]),
              "Q_outer_N": float(st.Q_e[j]), "alpha_inner_deg": float(math.degrees(st.alpha_i[j])),
@@ -65,6 +77,10 @@ def evaluate(bearing: int, radial_load: float, axial_load: float | None = None, 
 
 def run(args) -> int:
     out = evaluate(args.bearing, args.radial_load, args.axial_load, args.speed_rpm)
+    if not out["within_elastic_range"]:
+        print(f"rotorcosim bearing-static: warning: contact stress {out['max_contact_stress_MPa']:.0f} MPa is above "
+              f"{ELASTIC_LIMIT_MPA:.0f} MPa (ISO 76 static rating: permanent deformation): the elastic Hertz theory "
+              "used here is outside its range, the figures are not physical", file=sys.stderr)
     if args.json:
         print(json.dumps(out))
         return 0

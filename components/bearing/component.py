@@ -62,6 +62,7 @@ class BallBearing(Component):
                    "body, thermal growths and Palmgren drag torque (paper eqs. 1-10, Table 3)")
     preferred_step = 1e-5
     phases = frozenset({"TM"})
+    required_parameters = ("bearing",)  # which of Table 3's gives the data: never a silent default
     variables = (
         Variable("bearing", "parameter", start=0, type="Integer",
                  description="which bearing of Table 3 (0 or 5) gives the geometry and defaults"),

@@ -54,6 +54,7 @@ def table3(damper: int) -> dict:
 class _Damper(Component):
     """Common ports, parameters, spring, viscosity and checks; subclasses provide :meth:`film_force`."""
 
+    required_parameters = ("damper",)  # which of Table 3's gives the data: never a silent default
     variables = (
         Variable("damper", "parameter", unit="1", start=0, type="Integer",
                  description="which damper of Table 3 (0 or 5) gives the geometry not set explicitly"),

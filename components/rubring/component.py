@@ -38,6 +38,7 @@ class RubRing(Component):
     """Rotor / rub-ring contact at bearing #0 or #5."""
 
     description = "Rub ring: penalty contact with damping, Coulomb friction (spin + whirl), friction power eq. (11)"
+    required_parameters = ("bearing",)  # which of Table 3's gives the data: never a silent default
     variables = (
         Variable("bearing", "parameter", unit="1", start=0, type="Integer",
                  description="which ring (at bearing 0 or 5) gives the clearance and radius not set explicitly"),

@@ -47,6 +47,7 @@ class ThermalNetwork(Component):
     """Bearing thermal network of bearing #0 or #5 (nine nodes, eqs. 12-15)."""
 
     description = "Bearing thermal network (9 lumped nodes, Table 1 resistances) and thermal growths eqs. (13)-(15)"
+    required_parameters = ("bearing",)  # which of Table 3's gives the data: never a silent default
     variables = (
         Variable("bearing", "parameter", unit="1", start=0, type="Integer",
                  description="which bearing of Table 3 (0 or 5) gives the geometry"),

@@ -35,6 +35,7 @@ def add_arguments(p):
                         "the paper: at most 50)")
     p.add_argument("--bearing", type=int, choices=(0, 5), default=0, help="bearing of the table (default 0)")
     p.add_argument("--no-figures", action="store_true", help="skip the PNG figures of the two runs")
+    p.add_argument("--overwrite", action="store_true", help="replace the results of a previous comparison in --out")
 
 
 def staggered_timeline(duration: float, step: float, thermal_step: float, speed_rpm: float,
@@ -66,10 +67,14 @@ def _warm_up(scenario: str, out: Path) -> None:
 
 
 def compare(out: Path, duration=2.0, unbalance=2850.0, scenario="blade_loss", revolutions=40.0, bearing=0,
-            quiet=True, figures=True) -> dict:
+            quiet=True, figures=True, overwrite=False) -> dict:
     if not (duration > 0 and duration < float("inf")):
         raise ValueError(f"--duration must be a positive number of seconds, got {duration}")
+    if str(out).strip() == "":
+        raise ValueError("--out is empty: give the folder the results go to")
     out = Path(out)
+    if out.exists() and not out.is_dir():
+        raise ValueError(f"--out {out} is a file, not a folder")
     out.mkdir(parents=True, exist_ok=True)
     runs = {}
     _warm_up(scenario, out)
@@ -84,7 +89,7 @@ def compare(out: Path, duration=2.0, unbalance=2850.0, scenario="blade_loss", re
         else:
             sch = Timeline([Interval("TM", duration, float(s.get("step", 1e-5)))])
         sc.name = f"{sc.name}_{kind}"
-        runs[kind] = execute(sc, out / kind, figures=figures, quiet=quiet, schedule=sch)
+        runs[kind] = execute(sc, out / kind, figures=figures, quiet=quiet, schedule=sch, overwrite=overwrite)
     results = {}
     for key in KEYS:
         a = runs["staggered"]["bearings"][str(bearing)][key]
@@ -101,7 +106,7 @@ def compare(out: Path, duration=2.0, unbalance=2850.0, scenario="blade_loss", re
 
 def run(args) -> int:
     t = compare(Path(args.out), args.duration, args.unbalance, args.scenario, args.revolutions, args.bearing,
-                figures=not args.no_figures)
+                figures=not args.no_figures, overwrite=args.overwrite)
     worst = max((v["rel_error_pct"] or 0.0) for v in t["results"].values())
     print(f"Table 6 (bearing #{t['bearing']}, {t['duration_s']} s): speed-up {t['speedup']:.1f}, "
           f"largest relative error {worst:.2f} %; {args.out}/table6.json")

@@ -10,14 +10,17 @@ the summary, with the component and the time under ``stopped``, and the command 
 from __future__ import annotations
 
 import importlib
+import os
 import sys
 import time
 from pathlib import Path
 
 from rotorcosim import scenarios
+from rotorcosim.master import budget, checkpoint
 from rotorcosim.master.algorithm import SimulationDiverged
 from rotorcosim.master.observers import Progress, Recorder
 from rotorcosim.master.outputs import write_json
+from rotorcosim.master.rundir import RunFolder
 from rotorcosim.master.scenario import Scenario, build_simulation, load_scenario, schedule_of
 from rotorcosim.master.schedule import Timeline
 
@@ -32,7 +35,15 @@ def add_arguments(p):
     p.add_argument("--duration", type=float, default=None, help="simulated duration [s] (cuts the timeline)")
     p.add_argument("--schedule", choices=sorted(SCHEDULES), default="paper",
                    help="paper: the scenario's timeline; auto: switch TM/TO automatically; monolithic: one TM interval")
-    p.add_argument("--out", required=True, help="output folder")
+    p.add_argument("--out", required=True, help="output folder (empty, or see --overwrite / --resume)")
+    p.add_argument("--overwrite", action="store_true", help="replace the results of a previous run in --out")
+    p.add_argument("--resume", action="store_true",
+                   help="continue the interrupted run in --out from its last checkpoint (same command otherwise)")
+    p.add_argument("--force", action="store_true",
+                   help=f"run even if estimated above {budget.LIMIT_S / 3600:g} h of wall time")
+    p.add_argument("--checkpoint-every", type=float, default=checkpoint.EVERY_S, metavar="S",
+                   help=f"wall seconds between checkpoints inside an interval (default {checkpoint.EVERY_S:g}; "
+                        "interval ends are always checkpointed)")
     p.add_argument("--no-figures", action="store_true", help="skip the PNG figures")
     p.add_argument("--quiet", action="store_true", help="no progress bar")
 
@@ -78,68 +89,100 @@ def postprocessor(sc: Scenario):
 
 
 def execute(sc: Scenario, out: Path, schedule_kind: str | None = None, duration: float | None = None,
-            figures: bool = True, quiet: bool = True, schedule=None) -> dict:
+            figures: bool = True, quiet: bool = True, schedule=None, *, overwrite: bool = False,
+            resume: bool = False, force: bool = False, checkpoint_every: float = checkpoint.EVERY_S) -> dict:
     """Run ``sc`` into ``out``; returns the summary (also written to out/summary.json).
 
     ``schedule`` (a Timeline or AutoSchedule) overrides the scenario's; otherwise ``schedule_kind`` and
-    ``duration`` adjust it."""
+    ``duration`` adjust it. ``out`` must be empty (or hold a previous run's results and ``overwrite``, or an
+    interrupted run and ``resume``: rundir.py); the run is refused before it starts if it is estimated above
+    budget.LIMIT_S of wall time (unless ``force``). The summary's ``status`` says how it ended: ``complete``,
+    ``interrupted`` (SIGINT/SIGTERM: resume it with ``resume=True``) or ``failed``; on anything but
+    ``complete`` the error is raised after the summary and the time series are written."""
     if duration is not None and not (duration > 0 and duration < float("inf")):
         raise ValueError(f"--duration must be a positive number of seconds, got {duration}")
-    out = Path(out)
-    out.mkdir(parents=True, exist_ok=True)
     if schedule is None:
         schedule = schedule_of(sc, schedule_kind, duration)
+    estimate = budget.check(sc, schedule, force)
+    if not quiet and estimate["wall_s"] > 60:
+        print(f"{sc.name}: {estimate['steps']:,} steps, estimated {estimate['wall']} of wall time", file=sys.stderr)
     total = schedule.duration
     post = postprocessor(sc)
     o = sc.outputs
-    observers = []
     record = list(o.get("record", []))
     fmt = o.get("format", "h5")
     if fmt not in ("h5", "csv"):
         raise ValueError(f"[outputs] format {fmt!r} not in ('h5', 'csv')")
-    series = out / f"timeseries.{fmt}"
-    if record:
-        observers.append(Recorder(series, record, float(o.get("record_step", 1e-4))))
-    post_obs = []
     speed = sc.schedule.get("speed_rpm")
-    if post is not None:
-        if not speed:
-            raise ValueError(f"scenario {sc.name!r}: [results] needs schedule.speed_rpm (steady windows in rotor cycles)")
-        post_obs = post.observers(sc, speed)
+    if post is not None and not speed:
+        raise ValueError(f"scenario {sc.name!r}: [results] needs schedule.speed_rpm (steady windows in rotor cycles)")
+    key = checkpoint.fingerprint(sc.name, sc.components, sc.connections, sc.inputs, sc.algorithm, sc.schedule,
+                                 sc.outputs, sc.extra, schedule)
+    with RunFolder(out, overwrite=overwrite, resume=resume) as folder, checkpoint.StopRequest() as stop:
+        out = folder.path
+        point = checkpoint.load(out / checkpoint.CHECKPOINT, key) if resume else None
+        series = out / f"timeseries.{fmt}"
+        observers = []
+        if record:
+            observers.append(Recorder(series, record, float(o.get("record_step", 1e-4))))
+        post_obs = post.observers(sc, speed) if post is not None else []
         observers += post_obs
-    observers.append(Progress(total, disable=quiet, desc=sc.name))
-    sim = build_simulation(sc, observers)
-    t_wall = time.perf_counter()
-    error = None
-    try:
-        report = sim.run(schedule)
-    except SimulationDiverged as exc:
-        error = exc
+        observers.append(Progress(total, disable=quiet, desc=sc.name))
+        saver = checkpoint.Checkpointer(out / checkpoint.CHECKPOINT, stop, checkpoint_every, key)
+        observers.append(saver)  # last: it sees every other observer done with the step
+        sim = build_simulation(sc, observers)
+        head = {"scenario": sc.name, "source": str(sc.source) if sc.source else None,
+                "schedule": schedule_kind or sc.schedule.get("kind", "monolithic"), "duration_s": total,
+                "estimate": estimate}
+        write_json(out / "summary.json", {**head, "status": "running", "pid": os.getpid(),
+                                          "resumed_from_t_s": point.t if point else None})
+        t_wall = time.perf_counter()
+        error = None
+        try:
+            report = checkpoint.resume(sim, schedule, point) if point else sim.run(schedule)
+            status = report.status  # "complete", or "stopped" (a component asked to stop)
+        except checkpoint.RunInterrupted as exc:
+            error, status = exc, "interrupted"
+        except BaseException as exc:  # diverged, disk full, a component's failure: summary first, then raise
+            error, status = exc, ("interrupted" if isinstance(exc, KeyboardInterrupt) else "failed")
         report = sim.report
-    summary = {
-        "scenario": sc.name,
-        "source": str(sc.source) if sc.source else None,
-        "schedule": schedule_kind or sc.schedule.get("kind", "monolithic"),
-        "duration_s": total,
-        "t_end_s": report.t_end,
-        "timeline": [u.as_dict() for u in report.timeline],
-        "wall_time_s": time.perf_counter() - t_wall,
-        "component_steps": report.component_steps,
-        "timeseries": series.name if record else None,
-        # "complete", "stopped" (a component asked to stop: "stopped" names it and the time) or "failed"
-        "status": "failed" if error is not None else report.status,
-        "stopped": report.stopped,
-        "error": None if error is None else str(error),
-    }
-    if post is not None:
-        summary.update(post.extract(sc, sim, post_obs, report))
-        if figures:
-            summary["figures"] = post.figures(sc, series if record else None, out)
-    else:
-        summary["final_outputs"] = {f"{n}.{k}": v for n, c in sim.system.components.items() for k, v in c.y.items()}
-    write_json(out / "summary.json", summary)
-    if error is not None:
-        raise error
+        summary = {
+            **head,
+            "status": status,
+            "t_end_s": report.t_end,
+            "timeline": [u.as_dict() for u in report.timeline],
+            "wall_time_s": time.perf_counter() - t_wall,
+            "resumed_from_t_s": point.t if point else None,
+            "component_steps": report.component_steps,
+            "timeseries": series.name if record else None,
+            # "complete", "stopped" (a component asked to stop: "stopped" names it and the time), "interrupted"
+            # (SIGINT/SIGTERM: --resume continues it) or "failed"
+            "stopped": report.stopped,
+            "checkpoint": (checkpoint.CHECKPOINT if status in ("interrupted", "failed") and saver.saved else None),
+            "checkpoint_note": saver.disabled,
+            "error": None if error is None else f"{type(error).__name__}: {error}",
+        }
+        try:
+            if post is not None:
+                summary.update(post.extract(sc, sim, post_obs, report))
+                if figures and status in ("complete", "stopped"):
+                    summary["figures"] = post.figures(sc, series if record else None, out)
+            else:
+                summary["final_outputs"] = {f"{n}.{k}": v for n, c in sim.system.components.items()
+                                            for k, v in c.y.items()}
+        except Exception as exc:
+            if error is None:
+                raise
+            summary["results_error"] = f"{type(exc).__name__}: {exc}"
+        try:
+            write_json(out / "summary.json", summary)
+        except OSError:
+            if error is None:
+                raise
+        if status in ("complete", "stopped"):
+            (out / checkpoint.CHECKPOINT).unlink(missing_ok=True)
+        if error is not None:
+            raise error
     return summary
 
 
@@ -147,13 +190,20 @@ def run(args) -> int:
     sc = resolve(args.scenario)
     if args.unbalance is not None:
         apply_unbalance(sc, args.unbalance)
+    if not (args.checkpoint_every > 0):
+        raise ValueError(f"--checkpoint-every must be a positive number of seconds, got {args.checkpoint_every}")
     try:
-        summary = execute(sc, Path(args.out), SCHEDULES[args.schedule], args.duration,
-                          figures=not args.no_figures, quiet=args.quiet)
+        summary = execute(sc, args.out, SCHEDULES[args.schedule], args.duration,
+                          figures=not args.no_figures, quiet=args.quiet, overwrite=args.overwrite,
+                          resume=args.resume, force=args.force, checkpoint_every=args.checkpoint_every)
     except SimulationDiverged as exc:
-        print(f"rotorcosim run: the simulation diverged: {exc}\n"
-              f"  what was recorded is in {args.out} (summary.json has the error)", file=sys.stderr)
+        print(f"rotorcosim run: the simulation diverged: {exc}; what was recorded is in {args.out} "
+              "(summary.json has the error)", file=sys.stderr)
         return 1
+    except KeyboardInterrupt as exc:
+        print(f"rotorcosim run: interrupted ({exc or 'SIGINT'}); the time series and summary.json in {args.out} "
+              f"hold what was computed; continue with the same command and --resume", file=sys.stderr)
+        return 130
     stop = summary.get("stopped")
     if stop:
         print(f"rotorcosim run: {stop['component']} asked to stop the simulation at t = {stop['t_s']:.9g} s; "

@@ -1,0 +1,123 @@
+"""The output folder of a run: never mixed with another run's results, never written by two runs at once.
+
+* ``--out`` must name a folder (not an empty string, not a file) we can write into;
+* a folder that already holds results is refused unless ``overwrite`` (which first removes the old results:
+  only files a run writes, so a folder with anything else in it is never emptied) or ``resume`` (which
+  continues the run whose checkpoint is there);
+* a lock file (``.rotorcosim.lock``, an advisory ``flock`` held for the whole run, with the owner's process id
+  in it) stops a second run on the same folder while the first is alive; the kernel releases it when the
+  process ends however it ends, so a killed run never leaves a stale lock;
+* ``summary.json`` is written with ``status = "running"`` when the run starts, and with its final status
+  (``complete``, ``interrupted``, ``failed``) when it ends: after a SIGKILL the folder says "running" with a
+  process id that is gone, never an older run's results as if current.
+"""
+from __future__ import annotations
+
+import fcntl
+import fnmatch
+import os
+from pathlib import Path
+
+LOCK = ".rotorcosim.lock"
+#: what a run writes into its folder (a folder holding only these may be cleared by --overwrite)
+RUN_FILES = ("summary.json", "timeseries.h5", "timeseries.csv", "checkpoint.pkl", "*.png", "*.part", LOCK)
+STATUSES = ("running", "complete", "interrupted", "failed")
+
+
+class OutputFolderError(ValueError):
+    """An output folder that cannot be used (the message says which and why)."""
+
+
+def _ours(name: str) -> bool:
+    return any(fnmatch.fnmatch(name, pat) for pat in RUN_FILES)
+
+
+class RunFolder:
+    """``with RunFolder(out, overwrite=..., resume=...) as folder:`` holds the lock for the block."""
+
+    def __init__(self, out, overwrite: bool = False, resume: bool = False):
+        if out is None or str(out).strip() == "":
+            raise OutputFolderError("--out is empty: give the folder the results go to")
+        if overwrite and resume:
+            raise OutputFolderError("--overwrite and --resume exclude each other (one clears the folder, the "
+                                    "other continues the run in it)")
+        self.path = Path(out)
+        self.overwrite = overwrite
+        self.resume = resume
+        self._fd = None
+
+    def __enter__(self) -> "RunFolder":
+        p = self.path
+        if p.exists() and not p.is_dir():
+            raise OutputFolderError(f"--out {p} is a file, not a folder")
+        try:
+            p.mkdir(parents=True, exist_ok=True)
+        except FileExistsError:
+            raise OutputFolderError(f"--out {p}: a part of the path is a file, not a folder") from None
+        except PermissionError:
+            raise OutputFolderError(f"--out {p}: no permission to create the folder") from None
+        except OSError as exc:
+            raise OutputFolderError(f"--out {p}: cannot create the folder ({exc.strerror or exc})") from None
+        if not os.access(p, os.W_OK | os.X_OK):
+            raise OutputFolderError(f"--out {p}: the folder is not writable")
+        try:
+            self._fd = os.open(p / LOCK, os.O_RDWR | os.O_CREAT, 0o644)
+        except OSError as exc:
+            raise OutputFolderError(f"--out {p}: cannot create the lock file ({exc.strerror or exc})") from None
+        try:
+            fcntl.flock(self._fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
+        except OSError:
+            owner = _read_owner(self._fd)
+            os.close(self._fd)
+            self._fd = None
+            raise OutputFolderError(f"--out {p}: another run is writing into this folder"
+                                    f"{f' (process {owner})' if owner else ''}; wait for it or choose another "
+                                    "folder") from None
+        try:
+            self._claim()
+        except BaseException:
+            self.release()
+            raise
+        return self
+
+    def _claim(self) -> None:
+        p = self.path
+        os.ftruncate(self._fd, 0)
+        os.pwrite(self._fd, f"{os.getpid()}\n".encode(), 0)
+        present = sorted(x.name for x in p.iterdir() if x.name != LOCK)
+        if self.resume:
+            if "checkpoint.pkl" not in present:
+                raise OutputFolderError(f"--resume: {p} has no checkpoint.pkl (no interrupted run to continue)")
+            return
+        if not present:
+            return
+        foreign = [n for n in present if not _ours(n) or (p / n).is_dir()]
+        if not self.overwrite:
+            raise OutputFolderError(f"--out {p} is not empty ({', '.join(present[:5])}"
+                                    f"{', ...' if len(present) > 5 else ''}): results are never mixed; give "
+                                    "--overwrite to replace a previous run's results, --resume to continue an "
+                                    "interrupted run, or another folder")
+        if foreign:
+            raise OutputFolderError(f"--overwrite: {p} holds files that are not a run's results "
+                                    f"({', '.join(foreign[:5])}): not clearing it; choose another folder")
+        for name in present:
+            (p / name).unlink()
+
+    def release(self) -> None:
+        if self._fd is not None:
+            try:
+                fcntl.flock(self._fd, fcntl.LOCK_UN)
+            finally:
+                os.close(self._fd)
+                self._fd = None
+
+    def __exit__(self, *exc) -> None:
+        self.release()
+
+
+def _read_owner(fd: int) -> str:
+    try:
+        return os.pread(fd, 32, 0).decode().strip()
+    except OSError:
+        return ""
+

@@ -1,0 +1,357 @@
+"""The scenario schema: every table, every key, every type, and the ranges physics gives.
+
+``check(data, source)`` validates a scenario as a plain dict, after any composition (``extends``) has been
+applied, so it does not care how the dict was put together. Rules:
+
+* an unknown table or key is an error, with a "did you mean" for a near miss (``stpe`` -> ``step``);
+* booleans are not numbers and strings are not numbers (TOML keeps them apart, so a scenario must too);
+* every number is finite; steps, durations, speeds, tolerances are positive; counts are whole numbers >= 1;
+* cross-checks: connection, input, recorded and order names refer to declared components; a component listed
+  twice in ``order``; a component's communication step longer than a thermo-mechanical interval (it would
+  stretch the interval silently) or not a whole multiple of the interval step;
+* registry components: the implementation exists, parameter names exist, numbers go to numeric parameters and
+  text to text ones, and the parameters a component declares *required* (``Component.required_parameters``:
+  the bearing, damper or ring number that picks its Table 3 data) are given.
+
+Every error is a :class:`SchemaError` naming the file, the table and the key, with the line of the file where
+the key is written when it can be found (TOML parsers do not keep value positions, so the line is searched for).
+"""
+from __future__ import annotations
+
+import difflib
+import math
+import re
+from pathlib import Path
+from typing import Any, Callable, Mapping
+
+from rotorcosim.components.contract import PHASES, ContractError
+
+from .algorithm import ALGORITHMS
+from .system import AVERAGES, EXTRAPOLATIONS, HOLDS
+
+SCHEDULE_KINDS = ("timeline", "monolithic", "auto")
+OUTPUT_FORMATS = ("h5", "csv")
+
+
+class SchemaError(ContractError):
+    """A scenario that breaks the schema; the message names the file, the table, the key (and the line)."""
+
+
+# -- value checkers: each returns an error text or None ----------------------------------------------
+def _is_number(v: Any) -> bool:
+    return isinstance(v, (int, float)) and not isinstance(v, bool)
+
+
+def _kind(v: Any) -> str:
+    return {bool: "a boolean", str: "a string", list: "a list", dict: "a table"}.get(type(v), type(v).__name__)
+
+
+def number(v: Any) -> str | None:
+    if not _is_number(v):
+        return f"must be a number, got {_kind(v)} ({v!r})"
+    if not math.isfinite(v):
+        return f"must be a finite number, got {v!r}"
+    return None
+
+
+def positive(v: Any) -> str | None:
+    err = number(v)
+    if err is None and v <= 0:
+        return f"must be a positive number, got {v!r}"
+    return err
+
+
+def count(v: Any) -> str | None:
+    if not isinstance(v, int) or isinstance(v, bool):
+        return f"must be a whole number, got {_kind(v)} ({v!r})"
+    return None if v >= 1 else f"must be >= 1, got {v!r}"
+
+
+def text(v: Any) -> str | None:
+    return None if isinstance(v, str) else f"must be a string, got {_kind(v)} ({v!r})"
+
+
+def one_of(*allowed: str) -> Callable[[Any], str | None]:
+    def check(v: Any) -> str | None:
+        if not isinstance(v, str) or v not in allowed:
+            return f"{v!r} is not one of {', '.join(repr(a) for a in allowed)}" + _did_you_mean(v, allowed)
+        return None
+    return check
+
+
+def port_ref(v: Any) -> str | None:
+    if not isinstance(v, str):
+        return f"must be a string 'component.port', got {_kind(v)} ({v!r})"
+    comp, dot, port = v.partition(".")
+    return None if dot and comp and port else f"{v!r} must be written 'component.port'"
+
+
+def list_of(item: Callable[[Any], str | None]) -> Callable[[Any], str | None]:
+    def check(v: Any) -> str | None:
+        if not isinstance(v, list):
+            return f"must be a list, got {_kind(v)} ({v!r})"
+        for i, x in enumerate(v):
+            err = item(x)
+            if err:
+                return f"item {i + 1}: {err}"
+        return None
+    return check
+
+
+def text_or_texts(v: Any) -> str | None:
+    return None if isinstance(v, str) else list_of(text)(v)
+
+
+def numbers(v: Any) -> str | None:
+    """A number or a non-empty list of numbers (a vector port's value)."""
+    if isinstance(v, list):
+        return "must not be an empty list" if not v else list_of(number)(v)
+    return number(v)
+
+
+def parameter_value(v: Any) -> str | None:
+    if isinstance(v, (bool, str)):
+        return None
+    if isinstance(v, list):
+        return "must not be an empty list" if not v else list_of(number)(v)
+    return number(v)
+
+
+# -- the tables -------------------------------------------------------------------------------------
+#: table -> key -> checker. ``None`` as a checker means "a sub-table checked on its own".
+TABLES: dict[str, dict[str, Callable | None]] = {
+    "scenario": {"name": text, "description": text, "extends": text_or_texts},
+    "components": {},   # one sub-table per component: COMPONENT
+    "connections": {},  # a list of CONNECTION tables
+    "inputs": {},       # "component.port" -> number(s)
+    "algorithm": {"kind": one_of(*ALGORITHMS), "order": list_of(text), "iterations": count, "tolerance": positive},
+    "schedule": {"kind": one_of(*SCHEDULE_KINDS), "duration": positive, "step": positive, "thermal_step": positive,
+                 "speed_rpm": positive, "hold": one_of(*HOLDS), "hold_cycles": positive, "intervals": None,
+                 "steady_tolerance": positive, "steady_cycles": count, "drift_tolerance": positive,
+                 "tm_min": positive, "tm_max": positive, "to_min": positive, "to_max": positive,
+                 "tracked": list_of(port_ref)},
+    "outputs": {"record": list_of(port_ref), "record_step": positive, "format": one_of(*OUTPUT_FORMATS)},
+    "results": {"kind": text, "unbalance_parameter": port_ref, "cycles": positive},
+}
+COMPONENT = {"implementation": text, "fmu": text, "parameters": None, "step": positive}
+CONNECTION = {"from": port_ref, "to": port_ref, "average": one_of(*AVERAGES),
+              "extrapolation": one_of(*EXTRAPOLATIONS), "hold": one_of(*HOLDS)}
+INTERVAL = {"phase": one_of(*PHASES), "duration": positive, "cycles": positive, "step": positive}
+
+
+def _did_you_mean(word: Any, known) -> str:
+    if not isinstance(word, str):
+        return ""
+    close = difflib.get_close_matches(word, list(known), n=1, cutoff=0.6)
+    return f" (did you mean {close[0]!r}?)" if close else ""
+
+
+# -- locating a key in the file ---------------------------------------------------------------------
+_HEADER = re.compile(r"^\s*\[\[?\s*([^\]]+?)\s*\]\]?\s*(#.*)?$")
+
+
+def locate(source: Path | None, table: str, key: str | None) -> int | None:
+    """The 1-based line of ``source`` where ``key`` is written in ``table`` (best effort), or None."""
+    if source is None:
+        return None
+    try:
+        lines = Path(source).read_text().splitlines()
+    except (OSError, UnicodeDecodeError):
+        return None
+    head = re.split(r"[ .]", table)[0]
+    wanted = re.compile(r"(^|[{,\s])[\"']?" + re.escape(key) + r"[\"']?\s*=") if key else None
+    current = ""
+    fallback = None
+    for i, line in enumerate(lines, 1):
+        m = _HEADER.match(line)
+        if m:
+            current = m.group(1).replace('"', "").replace("'", "")
+            if wanted is None and current == table:
+                return i
+            continue
+        if wanted is None or not wanted.search(line.split("#")[0]):
+            continue
+        if current == table or (current == "" and table == head):
+            return i
+        if fallback is None and (current.startswith(head) or current == ""):
+            fallback = i
+    return fallback
+
+
+class _Checker:
+    def __init__(self, source: Path | None):
+        self.source = Path(source) if source is not None else None
+
+    def fail(self, table: str, key: str | None, msg: str) -> SchemaError:
+        where = str(self.source) if self.source else "scenario"
+        short = key[len("parameters."):] if key and key.startswith("parameters.") else key
+        line = locate(self.source, table, short)
+        at = f"{where}:{line}" if line else where
+        what = f"[{table}]" + (f" {key}" if key else "")
+        return SchemaError(f"{at}: {what}: {msg}")
+
+    def table(self, table: str, data: Any, spec: Mapping[str, Callable | None]) -> None:
+        if not isinstance(data, Mapping):
+            raise self.fail(table, None, f"must be a table, got {_kind(data)}")
+        for key, value in data.items():
+            if key not in spec:
+                raise self.fail(table, key, f"unknown key{_did_you_mean(key, spec)}; known: {', '.join(spec)}")
+            check = spec[key]
+            err = check(value) if check is not None else None
+            if err:
+                raise self.fail(table, key, err)
+
+
+def check(data: Mapping[str, Any], source: str | Path | None = None) -> None:
+    """Raise :class:`SchemaError` for the first thing in ``data`` (a composed scenario dict) that breaks the
+    schema; ``source`` is the file it came from (for the message and the line)."""
+    c = _Checker(source)
+    for name, value in data.items():
+        if name not in TABLES:
+            raise c.fail(name, None, f"unknown table{_did_you_mean(name, TABLES)}; known: {', '.join(TABLES)}")
+    for name in ("scenario", "algorithm", "schedule", "outputs", "results"):
+        if name in data:
+            c.table(name, data[name], TABLES[name])
+    comps = data.get("components")
+    if not comps:
+        raise c.fail("components", None, "no components: a scenario needs at least one [components.NAME] table")
+    if not isinstance(comps, Mapping):
+        raise c.fail("components", None, f"must be a table of components, got {_kind(comps)}")
+    for name, spec in comps.items():
+        _component(c, name, spec)
+    names = list(comps)
+    cons = data.get("connections", [])
+    if not isinstance(cons, list):
+        raise c.fail("connections", None, "must be a list of {from, to} tables ([[connections]])")
+    for i, con in enumerate(cons):
+        w = f"connections #{i + 1}"
+        c.table(w, con, CONNECTION)
+        for end in ("from", "to"):
+            if end not in con:
+                raise c.fail(w, None, "needs 'from' and 'to'")
+            _known_component(c, w, end, con[end], names)
+    inputs = data.get("inputs", {})
+    if not isinstance(inputs, Mapping):
+        raise c.fail("inputs", None, f"must be a table of 'component.port' = value, got {_kind(inputs)}")
+    for ref, value in inputs.items():
+        err = port_ref(ref) or numbers(value)
+        if err:
+            raise c.fail("inputs", ref, err)
+        _known_component(c, "inputs", ref, ref, names)
+    _algorithm(c, data.get("algorithm", {}), names)
+    _schedule(c, data.get("schedule", {}), comps)
+    for i, ref in enumerate(data.get("outputs", {}).get("record", [])):
+        _known_component(c, "outputs", "record", ref, names)
+    ref = data.get("results", {}).get("unbalance_parameter")
+    if ref:
+        _known_component(c, "results", "unbalance_parameter", ref, names)
+
+
+def _known_component(c: _Checker, table: str, key: str, ref: str, names) -> None:
+    comp = ref.partition(".")[0]
+    if comp not in names:
+        raise c.fail(table, key, f"{ref!r}: no component {comp!r}{_did_you_mean(comp, names)}; "
+                                 f"components: {', '.join(names)}")
+
+
+def _component(c: _Checker, name: str, spec: Any) -> None:
+    table = f"components.{name}"
+    if not name or "." in name:
+        raise c.fail(table, None, "component names must be non-empty and contain no '.'")
+    c.table(table, spec, COMPONENT)
+    impl, fmu = spec.get("implementation"), spec.get("fmu")
+    if (impl is None) == (fmu is None):
+        raise c.fail(table, None, "give exactly one of 'implementation' (a registry name) or 'fmu' (a file)")
+    params = spec.get("parameters", {})
+    if not isinstance(params, Mapping):
+        raise c.fail(table, "parameters", f"must be a table of name = value, got {_kind(params)}")
+    for key, value in params.items():
+        err = parameter_value(value)
+        if err:
+            raise c.fail(table, f"parameters.{key}", err)
+    if impl is not None:
+        _registry_parameters(c, table, impl, params)
+
+
+def _registry_parameters(c: _Checker, table: str, impl: str, params: Mapping) -> None:
+    """Names and kinds of the parameters against what the implementation declares."""
+    from rotorcosim.components import registry
+
+    try:
+        cls = registry.lookup(impl)
+    except ContractError as exc:
+        raise c.fail(table, "implementation", f"{exc}{_did_you_mean(impl, registry.available())}") from None
+    declared = {v.name: v for v in getattr(cls, "variables", ()) if v.causality == "parameter"}
+    if not declared:
+        return
+    for key, value in params.items():
+        v = declared.get(key)
+        if v is None:
+            raise c.fail(table, f"parameters.{key}", f"{impl} has no parameter {key!r}"
+                         f"{_did_you_mean(key, declared)}; its parameters: {', '.join(declared)}")
+        if v.type == "String" and not isinstance(value, str):
+            raise c.fail(table, f"parameters.{key}", f"must be a string, got {_kind(value)} ({value!r})")
+        if v.type == "Boolean" and not isinstance(value, bool):
+            raise c.fail(table, f"parameters.{key}", f"must be true or false, got {_kind(value)} ({value!r})")
+        if v.type in ("Real", "Integer") and isinstance(value, (bool, str)):
+            raise c.fail(table, f"parameters.{key}", f"must be a number [{v.unit}], got {_kind(value)} ({value!r})")
+        if v.type == "Integer" and _is_number(value) and value != int(value):
+            raise c.fail(table, f"parameters.{key}", f"must be a whole number, got {value!r}")
+    for key in getattr(cls, "required_parameters", ()):
+        if key not in params:
+            desc = declared[key].description if key in declared else ""
+            raise c.fail(table, None, f"parameters.{key} is required by {impl} ({desc}); "
+                                      f"write e.g. parameters = {{ {key} = ... }}")
+
+
+def _algorithm(c: _Checker, a: Mapping, names) -> None:
+    order = a.get("order")
+    if order is None:
+        return
+    seen = set()
+    for n in order:
+        if n in seen:
+            raise c.fail("algorithm", "order", f"component {n!r} is listed twice (it would be stepped twice)")
+        seen.add(n)
+        if n not in names:
+            raise c.fail("algorithm", "order", f"no component {n!r}{_did_you_mean(n, names)}; "
+                                               f"components: {', '.join(names)}")
+
+
+def _schedule(c: _Checker, s: Mapping, comps: Mapping) -> None:
+    raw = s.get("intervals")
+    tm_durations = []
+    step = s.get("step", 1e-5)
+    if raw is not None:
+        if not isinstance(raw, list) or not raw:
+            raise c.fail("schedule", "intervals", "must be a non-empty list of {phase, duration} tables")
+        speed = s.get("speed_rpm")
+        for i, iv in enumerate(raw):
+            w = f"schedule.intervals #{i + 1}"
+            c.table(w, iv, INTERVAL)
+            if "phase" not in iv:
+                raise c.fail(w, "phase", "missing: each interval needs phase = \"TM\" or \"TO\"")
+            if ("duration" in iv) == ("cycles" in iv):
+                raise c.fail(w, "duration", "give exactly one of duration (s) or cycles (rotor revolutions)")
+            if "cycles" in iv and not speed:
+                raise c.fail(w, "cycles", "an interval in rotor cycles needs schedule.speed_rpm")
+            d = iv["duration"] if "duration" in iv else iv["cycles"] * 60.0 / speed
+            if iv["phase"] == "TM":
+                tm_durations.append((w, d, iv.get("step", step)))
+    elif s.get("kind", "monolithic") == "monolithic" and "duration" in s:
+        tm_durations.append(("schedule", s["duration"], step))
+    if s.get("kind") == "auto" and "tm_min" in s:
+        tm_durations.append(("schedule", s["tm_min"], step))
+    for name, spec in comps.items():
+        cs = spec.get("step")
+        if cs is None:
+            continue
+        for w, d, h in tm_durations:
+            if cs > d * (1 + 1e-12):
+                raise c.fail(f"components.{name}", "step",
+                             f"{cs} s is longer than the thermo-mechanical interval [{w}] of {d} s "
+                             "(the interval would be stretched to one step of this component)")
+            m = cs / h
+            if m < 1 - 1e-9 or abs(m - round(m)) > 1e-6 * m:
+                raise c.fail(f"components.{name}", "step",
+                             f"{cs} s is not a whole multiple of the thermo-mechanical step {h} s")
