@@ -161,10 +161,12 @@ class Recorder(Observer):
     def end(self, sim, error):
         if self._file is None:
             return
+        failed = None
         try:
             try:
                 self.flush()
             except OSError as exc:  # disk full: what was flushed before stays readable
+                failed = exc
                 error = error or exc
                 self._buf_t.clear()
             if self._kind == "hdf5":
@@ -178,6 +180,8 @@ class Recorder(Observer):
                 self._file = None
                 # the final name appears only when the file is closed (the .part file is what a crash leaves)
                 os.replace(self._tmp, self.path)
+        if failed is not None:
+            raise failed
 
     # -- checkpoints (master/checkpoint.py) --------------------------------------------------------------
     def checkpoint_state(self):

@@ -214,8 +214,14 @@ class Simulation:
             raise
         finally:
             self.report.wall_time_s = _time.perf_counter() - t_wall
-            for obs in self.observers:
-                obs.end(self, error)
+            failure = None
+            for obs in self.observers:  # every observer closes what it holds, even when one of them fails
+                try:
+                    obs.end(self, error)
+                except Exception as exc:
+                    failure = failure or exc
+            if failure is not None and error is None:
+                raise failure
         return self.report
 
     def _run_auto(self, sch: AutoSchedule) -> None:

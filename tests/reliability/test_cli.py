@@ -1,0 +1,94 @@
+"""The command line: no traceback for a user's mistake or an environment fault; exit 2 (input), 1 (run)."""
+import os
+
+import pytest
+
+from rotorcosim.master.cli import main
+
+
+def call(capsys, *argv):
+    rc = main(list(argv))
+    out, err = capsys.readouterr()
+    return rc, out, err
+
+
+def one_line_error(err: str) -> str:
+    lines = [l for l in err.splitlines() if l.strip()]
+    assert "Traceback" not in err
+    assert len(lines) == 1, err
+    return lines[0]
+
+
+@pytest.mark.parametrize("args, status, message", [
+    (["--out", "{file}"], 2, "is a file, not a folder"),
+    (["--out", ""], 2, "--out is empty"),
+    (["--out", "{file}/sub"], 2, "cannot create the folder (Not a directory)"),
+    (["--out", "/proc/rotorcosim_test/x"], 2, "cannot create the folder"),
+    (["--out", "{dir}/o", "--duration", "1e9"], 2, "above the 24.0 h limit: give --force"),
+    (["--out", "{dir}/o", "--duration", "1e-13"], 2, "too short"),
+    (["--out", "{dir}/o", "--duration", "1e-4"], 2, "shorter than one step of the schedule (0.001 s)"),
+    (["--out", "{dir}/o", "--duration", "-1"], 2, "--duration must be a positive"),
+    (["--out", "{dir}/o", "--checkpoint-every", "0"], 2, "--checkpoint-every must be a positive"),
+    (["--out", "{dir}/o", "--overwrite", "--resume"], 2, "exclude each other"),
+    (["--out", "{dir}/o", "--unbalance", "nan"], 2, "--unbalance must be a finite force"),
+])
+def test_run_mistakes(tmp_path, capsys, args, status, message):
+    f = tmp_path / "afile"
+    f.write_text("x")
+    args = [a.replace("{file}", str(f)).replace("{dir}", str(tmp_path)) for a in args]
+    rc, out, err = call(capsys, "run", "toy_thermomechanical", "--quiet", "--no-figures", *args)
+    assert rc == status
+    line = one_line_error(err)
+    assert line.startswith("rotorcosim run: error: ") and message in line
+    assert not (tmp_path / "o" / "summary.json").exists()
+
+
+def test_unknown_scenario_file(tmp_path, capsys):
+    rc, _, err = call(capsys, "run", str(tmp_path / "nope.toml"), "--out", str(tmp_path / "o"))
+    assert rc == 2 and "not found" in one_line_error(err)
+
+
+def test_debug_shows_the_traceback(tmp_path, capsys):
+    rc, _, err = call(capsys, "--debug", "run", "toy_thermomechanical", "--out", "")
+    assert rc == 2 and "Traceback" in err and "OutputFolderError" in err
+    rc, _, err = call(capsys, "run", "toy_thermomechanical", "--out", "", "--debug")
+    assert rc == 2 and "Traceback" in err
+
+
+def test_run_failure_is_status_1(tmp_path, capsys, monkeypatch):
+    """An environment fault during the run (here: the disk fills while the time series is written)."""
+    import errno
+
+    from rotorcosim.master.observers import Recorder
+
+    def full(self):
+        raise OSError(errno.ENOSPC, "No space left on device", str(self.path))
+
+    monkeypatch.setattr(Recorder, "flush", full)
+    rc, _, err = call(capsys, "run", "toy_thermomechanical", "--quiet", "--duration", "1", "--out", str(tmp_path / "o"))
+    assert rc == 1
+    assert "No space left on device" in one_line_error(err)
+
+
+@pytest.mark.parametrize("workers", ["0", "-1"])
+def test_sweep_workers(tmp_path, capsys, workers):
+    rc, _, err = call(capsys, "sweep", "--scenario", "toy_thermomechanical", "--unbalance", "1,2",
+                      "--workers", workers, "--out", str(tmp_path / "s"))
+    assert rc == 2 and "--workers must be a whole number >= 1" in one_line_error(err)
+
+
+def test_bearing_static_absurd_loads(capsys):
+    rc, out, err = call(capsys, "bearing-static", "--bearing", "0", "--radial-load", "1e6")
+    assert rc == 0 and "warning: contact stress" in err and "above 4200 MPa" in err
+    rc, out, err = call(capsys, "bearing-static", "--bearing", "0", "--radial-load", "1000")
+    assert rc == 0 and "warning" not in err
+    rc, out, err = call(capsys, "bearing-static", "--bearing", "0", "--radial-load", "1e9")
+    assert rc == 2 and "no static equilibrium found" in one_line_error(err)
+
+
+def test_bearing_static_json_flags_validity(capsys):
+    import json
+
+    rc, out, _ = call(capsys, "bearing-static", "--bearing", "5", "--radial-load", "1e6", "--json")
+    d = json.loads(out)
+    assert d["within_elastic_range"] is False and d["max_contact_stress_MPa"] > d["elastic_limit_MPa"]

@@ -1,0 +1,149 @@
+"""Results are never mixed or lost: folder policy, lock, status, interruption and a full disk."""
+import errno
+import json
+
+import h5py
+import numpy as np
+import pytest
+
+from rotorcosim import scenarios
+from rotorcosim.master import checkpoint
+from rotorcosim.master.commands.run import execute
+from rotorcosim.master.observers import Recorder
+from rotorcosim.master.rundir import LOCK, OutputFolderError, RunFolder
+from rotorcosim.master.scenario import load_scenario
+
+
+def toy():
+    return load_scenario(scenarios.path("toy_thermomechanical"))
+
+
+def summary(out):
+    return json.loads((out / "summary.json").read_text())
+
+
+def test_complete_run_has_status_and_no_checkpoint(tmp_path):
+    s = execute(toy(), tmp_path / "o", duration=1.0, figures=False)
+    assert s["status"] == "complete" and summary(tmp_path / "o")["status"] == "complete"
+    assert s["estimate"]["steps"] == 300 + 14  # TM 0.3 s at 1 ms + TO 0.7 s at 0.05 s, counted exactly
+    assert not (tmp_path / "o" / "checkpoint.pkl").exists()
+
+
+def test_second_run_refused_then_overwrite_clears_the_old_results(tmp_path):
+    out = tmp_path / "o"
+    execute(toy(), out, duration=1.0, figures=False)
+    (out / "fig99_old.png").write_bytes(b"old figure")
+    with pytest.raises(OutputFolderError, match="is not empty .*--overwrite"):
+        execute(toy(), out, duration=0.5, figures=False)
+    assert summary(out)["duration_s"] == 1.0  # untouched
+    s = execute(toy(), out, duration=0.5, figures=False, overwrite=True)
+    assert s["duration_s"] == 0.5
+    assert not (out / "fig99_old.png").exists()  # the earlier run's files are gone, not mixed in
+
+
+def test_overwrite_never_clears_foreign_files(tmp_path):
+    out = tmp_path / "o"
+    out.mkdir()
+    (out / "thesis.tex").write_text("precious")
+    with pytest.raises(OutputFolderError, match="not a run's results .*thesis.tex"):
+        execute(toy(), out, duration=0.5, figures=False, overwrite=True)
+    assert (out / "thesis.tex").read_text() == "precious"
+
+
+def test_lock_stops_a_second_concurrent_run(tmp_path):
+    out = tmp_path / "o"
+    with RunFolder(out):
+        with pytest.raises(OutputFolderError, match=r"another run is writing into this folder \(process \d+\)"):
+            execute(toy(), out, duration=0.5, figures=False)
+    # released: the folder holds only the lock file, which does not count as results
+    assert [p.name for p in out.iterdir()] == [LOCK]
+    assert execute(toy(), out, duration=0.5, figures=False)["status"] == "complete"
+
+
+def test_lock_from_another_process(tmp_path):
+    """flock is per open file: a second process is refused while the first holds it."""
+    import subprocess
+    import sys
+
+    out = tmp_path / "o"
+    with RunFolder(out):
+        code = (f"from rotorcosim.master.rundir import RunFolder\n"
+                f"try:\n    RunFolder({str(out)!r}).__enter__()\nexcept ValueError as e:\n    print(e)\n")
+        res = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=60)
+    assert "another run is writing into this folder" in res.stdout
+
+
+def test_running_status_is_written_first(tmp_path, monkeypatch):
+    """A run killed without a chance to clean up (SIGKILL) leaves status "running", never an older result."""
+    from rotorcosim.master.simulation import Simulation
+
+    seen = {}
+
+    def run(self, schedule):
+        seen.update(summary(tmp_path / "o"))
+        raise SystemExit("killed")
+
+    monkeypatch.setattr(Simulation, "run", run)
+    with pytest.raises(SystemExit):
+        execute(toy(), tmp_path / "o", duration=0.5, figures=False)
+    assert seen["status"] == "running" and seen["pid"] > 0
+
+
+def test_sigint_ends_with_readable_series_and_summary(tmp_path, sigint_at):
+    sigint_at(0.5)
+    out = tmp_path / "o"
+    with pytest.raises(checkpoint.RunInterrupted, match="SIGINT received"):
+        execute(toy(), out, duration=5.0, figures=False)
+    s = summary(out)
+    assert s["status"] == "interrupted" and "SIGINT" in s["error"]
+    with h5py.File(out / "timeseries.h5") as f:
+        assert f.attrs["complete"] == False  # noqa: E712
+        t = f["time"][...]
+        assert len(t) > 100 and np.all(np.diff(t) > 0) and np.all(np.isfinite(f["osc.x"][...]))
+
+
+def test_sigterm_too(tmp_path, monkeypatch):
+    import os
+    import signal
+
+    from rotorcosim.master.observers import Progress
+
+    original = Progress.step
+
+    def step(self, sim, t):
+        if t > 0.2 and not getattr(self, "_sent", False):
+            self._sent = True
+            os.kill(os.getpid(), signal.SIGTERM)
+        original(self, sim, t)
+
+    monkeypatch.setattr(Progress, "step", step)
+    with pytest.raises(checkpoint.RunInterrupted, match="SIGTERM"):
+        execute(toy(), tmp_path / "o", duration=5.0, figures=False)
+    assert summary(tmp_path / "o")["status"] == "interrupted"
+    # the handlers are restored after the run
+    assert signal.getsignal(signal.SIGTERM) in (signal.SIG_DFL, None) or callable(signal.getsignal(signal.SIGTERM))
+
+
+def test_disk_full_keeps_what_was_flushed(tmp_path, monkeypatch):
+    """The disk fills after the first chunks: a clear OSError, status failed, and the flushed rows readable."""
+    calls = []
+    original = Recorder.flush
+
+    def flush(self):
+        calls.append(1)
+        if len(calls) > 2:
+            raise OSError(errno.ENOSPC, "No space left on device", str(self.path))
+        original(self)
+
+    monkeypatch.setattr(Recorder, "flush", flush)
+    out = tmp_path / "o"
+    sc = toy()
+    with pytest.raises(OSError, match="No space left"):
+        execute(sc, out, duration=20.0, figures=False)
+    s = summary(out)
+    assert s["status"] == "failed" and "No space left" in s["error"]
+    with h5py.File(out / "timeseries.h5") as f:
+        n = f["time"].shape[0]
+        assert n >= 301  # at least the first interval (flushed at its checkpoint) before the disk filled
+        assert np.all(np.isfinite(f["time"][...])) and np.all(np.diff(f["time"][...]) > 0)
+        assert f.attrs["complete"] == False  # noqa: E712

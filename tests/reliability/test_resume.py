@@ -1,0 +1,90 @@
+"""Interrupted runs end with a readable time series and a summary, and resume bit-identically."""
+import json
+
+import h5py
+import numpy as np
+import pytest
+
+from rotorcosim import scenarios
+from rotorcosim.master import checkpoint
+from rotorcosim.master.commands.run import execute
+from rotorcosim.master.scenario import load_scenario
+
+DURATION = 5.6  # toy timeline: TM 0.3 + TO 4.7 + TM 0.3 + TO 0.3 (cut)
+
+
+def toy():
+    return load_scenario(scenarios.path("toy_thermomechanical"))
+
+
+def series(folder):
+    with h5py.File(folder / "timeseries.h5") as f:
+        return {k: f[k][...] for k in f}, dict(f.attrs)
+
+
+@pytest.fixture(scope="module")
+def reference(tmp_path_factory):
+    out = tmp_path_factory.mktemp("ref")
+    summary = execute(toy(), out, duration=DURATION, figures=False)
+    return out, summary
+
+
+@pytest.mark.parametrize("t_signal", [0.1502, 2.0, 5.25])  # mid-TM, mid-TO, in the second TM interval
+def test_interrupt_then_resume_is_bit_identical(tmp_path, reference, sigint_at, t_signal):
+    ref_out, ref = reference
+    out = tmp_path / "run"
+    fired = sigint_at(t_signal)
+    with pytest.raises(checkpoint.RunInterrupted):
+        execute(toy(), out, duration=DURATION, figures=False)
+    assert fired
+    s = json.loads((out / "summary.json").read_text())
+    assert s["status"] == "interrupted" and s["checkpoint"] == "checkpoint.pkl"
+    assert s["t_end_s"] < DURATION
+    data, attrs = series(out)  # readable, marked incomplete
+    assert attrs["complete"] == False  # noqa: E712
+    assert data["time"][-1] <= s["t_end_s"] + 1e-12
+    # the same command with resume
+    summary = execute(toy(), out, duration=DURATION, figures=False, resume=True)
+    assert summary["status"] == "complete"
+    assert summary["resumed_from_t_s"] is not None and summary["resumed_from_t_s"] <= s["t_end_s"] + 1e-12
+    assert not (out / "checkpoint.pkl").exists()
+    got, attrs = series(out)
+    want, _ = series(ref_out)
+    assert attrs["complete"] == True  # noqa: E712
+    assert set(got) == set(want)
+    for k in want:
+        assert got[k].shape == want[k].shape, k
+        assert np.array_equal(got[k], want[k]), k  # bit-identical
+    assert summary["final_outputs"] == ref["final_outputs"]
+    assert summary["timeline"] == ref["timeline"]
+    assert summary["component_steps"] == ref["component_steps"]
+
+
+def test_resume_refuses_other_options(tmp_path, sigint_at):
+    out = tmp_path / "run"
+    sigint_at(0.2)
+    with pytest.raises(checkpoint.RunInterrupted):
+        execute(toy(), out, duration=DURATION, figures=False)
+    with pytest.raises(checkpoint.CheckpointError, match="another scenario or with other options"):
+        execute(toy(), out, duration=DURATION + 1, figures=False, resume=True)
+
+
+def test_resume_needs_a_checkpoint(tmp_path):
+    with pytest.raises(ValueError, match="no checkpoint.pkl"):
+        execute(toy(), tmp_path / "empty", duration=1.0, figures=False, resume=True)
+
+
+def test_periodic_checkpoints_inside_an_interval(tmp_path, monkeypatch):
+    """With a zero period, checkpoints are taken inside intervals too (every stride), not only at their ends."""
+    out = tmp_path / "run"
+    saved = []
+    original = checkpoint.Checkpointer.save
+
+    def save(self, sim, k, next_interval=False):
+        saved.append((sim.interval_index, k, next_interval))
+        original(self, sim, k, next_interval)
+
+    monkeypatch.setattr(checkpoint.Checkpointer, "save", save)
+    execute(toy(), out, duration=0.31, figures=False, checkpoint_every=1e-9)
+    assert any(k > 0 and not nxt for _, k, nxt in saved)
+    assert saved[-1][2]  # the interval end

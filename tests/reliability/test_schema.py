@@ -1,0 +1,135 @@
+"""The strict scenario schema: each error names the file, the table, the key (and the line)."""
+import textwrap
+
+import pytest
+
+from rotorcosim import scenarios
+from rotorcosim.components.contract import ContractError
+from rotorcosim.components.registry import create
+from rotorcosim.master.scenario import load_scenario, parse
+from rotorcosim.master.schema import SchemaError, check, locate
+
+TOY = scenarios.path("toy_thermomechanical").read_text()
+BEARING = textwrap.dedent("""
+    [components.b]
+    implementation = "bearing.hertz"
+    parameters = { bearing = 5 }
+    [inputs]
+    "b.X_inner" = 0.0
+    [schedule]
+    kind = "monolithic"
+    duration = 0.1
+    step = 1e-5
+""")
+
+
+def load(tmp_path, text):
+    p = tmp_path / "s.toml"
+    p.write_text(text)
+    return load_scenario(p)
+
+
+@pytest.mark.parametrize("edit, message", [
+    # booleans and strings are not numbers
+    (lambda s: s.replace('parameters = { C = 10.0, R = 1.0 }', 'parameters = { C = true, R = 1.0 }'),
+     ":13: [components.node] parameters.C: must be a number [J/K], got a boolean (True)"),
+    (lambda s: s.replace("step = 1e-3\nthermal_step", "step = true\nthermal_step"),
+     "[schedule] step: must be a number, got a boolean (True)"),
+    (lambda s: s.replace("record_step = 1e-3", 'record_step = "1e-3"'),
+     "[outputs] record_step: must be a number, got a string ('1e-3')"),
+    (lambda s: s.replace("hold_cycles = 5", "hold_cycles = -5"), "[schedule] hold_cycles: must be a positive number"),
+    (lambda s: s.replace("speed_rpm = 2700.0", "speed_rpm = inf"), "[schedule] speed_rpm: must be a finite number"),
+    # unknown keys everywhere, with "did you mean"
+    (lambda s: s.replace('name = "toy_thermomechanical"', 'nmae = "x"'),
+     "[scenario] nmae: unknown key (did you mean 'name'?)"),
+    (lambda s: s.replace("record_step = 1e-3", "record_stpe = 1e-3"),
+     "[outputs] record_stpe: unknown key (did you mean 'record_step'?)"),
+    (lambda s: s.replace('unbalance_parameter = "osc.F0"', 'unbalance_paramter = "osc.F0"'),
+     "[results] unbalance_paramter: unknown key (did you mean 'unbalance_parameter'?)"),
+    (lambda s: s.replace('{ phase = "TM", duration = 0.3 }, { phase = "TO", duration = 4.7 },\n  { phase = "TM"',
+                         '{ phase = "TM", duration = 0.3, stpe = 1e-3 }, { phase = "TO", duration = 4.7 },\n  { phase = "TM"', 1),
+     "[schedule.intervals #1] stpe: unknown key (did you mean 'step'?)"),
+    (lambda s: s.replace('implementation = "testing.thermal_node"', 'implementation = "testing.thermal_node"\nstpe = 1e-3'),
+     "[components.node] stpe: unknown key (did you mean 'step'?)"),
+    (lambda s: s.replace("[algorithm]", "[algoritm]"), "[algoritm]: unknown table (did you mean 'algorithm'?)"),
+    (lambda s: s.replace('implementation = "testing.thermal_node"', 'implementation = "testing.thermal_nod"'),
+     "(did you mean 'testing.thermal_node'?)"),
+    (lambda s: s.replace('parameters = { C = 10.0, R = 1.0 }', 'parameters = { C = 10.0, RR = 1.0 }'),
+     "[components.node] parameters.RR: testing.thermal_node has no parameter 'RR' (did you mean 'R'?)"),
+    # cross-checks
+    (lambda s: s.replace('order = ["osc", "node"]', 'order = ["osc", "node", "osc"]'),
+     "[algorithm] order: component 'osc' is listed twice"),
+    (lambda s: s.replace('order = ["osc", "node"]', 'order = ["osc", "nod"]'),
+     "[algorithm] order: no component 'nod' (did you mean 'node'?)"),
+    (lambda s: s.replace('implementation = "testing.thermal_node"', 'implementation = "testing.thermal_node"\nstep = 0.5'),
+     "[components.node] step: 0.5 s is longer than the thermo-mechanical interval [schedule.intervals #1] of 0.3 s"),
+    (lambda s: s.replace('implementation = "testing.thermal_node"', 'implementation = "testing.thermal_node"\nstep = 2.5e-3'),
+     "[components.node] step: 0.0025 s is not a whole multiple of the thermo-mechanical step 0.001 s"),
+    (lambda s: s.replace('record = ["osc.x", "osc.P", "node.T"]', 'record = ["osc.x", "nodes.T"]'),
+     "[outputs] record: 'nodes.T': no component 'nodes' (did you mean 'node'?)"),
+    (lambda s: s.replace('to = "node.P"', 'to = "nodeP"'), "[connections #1] to: 'nodeP' must be written 'component.port'"),
+    (lambda s: s.replace('format = "h5"', 'format = "hdf"'), "[outputs] format: 'hdf' is not one of 'h5', 'csv'"),
+    (lambda s: s.replace("[algorithm]", "[algorithm]\niterations = 2.0"), "[algorithm] iterations: must be a whole number"),
+])
+def test_toy_scenario_mistakes(tmp_path, edit, message):
+    text = edit(TOY)
+    assert text != TOY
+    with pytest.raises(SchemaError) as info:
+        load(tmp_path, text)
+    msg = str(info.value)
+    assert message in msg
+    assert msg.startswith(str(tmp_path / "s.toml"))
+
+
+def test_error_gives_the_line(tmp_path):
+    text = TOY.replace("record_step = 1e-3", "record_stpe = 1e-3")
+    line = next(i for i, l in enumerate(text.splitlines(), 1) if "record_stpe" in l)
+    with pytest.raises(SchemaError, match=rf"s\.toml:{line}: \[outputs\] record_stpe"):
+        load(tmp_path, text)
+
+
+def test_toml_syntax_error_gives_the_line(tmp_path):
+    with pytest.raises(ValueError, match=r"s\.toml:3: not valid TOML"):
+        load(tmp_path, "[scenario]\nname = 'x'\nbad = = 1\n")
+
+
+def test_bearing_without_its_index_is_an_error(tmp_path):
+    with pytest.raises(SchemaError, match=r"\[components.b\]: parameters.bearing is required by bearing.hertz"):
+        load(tmp_path, BEARING.replace("parameters = { bearing = 5 }", "parameters = { }"))
+    for impl, key in (("damper.fast", "damper"), ("rubring.contact", "bearing"), ("thermal.network", "bearing")):
+        text = BEARING.replace('"bearing.hertz"', f'"{impl}"').replace("parameters = { bearing = 5 }", "")
+        with pytest.raises(SchemaError, match=rf"parameters.{key} is required by {impl}"):
+            load(tmp_path, text)
+
+
+def test_boolean_parameter_refused_by_the_contract_too():
+    """The API path (no scenario file) refuses a boolean for a number as well."""
+    with pytest.raises(ContractError, match="expected a number, got the boolean True"):
+        create("testing.mass", "m", {"k": True})
+    with pytest.raises(ContractError, match="expected a number"):
+        create("testing.mass", "m", {"k": "4"})
+
+
+def test_schema_applies_to_a_composed_dict():
+    """check() takes the dict after composition, whatever put it together (extends, API)."""
+    import tomllib
+
+    data = tomllib.loads(TOY)
+    check(data)  # the shipped scenario is valid
+    data["schedule"]["stpe"] = 1.0
+    with pytest.raises(SchemaError, match=r"^scenario: \[schedule\] stpe: unknown key"):
+        parse(data)
+
+
+def test_every_shipped_scenario_passes():
+    import glob
+
+    for f in sorted(glob.glob(str(scenarios.path("toy_thermomechanical").parent / "*.toml"))):
+        load_scenario(f)
+
+
+def test_locate_finds_inline_table_keys(tmp_path):
+    p = tmp_path / "x.toml"
+    p.write_text('[scenario]\nname = "a"\n\n[components.m]\nimplementation = "x"\nparameters = { k = true }\n')
+    assert locate(p, "components.m", "k") == 6
+    assert locate(p, "scenario", "name") == 2
