@@ -37,8 +37,11 @@ from __future__ import annotations
 import ctypes
 import io
 import os
+import re
 import sys
 import weakref
+import zipfile
+import zlib
 from collections import deque
 from dataclasses import replace
 from pathlib import Path
@@ -128,15 +131,20 @@ def describe(path: str | Path):
             check_entries(zf, str(path))
             if "modelDescription.xml" not in zf.namelist():
                 raise FMUError(f"{path}: no modelDescription.xml at the top of the archive: not an FMU")
-            xml = zf.read("modelDescription.xml")
+            try:
+                xml = zf.read("modelDescription.xml")
+            except (zipfile.BadZipFile, zlib.error, EOFError, NotImplementedError, RuntimeError) as exc:
+                raise FMUError(f"{path}: modelDescription.xml is damaged in the archive ({exc})") from None
     except ArchiveError as exc:
         raise FMUError(str(exc)) from None
+    _check_description_text(path, xml)
     try:
         md = read_model_description(io.BytesIO(_zip_of({"modelDescription.xml": xml})), validate=False)
     except Exception as exc:  # lxml / fmpy parse errors: an unreadable description
         raise FMUError(f"{path}: modelDescription.xml cannot be read: {exc}") from None
     if md.fmiVersion != "2.0" and not md.fmiVersion.startswith("3."):
         raise FMUError(f"{path}: FMI {md.fmiVersion} FMU: rotorcosim imports FMI 2.0 and 3.0 co-simulation FMUs")
+    _check_value_references(md, str(path))
     if md.coSimulation is None:
         if md.modelExchange is not None:
             raise FMUError(f"{path}: the FMU offers model exchange only, no co-simulation interface: rotorcosim "
@@ -148,6 +156,33 @@ def describe(path: str | Path):
         raise FMUError(f"{path}: the FMU declares no interface (no co-simulation, model exchange or scheduled "
                        "execution element)")
     return xml, md
+
+
+def _check_description_text(path: Path, xml: bytes) -> None:
+    """Before fmpy reads it: no DTD (entity bombs, external entities), and an FMI version we import."""
+    if b"<!DOCTYPE" in xml or b"<!ENTITY" in xml:
+        raise FMUError(f"{path}: modelDescription.xml declares a DTD or entities, which FMI never needs: refused")
+    m = re.search(rb'fmiVersion\s*=\s*["\']([^"\']*)["\']', xml)
+    version = m.group(1).decode("ascii", "replace") if m else None
+    if version is None:
+        raise FMUError(f"{path}: modelDescription.xml has no fmiVersion attribute: not an FMI model description")
+    if not (version == "2.0" or version.startswith("3.")):
+        raise FMUError(f"{path}: FMI {version} FMU: rotorcosim imports FMI 2.0 and 3.0 co-simulation FMUs")
+
+
+def _check_value_references(md, where: str) -> None:
+    """Two variables of one type may share a valueReference only as aliases of one output; an input or a
+    parameter sharing one with another variable would be set through the other's name."""
+    seen: dict[tuple, object] = {}
+    for v in md.modelVariables:
+        key = (v.type, v.valueReference)
+        other = seen.get(key)
+        if other is None:
+            seen[key] = v
+            continue
+        if {other.causality, v.causality} & {"input", "parameter"}:
+            raise FMUError(f"{where}: variables {other.name!r} ({other.causality}) and {v.name!r} ({v.causality}) "
+                           f"share the {v.type} valueReference {v.valueReference}: the FMU's variables collide")
 
 
 def _zip_of(entries: Mapping[str, bytes]) -> bytes:

@@ -5,6 +5,12 @@ components (zip-slip), backslashes (not portable; can hide ``..\\``), symbolic l
 point anywhere, and a later entry written "through" it escapes), and, after normalisation, the final path must
 still lie inside the folder. A bad archive raises :class:`UnsafeArchiveError` naming the entry, and the folder
 is removed.
+
+Caps (a zip bomb must not fill the disk): at most ``MAX_ENTRIES`` entries, ``MAX_TOTAL_BYTES`` extracted in all,
+and no entry larger than ``RATIO_FLOOR_BYTES`` compressed more than ``MAX_RATIO`` times; sizes are checked from
+the directory before anything is written and counted again while writing (a directory can lie). Malformed
+archives (a bad CRC, a truncated entry, an unsupported compression, an entry both a file and a folder, a name
+twice) raise :class:`ArchiveError` naming the entry.
 """
 from __future__ import annotations
 
@@ -13,7 +19,17 @@ import shutil
 import stat
 import tempfile
 import zipfile
+import zlib
 from pathlib import Path, PurePosixPath
+
+
+#: caps on what an archive may extract. Our largest FMU (the rotor, model data included) extracts to a few MB,
+#: the blade-loss SSP to ~30 MB: the caps leave a hundredfold margin and stop a bomb long before the disk fills
+MAX_TOTAL_BYTES = 512 * 1024 ** 2
+MAX_ENTRIES = 20_000
+#: deflate reaches ~5-10x on code and text, ~1000x on zeros (the bomb's filling)
+MAX_RATIO = 200.0
+RATIO_FLOOR_BYTES = 1024 ** 2
 
 
 class ArchiveError(ValueError):
@@ -37,8 +53,34 @@ def open_zip(path: str | Path, what: str = "FMU") -> zipfile.ZipFile:
 
 
 def check_entries(zf: zipfile.ZipFile, source: str) -> None:
-    """Raise :class:`UnsafeArchiveError` for the first entry that could escape an extraction folder."""
-    for info in zf.infolist():
+    """Raise :class:`UnsafeArchiveError` for the first entry that could escape an extraction folder, and
+    :class:`ArchiveError` for an archive beyond the caps or with clashing names."""
+    infos = zf.infolist()
+    if len(infos) > MAX_ENTRIES:
+        raise ArchiveError(f"{source}: {len(infos)} entries, more than the {MAX_ENTRIES} an archive may hold here")
+    total = 0
+    files, folders = set(), set()
+    for info in infos:
+        name = info.filename.rstrip("/")
+        total += info.file_size
+        if total > MAX_TOTAL_BYTES:
+            raise ArchiveError(f"{source}: would extract more than {MAX_TOTAL_BYTES // 1024 ** 2} MiB "
+                               f"(reached at entry {info.filename!r}): refusing it (a zip bomb?)")
+        if info.file_size > RATIO_FLOOR_BYTES and info.file_size > MAX_RATIO * max(1, info.compress_size):
+            raise ArchiveError(f"{source}: entry {info.filename!r} expands {info.file_size / max(1, info.compress_size):.0f} "
+                               f"times ({info.file_size} bytes), more than {MAX_RATIO:g}: refusing it (a zip bomb?)")
+        parts = PurePosixPath(name).parts
+        if info.is_dir():
+            folders.add(name)
+        else:
+            if name in files:
+                raise ArchiveError(f"{source}: entry {info.filename!r} appears twice: which one is meant is unclear")
+            files.add(name)
+        folders.update("/".join(parts[:i]) for i in range(1, len(parts)))
+    clash = sorted(files & folders)
+    if clash:
+        raise ArchiveError(f"{source}: {clash[0]!r} is both a file and a folder in the archive")
+    for info in infos:
         name = info.filename
         bad = None
         if "\\" in name:
@@ -60,6 +102,7 @@ def safe_extract(path: str | Path, what: str = "FMU", prefix: str = "rcs_", pare
     with open_zip(path, what) as zf:
         check_entries(zf, str(path))
         folder = Path(tempfile.mkdtemp(prefix=prefix, dir=parent))
+        written = 0
         try:
             root = folder.resolve()
             for info in zf.infolist():
@@ -71,9 +114,32 @@ def safe_extract(path: str | Path, what: str = "FMU", prefix: str = "rcs_", pare
                     target.mkdir(parents=True, exist_ok=True)
                     continue
                 target.parent.mkdir(parents=True, exist_ok=True)
-                with zf.open(info) as src, open(target, "wb") as dst:
-                    shutil.copyfileobj(src, dst)
+                written = _copy(zf, info, target, str(path), written)
         except BaseException:
             shutil.rmtree(folder, ignore_errors=True)
             raise
     return folder
+
+
+def _copy(zf: zipfile.ZipFile, info: zipfile.ZipInfo, target: Path, source: str, written: int) -> int:
+    """Extract one entry, counting the bytes against the total cap; malformed data -> ArchiveError."""
+    try:
+        with zf.open(info) as src, open(target, "wb") as dst:
+            while True:
+                chunk = src.read(1 << 20)
+                if not chunk:
+                    break
+                written += len(chunk)
+                if written > MAX_TOTAL_BYTES:
+                    raise ArchiveError(f"{source}: extracting {info.filename!r} went beyond "
+                                       f"{MAX_TOTAL_BYTES // 1024 ** 2} MiB: refusing it (a zip bomb?)")
+                dst.write(chunk)
+    except (zipfile.BadZipFile, zlib.error, EOFError) as exc:
+        raise ArchiveError(f"{source}: entry {info.filename!r} is damaged ({exc})") from None
+    except NotImplementedError as exc:
+        raise ArchiveError(f"{source}: entry {info.filename!r} uses an unsupported compression ({exc})") from None
+    except RuntimeError as exc:  # an encrypted entry
+        raise ArchiveError(f"{source}: entry {info.filename!r} cannot be read ({exc})") from None
+    except (IsADirectoryError, NotADirectoryError, FileExistsError) as exc:
+        raise ArchiveError(f"{source}: entry {info.filename!r} clashes with another entry ({exc})") from None
+    return written

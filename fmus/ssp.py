@@ -201,15 +201,39 @@ def _value(p: ET.Element, where: str):
     for child in p:
         tag = child.tag.split("}")[-1]
         v = child.get("value")
-        if tag in ("Real", "Float64", "Float32"):
-            return float(v)
-        if tag in ("Integer", "Int32", "Enumeration"):
-            return int(v)
+        if tag not in ("Real", "Float64", "Float32", "Integer", "Int32", "Enumeration", "Boolean", "String"):
+            continue
+        if v is None:
+            raise SSPError(f"{where}: parameter {p.get('name')!r}: <ssv:{tag}> has no value attribute")
+        try:
+            if tag in ("Real", "Float64", "Float32"):
+                return float(v)
+            if tag in ("Integer", "Int32", "Enumeration"):
+                return int(v)
+        except ValueError:
+            raise SSPError(f"{where}: parameter {p.get('name')!r}: <ssv:{tag} value={v!r}> is not a number") from None
         if tag == "Boolean":
+            if v.strip().lower() not in ("true", "false", "1", "0"):
+                raise SSPError(f"{where}: parameter {p.get('name')!r}: <ssv:Boolean value={v!r}> is not true/false")
             return v.strip().lower() in ("true", "1")
-        if tag == "String":
-            return v
+        return v
     raise SSPError(f"{where}: parameter {p.get('name')!r} has no value this reader understands")
+
+
+def parse_xml(path: Path, what: str) -> ET.Element:
+    """An XML file of the archive, refusing DTDs (entity bombs, external entities) and reporting malformed XML
+    with the file's name."""
+    try:
+        data = path.read_bytes()
+    except OSError as exc:
+        raise SSPError(f"{what}: cannot be read ({exc.strerror or exc})") from None
+    if b"<!DOCTYPE" in data or b"<!ENTITY" in data:
+        raise SSPError(f"{what}: declares a DTD or entities, which SSP files never need: refused (entity bomb or "
+                       "external entity)")
+    try:
+        return ET.fromstring(data)
+    except ET.ParseError as exc:
+        raise SSPError(f"{what}: not well-formed XML ({exc})") from None
 
 
 def _parameter_values(comp: ET.Element, folder: Path, where: str) -> dict[str, object]:
@@ -223,7 +247,7 @@ def _parameter_values(comp: ET.Element, folder: Path, where: str) -> dict[str, o
             target = (folder / source).resolve()
             if folder.resolve() not in target.parents or not target.is_file():
                 raise SSPError(f"{where}: parameter source {source!r} is not a file inside the archive")
-            pset = ET.parse(target).getroot()
+            pset = parse_xml(target, f"{where}: parameter file {source!r}")
         else:
             pset = b.find("ssd:ParameterValues/ssv:ParameterSet", NS)
             if pset is None:
@@ -244,11 +268,17 @@ def read_ssp(path: str | Path) -> Scenario:
     except ArchiveError as exc:
         raise SSPError(str(exc)) from None
     _extracted.append(folder)
-    where = str(path)
     try:
-        root = ET.parse(folder / "SystemStructure.ssd").getroot()
-    except ET.ParseError as exc:
-        raise SSPError(f"{where}: SystemStructure.ssd is not valid XML: {exc}") from None
+        return _scenario_of(path, folder)
+    except BaseException:  # a malformed archive: its extraction folder goes at once, not at exit
+        shutil.rmtree(folder, ignore_errors=True)
+        _extracted.remove(folder)
+        raise
+
+
+def _scenario_of(path: Path, folder: Path) -> Scenario:
+    where = str(path)
+    root = parse_xml(folder / "SystemStructure.ssd", f"{where}: SystemStructure.ssd")
     if root.tag != _q("ssd", "SystemStructureDescription"):
         raise SSPError(f"{where}: SystemStructure.ssd is not an SSP 1.0 system structure description "
                        f"(root element {root.tag})")
@@ -258,7 +288,12 @@ def read_ssp(path: str | Path) -> Scenario:
     payload = {}
     for ann in root.findall("ssd:Annotations/ssc:Annotation", NS):
         if ann.get("type") == ANNOTATION and len(ann):
-            payload = json.loads(ann[0].text or "{}")
+            try:
+                payload = json.loads(ann[0].text or "{}")
+            except json.JSONDecodeError as exc:
+                raise SSPError(f"{where}: SystemStructure.ssd: annotation {ANNOTATION} is not valid JSON ({exc})") from None
+            if not isinstance(payload, dict):
+                raise SSPError(f"{where}: SystemStructure.ssd: annotation {ANNOTATION} must hold a JSON object")
     components: dict[str, ComponentSpec] = {}
     scalars: dict[str, dict[str, tuple]] = {}
     inputs: dict[str, list] = {}

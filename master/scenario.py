@@ -83,6 +83,8 @@ class ComponentSpec:
     step: float | None = None
     #: start values of an FMU's states and other ``initial = "exact"`` variables (fmpy's ``start_values``)
     start: dict[str, Any] = field(default_factory=dict)
+    #: FMU options: ``process`` (run it in a process of its own), ``step_timeout`` (s, implies ``process``)
+    options: dict[str, Any] = field(default_factory=dict)
 
 
 @dataclass
@@ -114,7 +116,7 @@ class Scenario:
 
 
 _TOP_KEYS = {"scenario", "components", "connections", "inputs", "algorithm", "schedule", "outputs", "results"}
-_COMPONENT_KEYS = {"implementation", "fmu", "parameters", "step", "start"}
+_COMPONENT_KEYS = {"implementation", "fmu", "parameters", "step", "start", "process", "step_timeout"}
 _CONNECTION_KEYS = {"from", "to", "average", "extrapolation", "hold", "convert", "unit"}
 
 
@@ -177,7 +179,9 @@ def parse(data: Mapping[str, Any], source: Path | None = None) -> Scenario:
         if start and fmu is None:
             raise _fail(w, "'start' sets start values of an FMU's variables; a native component takes its "
                            "initial state from its parameters")
-        components[name] = ComponentSpec(name, impl, fmu, params, None if step is None else float(step), start)
+        options = {k: spec[k] for k in ("process", "step_timeout") if k in spec}
+        components[name] = ComponentSpec(name, impl, fmu, params, None if step is None else float(step), start,
+                                         options)
     connections = []
     for i, spec in enumerate(data.get("connections", [])):
         w = f"{where}: connection #{i + 1}"
@@ -242,6 +246,11 @@ def load_scenario(path: str | Path) -> Scenario:
 
 def create_component(spec: ComponentSpec) -> Component:
     if spec.fmu is not None:
+        if spec.options.get("process") or "step_timeout" in spec.options:
+            from rotorcosim.fmus.process import STEP_TIMEOUT_S, ProcessFMU
+
+            return ProcessFMU(spec.fmu, spec.name, spec.parameters, spec.options.get("step_timeout", STEP_TIMEOUT_S),
+                              start=spec.start)
         from rotorcosim.fmus.importer import load_fmu_component
 
         return load_fmu_component(spec.fmu, spec.name, spec.parameters, spec.start)

@@ -71,6 +71,10 @@ def text(v: Any) -> str | None:
     return None if isinstance(v, str) else f"must be a string, got {_kind(v)} ({v!r})"
 
 
+def boolean(v: Any) -> str | None:
+    return None if isinstance(v, bool) else f"must be true or false, got {_kind(v)} ({v!r})"
+
+
 def one_of(*allowed: str) -> Callable[[Any], str | None]:
     def check(v: Any) -> str | None:
         if not isinstance(v, str) or v not in allowed:
@@ -133,9 +137,15 @@ TABLES: dict[str, dict[str, Callable | None]] = {
     "outputs": {"record": list_of(port_ref), "record_step": positive, "format": one_of(*OUTPUT_FORMATS)},
     "results": {"kind": text, "unbalance_parameter": port_ref, "cycles": positive},
 }
-COMPONENT = {"implementation": text, "fmu": text, "parameters": None, "step": positive}
+COMPONENT = {"implementation": text, "fmu": text, "parameters": None, "step": positive,
+             # FMUs only: start values of states / initial = "exact" variables (fmus/importer.py)
+             "start": None,
+             # FMUs only (fmus/process.py): run it in a process of its own, with a time limit on every call
+             "process": boolean, "step_timeout": positive}
 CONNECTION = {"from": port_ref, "to": port_ref, "average": one_of(*AVERAGES),
-              "extrapolation": one_of(*EXTRAPOLATIONS), "hold": one_of(*HOLDS)}
+              "extrapolation": one_of(*EXTRAPOLATIONS), "hold": one_of(*HOLDS),
+              # type conversion and the unit of a unit-less side (master/conversions.py checks the values)
+              "convert": text, "unit": text}
 INTERVAL = {"phase": one_of(*PHASES), "duration": positive, "cycles": positive, "step": positive}
 
 
@@ -262,6 +272,16 @@ def _component(c: _Checker, name: str, spec: Any) -> None:
     impl, fmu = spec.get("implementation"), spec.get("fmu")
     if (impl is None) == (fmu is None):
         raise c.fail(table, None, "give exactly one of 'implementation' (a registry name) or 'fmu' (a file)")
+    for key in ("process", "step_timeout", "start"):
+        if key in spec and fmu is None:
+            raise c.fail(table, key, "applies to FMU components only (fmu = ...)")
+    start = spec.get("start", {})
+    if not isinstance(start, Mapping):
+        raise c.fail(table, "start", f"must be a table of variable = value, got {_kind(start)}")
+    for key, value in start.items():
+        err = parameter_value(value)
+        if err:
+            raise c.fail(table, f"start.{key}", err)
     params = spec.get("parameters", {})
     if not isinstance(params, Mapping):
         raise c.fail(table, "parameters", f"must be a table of name = value, got {_kind(params)}")

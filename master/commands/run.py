@@ -44,6 +44,10 @@ def add_arguments(p):
     p.add_argument("--checkpoint-every", type=float, default=checkpoint.EVERY_S, metavar="S",
                    help=f"wall seconds between checkpoints inside an interval (default {checkpoint.EVERY_S:g}; "
                         "interval ends are always checkpointed)")
+    p.add_argument("--fmu-process", action="store_true",
+                   help="run every FMU in a process of its own (a crashing or hanging FMU fails the run cleanly)")
+    p.add_argument("--fmu-timeout", type=float, default=None, metavar="S",
+                   help="FMU step time limit in seconds (implies --fmu-process; default 600 there)")
     p.add_argument("--no-figures", action="store_true", help="skip the PNG figures")
     p.add_argument("--quiet", action="store_true", help="no progress bar")
 
@@ -190,6 +194,13 @@ def run(args) -> int:
     sc = resolve(args.scenario)
     if args.unbalance is not None:
         apply_unbalance(sc, args.unbalance)
+    if args.fmu_timeout is not None and not (0 < args.fmu_timeout < float("inf")):
+        raise ValueError(f"--fmu-timeout must be a positive number of seconds, got {args.fmu_timeout}")
+    for spec in sc.components.values():
+        if spec.fmu is not None and (args.fmu_process or args.fmu_timeout is not None):
+            spec.options["process"] = True
+            if args.fmu_timeout is not None:
+                spec.options["step_timeout"] = args.fmu_timeout
     if not (args.checkpoint_every > 0):
         raise ValueError(f"--checkpoint-every must be a positive number of seconds, got {args.checkpoint_every}")
     try:

@@ -49,7 +49,7 @@ def test_rub_power_of_a_circular_orbit_heats_the_network_like_the_held_power():
         "scenario": {"name": "rub_thermal"},
         "components": {
             "orbit": {"implementation": "testing.circular_orbit"},
-            "rubring0": {"implementation": "rubring.contact"},
+            "rubring0": {"implementation": "rubring.contact", "parameters": {"bearing": 0}},
             "thermal0": {"implementation": "thermal.network", "parameters": {"bearing": 0}, "step": 1e-3},
         },
         "connections": [

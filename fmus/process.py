@@ -1,0 +1,194 @@
+"""An FMU run in a process of its own: a crash or a hang of the FMU fails the run cleanly instead of taking the
+host down or hanging it.
+
+:class:`ProcessFMU` follows the component contract in the master's process and forwards every call to an
+:class:`~rotorcosim.fmus.importer.FMUComponent` living in a child process (``multiprocessing``, spawn: nothing of
+the host's state is shared). Each call waits at most ``timeout`` seconds (the FMU step time limit): a call that
+does not return in time kills the child and raises :class:`FMUError` naming the FMU, the call and the time; a child
+that dies (a segfault in the FMU's binary) raises one naming the signal. The price is one pipe round trip per
+call (some tens of microseconds), hence an option (``process = true`` on a scenario's FMU component, or
+``rotorcosim run --fmu-process``).
+
+FMU states stay in the child: ``get_state`` returns a handle valid for this run only (rollback works; a
+checkpoint on disk cannot hold it and says so).
+"""
+from __future__ import annotations
+
+import multiprocessing as mp
+import signal
+from typing import Any, Mapping
+
+from rotorcosim.components.contract import Component
+
+from .importer import FMUError
+
+#: the default FMU step time limit (s): generous, a doStep of our FMUs takes microseconds to milliseconds
+STEP_TIMEOUT_S = 600.0
+
+
+def load_fmu(path: str, name: str, parameters: dict, start: dict):
+    from .importer import FMUComponent
+
+    return FMUComponent(path, name, parameters, start)
+
+
+def _serve(conn, factory, path: str, name: str, parameters: dict, start: dict) -> None:
+    """The child: builds the component (``factory(path, name, parameters, start)``: the FMU) and answers the
+    parent's calls until told to stop."""
+    try:
+        comp = factory(path, name, parameters, start)
+    except Exception as exc:
+        conn.send(("error", f"{type(exc).__name__}: {exc}"))
+        return
+    states: dict[int, Any] = {}
+    conn.send(("ok", {"variables": comp.variables, "phases": comp.phases, "preferred_step": comp.preferred_step,
+                      "description": comp.description, "p": comp.p, "explicit": comp.explicit,
+                      "can_get_set_state": getattr(comp, "can_get_set_state", True)}))
+    while True:
+        try:
+            call, args = conn.recv()
+        except EOFError:
+            return
+        try:
+            if call == "setup":
+                comp.setup(*args)
+                out = (comp.y, comp.phases, comp.holds_state_in_TO)
+            elif call == "step":
+                u, t, h = args
+                comp.u.update(u)
+                comp.do_step(t, h)
+                out = comp.y
+            elif call == "phase":
+                comp.enter_phase(*args)
+                out = None
+            elif call == "get_state":
+                states[len(states)] = comp.get_state()
+                out = len(states) - 1
+            elif call == "set_state":
+                comp.set_state(states[args[0]])
+                out = comp.y
+            elif call == "terminate":
+                comp.terminate()
+                conn.send(("ok", None))
+                return
+            else:
+                raise ValueError(f"unknown call {call!r}")
+        except Exception as exc:
+            conn.send(("error", f"{type(exc).__name__}: {exc}" if not isinstance(exc, FMUError) else str(exc)))
+            continue
+        conn.send(("ok", out))
+
+
+class _RemoteState:
+    """A handle to an FMU state kept in the FMU's process."""
+
+    def __init__(self, index: int, time: float, u: dict, y: dict):
+        self.index, self.time, self.u, self.y = index, time, u, y
+
+    def __reduce__(self):
+        raise TypeError("an FMU state lives in the FMU's process and cannot be written to disk")
+
+
+class ProcessFMU(Component):
+    """An FMU as a component, run in a child process with a time limit on every call."""
+
+    def __init__(self, path, name: str = "component", parameters: Mapping[str, Any] | None = None,
+                 timeout: float = STEP_TIMEOUT_S, factory=load_fmu, start: Mapping[str, Any] | None = None):
+        if not (timeout > 0):
+            raise FMUError(f"FMU {path} (component {name!r}): step time limit must be positive, got {timeout}")
+        self.path = str(path)
+        self.name = name
+        self.timeout = float(timeout)
+        self._where = f"FMU {path} (component {name!r}, in its own process)"
+        ctx = mp.get_context("spawn")
+        self._conn, child = ctx.Pipe()
+        self._proc = ctx.Process(target=_serve, args=(child, factory, self.path, name, dict(parameters or {}), dict(start or {})),
+                                 daemon=True)
+        self._proc.start()
+        child.close()
+        # loading takes seconds (a fresh interpreter, imports, extraction): the generous default limit at least
+        info = self._call(None, (), "loading", max(self.timeout, STEP_TIMEOUT_S))
+        self.variables = tuple(info["variables"])
+        self._by_name = {v.name: v for v in self.variables}
+        self.phases = info["phases"]
+        self.preferred_step = info["preferred_step"]
+        self.description = info["description"]
+        self.p = info["p"]
+        self.explicit = set(info["explicit"])
+        self.can_get_set_state = info["can_get_set_state"]
+        self.holds_state_in_TO = False
+        self.phase = None
+        self.u = {v.name: v.start_array() for v in self.variables if v.causality == "input"}
+        self.y = {v.name: v.start_array() for v in self.variables if v.causality == "output"}
+        self.state = {}
+        self.time = 0.0
+
+    def _call(self, call: str | None, args: tuple, what: str, timeout: float | None = None):
+        timeout = self.timeout if timeout is None else timeout
+        try:
+            if call is not None:
+                self._conn.send((call, args))
+            ready = self._conn.poll(timeout)
+            if not ready:
+                self._kill()
+                raise FMUError(f"{self._where}: {what} did not return within {timeout:g} s (the FMU step "
+                               "time limit): the FMU was stopped")
+            status, value = self._conn.recv()
+        except (EOFError, BrokenPipeError, ConnectionResetError, OSError):
+            self._proc.join(5)
+            code = self._proc.exitcode
+            how = (f"killed by {signal.Signals(-code).name}" if code is not None and code < 0
+                   else f"exit status {code}")
+            raise FMUError(f"{self._where}: the FMU's process died in {what} ({how})") from None
+        if status == "error":
+            raise FMUError(f"{self._where}: {what} failed: {value}")
+        return value
+
+    def _kill(self) -> None:
+        if self._proc.is_alive():
+            self._proc.kill()
+        self._proc.join(5)
+
+    # -- the contract --------------------------------------------------------------------------------
+    def set_parameter(self, name: str, value: Any) -> None:
+        raise FMUError(f"{self._where}: parameters are given when the FMU is loaded")
+
+    def setup(self, t0: float = 0.0) -> None:
+        self.time = float(t0)
+        y, self.phases, self.holds_state_in_TO = self._call("setup", (t0,), "setup")
+        self.y = y
+
+    def enter_phase(self, phase: str) -> None:
+        self.phase = phase
+        self._call("phase", (phase,), "enter_phase")
+
+    def do_step(self, t: float, h: float) -> None:
+        self.y = self._call("step", (self.u, t, h), f"DoStep(t = {t:.9g} s, h = {h:.3g} s)")
+        self.time = t + h
+
+    def get_state(self) -> Any:
+        index = self._call("get_state", (), "get_state")
+        return _RemoteState(index, self.time, {k: v.copy() for k, v in self.u.items()},
+                            {k: v.copy() for k, v in self.y.items()})
+
+    def set_state(self, snapshot: Any) -> None:
+        self._call("set_state", (snapshot.index,), "set_state")
+        self.time = snapshot.time
+        self.u = {k: v.copy() for k, v in snapshot.u.items()}
+        self.y = {k: v.copy() for k, v in snapshot.y.items()}
+
+    def terminate(self) -> None:
+        if self._proc.is_alive():
+            try:
+                self._call("terminate", (), "terminate")
+            except FMUError:
+                pass
+        self._kill()
+
+    def __del__(self):
+        proc = getattr(self, "_proc", None)
+        if proc is not None and proc.is_alive():
+            proc.kill()
+
+    def __repr__(self) -> str:
+        return f"<ProcessFMU {self.name!r} from {self.path}>"

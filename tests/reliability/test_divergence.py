@@ -1,0 +1,45 @@
+"""Divergence is caught at the step that produced it, naming the component, the port and the time."""
+import numpy as np
+import pytest
+
+from rotorcosim.components.contract import Component, Variable
+from rotorcosim.components.registry import create
+from rotorcosim.master.algorithm import SimulationDiverged
+from rotorcosim.master.schedule import Interval, Timeline
+from rotorcosim.master.simulation import Simulation
+from rotorcosim.master.system import Connection, System
+
+
+class Source(Component):
+    """A force that turns non-finite at ``t_bad`` (NaN or inf, as ``bad`` says)."""
+
+    variables = (Variable("t_bad", "parameter", unit="s", start=1.0),
+                 Variable("bad", "parameter", start=0.0),
+                 Variable("F", "output", unit="N"), Variable("aux", "output", unit="1", size=3))
+
+    def do_step(self, t, h):
+        self.time = t + h
+        self.y["F"] = np.array([self.p["bad"] if self.time >= self.p["t_bad"] - 1e-12 else 1.0])
+
+
+@pytest.mark.parametrize("bad", [np.nan, np.inf, -np.inf])
+@pytest.mark.parametrize("order", [["src", "m"], ["m", "src"]])
+def test_named_at_the_producing_step(bad, order):
+    src = Source("src", {"t_bad": 0.0123})
+    src.p["bad"] = bad
+    m = create("testing.mass", "m", {"k": 4.0})
+    sim = Simulation(System({"src": src, "m": m}, [Connection("src.F", "m.F")]), order=order)
+    with pytest.raises(SimulationDiverged) as info:
+        sim.run(Timeline([Interval("TM", 1.0, 1e-4)]))
+    msg = str(info.value)
+    # the producer, its port and the step's end time; not the consumer, not 64 steps later
+    assert msg.startswith("src.F is not finite at t = 0.0123 s (after src's step from t = 0.0122 s)"), msg
+
+
+def test_huge_but_finite_values_are_not_divergence():
+    src = Source("src", {"t_bad": 0.005})
+    src.p["bad"] = 1e300
+    m = create("testing.mass", "m", {"m": 1e300, "k": 4.0})
+    sim = Simulation(System({"src": src, "m": m}, [Connection("src.F", "m.F")]))
+    sim.run(Timeline([Interval("TM", 0.01, 1e-3)]))
+    assert sim.t == pytest.approx(0.01)
