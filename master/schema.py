@@ -301,6 +301,8 @@ def _registry_parameters(c: _Checker, table: str, impl: str, params: Mapping) ->
         cls = registry.lookup(impl)
     except ContractError as exc:
         raise c.fail(table, "implementation", f"{exc}{_did_you_mean(impl, registry.available())}") from None
+    except (ImportError, AttributeError):  # registered but its code does not import: building it will say so
+        return
     declared = {v.name: v for v in getattr(cls, "variables", ()) if v.causality == "parameter"}
     if not declared:
         return
