@@ -211,9 +211,10 @@ class Engine:
         self._watch = {n: [] for n in self.active}
         for link in self.links:
             s = link.con.src_component
-            if s in self._watch and link.sport not in [p for p, _ in self._watch[s]]:
-                size = comps[s].variable(link.sport).size
-                self._watch[s].append((link.sport, np.ones(size)))
+            var = comps[s].variable(link.sport) if s in self._watch else None
+            # integers and booleans are always finite: only real outputs are watched
+            if var is not None and var.type == "Real" and link.sport not in [p for p, _ in self._watch[s]]:
+                self._watch[s].append((link.sport, np.ones(var.size)))
         self._all_single = self.active if all(m == 1 for m in self.mult.values()) else None
         # Fast path of the hot loop: a component that keeps the contract's own set_inputs gets its same-rate,
         # unfrozen inputs copied straight into its input arrays (sizes were checked when the system was built),

@@ -74,7 +74,7 @@ def test_run_failure_is_status_1(tmp_path, capsys, monkeypatch):
 def test_sweep_workers(tmp_path, capsys, workers):
     rc, _, err = call(capsys, "sweep", "--scenario", "toy_thermomechanical", "--unbalance", "1,2",
                       "--workers", workers, "--out", str(tmp_path / "s"))
-    assert rc == 2 and "--workers must be a whole number >= 1" in one_line_error(err)
+    assert rc == 2 and "--workers must be at least 1" in one_line_error(err)
 
 
 def test_bearing_static_absurd_loads(capsys):

@@ -104,7 +104,7 @@ def test_bearing_without_its_index_is_an_error(tmp_path):
 
 def test_boolean_parameter_refused_by_the_contract_too():
     """The API path (no scenario file) refuses a boolean for a number as well."""
-    with pytest.raises(ContractError, match="expected a number, got the boolean True"):
+    with pytest.raises(ContractError, match="expected a number"):
         create("testing.mass", "m", {"k": True})
     with pytest.raises(ContractError, match="expected a number"):
         create("testing.mass", "m", {"k": "4"})
