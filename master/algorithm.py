@@ -213,8 +213,8 @@ class Engine:
             s = link.con.src_component
             var = comps[s].variable(link.sport) if s in self._watch else None
             # integers and booleans are always finite: only real outputs are watched
-            if var is not None and var.type == "Real" and link.sport not in [p for p, _ in self._watch[s]]:
-                self._watch[s].append((link.sport, np.ones(var.size)))
+            if var is not None and var.type == "Real" and link.sport not in self._watch[s]:
+                self._watch[s].append(link.sport)
         self._all_single = self.active if all(m == 1 for m in self.mult.values()) else None
         # Fast path of the hot loop: a component that keeps the contract's own set_inputs gets its same-rate,
         # unfrozen inputs copied straight into its input arrays (sizes were checked when the system was built),
@@ -251,12 +251,14 @@ class Engine:
             raise SimulationDiverged(f"{name} failed in do_step at t = {t:.9g} s: {exc}") from exc
         self.steps_taken[name] += 1
         t_end = t + hc
-        # divergence caught at the step that produced it: the outputs other components read, summed (a dot
-        # with ones: ~0.3 us a port; a NaN or inf anywhere, or a sum beyond 1e308, makes it non-finite)
+        # divergence caught at the step that produced it: the outputs other components read, summed (a NaN or
+        # inf anywhere, or a sum beyond 1e308, makes it non-finite). tolist() and Python additions: measured 3x
+        # cheaper than a numpy reduction per port on these 1-3 element vectors
         y = comp.y
         total = 0.0
-        for port, ones in self._watch[name]:
-            total += y[port].dot(ones)
+        for port in self._watch[name]:
+            for x in y[port].tolist():
+                total += x
         if not math.isfinite(total):
             self._diverged(name, t, t_end)
         for link in self._outgoing[name]:
@@ -264,8 +266,7 @@ class Engine:
 
     def _diverged(self, name: str, t: float, t_end: float) -> None:
         comp = self._comp[name]
-        bad = [p for p, _ in self._watch[name] if not np.all(np.isfinite(comp.y[p]))] or \
-            [p for p, _ in self._watch[name]]
+        bad = [p for p in self._watch[name] if not np.all(np.isfinite(comp.y[p]))] or self._watch[name]
         raise SimulationDiverged(f"{name}.{bad[0]} is not finite at t = {t_end:.9g} s (after {name}'s step from "
                                  f"t = {t:.9g} s): the simulation diverged")
 
