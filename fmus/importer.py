@@ -164,9 +164,7 @@ def _check_description_text(path: Path, xml: bytes) -> None:
         raise FMUError(f"{path}: modelDescription.xml declares a DTD or entities, which FMI never needs: refused")
     m = re.search(rb'fmiVersion\s*=\s*["\']([^"\']*)["\']', xml)
     version = m.group(1).decode("ascii", "replace") if m else None
-    if version is None:
-        raise FMUError(f"{path}: modelDescription.xml has no fmiVersion attribute: not an FMI model description")
-    if not (version == "2.0" or version.startswith("3.")):
+    if version is not None and not (version == "2.0" or version.startswith("3.")):
         raise FMUError(f"{path}: FMI {version} FMU: rotorcosim imports FMI 2.0 and 3.0 co-simulation FMUs")
 
 

@@ -244,7 +244,9 @@ def check(data: Mapping[str, Any], source: str | Path | None = None) -> None:
     if not isinstance(inputs, Mapping):
         raise c.fail("inputs", None, f"must be a table of 'component.port' = value, got {_kind(inputs)}")
     for ref, value in inputs.items():
-        err = port_ref(ref) or numbers(value)
+        # a value of the port's own type (number, boolean, string; a list for a vector port): the system checks
+        # it against the port's declaration (value_types.check_value) when it is built
+        err = port_ref(ref) or parameter_value(value)
         if err:
             raise c.fail("inputs", ref, err)
         _known_component(c, "inputs", ref, ref, names)
@@ -272,7 +274,10 @@ def _component(c: _Checker, name: str, spec: Any) -> None:
     impl, fmu = spec.get("implementation"), spec.get("fmu")
     if (impl is None) == (fmu is None):
         raise c.fail(table, None, "give exactly one of 'implementation' (a registry name) or 'fmu' (a file)")
-    for key in ("process", "step_timeout", "start"):
+    if "start" in spec and fmu is None:
+        raise c.fail(table, "start", "'start' sets start values of an FMU's variables; a native component takes "
+                                     "its initial state from its parameters")
+    for key in ("process", "step_timeout"):
         if key in spec and fmu is None:
             raise c.fail(table, key, "applies to FMU components only (fmu = ...)")
     start = spec.get("start", {})
