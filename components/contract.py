@@ -110,10 +110,12 @@ class Component:
     variables: tuple[Variable, ...] = ()
     preferred_step: float = 1e-4
     phases: frozenset[str] = frozenset({"TM"})
-    #: True for a component that takes part in thermal-only (TO) intervals only to update the outputs that depend
-    #: on its thermal inputs (the bearing's drag power follows the oil viscosity) while its mechanical state stays
-    #: frozen: the master treats it as mechanical (its inputs from frozen components are held at their last
-    #: value, and the automatic schedule watches the thermal outputs it receives). See :meth:`enter_phase`.
+    #: True for a component that takes part in thermal-only (TO) intervals only for its TO update: in its TO phase
+    #: (:meth:`enter_phase`) ``do_step`` recomputes, from its frozen mechanical state and its present thermal
+    #: inputs, the outputs it hands to thermal components (the bearing's drag at the oil viscosity, the damper's
+    #: film power), and changes nothing else. The master treats it as mechanical (master/hold.py: its inputs from
+    #: frozen components are held at their last value, and the held window of each of those outputs follows its
+    #: TO update). It keeps no window or average of its own: those are the master's.
     holds_state_in_TO: bool = False
     #: parameters a scenario must give: no default is right for all uses (the bearing, damper or ring number
     #: picks that one's Table 3 data; a forgotten ``bearing = 5`` must not silently give bearing #0's)

@@ -42,7 +42,7 @@ class _Link:
     """Run-time state of one connection."""
 
     __slots__ = ("con", "src", "sport", "dst", "dport", "mode", "acc", "acc2", "weight", "prev", "prev_t",
-                 "cur_t", "frozen", "ring", "ring_pos", "ring_count", "ring_t", "_last", "conv", "real")
+                 "cur_t", "frozen", "held", "window", "_last", "conv", "real")
 
     SAME, FAST_TO_SLOW, SLOW_TO_FAST = 0, 1, 2
 
@@ -55,9 +55,9 @@ class _Link:
         #: averaging, extrapolation and hold statistics apply to Real signals only; the others are held
         self.real = src.variable(con.src_port).type == "Real"
         self.mode = self.SAME
-        self.frozen = None
-        self.ring = None
-        self.ring_t = None
+        self.frozen = None      # an iteration's override (iterative coupling)
+        self.held = None        # the thermal-only hold's value (master/hold.py), or None
+        self.window = None      # the thermal-only hold's recorder of this link's hand-off window, or None
         self.reset()
 
     def reset(self):
@@ -74,6 +74,8 @@ class _Link:
         conv = self.conv
         if self.frozen is not None:
             return self.frozen if conv is None else conv(self.frozen)
+        if self.held is not None:
+            return self.held.value() if conv is None else conv(self.held.value())
         y = self.src.y[self.sport]
         if not self.real:
             return np.array(y) if conv is None else conv(np.array(y))
@@ -113,33 +115,8 @@ class _Link:
             self.prev_t = self.cur_t
             self._last = np.array(y, dtype=float)
             self.cur_t = t_end
-        if self.ring is not None:
-            if self.ring_t == t_end:  # a repeated iteration of the same step replaces its sample
-                self.ring_pos = (self.ring_pos - 1) % len(self.ring)
-                self.ring_count -= 1
-            self.ring_t = t_end
-            self.ring[self.ring_pos] = y
-            self.ring_pos = (self.ring_pos + 1) % len(self.ring)
-            self.ring_count = min(self.ring_count + 1, len(self.ring))
-
-    def start_ring(self, n: int, size: int) -> None:
-        self.ring = np.zeros((max(1, n), size))
-        self.ring_pos = 0
-        self.ring_count = 0
-        self.ring_t = None
-
-    def ring_statistic(self, how: str) -> np.ndarray:
-        """RMS, mean or last of the producer's outputs kept in the ring buffer (the last N rotor cycles)."""
-        if not self.real:
-            return np.array(self.src.y[self.sport])
-        if self.ring is None or self.ring_count == 0:
-            return np.array(self.src.y[self.sport], dtype=float)
-        data = self.ring if self.ring_count == len(self.ring) else self.ring[: self.ring_count]
-        if how == "rms":
-            return np.sqrt(np.mean(data * data, axis=0))
-        if how == "mean":
-            return data.mean(axis=0)
-        return np.array(self.src.y[self.sport], dtype=float)
+        if self.window is not None:
+            self.window.record(y, t_end)
 
 
 @dataclass
@@ -192,19 +169,18 @@ class Engine:
             if d not in self.mult:
                 continue
             if s in self.mult:
-                link.frozen = None
                 ms, md = self.mult[s], self.mult[d]
                 link.mode = _Link.SAME if ms == md else (_Link.FAST_TO_SLOW if ms < md else _Link.SLOW_TO_FAST)
                 self._outgoing[s].append(link)
             self._inputs[d].append(link)
-        for link in self.links:  # links recording for a later thermal-only hold
+        for link in self.links:  # links recording a hand-off window for a later thermal-only hold
             s = link.con.src_component
-            if link.ring is not None and s in self.mult and link not in self._outgoing[s]:
+            if link.window is not None and s in self.mult and link not in self._outgoing[s]:
                 self._outgoing[s].append(link)
         # only links that average, extrapolate or record need to hear about each production
         for n in self._outgoing:
             self._outgoing[n] = [link for link in self._outgoing[n]
-                                 if link.mode != _Link.SAME or link.ring is not None
+                                 if link.mode != _Link.SAME or link.window is not None
                                  or link.con.extrapolation == "linear-end"]
         self._comp = {n: comps[n] for n in self.active}
         # per component: the outputs that feed another component, with a vector of ones of their size
@@ -224,7 +200,7 @@ class Engine:
             if type(comps[n]).set_inputs is not Component.set_inputs or self.settings.iterations > 1:
                 continue
             plain = [link for link in self._inputs[n] if link.mode == _Link.SAME and link.frozen is None
-                     and link.con.extrapolation != "linear-end" and link.conv is None]
+                     and link.held is None and link.con.extrapolation != "linear-end" and link.conv is None]
             same = [(link.src, link.sport, link.dport) for link in plain]
             other = [link for link in self._inputs[n] if link not in plain]
             self._direct[n] = (same, other)
@@ -348,7 +324,7 @@ class Engine:
             for n in firing:
                 for link in self._inputs[n]:
                     s = link.con.src_component
-                    if link.frozen is None and s in fired and (jacobi or rank[s] >= rank[n]):
+                    if link.frozen is None and link.held is None and s in fired and (jacobi or rank[s] >= rank[n]):
                         fresh[link] = np.array(link.src.y[link.sport])
             worst = 0.0 if override else math.inf
             for link, val in override.items():

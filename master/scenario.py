@@ -31,7 +31,7 @@
     duration = 1.0
     step = 1e-3
     speed_rpm = 16000                    # rotor cycle for the thermal-only holds and the automatic schedule
-    hold = "rms"
+    hold = "mean"                        # held statistic of the hand-offs (mean | rms | last), master/hold.py
     hold_cycles = 5
 
     [outputs]
@@ -65,6 +65,7 @@ from rotorcosim.components.contract import Component, ContractError
 
 from . import schema
 from .algorithm import EngineSettings
+from .hold import DEFAULT_HOLD
 from .schedule import from_spec
 from .simulation import Simulation
 from .system import Connection, System, split_port
@@ -285,7 +286,7 @@ def build_simulation(sc: Scenario, observers=(), system: System | None = None) -
     s = sc.schedule
     return Simulation(system, order=sc.algorithm.get("order"), settings=engine_settings(sc),
                       steps={n: c.step for n, c in sc.components.items() if c.step is not None},
-                      hold=s.get("hold", "rms"), hold_cycles=float(s.get("hold_cycles", 5)),
+                      hold=s.get("hold", DEFAULT_HOLD), hold_cycles=float(s.get("hold_cycles", 5)),
                       speed_rpm=s.get("speed_rpm"), observers=observers)
 
 

@@ -185,8 +185,11 @@ class RunReport:
     status: str = "complete"
     #: ``{"component", "t_s", "reason"}`` of the stop request that ended the run, or None
     stopped: dict | None = None
+    #: what the thermal-only hold measured (master/hold.py HoldReport), or None
+    hold: object = None
 
     def as_dict(self) -> dict:
         return {"timeline": [u.as_dict() for u in self.timeline], "wall_time_s": self.wall_time_s,
                 "component_steps": dict(self.component_steps), "t_end": self.t_end, "error": self.error,
-                "status": self.status, "stopped": self.stopped}
+                "status": self.status, "stopped": self.stopped,
+                "hold": self.hold.as_dict() if self.hold is not None else None}

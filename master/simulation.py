@@ -1,9 +1,8 @@
-"""Runs a system through a schedule: intervals, phases, thermal-only holds, observers.
+"""Runs a system through a schedule: intervals, phases, observers.
 
-The staggered scheme of the paper (section 3.2): in a thermal-only (TO) interval the components that take no
-part in TO are frozen (not stepped: their state is kept as it was) and their outputs that feed TO components are
-replaced by the RMS (or mean) of those outputs over the last ``hold_cycles`` rotor cycles of the previous
-thermo-mechanical (TM) interval. The next TM interval resumes from the frozen state with the new temperatures.
+The staggered scheme of the paper (section 3.2) alternates thermo-mechanical (TM) and thermal-only (TO)
+intervals; what is frozen and held in a TO interval is the thermal-only hold's (master/hold.py). The next TM
+interval resumes from the frozen state with the new temperatures.
 """
 from __future__ import annotations
 
@@ -16,8 +15,9 @@ import numpy as np
 from rotorcosim.components.contract import ContractError
 
 from .algorithm import Engine, EngineSettings, SimulationDiverged
+from .hold import DEFAULT_HOLD, HOLDS, StaggeredHold, feeds_thermal
 from .schedule import AutoSchedule, Interval, RunReport, ScheduleError, Timeline, UsedInterval
-from .system import HOLDS, System
+from .system import System
 
 #: floors of the relative drift test of the automatic schedule, by unit (a change smaller than this is no drift)
 DRIFT_FLOORS = {"K": 0.5, "m": 1e-7, "Pa.s": 1e-4, "W": 1.0, "N": 1.0}
@@ -26,7 +26,7 @@ DRIFT_FLOORS = {"K": 0.5, "m": 1e-7, "Pa.s": 1e-4, "W": 1.0, "N": 1.0}
 class Simulation:
     def __init__(self, system: System, *, order: Sequence[str] | None = None,
                  settings: EngineSettings | None = None, steps: dict[str, float] | None = None,
-                 hold: str = "rms", hold_cycles: float = 5.0, speed_rpm: float | None = None,
+                 hold: str = DEFAULT_HOLD, hold_cycles: float = 5.0, speed_rpm: float | None = None,
                  observers: Sequence = (), t0: float = 0.0):
         if hold not in HOLDS:
             raise ContractError(f"hold {hold!r} not in {HOLDS}")
@@ -42,9 +42,8 @@ class Simulation:
             system.component(name)
             if not (s > 0 and math.isfinite(s)):
                 raise ContractError(f"communication step of {name} must be positive, got {s}")
-        self.hold = hold
-        self.hold_cycles = float(hold_cycles)
         self.speed_rpm = speed_rpm
+        self.hold = StaggeredHold(system, self.engine.links, hold, hold_cycles, speed_rpm)
         self.observers = list(observers)
         self.t = float(t0)
         self.t0 = float(t0)
@@ -115,25 +114,9 @@ class Simulation:
             nsteps = int(math.ceil(duration / step - 1e-9))
             step = duration / nsteps
         nsteps = int(math.ceil(nsteps / lcm) * lcm)
-        links = self.engine.links
         for comp in self.system.components.values():
             comp.enter_phase(phase)
-        if phase == "TO":
-            for link in links:
-                s, d = link.con.src_component, link.con.dst_component
-                if d in active and s not in active:
-                    link.frozen = link.ring_statistic(link.con.hold or self.hold)
-        else:
-            for link in links:
-                link.frozen = None
-                s, d = link.con.src_component, link.con.dst_component
-                src_comp = self.system.components[s]
-                dst_comp = self.system.components[d]
-                if feeds_thermal(src_comp, dst_comp) and self.cycle:
-                    n = int(math.ceil(self.hold_cycles * self.cycle / (mult.get(s, 1) * step) - 1e-9))
-                    link.start_ring(n, src_comp.variable(link.sport).size)
-                else:
-                    link.ring = None
+        self.hold.start(phase, active, mult, step, self.t, self.engine.steps_taken)
         self.engine.prepare(active, mult, step)
         t_start = self.t
         for obs in self.observers:
@@ -175,6 +158,8 @@ class Simulation:
                 self.report.timeline.append(used)
             self.report.t_end = self.t
             self.report.component_steps = dict(self.engine.steps_taken)
+        self.hold.end(phase)
+        self.report.hold = self.hold.report
         for obs in self.observers:
             obs.interval_end(self, used)
         return used
@@ -249,16 +234,6 @@ class Simulation:
             self.run_interval("TO", d_to, sch.thermal_step, _DriftTest(self, sch), reason="to_max")
             if self.report.stopped:
                 break
-
-
-def _mechanical(comp) -> bool:
-    return "TO" not in comp.phases or comp.holds_state_in_TO
-
-
-def feeds_thermal(src, dst) -> bool:
-    """True for a connection from a mechanical component (frozen, or holding its state, in thermal-only
-    intervals) to a thermal one (stepped in them): the outputs held over a thermal-only interval."""
-    return _mechanical(src) and not _mechanical(dst)
 
 
 class _StopTest:

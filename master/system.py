@@ -18,9 +18,10 @@ from rotorcosim.components.value_types import check_value
 
 from .conversions import ConversionError, link_conversion
 
+from .hold import HOLDS
+
 AVERAGES = ("mean", "rms", "last")
 EXTRAPOLATIONS = ("hold", "linear", "linear-end")
-HOLDS = ("rms", "mean", "last")
 
 
 class SystemError_(ContractError):

@@ -77,8 +77,8 @@ class BallBearing(Component):
         Variable("ball_damping", "parameter", unit="N.s/m", start=_DESIGN["ball_damping"],
                  description="viscous damping of each ball against the mean race motion (oil/cage; not in the paper)"),
         Variable("drag_in_thermal_only", "parameter", start=True, type="Boolean",
-                 description="in thermal-only intervals, update the drag power with the oil viscosity (load term "
-                             "held at its mean over the last cycles); false: the master holds P_drag (the paper)"),
+                 description="in thermal-only intervals, update the drag power from the frozen state at the oil "
+                             "viscosity (the master's hold follows it, master/hold.py); false: held (the paper)"),
         Variable("m_journal", "parameter", unit="kg", start=0.0,
                  description="outer race + journal mass of eq. (5); 0 (default): solid steel rings from Table 3"),
         Variable("preload", "parameter", unit="N", start=BEARINGS[0]["preload_N"],
@@ -170,10 +170,6 @@ class BallBearing(Component):
         self.phases = frozenset({"TM", "TO"}) if p["drag_in_thermal_only"] else frozenset({"TM"})
         self.holds_state_in_TO = bool(p["drag_in_thermal_only"])
         self.phase = "TM"
-        # the averaging time of the load part of the drag power carried into thermal-only intervals: the master's
-        # hold window (5 rotor cycles, paper section 3.2)
-        self._tau_load = 5.0 * 2.0 * math.pi / omega if omega > 0.0 else 0.0
-        self.state["P_load"] = np.full(1, np.nan)
         # outputs of the rest state: one zero-length evaluation
         self._advance(0.0, self.time, update_state=False)
 
@@ -265,22 +261,23 @@ class BallBearing(Component):
             return
         self._advance(h, t)
         self.time = t + h
-        if self.holds_state_in_TO:
-            # mean of the load part of the drag power over the last rotor cycles, for thermal-only intervals
-            load = float(self.y["P_drag"][0]) - self._viscous_power(float(self.u["T_oil"][0]))
-            P = self.state["P_load"]
-            P[0] = load if not math.isfinite(P[0]) else P[0] + (load - P[0]) * (min(1.0, h / self._tau_load) if self._tau_load > 0.0 else 1.0)
+
+    def enter_phase(self, phase):
+        """Entering a thermal-only interval freezes the drag power's load term where the state froze."""
+        super().enter_phase(phase)
+        if phase == "TO":
+            T = float(self.u["T_oil"][0])
+            self._frozen_load = float(self.y["P_drag"][0]) - (self._viscous_power(T) if math.isfinite(T) else 0.0)
 
     def _thermal_only_step(self, t, h):
-        """Thermal-only interval: the balls, races and journal stay frozen; the drag power follows the oil
-        temperature input (the viscous term of Palmgren's torque, the only one that depends on it) on top of
-        the load term's mean over the last cycles of the previous thermo-mechanical interval. Holding the
-        whole drag power instead (the paper) keeps the cold-oil drag of the first interval, about three times
-        the warm value, for the whole of the next thermal-only interval."""
+        """Thermal-only interval (TO update): the balls, races and journal stay frozen; the drag power of the
+        frozen state at the present oil temperature: Palmgren's load term as it froze plus his viscous term at
+        the input T_oil (the only term that depends on it). The master's hold (master/hold.py) carries the
+        window's mean drag along this output; holding the drag power as it was (the paper) keeps the cold-oil
+        drag of the first interval, about three times the warm value, over the whole thermal-only interval."""
         T = float(self.u["T_oil"][0])
         if not math.isfinite(T):
             raise ContractError(f"{self.name}: non-finite input T_oil at t = {t:.9g} s")
-        load = self.state["P_load"][0]
-        load = 0.0 if not math.isfinite(load) else load
-        self.y["P_drag"] = np.array([load + self._viscous_power(T)])
+        load = getattr(self, "_frozen_load", 0.0)
+        self.y["P_drag"] = np.array([max(load + self._viscous_power(T), 0.0)])
         self.time = t + h

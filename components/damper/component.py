@@ -76,6 +76,9 @@ class _Damper(Component):
         Variable("k_wall", "parameter", unit="N/m", start=FILM["k_wall"],
                  description="journal-housing contact stiffness beyond the clearance (0: touching the wall is an"
                              " error)"),
+        Variable("power_in_thermal_only", "parameter", unit="1", start=True, type="Boolean",
+                 description="in thermal-only intervals, update the film power from the frozen journal motion at "
+                             "the SFD oil viscosity (the master's hold follows it, master/hold.py); false: held"),
         Variable("X_journal", "input", 2, "m", "journal displacement (absolute)"),
         Variable("V_journal", "input", 2, "m/s", "journal velocity (absolute)"),
         Variable("X_housing", "input", 2, "m", "housing displacement (absolute)"),
@@ -128,6 +131,9 @@ class _Damper(Component):
         self._mu = 0.0
         self._prepare()
         self.state = {}
+        self.phases = frozenset({"TM", "TO"}) if p["power_in_thermal_only"] else frozenset({"TM"})
+        self.holds_state_in_TO = bool(p["power_in_thermal_only"])
+        self.phase = "TM"
         self._evaluate(t0)
 
     def _prepare(self):
@@ -187,7 +193,22 @@ class _Damper(Component):
             f" (eccentricity ratio {eps:.3f} >= {wall.EPS_DIVERGED}): the simulation diverged")
 
     def do_step(self, t, h):
+        if self.phase == "TO" and self.holds_state_in_TO:
+            self._thermal_only_step(t, h)
+            return
         self._evaluate(t + h)
+        self.time = t + h
+
+    def _thermal_only_step(self, t, h):
+        """Thermal-only interval (TO update): the journal motion stays as it froze; only the film power follows
+        the oil viscosity at the input T_oil (the film's pressures, at fixed kinematics, scale with it). The
+        forces keep their frozen values (their consumer, the bearing, is frozen too)."""
+        mu = self.viscosity(float(self.u["T_oil"][0]))
+        out = np.empty(self.N_OUT)
+        status = self._compute(mu, out)
+        if status != wall.OK:
+            self._fail(status, t + h)
+        self.y["P_film"] = out[16:17]
         self.time = t + h
 
     def get_state(self):

@@ -155,6 +155,7 @@ def execute(sc: Scenario, out: Path, schedule_kind: str | None = None, duration:
             "status": status,
             "t_end_s": report.t_end,
             "timeline": [u.as_dict() for u in report.timeline],
+            "hold": report.hold.as_dict() if report.hold is not None else None,
             "wall_time_s": time.perf_counter() - t_wall,
             "resumed_from_t_s": point.t if point else None,
             "component_steps": report.component_steps,

@@ -346,12 +346,13 @@ def test_eps_jump_reseats_the_balls(omega_rpm):
 
 
 def test_thermal_only_drag_follows_the_oil_viscosity():
-    """In a thermal-only interval the bearing keeps its mechanical state and outputs, and its drag power is the
-    mean load term of the last cycles plus Palmgren's viscous term at the new oil temperature, computed here by
-    hand in Palmgren's units: M_v = 1e-7 f0 (nu n)^(2/3) d_m^3 (N mm), P = M omega."""
+    """In a thermal-only interval (its TO update) the bearing keeps its mechanical state and outputs, and its drag
+    power is the load term as it froze plus Palmgren's viscous term at the new oil temperature, computed here by
+    hand in Palmgren's units: M_v = 1e-7 f0 (nu n)^(2/3) d_m^3 (N mm), P = M omega. It keeps no window of its
+    own (the master's hold averages, master/hold.py)."""
     b = make(bearing=0)
     b.set_inputs({"T_oil": [303.15]})
-    run(b, 20000, X=(2e-5, 0.0, 0.0))  # ~10 averaging times (5 rotor cycles each)
+    run(b, 2000, X=(2e-5, 0.0, 0.0))
     mech = {k: b.y[k].copy() for k in ("F_rotor", "X_journal", "Q_max", "sigma_max")}
     state = b.get_state()
     omega, d_m, f0 = b.p["omega"], b.geometry.d_m, b.p["f0"]
@@ -360,9 +361,8 @@ def test_thermal_only_drag_follows_the_oil_viscosity():
         nun = sae30_kinematic_viscosity(T) * 1e6 * omega * 30 / math.pi
         return 1e-7 * f0 * nun ** (2 / 3) * (d_m * 1e3) ** 3 * 1e-3 * omega
 
-    load = float(b.state["P_load"][0])  # the load term's running mean over the last cycles
-    # at a steady state the mean load term is the present one
-    assert load == pytest.approx(float(b.y["P_drag"][0]) - viscous(303.15), rel=1e-2)
+    load = float(b.y["P_drag"][0]) - viscous(303.15)
+    assert load > 0.0
     b.enter_phase("TO")
     b.set_inputs({"T_oil": [353.15], "X_inner": [1.0, 1.0, 1.0]})  # held rotor inputs are ignored
     b.do_step(b.time, 0.1)
@@ -371,6 +371,7 @@ def test_thermal_only_drag_follows_the_oil_viscosity():
     for k, v in mech.items():
         np.testing.assert_array_equal(b.y[k], v)
     np.testing.assert_array_equal(b.state["balls"], state[1]["balls"])
+    assert set(b.state) == set(state[1])  # no private window added to the state
 
 
 def test_thermal_only_drag_can_be_held_by_the_master():

@@ -161,3 +161,28 @@ def test_cli_bad_input(capsys):
                  "--temperature", "70", "--json"])
     assert code != 0
     assert "must be finite numbers" in capsys.readouterr().err
+
+
+# -- thermal-only update ----------------------------------------------------------------------------------
+def test_thermal_only_film_power_follows_the_viscosity_at_frozen_motion():
+    """In a thermal-only interval the damper keeps its forces (the master holds its motion inputs at their frozen
+    values); only its film power follows the SFD oil viscosity. The film's pressures at fixed kinematics are linear
+    in mu (Reynolds), up to the cavitation clip at a fixed pressure: without cavitation the power scales exactly
+    with mu."""
+    d = FastDamper("damper0", {"damper": 0, "cavitation": False})
+    d.setup(0.0)
+    y = _step(d, (0.3 * C, 0.1 * C), (0.02, -0.05), T=343.15)
+    frozen = {k: v.copy() for k, v in y.items() if k != "P_film"}
+    P0 = float(y["P_film"][0])
+    assert P0 > 0.0
+    d.enter_phase("TO")
+    d.set_inputs({"T_oil": [393.15]})
+    d.do_step(0.0, 0.1)
+    ratio = sae30_viscosity(393.15) / sae30_viscosity(343.15)
+    assert float(d.y["P_film"][0]) == pytest.approx(P0 * ratio, rel=1e-9)
+    for k, v in frozen.items():
+        if k != "mu":
+            np.testing.assert_array_equal(d.y[k], v)
+    held = FastDamper("d", {"damper": 0, "power_in_thermal_only": False})
+    held.setup(0.0)
+    assert held.phases == frozenset({"TM"}) and not held.holds_state_in_TO

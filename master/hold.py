@@ -1,0 +1,340 @@
+"""The staggered scheme's thermal-only hold (paper section 3.2): ONE master concept, in this module.
+
+libcosim would call it a manipulator: it changes what crosses some connections, never a component's insides.
+
+* Which components freeze in a thermal-only (TO) interval: those that take no part in TO, and those that declare
+  ``holds_state_in_TO`` (stepped in TO only to update some outputs from their frozen state: the bearing's drag at
+  the new oil viscosity, the damper's film power at the new SFD oil viscosity). Both are *mechanical*.
+* The hand-offs: the connections from a mechanical component to a thermal one (the power losses). Over each
+  thermo-mechanical (TM) interval the master records, per hand-off, the window of its last ``hold_cycles`` rotor
+  cycles (the rotor cycle from ``speed_rpm``, the one source of the rotor speed of a run) and the cycle means of
+  the signal and of the thermal inputs its producer received.
+* The held value over a TO interval: the window's statistic, per connection (``hold`` of the connection, else the
+  schedule's): ``mean`` by default (it keeps the energy of a power), ``rms`` the paper's option, or ``last``.
+* The TO update of a producer that declares one: the held statistic S_w follows the producer's own TO output
+  y_TO(t) (computed by the producer from its frozen state and its present thermal inputs) along the law
+
+      y(t) = S_w * (y_TO(t) / y_TO,w) ** e
+
+  where y_TO,w is the producer's TO output at the window's mean thermal inputs and ``e`` the *elasticity*
+  measured by the master: the least-squares slope of ln(cycle mean of y) against ln(y_TO at that cycle's thermal
+  inputs) over the settled halves of the TM intervals so far. The frozen state gives the shape (the SFD power
+  at fixed kinematics scales with the oil viscosity); ``e`` measures how much of it survives once the mechanics
+  adapt (in the rubbing cases the journal orbit grows as the oil thins: e ~ 0.25-0.3 measured, see
+  docs/table6_levels.md). With too little temperature change to measure (``MIN_SPREAD``) the last measured ``e``
+  is kept, else e = 1 (the frozen law).
+* Every TO interval's hand-off error is measured at the next TM restart: the held value at the end of the TO
+  interval against the window the mechanics produce at the same temperatures (:attr:`StaggeredHold.errors`).
+  The temperature rises of a linear network are positive combinations of the powers, so their relative error is
+  at most the largest of these: the schedule's error estimate.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+HOLDS = ("mean", "rms", "last")
+#: the default statistic: the mean keeps the energy of a power (the paper's RMS overstates a fluctuating one)
+DEFAULT_HOLD = "mean"
+#: least spread of ln(y_TO) over the recorded cycles to measure an elasticity (5 %)
+MIN_SPREAD = 0.05
+#: elasticities outside this range are no viscous law: clipped
+ELASTICITY_RANGE = (0.0, 2.0)
+#: TM intervals whose cycles enter the elasticity fit (the latest ones: the law is local)
+FIT_INTERVALS = 3
+#: hand-offs smaller than this share of the largest one of their thermal component are left out of the error
+#: estimate (a near-zero power has a meaningless relative error and heats nothing)
+ERROR_FLOOR_SHARE = 0.02
+
+
+def mechanical(comp) -> bool:
+    """Frozen in TO, or stepped there only for its TO update with its mechanical state frozen."""
+    return "TO" not in comp.phases or bool(getattr(comp, "holds_state_in_TO", False))
+
+
+def feeds_thermal(src, dst) -> bool:
+    """True for a hand-off: a connection from a mechanical component to a thermal one (stepped in TO)."""
+    return mechanical(src) and not mechanical(dst)
+
+
+class HandOff:
+    """One mechanical -> thermal connection: its window, its cycle means, its held value in TO."""
+
+    def __init__(self, link, hold: str, thermal_ports: list[str]):
+        self.link = link
+        self.hold = hold
+        self.ports = thermal_ports          # the producer's inputs that come from thermal components
+        self.updates = bool(getattr(link.src, "holds_state_in_TO", False))
+        self.elasticity: float | None = None
+        self.history: list[list[tuple[np.ndarray, float]]] = []   # per TM interval: (thermal inputs, cycle mean)
+        self.held = None
+        self.error: float | None = None
+        self._to_end: np.ndarray | None = None
+        self.count = 0                      # samples in the window (none before the first TM interval)
+
+    # -- TM: record -------------------------------------------------------------------------------------
+    def start_tm(self, n_window: int, n_cycle: int, size: int) -> None:
+        self.ring = np.zeros((max(1, n_window), size))
+        self.pos = self.count = 0
+        self.t_last = None
+        self.n_cycle = max(1, n_cycle)
+        self.csum, self.cn, self._last = 0.0, 0, 0.0     # the rotor cycle being recorded
+        self.cycles: list[tuple[np.ndarray, float]] = []
+        self.history.append(self.cycles)
+        del self.history[:-FIT_INTERVALS]
+
+    def record(self, y: np.ndarray, t_end: float) -> None:
+        """One sample of the producer's output (every step it takes in a TM interval)."""
+        if self.t_last == t_end:  # a repeated iteration of the same step replaces its sample
+            self.pos = (self.pos - 1) % len(self.ring)
+            self.count -= 1
+            if self.cn == 0 and self.cycles:
+                _, m = self.cycles.pop()
+                self.csum, self.cn = m * self.n_cycle, self.n_cycle
+            self.csum -= self._last
+            self.cn -= 1
+        self.t_last = t_end
+        self.ring[self.pos] = y
+        self.pos = (self.pos + 1) % len(self.ring)
+        self.count = min(self.count + 1, len(self.ring))
+        y0 = float(y[0])
+        self._last = y0
+        self.csum += y0
+        self.cn += 1
+        if self.cn == self.n_cycle:  # a whole rotor cycle: its mean, and the thermal inputs at its end (they
+            # change at the thermal step, far slower than the rotor)
+            self.cycles.append((self._thermal_inputs(), self.csum / self.cn))
+            self.csum, self.cn = 0.0, 0
+
+    def _thermal_inputs(self) -> np.ndarray:
+        u = self.link.src.u
+        return np.concatenate([np.ravel(u[p]) for p in self.ports]) if self.ports else np.zeros(0)
+
+    def _data(self):
+        return self.ring if self.count == len(self.ring) else self.ring[: self.count]
+
+    def statistic(self, how: str) -> np.ndarray:
+        """RMS, mean or last of the window (the last ``hold_cycles`` rotor cycles of the TM interval)."""
+        if self.count == 0:
+            return np.array(self.link.src.y[self.link.sport], dtype=float)
+        data = self._data()
+        if how == "rms":
+            return np.sqrt(np.mean(data * data, axis=0))
+        if how == "mean":
+            return data.mean(axis=0)
+        return np.array(self.link.src.y[self.link.sport], dtype=float)
+
+    def window_inputs(self, cycles: int) -> np.ndarray:
+        """The producer's thermal inputs over the window: their mean over its last ``cycles`` whole cycles."""
+        last = self.cycles[-cycles:] if self.cycles else []
+        return np.mean([u for u, _ in last], axis=0) if last else self._thermal_inputs()
+
+    def measure_restart_error(self) -> None:
+        """At the end of the first TM interval after a TO interval: the held value the TO interval ended with
+        against the window the mechanics now produce (the hand-off error of that TO interval)."""
+        if self._to_end is None or self.count == 0:
+            return
+        now = self.statistic(self.hold)
+        scale = max(float(np.max(np.abs(now))), 1e-300)
+        self.error = float(np.max(np.abs(self._to_end - now))) / scale
+        self._to_end = None
+
+    # -- TO: hold -----------------------------------------------------------------------------------------
+    def start_to(self, probe, fired, cycles: int) -> None:
+        S = self.statistic(self.hold)
+        self.held = _Held(self.link, S)
+        if not self.updates or self.link.src.y[self.link.sport].size != 1 or not float(S[0]) > 0.0:
+            return
+        ref = probe(self.link.src, self.ports, self.window_inputs(cycles), self.link.sport)
+        if ref is None or not ref > 0.0:
+            return
+        e = self._fit(probe)
+        if e is not None:
+            self.elasticity = e
+        self.held = _HeldLaw(self.link, S, ref, 1.0 if self.elasticity is None else self.elasticity, fired)
+
+    def _fit(self, probe) -> float | None:
+        pts = [c for cycles in self.history for c in cycles[len(cycles) // 2:]]
+        xs, zs = [], []
+        for u, y in pts:
+            if not y > 0.0:
+                continue
+            v = probe(self.link.src, self.ports, u, self.link.sport)
+            if v is None or not v > 0.0:
+                continue
+            xs.append(math.log(v))
+            zs.append(math.log(y))
+        if len(xs) < 3:
+            return None
+        x, z = np.array(xs), np.array(zs)
+        dx = x - x.mean()
+        if float(np.ptp(x)) < MIN_SPREAD:
+            return None
+        e = float(np.dot(dx, z - z.mean()) / np.dot(dx, dx))
+        return min(max(e, ELASTICITY_RANGE[0]), ELASTICITY_RANGE[1])
+
+    def end_to(self) -> None:
+        if self.held is not None:
+            self._to_end = np.array(self.held.value(), dtype=float)
+        self.held = None
+
+
+class _Held:
+    """The window statistic, constant over the TO interval (the paper)."""
+
+    def __init__(self, link, S):
+        self.link, self.S = link, np.array(S, dtype=float)
+
+    def value(self) -> np.ndarray:
+        return self.S
+
+
+class _HeldLaw(_Held):
+    """S_w * (y_TO(t) / y_TO,w) ** e, y_TO(t) the producer's own TO output (its last TO step)."""
+
+    def __init__(self, link, S, ref, e, fired):
+        super().__init__(link, S)
+        self.ref, self.e = float(ref), float(e)
+        self.fired = fired     # false until the producer has stepped in this TO interval (its output is its TM one)
+
+    def value(self) -> np.ndarray:
+        if not self.fired():
+            return self.S
+        y = float(self.link.src.y[self.link.sport][0])
+        if not y > 0.0:
+            return self.S
+        return self.S * (y / self.ref) ** self.e
+
+
+@dataclass
+class HoldReport:
+    """What the hold measured: per hand-off, the elasticity used in the last TO interval and the last hand-off
+    error (relative, at the restart); their largest is the run's error estimate."""
+
+    elasticity: dict[str, float] = field(default_factory=dict)
+    errors: dict[str, float] = field(default_factory=dict)
+
+    @property
+    def estimated_error_pct(self) -> float | None:
+        return 100.0 * max(self.errors.values()) if self.errors else None
+
+    def as_dict(self) -> dict:
+        return {"elasticity": dict(self.elasticity), "handoff_error_pct": {k: 100.0 * v for k, v in
+                                                                            self.errors.items()},
+                "estimated_error_pct": self.estimated_error_pct}
+
+
+class StaggeredHold:
+    """The thermal-only hold of a system's run (see the module docstring)."""
+
+    def __init__(self, system, links, hold: str = DEFAULT_HOLD, hold_cycles: float = 5.0,
+                 speed_rpm: float | None = None):
+        self.system = system
+        self.links = links
+        self.hold = hold
+        self.hold_cycles = float(hold_cycles)
+        self.speed_rpm = speed_rpm
+        self.handoffs: list[HandOff] | None = None
+        self.report = HoldReport()
+
+    def _find_handoffs(self) -> None:
+        """After set-up: a component may decide its phases from its parameters (the bearing's drag update)."""
+        comps = self.system.components
+        links = self.links
+        self.handoffs = []
+        for link in links:
+            src, dst = comps[link.con.src_component], comps[link.con.dst_component]
+            if feeds_thermal(src, dst):
+                ports = sorted({l.con.dst_port for l in links if l.con.dst_component == link.con.src_component
+                                and not mechanical(comps[l.con.src_component])})
+                self.handoffs.append(HandOff(link, link.con.hold or self.hold, ports))
+
+    @property
+    def cycle(self) -> float | None:
+        return 60.0 / self.speed_rpm if self.speed_rpm else None
+
+    # -- intervals ---------------------------------------------------------------------------------------
+    def start(self, phase: str, active: list[str], mult: dict[str, int], step: float, t: float = 0.0,
+              steps_taken: dict[str, int] | None = None) -> None:
+        """Set the links up for an interval of ``phase`` with ``active`` components at base step ``step``."""
+        if self.handoffs is None:
+            self._find_handoffs()
+        for link in self.links:
+            link.held = None
+            link.window = None
+        if phase == "TM":
+            for ho in self.handoffs:
+                ho.end_to()
+                if self.cycle:
+                    hs = mult.get(ho.link.con.src_component, 1) * step
+                    n_cycle = int(math.ceil(self.cycle / hs - 1e-9))
+                    n = int(math.ceil(self.hold_cycles * self.cycle / hs - 1e-9))
+                    ho.start_tm(n, n_cycle, ho.link.src.variable(ho.link.sport).size)
+                    ho.link.window = ho
+            return
+        on = set(active)
+        for link in self.links:  # inputs of stepped components from frozen ones: their last value
+            if link.con.dst_component in on and link.con.src_component not in on:
+                link.held = _Held(link, link.src.y[link.sport])
+        probe = _Probe(t, step)
+        steps_taken = steps_taken if steps_taken is not None else {}
+        for ho in self.handoffs:
+            name, n0 = ho.link.con.src_component, steps_taken.get(ho.link.con.src_component, 0)
+            ho.start_to(probe, lambda name=name, n0=n0: steps_taken.get(name, 0) > n0,
+                        max(1, int(round(self.hold_cycles))))
+            ho.link.held = ho.held
+            if isinstance(ho.held, _HeldLaw):
+                self.report.elasticity[f"{ho.link.con.src} -> {ho.link.con.dst}"] = ho.held.e
+
+    def end(self, phase: str) -> None:
+        """End of an interval: after the first TM interval that follows a TO interval, the hand-off errors."""
+        if phase == "TO":
+            for ho in self.handoffs:
+                ho.end_to()
+            return
+        for ho in self.handoffs:
+            ho.measure_restart_error()
+        self._update_report()
+
+    def _update_report(self) -> None:
+        by_dst: dict[str, float] = {}
+        for ho in self.handoffs:
+            if ho.count:
+                d = ho.link.con.dst_component
+                by_dst[d] = max(by_dst.get(d, 0.0), float(np.max(np.abs(ho.statistic(ho.hold)))))
+        for ho in self.handoffs:
+            if ho.error is None or not ho.count:
+                continue
+            big = float(np.max(np.abs(ho.statistic(ho.hold)))) >= ERROR_FLOOR_SHARE * by_dst.get(
+                ho.link.con.dst_component, 0.0)
+            if big:
+                self.report.errors[f"{ho.link.con.src} -> {ho.link.con.dst}"] = ho.error
+
+
+class _Probe:
+    """A producer's TO output at given thermal inputs with its frozen state, through the contract's own calls
+    (get_state, set_inputs, do_step in its TO phase, set_state): the state is restored after each probe, so it
+    works for any component that can save its state (FMUs included)."""
+
+    def __init__(self, t: float, h: float):
+        self.t, self.h = t, h
+
+    def __call__(self, comp, ports, u, port) -> float | None:
+        try:
+            snap = comp.get_state()
+        except Exception:  # a component (FMU) that cannot save its state: no TO law, the plain hold
+            return None
+        try:
+            values, i = {}, 0
+            for p in ports:
+                n = comp.u[p].size
+                values[p] = np.array(u[i:i + n], dtype=float)
+                i += n
+            if values:
+                comp.set_inputs(values)
+            comp.do_step(self.t, self.h)
+            return float(comp.y[port][0])
+        finally:
+            comp.set_state(snap)
