@@ -2,7 +2,7 @@
 
 A checkpoint (``checkpoint.pkl`` in the run's folder, written whole or not at all) holds everything the rest of
 the run depends on: every component's state (the contract's ``get_state``), the master's engine (connection
-buffers: averages, extrapolation history, the hold rings of the staggered scheme, step counts), the run report
+buffers: averages, extrapolation history, step counts) and thermal-only hold (hand-off windows, measured laws), the run report
 (the timeline so far) and the observers' states (steady windows, peaks, how many rows the time series had). It
 is taken by :class:`Checkpointer`, an observer placed last, at the end of every interval, every ``every_s``
 seconds of wall time, and when SIGINT/SIGTERM asked the run to stop: always between two base steps, where every
@@ -159,7 +159,7 @@ class Checkpointer(Observer):
             comps = {n: c.get_state() for n, c in sim.system.components.items()}
             data = _dumps({
                 "format": FORMAT, "key": self.key, "interval": index, "k": k, "t_start": self._t_start,
-                "t": sim.t, "components": comps, "engine": sim.engine, "report": sim.report,
+                "t": sim.t, "components": comps, "engine": sim.engine, "hold": sim.hold, "report": sim.report,
                 "observers": [o.checkpoint_state() for o in sim.observers if o is not self],
             })
         except Exception as exc:  # an FMU's state (a pointer into the FMU), or another unpicklable object
@@ -191,6 +191,7 @@ class ResumePoint:
         are replaced, never shared with an earlier restore)."""
         data = _Unpickler(self.raw, sim.system).load()
         sim.engine = data["engine"]
+        sim.hold = data["hold"]  # pickled with the engine: it shares the engine's connection objects
         sim.report = data["report"]
         for name, snap in data["components"].items():
             sim.system.components[name].set_state(snap)

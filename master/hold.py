@@ -282,8 +282,7 @@ class StaggeredHold:
         steps_taken = steps_taken if steps_taken is not None else {}
         for ho in self.handoffs:
             name, n0 = ho.link.con.src_component, steps_taken.get(ho.link.con.src_component, 0)
-            ho.start_to(probe, lambda name=name, n0=n0: steps_taken.get(name, 0) > n0,
-                        max(1, int(round(self.hold_cycles))))
+            ho.start_to(probe, _Fired(steps_taken, name, n0), max(1, int(round(self.hold_cycles))))
             ho.link.held = ho.held
             if isinstance(ho.held, _HeldLaw):
                 self.report.elasticity[f"{ho.link.con.src} -> {ho.link.con.dst}"] = ho.held.e
@@ -311,6 +310,17 @@ class StaggeredHold:
                 ho.link.con.dst_component, 0.0)
             if big:
                 self.report.errors[f"{ho.link.con.src} -> {ho.link.con.dst}"] = ho.error
+
+
+class _Fired:
+    """True once component ``name`` has stepped since the count ``n0`` (a class, not a closure: checkpoints
+    pickle the hold)."""
+
+    def __init__(self, steps_taken: dict, name: str, n0: int):
+        self.steps_taken, self.name, self.n0 = steps_taken, name, n0
+
+    def __call__(self) -> bool:
+        return self.steps_taken.get(self.name, 0) > self.n0
 
 
 class _Probe:
