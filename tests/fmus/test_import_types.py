@@ -53,10 +53,21 @@ def _run(sc, duration):
 
 
 def _fmpy(fmu, inputs, duration, params=PARAMS, start=START):
+    """fmpy's run of the FMU. pythonfmu(3) FMUs carry a copy of pythonfmu(3) in their resources, which they import
+    in this process from fmpy's temporary folder: the modules and sys.path entries they add are dropped after the
+    run, or a later in-process export (fmus/export.py) would build with that copy (which has no binaries)."""
+    import sys
+
     from fmpy import simulate_fmu
 
-    return simulate_fmu(str(fmu), stop_time=duration, output_interval=H,
-                        start_values={**params, **start, **inputs})
+    path, modules = list(sys.path), set(sys.modules)
+    try:
+        return simulate_fmu(str(fmu), stop_time=duration, output_interval=H,
+                            start_values={**params, **start, **inputs})
+    finally:
+        sys.path[:] = path
+        for name in set(sys.modules) - modules:
+            del sys.modules[name]
 
 
 def _same_as_fmpy(cap, ref):
