@@ -22,6 +22,7 @@ safe point (a checkpoint, then :class:`RunInterrupted`); a second signal interru
 """
 from __future__ import annotations
 
+import errno
 import hashlib
 import io
 import json
@@ -34,7 +35,7 @@ from pathlib import Path
 
 from rotorcosim.components.contract import Component
 
-from .observers import Observer
+from .observers import DISK_RESERVE_BYTES, Observer
 from .schedule import Timeline
 from .system import System
 
@@ -166,11 +167,19 @@ class Checkpointer(Observer):
             self.disabled = f"the run's state cannot be saved to disk ({type(exc).__name__}: {exc})"
             return
         tmp = self.path.with_name(self.path.name + ".part")
-        with open(tmp, "wb") as f:
-            f.write(data)
-            f.flush()
-            os.fsync(f.fileno())
-        os.replace(tmp, self.path)
+        try:
+            st = os.statvfs(self.path.parent)
+            if st.f_bavail * st.f_frsize < 2 * len(data) + DISK_RESERVE_BYTES:
+                raise OSError(errno.ENOSPC, "No space left on device")
+            with open(tmp, "wb") as f:
+                f.write(data)
+                f.flush()
+                os.fsync(f.fileno())
+            os.replace(tmp, self.path)
+        except OSError as exc:  # a nearly full disk: the run goes on (the recorder will say it), unsaved
+            tmp.unlink(missing_ok=True)
+            self.disabled = f"checkpoint not written ({exc.strerror or exc}); the last one saved is kept"
+            return
         self.saved += 1
         self._last = time.perf_counter()
 

@@ -9,6 +9,7 @@
 from __future__ import annotations
 
 import csv
+import errno
 import math
 import os
 from pathlib import Path
@@ -17,6 +18,8 @@ from typing import Sequence
 import numpy as np
 
 PHASE_CODE = {"TM": 0, "TO": 1}
+#: free space a recorder keeps on its disk, so that a file refused a write can still be closed whole
+DISK_RESERVE_BYTES = 4 * 1024 ** 2
 
 
 class Observer:
@@ -129,10 +132,27 @@ class Recorder(Observer):
         if len(self._buf_t) >= self.chunk:
             self.flush()
 
+    def _ensure_space(self, n: int) -> None:
+        """Refuse a write the disk cannot hold, BEFORE writing: HDF5 does not survive a failed write (the file
+        cannot be closed and the process may crash: measured on a full tmpfs), so the last flush must stay the
+        last complete one, with room left to close the file."""
+        width = 2 + sum(self.sizes.values())
+        need = 2 * n * width * 8 + DISK_RESERVE_BYTES
+        try:
+            st = os.statvfs(self._tmp.parent)
+        except (OSError, AttributeError):
+            return
+        free = st.f_bavail * st.f_frsize
+        if free < need:
+            raise OSError(errno.ENOSPC, f"No space left on device for the time series ({free // 1024} KiB free, "
+                                        f"{need // 1024} KiB needed to write {n} more rows and close the file); "
+                                        f"the {self.rows} rows written so far are kept", str(self.path))
+
     def flush(self):
         n = len(self._buf_t)
         if not n or self._file is None:
             return
+        self._ensure_space(n)
         if self._kind == "hdf5":
             f = self._file
             r = self.rows
