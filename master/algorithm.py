@@ -23,6 +23,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from time import monotonic as _monotonic
 from typing import Sequence
 
 import numpy as np
@@ -32,6 +33,9 @@ from rotorcosim.components.contract import Component, ContractError, StopRequest
 from .system import Connection, System
 
 ALGORITHMS = ("gauss-seidel", "jacobi")
+#: the component call in progress, ``[(name, t, time.monotonic() at its start)]``, while a step time limit is
+#: watched (master/watchdog.py); None otherwise
+CALL: list | None = None
 
 
 class SimulationDiverged(RuntimeError):
@@ -211,6 +215,9 @@ class Engine:
 
     def _fire(self, name: str, values: dict, t: float, hc: float) -> None:
         comp = self._comp[name]
+        call = CALL
+        if call is not None:
+            call[0] = (name, t, _monotonic())
         try:
             if values:
                 comp.set_inputs(values)
@@ -225,6 +232,9 @@ class Engine:
             hc = req.t_stop - t
         except Exception as exc:  # a component's own failure: stop with its name and the time
             raise SimulationDiverged(f"{name} failed in do_step at t = {t:.9g} s: {exc}") from exc
+        finally:
+            if call is not None:
+                call[0] = None
         self.steps_taken[name] += 1
         t_end = t + hc
         # divergence caught at the step that produced it: the outputs other components read, summed (a NaN or

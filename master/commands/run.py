@@ -9,6 +9,7 @@ the summary, with the component and the time under ``stopped``, and the command 
 """
 from __future__ import annotations
 
+import contextlib
 import importlib
 import os
 import sys
@@ -16,7 +17,7 @@ import time
 from pathlib import Path
 
 from rotorcosim import scenarios
-from rotorcosim.master import budget, checkpoint
+from rotorcosim.master import budget, checkpoint, watchdog
 from rotorcosim.master.algorithm import SimulationDiverged
 from rotorcosim.master.observers import Progress, Recorder
 from rotorcosim.master.outputs import write_json
@@ -46,8 +47,9 @@ def add_arguments(p):
                         "interval ends are always checkpointed)")
     p.add_argument("--fmu-process", action="store_true",
                    help="run every FMU in a process of its own (a crashing or hanging FMU fails the run cleanly)")
-    p.add_argument("--fmu-timeout", type=float, default=None, metavar="S",
-                   help="FMU step time limit in seconds (implies --fmu-process; default 600 there)")
+    p.add_argument("--step-timeout", type=float, default=watchdog.STEP_TIMEOUT_S, metavar="S",
+                   help=f"time limit of one component step in seconds (default {watchdog.STEP_TIMEOUT_S:g}; 0: none): "
+                        "an FMU out of process is stopped and the run fails cleanly; in process the run is ended")
     p.add_argument("--no-figures", action="store_true", help="skip the PNG figures")
     p.add_argument("--quiet", action="store_true", help="no progress bar")
 
@@ -94,7 +96,8 @@ def postprocessor(sc: Scenario):
 
 def execute(sc: Scenario, out: Path, schedule_kind: str | None = None, duration: float | None = None,
             figures: bool = True, quiet: bool = True, schedule=None, *, overwrite: bool = False,
-            resume: bool = False, force: bool = False, checkpoint_every: float = checkpoint.EVERY_S) -> dict:
+            resume: bool = False, force: bool = False, checkpoint_every: float = checkpoint.EVERY_S,
+            step_timeout: float = 0.0) -> dict:
     """Run ``sc`` into ``out``; returns the summary (also written to out/summary.json).
 
     ``schedule`` (a Timeline or AutoSchedule) overrides the scenario's; otherwise ``schedule_kind`` and
@@ -142,8 +145,15 @@ def execute(sc: Scenario, out: Path, schedule_kind: str | None = None, duration:
                                           "resumed_from_t_s": point.t if point else None})
         t_wall = time.perf_counter()
         error = None
+
+        def hung(msg: str) -> None:  # the watchdog's last act before it ends the process
+            write_json(out / "summary.json", {**head, "status": "failed", "error": msg, "t_end_s": sim.t,
+                                              "checkpoint": checkpoint.CHECKPOINT if saver.saved else None})
+
+        guard = watchdog.Watchdog(step_timeout, hung, "rotorcosim run") if step_timeout > 0 else contextlib.nullcontext()
         try:
-            report = checkpoint.resume(sim, schedule, point) if point else sim.run(schedule)
+            with guard:
+                report = checkpoint.resume(sim, schedule, point) if point else sim.run(schedule)
             status = report.status  # "complete", or "stopped" (a component asked to stop)
         except checkpoint.RunInterrupted as exc:
             error, status = exc, "interrupted"
@@ -195,19 +205,20 @@ def run(args) -> int:
     sc = resolve(args.scenario)
     if args.unbalance is not None:
         apply_unbalance(sc, args.unbalance)
-    if args.fmu_timeout is not None and not (0 < args.fmu_timeout < float("inf")):
-        raise ValueError(f"--fmu-timeout must be a positive number of seconds, got {args.fmu_timeout}")
+    if not (0 <= args.step_timeout < float("inf")):
+        raise ValueError(f"--step-timeout must be a number of seconds >= 0 (0: no limit), got {args.step_timeout}")
     for spec in sc.components.values():
-        if spec.fmu is not None and (args.fmu_process or args.fmu_timeout is not None):
+        if spec.fmu is not None and args.fmu_process:
             spec.options["process"] = True
-            if args.fmu_timeout is not None:
-                spec.options["step_timeout"] = args.fmu_timeout
+            if args.step_timeout > 0:
+                spec.options.setdefault("step_timeout", args.step_timeout)
     if not (args.checkpoint_every > 0):
         raise ValueError(f"--checkpoint-every must be a positive number of seconds, got {args.checkpoint_every}")
     try:
         summary = execute(sc, args.out, SCHEDULES[args.schedule], args.duration,
                           figures=not args.no_figures, quiet=args.quiet, overwrite=args.overwrite,
-                          resume=args.resume, force=args.force, checkpoint_every=args.checkpoint_every)
+                          resume=args.resume, force=args.force, checkpoint_every=args.checkpoint_every,
+                          step_timeout=args.step_timeout)
     except SimulationDiverged as exc:
         print(f"rotorcosim run: the simulation diverged: {exc}; what was recorded is in {args.out} "
               "(summary.json has the error)", file=sys.stderr)

@@ -29,6 +29,7 @@ def one_line_error(err: str) -> str:
     (["--out", "{dir}/o", "--duration", "1e-4"], 2, "shorter than one step of the schedule (0.001 s)"),
     (["--out", "{dir}/o", "--duration", "-1"], 2, "--duration must be a positive"),
     (["--out", "{dir}/o", "--checkpoint-every", "0"], 2, "--checkpoint-every must be a positive"),
+    (["--out", "{dir}/o", "--step-timeout", "-1"], 2, "--step-timeout must be a number of seconds >= 0"),
     (["--out", "{dir}/o", "--overwrite", "--resume"], 2, "exclude each other"),
     (["--out", "{dir}/o", "--unbalance", "nan"], 2, "--unbalance must be a finite force"),
 ])
