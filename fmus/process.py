@@ -2,8 +2,9 @@
 host down or hanging it.
 
 :class:`ProcessFMU` follows the component contract in the master's process and forwards every call to an
-:class:`~rotorcosim.fmus.importer.FMUComponent` living in a child process (``multiprocessing``, spawn: nothing of
-the host's state is shared). Each call waits at most ``timeout`` seconds (the FMU step time limit): a call that
+:class:`~rotorcosim.fmus.importer.FMUComponent` living in a child process (a fresh interpreter started with
+``subprocess``, talking over a socket pair: nothing of the host's state is shared, and unlike multiprocessing's
+spawn it does not re-run the user's script, so no ``if __name__ == "__main__"`` guard is needed). Each call waits at most ``timeout`` seconds (the FMU step time limit): a call that
 does not return in time kills the child and raises :class:`FMUError` naming the FMU, the call and the time; a child
 that dies (a segfault in the FMU's binary) raises one naming the signal. The price is one pipe round trip per
 call (some tens of microseconds), hence an option (``process = true`` on a scenario's FMU component, or
@@ -14,8 +15,12 @@ checkpoint on disk cannot hold it and says so).
 """
 from __future__ import annotations
 
-import multiprocessing as mp
+import os
 import signal
+import socket
+import subprocess
+import sys
+from multiprocessing.connection import Connection
 from typing import Any, Mapping
 
 from rotorcosim.components.contract import Component
@@ -30,6 +35,13 @@ def load_fmu(path: str, name: str, parameters: dict, start: dict):
     from .importer import FMUComponent
 
     return FMUComponent(path, name, parameters, start)
+
+
+def _child(fd: int) -> None:
+    """The child process's entry point: the connection on ``fd``, then the component it is asked for."""
+    conn = Connection(fd)
+    factory, path, name, parameters, start = conn.recv()
+    _serve(conn, factory, path, name, parameters, start)
 
 
 def _serve(conn, factory, path: str, name: str, parameters: dict, start: dict) -> None:
@@ -100,12 +112,14 @@ class ProcessFMU(Component):
         self.name = name
         self.timeout = float(timeout)
         self._where = f"FMU {path} (component {name!r}, in its own process)"
-        ctx = mp.get_context("spawn")
-        self._conn, child = ctx.Pipe()
-        self._proc = ctx.Process(target=_serve, args=(child, factory, self.path, name, dict(parameters or {}), dict(start or {})),
-                                 daemon=True)
-        self._proc.start()
-        child.close()
+        ours, theirs = socket.socketpair()
+        env = dict(os.environ, PYTHONPATH=os.pathsep.join(p for p in sys.path if p))
+        self._proc = subprocess.Popen(
+            [sys.executable, "-c", "import sys; from rotorcosim.fmus.process import _child; _child(int(sys.argv[1]))",
+             str(theirs.fileno())], pass_fds=(theirs.fileno(),), env=env)
+        theirs.close()
+        self._conn = Connection(ours.detach())
+        self._conn.send((factory, self.path, name, dict(parameters or {}), dict(start or {})))
         # loading takes seconds (a fresh interpreter, imports, extraction): the generous default limit at least
         info = self._call(None, (), "loading", max(self.timeout, STEP_TIMEOUT_S))
         self.variables = tuple(info["variables"])
@@ -135,8 +149,10 @@ class ProcessFMU(Component):
                                "time limit): the FMU was stopped")
             status, value = self._conn.recv()
         except (EOFError, BrokenPipeError, ConnectionResetError, OSError):
-            self._proc.join(5)
-            code = self._proc.exitcode
+            try:
+                code = self._proc.wait(5)
+            except subprocess.TimeoutExpired:
+                code = None
             how = (f"killed by {signal.Signals(-code).name}" if code is not None and code < 0
                    else f"exit status {code}")
             raise FMUError(f"{self._where}: the FMU's process died in {what} ({how})") from None
@@ -145,9 +161,13 @@ class ProcessFMU(Component):
         return value
 
     def _kill(self) -> None:
-        if self._proc.is_alive():
+        if self._proc.poll() is None:
             self._proc.kill()
-        self._proc.join(5)
+        try:
+            self._proc.wait(5)
+        except subprocess.TimeoutExpired:
+            pass
+        self._conn.close()
 
     # -- the contract --------------------------------------------------------------------------------
     def set_parameter(self, name: str, value: Any) -> None:
@@ -178,7 +198,7 @@ class ProcessFMU(Component):
         self.y = {k: v.copy() for k, v in snapshot.y.items()}
 
     def terminate(self) -> None:
-        if self._proc.is_alive():
+        if self._proc.poll() is None:
             try:
                 self._call("terminate", (), "terminate")
             except FMUError:
@@ -187,7 +207,7 @@ class ProcessFMU(Component):
 
     def __del__(self):
         proc = getattr(self, "_proc", None)
-        if proc is not None and proc.is_alive():
+        if proc is not None and proc.poll() is None:
             proc.kill()
 
     def __repr__(self) -> str:
