@@ -185,7 +185,8 @@ class _Held:
     """The window statistic, constant over the TO interval (the paper)."""
 
     def __init__(self, link, S):
-        self.link, self.S = link, np.array(S, dtype=float)
+        # a Real statistic as float; an Integer, Boolean or String value kept as it is (issue 15: held, not averaged)
+        self.link, self.S = link, (np.array(S, dtype=float) if link.real else np.array(S))
 
     def value(self) -> np.ndarray:
         return self.S
@@ -246,7 +247,7 @@ class StaggeredHold:
         self.handoffs = []
         for link in links:
             src, dst = comps[link.con.src_component], comps[link.con.dst_component]
-            if feeds_thermal(src, dst):
+            if feeds_thermal(src, dst) and link.real:   # (Integer/Boolean/String links: held at their last value)
                 ports = sorted({l.con.dst_port for l in links if l.con.dst_component == link.con.src_component
                                 and not mechanical(comps[l.con.src_component])})
                 self.handoffs.append(HandOff(link, link.con.hold or self.hold, ports))

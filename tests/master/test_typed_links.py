@@ -129,3 +129,21 @@ def test_stop_request_ends_the_run_with_status_stopped():
     assert len(report.timeline) == 1 and report.timeline[0].reason == "stopped"
     # the sink, after the counter in the order, is not stepped past the stop (it stays at 0.003)
     assert len(sys_.components["s"].log) == 3
+
+
+def test_thermal_only_hold_averages_reals_and_holds_the_rest():
+    """Across a thermal-only interval the frozen counter's Real output is replaced by its mean over the last 5
+    rotor cycles (1 ms each), its Integer and Boolean outputs by their last values (not a mean of integers)."""
+    class ThermalSink(Sink):
+        phases = frozenset({"TM", "TO"})
+
+    comps = {"c": Counter("c"), "s": ThermalSink("s")}
+    sys_ = System(comps, [Connection("c.k", "s.k"), Connection("c.r", "s.r"), Connection("c.b", "s.b")])
+    sim = Simulation(sys_, order=["c", "s"], hold="mean", hold_cycles=5, speed_rpm=60_000.0)
+    sim.run(Timeline([Interval("TM", 0.006, 1e-3), Interval("TO", 0.01, 5e-3)]))
+    to = sys_.components["s"].log[6:]
+    assert len(to) == 2
+    for x in to:
+        assert x["k"].tolist() == [6] and x["k"].dtype == np.int64
+        assert x["b"].tolist() == [True]
+        assert x["r"].tolist() == [4000.0]          # mean of 2..6 m, in mm
