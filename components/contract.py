@@ -69,6 +69,9 @@ class Variable:
     max: float | None = None
     choices: tuple | None = None
     unit_definition: tuple | None = None
+    #: names of a vector's elements (``("inner", "outer")``); by default x, y(, z) for a 2- or 3-vector of a
+    #: displacement, velocity or force, else 1..size (see :meth:`column_labels`)
+    labels: tuple[str, ...] = ()
 
     def __post_init__(self):
         if self.causality not in CAUSALITIES:
@@ -77,11 +80,24 @@ class Variable:
             raise ContractError(f"variable {self.name!r}: type {self.type!r} not in {TYPES}")
         if int(self.size) < 1:
             raise ContractError(f"variable {self.name!r}: size must be >= 1, got {self.size}")
+        if self.labels and len(self.labels) != int(self.size):
+            raise ContractError(f"variable {self.name!r}: {len(self.labels)} labels for size {self.size}")
 
     @property
     def carried(self) -> bool:
         """False for Binary and Clock variables: declared, but holding no value the master can pass on."""
         return self.type not in UNCARRIED
+
+    def column_labels(self) -> list[str]:
+        """One label per element: the declared ``labels``; x, y(, z) for a 2-/3-vector in m, m/s or N; else
+        1..size ("" for a scalar)."""
+        if self.labels:
+            return list(self.labels)
+        if self.size == 1:
+            return [""]
+        if self.size in (2, 3) and self.unit in ("m", "m/s", "N"):
+            return list("xyz"[: self.size])
+        return [str(i + 1) for i in range(self.size)]
 
     def start_array(self) -> np.ndarray:
         """The start value as a vector of ``size`` of the variable's kind (a scalar start is broadcast)."""

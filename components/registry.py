@@ -5,10 +5,14 @@ packages add theirs through the entry-point group ``rotorcosim.components``::
 
     [project.entry-points."rotorcosim.components"]
     "bearing.mine" = "mypackage.bearing:MyBearing"
+
+Without packaging, a scenario names a plug-in class directly as ``"module:Class"``: the module is imported from
+the scenario file's folder first, then from ``sys.path`` (docs/plugins.md).
 """
 from __future__ import annotations
 
 import importlib
+import sys
 from importlib import metadata
 
 from .contract import Component, ContractError
@@ -60,21 +64,58 @@ def _load_path(path: str):
     return getattr(importlib.import_module(module), attr)
 
 
-def lookup(name: str) -> type[Component]:
-    """The class registered under ``name``; a clear error listing the known names otherwise."""
-    if name in _extra:
+def is_plugin_path(name: str) -> bool:
+    """True for an implementation written ``"module:Class"`` (a plug-in imported directly)."""
+    module, colon, attr = str(name).partition(":")
+    return bool(colon)
+
+
+def load_plugin(path: str, folder: str | None = None) -> type:
+    """The class ``"module:Class"``, its module imported from ``folder`` first, then from ``sys.path``."""
+    module, _, attr = path.partition(":")
+    if not module or not attr or not all(p.isidentifier() for p in module.split(".")) or not attr.isidentifier():
+        raise ContractError(f"plug-in implementation {path!r} must be written 'module:Class'")
+    added = folder is not None and folder not in sys.path
+    if added:
+        sys.path.insert(0, folder)
+    try:
+        mod = importlib.import_module(module)
+    except ModuleNotFoundError as exc:
+        if exc.name != module.split(".")[0] and exc.name != module:
+            raise ContractError(f"plug-in {path!r}: importing module {module!r} failed: {exc}") from None
+        where = f"the scenario's folder {folder} nor " if folder else ""
+        raise ContractError(f"plug-in {path!r}: no module {module!r} in {where}sys.path") from None
+    except Exception as exc:  # a plug-in's own error at import: say whose it is
+        raise ContractError(f"plug-in {path!r}: importing module {module!r} failed: "
+                            f"{type(exc).__name__}: {exc}") from None
+    finally:
+        if added:
+            sys.path.remove(folder)
+    try:
+        return getattr(mod, attr)
+    except AttributeError:
+        raise ContractError(f"plug-in {path!r}: module {module!r} ({mod.__file__}) has no {attr!r}") from None
+
+
+def lookup(name: str, folder: str | None = None) -> type[Component]:
+    """The class registered under ``name`` (or the plug-in ``"module:Class"``, imported from ``folder`` first);
+    a clear error listing the known names otherwise."""
+    if is_plugin_path(name):
+        cls = load_plugin(name, folder)
+    elif name in _extra:
         return _extra[name]
-    if name in BUILTIN:
+    elif name in BUILTIN:
         cls = _load_path(BUILTIN[name])
     else:
         eps = _entry_points()
         if name not in eps:
             raise ContractError(f"unknown component implementation {name!r}; known: {', '.join(available())}")
         cls = eps[name].load()
-    if not (isinstance(cls, type) and issubclass(cls, Component)) and not hasattr(cls, "do_step"):
-        raise ContractError(f"implementation {name!r} ({cls!r}) does not follow the component contract")
+    if not (isinstance(cls, type) and (issubclass(cls, Component) or hasattr(cls, "do_step"))):
+        raise ContractError(f"implementation {name!r} ({cls!r}) does not follow the component contract "
+                            f"(a class derived from rotorcosim.components.contract.Component)")
     return cls
 
 
-def create(name: str, instance_name: str, parameters=None) -> Component:
-    return lookup(name)(instance_name, parameters or {})
+def create(name: str, instance_name: str, parameters=None, folder: str | None = None) -> Component:
+    return lookup(name, folder)(instance_name, parameters or {})

@@ -11,6 +11,7 @@ import sys
 import traceback
 
 COMMANDS: dict[str, tuple[str, str]] = {
+    "scenarios": ("rotorcosim.master.commands.scenarios", "list the shipped scenarios, one line each"),
     "run": ("rotorcosim.master.commands.run", "run a scenario (TOML or SSP), the 2850 N blade-loss case by default"),
     "sweep": ("rotorcosim.master.commands.sweep", "run several unbalance levels in parallel on Dask, write table5.csv"),
     "compare": ("rotorcosim.master.commands.compare", "the paper's Table 6: staggered against monolithic"),
@@ -24,11 +25,14 @@ COMMANDS: dict[str, tuple[str, str]] = {
 
 
 def build_parser() -> argparse.ArgumentParser:
+    from rotorcosim import __version__
+
     parser = argparse.ArgumentParser(prog="rotorcosim", description=__doc__.splitlines()[0],
                                      epilog="Errors: one line and exit status 2 for a mistake in the input, 1 for a "
                                             "run that failed, 130 for an interrupted run; --debug (anywhere on the "
                                             "line) shows the traceback.")
     parser.add_argument("--debug", action="store_true", help="show the traceback of an error")
+    parser.add_argument("--version", action="version", version=f"rotorcosim {__version__}")
     sub = parser.add_subparsers(dest="command", metavar="COMMAND")
     argv = sys.argv[1:]
     for name, (module, help_text) in COMMANDS.items():

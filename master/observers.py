@@ -52,40 +52,62 @@ class Observer:
 class Recorder(Observer):
     """Records ``signals`` ("component.port") every ``record_step`` seconds of a TM interval and at every step
     of a TO interval, into ``path`` (``.h5`` / ``.hdf5``: one dataset per signal plus ``time`` and ``phase``;
-    ``.csv``: one column per vector element, ``component.port[i]``, 1-based)."""
+    ``.csv``: one column per vector element, ``component.port[label] (unit)``) and, with ``keep=True``, in
+    memory as well (:meth:`data`), so that the caller gets the run back without reopening the file.
+    ``path=None`` records in memory only.
 
-    def __init__(self, path: str | os.PathLike, signals: Sequence[str], record_step: float = 1e-4,
-                 chunk: int = 2048):
-        self.path = Path(path)
+    Each HDF5 dataset carries its ``unit``, ``description``, ``columns`` (the names of its vector elements) and
+    ``sampling_interval_s`` (the interval in thermo-mechanical intervals; thermal-only intervals are sampled at
+    every thermal step: the ``time`` dataset gives each sample's time)."""
+
+    def __init__(self, path: str | os.PathLike | None, signals: Sequence[str], record_step: float = 1e-4,
+                 chunk: int = 2048, keep: bool = False):
+        self.path = None if path is None else Path(path)
         self.signals = list(signals)
         if not (record_step > 0 and math.isfinite(record_step)):
             raise ValueError(f"record_step must be positive, got {record_step}")
         self.record_step = float(record_step)
         self.chunk = int(chunk)
+        self.keep = bool(keep) or self.path is None
         self.rows = 0
         self._buf_t: list[float] = []
         self._buf_phase: list[int] = []
         self._buf: dict[str, list[np.ndarray]] = {s: [] for s in self.signals}
+        self._kept: dict[str, list[np.ndarray]] = {s: [] for s in ["time", "phase", *self.signals]}
         self._file = None
         self._resume = None
+        self._kind = None
+        self.variables = {}
+        self.sizes: dict[str, int] = {}
 
     # -- observer hooks --------------------------------------------------------------------------------
     def start(self, sim, schedule):
-        sizes = {}
-        units = {}
-        kinds = {}
         for ref in self.signals:
             comp, _, port = ref.partition(".")
-            v = sim.system._port(ref, "output") if comp in sim.system.components else None
-            if v is None:
-                raise ValueError(f"recorder: unknown signal {ref!r}")
+            if comp not in sim.system.components:
+                raise ValueError(f"recorder: unknown signal {ref!r}: no component {comp!r} "
+                                 f"(components: {', '.join(sim.system.components)})")
+            c = sim.system.components[comp]
+            v = next((x for x in c.variables if x.name == port), None)
+            if v is None or v.causality != "output":
+                outs = ", ".join(x.name for x in c.variables if x.causality == "output")
+                raise ValueError(f"recorder: unknown signal {ref!r}: {comp} has no output {port!r} (its outputs: {outs})")
             if not v.carried:
                 raise ValueError(f"recorder: {ref} is a {v.fmi_type or v.type} output: it holds no value to record")
-            sizes[ref], units[ref], kinds[ref] = v.size, v.unit, (v.type, v.fmi_type)
+            self.variables[ref] = v
+        self.sizes = {r: v.size for r, v in self.variables.items()}
+        self.units = {r: v.unit for r, v in self.variables.items()}
         # each signal is stored with its own type: floats as f8, integers as i8 (UInt64 as u8), Booleans as
         # bool, strings as UTF-8 strings; so an integer beyond 2^53 is kept exactly
-        self._dtypes = {ref: _h5_dtype(*kinds[ref]) for ref in self.signals}
-        self.sizes, self.units = sizes, units
+        self._dtypes = {ref: _h5_dtype(v.type, v.fmi_type) for ref, v in self.variables.items()}
+        if self.path is not None and getattr(self, "_resume", None) is not None:
+            self._open()  # a resumed run: the file holds the rows up to the checkpoint, its first sample too
+            return
+        if self.path is not None:
+            self._open()
+        self._sample(sim, sim.t)
+
+    def _open(self):
         self.path.parent.mkdir(parents=True, exist_ok=True)
         tmp = self.path.with_name(self.path.name + ".part")
         self._tmp = tmp
@@ -93,30 +115,38 @@ class Recorder(Observer):
         if resume is not None:
             self._reopen(resume)
             return
+        sizes, units = self.sizes, self.units
         if self.path.suffix.lower() in (".h5", ".hdf5"):
             import h5py
 
             self._file = h5py.File(tmp, "w")
-            self._file.attrs["description"] = "rotorcosim time series: SI units; phase 0 = thermo-mechanical, 1 = thermal-only"
+            self._file.attrs["description"] = ("rotorcosim time series: SI units; phase 0 = thermo-mechanical, "
+                                               "1 = thermal-only")
+            self._file.attrs["sampling_interval_s"] = self.record_step
+            self._file.attrs["sampling"] = (f"every {self.record_step:g} s in thermo-mechanical intervals, every "
+                                            f"thermal step in thermal-only intervals (the time dataset has each "
+                                            f"sample's time)")
             self._file.create_dataset("time", shape=(0,), maxshape=(None,), dtype="f8", chunks=(self.chunk,))
             self._file["time"].attrs["unit"] = "s"
+            self._file["time"].attrs["description"] = "simulated time of each sample"
             self._file.create_dataset("phase", shape=(0,), maxshape=(None,), dtype="i1", chunks=(self.chunk,))
+            self._file["phase"].attrs["description"] = "0 = thermo-mechanical (TM), 1 = thermal-only (TO)"
             for ref in self.signals:
+                v = self.variables[ref]
                 ds = self._file.create_dataset(ref, shape=(0, sizes[ref]), maxshape=(None, sizes[ref]),
                                                dtype=self._dtypes[ref], chunks=(self.chunk, sizes[ref]))
                 ds.attrs["unit"] = units[ref]
+                ds.attrs["description"] = v.description
+                ds.attrs["columns"] = [lb or v.name for lb in v.column_labels()]
+                ds.attrs["sampling_interval_s"] = self.record_step
             self._kind = "hdf5"
         elif self.path.suffix.lower() == ".csv":
             self._file = open(tmp, "w", newline="")
             self._csv = csv.writer(self._file)
-            header = ["time", "phase"]
-            for ref in self.signals:
-                header += [f"{ref}[{i + 1}] ({units[ref]})" for i in range(sizes[ref])]
-            self._csv.writerow(header)
+            self._csv.writerow(["time (s)", "phase"] + column_names(self.signals, self.variables))
             self._kind = "csv"
         else:
             raise ValueError(f"recorder: unknown format of {self.path} (use .h5 or .csv)")
-        self._sample(sim, sim.t)
 
     def interval_start(self, sim, phase, step):
         self.stride = 1 if phase == "TO" else max(1, int(round(self.record_step / step)))
@@ -150,26 +180,33 @@ class Recorder(Observer):
 
     def flush(self):
         n = len(self._buf_t)
-        if not n or self._file is None:
+        if not n:
             return
-        self._ensure_space(n)
+        if self._file is not None:
+            self._ensure_space(n)
+        t, ph = np.asarray(self._buf_t), np.asarray(self._buf_phase, dtype=np.int8)
+        block = {ref: np.vstack(self._buf[ref]) for ref in self.signals}
+        if self.keep:
+            self._kept["time"].append(t)
+            self._kept["phase"].append(ph)
+            for ref in self.signals:
+                self._kept[ref].append(block[ref])
         if self._kind == "hdf5":
             f = self._file
             r = self.rows
-            for name, data in (("time", np.asarray(self._buf_t)), ("phase", np.asarray(self._buf_phase))):
+            for name, data in (("time", t), ("phase", ph)):
                 f[name].resize((r + n,))
                 f[name][r:] = data
             for ref in self.signals:
                 ds = f[ref]
                 ds.resize((r + n, self.sizes[ref]))
-                ds[r:] = np.vstack(self._buf[ref])
+                ds[r:] = block[ref]
             f.flush()
-        else:
-            blocks = [np.vstack(self._buf[ref]) for ref in self.signals]
-            for i, (t, ph) in enumerate(zip(self._buf_t, self._buf_phase)):
-                row = [f"{t:.10g}", str(ph)]
-                for b in blocks:
-                    row += [_csv_text(x) for x in b[i]]
+        elif self._kind == "csv":
+            for i, (tt, p) in enumerate(zip(t, ph)):
+                row = [f"{tt:.10g}", str(p)]
+                for ref in self.signals:
+                    row += [_csv_text(x) for x in block[ref][i]]
                 self._csv.writerow(row)
             self._file.flush()
         self.rows += n
@@ -178,8 +215,24 @@ class Recorder(Observer):
         for ref in self.signals:
             self._buf[ref].clear()
 
+    def data(self) -> dict[str, np.ndarray]:
+        """What was recorded so far (kept in memory): ``time``, ``phase`` (0 TM, 1 TO) and one (n, size) array
+        per signal."""
+        if not self.keep:
+            raise ValueError("recorder: created with keep=False, nothing kept in memory")
+        out = {}
+        for key, parts in self._kept.items():
+            if parts:
+                out[key] = np.concatenate(parts)
+            elif key in ("time", "phase"):
+                out[key] = np.zeros(0, dtype=float if key == "time" else np.int8)
+            else:
+                out[key] = np.zeros((0, self.sizes.get(key, 1)))
+        return out
+
     def end(self, sim, error):
-        if self._file is None:
+        if self._file is None:  # in memory only
+            self.flush()
             return
         failed = None
         try:
@@ -269,8 +322,22 @@ def _csv_text(x) -> str:
     return str(x)
 
 
+def column_names(signals: Sequence[str], variables: dict) -> list[str]:
+    """Flat column names with units, one per vector element: ``rotor.X_brg0[x] (m)``, ``bearing0.P_drag (W)``."""
+    out = []
+    for ref in signals:
+        v = variables[ref]
+        for lb in v.column_labels():
+            out.append(f"{ref}[{lb}] ({v.unit})" if lb else f"{ref} ({v.unit})")
+    return out
+
+
 class Progress(Observer):
-    """A progress bar over simulated time (updated every ``every`` seconds of simulated time at most)."""
+    """A progress bar over simulated time whose time-left estimate comes from the measured wall time per step
+    of each phase and the steps the schedule still has: a thermo-mechanical step costs hundreds of times a
+    thermal-only one, so a rate in simulated seconds per second (tqdm's own estimate) is wrong by hours early in
+    a staggered run. A phase not yet measured is assumed to cost what the measured one does (an upper bound for
+    thermal-only steps). Without a known plan (the automatic schedule) no estimate is shown."""
 
     stride = 64
 
@@ -283,25 +350,70 @@ class Progress(Observer):
     def start(self, sim, schedule):
         from tqdm import tqdm
 
+        import time as _time
+
+        self._clock = _time.perf_counter
+        intervals = getattr(schedule, "intervals", None)
+        # steps of each planned interval, in order (None: not known in advance)
+        self.plan = None if intervals is None else [
+            (iv.phase, max(1, int(math.ceil(iv.duration / iv.step - 1e-9)))) for iv in intervals]
+        self.index = -1
+        self.cost_wall = {}   # phase -> wall seconds spent in finished intervals
+        self.cost_steps = {}  # phase -> steps taken in finished intervals
         self.bar = tqdm(total=self.total, unit="s", desc=self.desc, disable=self.disable, mininterval=1.0,
-                        bar_format="{l_bar}{bar}| {n:.3f}/{total:.3f} s simulated [{elapsed}<{remaining}]")
+                        bar_format="{l_bar}{bar}| {n:.3f}/{total:.3f} s simulated [{elapsed}{postfix}]")
         self.t0 = sim.t
         self.shown = 0.0
+        self._shown_at = -1e9
 
     def interval_start(self, sim, phase, step):
         self.stride = 1 if phase == "TO" else 256
-        if self.bar is not None:
-            self.bar.set_postfix_str(phase)
+        self.index += 1
+        self.phase, self.h = phase, step
+        self.t_iv, self.w_iv = sim.t, self._clock()
+
+    def _cost(self, phase: str, steps_now: int, wall_now: float) -> float | None:
+        w = self.cost_wall.get(phase, 0.0) + (wall_now if phase == self.phase else 0.0)
+        n = self.cost_steps.get(phase, 0) + (steps_now if phase == self.phase else 0)
+        return w / n if n else None
+
+    def remaining(self, t: float) -> float | None:
+        """Estimated wall seconds left, from the measured cost per step of each phase."""
+        if self.plan is None or self.index >= len(self.plan):
+            return None
+        done = max(0, int(round((t - self.t_iv) / self.h)))
+        wall = self._clock() - self.w_iv
+        costs = {ph: self._cost(ph, done, wall) for ph in ("TM", "TO")}
+        known = [c for c in costs.values() if c is not None]
+        if not known:
+            return None
+        left = max(0, self.plan[self.index][1] - done) * (costs[self.phase] or max(known))
+        for ph, n in self.plan[self.index + 1:]:
+            left += n * (costs[ph] if costs[ph] is not None else max(known))
+        return left
 
     def step(self, sim, t):
-        if self.bar is not None:
-            done = min(self.total, t - self.t0)
-            self.bar.update(done - self.shown)  # tqdm redraws at most once per mininterval
-            self.shown = done
+        if self.bar is None:
+            return
+        done = min(self.total, t - self.t0)
+        now = self._clock()
+        if now - self._shown_at >= 1.0 and not self.disable:
+            left = self.remaining(t)
+            self.bar.set_postfix_str(f"{self.phase}, ~{_hms(left)} left" if left is not None else self.phase,
+                                     refresh=False)
+            self._shown_at = now
+        self.bar.update(done - self.shown)  # tqdm redraws at most once per mininterval
+        self.shown = done
+
+    def interval_end(self, sim, used):
+        if self.plan is not None:
+            self.cost_wall[used.phase] = self.cost_wall.get(used.phase, 0.0) + self._clock() - self.w_iv
+            self.cost_steps[used.phase] = self.cost_steps.get(used.phase, 0) + used.steps
 
     def end(self, sim, error):
         if self.bar is not None:
             self.step(sim, sim.t)
+            self.bar.set_postfix_str("done" if error is None else "stopped", refresh=False)
             self.bar.close()
 
     def checkpoint_state(self):
@@ -309,6 +421,11 @@ class Progress(Observer):
 
     def restore_checkpoint(self, state):
         pass
+
+
+def _hms(seconds: float) -> str:
+    s = int(round(seconds))
+    return f"{s // 3600}:{s % 3600 // 60:02d}:{s % 60:02d}" if s >= 3600 else f"{s // 60}:{s % 60:02d}"
 
 
 class SteadyWindows(Observer):

@@ -118,11 +118,11 @@ def _tm_blocks(t, phase):
     return list(zip(edges[::2], edges[1::2]))
 
 
-def figures(sc, series: Path | None, out: Path) -> list[str]:
-    """PNG figures like the paper's Figs. 9-14 from the recorded time series; returns their file names."""
-    if series is None or not Path(series).exists() or Path(series).suffix != ".h5":
+def figures(sc, data: dict, out: Path) -> list[str]:
+    """PNG figures like the paper's Figs. 9-14 from the recorded time series (``data``: ``time``, ``phase`` and
+    one array per recorded port, as :meth:`Recorder.data` gives them); returns their file names."""
+    if data is None or "time" not in data or not len(data["time"]):
         return []
-    import h5py
     import matplotlib
 
     matplotlib.use("Agg")
@@ -130,7 +130,8 @@ def figures(sc, series: Path | None, out: Path) -> list[str]:
 
     F_u = unbalance_force(sc)
     names = []
-    with h5py.File(series, "r") as f:
+    f = data
+    if True:
         t = f["time"][:]
         phase = f["phase"][:]
         blocks = _tm_blocks(t, phase)

@@ -39,8 +39,13 @@
     record_step = 1e-3
     format = "h5"                        # or "csv"
 
-A scenario may start from another one: ``[scenario] extends = "base.toml"`` (relative to the file) merges the
-base's tables under its own (tables merge key by key, anything else, lists included, is replaced).
+A scenario may start from another one: ``[scenario] extends = "base.toml"`` (relative to the file). The
+composition rules (an ``implementation`` replaces an inherited ``fmu`` and the other way round,
+``remove_parameters``, connections added to the inherited ones, ``remove_connections``) are in
+:mod:`rotorcosim.master.compose`; errors found after composition name the file that brought the entry.
+
+An implementation may also be a plug-in class written ``"module:Class"``: the module is imported from the
+folder of the scenario file that names it first, then from ``sys.path`` (no packaging needed; docs/plugins.md).
 
 Relative paths (FMU files, model files) are resolved against the scenario file's folder. Everything SI;
 quantities at the edges carry their unit in the key name (``speed_rpm``).
@@ -49,16 +54,9 @@ from __future__ import annotations
 
 import copy
 import math
-import re
-import sys
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any, Mapping
-
-if sys.version_info >= (3, 11):
-    import tomllib
-else:  # pragma: no cover
-    import tomli as tomllib
 
 from rotorcosim.components import registry
 from rotorcosim.components.contract import Component, ContractError
@@ -66,13 +64,10 @@ from rotorcosim.components.contract import Component, ContractError
 from . import schema
 from .algorithm import EngineSettings
 from .hold import DEFAULT_HOLD
+from .compose import Origins, ScenarioError, compose
 from .schedule import from_spec
 from .simulation import Simulation
 from .system import Connection, System, split_port
-
-
-class ScenarioError(ContractError):
-    """A scenario file that cannot be run; the message names the file and the key."""
 
 
 @dataclass
@@ -86,6 +81,10 @@ class ComponentSpec:
     start: dict[str, Any] = field(default_factory=dict)
     #: FMU options: ``process`` (run it in a process of its own), ``step_timeout`` (s, implies ``process``)
     options: dict[str, Any] = field(default_factory=dict)
+    #: the file that chose the implementation (for error messages) and the folder plug-ins import from
+    origin: str | None = None
+    folder: str | None = None
+    param_origins: dict[str, str] = field(default_factory=dict)
 
 
 @dataclass
@@ -97,6 +96,7 @@ class ConnectionSpec:
     hold: str | None = None
     convert: str | None = None
     unit: str | None = None
+    origin: str | None = None  #: the file that brought this connection
 
 
 @dataclass
@@ -114,6 +114,25 @@ class Scenario:
 
     def copy(self) -> "Scenario":
         return copy.deepcopy(self)
+
+    def set(self, values: Mapping[str, Any]) -> "Scenario":
+        """A new scenario with component parameters changed: ``sc.set({"rotor.F_unbalance": 5700.0})``.
+
+        Keys are ``"component.parameter"`` (SI values; numbers, booleans, strings or lists). This scenario is
+        left unchanged. An unknown component, or a parameter the component's implementation does not declare,
+        is an error naming both."""
+        from .overrides import apply_set
+
+        return apply_set(self, values)
+
+    def swap(self, component: str, implementation: str, parameters: Mapping[str, Any] | None = None) -> "Scenario":
+        """A new scenario with ``component`` given another implementation: a registry name (``"damper.fe"``),
+        a plug-in ``"module:Class"``, or an FMU file (``"my_damper.fmu"``, relative to the working folder).
+
+        The component keeps its parameters unless ``parameters`` is given, which then replaces them all."""
+        from .overrides import apply_swap
+
+        return apply_swap(self, component, implementation, parameters)
 
 
 _TOP_KEYS = {"scenario", "components", "connections", "inputs", "algorithm", "schedule", "outputs", "results"}
@@ -139,9 +158,11 @@ def _check_value(where: str, value: Any) -> None:
     raise _fail(where, f"unsupported value {value!r}")
 
 
-def parse(data: Mapping[str, Any], source: Path | None = None) -> Scenario:
-    """A scenario from its (composed) dict; the strict schema (schema.py) is checked first."""
-    schema.check(data, source)
+def parse(data: Mapping[str, Any], source: Path | None = None, origins: Origins | None = None) -> Scenario:
+    """A scenario from its (composed) dict; the strict schema (schema.py) is checked first. ``origins`` (from
+    :func:`compose`) names the file of each entry in the messages (else ``source``)."""
+    origins = origins or Origins()
+    schema.check(data, source, origins)
     where = str(source) if source else "scenario"
     unknown = set(data) - _TOP_KEYS
     if unknown:
@@ -153,7 +174,7 @@ def parse(data: Mapping[str, Any], source: Path | None = None) -> Scenario:
     base = source.parent if source else Path.cwd()
     components = {}
     for name, spec in comps_raw.items():
-        w = f"{where}: [components.{name}]"
+        w = f"{origins.component(name) or where}: [components.{name}]"
         if not isinstance(spec, Mapping):
             raise _fail(w, "must be a table")
         if "." in name or not name:
@@ -181,11 +202,15 @@ def parse(data: Mapping[str, Any], source: Path | None = None) -> Scenario:
             raise _fail(w, "'start' sets start values of an FMU's variables; a native component takes its "
                            "initial state from its parameters")
         options = {k: spec[k] for k in ("process", "step_timeout") if k in spec}
+        came = origins.component(name)
         components[name] = ComponentSpec(name, impl, fmu, params, None if step is None else float(step), start,
-                                         options)
+                                         options, origin=came or (str(source) if source else None),
+                                         folder=str(Path(came).parent if came else base),
+                                         param_origins={p: origins.parameter(name, p) or where for p in params})
     connections = []
     for i, spec in enumerate(data.get("connections", [])):
-        w = f"{where}: connection #{i + 1}"
+        came = origins.connections[i] if i < len(origins.connections) else where
+        w = f"{came}: connection #{i + 1}"
         bad = set(spec) - _CONNECTION_KEYS
         if bad:
             raise _fail(w, f"unknown key(s) {sorted(bad)}; known: {sorted(_CONNECTION_KEYS)}")
@@ -197,7 +222,7 @@ def parse(data: Mapping[str, Any], source: Path | None = None) -> Scenario:
                 raise _fail(w, f"{key} must be a string, got {spec[key]!r}")
         connections.append(ConnectionSpec(spec["from"], spec["to"], spec.get("average", "mean"),
                                           spec.get("extrapolation", "hold"), spec.get("hold"),
-                                          spec.get("convert"), spec.get("unit")))
+                                          spec.get("convert"), spec.get("unit"), origin=came))
     inputs = {}
     for ref, value in data.get("inputs", {}).items():
         split_port(ref)
@@ -210,42 +235,18 @@ def parse(data: Mapping[str, Any], source: Path | None = None) -> Scenario:
                     extra={"results": dict(data.get("results", {}))})
 
 
-def _merge(base: dict, top: Mapping) -> dict:
-    out = dict(base)
-    for k, v in top.items():
-        out[k] = _merge(out[k], v) if isinstance(v, Mapping) and isinstance(out.get(k), Mapping) else v
-    return out
-
-
-def _read(path: Path, seen: tuple = ()) -> dict:
-    if not path.is_file():
-        raise FileNotFoundError(f"scenario file {path} not found")
-    if path in seen:
-        raise ScenarioError(f"{path}: 'extends' loops back on itself ({' -> '.join(map(str, seen))})")
-    try:
-        data = tomllib.loads(path.read_text())
-    except tomllib.TOMLDecodeError as exc:
-        m = re.search(r"\(at line (\d+), column \d+\)", str(exc))
-        where = f"{path}:{m.group(1)}" if m else str(path)
-        raise ScenarioError(f"{where}: not valid TOML: {exc}") from None
-    except UnicodeDecodeError as exc:
-        raise ScenarioError(f"{path}: not a text file ({exc})") from None
-    except OSError as exc:
-        raise ScenarioError(f"{path}: cannot read it ({exc.strerror or exc})") from None
-    base = data.get("scenario", {}).get("extends")
-    if base:
-        parent = _read((path.parent / base).resolve(), seen + (path,))
-        data = _merge(parent, data)
-        data["scenario"] = {k: v for k, v in data["scenario"].items() if k != "extends"}
-    return data
-
-
 def load_scenario(path: str | Path) -> Scenario:
+    """The scenario file ``path`` (its ``extends`` chain composed). For shipped names see
+    :func:`rotorcosim.load_scenario`."""
     path = Path(path).resolve()
-    return parse(_read(path), path)
+    data, origins = compose(path)
+    return parse(data, path, origins)
 
 
 def create_component(spec: ComponentSpec) -> Component:
+    """The component ``spec`` names; a bad implementation or parameter is an error naming the file that
+    chose it."""
+    where = f"{spec.origin}: " if spec.origin else ""
     if spec.fmu is not None:
         if spec.options.get("process") or "step_timeout" in spec.options:
             from rotorcosim.fmus.process import STEP_TIMEOUT_S, ProcessFMU
@@ -256,19 +257,26 @@ def create_component(spec: ComponentSpec) -> Component:
 
         return load_fmu_component(spec.fmu, spec.name, spec.parameters, spec.start)
     try:
-        return registry.create(spec.implementation, spec.name, spec.parameters)
+        return registry.create(spec.implementation, spec.name, spec.parameters, folder=spec.folder)
     except ContractError as exc:
-        raise ScenarioError(f"[components.{spec.name}]: {exc}") from None
+        bad = [p for p in spec.parameters if f"{p!r}" in str(exc) and spec.param_origins.get(p)]
+        if bad and spec.param_origins[bad[0]] != spec.origin:
+            where = f"{spec.param_origins[bad[0]]}: "  # the file that set the offending parameter
+        raise ScenarioError(f"{where}[components.{spec.name}]: {exc}") from None
 
 
 def build_system(sc: Scenario) -> System:
     try:
         comps = {name: create_component(spec) for name, spec in sc.components.items()}
-        cons = [Connection(c.src, c.dst, c.average, c.extrapolation, c.hold, c.convert, c.unit) for c in sc.connections]
-        return System(comps, cons, {k: v for k, v in sc.inputs.items()})
+        cons = [Connection(c.src, c.dst, c.average, c.extrapolation, c.hold, c.convert, c.unit, c.origin)
+                for c in sc.connections]
+        return System(comps, cons, {k: v for k, v in sc.inputs.items()},
+                      origins={n: c.origin for n, c in sc.components.items() if c.origin})
     except ContractError as exc:
-        # the file the problem is in, unless the message names it already
-        if sc.source and str(sc.source) not in str(exc):
+        # the file the problem is in, unless the message names one already (the composed file that brought it)
+        named = {str(sc.source)} | {c.origin for c in sc.components.values() if c.origin} \
+            | {c.origin for c in sc.connections if c.origin}
+        if sc.source and not any(f and f in str(exc) for f in named):
             raise ScenarioError(f"{sc.source}: {exc}") from None
         raise
 

@@ -189,13 +189,30 @@ def locate(source: Path | None, table: str, key: str | None) -> int | None:
 
 
 class _Checker:
-    def __init__(self, source: Path | None):
+    def __init__(self, source: Path | None, origins=None):
         self.source = Path(source) if source is not None else None
+        self.origins = origins  # compose.Origins: the file of the extends chain that brought each entry
+
+    def file_of(self, table: str, key: str | None) -> Path | None:
+        """The file that brought ``table``/``key`` (composition), else the scenario's own file."""
+        o, found = self.origins, None
+        if o is not None:
+            if table.startswith("components."):
+                comp = table[len("components."):]
+                found = (o.parameter(comp, key[len("parameters."):]) if key and key.startswith("parameters.")
+                         else o.component(comp))
+            elif table.startswith("connections #"):
+                i = int(table.split("#")[1]) - 1
+                found = o.connections[i] if 0 <= i < len(o.connections) else None
+            elif table == "inputs" and key:
+                found = o.inputs.get(key)
+        return Path(found) if found else self.source
 
     def fail(self, table: str, key: str | None, msg: str) -> SchemaError:
-        where = str(self.source) if self.source else "scenario"
+        source = self.file_of(table, key)
+        where = str(source) if source else "scenario"
         short = key[len("parameters."):] if key and key.startswith("parameters.") else key
-        line = locate(self.source, table, short)
+        line = locate(source, table, short)
         at = f"{where}:{line}" if line else where
         what = f"[{table}]" + (f" {key}" if key else "")
         return SchemaError(f"{at}: {what}: {msg}")
@@ -212,10 +229,11 @@ class _Checker:
                 raise self.fail(table, key, err)
 
 
-def check(data: Mapping[str, Any], source: str | Path | None = None) -> None:
+def check(data: Mapping[str, Any], source: str | Path | None = None, origins=None) -> None:
     """Raise :class:`SchemaError` for the first thing in ``data`` (a composed scenario dict) that breaks the
-    schema; ``source`` is the file it came from (for the message and the line)."""
-    c = _Checker(source)
+    schema; ``source`` is the file it came from, ``origins`` (compose.Origins) the file of the ``extends`` chain
+    that brought each component, parameter, connection and input (for the message and the line)."""
+    c = _Checker(source, origins)
     for name, value in data.items():
         if name not in TABLES:
             raise c.fail(name, None, f"unknown table{_did_you_mean(name, TABLES)}; known: {', '.join(TABLES)}")
@@ -302,8 +320,10 @@ def _registry_parameters(c: _Checker, table: str, impl: str, params: Mapping) ->
     """Names and kinds of the parameters against what the implementation declares."""
     from rotorcosim.components import registry
 
+    came = c.file_of(table, None)
     try:
-        cls = registry.lookup(impl)
+        # a plug-in "module:Class" imports from the folder of the file that names it
+        cls = registry.lookup(impl, str(came.parent) if came else None)
     except ContractError as exc:
         raise c.fail(table, "implementation", f"{exc}{_did_you_mean(impl, registry.available())}") from None
     except (ImportError, AttributeError):  # registered but its code does not import: building it will say so

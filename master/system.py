@@ -50,6 +50,7 @@ class Connection:
     hold: str | None = None
     convert: str | None = None
     unit: str | None = None
+    origin: str | None = None  #: the scenario file that brought it (named in errors)
 
     def __post_init__(self):
         for label, value, allowed in (("average", self.average, AVERAGES),
@@ -88,6 +89,8 @@ class System:
     components: dict[str, Component]
     connections: list[Connection]
     inputs: dict[str, np.ndarray] = field(default_factory=dict)
+    #: component name -> the scenario file that chose its implementation (named in errors)
+    origins: dict[str, str] = field(default_factory=dict)
 
     def __post_init__(self):
         self.check()
@@ -116,18 +119,12 @@ class System:
         self.converters: dict[str, object] = {}
         driven: dict[str, str] = {}
         for con in self.connections:
-            out = self._port(con.src, "output")
-            inp = self._port(con.dst, "input")
-            if out.size != inp.size:
-                raise SystemError_(f"{con.src} (size {out.size}) -> {con.dst} (size {inp.size}): sizes differ")
             try:
-                fn = link_conversion(out, inp, con.convert, con.unit, f"{con.src} -> {con.dst}")
-            except ConversionError as exc:
-                raise SystemError_(str(exc)) from None
-            if fn is not None:
-                self.converters[con.dst] = fn
-            if con.dst in driven:
-                raise SystemError_(f"{con.dst} is driven twice: by {driven[con.dst]} and by {con.src}")
+                self._check_connection(con, driven)
+            except SystemError_ as exc:
+                if con.origin is None:
+                    raise
+                raise SystemError_(f"{exc} (connection from {con.origin})") from None
             driven[con.dst] = con.src
         for ref, value in list(self.inputs.items()):
             inp = self._port(ref, "input")
@@ -144,8 +141,23 @@ class System:
                    if v.causality == "input" and v.carried and f"{name}.{v.name}" not in driven
                    and f"{name}.{v.name}" not in self.inputs]
         if missing:
+            where = sorted({self.origins[m.partition(".")[0]] for m in missing if m.partition(".")[0] in self.origins})
             raise SystemError_("inputs left unconnected (connect them or give a constant under [inputs]): "
-                               + ", ".join(missing))
+                               + ", ".join(missing) + (f" (components from {', '.join(where)})" if where else ""))
+
+    def _check_connection(self, con: Connection, driven: dict[str, str]) -> None:
+        out = self._port(con.src, "output")
+        inp = self._port(con.dst, "input")
+        if out.size != inp.size:
+            raise SystemError_(f"{con.src} (size {out.size}) -> {con.dst} (size {inp.size}): sizes differ")
+        try:
+            fn = link_conversion(out, inp, con.convert, con.unit, f"{con.src} -> {con.dst}")
+        except ConversionError as exc:
+            raise SystemError_(str(exc)) from None
+        if fn is not None:
+            self.converters[con.dst] = fn
+        if con.dst in driven:
+            raise SystemError_(f"{con.dst} is driven twice: by {driven[con.dst]} and by {con.src}")
 
     def connections_into(self, component: str) -> list[Connection]:
         return [c for c in self.connections if c.dst_component == component]

@@ -1,5 +1,15 @@
 """rotorcosim: co-simulation of a dual-rotor gas turbine engine during and after a blade-loss event.
 
+The Python API (``master/api.py``)::
+
+    import rotorcosim
+    sc = rotorcosim.load_scenario("blade_loss_2850")          # shipped name or path
+    sc = sc.set({"rotor.F_unbalance": 5700.0})                 # returns a new scenario
+    sc = sc.swap("damper0", "damper.fe")                       # registry name, "module:Class", or a .fmu path
+    res = rotorcosim.simulate(sc, duration=0.05)               # schedule=..., out=DIR writes the CLI's files
+    res.time, res.phase, res["bearing0.P_drag"], res.summary   # numpy arrays; summary as in summary.json
+    df = res.to_dataframe()                                    # labelled columns with units (needs pandas)
+
 The code lives in the top-level folders fixed by the design card and is installed as sub-packages:
 ``rotorcosim.components`` (components/), ``rotorcosim.master`` (master/), ``rotorcosim.fmus`` (fmus/).
 """
@@ -17,3 +27,18 @@ _os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 _checkout = _os.path.dirname(_os.path.dirname(_os.path.abspath(__file__)))
 if _os.path.isfile(_os.path.join(_checkout, "components", "contract.py")):
     __path__.append(_checkout)  # noqa: F821  (module attribute of a package)
+
+#: the API, imported on first use so that ``rotorcosim --help`` and the light commands start fast
+_API = ("load_scenario", "simulate", "Result", "Scenario", "SimulationDiverged")
+
+
+def __getattr__(name):
+    if name in _API:
+        from rotorcosim.master import api
+
+        return getattr(api, name)
+    raise AttributeError(f"module 'rotorcosim' has no attribute {name!r}")
+
+
+def __dir__():
+    return sorted(list(globals()) + list(_API))

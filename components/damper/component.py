@@ -90,8 +90,10 @@ class _Damper(Component):
         Variable("F_spring", "output", 2, "N", "centering spring force on the journal"),
         Variable("F_contact", "output", 2, "N", "journal-housing wall contact force on the journal"),
         Variable("K_film", "output", 4, "N/m",
-                 "dF_journal/dX_journal, row-major [dFx/dx, dFx/dy, dFy/dx, dFy/dy] (film + spring + contact)"),
-        Variable("C_film", "output", 4, "N.s/m", "dF_journal/dV_journal, row-major (film)"),
+                 "dF_journal/dX_journal, row-major [dFx/dx, dFx/dy, dFy/dx, dFy/dy] (film + spring + contact)",
+                 labels=("xx", "xy", "yx", "yy")),
+        Variable("C_film", "output", 4, "N.s/m", "dF_journal/dV_journal, row-major (film)",
+                 labels=("xx", "xy", "yx", "yy")),
         Variable("P_film", "output", 1, "W", "viscous power loss of the film, -F_film . w, at the end of the step"),
         Variable("mu", "output", 1, "Pa.s", "oil viscosity at T_oil"),
     )

@@ -79,13 +79,14 @@ class ThermalNetwork(Component):
         Variable("P_sfd", "input", 1, "W", "squeeze film viscous power (mean over the step)"),
         Variable("P_rub", "input", 1, "W", "rub friction power, eq. (11) (mean over the step)"),
         Variable("eps", "output", 3, "m",
-                 "thermal growths [eps_i, eps_e, eps_b]: inner raceway, outer raceway, ball radius; + = expansion"),
+                 "thermal growths [eps_i, eps_e, eps_b]: inner raceway, outer raceway, ball radius; + = expansion",
+                 labels=("inner_race", "outer_race", "ball")),
         Variable("T_oil", "output", 1, "K", "bearing oil temperature (mean of the lubricant nodes)", start=303.15),
         Variable("T_sfd_oil", "output", 1, "K", "squeeze-film oil temperature", start=303.15),
         Variable("T_inner_race", "output", 1, "K", "inner race temperature", start=303.15),
         Variable("T_ball", "output", 1, "K", "ball temperature", start=303.15),
         Variable("T_outer_race", "output", 1, "K", "outer race temperature", start=303.15),
-        Variable("T_nodes", "output", 9, "K", "all nodes: " + ", ".join(NODES), start=303.15),
+        Variable("T_nodes", "output", 9, "K", "all nodes: " + ", ".join(NODES), start=303.15, labels=tuple(NODES)),
     )
     preferred_step = 1e-3
     phases = frozenset({"TM", "TO"})

@@ -1,4 +1,7 @@
-"""``rotorcosim run [SCENARIO] [--unbalance N] [--duration S] [--schedule paper|auto|monolithic] --out DIR``.
+"""``rotorcosim run [SCENARIO] [--unbalance N] [--duration S] [--schedule paper|auto|monolithic]
+[--set COMP.PARAM=VALUE]... [--swap COMP=IMPL|FILE.fmu]... [--record COMP.PORT,...] --out DIR``.
+
+A thin layer over :func:`rotorcosim.simulate` (``master/api.py``).
 
 Runs a scenario (a TOML file, a shipped scenario name, or an SSP archive) and writes into DIR:
 ``summary.json`` (the timeline used, the wall time, and the scenario's results: for the blade-loss scenarios
@@ -9,33 +12,31 @@ the summary, with the component and the time under ``stopped``, and the command 
 """
 from __future__ import annotations
 
-import contextlib
-import importlib
-import os
 import sys
-import time
 from pathlib import Path
 
-from rotorcosim import scenarios
 from rotorcosim.master import budget, checkpoint, watchdog
 from rotorcosim.master.algorithm import SimulationDiverged
-from rotorcosim.master.observers import Progress, Recorder
-from rotorcosim.master.outputs import write_json
-from rotorcosim.master.rundir import RunFolder
-from rotorcosim.master.scenario import Scenario, build_simulation, load_scenario, schedule_of
-from rotorcosim.master.schedule import Timeline
+from rotorcosim.master.api import DEFAULT_SCENARIO, SCHEDULES, load_scenario, simulate
+from rotorcosim.master.overrides import apply_set, apply_swap, parse_set, parse_swap
+from rotorcosim.master.scenario import Scenario
 
-DEFAULT_SCENARIO = "blade_loss_2850"
-SCHEDULES = {"paper": None, "auto": "auto", "monolithic": "monolithic"}
+#: where a command-line change is said to come from, in error messages
+CLI_ORIGIN = "the command line (--set/--swap)"
 
 
 def add_arguments(p):
     p.add_argument("scenario", nargs="?", default=None,
-                   help=f"scenario TOML file, shipped scenario name or .ssp archive (default: {DEFAULT_SCENARIO})")
+                   help=f"scenario TOML file, shipped scenario name or .ssp archive (default: {DEFAULT_SCENARIO}; "
+                        f"`rotorcosim scenarios` lists them)")
     p.add_argument("--unbalance", type=float, default=None, help="blade-loss unbalance force F_u [N]")
     p.add_argument("--duration", type=float, default=None, help="simulated duration [s] (cuts the timeline)")
     p.add_argument("--schedule", choices=sorted(SCHEDULES), default="paper",
                    help="paper: the scenario's timeline; auto: switch TM/TO automatically; monolithic: one TM interval")
+    add_edit_arguments(p)
+    p.add_argument("--record", default=None, metavar="COMP.PORT,...",
+                   help="the ports to record, comma-separated (default: the scenario's [outputs] record; the "
+                        "figures need the scenario's own)")
     p.add_argument("--out", required=True, help="output folder (empty, or see --overwrite / --resume)")
     p.add_argument("--overwrite", action="store_true", help="replace the results of a previous run in --out")
     p.add_argument("--resume", action="store_true",
@@ -54,17 +55,27 @@ def add_arguments(p):
     p.add_argument("--quiet", action="store_true", help="no progress bar")
 
 
-def resolve(name: str | None) -> Scenario:
-    if name is None:
-        return load_scenario(scenarios.path(DEFAULT_SCENARIO))
-    p = Path(name)
-    if p.suffix.lower() == ".ssp":
-        from rotorcosim.fmus.ssp import read_ssp
+def add_edit_arguments(p):
+    """``--set`` and ``--swap``, for every command that runs a scenario."""
+    p.add_argument("--set", action="append", default=[], metavar="COMP.PARAM=VALUE", dest="set_values",
+                   help="set a component parameter (SI; repeatable), e.g. --set rotor.F_unbalance=5700")
+    p.add_argument("--swap", action="append", default=[], metavar="COMP=IMPL|FILE.fmu",
+                   help="give a component another implementation: a registry name (damper.fe), module:Class "
+                        "or an FMU file (repeatable)")
 
-        return read_ssp(p)
-    if p.exists() or p.suffix:
-        return load_scenario(p)
-    return load_scenario(scenarios.path(name))
+
+def apply_edits(sc: Scenario, args) -> Scenario:
+    """The scenario with the command line's ``--swap`` then ``--set`` applied (swaps first, so that a --set
+    can give the new implementation's parameters)."""
+    for text in getattr(args, "swap", []) or []:
+        sc = apply_swap(sc, *parse_swap(text), origin=CLI_ORIGIN)
+    values = dict(parse_set(text) for text in getattr(args, "set_values", []) or [])
+    return apply_set(sc, values, origin=CLI_ORIGIN) if values else sc
+
+
+def resolve(name: str | None) -> Scenario:
+    """A shipped scenario name, a TOML file or an SSP archive (:func:`rotorcosim.load_scenario`)."""
+    return load_scenario(name)
 
 
 def apply_unbalance(sc: Scenario, force: float) -> None:
@@ -83,126 +94,40 @@ def apply_unbalance(sc: Scenario, force: float) -> None:
         sc.name = f"{sc.name.rsplit('_', 1)[0] if sc.name.rsplit('_', 1)[-1].isdigit() else sc.name}_{force:g}"
 
 
-def postprocessor(sc: Scenario):
-    """The module that turns a run into the scenario's results (``[results] kind``), or None."""
-    kind = sc.extra.get("results", {}).get("kind")
-    if not kind:
-        return None
-    try:
-        return importlib.import_module(f"rotorcosim.master.results_{kind}")
-    except ModuleNotFoundError as exc:
-        raise ValueError(f"[results] kind {kind!r}: no such result extraction ({exc})") from None
-
-
 def execute(sc: Scenario, out: Path, schedule_kind: str | None = None, duration: float | None = None,
-            figures: bool = True, quiet: bool = True, schedule=None, *, overwrite: bool = False,
+            figures: bool = True, quiet: bool = True, schedule=None, *, record=None, overwrite: bool = False,
             resume: bool = False, force: bool = False, checkpoint_every: float = checkpoint.EVERY_S,
             step_timeout: float = 0.0) -> dict:
-    """Run ``sc`` into ``out``; returns the summary (also written to out/summary.json).
+    """Run ``sc`` into ``out``; returns the summary (also written to out/summary.json). A thin layer over
+    :func:`rotorcosim.simulate` (its docstring says the rest) kept for the other commands.
 
     ``schedule`` (a Timeline or AutoSchedule) overrides the scenario's; otherwise ``schedule_kind`` and
-    ``duration`` adjust it. ``out`` must be empty (or hold a previous run's results and ``overwrite``, or an
-    interrupted run and ``resume``: rundir.py); the run is refused before it starts if it is estimated above
-    budget.LIMIT_S of wall time (unless ``force``). The summary's ``status`` says how it ended: ``complete``,
-    ``interrupted`` (SIGINT/SIGTERM: resume it with ``resume=True``) or ``failed``; on anything but
-    ``complete`` the error is raised after the summary and the time series are written."""
+    ``duration`` adjust it."""
     if duration is not None and not (duration > 0 and duration < float("inf")):
         raise ValueError(f"--duration must be a positive number of seconds, got {duration}")
     if schedule is None:
-        schedule = schedule_of(sc, schedule_kind, duration)
-    estimate = budget.check(sc, schedule, force)
-    if not quiet and estimate["wall_s"] > 60:
-        print(f"{sc.name}: {estimate['steps']:,} steps, estimated {estimate['wall']} of wall time", file=sys.stderr)
-    total = schedule.duration
-    post = postprocessor(sc)
-    o = sc.outputs
-    record = list(o.get("record", []))
-    fmt = o.get("format", "h5")
-    if fmt not in ("h5", "csv"):
-        raise ValueError(f"[outputs] format {fmt!r} not in ('h5', 'csv')")
-    speed = sc.schedule.get("speed_rpm")
-    if post is not None and not speed:
-        raise ValueError(f"scenario {sc.name!r}: [results] needs schedule.speed_rpm (steady windows in rotor cycles)")
-    key = checkpoint.fingerprint(sc.name, sc.components, sc.connections, sc.inputs, sc.algorithm, sc.schedule,
-                                 sc.outputs, sc.extra, schedule)
-    with RunFolder(out, overwrite=overwrite, resume=resume) as folder, checkpoint.StopRequest() as stop:
-        out = folder.path
-        point = checkpoint.load(out / checkpoint.CHECKPOINT, key) if resume else None
-        series = out / f"timeseries.{fmt}"
-        observers = []
-        if record:
-            observers.append(Recorder(series, record, float(o.get("record_step", 1e-4))))
-        post_obs = post.observers(sc, speed) if post is not None else []
-        observers += post_obs
-        observers.append(Progress(total, disable=quiet, desc=sc.name))
-        saver = checkpoint.Checkpointer(out / checkpoint.CHECKPOINT, stop, checkpoint_every, key)
-        observers.append(saver)  # last: it sees every other observer done with the step
-        sim = build_simulation(sc, observers)
-        head = {"scenario": sc.name, "source": str(sc.source) if sc.source else None,
-                "schedule": schedule_kind or sc.schedule.get("kind", "monolithic"), "duration_s": total,
-                "estimate": estimate}
-        write_json(out / "summary.json", {**head, "status": "running", "pid": os.getpid(),
-                                          "resumed_from_t_s": point.t if point else None})
-        t_wall = time.perf_counter()
-        error = None
+        schedule = {None: "paper", "auto": "auto", "monolithic": "monolithic"}.get(schedule_kind, schedule_kind)
+    elif duration is not None:
+        raise ValueError("give duration or a schedule object, not both")
+    res = simulate(sc, duration=duration, schedule=schedule, out=out, figures=figures, progress=not quiet,
+                   record=record, overwrite=overwrite, resume=resume, force=force, checkpoint_every=checkpoint_every,
+                   step_timeout=step_timeout)
+    return res.summary
 
-        def hung(msg: str) -> None:  # the watchdog's last act before it ends the process
-            write_json(out / "summary.json", {**head, "status": "failed", "error": msg, "t_end_s": sim.t,
-                                              "checkpoint": checkpoint.CHECKPOINT if saver.saved else None})
 
-        guard = watchdog.Watchdog(step_timeout, hung, "rotorcosim run") if step_timeout > 0 else contextlib.nullcontext()
-        try:
-            with guard:
-                report = checkpoint.resume(sim, schedule, point) if point else sim.run(schedule)
-            status = report.status  # "complete", or "stopped" (a component asked to stop)
-        except checkpoint.RunInterrupted as exc:
-            error, status = exc, "interrupted"
-        except BaseException as exc:  # diverged, disk full, a component's failure: summary first, then raise
-            error, status = exc, ("interrupted" if isinstance(exc, KeyboardInterrupt) else "failed")
-        report = sim.report
-        summary = {
-            **head,
-            "status": status,
-            "t_end_s": report.t_end,
-            "timeline": [u.as_dict() for u in report.timeline],
-            "hold": report.hold.as_dict() if report.hold is not None else None,
-            "wall_time_s": time.perf_counter() - t_wall,
-            "resumed_from_t_s": point.t if point else None,
-            "component_steps": report.component_steps,
-            "timeseries": series.name if record else None,
-            # "complete", "stopped" (a component asked to stop: "stopped" names it and the time), "interrupted"
-            # (SIGINT/SIGTERM: --resume continues it) or "failed"
-            "stopped": report.stopped,
-            "checkpoint": (checkpoint.CHECKPOINT if status in ("interrupted", "failed") and saver.saved else None),
-            "checkpoint_note": saver.disabled,
-            "error": None if error is None else f"{type(error).__name__}: {error}",
-        }
-        try:
-            if post is not None:
-                summary.update(post.extract(sc, sim, post_obs, report))
-                if figures and status in ("complete", "stopped"):
-                    summary["figures"] = post.figures(sc, series if record else None, out)
-            else:
-                summary["final_outputs"] = {f"{n}.{k}": v for n, c in sim.system.components.items()
-                                            for k, v in c.y.items()}
-        except Exception as exc:
-            if error is None:
-                raise
-            summary["results_error"] = f"{type(exc).__name__}: {exc}"
-        try:
-            write_json(out / "summary.json", summary)
-        except OSError:
-            if error is None:
-                raise
-        if status in ("complete", "stopped"):
-            (out / checkpoint.CHECKPOINT).unlink(missing_ok=True)
-        if error is not None:
-            raise error
-    return summary
+def parse_record(text: str | None) -> list[str] | None:
+    if text is None:
+        return None
+    refs = [r.strip() for r in text.split(",") if r.strip()]
+    if not refs:
+        raise ValueError("--record: no port given (write comp.port,comp.port,...)")
+    return refs
 
 
 def run(args) -> int:
-    sc = resolve(args.scenario)
+    if args.duration is not None and not (args.duration > 0 and args.duration < float("inf")):
+        raise ValueError(f"--duration must be a positive number of seconds, got {args.duration}")
+    sc = apply_edits(resolve(args.scenario), args)
     if args.unbalance is not None:
         apply_unbalance(sc, args.unbalance)
     if not (0 <= args.step_timeout < float("inf")):
@@ -214,23 +139,26 @@ def run(args) -> int:
                 spec.options.setdefault("step_timeout", args.step_timeout)
     if not (args.checkpoint_every > 0):
         raise ValueError(f"--checkpoint-every must be a positive number of seconds, got {args.checkpoint_every}")
+    out = Path(args.out)
     try:
-        summary = execute(sc, args.out, SCHEDULES[args.schedule], args.duration,
-                          figures=not args.no_figures, quiet=args.quiet, overwrite=args.overwrite,
-                          resume=args.resume, force=args.force, checkpoint_every=args.checkpoint_every,
-                          step_timeout=args.step_timeout)
+        res = simulate(sc, duration=args.duration, schedule=args.schedule, out=args.out,
+                       record=parse_record(args.record), figures=not args.no_figures, progress=not args.quiet,
+                       overwrite=args.overwrite, resume=args.resume, force=args.force,
+                       checkpoint_every=args.checkpoint_every, step_timeout=args.step_timeout)
     except SimulationDiverged as exc:
-        print(f"rotorcosim run: the simulation diverged: {exc}; what was recorded is in {args.out} "
+        print(f"rotorcosim run: the simulation diverged: {exc}; what was recorded is in {out} "
               "(summary.json has the error)", file=sys.stderr)
         return 1
     except KeyboardInterrupt as exc:
-        print(f"rotorcosim run: interrupted ({exc or 'SIGINT'}); the time series and summary.json in {args.out} "
+        print(f"rotorcosim run: interrupted ({exc or 'SIGINT'}); the time series and summary.json in {out} "
               f"hold what was computed; continue with the same command and --resume", file=sys.stderr)
         return 130
-    stop = summary.get("stopped")
+    s = res.summary
+    stop = s.get("stopped")
     if stop:
         print(f"rotorcosim run: {stop['component']} asked to stop the simulation at t = {stop['t_s']:.9g} s; "
               f"the run ended there (status \"stopped\")")
-    print(f"{sc.name}: {summary['t_end_s']:.4g} s simulated in {summary['wall_time_s']:.3g} s wall time; "
-          f"results in {args.out}/summary.json")
+    print(f"{sc.name}: {s['t_end_s']:.4g} s simulated in {s['wall_time_s']:.3g} s wall time")
+    # the last line: every file the run wrote
+    print("written: " + ", ".join(str(f) for f in res.files))
     return 0

@@ -25,6 +25,7 @@ from pathlib import Path
 from typing import Any
 
 from rotorcosim.master.outputs import write_json
+from rotorcosim.master.overrides import parse_set
 
 from .run import apply_unbalance, execute, resolve
 from .table5 import PAPER_LEVELS, write_table5
@@ -70,35 +71,15 @@ def parse_levels(text: str) -> list[float]:
     return out
 
 
-def _value(text: str, where: str) -> Any:
-    """One value of a ``--set`` list: a number, true/false, or else the bare text (string parameters)."""
-    t = text.strip()
-    if not t:
-        raise ValueError(f"{where}: an empty value")
-    if t.lower() in ("true", "false"):
-        return t.lower() == "true"
-    try:
-        v = float(t)
-    except ValueError:
-        return t
-    if v != v or v in (float("inf"), float("-inf")):
-        raise ValueError(f"{where}: {t!r} is not a finite number")
-    return v
-
-
 def parse_grid(items: list[str]) -> dict[str, list[Any]]:
-    """``["comp.param=v1,v2", ...]`` -> ``{"comp.param": [v1, v2], ...}`` (order kept)."""
+    """``["comp.param=v1,v2", ...]`` -> ``{"comp.param": [v1, v2], ...}`` (order kept); each item read by the
+    one ``--set`` parser, :func:`rotorcosim.master.overrides.parse_set`."""
     grid: dict[str, list[Any]] = {}
     for item in items:
-        ref, eq, values = item.partition("=")
-        ref = ref.strip()
         where = f"--set {item!r}"
-        comp, dot, param = ref.partition(".")
-        if not eq or not dot or not comp or not param:
-            raise ValueError(f"{where}: expected COMP.PARAM=V1,V2,...")
+        ref, vals = parse_set(item, values=True)
         if ref in grid:
             raise ValueError(f"{where}: {ref} is given twice")
-        vals = [_value(v, where) for v in values.split(",")]
         if len(set(map(repr, vals))) != len(vals):
             raise ValueError(f"{where}: a value is repeated")
         grid[ref] = vals

@@ -37,7 +37,7 @@ def test_run_csv_output(tmp_path):
     src.write_text(text)
     assert main(["run", str(src), "--out", str(tmp_path / "o"), "--quiet", "--duration", "1"]) == 0
     header = (tmp_path / "o" / "timeseries.csv").read_text().splitlines()[0]
-    assert header.startswith("time,phase,osc.x[1] (m)")
+    assert header.startswith("time (s),phase,osc.x (m)")
 
 
 @pytest.mark.parametrize("argv, message", [

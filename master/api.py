@@ -1,0 +1,296 @@
+"""The Python API: everything the command line does, as functions returning results in memory.
+
+::
+
+    import rotorcosim
+    sc = rotorcosim.load_scenario("blade_loss_2850")          # shipped name or path (TOML or .ssp)
+    sc = sc.set({"rotor.F_unbalance": 5700.0})                 # returns a new scenario
+    sc = sc.swap("damper0", "damper.fe")                       # registry name, "module:Class", or a .fmu path
+    res = rotorcosim.simulate(sc, duration=0.05)               # schedule=..., out=DIR writes the CLI's files
+    res.time, res.phase, res["bearing0.P_drag"], res.summary   # numpy arrays; summary as in summary.json
+    df = res.to_dataframe()                                    # labelled columns with units (needs pandas)
+
+``rotorcosim run`` is :func:`simulate` with ``out=DIR``; the run is recorded in memory by the same observer
+that streams the time series to disk, so the result never needs the file read back.
+"""
+from __future__ import annotations
+
+import contextlib
+import importlib
+import os
+import sys
+import time
+from pathlib import Path
+from typing import Any, Sequence
+
+import numpy as np
+
+from rotorcosim import scenarios
+
+from . import budget, checkpoint, watchdog
+from .algorithm import SimulationDiverged
+from .observers import Progress, Recorder, column_names
+from .outputs import write_json
+from .rundir import RunFolder
+from .scenario import Scenario, build_simulation, load_scenario as _load_file, schedule_of
+from .schedule import AutoSchedule, Timeline
+
+DEFAULT_SCENARIO = "blade_loss_2850"
+#: ``schedule=`` names: the scenario's own schedule (its timeline), automatic, one TM interval
+SCHEDULES = {"paper": None, "auto": "auto", "monolithic": "monolithic"}
+PHASE_NAMES = np.array(["TM", "TO"])
+
+
+def load_scenario(name_or_path: str | Path | None = None) -> Scenario:
+    """A scenario: a shipped name (``"blade_loss_2850"``, see ``rotorcosim scenarios``), a TOML file, or an SSP
+    archive (``.ssp``). None gives the default, ``blade_loss_2850``."""
+    if name_or_path is None:
+        return _load_file(scenarios.path(DEFAULT_SCENARIO))
+    p = Path(name_or_path)
+    if p.suffix.lower() == ".ssp":
+        from rotorcosim.fmus.ssp import read_ssp
+
+        return read_ssp(p)
+    if p.exists() or p.suffix:
+        return _load_file(p)
+    return _load_file(scenarios.path(str(name_or_path)))
+
+
+def _postprocessor(sc: Scenario):
+    """The module that turns a run into the scenario's results (``[results] kind``), or None."""
+    kind = sc.extra.get("results", {}).get("kind")
+    if not kind:
+        return None
+    try:
+        return importlib.import_module(f"rotorcosim.master.results_{kind}")
+    except ModuleNotFoundError as exc:
+        raise ValueError(f"[results] kind {kind!r}: no such result extraction ({exc})") from None
+
+
+def _schedule(sc: Scenario, schedule, duration: float | None):
+    if duration is not None and not (duration > 0 and duration < float("inf")):
+        raise ValueError(f"duration must be a positive number of seconds, got {duration}")
+    if isinstance(schedule, (Timeline, AutoSchedule)):
+        if duration is not None:
+            raise ValueError("give duration or a schedule object, not both")
+        return schedule, None
+    if schedule is not None and schedule not in SCHEDULES:
+        raise ValueError(f"schedule {schedule!r}: use one of {sorted(SCHEDULES)} or a Timeline/AutoSchedule")
+    kind = SCHEDULES.get(schedule) if schedule is not None else None
+    return schedule_of(sc, kind, duration), kind
+
+
+class Result:
+    """A run in memory: ``time`` [s], ``phase`` ("TM" / "TO" per sample), ``res["comp.port"]`` (a 1-D array for a
+    scalar port, (n, size) for a vector one; SI units, see :meth:`unit` / :meth:`columns`), ``summary`` (the dict
+    written to summary.json), ``files`` (the files written, with ``out=``)."""
+
+    def __init__(self, data: dict[str, np.ndarray], variables: dict, summary: dict, files: Sequence[Path] = ()):
+        self._data = data
+        self._vars = variables
+        self.summary = summary
+        self.files = [Path(f) for f in files]
+
+    @property
+    def time(self) -> np.ndarray:
+        return self._data["time"]
+
+    @property
+    def phase(self) -> np.ndarray:
+        return PHASE_NAMES[self._data["phase"].astype(int)]
+
+    @property
+    def signals(self) -> list[str]:
+        """The recorded ports, ``component.port``."""
+        return list(self._vars)
+
+    def __contains__(self, ref: str) -> bool:
+        return ref in self._vars
+
+    def __getitem__(self, ref: str) -> np.ndarray:
+        if ref not in self._vars:
+            raise KeyError(f"{ref!r} was not recorded; recorded: {', '.join(self._vars) or 'nothing'} "
+                           f"(choose with simulate(..., record=[...]) or the scenario's [outputs] record)")
+        x = self._data[ref]
+        return x[:, 0] if x.shape[1] == 1 else x
+
+    def unit(self, ref: str) -> str:
+        self[ref]
+        return self._vars[ref].unit
+
+    def columns(self, ref: str) -> list[str]:
+        """Names of a port's vector elements (``["x", "y", "z"]``, ``["inner", "outer"]``...)."""
+        self[ref]
+        return self._vars[ref].column_labels()
+
+    def to_dataframe(self):
+        """A pandas DataFrame: ``time (s)``, ``phase`` and one column per recorded element, labelled with its
+        unit (``rotor.X_brg0[x] (m)``, ``bearing0.P_drag (W)``). pandas is not a dependency of rotorcosim (the
+        arrays need none); install it to use this."""
+        try:
+            import pandas as pd
+        except ImportError:
+            raise ImportError("Result.to_dataframe() needs pandas, which rotorcosim does not install: "
+                              "pip install pandas (or use res.time, res.phase and res['comp.port'])") from None
+        names = column_names(self.signals, self._vars)
+        blocks = [self._data[r] for r in self.signals]
+        values = np.hstack(blocks) if blocks else np.zeros((len(self.time), 0))
+        df = pd.DataFrame(values, columns=names)
+        df.insert(0, "phase", self.phase)
+        df.insert(0, "time (s)", self.time)
+        return df
+
+    def __repr__(self) -> str:
+        return (f"<Result {self.summary.get('scenario')!r}: {len(self.time)} samples to t = "
+                f"{self.summary.get('t_end_s', float('nan')):.4g} s, {len(self._vars)} signals>")
+
+
+def simulate(sc: Scenario | str | Path, duration: float | None = None, schedule=None, out: str | Path | None = None,
+             record: Sequence[str] | None = None, figures: bool = True, progress: bool = False, *,
+             overwrite: bool = False, resume: bool = False, force: bool = False,
+             checkpoint_every: float = checkpoint.EVERY_S, step_timeout: float = 0.0) -> Result:
+    """Run scenario ``sc`` (a :class:`Scenario`, or a name or path for :func:`load_scenario`).
+
+    ``duration`` [s] cuts the schedule; ``schedule`` is ``"paper"`` (the scenario's own), ``"auto"``,
+    ``"monolithic"`` or a :class:`~rotorcosim.master.schedule.Timeline` / ``AutoSchedule``; ``record`` the ports
+    to record (default: the scenario's ``[outputs] record``); ``progress`` shows a progress bar.
+
+    ``out``: a folder that receives what ``rotorcosim run`` writes (summary.json, the time series, the figures
+    unless ``figures=False``). It must be empty, or hold a previous run's results and ``overwrite``, or an
+    interrupted run and ``resume`` (rundir.py); runs with a folder are checkpointed every ``checkpoint_every``
+    wall seconds and at each interval end. Any run is refused before it starts if it is estimated above
+    budget.LIMIT_S of wall time, unless ``force``. ``step_timeout`` [s] (0: none) ends a run whose component
+    step hangs (watchdog.py), writing a failed summary first.
+
+    The summary's ``status`` says how the run ended: ``complete``, ``stopped`` (a component asked to stop),
+    ``interrupted`` (SIGINT/SIGTERM) or ``failed``; on ``interrupted`` and ``failed`` the error is raised after
+    the summary and the time series are written, carrying the partial :class:`Result` as ``.result``."""
+    if not isinstance(sc, Scenario):
+        sc = load_scenario(sc)
+    sch, kind = _schedule(sc, schedule, duration)
+    estimate = budget.check(sc, sch, force)
+    if progress and estimate["wall_s"] > 60:
+        print(f"{sc.name}: {estimate['steps']:,} steps, estimated {estimate['wall']} of wall time", file=sys.stderr)
+    post = _postprocessor(sc)
+    o = sc.outputs
+    signals = list(o.get("record", []) if record is None else record)
+    for ref in signals:
+        if not isinstance(ref, str) or "." not in ref:
+            raise ValueError(f"record: {ref!r} must be written 'component.port'")
+    fmt = o.get("format", "h5")
+    if fmt not in ("h5", "csv"):
+        raise ValueError(f"[outputs] format {fmt!r} not in ('h5', 'csv')")
+    speed = sc.schedule.get("speed_rpm")
+    if post is not None and not speed:
+        raise ValueError(f"scenario {sc.name!r}: [results] needs schedule.speed_rpm (steady windows in rotor cycles)")
+    with contextlib.ExitStack() as stack:
+        point = saver = series = None
+        if out is not None:
+            key = checkpoint.fingerprint(sc.name, sc.components, sc.connections, sc.inputs, sc.algorithm,
+                                         sc.schedule, sc.outputs, sc.extra, sch)
+            folder = stack.enter_context(RunFolder(out, overwrite=overwrite, resume=resume))
+            stop = stack.enter_context(checkpoint.StopRequest())
+            out = folder.path
+            point = checkpoint.load(out / checkpoint.CHECKPOINT, key) if resume else None
+            series = out / f"timeseries.{fmt}" if signals else None
+        recorder = Recorder(series, signals, float(o.get("record_step", 1e-4)), keep=True)
+        post_obs = post.observers(sc, speed) if post is not None else []
+        observers = [recorder, *post_obs, Progress(sch.duration, disable=not progress, desc=sc.name)]
+        if out is not None:
+            saver = checkpoint.Checkpointer(out / checkpoint.CHECKPOINT, stop, checkpoint_every, key)
+            observers.append(saver)  # last: it sees every other observer done with the step
+        sim = build_simulation(sc, observers)
+        head = {"scenario": sc.name, "source": str(sc.source) if sc.source else None,
+                "schedule": kind or sc.schedule.get("kind", "monolithic"), "duration_s": sch.duration,
+                "estimate": estimate}
+        if out is not None:
+            write_json(out / "summary.json", {**head, "status": "running", "pid": os.getpid(),
+                                              "resumed_from_t_s": point.t if point else None})
+        t_wall = time.perf_counter()
+        error = None
+
+        def hung(msg: str) -> None:  # the watchdog's last act before it ends the process
+            if out is not None:
+                write_json(out / "summary.json", {**head, "status": "failed", "error": msg, "t_end_s": sim.t,
+                                                  "checkpoint": checkpoint.CHECKPOINT if saver.saved else None})
+
+        guard = watchdog.Watchdog(step_timeout, hung, "rotorcosim run") if step_timeout > 0 else contextlib.nullcontext()
+        try:
+            with guard:
+                report = checkpoint.resume(sim, sch, point) if point else sim.run(sch)
+            status = report.status  # "complete", or "stopped" (a component asked to stop)
+        except checkpoint.RunInterrupted as exc:
+            error, status = exc, "interrupted"
+        except BaseException as exc:  # diverged, disk full, a component's failure: summary first, then raise
+            error, status = exc, ("interrupted" if isinstance(exc, KeyboardInterrupt) else "failed")
+        report = sim.report
+        summary: dict[str, Any] = {
+            **head,
+            "status": status,
+            "t_end_s": report.t_end,
+            "timeline": [u.as_dict() for u in report.timeline],
+            "hold": report.hold.as_dict() if report.hold is not None else None,
+            "wall_time_s": time.perf_counter() - t_wall,
+            "resumed_from_t_s": point.t if point else None,
+            "component_steps": report.component_steps,
+            "timeseries": series.name if series is not None else None,
+            # "complete", "stopped" (a component asked to stop: "stopped" names it and the time), "interrupted"
+            # (SIGINT/SIGTERM: resume continues it) or "failed"
+            "stopped": report.stopped,
+            "checkpoint": (checkpoint.CHECKPOINT if saver is not None and status in ("interrupted", "failed")
+                           and saver.saved else None),
+            "checkpoint_note": saver.disabled if saver is not None else None,
+            "error": None if error is None else f"{type(error).__name__}: {error}",
+        }
+        # a resumed run holds in memory only what it computed itself: the whole series is in the file
+        data = _read_series(series) if point is not None and series is not None else recorder.data()
+        files = [series] if series is not None and series.exists() else []
+        try:
+            if post is not None:
+                summary.update(post.extract(sc, sim, post_obs, report))
+                if figures and out is not None and status in ("complete", "stopped"):
+                    names = post.figures(sc, data, out)
+                    summary["figures"] = names
+                    files += [out / n for n in names]
+            else:
+                summary["final_outputs"] = {f"{n}.{k}": v for n, c in sim.system.components.items()
+                                            for k, v in c.y.items()}
+        except Exception as exc:
+            if error is None:
+                raise
+            summary["results_error"] = f"{type(exc).__name__}: {exc}"
+        if out is not None:
+            try:
+                files.insert(0, write_json(out / "summary.json", summary))
+            except OSError:
+                if error is None:
+                    raise
+            if status in ("complete", "stopped"):
+                (out / checkpoint.CHECKPOINT).unlink(missing_ok=True)
+        result = Result(data, dict(recorder.variables), _roundtrip(summary), files)
+        if error is not None:
+            try:
+                error.result = result
+            except AttributeError:  # an exception type without a __dict__
+                pass
+            raise error
+    return result
+
+
+def _read_series(path: Path) -> dict[str, np.ndarray]:
+    """A time series file back as arrays (only for a resumed run, whose first part was computed earlier)."""
+    if path.suffix.lower() not in (".h5", ".hdf5"):
+        return {}
+    import h5py
+
+    with h5py.File(path, "r") as f:
+        return {k: f[k][:] for k in f}
+
+
+def _roundtrip(summary: dict) -> dict:
+    """The summary exactly as summary.json holds it (plain numbers and lists, None for NaN)."""
+    import json
+
+    from .outputs import _plain
+
+    return json.loads(json.dumps(_plain(summary)))

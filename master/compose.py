@@ -1,0 +1,221 @@
+"""Scenario composition: a scenario file that ``extends`` another one, and where each entry came from.
+
+The rules, applied from the base outwards (a chain of ``extends`` is composed base first):
+
+* **components**: a child's ``[components.NAME]`` merges into the base's. ``implementation`` and ``fmu`` replace
+  each other (a child giving one drops the base's other, and an inherited FMU's ``start`` values); ``parameters`` merge key by key; ``step`` is replaced;
+  ``remove_parameters = ["p", ...]`` removes inherited parameters (each must exist, or it is an error).
+* **connections**: a child's ``[[connections]]`` are added to the base's, not a replacement of the list; an
+  entry whose ``to`` port the base already drives replaces the base's entry (an input has one source).
+  ``[scenario] remove_connections = [...]`` removes inherited connections by name before the child's are
+  added: a name is the driven input (``"bearing0.K_journal"``) or ``"src -> dst"``; each must match one.
+* every other table (``scenario``, ``inputs``, ``algorithm``, ``schedule``, ``outputs``, ``results``) merges key
+  by key, and any other value, lists included (``intervals``, ``record``, ``order``), is replaced.
+
+:func:`compose` returns the composed dict, free of the composition keys (``extends``, ``remove_connections``,
+``remove_parameters``), and an :class:`Origins` map that tells which file brought each component, parameter,
+connection and input, so that an error found after composition can name the file to edit.
+"""
+from __future__ import annotations
+
+import copy
+import re
+import sys
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any, Mapping
+
+if sys.version_info >= (3, 11):
+    import tomllib
+else:  # pragma: no cover
+    import tomli as tomllib
+
+from rotorcosim.components.contract import ContractError
+
+
+class ScenarioError(ContractError):
+    """A scenario file that cannot be run; the message names the file and the key."""
+
+
+#: an error of composition is a scenario error (the name says where it was found)
+CompositionError = ScenarioError
+
+
+@dataclass
+class Origins:
+    """Which file brought each entry of a composed scenario (paths as strings)."""
+
+    components: dict[str, str] = field(default_factory=dict)            # who set implementation / fmu
+    parameters: dict[tuple[str, str], str] = field(default_factory=dict)  # (component, parameter)
+    connections: list[str] = field(default_factory=list)                # parallel to data["connections"]
+    inputs: dict[str, str] = field(default_factory=dict)
+
+    def component(self, name: str) -> str | None:
+        return self.components.get(name)
+
+    def parameter(self, comp: str, param: str) -> str | None:
+        return self.parameters.get((comp, param), self.components.get(comp))
+
+
+#: composition keys, consumed here and never seen by the parser
+SCENARIO_DIRECTIVES = ("extends", "remove_connections")
+COMPONENT_DIRECTIVES = ("remove_parameters",)
+
+
+def connection_name(con: Mapping[str, Any]) -> str:
+    """How a connection is named in messages and in ``remove_connections``: ``"src -> dst"``."""
+    return f"{con.get('from')} -> {con.get('to')}"
+
+
+def _merge(base: dict, top: Mapping) -> dict:
+    out = dict(base)
+    for k, v in top.items():
+        out[k] = _merge(out[k], v) if isinstance(v, Mapping) and isinstance(out.get(k), Mapping) else v
+    return out
+
+
+def _load(path: Path) -> dict:
+    if not path.is_file():
+        raise FileNotFoundError(f"scenario file {path} not found")
+    try:
+        return tomllib.loads(path.read_text())
+    except tomllib.TOMLDecodeError as exc:
+        m = re.search(r"\(at line (\d+), column \d+\)", str(exc))
+        where = f"{path}:{m.group(1)}" if m else str(path)
+        raise ScenarioError(f"{where}: not valid TOML: {exc}") from None
+    except UnicodeDecodeError as exc:
+        raise ScenarioError(f"{path}: not a text file ({exc})") from None
+    except OSError as exc:
+        raise ScenarioError(f"{path}: cannot read it ({exc.strerror or exc})") from None
+
+
+def _own(data: dict, origins: Origins, where: str) -> None:
+    """Record ``where`` as the origin of every entry of a file that extends nothing."""
+    for name, spec in (data.get("components") or {}).items():
+        origins.components[name] = where
+        if isinstance(spec, Mapping):
+            for p in spec.get("parameters") or {}:
+                origins.parameters[(name, p)] = where
+    origins.connections = [where] * len(data.get("connections") or [])
+    origins.inputs = {ref: where for ref in data.get("inputs") or {}}
+
+
+def _str_list(value: Any, where: str, key: str) -> list[str]:
+    if not isinstance(value, list) or not all(isinstance(v, str) for v in value):
+        raise CompositionError(f"{where}: {key} must be a list of strings, got {value!r}")
+    return value
+
+
+def _components(base: dict, child: Mapping, origins: Origins, where: str) -> dict:
+    out = copy.deepcopy(base)
+    for name, spec in child.items():
+        if not isinstance(spec, Mapping):
+            out[name] = spec  # the parser reports it
+            continue
+        spec = dict(spec)
+        remove = _str_list(spec.pop("remove_parameters", []), f"{where}: [components.{name}]", "remove_parameters")
+        if name not in out or not isinstance(out[name], Mapping):
+            if remove:
+                raise CompositionError(f"{where}: [components.{name}] remove_parameters: the component is new "
+                                       f"here, it inherits no parameter to remove")
+            out[name] = spec
+            origins.components[name] = where
+            for p in spec.get("parameters") or {}:
+                origins.parameters[(name, p)] = where
+            continue
+        merged = dict(out[name])
+        if "implementation" in spec or "fmu" in spec:
+            # a new implementation replaces the inherited one, whichever kind it was (with an FMU's start values)
+            merged.pop("implementation", None)
+            merged.pop("fmu", None)
+            merged.pop("start", None)
+            origins.components[name] = where
+        params = dict(merged.get("parameters") or {})
+        for p in remove:
+            if p not in params:
+                raise CompositionError(f"{where}: [components.{name}] remove_parameters: {p!r} is not an "
+                                       f"inherited parameter (inherited: {sorted(params) or 'none'})")
+            del params[p]
+            origins.parameters.pop((name, p), None)
+        for p, v in (spec.pop("parameters", None) or {}).items():
+            params[p] = v
+            origins.parameters[(name, p)] = where
+        merged.update(spec)
+        if params or "parameters" in merged:
+            merged["parameters"] = params
+        out[name] = merged
+    return out
+
+
+def _connections(base: list, child: list, removes: list[str], origins: Origins, where: str) -> list:
+    out = list(base)
+    src = list(origins.connections)
+    for name in removes:
+        key = name.replace(" ", "")
+        hits = [i for i, c in enumerate(out) if key in (str(c.get("to")), connection_name(c).replace(" ", ""))]
+        if not hits:
+            raise CompositionError(f"{where}: remove_connections: no inherited connection {name!r} (name one by "
+                                   f"its driven input, e.g. 'bearing0.K_journal', or as 'src -> dst')")
+        for i in reversed(hits):
+            del out[i], src[i]
+    for con in child:
+        dst = con.get("to") if isinstance(con, Mapping) else None
+        hit = next((i for i, c in enumerate(out) if dst is not None and c.get("to") == dst), None)
+        if hit is None:
+            out.append(con)
+            src.append(where)
+        else:  # the input has one source: the child's entry replaces the inherited one
+            out[hit] = con
+            src[hit] = where
+    origins.connections = src
+    return out
+
+
+def compose(path: str | Path, _seen: tuple = ()) -> tuple[dict, Origins]:
+    """The scenario file ``path`` with its ``extends`` chain composed; returns (data, origins)."""
+    path = Path(path).resolve()
+    if path in _seen:
+        raise CompositionError(f"{path}: 'extends' loops back on itself ({' -> '.join(map(str, _seen + (path,)))})")
+    data = _load(path)
+    where = str(path)
+    head = data.get("scenario", {})
+    if not isinstance(head, Mapping):
+        raise CompositionError(f"{where}: [scenario] must be a table")
+    head = dict(head)
+    base_ref = head.pop("extends", None)
+    removes = _str_list(head.pop("remove_connections", []), f"{where}: [scenario]", "remove_connections")
+    if base_ref is None:
+        if removes:
+            raise CompositionError(f"{where}: [scenario] remove_connections needs 'extends' (nothing is inherited)")
+        origins = Origins()
+        _own(data, origins, where)
+        for name, spec in (data.get("components") or {}).items():
+            if isinstance(spec, Mapping) and "remove_parameters" in spec:
+                raise CompositionError(f"{where}: [components.{name}] remove_parameters needs 'extends' "
+                                       f"(nothing is inherited)")
+        if "scenario" in data:
+            data["scenario"] = head
+        return data, origins
+    if not isinstance(base_ref, str):
+        raise CompositionError(f"{where}: [scenario] extends must be a file name, got {base_ref!r}")
+    base, origins = compose((path.parent / base_ref), _seen + (path,))
+    out = dict(base)
+    for key, value in data.items():
+        if key == "scenario":
+            out["scenario"] = _merge(base.get("scenario", {}), head)
+        elif key == "components" and isinstance(value, Mapping) and isinstance(base.get("components"), Mapping):
+            out["components"] = _components(base["components"], value, origins, where)
+        elif key == "connections" and isinstance(value, list):
+            out["connections"] = _connections(base.get("connections", []), value, removes, origins, where)
+            removes = []
+        elif key == "inputs" and isinstance(value, Mapping):
+            out["inputs"] = _merge(base.get("inputs", {}), value)
+            origins.inputs.update({ref: where for ref in value})
+        else:
+            out[key] = _merge(base[key], value) if isinstance(value, Mapping) and isinstance(base.get(key), Mapping) \
+                else value
+    if removes:  # removals with no new connections
+        out["connections"] = _connections(base.get("connections", []), [], removes, origins, where)
+    if "scenario" not in data and "scenario" in base:
+        out["scenario"] = dict(base["scenario"])
+    return out, origins
