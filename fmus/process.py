@@ -23,7 +23,7 @@ import sys
 from multiprocessing.connection import Connection
 from typing import Any, Mapping
 
-from rotorcosim.components.contract import Component
+from rotorcosim.components.contract import Component, StopRequested
 
 from .importer import FMUError
 
@@ -63,7 +63,9 @@ def _serve(conn, factory, path: str, name: str, parameters: dict, start: dict) -
             return
         try:
             if call == "setup":
-                comp.setup(*args)
+                t0, u = args
+                comp.u.update(u)          # the constant inputs given before set-up enter initialisation
+                comp.setup(t0)
                 out = (comp.y, comp.phases, comp.holds_state_in_TO)
             elif call == "step":
                 u, t, h = args
@@ -85,6 +87,9 @@ def _serve(conn, factory, path: str, name: str, parameters: dict, start: dict) -
                 return
             else:
                 raise ValueError(f"unknown call {call!r}")
+        except StopRequested as req:   # the FMU asked to stop: an answer with its outputs there, not an error
+            conn.send(("stop", (comp.y, req.t_stop, req.reason)))
+            continue
         except Exception as exc:
             conn.send(("error", f"{type(exc).__name__}: {exc}" if not isinstance(exc, FMUError) else str(exc)))
             continue
@@ -132,8 +137,8 @@ class ProcessFMU(Component):
         self.can_get_set_state = info["can_get_set_state"]
         self.holds_state_in_TO = False
         self.phase = None
-        self.u = {v.name: v.start_array() for v in self.variables if v.causality == "input"}
-        self.y = {v.name: v.start_array() for v in self.variables if v.causality == "output"}
+        self.u = {v.name: v.start_array() for v in self.variables if v.causality == "input" and v.carried}
+        self.y = {v.name: v.start_array() for v in self.variables if v.causality == "output" and v.carried}
         self.state = {}
         self.time = 0.0
 
@@ -158,6 +163,9 @@ class ProcessFMU(Component):
             raise FMUError(f"{self._where}: the FMU's process died in {what} ({how})") from None
         if status == "error":
             raise FMUError(f"{self._where}: {what} failed: {value}")
+        if status == "stop":
+            self.y, self.time, reason = value
+            raise StopRequested(self.name, self.time, reason)
         return value
 
     def _kill(self) -> None:
@@ -175,7 +183,7 @@ class ProcessFMU(Component):
 
     def setup(self, t0: float = 0.0) -> None:
         self.time = float(t0)
-        y, self.phases, self.holds_state_in_TO = self._call("setup", (t0,), "setup")
+        y, self.phases, self.holds_state_in_TO = self._call("setup", (t0, self.u), "setup")
         self.y = y
 
     def enter_phase(self, phase: str) -> None:

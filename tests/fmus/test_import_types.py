@@ -133,6 +133,17 @@ def test_stop_request_ends_the_run_where_fmpy_ends_it(typed):
     assert cap.t[-1] == pytest.approx(t_stop, abs=1e-12)
 
 
+def test_stop_request_from_an_fmu_in_its_own_process(types3_fmu):
+    """The same stop when the FMU runs in a process of its own (``process = true``, fmus/process.py)."""
+    params = {**PARAMS, "t_stop": 0.35}
+    sc = _scenario(types3_fmu, INPUTS3, params)
+    sc.components["f"].options["process"] = True
+    cap, report, sim = _run(sc, 1.0)
+    assert type(sim.system.components["f"]).__name__ == "ProcessFMU"
+    _same_as_fmpy(cap, _fmpy(types3_fmu, INPUTS3, 1.0, params))
+    assert report.status == "stopped" and report.stopped["t_s"] == pytest.approx(0.375)
+
+
 def test_stop_request_through_the_command_line(types3_fmu, tmp_path, capsys):
     from rotorcosim.master.cli import main
 
