@@ -232,6 +232,10 @@ def simulate(sc: Scenario | str | Path, duration: float | None = None, schedule=
             "hold": report.hold.as_dict() if report.hold is not None else None,
             "wall_time_s": time.perf_counter() - t_wall,
             "resumed_from_t_s": point.t if point else None,
+            # wall time per base step of this run, beside the estimate's (budget.py): how far the declared
+            # step cost is from this machine and scenario
+            "step_cost_us": (None if point else
+                             1e6 * (time.perf_counter() - t_wall) / max(1, sum(u.steps for u in report.timeline))),
             "component_steps": report.component_steps,
             "timeseries": series.name if series is not None else None,
             # "complete", "stopped" (a component asked to stop: "stopped" names it and the time), "interrupted"
