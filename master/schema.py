@@ -188,6 +188,29 @@ def locate(source: Path | None, table: str, key: str | None) -> int | None:
     return fallback
 
 
+_EXTENDS = re.compile(r"^\s*extends\s*=\s*(\[[^\]]*\]|\"[^\"]*\"|'[^']*')", re.M)
+
+
+def _locate_in_bases(source: Path | None, table: str, key: str, seen=()) -> tuple[Path | None, int | None]:
+    """(file, line) of ``key`` in the scenarios ``source`` extends (their text's ``extends = ...``), or Nones."""
+    if source is None or source in seen or len(seen) > 20:
+        return None, None
+    try:
+        text = Path(source).read_text()
+    except (OSError, UnicodeDecodeError):
+        return None, None
+    for m in _EXTENDS.finditer(text):
+        for name in re.findall(r"[\"']([^\"']+)[\"']", m.group(1)):
+            base = (Path(source).parent / name).resolve()
+            line = locate(base, table, key)
+            if line:
+                return base, line
+            found = _locate_in_bases(base, table, key, seen + (source,))
+            if found[1]:
+                return found
+    return None, None
+
+
 class _Checker:
     def __init__(self, source: Path | None, origins=None):
         self.source = Path(source) if source is not None else None
@@ -214,6 +237,11 @@ class _Checker:
         short = key[len("parameters."):] if key and key.startswith("parameters.") else key
         line = locate(source, table, short)
         at = f"{where}:{line}" if line else where
+        if not line and short:
+            # the key may come from a scenario this one extends: name that file and line too
+            base, bline = _locate_in_bases(self.source, table, short)
+            if bline:
+                at = f"{where} (from {base}:{bline})"
         what = f"[{table}]" + (f" {key}" if key else "")
         return SchemaError(f"{at}: {what}: {msg}")
 

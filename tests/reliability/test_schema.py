@@ -133,3 +133,13 @@ def test_locate_finds_inline_table_keys(tmp_path):
     p.write_text('[scenario]\nname = "a"\n\n[components.m]\nimplementation = "x"\nparameters = { k = true }\n')
     assert locate(p, "components.m", "k") == 6
     assert locate(p, "scenario", "name") == 2
+
+
+def test_error_in_an_extended_base_names_its_file_and_line(tmp_path):
+    base = tmp_path / "base.toml"
+    base.write_text(TOY.replace("record_step = 1e-3", "record_stpe = 1e-3"))
+    top = tmp_path / "top.toml"
+    top.write_text('[scenario]\nextends = "base.toml"\nname = "top"\n')
+    line = next(i for i, l in enumerate(base.read_text().splitlines(), 1) if "record_stpe" in l)
+    with pytest.raises(SchemaError, match=rf"top\.toml \(from .*base\.toml:{line}\): \[outputs\] record_stpe"):
+        load_scenario(top)
