@@ -1,6 +1,7 @@
 """Scenario composition: a scenario file that ``extends`` another one, and where each entry came from.
 
-The rules, applied from the base outwards (a chain of ``extends`` is composed base first):
+``[scenario] extends`` names a file (relative to the extending file) or a shipped scenario by name
+(``extends = "blade_loss_2850"``). The rules, applied from the base outwards (a chain of ``extends`` is composed base first):
 
 * **components**: a child's ``[components.NAME]`` merges into the base's. ``implementation`` and ``fmu`` replace
   each other (a child giving one drops the base's other, and an inherited FMU's ``start`` values); ``parameters`` merge key by key; ``step`` is replaced;
@@ -171,6 +172,16 @@ def _connections(base: list, child: list, removes: list[str], origins: Origins, 
     return out
 
 
+def _base_path(path: Path, ref: str) -> Path:
+    """``extends`` names a file relative to ``path``'s folder, or a shipped scenario by name (no suffix)."""
+    p = path.parent / ref
+    if p.exists() or Path(ref).suffix:
+        return p
+    from rotorcosim import scenarios
+
+    return scenarios.path(ref)
+
+
 def compose(path: str | Path, _seen: tuple = ()) -> tuple[dict, Origins]:
     """The scenario file ``path`` with its ``extends`` chain composed; returns (data, origins)."""
     path = Path(path).resolve()
@@ -198,7 +209,7 @@ def compose(path: str | Path, _seen: tuple = ()) -> tuple[dict, Origins]:
         return data, origins
     if not isinstance(base_ref, str):
         raise CompositionError(f"{where}: [scenario] extends must be a file name, got {base_ref!r}")
-    base, origins = compose((path.parent / base_ref), _seen + (path,))
+    base, origins = compose(_base_path(path, base_ref), _seen + (path,))
     out = dict(base)
     for key, value in data.items():
         if key == "scenario":
