@@ -29,7 +29,6 @@ RESULT_KEYS = ("whirl_amplitude_mm", "transmissibility", "max_contact_load_N", "
 KELVIN = 273.15
 #: order of thermal{k}.T_nodes
 NODES = ("shaft", "inner_race", "lub_inner", "ball", "lub_outer", "outer_race", "journal", "sfd_oil", "housing")
-RUB_CLEARANCE_MM = 0.508  # Table 3, for the orbit figures
 
 
 def window_signals(sc=None) -> list[str]:
@@ -111,93 +110,10 @@ def extract(sc, sim, obs, report) -> dict:
 
 
 # -- figures ------------------------------------------------------------------------------------------
-def _tm_blocks(t, phase):
-    """(start, end) index pairs of the consecutive thermo-mechanical samples."""
-    tm = phase == 0
-    edges = np.flatnonzero(np.diff(np.r_[0, tm.astype(int), 0]))
-    return list(zip(edges[::2], edges[1::2]))
-
-
 def figures(sc, data: dict, out: Path) -> list[str]:
     """PNG figures like the paper's Figs. 9-14 from the recorded time series (``data``: ``time``, ``phase`` and
-    one array per recorded port, as :meth:`Recorder.data` gives them); returns their file names."""
-    if data is None or "time" not in data or not len(data["time"]):
-        return []
-    import matplotlib
+    one array per recorded port, as :meth:`Recorder.data` gives them); returns their file names. The drawing
+    is in :mod:`rotorcosim.master.figures_blade_loss`."""
+    from .figures_blade_loss import figures as draw
 
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    F_u = unbalance_force(sc)
-    names = []
-    f = data
-    if True:
-        t = f["time"][:]
-        phase = f["phase"][:]
-        blocks = _tm_blocks(t, phase)
-        if not blocks:
-            return []
-        first, last = blocks[0], blocks[-1]
-        get = lambda ref: f[ref][:] if ref in f else None  # noqa: E731
-
-        for k, fig_no in ((0, 9), (5, 10)):
-            X = get(f"rotor.X_brg{k}")
-            if X is None:
-                continue
-            fig, ax = plt.subplots(1, 3, figsize=(15, 4.2))
-            for a, (i0, i1), title in ((ax[0], first, "(a) transient"), (ax[1], last, "(b) steady state")):
-                a.plot(t[i0:i1], 1e3 * X[i0:i1, 0], "-", lw=0.8, label="x")
-                a.plot(t[i0:i1], 1e3 * X[i0:i1, 1], ":", lw=0.8, label="y")
-                a.set_xlabel("time [s]"); a.set_ylabel("displacement [mm]"); a.set_title(title); a.legend()
-            i0, i1 = last
-            n = max(2, int((i1 - i0) * 0.5))
-            ax[2].plot(1e3 * X[i1 - n:i1, 0], 1e3 * X[i1 - n:i1, 1], lw=0.8)
-            th = np.linspace(0, 2 * np.pi, 200)
-            ax[2].plot(RUB_CLEARANCE_MM * np.cos(th), RUB_CLEARANCE_MM * np.sin(th), "k:", label="rub ring clearance")
-            ax[2].set_aspect("equal"); ax[2].set_xlabel("x [mm]"); ax[2].set_ylabel("y [mm]")
-            ax[2].set_title("(c) orbit"); ax[2].legend(loc="upper right", fontsize=8)
-            fig.suptitle(f"Power turbine at bearing #{k}, F_u = {F_u:g} N (paper Fig. {fig_no})")
-            fig.tight_layout()
-            name = f"fig{fig_no:02d}_response_bearing{k}.png"
-            fig.savefig(out / name, dpi=110); plt.close(fig); names.append(name)
-
-        fig, ax = plt.subplots(2, 2, figsize=(12, 7))
-        for row, k in enumerate(BEARINGS):
-            F = get(f"damper{k}.F_journal")
-            if F is None:
-                continue
-            tr = np.hypot(F[:, 0], F[:, 1]) / F_u
-            for col, (i0, i1), title in ((0, first, "transient"), (1, last, "steady state")):
-                ax[row, col].plot(t[i0:i1], tr[i0:i1], lw=0.8)
-                ax[row, col].set_title(f"bearing #{k}: {title}"); ax[row, col].set_xlabel("time [s]")
-                ax[row, col].set_ylabel("transmissibility, eq. (23)")
-        fig.suptitle("Transmissibility |F_sfd + F_cs| / F_u (paper Fig. 11)"); fig.tight_layout()
-        fig.savefig(out / "fig11_transmissibility.png", dpi=110); plt.close(fig); names.append("fig11_transmissibility.png")
-
-        fig, ax = plt.subplots(2, 2, figsize=(12, 7))
-        for row, k in enumerate(BEARINGS):
-            S = get(f"bearing{k}.sigma_max")
-            if S is None:
-                continue
-            s = 1e-6 * S[:, 1]  # outer race / ball, as the paper's Fig. 12
-            for col, (i0, i1), title in ((0, first, "transient"), (1, last, "steady state")):
-                ax[row, col].plot(t[i0:i1], s[i0:i1], lw=0.8)
-                ax[row, col].axhline(3200, color="r", ls=":", lw=0.8)
-                ax[row, col].set_title(f"bearing #{k}: {title}"); ax[row, col].set_xlabel("time [s]")
-                ax[row, col].set_ylabel("max contact stress, outer race [MPa]")
-        fig.suptitle("Maximum ball / outer race contact stress (paper Fig. 12; dotted: 3200 MPa)"); fig.tight_layout()
-        fig.savefig(out / "fig12_contact_stress.png", dpi=110); plt.close(fig); names.append("fig12_contact_stress.png")
-
-        for fig_no, pair in ((13, (("inner_race", "(a) inner race"), ("ball", "(b) ball"))),
-                             (14, (("outer_race", "(a) outer race"), ("sfd_oil", "(b) squeeze film damper oil")))):
-            fig, ax = plt.subplots(1, 2, figsize=(12, 4.2))
-            for a, (node, title) in zip(ax, pair):
-                for k, style in ((0, "-"), (5, ":")):
-                    T = get(f"thermal{k}.T_nodes")
-                    if T is not None:
-                        a.plot(t, T[:, NODES.index(node)] - KELVIN, style, label=f"bearing #{k}")
-                a.set_xlabel("time [s]"); a.set_ylabel("temperature [C]"); a.set_title(title); a.legend()
-            fig.suptitle(f"Temperatures (paper Fig. {fig_no})"); fig.tight_layout()
-            name = f"fig{fig_no}_temperatures.png"
-            fig.savefig(out / name, dpi=110); plt.close(fig); names.append(name)
-    return names
+    return draw(sc, data, out, unbalance_force(sc), sc.schedule.get("speed_rpm"))

@@ -45,21 +45,33 @@ def draw_campbell(path: str, model_file: str = "", max_rpm: float = 30000.0, cri
     m = fem.load(model_file or None)
     rpm = np.linspace(0.0, max_rpm, 61)
     f, kind = critical.campbell(m, rpm)
-    fig, ax = plt.subplots(figsize=(7, 5))
+    fig, ax = plt.subplots(figsize=(10, 5))
     styles = ((1, "tab:blue", "forward whirl"), (-1, "tab:orange", "backward whirl"),
               (0, "0.75", "no rotor whirl (axial, torsion, casing)"))
     for code, colour, label in styles:
         sel = kind == code
         ax.scatter(np.broadcast_to(rpm[:, None], f.shape)[sel], f[sel], s=5, c=colour, label=label)
-    ax.plot(rpm, rpm / 60.0, "k--", lw=1, label="1x (PT spin)")
+    ax.plot(rpm, rpm / 60.0, "k--", lw=1, label="1x power-turbine speed")
+    ratio = critical.speed_ratio(m)
+    ax.plot(rpm, ratio * rpm / 60.0, ":", color="0.35", lw=1, label=f"1x gas-generator speed ({ratio:.4g} x PT)")
     if crit:
-        for r in crit["forward_synchronous_rpm"]:
-            ax.plot(r, r / 60.0, "o", mfc="none", mec="tab:red", ms=9)
+        r = np.asarray(crit["forward_synchronous_rpm"], dtype=float)
+        r = r[r <= max_rpm]
+        ax.plot(r, r / 60.0, "o", mfc="none", mec="tab:red", ms=9, ls="none",
+                label="forward synchronous critical speeds")
+        for v in r[:2]:
+            ax.annotate(f"{v:,.0f}".replace(",", " "), (v, v / 60.0), textcoords="offset points", xytext=(8, -12),
+                        fontsize=8, color="tab:red")
+    # the operating point: the power turbine at its spin speed, the gas generator at its own (model data)
+    pt = m.omega_pt * 30.0 / np.pi
+    gg = m.omega_gg * 30.0 / np.pi
+    ax.axvline(pt, color="tab:green", lw=1.2,
+               label=f"operating speed: PT {pt:,.0f} / GG {gg:,.0f} rev/min".replace(",", " "))
     ax.set_xlabel("power-turbine speed [rev/min] (gas generator at 15/16)")
     ax.set_ylabel("whirl frequency [Hz]")
     ax.set_xlim(0, max_rpm)
     ax.set_ylim(0, 1.2 * max_rpm / 60.0)
-    ax.legend(loc="upper left", fontsize=8, framealpha=0.9)
+    ax.legend(loc="upper left", bbox_to_anchor=(1.02, 1.0), fontsize=8, framealpha=0.9)
     ax.set_title("Campbell diagram (linearised #0/#5 supports, undamped)")
     fig.tight_layout()
     fig.savefig(path, dpi=120)
