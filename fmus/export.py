@@ -69,6 +69,12 @@ def variables_config(comp: Component) -> list[dict]:
     return out
 
 
+def _umask() -> int:
+    mask = os.umask(0)
+    os.umask(mask)
+    return mask
+
+
 def write_deterministic_zip(entries: Mapping[str, bytes], dest: Path) -> Path:
     """Write ``entries`` (name -> bytes) sorted, with fixed dates and modes, to ``dest`` atomically."""
     dest = Path(dest)
@@ -82,6 +88,8 @@ def write_deterministic_zip(entries: Mapping[str, bytes], dest: Path) -> Path:
                 info.external_attr = 0o644 << 16
                 info.create_system = 3
                 zf.writestr(info, entries[name])
+        # mkstemp creates the file 0600: give it the mode any new file gets (0644 under the usual umask 022)
+        os.chmod(tmp, 0o666 & ~_umask())
         os.replace(tmp, dest)
     except BaseException:
         Path(tmp).unlink(missing_ok=True)

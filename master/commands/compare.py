@@ -9,6 +9,7 @@ rotor revolutions in all, alternating with 2 thermal-only intervals, as the pape
 from __future__ import annotations
 
 import math
+import sys
 import tempfile
 from pathlib import Path
 
@@ -35,6 +36,7 @@ def add_arguments(p):
                         "the paper: at most 50)")
     p.add_argument("--bearing", type=int, choices=(0, 5), default=0, help="bearing of the table (default 0)")
     p.add_argument("--no-figures", action="store_true", help="skip the PNG figures of the two runs")
+    p.add_argument("--quiet", action="store_true", help="no line and progress bar per case")
     p.add_argument("--overwrite", action="store_true", help="replace the results of a previous comparison in --out")
 
 
@@ -78,7 +80,8 @@ def compare(out: Path, duration=2.0, unbalance=2850.0, scenario="blade_loss", re
     out.mkdir(parents=True, exist_ok=True)
     runs = {}
     _warm_up(scenario, out)
-    for kind in ("staggered", "monolithic"):
+    kinds = ("staggered", "monolithic")
+    for i, kind in enumerate(kinds, 1):
         sc = resolve(scenario)
         apply_unbalance(sc, unbalance)
         s = sc.schedule
@@ -89,7 +92,12 @@ def compare(out: Path, duration=2.0, unbalance=2850.0, scenario="blade_loss", re
         else:
             sch = Timeline([Interval("TM", duration, float(s.get("step", 1e-5)))])
         sc.name = f"{sc.name}_{kind}"
+        if not quiet:  # a line per case, and the case's own progress bar (time left from its measured step cost)
+            print(f"[{i}/{len(kinds)}] {kind}: {sch.duration:g} s simulated, {len(sch.intervals)} interval(s)",
+                  file=sys.stderr, flush=True)
         runs[kind] = execute(sc, out / kind, figures=figures, quiet=quiet, schedule=sch, overwrite=overwrite)
+        if not quiet:
+            print(f"[{i}/{len(kinds)}] {kind}: done in {runs[kind]['wall_time_s']:.3g} s", file=sys.stderr, flush=True)
     results = {}
     for key in KEYS:
         a = runs["staggered"]["bearings"][str(bearing)][key]
@@ -106,7 +114,7 @@ def compare(out: Path, duration=2.0, unbalance=2850.0, scenario="blade_loss", re
 
 def run(args) -> int:
     t = compare(Path(args.out), args.duration, args.unbalance, args.scenario, args.revolutions, args.bearing,
-                figures=not args.no_figures, overwrite=args.overwrite)
+                quiet=args.quiet, figures=not args.no_figures, overwrite=args.overwrite)
     worst = max((v["rel_error_pct"] or 0.0) for v in t["results"].values())
     print(f"Table 6 (bearing #{t['bearing']}, {t['duration_s']} s): speed-up {t['speedup']:.1f}, "
           f"largest relative error {worst:.2f} %; {args.out}/table6.json")

@@ -140,3 +140,20 @@ def test_exported_fmu_needs_no_rotorcosim(mass_fmu, tmp_path):
                          capture_output=True, text=True, timeout=300)
     assert out.returncode == 0, out.stderr[-2000:]
     assert float(out.stdout.strip().splitlines()[-1]) > 1e-3    # the mass (x0 = 0.1 m, k = 40 N/m) moved
+
+
+def test_exported_files_get_the_usual_mode(mass_fmu, tmp_path):
+    """An exported FMU (and any archive written the same way, SSP included) is readable by others: 0666 less
+    the umask (0644 under the usual 022), not mkstemp's 0600."""
+    import os
+    import stat
+
+    from rotorcosim.fmus.export import write_deterministic_zip
+
+    old = os.umask(0o022)
+    try:
+        p = write_deterministic_zip({"a.txt": b"x"}, tmp_path / "a.zip")
+    finally:
+        os.umask(old)
+    assert stat.S_IMODE(p.stat().st_mode) == 0o644
+    assert stat.S_IMODE(mass_fmu.stat().st_mode) == 0o666 & ~old
