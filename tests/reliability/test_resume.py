@@ -98,3 +98,20 @@ def test_two_runs_are_bit_identical(tmp_path, reference):
     want, _ = series(ref_out)
     assert all(np.array_equal(got[k], want[k]) for k in want)
     assert again["final_outputs"] == ref["final_outputs"]
+
+
+def test_command_line_interrupt_and_resume(tmp_path, reference, sigint_at, capsys):
+    """`rotorcosim run ...` interrupted (exit 130, one line) and `... --resume` (exit 0): the reference's bits."""
+    from rotorcosim.master.cli import main
+
+    ref_out, _ = reference
+    args = ["run", "toy_thermomechanical", "--out", str(tmp_path / "o"), "--duration", str(DURATION), "--quiet",
+            "--no-figures"]
+    sigint_at(2.0)
+    assert main(args) == 130
+    err = capsys.readouterr().err
+    assert "interrupted" in err and "--resume" in err and "Traceback" not in err
+    assert main(args + ["--resume"]) == 0
+    got, attrs = series(tmp_path / "o")
+    want, _ = series(ref_out)
+    assert attrs["complete"] == True and all(np.array_equal(got[k], want[k]) for k in want)  # noqa: E712
