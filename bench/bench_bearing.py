@@ -60,9 +60,8 @@ def whirl_loop(bearing, n, radius, jacobian=True, substeps=0, T_oil=343.15, reco
                         "V_housing": zeros2, "T_oil": [T_oil]})
         sfd.do_step(t, H)
         if jacobian:
-            J = sfd.interface_jacobian()
-            K = J[("F_journal", "X_journal")].reshape(-1)
-            C = J[("F_journal", "V_journal")].reshape(-1)
+            K = sfd.y["K_film"]
+            C = sfd.y["C_film"]
         else:
             K = C = zeros4
         brg.set_inputs({"X_inner": [r * c, r * s, 0.0], "V_inner": [-r * w * s, r * w * c, 0.0],

@@ -223,11 +223,6 @@ class Component:
         (``holds_state_in_TO``) override it."""
         self.phase = phase
 
-    # -- optional -----------------------------------------------------------------------------------
-    def interface_jacobian(self) -> dict[tuple[str, str], np.ndarray] | None:
-        """Optional d(output)/d(input) blocks at the current point, for the master's linear correction."""
-        return None
-
     def __repr__(self) -> str:
         return f"<{type(self).__name__} {self.name!r}>"
 

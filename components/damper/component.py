@@ -229,13 +229,6 @@ class _Damper(Component):
         self._film(dx, dy, dvx, dvy, mu, out)
         return float(out[0]), float(out[1])
 
-    def interface_jacobian(self):
-        """d F_journal / d X_journal and d F_journal / d V_journal (2x2) at the last evaluation: the K_film and
-        C_film outputs (the same derivatives act on X_housing, V_housing with the opposite sign)."""
-        return {("F_journal", "X_journal"): self.y["K_film"].reshape(2, 2).copy(),
-                ("F_journal", "V_journal"): self.y["C_film"].reshape(2, 2).copy()}
-
-
 class FEDamper(_Damper):
     """Squeeze film damper, direct finite-element Reynolds solve at every call (the paper's model)."""
 

@@ -241,29 +241,6 @@ class Rotor(Component):
         self._publish(xv, t + h, fux, fuy)
         self.time = t + h
 
-    def interface_jacobian(self):
-        """d(output at t + h) / d(input held over the step) of the last step size used (the reduced model is
-        linear, so these blocks are exact and constant): the step compliance O B of the Newmark map. Blocks for
-        every output X_*/V_* against every force input F_*."""
-        h = self.__dict__.get("_last_h", self.preferred_step)
-        TB = self._operators(h)
-        n3 = TB.shape[0]
-        J = self._Oxv @ TB[:, n3:]
-        out_names, row = [], 0
-        for _, xname, _, size in _OUTPUTS:
-            out_names.append((xname, row, size))
-            row += size
-        for _, _, vname, size in _OUTPUTS:
-            out_names.append((vname, row, size))
-            row += size
-        blocks = {}
-        col = 0
-        for iname, _, size_in in _INPUTS:
-            for oname, r0, size_out in out_names:
-                blocks[(oname, iname)] = J[r0:r0 + size_out, col:col + size_in].copy()
-            col += size_in
-        return blocks
-
     # -- helpers for checks and the CLI ------------------------------------------------------------------
     @property
     def reduced(self) -> dict:

@@ -105,22 +105,6 @@ class RubRing(Component):
         self._evaluate(t + h)
         self.time = t + h
 
-    def interface_jacobian(self):
-        """d F_rotor / d X_rotor and d F_rotor / d V_rotor (2x2) at the current inputs, by central differences of
-        the contact law (steps 1e-9 m and 1e-6 m/s: well inside the smooth parts of a 0.5 mm / 40 m/s contact);
-        the housing blocks are their negatives. Zero inside the clearance."""
-        u = self.u
-        base = np.concatenate([u["X_rotor"] - u["X_housing"], u["V_rotor"] - u["V_housing"]]).astype(float)
-        J = np.empty((2, 4))
-        for m, step in enumerate((1e-9, 1e-9, 1e-6, 1e-6)):
-            a, b = base.copy(), base.copy()
-            a[m] += step
-            b[m] -= step
-            fa, fb = rub_force(*a, *self._args), rub_force(*b, *self._args)
-            J[0, m] = (fa[0] - fb[0]) / (2 * step)
-            J[1, m] = (fa[1] - fb[1]) / (2 * step)
-        return {("F_rotor", "X_rotor"): J[:, :2].copy(), ("F_rotor", "V_rotor"): J[:, 2:].copy()}
-
     def get_state(self):
         # memoryless: the snapshot is the time and the current inputs/outputs
         return (self.time, {k: v.copy() for k, v in self.u.items()}, {k: v.copy() for k, v in self.y.items()})

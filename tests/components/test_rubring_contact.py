@@ -117,13 +117,20 @@ def test_non_finite_motion_is_rejected():
         r.do_step(0.0, 1e-5)
 
 
-def test_interface_jacobian_radial_stiffness():
+def test_contact_stiffness_by_finite_differences():
     """On a static contact at +x without friction, dF_x/dx = -k (the contact stiffness) and dF_x/dv_x = -c_d;
-    the normal force turns with the position, so dF_y/dy = -F_n / r = -k (r - c) / r (by hand)."""
+    the normal force turns with the position, so dF_y/dy = -F_n / r = -k (r - c) / r (by hand). Central
+    differences of the component's output (1e-9 m, 1e-6 m/s: inside the smooth part of the contact)."""
     r = ring(friction=0.0)
-    evaluate(r, [0.6e-3, 0.0], [0.0, 0.0])
-    J = r.interface_jacobian()
-    JX, JV = J[("F_rotor", "X_rotor")], J[("F_rotor", "V_rotor")]
-    assert JX[0, 0] == pytest.approx(-K, rel=1e-6)
-    assert JX[1, 1] == pytest.approx(-K * (0.6e-3 - CLR) / 0.6e-3, rel=1e-6)
-    assert JV[0, 0] == pytest.approx(-C_D, rel=1e-6)
+
+    def F(x, v):
+        evaluate(r, x, v)
+        return r.y["F_rotor"].copy()
+
+    x0, dx, dv = 0.6e-3, 1e-9, 1e-6
+    dFx_dx = (F([x0 + dx, 0.0], [0.0, 0.0])[0] - F([x0 - dx, 0.0], [0.0, 0.0])[0]) / (2 * dx)
+    dFy_dy = (F([x0, dx], [0.0, 0.0])[1] - F([x0, -dx], [0.0, 0.0])[1]) / (2 * dx)
+    dFx_dv = (F([x0, 0.0], [dv, 0.0])[0] - F([x0, 0.0], [-dv, 0.0])[0]) / (2 * dv)
+    assert dFx_dx == pytest.approx(-K, rel=1e-5)
+    assert dFy_dy == pytest.approx(-K * (x0 - CLR) / x0, rel=1e-5)
+    assert dFx_dv == pytest.approx(-C_D, rel=1e-5)
