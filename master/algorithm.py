@@ -1,4 +1,5 @@
-"""Co-simulation algorithms: fixed-step Jacobi and Gauss-Seidel, multi-rate, optional iterative coupling.
+"""Co-simulation algorithms: fixed-step Jacobi and Gauss-Seidel (classes behind a registry), multi-rate, optional
+iterative coupling.
 
 The master advances in base steps of size ``h``. Component ``c`` has a communication step ``n_c * h``; it fires
 at the end of each of its windows, i.e. at base step ``k`` when ``(k + 1) % n_c == 0``, stepping over
@@ -32,10 +33,82 @@ from rotorcosim.components.contract import Component, ContractError, StopRequest
 
 from .system import Connection, System
 
-ALGORITHMS = ("gauss-seidel", "jacobi")
 #: the component call in progress, ``[(name, t, time.monotonic() at its start)]``, while a step time limit is
 #: watched (master/watchdog.py); None otherwise
 CALL: list | None = None
+#: the algorithms by name (a registry, like the components'): a new algorithm is a new class, registered here
+ALGORITHM_CLASSES: dict[str, type["Algorithm"]] = {}
+
+
+def register_algorithm(name: str):
+    """Class decorator: make an :class:`Algorithm` available under ``name`` (scenario ``[algorithm] kind``)."""
+
+    def add(cls):
+        cls.name = name
+        ALGORITHM_CLASSES[name] = cls
+        return cls
+
+    return add
+
+
+class Algorithm:
+    """How the components that fire in a base step see each other's outputs (one pass of the step)."""
+
+    name = ""
+    #: iterative coupling: which inputs of a firing component are fed back from the pass just made (True: all
+    #: of them, Jacobi; False: only those from components that fire at or after it in the order, Gauss-Seidel)
+    feedback_from_all = False
+
+    def run_pass(self, engine: "Engine", firing: list[str], t_end: float) -> None:
+        raise NotImplementedError
+
+
+def _step_size(engine: "Engine", n: str, t_end: float) -> tuple[float, float]:
+    """(t, hc) of component n's step ending at t_end, cut at a requested stop (hc <= 0: nothing left to do)."""
+    hc = engine.mult[n] * engine.h
+    t = t_end - hc
+    if engine.stop is not None:
+        hc = engine.stop.t_stop - t
+        if hc <= 1e-12 * max(1.0, abs(t)):
+            hc = 0.0
+    return t, hc
+
+
+@register_algorithm("gauss-seidel")
+class GaussSeidel(Algorithm):
+    """Each component, in the given order, sees the outputs its predecessors have just produced."""
+
+    def run_pass(self, engine, firing, t_end):
+        direct = engine._direct
+        for n in firing:
+            t, hc = _step_size(engine, n, t_end)
+            if hc <= 0.0:
+                continue
+            if n in direct:
+                engine._fire_direct(n, t, hc)
+            else:
+                engine._fire(n, engine._gather(n, t + 0.5 * hc, t + hc), t, hc)
+
+
+@register_algorithm("jacobi")
+class Jacobi(Algorithm):
+    """Every firing component sees the outputs as they were at the start of the base step."""
+
+    feedback_from_all = True
+
+    def run_pass(self, engine, firing, t_end):
+        h = engine.h
+        gathered = []
+        for n in firing:
+            hc = engine.mult[n] * h
+            gathered.append((n, engine._gather(n, t_end - 0.5 * hc, t_end)))
+        for n, values in gathered:
+            t, hc = _step_size(engine, n, t_end)
+            if hc > 0.0:
+                engine._fire(n, values, t, hc)
+
+
+ALGORITHMS = tuple(ALGORITHM_CLASSES)
 
 
 class SimulationDiverged(RuntimeError):
@@ -131,8 +204,8 @@ class EngineSettings:
     check_every: int = 64
 
     def __post_init__(self):
-        if self.algorithm not in ALGORITHMS:
-            raise ContractError(f"algorithm {self.algorithm!r} not in {ALGORITHMS}")
+        if self.algorithm not in ALGORITHM_CLASSES:
+            raise ContractError(f"algorithm {self.algorithm!r} not in {tuple(ALGORITHM_CLASSES)}")
         if int(self.iterations) < 1:
             raise ContractError(f"algorithm: iterations must be >= 1, got {self.iterations}")
         if not (self.tolerance > 0 and math.isfinite(self.tolerance)):
@@ -150,6 +223,7 @@ class Engine:
         self.order = list(order) + rest
         self.system = system
         self.settings = settings
+        self.algorithm = ALGORITHM_CLASSES[settings.algorithm]()
         conv = getattr(system, "converters", {})
         self.links = [_Link(c, system.components[c.src_component], system.components[c.dst_component],
                             conv.get(c.dst)) for c in system.connections]
@@ -283,35 +357,11 @@ class Engine:
         fire step only up to the requested time (not at all if they are already there), so that the run ends
         with every component that had not yet fired at that time; those fired before it have completed the
         base step (without FMU state they cannot be taken back)."""
-        h = self.h
-        if self.settings.algorithm == "gauss-seidel":
-            direct = self._direct
-            for n in firing:
-                hc = self.mult[n] * h
-                t = t_end - hc
-                if self.stop is not None:
-                    hc = self.stop.t_stop - t
-                    if hc <= 1e-12 * max(1.0, abs(t)):
-                        continue
-                if n in direct:
-                    self._fire_direct(n, t, hc)
-                else:
-                    self._fire(n, self._gather(n, t + 0.5 * hc, t + hc), t, hc)
-        else:
-            gathered = []
-            for n in firing:
-                hc = self.mult[n] * h
-                gathered.append((n, self._gather(n, t_end - 0.5 * hc, t_end), t_end - hc, hc))
-            for n, values, t, hc in gathered:
-                if self.stop is not None:
-                    hc = self.stop.t_stop - t
-                    if hc <= 1e-12 * max(1.0, abs(t)):
-                        continue
-                self._fire(n, values, t, hc)
+        self.algorithm.run_pass(self, firing, t_end)
 
     def _iterate(self, firing: list[str], t_end: float) -> None:
         rank = {n: i for i, n in enumerate(self.active)}
-        jacobi = self.settings.algorithm == "jacobi"
+        jacobi = self.algorithm.feedback_from_all
         snapshot = {n: self._comp[n].get_state() for n in firing}
         fired = set(firing)
         override: dict[_Link, np.ndarray] = {}

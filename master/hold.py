@@ -24,9 +24,12 @@ libcosim would call it a manipulator: it changes what crosses some connections, 
   docs/table6_levels.md). With too little temperature change to measure (``MIN_SPREAD``) the last measured ``e``
   is kept, else e = 1 (the frozen law).
 * Every TO interval's hand-off error is measured at the next TM restart: the held value at the end of the TO
-  interval against the window the mechanics produce at the same temperatures (:attr:`StaggeredHold.errors`).
-  The temperature rises of a linear network are positive combinations of the powers, so their relative error is
-  at most the largest of these: the schedule's error estimate.
+  interval against the window the mechanics produce at the same temperatures. Its effect on the temperatures is
+  estimated by the thermal components themselves (through get_state / do_step / set_state, so any component that
+  can save its state): each one is stepped over the TO interval's length from its present state with and without
+  its hand-off powers in error by the measured amounts; the largest change of an output in K, relative to that
+  output in degrees C (the convention of Table 4's relative errors), is the interval's error estimate
+  (:class:`HoldReport`; the automatic schedule controls it, master/auto.py).
 """
 from __future__ import annotations
 
@@ -44,9 +47,8 @@ MIN_SPREAD = 0.05
 ELASTICITY_RANGE = (0.0, 2.0)
 #: TM intervals whose cycles enter the elasticity fit (the latest ones: the law is local)
 FIT_INTERVALS = 3
-#: hand-offs smaller than this share of the largest one of their thermal component are left out of the error
-#: estimate (a near-zero power has a meaningless relative error and heats nothing)
-ERROR_FLOOR_SHARE = 0.02
+#: the zero of degrees C (K): Table 4 and ``rotorcosim compare`` give temperature errors relative to C values
+ZERO_CELSIUS_K = 273.15
 
 
 def mechanical(comp) -> bool:
@@ -131,15 +133,16 @@ class HandOff:
         last = self.cycles[-cycles:] if self.cycles else []
         return np.mean([u for u, _ in last], axis=0) if last else self._thermal_inputs()
 
-    def measure_restart_error(self) -> None:
+    def measure_restart_error(self) -> bool:
         """At the end of the first TM interval after a TO interval: the held value the TO interval ended with
-        against the window the mechanics now produce (the hand-off error of that TO interval)."""
+        against the window the mechanics now produce (the hand-off error of that TO interval). True if measured."""
         if self._to_end is None or self.count == 0:
-            return
+            return False
         now = self.statistic(self.hold)
         scale = max(float(np.max(np.abs(now))), 1e-300)
         self.error = float(np.max(np.abs(self._to_end - now))) / scale
         self._to_end = None
+        return True
 
     # -- TO: hold -----------------------------------------------------------------------------------------
     def start_to(self, probe, fired, cycles: int) -> None:
@@ -211,19 +214,26 @@ class _HeldLaw(_Held):
 
 @dataclass
 class HoldReport:
-    """What the hold measured: per hand-off, the elasticity used in the last TO interval and the last hand-off
-    error (relative, at the restart); their largest is the run's error estimate."""
+    """What the hold measured: per hand-off, the elasticity of its last TO law and its last hand-off error
+    (relative power, at the restart); per TO interval, the estimated error of the temperatures (percent of their
+    C values); the largest of those is the run's estimate."""
 
     elasticity: dict[str, float] = field(default_factory=dict)
     errors: dict[str, float] = field(default_factory=dict)
+    interval_estimates_pct: list[float] = field(default_factory=list)
+
+    @property
+    def last_estimate_pct(self) -> float | None:
+        return self.interval_estimates_pct[-1] if self.interval_estimates_pct else None
 
     @property
     def estimated_error_pct(self) -> float | None:
-        return 100.0 * max(self.errors.values()) if self.errors else None
+        return max(self.interval_estimates_pct) if self.interval_estimates_pct else None
 
     def as_dict(self) -> dict:
-        return {"elasticity": dict(self.elasticity), "handoff_error_pct": {k: 100.0 * v for k, v in
-                                                                            self.errors.items()},
+        return {"elasticity": dict(self.elasticity),
+                "handoff_error_pct": {k: 100.0 * v for k, v in self.errors.items()},
+                "interval_estimates_pct": list(self.interval_estimates_pct),
                 "estimated_error_pct": self.estimated_error_pct}
 
 
@@ -239,6 +249,8 @@ class StaggeredHold:
         self.speed_rpm = speed_rpm
         self.handoffs: list[HandOff] | None = None
         self.report = HoldReport()
+        self._to_start = 0.0
+        self._to_length: float | None = None
 
     def _find_handoffs(self) -> None:
         """After set-up: a component may decide its phases from its parameters (the bearing's drag update)."""
@@ -279,6 +291,7 @@ class StaggeredHold:
         for link in self.links:  # inputs of stepped components from frozen ones: their last value
             if link.con.dst_component in on and link.con.src_component not in on:
                 link.held = _Held(link, link.src.y[link.sport])
+        self._to_start = t
         probe = _Probe(t, step)
         steps_taken = steps_taken if steps_taken is not None else {}
         for ho in self.handoffs:
@@ -288,29 +301,59 @@ class StaggeredHold:
             if isinstance(ho.held, _HeldLaw):
                 self.report.elasticity[f"{ho.link.con.src} -> {ho.link.con.dst}"] = ho.held.e
 
-    def end(self, phase: str) -> None:
-        """End of an interval: after the first TM interval that follows a TO interval, the hand-off errors."""
+    def end(self, phase: str, t: float) -> None:
+        """End of an interval at time t: after the first TM interval that follows a TO interval, the hand-off
+        errors and the estimated temperature error of that TO interval."""
         if phase == "TO":
             for ho in self.handoffs:
                 ho.end_to()
+            self._to_length = t - self._to_start
             return
+        fresh = []
         for ho in self.handoffs:
-            ho.measure_restart_error()
-        self._update_report()
-
-    def _update_report(self) -> None:
-        by_dst: dict[str, float] = {}
-        for ho in self.handoffs:
-            if ho.count:
-                d = ho.link.con.dst_component
-                by_dst[d] = max(by_dst.get(d, 0.0), float(np.max(np.abs(ho.statistic(ho.hold)))))
-        for ho in self.handoffs:
-            if ho.error is None or not ho.count:
-                continue
-            big = float(np.max(np.abs(ho.statistic(ho.hold)))) >= ERROR_FLOOR_SHARE * by_dst.get(
-                ho.link.con.dst_component, 0.0)
-            if big:
+            if ho.measure_restart_error():
+                fresh.append(ho)
                 self.report.errors[f"{ho.link.con.src} -> {ho.link.con.dst}"] = ho.error
+        if fresh and self._to_length:
+            self.report.interval_estimates_pct.append(100.0 * self._temperature_error(fresh, self._to_length))
+            self._to_length = None
+
+    def _temperature_error(self, handoffs: list[HandOff], length: float) -> float:
+        """Largest relative change of a thermal output in K (relative to its C value) when each thermal component
+        runs ``length`` seconds from its present state with its hand-off powers in error by the measured
+        amounts, against the same run without."""
+        by_dst: dict[str, list[HandOff]] = {}
+        for ho in handoffs:
+            by_dst.setdefault(ho.link.con.dst_component, []).append(ho)
+        worst = 0.0
+        for name, hos in by_dst.items():
+            comp = self.system.components[name]
+            outs = [v.name for v in comp.variables if v.causality == "output" and v.unit == "K"]
+            if not outs:
+                continue
+            try:
+                snap = comp.get_state()
+            except Exception:  # cannot save its state: no estimate from it
+                continue
+            try:
+                base = _run_thermal(comp, {}, length, outs)
+                comp.set_state(snap)
+                change = np.zeros_like(base)
+                for ho in hos:
+                    u = np.array(comp.u[ho.link.dport], dtype=float) * (1.0 + ho.error)
+                    change += np.abs(_run_thermal(comp, {ho.link.dport: u}, length, outs) - base)
+                    comp.set_state(snap)
+            finally:
+                comp.set_state(snap)
+            worst = max(worst, float(np.max(change / np.maximum(np.abs(base - ZERO_CELSIUS_K), 1.0))))
+        return worst
+
+
+def _run_thermal(comp, inputs: dict, length: float, outs: list[str]) -> np.ndarray:
+    if inputs:
+        comp.set_inputs(inputs)
+    comp.do_step(comp.time, length)
+    return np.concatenate([np.ravel(np.array(comp.y[o], dtype=float)) for o in outs])
 
 
 class _Fired:

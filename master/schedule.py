@@ -5,14 +5,16 @@
   fed with the frozen components' outputs held at their RMS (or mean) over the last N rotor cycles of the
   previous TM interval.
 
-A schedule is an explicit timeline, ``monolithic`` (one TM interval) or automatic (:class:`AutoSchedule`,
-decided while the run goes). Every run reports the timeline it actually used.
+A schedule is a class behind a registry (``kind`` of a scenario's ``[schedule]``): an explicit ``timeline``,
+``monolithic`` (one TM interval) or ``auto`` (master/auto.py: decided while the run goes, optionally to an error
+tolerance). A new schedule is a new registered class with ``from_spec`` and ``run``. Every run reports the timeline
+it actually used.
 """
 from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
-from typing import Any, Mapping, Sequence
+from typing import Any, Mapping
 
 from rotorcosim.components.contract import ContractError, PHASES
 
@@ -51,42 +53,41 @@ class Interval:
         return max(1, math.ceil(self.duration / self.step - 1e-9))
 
 
-@dataclass
-class Timeline:
-    """An explicit list of intervals (the paper's Fig. 8)."""
-
-    intervals: list[Interval]
-
-    @property
-    def duration(self) -> float:
-        return sum(i.duration for i in self.intervals)
+#: the schedules by kind (a registry, like the components'): a new schedule is a new class, registered here
+SCHEDULES: dict[str, type["Schedule"]] = {}
+#: [schedule] keys every kind accepts (the Simulation's, and the step defaults)
+COMMON_KEYS = ("kind", "duration", "step", "thermal_step", "speed_rpm", "hold", "hold_cycles")
 
 
-@dataclass
-class AutoSchedule:
-    """TM until the tracked mechanical outputs are steady cycle to cycle, TO until the thermal outputs that
-    feed the mechanical side have drifted by more than ``drift_tolerance`` (relative), within min/max durations."""
+def register_schedule(kind: str):
+    """Class decorator: make a :class:`Schedule` available as ``[schedule] kind``."""
 
-    duration: float
-    step: float
-    thermal_step: float
-    steady_tolerance: float = 0.01
-    steady_cycles: int = 3
-    drift_tolerance: float = 0.02
-    tm_min: float = 0.02
-    tm_max: float = 0.5
-    to_min: float = 0.5
-    to_max: float = 30.0
-    tracked: Sequence[str] = ()
+    def add(cls):
+        cls.kind = kind
+        SCHEDULES[kind] = cls
+        return cls
 
-    def __post_init__(self):
-        for name in ("duration", "step", "thermal_step", "steady_tolerance", "drift_tolerance",
-                     "tm_min", "tm_max", "to_min", "to_max"):
-            setattr(self, name, _positive(name, getattr(self, name)))
-        if self.tm_min > self.tm_max or self.to_min > self.to_max:
-            raise ScheduleError("schedule: minimum interval durations must not exceed the maxima")
-        if int(self.steady_cycles) < 1:
-            raise ScheduleError("schedule: steady_cycles must be >= 1")
+    return add
+
+
+class Schedule:
+    """What runs when. ``from_spec`` builds one from a scenario's ``[schedule]`` table (its own keys in
+    ``keys``); ``run`` drives a Simulation through it."""
+
+    kind = ""
+    #: the [schedule] keys this kind reads beyond COMMON_KEYS
+    keys: tuple[str, ...] = ()
+
+    @classmethod
+    def from_spec(cls, spec: Mapping[str, Any], duration: float | None, step: float, thermal_step: float,
+                  speed_rpm: float | None) -> "Schedule":
+        raise NotImplementedError
+
+    # every schedule has a ``duration`` (s): the simulated time it covers
+
+    def run(self, sim, first: int = 0) -> None:
+        """Drive ``sim`` through the schedule, from its interval ``first`` on (a resumed run)."""
+        raise NotImplementedError
 
 
 def _interval_duration(spec: Mapping[str, Any], speed_rpm: float | None) -> float:
@@ -101,46 +102,73 @@ def _interval_duration(spec: Mapping[str, Any], speed_rpm: float | None) -> floa
     return _positive("interval duration", spec["duration"])
 
 
-def from_spec(spec: Mapping[str, Any], duration: float | None = None) -> Timeline | AutoSchedule:
-    """Build a schedule from a scenario's ``[schedule]`` table.
+@register_schedule("timeline")
+@dataclass
+class Timeline(Schedule):
+    """An explicit list of intervals (the paper's Fig. 8): ``[[schedule.intervals]]`` with phase, duration or
+    cycles, and an optional step."""
 
-    ``kind = "timeline"`` with ``[[schedule.intervals]]`` (phase, duration or cycles, optional step);
-    ``kind = "monolithic"`` with ``duration`` and ``step``; ``kind = "auto"`` with the AutoSchedule fields.
-    ``duration`` overrides the scenario's total duration (a timeline is then cut or its last TO stretched).
-    """
-    known = {"kind", "duration", "step", "thermal_step", "speed_rpm", "hold", "hold_cycles", "intervals",
-             "steady_tolerance", "steady_cycles", "drift_tolerance", "tm_min", "tm_max", "to_min", "to_max",
-             "tracked"}
-    unknown = set(spec) - known
-    if unknown:
-        raise ScheduleError(f"schedule: unknown key(s) {sorted(unknown)}; known: {sorted(known)}")
-    kind = spec.get("kind", "monolithic")
-    step = _positive("step", spec.get("step", 1e-5))
-    thermal_step = _positive("thermal_step", spec.get("thermal_step", 0.1))
-    speed = spec.get("speed_rpm")
-    if kind == "monolithic":
-        total = _positive("duration", duration if duration is not None else spec.get("duration"))
-        return Timeline([Interval("TM", total, min(step, total))])
-    if kind == "timeline":
+    intervals: list[Interval]
+    keys = ("intervals",)
+
+    @property
+    def duration(self) -> float:
+        return sum(i.duration for i in self.intervals)
+
+    @classmethod
+    def from_spec(cls, spec, duration, step, thermal_step, speed_rpm):
         raw = spec.get("intervals")
         if not raw:
             raise ScheduleError("schedule: kind 'timeline' needs [[schedule.intervals]]")
         intervals = []
         for item in raw:
             phase = item.get("phase")
-            d = _interval_duration(item, speed)
+            d = _interval_duration(item, speed_rpm)
             h = item.get("step", step if phase == "TM" else thermal_step)
             intervals.append(Interval(phase, d, min(_positive("interval step", h), d)))
-        tl = Timeline(intervals)
+        tl = cls(intervals)
         if duration is not None:
             tl = cut_timeline(tl, _positive("duration", duration))
         return tl
-    if kind == "auto":
+
+    def run(self, sim, first: int = 0) -> None:
+        if any(iv.phase == "TO" for iv in self.intervals) and not sim.speed_rpm:
+            raise ScheduleError("a schedule with thermal-only intervals needs speed_rpm (the rotor cycle over which "
+                                "the held outputs are averaged)")
+        for i, iv in enumerate(self.intervals[first:], first):
+            sim.interval_index = i
+            sim.run_interval(iv.phase, iv.duration, iv.step)
+            if sim.report.stopped:
+                break
+
+
+@register_schedule("monolithic")
+class Monolithic(Timeline):
+    """One thermo-mechanical interval over ``duration`` at ``step``."""
+
+    keys = ()
+
+    @classmethod
+    def from_spec(cls, spec, duration, step, thermal_step, speed_rpm):
         total = _positive("duration", duration if duration is not None else spec.get("duration"))
-        kwargs = {k: spec[k] for k in ("steady_tolerance", "steady_cycles", "drift_tolerance", "tm_min",
-                                       "tm_max", "to_min", "to_max", "tracked") if k in spec}
-        return AutoSchedule(total, step, thermal_step, **kwargs)
-    raise ScheduleError(f"schedule: kind {kind!r} not in ('timeline', 'monolithic', 'auto')")
+        return cls([Interval("TM", total, min(step, total))])
+
+
+def from_spec(spec: Mapping[str, Any], duration: float | None = None) -> Schedule:
+    """Build a schedule from a scenario's ``[schedule]`` table: ``kind`` names a registered :class:`Schedule`
+    (default ``monolithic``), which reads its own keys. ``duration`` overrides the scenario's total duration
+    (a timeline is then cut or its last interval stretched)."""
+    known = set(COMMON_KEYS).union(*(c.keys for c in SCHEDULES.values()))
+    unknown = set(spec) - known
+    if unknown:
+        raise ScheduleError(f"schedule: unknown key(s) {sorted(unknown)}; known: {sorted(known)}")
+    kind = spec.get("kind", "monolithic")
+    cls = SCHEDULES.get(kind)
+    if cls is None:
+        raise ScheduleError(f"schedule: kind {kind!r} not in {tuple(SCHEDULES)}")
+    step = _positive("step", spec.get("step", 1e-5))
+    thermal_step = _positive("thermal_step", spec.get("thermal_step", 0.1))
+    return cls.from_spec(spec, duration, step, thermal_step, spec.get("speed_rpm"))
 
 
 def cut_timeline(tl: Timeline, duration: float) -> Timeline:
@@ -193,3 +221,6 @@ class RunReport:
                 "component_steps": dict(self.component_steps), "t_end": self.t_end, "error": self.error,
                 "status": self.status, "stopped": self.stopped,
                 "hold": self.hold.as_dict() if self.hold is not None else None}
+
+
+from .auto import AutoSchedule  # noqa: E402,F401  (registers the kind "auto"; it builds on the classes above)

@@ -27,9 +27,10 @@ from typing import Any, Callable, Mapping
 from rotorcosim.components.contract import PHASES, ContractError
 
 from .algorithm import ALGORITHMS
+from .schedule import SCHEDULES
 from .system import AVERAGES, EXTRAPOLATIONS, HOLDS
 
-SCHEDULE_KINDS = ("timeline", "monolithic", "auto")
+SCHEDULE_KINDS = tuple(SCHEDULES)   # the schedule registry (master/schedule.py)
 OUTPUT_FORMATS = ("h5", "csv")
 
 
@@ -133,7 +134,7 @@ TABLES: dict[str, dict[str, Callable | None]] = {
                  "speed_rpm": positive, "hold": one_of(*HOLDS), "hold_cycles": positive, "intervals": None,
                  "steady_tolerance": positive, "steady_cycles": count, "drift_tolerance": positive,
                  "tm_min": positive, "tm_max": positive, "to_min": positive, "to_max": positive,
-                 "tracked": list_of(port_ref)},
+                 "tracked": list_of(port_ref), "tolerance": positive},
     "outputs": {"record": list_of(port_ref), "record_step": positive, "format": one_of(*OUTPUT_FORMATS)},
     "results": {"kind": text, "unbalance_parameter": port_ref, "cycles": positive},
 }

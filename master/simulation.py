@@ -15,13 +15,9 @@ import numpy as np
 from rotorcosim.components.contract import ContractError
 
 from .algorithm import Engine, EngineSettings, SimulationDiverged
-from .hold import DEFAULT_HOLD, HOLDS, StaggeredHold, feeds_thermal
-from .schedule import AutoSchedule, Interval, RunReport, ScheduleError, Timeline, UsedInterval
+from .hold import DEFAULT_HOLD, HOLDS, StaggeredHold
+from .schedule import RunReport, Schedule, ScheduleError, UsedInterval
 from .system import System
-
-#: floors of the relative drift test of the automatic schedule, by unit (a change smaller than this is no drift)
-DRIFT_FLOORS = {"K": 0.5, "m": 1e-7, "Pa.s": 1e-4, "W": 1.0, "N": 1.0}
-
 
 class Simulation:
     def __init__(self, system: System, *, order: Sequence[str] | None = None,
@@ -158,24 +154,20 @@ class Simulation:
                 self.report.timeline.append(used)
             self.report.t_end = self.t
             self.report.component_steps = dict(self.engine.steps_taken)
-        self.hold.end(phase)
+        self.hold.end(phase, self.t)
         self.report.hold = self.hold.report
         for obs in self.observers:
             obs.interval_end(self, used)
         return used
 
     # -- whole runs ------------------------------------------------------------------------------------
-    def run(self, schedule: Timeline | AutoSchedule) -> RunReport:
+    def run(self, schedule: Schedule) -> RunReport:
         """Run ``schedule``. The components are initialised first, so the first recorded sample (at t0) holds
         the outputs after initialisation. A stop request of a component ends the run early and cleanly:
         ``report.status`` is then ``"stopped"`` and ``report.stopped`` names the component and the time."""
         t_wall = _time.perf_counter()
         error = None
         try:
-            if isinstance(schedule, Timeline) and any(iv.phase == "TO" for iv in schedule.intervals) \
-                    and not self.speed_rpm:
-                raise ScheduleError("a schedule with thermal-only intervals needs speed_rpm (the rotor cycle "
-                                    "over which the held outputs are averaged)")
             self.initialise()
             first = 0
             if self.resume_point is not None:  # checkpoint.py: an interrupted run continues where it was saved
@@ -183,14 +175,7 @@ class Simulation:
                 first = self.resume_point.interval
             for obs in self.observers:
                 obs.start(self, schedule)
-            if isinstance(schedule, Timeline):
-                for i, iv in enumerate(schedule.intervals[first:], first):
-                    self.interval_index = i
-                    self.run_interval(iv.phase, iv.duration, iv.step)
-                    if self.report.stopped:
-                        break
-            else:
-                self._run_auto(schedule)
+            schedule.run(self, first)
             self.report.status = "stopped" if self.report.stopped else "complete"
         except BaseException as exc:
             error = exc
@@ -208,102 +193,3 @@ class Simulation:
             if failure is not None and error is None:
                 raise failure
         return self.report
-
-    def _run_auto(self, sch: AutoSchedule) -> None:
-        if not self.speed_rpm:
-            raise ScheduleError("the automatic schedule needs speed_rpm (its steadiness test works cycle by cycle)")
-        end = self.t0 + sch.duration
-        eps = 1e-9
-        while self.t < end - eps:
-            remaining = end - self.t
-            if remaining <= sch.tm_max + sch.to_min:
-                # no room left for a thermal-only interval: one thermo-mechanical interval to the end (stopping
-                # it early when steady would only start another one)
-                self.run_interval("TM", remaining, sch.step, reason="end")
-                break
-            self.run_interval("TM", sch.tm_max, sch.step, _SteadyTest(self, sch), reason="tm_max")
-            if self.report.stopped:
-                break
-            remaining = end - self.t
-            if remaining <= eps:
-                break
-            # keep room for a final thermo-mechanical interval, where the results are read
-            d_to = min(sch.to_max, remaining - sch.tm_max)
-            if d_to < sch.to_min:
-                continue
-            self.run_interval("TO", d_to, sch.thermal_step, _DriftTest(self, sch), reason="to_max")
-            if self.report.stopped:
-                break
-
-
-class _StopTest:
-    every = 1
-
-    def sample(self, sim: Simulation) -> None:
-        pass
-
-    def check(self, sim: Simulation, t: float) -> str | None:
-        return None
-
-
-class _SteadyTest(_StopTest):
-    """Steady when the RMS of the tracked outputs over a rotor cycle changes by less than the tolerance
-    (relative) for ``steady_cycles`` consecutive cycles, after ``tm_min``."""
-
-    def __init__(self, sim: Simulation, sch: AutoSchedule):
-        self.sch = sch
-        comps = sim.system.components
-        self.refs = list(sch.tracked) or sorted({l.con.src for l in sim.engine.links if feeds_thermal(
-            comps[l.con.src_component], comps[l.con.dst_component])})
-        for r in self.refs:
-            sim.system._port(r, "output")
-        self.every = max(1, int(round(sim.cycle / sch.step)))
-        self.t_begin = sim.t
-        self.acc = None
-        self.n = 0
-        self.last = None
-        self.steady = 0
-
-    def sample(self, sim):
-        if not self.refs:
-            return
-        vals = np.concatenate([np.ravel(sim.value(r)) for r in self.refs])
-        self.acc = vals * vals if self.acc is None else self.acc + vals * vals
-        self.n += 1
-
-    def check(self, sim, t):
-        if self.acc is None:
-            return "steady" if t - self.t_begin >= self.sch.tm_min - 1e-12 else None
-        rms = np.sqrt(self.acc / self.n)
-        self.acc, self.n = None, 0
-        if self.last is not None:
-            scale = np.maximum(np.abs(self.last), 1e-12)
-            change = float(np.max(np.abs(rms - self.last) / scale))
-            self.steady = self.steady + 1 if change < self.sch.steady_tolerance else 0
-        self.last = rms
-        if t - self.t_begin >= self.sch.tm_min - 1e-12 and self.steady >= self.sch.steady_cycles:
-            return "steady"
-        return None
-
-
-class _DriftTest(_StopTest):
-    """Ends a thermal-only interval when an output of a thermal component that feeds a frozen (mechanical)
-    component has drifted from its value at the interval start by more than the tolerance, after ``to_min``."""
-
-    def __init__(self, sim: Simulation, sch: AutoSchedule):
-        self.sch = sch
-        comps = sim.system.components
-        self.refs = sorted({l.con.src for l in sim.engine.links
-                            if feeds_thermal(comps[l.con.dst_component], comps[l.con.src_component])})
-        self.start = {r: np.array(sim.value(r), dtype=float) for r in self.refs}
-        self.floors = {r: DRIFT_FLOORS.get(sim.system._port(r, "output").unit, 0.0) for r in self.refs}
-        self.t_begin = sim.t
-
-    def check(self, sim, t):
-        if t - self.t_begin < self.sch.to_min - 1e-12:
-            return None
-        for r in self.refs:
-            d = np.abs(sim.value(r) - self.start[r])
-            if np.any(d > self.sch.drift_tolerance * np.abs(self.start[r]) + self.floors[r]):
-                return f"drift of {r}"
-        return None

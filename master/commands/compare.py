@@ -8,13 +8,14 @@ rotor revolutions in all, alternating with 2 thermal-only intervals, as the pape
 """
 from __future__ import annotations
 
+import json
 import math
 import sys
 import tempfile
 from pathlib import Path
 
 from rotorcosim.master.outputs import write_json
-from rotorcosim.master.schedule import Interval, Timeline
+from rotorcosim.master.schedule import Interval, Timeline, from_spec
 
 from .run import apply_unbalance, execute, resolve
 
@@ -38,6 +39,14 @@ def add_arguments(p):
     p.add_argument("--no-figures", action="store_true", help="skip the PNG figures of the two runs")
     p.add_argument("--quiet", action="store_true", help="no line and progress bar per case")
     p.add_argument("--overwrite", action="store_true", help="replace the results of a previous comparison in --out")
+    p.add_argument("--schedule", choices=("paper", "auto"), default="paper",
+                   help="staggered run: paper (3 TM + 2 TO intervals, Table 6) or auto (the scenario's automatic "
+                        "schedule over --duration)")
+    p.add_argument("--tolerance", type=float, default=None, metavar="PCT",
+                   help="with --schedule auto: the largest Table 4 error accepted, percent (see rotorcosim run)")
+    p.add_argument("--monolithic", default=None, metavar="DIR",
+                   help="reuse the monolithic run in DIR (a previous comparison's monolithic/ folder of the same "
+                        "scenario, unbalance and duration) instead of running it again")
 
 
 def staggered_timeline(duration: float, step: float, thermal_step: float, speed_rpm: float,
@@ -69,7 +78,7 @@ def _warm_up(scenario: str, out: Path) -> None:
 
 
 def compare(out: Path, duration=2.0, unbalance=2850.0, scenario="blade_loss", revolutions=40.0, bearing=0,
-            quiet=True, figures=True, overwrite=False) -> dict:
+            quiet=True, figures=True, overwrite=False, schedule="paper", tolerance=None, monolithic=None) -> dict:
     if not (duration > 0 and duration < float("inf")):
         raise ValueError(f"--duration must be a positive number of seconds, got {duration}")
     if str(out).strip() == "":
@@ -78,14 +87,28 @@ def compare(out: Path, duration=2.0, unbalance=2850.0, scenario="blade_loss", re
     if out.exists() and not out.is_dir():
         raise ValueError(f"--out {out} is a file, not a folder")
     out.mkdir(parents=True, exist_ok=True)
+    if schedule not in ("paper", "auto"):
+        raise ValueError(f"--schedule must be 'paper' or 'auto', got {schedule!r}")
+    if tolerance is not None and (schedule != "auto" or not 0.0 < tolerance < float("inf")):
+        raise ValueError("--tolerance is a positive percentage and applies to --schedule auto only")
     runs = {}
+    if monolithic is not None:
+        runs["monolithic"] = _reuse(Path(monolithic), unbalance, duration)
     _warm_up(scenario, out)
     kinds = ("staggered", "monolithic")
     for i, kind in enumerate(kinds, 1):
+        if kind in runs:
+            continue
         sc = resolve(scenario)
         apply_unbalance(sc, unbalance)
         s = sc.schedule
-        if kind == "staggered":
+        if kind == "staggered" and schedule == "auto":
+            spec = {k: v for k, v in s.items() if k != "intervals"}
+            spec["kind"] = "auto"
+            if tolerance is not None:
+                spec["tolerance"] = tolerance
+            sch = from_spec(spec, duration)
+        elif kind == "staggered":
             quantum = max([c.step for c in sc.components.values() if c.step] + [float(s.get("step", 1e-5))])
             sch = staggered_timeline(duration, float(s.get("step", 1e-5)), float(s.get("thermal_step", 0.1)),
                                      float(s["speed_rpm"]), revolutions, quantum)
@@ -93,7 +116,8 @@ def compare(out: Path, duration=2.0, unbalance=2850.0, scenario="blade_loss", re
             sch = Timeline([Interval("TM", duration, float(s.get("step", 1e-5)))])
         sc.name = f"{sc.name}_{kind}"
         if not quiet:  # a line per case, and the case's own progress bar (time left from its measured step cost)
-            print(f"[{i}/{len(kinds)}] {kind}: {sch.duration:g} s simulated, {len(sch.intervals)} interval(s)",
+            what = f"{len(sch.intervals)} interval(s)" if hasattr(sch, "intervals") else "automatic schedule"
+            print(f"[{i}/{len(kinds)}] {kind}: {sch.duration:g} s simulated, {what}",
                   file=sys.stderr, flush=True)
         runs[kind] = execute(sc, out / kind, figures=figures, quiet=quiet, schedule=sch, overwrite=overwrite)
         if not quiet:
@@ -107,15 +131,37 @@ def compare(out: Path, duration=2.0, unbalance=2850.0, scenario="blade_loss", re
     wall = {k: runs[k]["wall_time_s"] for k in runs}
     table = {"bearing": bearing, "duration_s": duration, "unbalance_N": unbalance, "revolutions_tm": revolutions,
              "results": results, "wall_time_s": wall, "speedup": wall["monolithic"] / wall["staggered"],
+             "largest_error_pct": max((v["rel_error_pct"] or 0.0) for v in results.values()),
+             "schedule": schedule, "tolerance_pct": tolerance, "hold": runs["staggered"].get("hold"),
+             "monolithic_reused_from": str(monolithic) if monolithic is not None else None,
              "timeline_staggered": runs["staggered"]["timeline"]}
     write_json(out / "table6.json", table)
     return table
 
 
+def _reuse(folder: Path, unbalance: float, duration: float) -> dict:
+    """A previous monolithic run's summary, checked to be the one this comparison needs."""
+    f = folder / "summary.json"
+    try:
+        summary = json.loads(f.read_text())
+    except (OSError, ValueError) as exc:
+        raise ValueError(f"--monolithic {folder}: no readable summary.json ({exc})") from None
+    tl = summary.get("timeline") or []
+    if summary.get("status", "complete") != "complete" or len(tl) != 1 or tl[0].get("phase") != "TM":
+        raise ValueError(f"--monolithic {f}: not a complete monolithic run (one thermo-mechanical interval)")
+    if abs(float(summary.get("t_end_s", -1.0)) - duration) > 1e-9 * max(1.0, duration):
+        raise ValueError(f"--monolithic {f}: it simulated {summary.get('t_end_s')} s, not --duration {duration} s")
+    if summary.get("unbalance_N") is None or abs(float(summary["unbalance_N"]) - unbalance) > 1e-9 * max(1.0, unbalance):
+        raise ValueError(f"--monolithic {f}: its unbalance is {summary.get('unbalance_N')} N, not {unbalance} N")
+    return summary
+
+
 def run(args) -> int:
     t = compare(Path(args.out), args.duration, args.unbalance, args.scenario, args.revolutions, args.bearing,
-                quiet=args.quiet, figures=not args.no_figures, overwrite=args.overwrite)
-    worst = max((v["rel_error_pct"] or 0.0) for v in t["results"].values())
-    print(f"Table 6 (bearing #{t['bearing']}, {t['duration_s']} s): speed-up {t['speedup']:.1f}, "
-          f"largest relative error {worst:.2f} %; {args.out}/table6.json")
+                quiet=args.quiet, figures=not args.no_figures, overwrite=args.overwrite, schedule=args.schedule,
+                tolerance=args.tolerance, monolithic=args.monolithic)
+    est = (t.get("hold") or {}).get("estimated_error_pct")
+    print(f"Table 6 (bearing #{t['bearing']}, {t['duration_s']} s, {t['schedule']} schedule): speed-up "
+          f"{t['speedup']:.1f}, largest relative error {t['largest_error_pct']:.2f} %"
+          + (f" (estimated by the staggered run: {est:.2f} %)" if est is not None else "") + f"; {args.out}/table6.json")
     return 0

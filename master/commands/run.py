@@ -37,6 +37,10 @@ def add_arguments(p):
     p.add_argument("--record", default=None, metavar="COMP.PORT,...",
                    help="the ports to record, comma-separated (default: the scenario's [outputs] record; the "
                         "figures need the scenario's own)")
+    p.add_argument("--tolerance", type=float, default=None, metavar="PCT",
+                   help="with --schedule auto: the largest error of a Table 4 result against the monolithic run "
+                        "that you accept, in percent; the thermal-only intervals follow it and summary.json reports "
+                        "the estimated error achieved (hold.estimated_error_pct)")
     p.add_argument("--out", required=True, help="output folder (empty, or see --overwrite / --resume)")
     p.add_argument("--overwrite", action="store_true", help="replace the results of a previous run in --out")
     p.add_argument("--resume", action="store_true",
@@ -137,6 +141,12 @@ def run(args) -> int:
             spec.options["process"] = True
             if args.step_timeout > 0:
                 spec.options.setdefault("step_timeout", args.step_timeout)
+    if args.tolerance is not None:
+        if args.schedule != "auto":
+            raise ValueError("--tolerance applies to --schedule auto only")
+        if not (0.0 < args.tolerance < float("inf")):
+            raise ValueError(f"--tolerance must be a positive percentage, got {args.tolerance}")
+        sc.schedule["tolerance"] = float(args.tolerance)
     if not (args.checkpoint_every > 0):
         raise ValueError(f"--checkpoint-every must be a positive number of seconds, got {args.checkpoint_every}")
     out = Path(args.out)
@@ -158,7 +168,9 @@ def run(args) -> int:
     if stop:
         print(f"rotorcosim run: {stop['component']} asked to stop the simulation at t = {stop['t_s']:.9g} s; "
               f"the run ended there (status \"stopped\")")
-    print(f"{sc.name}: {s['t_end_s']:.4g} s simulated in {s['wall_time_s']:.3g} s wall time")
+    est = (s.get("hold") or {}).get("estimated_error_pct")
+    print(f"{sc.name}: {s['t_end_s']:.4g} s simulated in {s['wall_time_s']:.3g} s wall time"
+          + (f"; estimated error of the staggered scheme {est:.2f} %" if est is not None else ""))
     # the last line: every file the run wrote
     print("written: " + ", ".join(str(f) for f in res.files))
     return 0
