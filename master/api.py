@@ -33,7 +33,7 @@ from .observers import Progress, Recorder, column_names
 from .outputs import write_json
 from .rundir import RunFolder
 from .scenario import Scenario, build_simulation, load_scenario as _load_file, schedule_of
-from .schedule import AutoSchedule, Timeline
+from .schedule import Schedule
 
 DEFAULT_SCENARIO = "blade_loss_2850"
 #: ``schedule=`` names: the scenario's own schedule (its timeline), automatic, one TM interval
@@ -70,7 +70,7 @@ def _postprocessor(sc: Scenario):
 def _schedule(sc: Scenario, schedule, duration: float | None):
     if duration is not None and not (duration > 0 and duration < float("inf")):
         raise ValueError(f"duration must be a positive number of seconds, got {duration}")
-    if isinstance(schedule, (Timeline, AutoSchedule)):
+    if isinstance(schedule, Schedule):
         if duration is not None:
             raise ValueError("give duration or a schedule object, not both")
         return schedule, None
