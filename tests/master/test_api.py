@@ -206,3 +206,18 @@ def test_parse_set_values():
         parse_set("a.b=")
     with pytest.raises(ValueError, match="'inf' is not a finite number"):
         parse_set("a.b=inf")
+
+
+def test_scenarios_command_lists_each_shipped_scenario_on_one_line(capsys):
+    assert main(["scenarios"]) == 0
+    lines = capsys.readouterr().out.strip().splitlines()
+    names = sorted(p.stem for p in scenarios.FOLDER.glob("*.toml"))
+    assert [ln.split()[0] for ln in lines] == names
+    assert any(ln.startswith("blade_loss_2850 ") and "2 850 N" in ln for ln in lines)
+    assert all(len(ln.split(None, 1)) == 2 for ln in lines)  # every one has a description
+
+
+def test_version(capsys):
+    with pytest.raises(SystemExit) as info:
+        main(["--version"])
+    assert info.value.code == 0 and capsys.readouterr().out.strip() == f"rotorcosim {rotorcosim.__version__}"
