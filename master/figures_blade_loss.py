@@ -158,6 +158,7 @@ class _Figures:
         ring = None
         if Xr is not None and Xh is not None:
             ring = 1e3 * float(np.max(np.hypot(*(Xr[w0:w1] - Xh[w0:w1]).T)))
+        notes = []
         if RUB_CLEARANCE_MM <= 2.0 * r_max:  # in range of the orbit: draw it, and scale to show it
             th = np.linspace(0, 2 * np.pi, 200)
             a.plot(RUB_CLEARANCE_MM * np.cos(th), RUB_CLEARANCE_MM * np.sin(th), "k:", lw=1,
@@ -165,10 +166,13 @@ class _Figures:
             half = max(half, 1.1 * RUB_CLEARANCE_MM)
             cx = cy = 0.0
         else:
-            note = f"rub-ring clearance {RUB_CLEARANCE_MM} mm: off this scale"
-            if ring is not None:
-                note += f"\nlargest radius at the ring: {ring:.3g} mm"
-            a.text(0.03, 0.03, note, transform=a.transAxes, fontsize=7.5, va="bottom",
+            notes.append(f"rub-ring clearance {RUB_CLEARANCE_MM} mm: off this scale")
+        if ring is not None:
+            # the orbit is the rotor's absolute motion at the bearing; the clearance applies at the ring, to the
+            # rotor's motion relative to the housing there
+            notes.append(f"at the ring, rotor - housing: largest radius {ring:.3g} mm")
+        if notes:
+            a.text(0.03, 0.03, "\n".join(notes), transform=a.transAxes, fontsize=7.5, va="bottom",
                    bbox=dict(boxstyle="round", fc="white", ec="0.7"))
         a.set_xlim(cx - half, cx + half)
         a.set_ylim(cy - half, cy + half)
