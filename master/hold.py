@@ -27,7 +27,7 @@ libcosim would call it a manipulator: it changes what crosses some connections, 
   interval against the window the mechanics produce at the same temperatures. Its effect on the temperatures is
   estimated by the thermal components themselves (through get_state / do_step / set_state, so any component that
   can save its state): each one is stepped over the TO interval's length from its present state with and without
-  its hand-off powers in error by the measured amounts; the largest change of an output in K, relative to that
+  its hand-off powers in error by the measured amounts; the largest change of a scalar output in K, relative to that
   output in degrees C (the convention of Table 4's relative errors), is the interval's error estimate
   (:class:`HoldReport`; the automatic schedule controls it, master/auto.py).
 """
@@ -328,7 +328,9 @@ class StaggeredHold:
         worst = 0.0
         for name, hos in by_dst.items():
             comp = self.system.components[name]
-            outs = [v.name for v in comp.variables if v.causality == "output" and v.unit == "K"]
+            # its scalar temperatures (the thermal network's reported ones: Table 4's and the oil's); a vector of
+            # every node (recorded for figures) would let a barely warmed node's relative error rule the estimate
+            outs = [v.name for v in comp.variables if v.causality == "output" and v.unit == "K" and v.size == 1]
             if not outs:
                 continue
             try:

@@ -44,6 +44,7 @@ import math
 import numpy as np
 
 from ..contract import Component, ContractError, Variable
+from ..speeds import PT_OMEGA
 from .drag import palmgren_torque, static_load_rating
 from .geometry import DATA, BEARINGS, build_geometry
 from .kernel import step_outputs
@@ -66,7 +67,7 @@ class BallBearing(Component):
     variables = (
         Variable("bearing", "parameter", start=0, type="Integer",
                  description="which bearing of Table 3 (0 or 5) gives the geometry and defaults"),
-        Variable("omega", "parameter", unit="rad/s", start=16000.0 * RPM,
+        Variable("omega", "parameter", unit="rad/s", start=PT_OMEGA,
                  description="inner race (power turbine) speed; outer race stationary"),
         Variable("groove_curvature_inner", "parameter", start=_DESIGN["groove_curvature_inner"],
                  description="inner groove radius / ball diameter f_i"),

@@ -33,6 +33,7 @@ import math
 import numpy as np
 
 from ..contract import Component, ContractError, Variable
+from ..speeds import GG_OMEGA, PT_OMEGA
 from . import model as fem
 from .mta import mta_basis, project
 from .kernel import gather, pack, step
@@ -94,8 +95,8 @@ class Rotor(Component):
         Variable("unbalance_phase", "parameter", unit="rad", start=0.0,
                  description="angle of the lost blade relative to the residual unbalance"),
         Variable("t_blade_loss", "parameter", unit="s", start=0.01, description="blade-loss time (step onset)"),
-        Variable("omega_pt", "parameter", unit="rad/s", start=16000.0 * RPM, description="power-turbine speed"),
-        Variable("omega_gg", "parameter", unit="rad/s", start=15000.0 * RPM, description="gas-generator speed"),
+        Variable("omega_pt", "parameter", unit="rad/s", start=PT_OMEGA, description="power-turbine speed"),
+        Variable("omega_gg", "parameter", unit="rad/s", start=GG_OMEGA, description="gas-generator speed"),
         Variable("n_modes", "parameter", unit="1", start=30, type="Integer",
                  description="retained eigenmodes (the reduced size adds 16 augmentation vectors)"),
         Variable("model_file", "parameter", unit="1", start="", type="String",

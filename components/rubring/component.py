@@ -22,6 +22,7 @@ from pathlib import Path
 import numpy as np
 
 from ..contract import Component, ContractError, Variable
+from ..speeds import PT_OMEGA
 from .contact import rub_force
 
 DATA = Path(__file__).with_name("data") / "rubrings.toml"
@@ -29,7 +30,6 @@ with open(DATA, "rb") as _f:
     _DATA = tomllib.load(_f)
 RINGS = {int(k): v for k, v in _DATA["ring"].items()}
 CONTACT = _DATA["contact"]
-PT_OMEGA = 16000.0 * 2.0 * math.pi / 60.0   # power-turbine speed (paper section 4), rad/s
 #: parameters that follow the ``bearing`` selection unless set explicitly
 GEOMETRY = {"clearance": "clearance_mm", "radius": "radius_mm"}
 

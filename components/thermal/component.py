@@ -33,6 +33,7 @@ import math
 import numpy as np
 
 from ..contract import Component, ContractError, Variable
+from ..speeds import PT_OMEGA
 from .geometry import (BEARINGS, BALL, IR, JOURNAL, LE, LI, NODES, OR, SFD, SHAFT, _DATA, build_network,
                        default_sources, radii)
 from .growth import growths
@@ -40,7 +41,6 @@ from .network import METHODS
 
 _SRC = default_sources()
 _LMIN = 1e-3 / 60.0
-PT_OMEGA = 16000.0 * 2.0 * math.pi / 60.0  # power-turbine speed (paper section 4), rad/s
 
 
 class ThermalNetwork(Component):
