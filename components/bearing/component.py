@@ -43,12 +43,13 @@ import math
 
 import numpy as np
 
-from ..contract import Component, ContractError, Variable
+from ..contract import ContractError, Variable
+from ..kernels import PYTHON, KernelComponent
 from ..speeds import PT_OMEGA
-from .drag import palmgren_torque, static_load_rating
+from .drag import static_load_rating
 from .geometry import DATA, BEARINGS, build_geometry
-from .kernel import step_outputs
-from .oil import sae30_kinematic_viscosity
+from .kernel import BearingParams, BearingState, oil_viscosity, step_outputs, tm_step, viscous_power
+from .oil import WALTHER_A, WALTHER_B, sae30_kinematic_viscosity
 from .static import preload_offset, solve_balls
 
 RPM = math.pi / 30.0
@@ -56,7 +57,7 @@ _DESIGN, _DRAG, _NUM = DATA["design"], DATA["drag"], DATA["numerics"]
 INNER_MOTION = ("step_end", "step_start")
 
 
-class BallBearing(Component):
+class BallBearing(KernelComponent):
     """Ball bearing #0 / #5 with ball dynamics, journal body and thermal growth (eqs. 1-10)."""
 
     description = ("Nonlinear Hertzian angular-contact ball bearing with ball dynamics, outer race + SFD journal "
@@ -165,8 +166,6 @@ class BallBearing(Component):
                               1.0 if p["inner_motion"] == "step_end" else 0.0])
         phi = 2.0 * math.pi * np.arange(g.Z) / g.Z
         self._cb, self._sb = np.cos(phi), np.sin(phi)
-        self._T = None
-        self._Pv_T = None
         self._eps_jump = float(_NUM["eps_jump"])
         self.state = {
             "balls": np.vstack([st.v, np.zeros((2, g.Z))]),
@@ -174,35 +173,35 @@ class BallBearing(Component):
             "phi": np.zeros(1),
             "eps_seated": np.zeros(3),     # the growths the balls were last seated for
         }
-        self.substeps_used = 0
         self.phases = frozenset({"TM", "TO"}) if p["drag_in_thermal_only"] else frozenset({"TM"})
         self.holds_state_in_TO = bool(p["drag_in_thermal_only"])
         self.phase = "TM"
+        self._out = np.zeros(18)
+        self._kernel_p = BearingParams(float(self.z0), self._cb, self._sb, self._geo, self._drag, self._num,
+                                       np.full(3, np.nan), self._out, self._eps_jump, float(WALTHER_A),
+                                       float(WALTHER_B))
         # outputs of the rest state: one zero-length evaluation
         self._advance(0.0, self.time, update_state=False)
 
     # -- stepping ------------------------------------------------------------------------------------------
+    @property
+    def substeps_used(self) -> int:
+        """Sub-steps of the last step."""
+        return int(self._out[17])
+
     def _nu(self, T):
-        if T != self._T:
+        if not (200.0 < T <= 600.0):
             try:
-                self._drag[0] = sae30_kinematic_viscosity(T)
+                sae30_kinematic_viscosity(T)       # its error names the fit's range
             except ValueError as exc:
                 raise ContractError(f"{self.name}.T_oil: {exc}") from None
-            self._T = T
-        return self._drag[0]
+        return oil_viscosity(self._kernel_p, float(T))
 
     def _advance(self, h, t, update_state=True):
+        """Outputs of the present state for a zero-length step (set-up; the state is not changed)."""
         u = self.u
         self._nu(float(u["T_oil"][0]))
-        if update_state:
-            balls, jour, phi = self.state["balls"], self.state["journal"], self.state["phi"]
-            eps = u["eps"]
-            if np.all(np.isfinite(eps)) and np.max(np.abs(eps - self.state["eps_seated"])) > self._eps_jump:
-                self._reseat(h)
-            self.state["eps_seated"] = np.array(eps, dtype=float)
-        else:
-            balls, jour, phi = (self.state["balls"].copy(), self.state["journal"].copy(),
-                                self.state["phi"].copy())
+        balls, jour, phi = (self.state["balls"].copy(), self.state["journal"].copy(), self.state["phi"].copy())
         out = np.empty(18)
         step_outputs(h, u["X_inner"], u["V_inner"], self.z0, u["eps"], u["F_journal"], u["K_journal"],
                      u["C_journal"], balls, jour, phi, self._cb, self._sb, self._geo, self._drag, self._num, out)
@@ -217,7 +216,9 @@ class BallBearing(Component):
         y["sigma_max"] = out[11:13]
         y["sigma_max_step"] = out[13:15]
         y["P_drag"] = out[15:16]
-        self.substeps_used = int(out[17])
+        # each output its own array (the kernel writes them in place)
+        for k in self.y:
+            y[k] = y[k].copy()
 
     def _reseat(self, h):
         """Put the balls at their quasi-static positions (eq. 4 without acceleration) for the present race
@@ -251,15 +252,37 @@ class BallBearing(Component):
         raise RuntimeError(f"{self.name}: the bearing state became non-finite at t = {t:.9g} s")
 
     def _viscous_power(self, T):
-        """omega M_v: the load-independent (viscous) part of the Palmgren drag power at oil temperature T.
-        Kept for the last T: it is asked at every thermo-mechanical step, and T_oil changes only at the thermal
-        network's (slower) step."""
-        if T != self._Pv_T:
-            d = self._drag
-            nu = self._nu(T)
-            self._Pv = d[1] * palmgren_torque(0.0, 0.0, nu, d[1], d[2], d[3], d[4], d[5], d[6], d[7], d[8])
-            self._Pv_T = T
-        return self._Pv
+        """omega M_v: the load-independent (viscous) part of the Palmgren drag power at oil temperature T (kept for
+        the last T: T_oil changes only at the thermal network's, slower, step)."""
+        self._nu(T)
+        return viscous_power(self._kernel_p, float(T))
+
+    # -- the compiled kernel (components/kernels.py) ---------------------------------------------------------
+    STEP = staticmethod(tm_step)
+
+    def kernel_available(self):
+        return not (self.phase == "TO" and self.holds_state_in_TO)
+
+    def kernel_state(self):
+        st = self.state
+        return BearingState(st["balls"], st["journal"], st["phi"], st["eps_seated"])
+
+    def kernel_params(self):
+        return self._kernel_p
+
+    def kernel_status(self, status, t, h):
+        if status == PYTHON:
+            # the growths jumped (a thermal-only interval ended): re-seat the balls, then the kernel's step
+            self._reseat(h)
+            self.state["eps_seated"][:] = self.u["eps"]
+            status = self.STEP(*self.kernel_args(), t, h)
+            if status == 0:
+                return
+        if status == 5:
+            self._nu(float(self.u["T_oil"][0]))
+        if status >= 10:
+            self._fail(float(status - 10), t + h)
+        raise RuntimeError(f"{self.name}: kernel status {status} at t = {t + h:.9g} s")
 
     def do_step(self, t, h):
         if not (h > 0.0 and math.isfinite(h)):
@@ -267,8 +290,7 @@ class BallBearing(Component):
         if self.phase == "TO" and self.holds_state_in_TO:
             self._thermal_only_step(t, h)
             return
-        self._advance(h, t)
-        self.time = t + h
+        self.kernel_step(t, h)
 
     def enter_phase(self, phase):
         """Entering a thermal-only interval freezes the drag power's load term where the state froze."""

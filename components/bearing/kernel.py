@@ -18,6 +18,7 @@ linearised about the start of the step, F0 + K (x - x0) + C (v - v0), taken impl
 from __future__ import annotations
 
 import math
+from collections import namedtuple
 
 import numpy as np
 from numba import njit
@@ -286,3 +287,78 @@ def step(h, Xa, Va, z0, eps, F0, Kj, Cj, balls, jour, phi, c_b, s_b, geo, drag, 
     res[6] = qe_step
     res[7] = drag_sum / n
     res[8] = n
+
+
+#: the bearing's kernel containers (components/kernels.py). State: the balls (4, Z), the journal (4), the cage
+#: angle (1), the growths the balls were last seated for (3).
+#: Constants: the inner race's axial offset z0, the balls' angle cosines/sines, the geometry, drag and numerics
+#: vectors of step_outputs, a cache [T of nu, T of P_v, P_v], the step's output buffer, the growth jump that
+#: re-seats the balls, the Walther constants of the oil viscosity.
+BearingState = namedtuple("BearingState", "balls journal phi eps_seated")
+BearingParams = namedtuple("BearingParams", "z0 c_b s_b geo drag num cache out eps_jump walther_A walther_B")
+
+
+@njit(cache=True)
+def kinematic_viscosity(A, B, T):
+    """SAE 30 kinematic viscosity (m^2/s) at T kelvin, Walther / ASTM D341 (oil.py)."""
+    return (10.0 ** (10.0 ** (A - B * math.log10(T))) - 0.7) * 1e-6
+
+
+@njit(cache=True)
+def oil_viscosity(p, T):
+    """nu at T into drag[0], kept for the last T (it changes only at the thermal network's step)."""
+    if T != p.cache[0]:
+        p.drag[0] = kinematic_viscosity(p.walther_A, p.walther_B, T)
+        p.cache[0] = T
+    return p.drag[0]
+
+
+@njit(cache=True)
+def viscous_power(p, T):
+    """omega M_v, the load-independent part of the Palmgren drag power at T, kept for the last T."""
+    if T != p.cache[1]:
+        d = p.drag
+        nu = oil_viscosity(p, T)
+        p.cache[2] = d[1] * palmgren_torque(0.0, 0.0, nu, d[1], d[2], d[3], d[4], d[5], d[6], d[7], d[8])
+        p.cache[1] = T
+    return p.cache[2]
+
+
+@njit(cache=True)
+def tm_step(s, p, u, y, t, h):
+    """One thermo-mechanical step (component.BallBearing; components/kernels.py contract). Status PYTHON (1):
+    the growths jumped (a thermal-only interval ended): the balls are re-seated in Python first; 5: T_oil outside
+    the viscosity fit; 10 + the flag of step_outputs."""
+    T = u.T_oil[0]
+    if not (T > 200.0 and T <= 600.0):
+        return 5
+    oil_viscosity(p, T)
+    eps = u.eps
+    finite = True
+    jump = 0.0
+    for k in range(3):
+        if not math.isfinite(eps[k]):
+            finite = False
+        d = abs(eps[k] - s.eps_seated[k])
+        if d > jump:
+            jump = d
+    if finite and jump > p.eps_jump:
+        return 1
+    for k in range(3):
+        s.eps_seated[k] = eps[k]
+    out = p.out
+    step_outputs(h, u.X_inner, u.V_inner, p.z0, eps, u.F_journal, u.K_journal, u.C_journal, s.balls, s.journal,
+                 s.phi, p.c_b, p.s_b, p.geo, p.drag, p.num, out)
+    if out[16] != 0.0:
+        return 10 + int(out[16])
+    for k in range(3):
+        y.F_rotor[k] = out[k]
+    for k in range(2):
+        y.X_journal[k] = out[3 + k]
+        y.V_journal[k] = out[5 + k]
+        y.Q_max[k] = out[7 + k]
+        y.Q_max_step[k] = out[9 + k]
+        y.sigma_max[k] = out[11 + k]
+        y.sigma_max_step[k] = out[13 + k]
+    y.P_drag[0] = out[15]
+    return 0

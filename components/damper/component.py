@@ -26,10 +26,11 @@ from pathlib import Path
 import numpy as np
 
 from ..contract import Component, ContractError, Variable
+from ..kernels import KernelComponent
 from . import wall
-from .fast import fast_step, film_table
+from .fast import DamperParams, film_table, tm_step
 from .reynolds_fe import build_mesh, fe_film_eval
-from .viscosity import sae30_viscosity
+from .viscosity import _oil, sae30_viscosity
 
 DATA = Path(__file__).with_name("data") / "dampers.toml"
 with open(DATA, "rb") as _f:
@@ -252,7 +253,7 @@ class FEDamper(_Damper):
         return wall.spring_and_wall(dx, dy, self._c, self._k, self._kw, out)
 
 
-class FastDamper(_Damper):
+class FastDamper(KernelComponent, _Damper):
     """Squeeze film damper, the FE model's exact structure + a table over the eccentricity ratio (default)."""
 
     description = "Squeeze film damper: tabulated FE Reynolds fields (Guembel cavitation) + O-ring centering spring"
@@ -262,11 +263,29 @@ class FastDamper(_Damper):
         self._table = film_table(p["radius"], p["length"], p["clearance"], int(p["n_theta"]), int(p["n_z"]))
         t = self._table
         prm = np.array([t.u0, t.du, t.n, t.eps_max, t.clearance, self._floor, float(self._cav), self._k, self._kw])
-        self._args = (t.TR, t.TT, t.ftab, t.bounds, t.Wc, t.Ws, prm)
+        A, B, rho300, drho = _oil()
+        self._kernel_p = DamperParams(t.TR, t.TT, t.ftab, t.bounds, t.Wc, t.Ws, prm, np.zeros(self.N_OUT),
+                                      np.full(2, np.nan), float(A), float(B), float(rho300), float(drho))
 
     def _film(self, dx, dy, dvx, dvy, mu, out):
         self._table.evaluate(dx, dy, dvx, dvy, mu, self._floor, self._cav, out)
 
-    def _compute(self, mu, out):
-        u = self.u
-        return fast_step(*self._args, u["X_journal"], u["V_journal"], u["X_housing"], u["V_housing"], mu, out)
+    # -- the compiled kernel (components/kernels.py): set-up and every step evaluate through it -------------
+    STEP = staticmethod(tm_step)
+
+    def kernel_state(self):
+        return ()
+
+    def kernel_params(self):
+        return self._kernel_p
+
+    def kernel_status(self, status, t, h):
+        if status == 5:
+            self.viscosity(float(self.u["T_oil"][0]))      # names the fit's range
+        if status >= 10:
+            self._fail(status - 10, t + h)
+        raise RuntimeError(f"{self.name}: kernel status {status} at t = {t + h:.9g} s")
+
+    def _evaluate(self, t):
+        self.kernel_step(t, 0.0)
+        self.time = t

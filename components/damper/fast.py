@@ -28,6 +28,7 @@ clearance, mesh, table size): 60 sparse factorisations, about 3 s, or read from 
 from __future__ import annotations
 
 import math
+from collections import namedtuple
 from functools import lru_cache
 
 import numpy as np
@@ -258,3 +259,45 @@ def fast_film_force(table: FilmTable, dx, dy, dvx, dvy, mu, supply_pressure, cav
     table.evaluate(float(dx), float(dy), float(dvx), float(dvy), float(mu),
                    float(cavitation_pressure - supply_pressure), bool(cavitation), out)
     return float(out[0]), float(out[1])
+
+
+#: the fast damper's kernel constants (components/kernels.py; the damper has no state): the tables and parameters
+#: of fast_step, its output buffer, a cache [T, mu(T)] and the oil's viscosity constants (viscosity.py)
+DamperParams = namedtuple("DamperParams", "TR TT ftab bounds Wc Ws prm out cache walther_A walther_B rho300 drho")
+
+
+@njit(cache=True)
+def oil_viscosity(p, T):
+    """SAE 30 dynamic viscosity at T (viscosity.sae30_viscosity), kept for the last T."""
+    if T != p.cache[0]:
+        nu_cst = 10.0 ** (10.0 ** (p.walther_A - p.walther_B * math.log10(T))) - 0.7
+        p.cache[1] = nu_cst * 1e-6 * (p.rho300 + p.drho * (T - 300.0))
+        p.cache[0] = T
+    return p.cache[1]
+
+
+@njit(cache=True)
+def tm_step(s, p, u, y, t, h):
+    """One evaluation at the step's inputs (components/kernels.py contract). Status 5: T_oil outside the
+    viscosity fit; 10 + a wall.* code."""
+    T = u.T_oil[0]
+    if not (T > 200.0 and T <= 600.0):
+        return 5
+    mu = oil_viscosity(p, T)
+    out = p.out
+    status = fast_step(p.TR, p.TT, p.ftab, p.bounds, p.Wc, p.Ws, p.prm, u.X_journal, u.V_journal, u.X_housing,
+                       u.V_housing, mu, out)
+    if status != 0:
+        return 10 + status
+    for k in range(2):
+        y.F_film[k] = out[k]
+        y.F_spring[k] = out[10 + k]
+        y.F_contact[k] = out[12 + k]
+        y.F_journal[k] = out[14 + k]
+        y.F_housing[k] = -out[14 + k]
+    for k in range(4):
+        y.K_film[k] = out[2 + k]
+        y.C_film[k] = out[6 + k]
+    y.P_film[0] = out[16]
+    y.mu[0] = mu
+    return 0

@@ -32,11 +32,12 @@ import math
 
 import numpy as np
 
-from ..contract import Component, ContractError, Variable
+from ..contract import ContractError, Variable
+from ..kernels import KernelComponent
 from ..speeds import GG_OMEGA, PT_OMEGA
 from . import model as fem
 from .mta import mta_basis, project
-from .kernel import gather, pack, step
+from .kernel import RotorParams, RotorState, pack, tm_step
 from .newmark import check_parameters, initial_acceleration, step_operator
 
 RPM = fem.RPM
@@ -82,7 +83,7 @@ def reduced_model(model_file: str, n_modes: int, omega_pt: float, omega_gg: floa
     return red
 
 
-class Rotor(Component):
+class Rotor(KernelComponent):
     """Flexible dual-rotor engine + casing (MTA-reduced FE model, Newmark-beta), blade-loss force."""
 
     description = ("Flexible dual-rotor gas turbine engine with casing: Timoshenko FE model reduced by modal "
@@ -165,7 +166,8 @@ class Rotor(Component):
         x0 = np.zeros(n)
         f0 = red["B_in"] @ self._input_vector(t0)
         a0 = initial_acceleration(red["M"], red["C"], red["K"], x0, x0, f0)
-        self.state = {"s": np.concatenate([x0, x0, a0]), "tau": float(t0)}
+        self.state = {"s": np.concatenate([x0, x0, a0]), "tau": np.array([float(t0)])}
+        self._kernel_h = None
         self._write_outputs(self.state["s"], t0)
 
     # -- stepping --------------------------------------------------------------------------------------
@@ -177,7 +179,7 @@ class Rotor(Component):
         thermal-only duration) against the frozen orbit and start every interval with an artificial transient."""
         p = self.p
         W = self._W
-        a = W * (t if tau is None else tau)
+        a = W * (t if tau is None else float(np.asarray(tau).reshape(-1)[0]))
         fx = p["F_residual"] * math.cos(a)
         fy = p["F_residual"] * math.sin(a)
         if t >= p["t_blade_loss"]:
@@ -223,24 +225,30 @@ class Rotor(Component):
         y["V_rub0"], y["V_rub5"] = xv[24:26], xv[26:28]
         y["F_u"] = np.array(self._unbalance(t) if fux is None else (fux, fuy))
 
-    def do_step(self, t, h):
-        TB = self._operators(h)
-        self._last_h = h
-        u = self.u
-        f = self._f
-        tau = self.state["tau"] + h
-        fux, fuy = self._unbalance(t + h, tau)
-        if not math.isfinite(gather(f, u["F_brg0"], u["F_brg5"], u["F_sfd_housing0"], u["F_rub_housing0"],
-                                    u["F_sfd_housing5"], u["F_rub_housing5"], u["F_rub0"], u["F_rub5"], fux, fuy)):
+    # -- the compiled kernel (components/kernels.py) ---------------------------------------------------------
+    STEP = staticmethod(tm_step)
+
+    def kernel_state(self):
+        return RotorState(self.state["s"], self.state["tau"])
+
+    def kernel_prepare(self, h):
+        if h != getattr(self, "_kernel_h", None):
+            p = self.p
+            n3 = 3 * self._red["n"]
+            self._kernel_p = RotorParams(self._operators(h), self._Oxv, self._f, np.empty(n3),
+                                         np.empty(self._Oxv.shape[0]), float(self._W), float(p["F_residual"]),
+                                         float(p["F_unbalance"]), float(p["unbalance_phase"]),
+                                         float(p["t_blade_loss"]))
+            self._kernel_h = h
+            self._last_h = h
+
+    def kernel_params(self):
+        return self._kernel_p
+
+    def kernel_status(self, status, t, h):
+        if status == 2:
             self._input_vector(t + h)          # names the offending input
-        s_new = np.empty_like(self.state["s"])
-        xv = np.empty(self._Oxv.shape[0])
-        if not math.isfinite(step(TB, self._Oxv, self.state["s"], f, s_new, xv)):
-            raise ContractError(f"{self.name}: the rotor response became non-finite at t = {t + h:.9g} s")
-        self.state["s"] = s_new
-        self.state["tau"] = tau
-        self._publish(xv, t + h, fux, fuy)
-        self.time = t + h
+        raise ContractError(f"{self.name}: the rotor response became non-finite at t = {t + h:.9g} s")
 
     # -- helpers for checks and the CLI ------------------------------------------------------------------
     @property

@@ -8,6 +8,9 @@ the result is bit-for-bit the same on every run.
 """
 from __future__ import annotations
 
+import math
+from collections import namedtuple
+
 import numpy as np
 from numba import njit
 
@@ -69,3 +72,55 @@ def step(TB, O, s, f, s_out, xv):
 
 def pack(T: np.ndarray, B: np.ndarray) -> np.ndarray:
     return np.asfortranarray(np.hstack([T, B]))
+
+
+#: the rotor's kernel containers (components/kernels.py): state s = (x_v_a: the Newmark state (x, v, a), tau: the
+#: mechanical time); constants p = (TB, O: the step map and output rows, f, s_new, xv: scratch, the unbalance data)
+RotorState = namedtuple("RotorState", "s tau")
+RotorParams = namedtuple("RotorParams", "TB O f s_new xv W F_residual F_unbalance unbalance_phase t_blade_loss")
+
+
+@njit(cache=True)
+def unbalance(p, t, tau):
+    """The rotating unbalance force at time t, at the rotor's own angle W tau (component._unbalance)."""
+    a = p.W * tau
+    fx = p.F_residual * math.cos(a)
+    fy = p.F_residual * math.sin(a)
+    if t >= p.t_blade_loss:
+        ph = a + p.unbalance_phase
+        fx += p.F_unbalance * math.cos(ph)
+        fy += p.F_unbalance * math.sin(ph)
+    return fx, fy
+
+
+@njit(cache=True)
+def tm_step(s, p, u, y, t, h):
+    """One Newmark step from t to t + h (components/kernels.py contract); status 2: a non-finite input force,
+    3: a non-finite response."""
+    tau = s.tau[0] + h
+    fux, fuy = unbalance(p, t + h, tau)
+    if not math.isfinite(gather(p.f, u.F_brg0, u.F_brg5, u.F_sfd_housing0, u.F_rub_housing0, u.F_sfd_housing5,
+                                u.F_rub_housing5, u.F_rub0, u.F_rub5, fux, fuy)):
+        return 2
+    if not math.isfinite(step(p.TB, p.O, s.s, p.f, p.s_new, p.xv)):
+        return 3
+    s.s[:] = p.s_new
+    s.tau[0] = tau
+    xv = p.xv
+    for i in range(3):
+        y.X_brg0[i] = xv[i]
+        y.X_brg5[i] = xv[3 + i]
+        y.V_brg0[i] = xv[14 + i]
+        y.V_brg5[i] = xv[17 + i]
+    for i in range(2):
+        y.X_housing0[i] = xv[6 + i]
+        y.X_housing5[i] = xv[8 + i]
+        y.X_rub0[i] = xv[10 + i]
+        y.X_rub5[i] = xv[12 + i]
+        y.V_housing0[i] = xv[20 + i]
+        y.V_housing5[i] = xv[22 + i]
+        y.V_rub0[i] = xv[24 + i]
+        y.V_rub5[i] = xv[26 + i]
+    y.F_u[0] = fux
+    y.F_u[1] = fuy
+    return 0

@@ -21,9 +21,10 @@ from pathlib import Path
 
 import numpy as np
 
-from ..contract import Component, ContractError, Variable
+from ..contract import ContractError, Variable
+from ..kernels import KernelComponent
 from ..speeds import PT_OMEGA
-from .contact import rub_force
+from .contact import RubParams, rub_force, tm_step
 
 DATA = Path(__file__).with_name("data") / "rubrings.toml"
 with open(DATA, "rb") as _f:
@@ -34,7 +35,7 @@ CONTACT = _DATA["contact"]
 GEOMETRY = {"clearance": "clearance_mm", "radius": "radius_mm"}
 
 
-class RubRing(Component):
+class RubRing(KernelComponent):
     """Rotor / rub-ring contact at bearing #0 or #5."""
 
     description = "Rub ring: penalty contact with damping, Coulomb friction (spin + whirl), friction power eq. (11)"
@@ -85,25 +86,21 @@ class RubRing(Component):
         self.state = {}
         self._evaluate(t0)
 
-    def _evaluate(self, t):
-        u = self.u
-        (xr0, xr1), (vr0, vr1) = u["X_rotor"].tolist(), u["V_rotor"].tolist()
-        (xh0, xh1), (vh0, vh1) = u["X_housing"].tolist(), u["V_housing"].tolist()
-        dx, dy, wx, wy = xr0 - xh0, xr1 - xh1, vr0 - vh0, vr1 - vh1
-        if not math.isfinite(dx + dy + wx + wy):
-            raise ContractError(f"{self.name}: non-finite rotor/housing motion at t = {t:.9g} s")
-        fx, fy, power, fn = rub_force(dx, dy, wx, wy, *self._args)
-        # one fresh buffer per step (cheaper than four arrays); the outputs are views of it
-        buf = np.array((fx, fy, -fx, -fy, power, fn))
-        y = self.y
-        y["F_rotor"] = buf[0:2]
-        y["F_housing"] = buf[2:4]
-        y["P_rub"] = buf[4:5]
-        y["F_normal"] = buf[5:6]
+    # -- the compiled kernel (components/kernels.py): set-up and every step evaluate through it -------------
+    STEP = staticmethod(tm_step)
 
-    def do_step(self, t, h):
-        self._evaluate(t + h)
-        self.time = t + h
+    def kernel_state(self):
+        return ()
+
+    def kernel_params(self):
+        return self._kernel_p
+
+    def kernel_status(self, status, t, h):
+        raise ContractError(f"{self.name}: non-finite rotor/housing motion at t = {t + h:.9g} s")
+
+    def _evaluate(self, t):
+        self._kernel_p = RubParams(*(float(a) for a in self._args))
+        self.kernel_step(t, 0.0)
 
     def get_state(self):
         # memoryless: the snapshot is the time and the current inputs/outputs

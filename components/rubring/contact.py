@@ -18,8 +18,12 @@ w = V_rotor - V_housing (m/s); the ring has radial clearance c.
 from __future__ import annotations
 
 import math
+from collections import namedtuple
+
+from numba import njit
 
 
+@njit(cache=True)
 def rub_force(dx, dy, wx, wy, clearance, stiffness, damping, friction, radius, omega, v_reg):
     """(Fx, Fy, P_rub, F_normal) on the rotor; arguments as in the module docstring (SI)."""
     r = math.hypot(dx, dy)
@@ -35,3 +39,27 @@ def rub_force(dx, dy, wx, wy, clearance, stiffness, damping, friction, radius, o
     sgn = vs / (a if a > v_reg else v_reg)
     ff = friction * fn * sgn
     return -fn * nx - ff * tx, -fn * ny - ff * ty, ff * vs, fn
+
+
+#: the rub ring's kernel constants (components/kernels.py; the ring has no state): the contact law's parameters
+RubParams = namedtuple("RubParams", "clearance stiffness damping friction radius omega v_reg")
+
+
+@njit(cache=True)
+def tm_step(s, p, u, y, t, h):
+    """One evaluation at the step's inputs (components/kernels.py contract); status 2: non-finite motion."""
+    dx = u.X_rotor[0] - u.X_housing[0]
+    dy = u.X_rotor[1] - u.X_housing[1]
+    wx = u.V_rotor[0] - u.V_housing[0]
+    wy = u.V_rotor[1] - u.V_housing[1]
+    if not math.isfinite(dx + dy + wx + wy):
+        return 2
+    fx, fy, power, fn = rub_force(dx, dy, wx, wy, p.clearance, p.stiffness, p.damping, p.friction, p.radius,
+                                  p.omega, p.v_reg)
+    y.F_rotor[0] = fx
+    y.F_rotor[1] = fy
+    y.F_housing[0] = -fx
+    y.F_housing[1] = -fy
+    y.P_rub[0] = power
+    y.F_normal[0] = fn
+    return 0

@@ -32,18 +32,20 @@ import math
 
 import numpy as np
 
-from ..contract import Component, ContractError, Variable
+from ..contract import ContractError, Variable
+from ..kernels import KernelComponent
 from ..speeds import PT_OMEGA
 from .geometry import (BEARINGS, BALL, IR, JOURNAL, LE, LI, NODES, OR, SFD, SHAFT, _DATA, build_network,
                        default_sources, radii)
 from .growth import growths
+from .kernel import ThermalParams, ThermalState, tm_step
 from .network import METHODS
 
 _SRC = default_sources()
 _LMIN = 1e-3 / 60.0
 
 
-class ThermalNetwork(Component):
+class ThermalNetwork(KernelComponent):
     """Bearing thermal network of bearing #0 or #5 (nine nodes, eqs. 12-15)."""
 
     description = "Bearing thermal network (9 lumped nodes, Table 1 resistances) and thermal growths eqs. (13)-(15)"
@@ -113,6 +115,7 @@ class ThermalNetwork(Component):
         self._growth_args = (p["T_initial"], st["expansion"], st["poisson"], g["r_i"], g["r_e"], g["r_j"], g["r_b"])
         self._method = p["method"]
         self.state = {"T": np.full(9, p["T_initial"])}
+        self._kernel_h = None
         self._publish(self.state["T"])
 
     def _publish(self, T):
@@ -139,13 +142,26 @@ class ThermalNetwork(Component):
             raise ContractError(f"{self.name}: negative heat source {', '.join(bad)} = {min(q)} W (must be >= 0)")
         return np.array(q)
 
-    def do_step(self, t, h):
-        if not h > 0.0:
-            raise ContractError(f"{self.name}: step size must be > 0, got {h}")
-        T = self.network.step(self.state["T"], self.powers(), h, self._method)
-        self.state["T"] = T
-        self.time = t + h
-        self._publish(T)
+    # -- the compiled kernel (components/kernels.py) ---------------------------------------------------------
+    STEP = staticmethod(tm_step)
+
+    def kernel_state(self):
+        return ThermalState(self.state["T"])
+
+    def kernel_prepare(self, h):
+        if h != getattr(self, "_kernel_h", None):
+            if not h > 0.0:
+                raise ContractError(f"{self.name}: step size must be > 0, got {h}")
+            Phi, gb, GS = self.network.step_matrices(h, self._method)
+            self._kernel_p = ThermalParams(Phi, gb, GS, np.empty(9), *(float(a) for a in self._growth_args))
+            self._kernel_h = h
+
+    def kernel_params(self):
+        return self._kernel_p
+
+    def kernel_status(self, status, t, h):
+        self.powers()          # names the non-finite or negative power
+        raise RuntimeError(f"{self.name}: kernel status {status} at t = {t + h:.9g} s")
 
     def steady_state(self, P_drag: float, P_sfd: float, P_rub: float) -> np.ndarray:
         """Node temperatures (K) of the steady state under constant powers (the linear solve K T = b + S u)."""

@@ -1,0 +1,108 @@
+"""Compiled kernels of components: one step function shared by the generic and the compiled master paths.
+
+A component that can offer a compiled kernel (numba) derives from :class:`KernelComponent` and provides
+
+* ``STEP``: a ``numba.njit`` function ``step(s, p, u, y, t, h) -> status`` over four small typed containers
+  (named tuples of numpy arrays and floats, fields named like the component's variables):
+  ``s`` the state (arrays updated in place; the very arrays of ``self.state``), ``p`` constants and scratch,
+  ``u`` the inputs (the arrays of ``self.u``, one field per input port), ``y`` the outputs (the arrays of
+  ``self.y``, written in place, one field per output port);
+* :meth:`kernel_args` building those four containers from the component's current dicts;
+* :meth:`kernel_prepare` for what depends on the step size (the rotor's Newmark map, the thermal step matrices),
+  done in Python once per step size;
+* :meth:`kernel_status` turning a non-zero status into the component's own error, or finishing a step that needs
+  Python (status :data:`PYTHON`: the kernel changed nothing and asks for it, e.g. the bearing's quasi-static
+  re-seating of the balls after a thermal-only interval).
+
+The generic ``do_step`` calls the same ``STEP`` (so both master paths do the same arithmetic: compiled and
+generic runs are equal by construction); the master's compiled loop (master/compiled.py) calls ``STEP`` from a
+compiled loop over a whole thermo-mechanical interval. Outputs are written in place: the master copies what it
+keeps (links, rings, observers), so an output array is never held across a step.
+"""
+from __future__ import annotations
+
+from collections import namedtuple
+
+from .contract import Component
+
+#: kernel status codes: 0 done; PYTHON: nothing changed, run the step through kernel_status; >= 2: component errors
+OK, PYTHON = 0, 1
+
+_PORT_TUPLES: dict[tuple, type] = {}
+
+
+def port_tuple(cls_name: str, kind: str, names: tuple[str, ...]) -> type:
+    """The named tuple type of a component class's input or output ports (one per class and kind)."""
+    key = (cls_name, kind, names)
+    t = _PORT_TUPLES.get(key)
+    if t is None:
+        t = namedtuple(f"{cls_name}{kind}", names)
+        _PORT_TUPLES[key] = t
+    return t
+
+
+class KernelComponent(Component):
+    """A native component whose time step is a compiled kernel (module docstring)."""
+
+    #: the njit step function (set by subclasses, wrapped in staticmethod)
+    STEP = None
+
+    def _ports(self, causality: str) -> tuple[str, ...]:
+        return tuple(v.name for v in self.variables if v.causality == causality and v.carried)
+
+    def kernel_ports(self):
+        """(input tuple type, output tuple type, input names, output names), built once per instance."""
+        kp = self.__dict__.get("_kernel_ports")
+        if kp is None:
+            ins, outs = self._ports("input"), self._ports("output")
+            name = type(self).__name__
+            kp = (port_tuple(name, "Inputs", ins), port_tuple(name, "Outputs", outs), ins, outs)
+            self._kernel_ports = kp
+        return kp
+
+    def kernel_io(self):
+        U, Y, ins, outs = self.kernel_ports()
+        u, y = self.u, self.y
+        return U(*[u[n] for n in ins]), Y(*[y[n] for n in outs])
+
+    # -- to provide ----------------------------------------------------------------------------------
+    def kernel_state(self):
+        """The state container ``s`` over the arrays of ``self.state``."""
+        raise NotImplementedError
+
+    def kernel_params(self):
+        """The constants and scratch container ``p`` (after :meth:`kernel_prepare`)."""
+        raise NotImplementedError
+
+    def kernel_prepare(self, h: float) -> None:
+        """Make ``kernel_params`` valid for steps of size ``h`` (nothing by default)."""
+
+    def kernel_status(self, status: int, t: float, h: float) -> None:
+        """Handle a non-zero status of ``STEP`` for the step from t to t + h: raise the component's error, or
+        finish the step in Python (status PYTHON)."""
+        raise RuntimeError(f"{self.name}: kernel status {status} at t = {t + h:.9g} s")
+
+    def set_parameter(self, name, value):
+        super().set_parameter(name, value)
+        self._kernel_h = None          # constants taken from the parameters are rebuilt at the next step
+
+    # -- what the master uses -------------------------------------------------------------------------
+    def kernel_available(self) -> bool:
+        """True when the next steps (this phase, these parameters) are the kernel's."""
+        return True
+
+    def kernel_args(self):
+        u, y = self.kernel_io()
+        return self.kernel_state(), self.kernel_params(), u, y
+
+    def kernel_step(self, t: float, h: float) -> None:
+        """One step through the kernel (the generic do_step of kernel components)."""
+        self.kernel_prepare(h)
+        s, p, u, y = self.kernel_args()
+        status = self.STEP(s, p, u, y, t, h)
+        if status:
+            self.kernel_status(status, t, h)
+        self.time = t + h
+
+    def do_step(self, t, h):
+        self.kernel_step(t, h)
