@@ -147,6 +147,14 @@ class Checkpointer(Observer):
         if self.path is not None and time.perf_counter() - self._last >= self.every_s:
             self.save(sim, round((t - self._t_start) / self._step))
 
+    def block_signals(self, sim):
+        return []
+
+    def step_block(self, sim, ks, ts, data):
+        # the compiled engine: the components hold the state after the block's last step, a safe point
+        if any(k % self.stride == 0 for k in ks):
+            self.step(sim, ts[-1])
+
     def interval_end(self, sim, used):
         # the position is the start of the next interval; the report already holds this one
         self._t_start = sim.t

@@ -40,6 +40,18 @@ class Observer:
     def end(self, sim, error: BaseException | None) -> None:
         pass
 
+    # the compiled engine (master/compiled.py) runs base steps in chunks and hands them over in one call: an
+    # observer that offers step_block names the signals it reads; None (the default) keeps the generic loop
+    def block_signals(self, sim) -> list[str] | None:
+        return None
+
+    def step_block(self, sim, ks: list[int], ts: list[float], data: dict) -> None:
+        """Base steps ``ks`` (the interval's step counts after each step) at times ``ts``: the same calls as
+        ``step(sim, t)`` for every k with ``k % stride == 0``. ``data[ref]`` holds one row per base step of each
+        signal named by :meth:`block_signals` (rows valid during the call only); the components hold the state
+        after the last of them."""
+        raise NotImplementedError
+
     # checkpoints (master/checkpoint.py): what the observer needs to continue an interrupted run; components
     # referenced from it are saved by name. The default keeps the observer's attributes.
     def checkpoint_state(self):
@@ -153,6 +165,24 @@ class Recorder(Observer):
 
     def step(self, sim, t):
         self._sample(sim, t)
+
+    def block_signals(self, sim):
+        return list(self.signals)
+
+    def step_block(self, sim, ks, ts, data):
+        stride = self.stride
+        phase = PHASE_CODE.get(sim.phase, 0)
+        rows = [r for r, k in enumerate(ks) if k % stride == 0]
+        if not rows:
+            return
+        blocks = {ref: data[ref][rows].copy() for ref in self.signals}
+        for j, r in enumerate(rows):
+            self._buf_t.append(ts[r])
+            self._buf_phase.append(phase)
+            for ref in self.signals:
+                self._buf[ref].append(blocks[ref][j])
+            if len(self._buf_t) >= self.chunk:
+                self.flush()
 
     def _sample(self, sim, t):
         self._buf_t.append(t)
@@ -410,6 +440,14 @@ class Progress(Observer):
             self.cost_wall[used.phase] = self.cost_wall.get(used.phase, 0.0) + self._clock() - self.w_iv
             self.cost_steps[used.phase] = self.cost_steps.get(used.phase, 0) + used.steps
 
+    def block_signals(self, sim):
+        return []
+
+    def step_block(self, sim, ks, ts, data):
+        last = [t for k, t in zip(ks, ts) if k % self.stride == 0]
+        if last:
+            self.step(sim, last[-1])
+
     def end(self, sim, error):
         if self.bar is not None:
             self.step(sim, sim.t)
@@ -460,6 +498,26 @@ class SteadyWindows(Observer):
             buf[i] = comp.y[port]
         self._pos = (i + 1) % self._n
         self._count = min(self._count + 1, self._n)
+
+    def block_signals(self, sim):
+        return list(self.signals)
+
+    def step_block(self, sim, ks, ts, data):
+        if not self.active:
+            return
+        rows = [r for r, k in enumerate(ks) if k % self.stride == 0]
+        if not rows:
+            return
+        n = self._n
+        keep = rows[-n:]  # the ring keeps the last n samples
+        m = len(keep)
+        pos = (self._pos + (len(rows) - m)) % n
+        idx = (pos + np.arange(m)) % n
+        self._t[idx] = [ts[r] for r in keep]
+        for r in self.signals:
+            self._data[r][idx] = data[r][keep]
+        self._pos = (pos + m) % n
+        self._count = min(self._count + len(rows), n)
 
     def interval_end(self, sim, used):
         if not getattr(self, "active", False) or self._count == 0:

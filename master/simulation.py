@@ -14,6 +14,7 @@ import numpy as np
 
 from rotorcosim.components.contract import ContractError
 
+from . import compiled
 from .algorithm import Engine, EngineSettings, SimulationDiverged
 from .hold import DEFAULT_HOLD, HOLDS, StaggeredHold
 from .schedule import RunReport, Schedule, ScheduleError, UsedInterval
@@ -49,6 +50,11 @@ class Simulation:
         self.interval_index = 0
         #: set by checkpoint.resume: where an interrupted run continues
         self.resume_point = None
+        #: "auto" (the compiled loop for a thermo-mechanical interval whenever it can run it), "python" or
+        #: "compiled" (an error when it cannot); see compiled.py. engines_used: the engine of each interval
+        self.engine_choice = "auto"
+        self.engine_note: str | None = None
+        self.engines_used: list[str] = []
 
     # -- helpers ---------------------------------------------------------------------------------------
     @property
@@ -124,7 +130,16 @@ class Simulation:
             k = rp.k
         strides = [max(1, int(getattr(obs, "stride", 1))) for obs in self.observers]
         why = reason
+        if self.engine_choice not in compiled.ENGINES:
+            raise ContractError(f"engine {self.engine_choice!r} not in {compiled.ENGINES}")
+        runner = compiled.runner(self, phase, active, mult, step, stop, self.engine_choice)
+        self.engines_used.append("compiled" if runner is not None else "python")
         try:
+            if runner is not None:
+                try:
+                    k = runner.run(k, nsteps, t_start)
+                finally:
+                    k = runner.k
             while k < nsteps:
                 self.engine.base_step(t_start, k)
                 k += 1
