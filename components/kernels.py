@@ -21,6 +21,7 @@ keeps (links, rings, observers), so an output array is never held across a step.
 """
 from __future__ import annotations
 
+import hashlib
 from collections import namedtuple
 
 from .contract import Component
@@ -32,11 +33,19 @@ _PORT_TUPLES: dict[tuple, type] = {}
 
 
 def port_tuple(cls_name: str, kind: str, names: tuple[str, ...]) -> type:
-    """The named tuple type of a component class's input or output ports (one per class and kind)."""
+    """The named tuple type of a component class's input or output ports (one per class and kind).
+
+    Made a global of this module, so that it pickles by reference: numba's on-disk cache compares the types of a
+    new call with the pickled ones, and a class pickled by value would never match (a recompilation every run)."""
     key = (cls_name, kind, names)
     t = _PORT_TUPLES.get(key)
     if t is None:
-        t = namedtuple(f"{cls_name}{kind}", names)
+        name = f"{cls_name}{kind}"
+        if name in globals():  # another class of that name with other ports
+            name += "_" + hashlib.sha256(repr(names).encode()).hexdigest()[:8]
+        t = namedtuple(name, names)
+        t.__module__ = __name__
+        globals()[name] = t
         _PORT_TUPLES[key] = t
     return t
 
