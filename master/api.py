@@ -32,8 +32,10 @@ from .algorithm import SimulationDiverged
 from .observers import Progress, Recorder, column_names
 from .outputs import write_json
 from .rundir import RunFolder
+from .compiled import ENGINES
 from .scenario import Scenario, build_simulation, load_scenario as _load_file, schedule_of
 from .schedule import Schedule
+from .simulation import engine_summary
 
 DEFAULT_SCENARIO = "blade_loss_2850"
 #: ``schedule=`` names: the scenario's own schedule (its timeline), automatic, one TM interval
@@ -148,7 +150,7 @@ class Result:
 def simulate(sc: Scenario | str | Path, duration: float | None = None, schedule=None, out: str | Path | None = None,
              record: Sequence[str] | None = None, figures: bool = True, progress: bool = False, *,
              overwrite: bool = False, resume: bool = False, force: bool = False,
-             checkpoint_every: float = checkpoint.EVERY_S, step_timeout: float = 0.0) -> Result:
+             checkpoint_every: float = checkpoint.EVERY_S, step_timeout: float = 0.0, engine: str = "auto") -> Result:
     """Run scenario ``sc`` (a :class:`Scenario`, or a name or path for :func:`load_scenario`).
 
     ``duration`` [s] cuts the schedule; ``schedule`` is ``"paper"`` (the scenario's own), ``"auto"``,
@@ -160,13 +162,18 @@ def simulate(sc: Scenario | str | Path, duration: float | None = None, schedule=
     interrupted run and ``resume`` (rundir.py); runs with a folder are checkpointed every ``checkpoint_every``
     wall seconds and at each interval end. Any run is refused before it starts if it is estimated above
     budget.LIMIT_S of wall time, unless ``force``. ``step_timeout`` [s] (0: none) ends a run whose component
-    step hangs (watchdog.py), writing a failed summary first.
+    step hangs (watchdog.py), writing a failed summary first. ``engine``: ``"auto"`` runs each thermo-mechanical
+    interval through the compiled loop when every component offers a compiled kernel (master/compiled.py),
+    ``"python"`` through the generic loop, ``"compiled"`` through the compiled loop or not at all (an error); the
+    summary's ``engine`` says which ran (``engine_note`` why the generic loop did under auto).
 
     The summary's ``status`` says how the run ended: ``complete``, ``stopped`` (a component asked to stop),
     ``interrupted`` (SIGINT/SIGTERM) or ``failed``; on ``interrupted`` and ``failed`` the error is raised after
     the summary and the time series are written, carrying the partial :class:`Result` as ``.result``."""
     if not isinstance(sc, Scenario):
         sc = load_scenario(sc)
+    if engine not in ENGINES:
+        raise ValueError(f"engine {engine!r} not in {ENGINES}")
     sch, kind = _schedule(sc, schedule, duration)
     estimate = budget.check(sc, sch, force)
     if progress and estimate["wall_s"] > 60:
@@ -200,6 +207,7 @@ def simulate(sc: Scenario | str | Path, duration: float | None = None, schedule=
             saver = checkpoint.Checkpointer(out / checkpoint.CHECKPOINT, stop, checkpoint_every, key)
             observers.append(saver)  # last: it sees every other observer done with the step
         sim = build_simulation(sc, observers)
+        sim.engine_choice = engine
         head = {"scenario": sc.name, "source": str(sc.source) if sc.source else None,
                 "schedule": kind or sc.schedule.get("kind", "monolithic"), "duration_s": sch.duration,
                 "estimate": estimate}
@@ -237,6 +245,7 @@ def simulate(sc: Scenario | str | Path, duration: float | None = None, schedule=
             "step_cost_us": (None if point else
                              1e6 * (time.perf_counter() - t_wall) / max(1, sum(u.steps for u in report.timeline))),
             "component_steps": report.component_steps,
+            **engine_summary(sim),
             "timeseries": series.name if series is not None else None,
             # "complete", "stopped" (a component asked to stop: "stopped" names it and the time), "interrupted"
             # (SIGINT/SIGTERM: resume continues it) or "failed"

@@ -42,15 +42,17 @@ from rotorcosim.components.cache import cache_dir
 from rotorcosim.components.contract import ContractError
 from rotorcosim.components.kernels import PYTHON, KernelComponent
 
-from .algorithm import SimulationDiverged, _Link
+from .algorithm import GaussSeidel, SimulationDiverged, _Link
 
 ENGINES = ("auto", "python", "compiled")
 #: base steps per compiled chunk (rows of the observers' buffer): ~1 ms of wall time between observer calls
 CHUNK = 2048
 
 # link bookkeeping, as numbers (algorithm._Link fields): meta = [has_acc, weight, has_prev, prev_t, has_cur,
-# cur_t, ring_pos, ring_count, has_ring_t, ring_t]; vec rows = [acc (or acc2), prev, last]
-_HAS_ACC, _WEIGHT, _HAS_PREV, _PREV_T, _HAS_CUR, _CUR_T, _RPOS, _RCOUNT, _HAS_RT, _RT = range(10)
+# cur_t, then the hand-off window's (hold.HandOff): pos, count, has t_last, t_last, cycle sum, cycle count, last
+# sample, samples per cycle, cycles written in this chunk]; vec rows = [acc (or acc2), prev, last]
+(_HAS_ACC, _WEIGHT, _HAS_PREV, _PREV_T, _HAS_CUR, _CUR_T, _RPOS, _RCOUNT, _HAS_RT, _RT, _CSUM, _CN, _WLAST, _NCYC,
+ _NOUT) = range(15)
 
 
 class CompiledUnavailable(ContractError):
@@ -67,7 +69,7 @@ def why_not(sim, active, mult, stop) -> str | None:
         if not c.kernel_available():
             return f"component {n} has no compiled kernel in this phase"
     s = sim.engine.settings
-    if s.algorithm != "gauss-seidel" or s.iterations != 1:
+    if type(sim.engine.algorithm) is not GaussSeidel or s.iterations != 1:
         return f"the {s.algorithm} algorithm with {s.iterations} iteration(s) (compiled: Gauss-Seidel, 1 iteration)"
     for link in sim.engine.links:
         d, src = link.con.dst_component, link.con.src_component
@@ -77,10 +79,17 @@ def why_not(sim, active, mult, stop) -> str | None:
             return f"{link.con.src} -> {link.con.dst}: its producer does not step in this interval"
         if link.conv is not None or not link.real:
             return f"{link.con.src} -> {link.con.dst}: a converted or non-Real connection"
+        if link.held is not None or link.frozen is not None:
+            return f"{link.con.src} -> {link.con.dst}: held by the master"
+    for link in sim.engine.links:
+        if link.window is not None and link.con.src_component in mult:
+            src = comps[link.con.src_component]
+            if any(src.variable(p).type != "Real" for p in link.window.ports):
+                return f"{link.con.src}: its hand-off window records non-Real inputs"
     for obs in sim.observers:
         if obs.block_signals(sim) is None:
             return f"observer {type(obs).__name__} has no step_block"
-    if stop is not None and type(stop).__name__ != "_StopTest":
+    if stop is not None:
         return "the automatic schedule's steadiness test samples every step in Python"
     return None
 
@@ -90,6 +99,9 @@ def _source(plan) -> str:
     """The numba source of the chunk loop of ``plan`` (see Plan)."""
     L = []
     w = L.append
+    # numba's disk cache checks this file only, not the kernels it calls: their packages' sources are hashed
+    # into it, so that an edited kernel gives another file (and a fresh compilation), never stale machine code
+    w(f"# kernels' sources: {_kernel_sources_hash(plan.kernels)}")
     w("import math")
     w("import numpy as np")
     w("from numba import njit")
@@ -99,7 +111,7 @@ def _source(plan) -> str:
     for i in range(len(plan.names)):
         args += [f"s{i}", f"p{i}", f"u{i}", f"y{i}"]
     for j in range(len(plan.links)):
-        args += [f"m{j}", f"v{j}", f"g{j}"]
+        args += [f"m{j}", f"v{j}", f"g{j}", f"c{j}"]
     w("")
     w("@njit(cache=True)")
     w(f"def run_chunk({', '.join(args)}):")
@@ -158,6 +170,18 @@ def _source(plan) -> str:
     w("    status[1] = k1")
     w("    status[2] = -1")
     return "\n".join(L) + "\n"
+
+
+def _kernel_sources_hash(kernels) -> str:
+    files = {Path(__file__).resolve()}
+    for fn in kernels:
+        files |= set(Path(sys.modules[fn.py_func.__module__].__file__).resolve().parent.glob("*.py"))
+    files.add(Path(sys.modules[KernelComponent.__module__].__file__).resolve())
+    h = hashlib.sha256()
+    for f in sorted(files):
+        h.update(f.name.encode())
+        h.update(f.read_bytes())
+    return h.hexdigest()[:16]
 
 
 def _gather(w, j, link, plan, ind):
@@ -225,11 +249,10 @@ def _produced(w, j, link, plan, ind, y):
         w(f"{ind}    v{j}[2, q] = {y}[q]")
         w(f"{ind}m{j}[{_CUR_T}] = te")
         w(f"{ind}m{j}[{_HAS_CUR}] = 1.0")
-    if link.ring is not None:
+    if link.window is not None:
+        # hold.HandOff.record (a sample per producer step; no repeated steps here): the window ring and the
+        # rotor-cycle means with the producer's thermal inputs at each cycle's end (rows of c{j}: mean, inputs)
         w(f"{ind}nr = g{j}.shape[0]")
-        w(f"{ind}if m{j}[{_HAS_RT}] != 0.0 and m{j}[{_RT}] == te:")
-        w(f"{ind}    m{j}[{_RPOS}] = (m{j}[{_RPOS}] - 1 + nr) % nr")
-        w(f"{ind}    m{j}[{_RCOUNT}] -= 1")
         w(f"{ind}m{j}[{_HAS_RT}] = 1.0")
         w(f"{ind}m{j}[{_RT}] = te")
         w(f"{ind}pos = int(m{j}[{_RPOS}])")
@@ -237,6 +260,22 @@ def _produced(w, j, link, plan, ind, y):
         w(f"{ind}    g{j}[pos, q] = {y}[q]")
         w(f"{ind}m{j}[{_RPOS}] = (pos + 1) % nr")
         w(f"{ind}m{j}[{_RCOUNT}] = min(m{j}[{_RCOUNT}] + 1, nr)")
+        w(f"{ind}y0 = {y}[0]")
+        w(f"{ind}m{j}[{_WLAST}] = y0")
+        w(f"{ind}m{j}[{_CSUM}] += y0")
+        w(f"{ind}m{j}[{_CN}] += 1.0")
+        w(f"{ind}if m{j}[{_CN}] == m{j}[{_NCYC}]:")
+        w(f"{ind}    row = int(m{j}[{_NOUT}])")
+        w(f"{ind}    c{j}[row, 0] = m{j}[{_CSUM}] / m{j}[{_CN}]")
+        col = 1
+        i_src = plan.index[link.con.src_component]
+        for port, size in plan.window_ports[j]:
+            w(f"{ind}    for q in range({size}):")
+            w(f"{ind}        c{j}[row, {col} + q] = u{i_src}.{port}[q]")
+            col += size
+        w(f"{ind}    m{j}[{_NOUT}] += 1.0")
+        w(f"{ind}    m{j}[{_CSUM}] = 0.0")
+        w(f"{ind}    m{j}[{_CN}] = 0.0")
 
 
 _LOADED: dict[str, object] = {}
@@ -275,7 +314,7 @@ class Plan:
     """What the generated loop needs: components in order, their rates, the links into them, the watched and
     observed outputs."""
 
-    def __init__(self, sim, active, mult, refs):
+    def __init__(self, sim, active, mult):
         eng = sim.engine
         comps = sim.system.components
         self.names = list(eng.active)
@@ -297,23 +336,25 @@ class Plan:
         self.inputs = [[(link_id(l), l) for l in eng._inputs[n]] for n in self.names]
         self.outgoing = [[(link_id(l), l) for l in eng._outgoing[n]] for n in self.names]
         self.watch = [list(eng._watch[n]) for n in self.names]
+        self.window_ports = [[(p, comps[l.con.src_component].variable(p).size) for p in l.window.ports]
+                             if l.window is not None else [] for l in self.links]
         self.outputs = [[v.name for v in c.variables if v.causality == "output" and v.carried and v.type == "Real"]
                         for c in self.comps]
+        # every Real output is buffered, whatever the observers read: the loop's source (and its compiled code,
+        # cached on disk) then depends on the system only
         self.observed = {}
         off = 0
-        for ref in refs:
-            comp, _, port = ref.partition(".")
-            if ref in self.observed:
-                continue
-            size = comps[comp].variable(port).size
-            self.observed[ref] = (self.index[comp], port, off, size)
-            off += size
+        for i, (n, c) in enumerate(zip(self.names, self.comps)):
+            for port in self.outputs[i]:
+                size = c.variable(port).size
+                self.observed[f"{n}.{port}"] = (i, port, off, size)
+                off += size
         self.width = max(1, off)
         self.source = _source(self)
 
 
-def _link_arrays(link, n):
-    m = np.zeros(10)
+def _link_arrays(link, n, max_cycles):
+    m = np.zeros(15)
     v = np.zeros((3, n))
     acc = link.acc if link.con.average == "mean" else link.acc2
     if acc is not None:
@@ -323,25 +364,30 @@ def _link_arrays(link, n):
     if link.prev is not None:
         m[_HAS_PREV] = 1.0
         v[1] = link.prev
-    if link.prev_t is not None:
         m[_PREV_T] = link.prev_t
     if link.cur_t is not None:
         m[_HAS_CUR] = 1.0
         m[_CUR_T] = link.cur_t
         v[2] = link._last
-    ring = link.ring
-    if ring is not None:
-        m[_RPOS], m[_RCOUNT] = link.ring_pos, link.ring_count
-        if link.ring_t is not None:
-            m[_HAS_RT], m[_RT] = 1.0, link.ring_t
+    ho = link.window
+    if ho is not None:
+        ring = ho.ring
+        m[_RPOS], m[_RCOUNT] = ho.pos, ho.count
+        if ho.t_last is not None:
+            m[_HAS_RT], m[_RT] = 1.0, ho.t_last
+        m[_CSUM], m[_CN], m[_WLAST], m[_NCYC] = ho.csum, ho.cn, ho._last, ho.n_cycle
+        width = 1 + sum(np.ravel(link.src.u[p]).size for p in ho.ports)
+        cycles = np.zeros((max_cycles, width))
     else:
         ring = np.zeros((1, n))
-    return m, v, ring
+        cycles = np.zeros((1, 1))
+    return [m, v, ring, cycles]
 
 
-def _link_back(link, m, v):
-    """The loop's bookkeeping back into the _Link (thermal-only holds, checkpoints and the generic loop use it):
-    prev is None exactly when prev_t is (algorithm._Link.produced), cur_t and _last likewise."""
+def _link_back(link, m, v, cycles):
+    """The loop's bookkeeping back into the _Link and its hand-off window (thermal-only holds, checkpoints and
+    the generic loop use them): prev is None exactly when prev_t is (algorithm._Link.produced), cur_t and _last
+    likewise."""
     acc = v[0].copy() if m[_HAS_ACC] else None
     if link.con.average == "mean":
         link.acc = acc
@@ -354,9 +400,14 @@ def _link_back(link, m, v):
     if m[_HAS_CUR]:
         link.cur_t = float(m[_CUR_T])
         link._last = v[2].copy()
-    if link.ring is not None:
-        link.ring_pos, link.ring_count = int(m[_RPOS]), int(m[_RCOUNT])
-        link.ring_t = float(m[_RT]) if m[_HAS_RT] else None
+    ho = link.window
+    if ho is not None:
+        ho.pos, ho.count = int(m[_RPOS]), int(m[_RCOUNT])
+        ho.t_last = float(m[_RT]) if m[_HAS_RT] else None
+        ho.csum, ho.cn, ho._last = float(m[_CSUM]), int(m[_CN]), float(m[_WLAST])
+        for r in range(int(m[_NOUT])):
+            ho.cycles.append((cycles[r, 1:].copy(), float(cycles[r, 0])))
+        m[_NOUT] = 0.0
 
 
 class Runner:
@@ -387,7 +438,8 @@ class Runner:
                 c.u[key] = np.array(c.u[key], dtype=float)
         args_links = []
         for link, n in zip(plan.links, plan.size):
-            args_links += list(_link_arrays(link, n))
+            ncyc = link.window.n_cycle if link.window is not None else 1
+            args_links += _link_arrays(link, n, CHUNK // ncyc + 2)
         count = np.zeros(len(comps), dtype=np.int64)
         check = int(eng.settings.check_every)
         r0 = -1
@@ -434,7 +486,7 @@ class Runner:
     def _back(self, args_links, count):
         plan, eng = self.plan, self.sim.engine
         for j, link in enumerate(plan.links):
-            _link_back(link, args_links[3 * j], args_links[3 * j + 1])
+            _link_back(link, args_links[4 * j], args_links[4 * j + 1], args_links[4 * j + 3])
         for i, n in enumerate(plan.names):
             eng.steps_taken[n] += int(count[i])
             count[i] = 0
@@ -466,12 +518,21 @@ def runner(sim, phase, active, mult, step, stop, choice: str):
         return None
     reason = why_not(sim, active, mult, stop)
     if reason is not None:
-        if choice == "compiled":
-            raise CompiledUnavailable(f"--engine compiled: cannot compile the {phase} interval: {reason}")
-        sim.engine_note = reason
-        return None
-    refs = []
+        return _refuse(sim, choice, reason)
+    comps = sim.system.components
     for obs in sim.observers:
-        refs += obs.block_signals(sim)
-    plan = Plan(sim, active, mult, refs)
+        for ref in obs.block_signals(sim):
+            comp, _, port = ref.partition(".")
+            if comp not in mult:
+                return _refuse(sim, choice, f"observer {type(obs).__name__} reads {ref}, not stepped in this interval")
+            if comps[comp].variable(port).type != "Real":
+                return _refuse(sim, choice, f"observer {type(obs).__name__} reads {ref}, not a Real output")
+    plan = Plan(sim, active, mult)
     return Runner(sim, plan, step)
+
+
+def _refuse(sim, choice, reason):
+    if choice == "compiled":
+        raise CompiledUnavailable(f"--engine compiled: cannot compile the thermo-mechanical interval: {reason}")
+    sim.engine_note = reason
+    return None

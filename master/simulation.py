@@ -51,7 +51,8 @@ class Simulation:
         #: set by checkpoint.resume: where an interrupted run continues
         self.resume_point = None
         #: "auto" (the compiled loop for a thermo-mechanical interval whenever it can run it), "python" or
-        #: "compiled" (an error when it cannot); see compiled.py. engines_used: the engine of each interval
+        #: "compiled" (an error when it cannot); see compiled.py. engines_used: the engine of each thermo-mechanical
+        #: interval (thermal-only intervals always run the generic loop)
         self.engine_choice = "auto"
         self.engine_note: str | None = None
         self.engines_used: list[str] = []
@@ -133,7 +134,8 @@ class Simulation:
         if self.engine_choice not in compiled.ENGINES:
             raise ContractError(f"engine {self.engine_choice!r} not in {compiled.ENGINES}")
         runner = compiled.runner(self, phase, active, mult, step, stop, self.engine_choice)
-        self.engines_used.append("compiled" if runner is not None else "python")
+        if phase == "TM":
+            self.engines_used.append("compiled" if runner is not None else "python")
         try:
             if runner is not None:
                 try:
@@ -208,3 +210,12 @@ class Simulation:
             if failure is not None and error is None:
                 raise failure
         return self.report
+
+
+def engine_summary(sim: Simulation) -> dict:
+    """Which engine ran the thermo-mechanical intervals (for the run's summary): ``engine`` "compiled",
+    "python" or "mixed" (none ran: None), and ``engine_note`` why the generic loop ran where it did."""
+    used = set(sim.engines_used)
+    engine = None if not used else (used.pop() if len(used) == 1 else "mixed")
+    return {"engine": engine, "engine_requested": sim.engine_choice,
+            "engine_note": sim.engine_note if "python" in sim.engines_used else None}

@@ -28,7 +28,7 @@ import numpy as np
 from ..contract import Component, ContractError, Variable
 from ..kernels import KernelComponent
 from . import wall
-from .fast import DamperParams, film_table, tm_step
+from .fast import DamperParams, fast_step, film_table, tm_step
 from .reynolds_fe import build_mesh, fe_film_eval
 from .viscosity import _oil, sae30_viscosity
 
@@ -278,6 +278,21 @@ class FastDamper(KernelComponent, _Damper):
 
     def kernel_params(self):
         return self._kernel_p
+
+    def kernel_available(self):
+        return not (self.phase == "TO" and self.holds_state_in_TO)
+
+    def do_step(self, t, h):
+        if self.phase == "TO" and self.holds_state_in_TO:
+            self._thermal_only_step(t, h)
+            return
+        self.kernel_step(t, h)
+
+    def _compute(self, mu, out):
+        """The film, spring and wall at viscosity mu (the thermal-only update's evaluation)."""
+        p, u = self._kernel_p, self.u
+        return fast_step(p.TR, p.TT, p.ftab, p.bounds, p.Wc, p.Ws, p.prm, u["X_journal"], u["V_journal"],
+                         u["X_housing"], u["V_housing"], mu, out)
 
     def kernel_status(self, status, t, h):
         if status == 5:

@@ -18,6 +18,7 @@ from pathlib import Path
 from rotorcosim.master import budget, checkpoint, watchdog
 from rotorcosim.master.algorithm import SimulationDiverged
 from rotorcosim.master.api import DEFAULT_SCENARIO, SCHEDULES, load_scenario, simulate
+from rotorcosim.master.compiled import ENGINES
 from rotorcosim.master.overrides import apply_set, apply_swap, parse_set, parse_swap
 from rotorcosim.master.scenario import Scenario
 
@@ -55,6 +56,9 @@ def add_arguments(p):
     p.add_argument("--step-timeout", type=float, default=watchdog.STEP_TIMEOUT_S, metavar="S",
                    help=f"time limit of one component step in seconds (default {watchdog.STEP_TIMEOUT_S:g}; 0: none): "
                         "an FMU out of process is stopped and the run fails cleanly; in process the run is ended")
+    p.add_argument("--engine", choices=ENGINES, default="auto",
+                   help="thermo-mechanical intervals: auto (compiled when every component offers a kernel), python "
+                        "(the generic loop) or compiled (an error when it cannot); the summary says which ran")
     p.add_argument("--no-figures", action="store_true", help="skip the PNG figures")
     p.add_argument("--quiet", action="store_true", help="no progress bar")
 
@@ -101,7 +105,7 @@ def apply_unbalance(sc: Scenario, force: float) -> None:
 def execute(sc: Scenario, out: Path, schedule_kind: str | None = None, duration: float | None = None,
             figures: bool = True, quiet: bool = True, schedule=None, *, record=None, overwrite: bool = False,
             resume: bool = False, force: bool = False, checkpoint_every: float = checkpoint.EVERY_S,
-            step_timeout: float = 0.0) -> dict:
+            step_timeout: float = 0.0, engine: str = "auto") -> dict:
     """Run ``sc`` into ``out``; returns the summary (also written to out/summary.json). A thin layer over
     :func:`rotorcosim.simulate` (its docstring says the rest) kept for the other commands.
 
@@ -115,7 +119,7 @@ def execute(sc: Scenario, out: Path, schedule_kind: str | None = None, duration:
         raise ValueError("give duration or a schedule object, not both")
     res = simulate(sc, duration=duration, schedule=schedule, out=out, figures=figures, progress=not quiet,
                    record=record, overwrite=overwrite, resume=resume, force=force, checkpoint_every=checkpoint_every,
-                   step_timeout=step_timeout)
+                   step_timeout=step_timeout, engine=engine)
     return res.summary
 
 
@@ -154,7 +158,8 @@ def run(args) -> int:
         res = simulate(sc, duration=args.duration, schedule=args.schedule, out=args.out,
                        record=parse_record(args.record), figures=not args.no_figures, progress=not args.quiet,
                        overwrite=args.overwrite, resume=args.resume, force=args.force,
-                       checkpoint_every=args.checkpoint_every, step_timeout=args.step_timeout)
+                       checkpoint_every=args.checkpoint_every, step_timeout=args.step_timeout,
+                       engine=args.engine)
     except SimulationDiverged as exc:
         print(f"rotorcosim run: the simulation diverged: {exc}; what was recorded is in {out} "
               "(summary.json has the error)", file=sys.stderr)
@@ -169,7 +174,8 @@ def run(args) -> int:
         print(f"rotorcosim run: {stop['component']} asked to stop the simulation at t = {stop['t_s']:.9g} s; "
               f"the run ended there (status \"stopped\")")
     est = (s.get("hold") or {}).get("estimated_error_pct")
-    print(f"{sc.name}: {s['t_end_s']:.4g} s simulated in {s['wall_time_s']:.3g} s wall time"
+    print(f"{sc.name}: {s['t_end_s']:.4g} s simulated in {s['wall_time_s']:.3g} s wall time "
+          f"({s['engine'] or 'no'} engine)"
           + (f"; estimated error of the staggered scheme {est:.2f} %" if est is not None else ""))
     # the last line: every file the run wrote
     print("written: " + ", ".join(str(f) for f in res.files))

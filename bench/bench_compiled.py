@@ -1,0 +1,87 @@
+"""Thermo-mechanical system step of the blade-loss system: the compiled path against the generic path, same run.
+
+    python bench/bench_compiled.py [--unbalance 2850] [--seconds 0.02] [--repeat 3]
+
+Both simulations are built from the scenario with the observers of `rotorcosim run` (time-series recorder, steady
+windows, peaks), advanced 0.015 s past set-up (kernels compiled or loaded from the disk cache, blade-loss onset at
+0.01 s included), then each is timed over --seconds of thermo-mechanical interval, alternately, --repeat times
+(the best of each kept: the machine is shared). Prints the wall time per system step of each path, the ratio, the
+generic path's profile by component, and the largest relative difference of the two paths' outputs at the end
+(0 expected: the same kernels, the same arithmetic).
+"""
+from __future__ import annotations
+
+import argparse
+import tempfile
+import time
+from pathlib import Path
+
+import numpy as np
+
+from rotorcosim.master.commands.run import apply_unbalance, resolve
+from rotorcosim.master.observers import Recorder
+from rotorcosim.master.profiling import StepTimer
+from rotorcosim.master.results_blade_loss import observers as result_observers
+from rotorcosim.master.scenario import build_simulation
+from rotorcosim.master.schedule import Interval, Timeline
+
+
+def build(unbalance: float, engine: str, folder: Path):
+    sc = resolve("blade_loss")
+    apply_unbalance(sc, unbalance)
+    o = sc.outputs
+    obs = [Recorder(folder / f"{engine}.h5", list(o["record"]), float(o["record_step"]))]
+    obs += result_observers(sc, float(sc.schedule["speed_rpm"]))
+    sim = build_simulation(sc, obs)
+    sim.engine_choice = engine
+    h = float(sc.schedule["step"])
+    t0 = time.perf_counter()
+    sim.run(Timeline([Interval("TM", 0.015, h)]))
+    return sim, h, time.perf_counter() - t0
+
+
+def timed(sim, seconds: float, h: float) -> float:
+    t0 = time.perf_counter()
+    sim.run_interval("TM", seconds, h)
+    return (time.perf_counter() - t0) / round(seconds / h)
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--unbalance", type=float, default=2850.0)
+    ap.add_argument("--seconds", type=float, default=0.02)
+    ap.add_argument("--repeat", type=int, default=3)
+    a = ap.parse_args()
+    with tempfile.TemporaryDirectory() as tmp:
+        tmp = Path(tmp)
+        sims = {}
+        for engine in ("compiled", "python"):
+            sim, h, warm = build(a.unbalance, engine, tmp)
+            sims[engine] = sim
+            print(f"{engine:>8}: set-up + 0.015 s warm-up {warm:.1f} s wall (engines {sim.engines_used})", flush=True)
+        best = {"compiled": float("inf"), "python": float("inf")}
+        for _ in range(a.repeat):
+            for engine, sim in sims.items():
+                best[engine] = min(best[engine], timed(sim, a.seconds, h))
+        steps = round(a.seconds / h)
+        print(f"\nthermo-mechanical system step, best of {a.repeat} x {steps} steps of {h:g} s "
+              f"(recording and result observers included):")
+        print(f"  generic (python) path: {1e6 * best['python']:8.1f} us per step")
+        print(f"  compiled path:         {1e6 * best['compiled']:8.1f} us per step")
+        print(f"  ratio generic / compiled: {best['python'] / best['compiled']:.2f}")
+        ya = {f"{n}.{k}": np.array(v) for n, c in sims["compiled"].system.components.items() for k, v in c.y.items()}
+        yb = {f"{n}.{k}": np.array(v) for n, c in sims["python"].system.components.items() for k, v in c.y.items()}
+        worst = max(float(np.max(np.abs(ya[k] - yb[k]) / np.maximum(np.maximum(np.abs(ya[k]), np.abs(yb[k])),
+                                                                      1e-300))) for k in ya)
+        print(f"  largest relative difference of the outputs after {a.repeat * 2 * a.seconds + 0.015:g} s: {worst:.3g}")
+        sim = sims["python"]
+        timer = StepTimer(sim.system)
+        t0 = time.perf_counter()
+        sim.run_interval("TM", a.seconds, h)
+        wall = time.perf_counter() - t0
+        print(f"\ngeneric path by component ({1e6 * wall / steps:.1f} us per step with the timers):")
+        print(timer.table(wall))
+
+
+if __name__ == "__main__":
+    main()

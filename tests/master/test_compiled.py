@@ -1,0 +1,107 @@
+"""The compiled thermo-mechanical loop (master/compiled.py) against the generic loop: one semantics.
+
+The first test compiles the blade-loss system's loop (about a minute on a quiet machine; numba caches it on disk,
+so later runs load it)."""
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from rotorcosim.components.bearing.component import BallBearing
+from rotorcosim.master.commands.run import apply_unbalance, resolve
+from rotorcosim.master.compiled import CompiledUnavailable
+from rotorcosim.master.observers import Recorder
+from rotorcosim.master.results_blade_loss import observers as result_observers
+from rotorcosim.master.scenario import build_simulation
+from rotorcosim.master.schedule import Interval, Timeline
+
+RTOL = 1e-12
+
+
+def _blade_loss(engine, folder, reseats):
+    sc = resolve("blade_loss")
+    apply_unbalance(sc, 2850.0)
+    signals = ["rotor.X_brg0", "bearing0.Q_max", "bearing5.sigma_max", "damper0.P_film", "rubring0.P_rub",
+               "thermal0.T_nodes", "thermal5.eps"]
+    obs = [Recorder(folder / f"{engine}.csv", signals, 2e-5)] + result_observers(sc, 16000.0)
+    sim = build_simulation(sc, obs)
+    sim.engine_choice = engine
+    h = float(sc.schedule["step"])
+    # blade loss at 0.01 s, thermal steps every 1 ms; a thermal-only interval (held powers, the bearings'
+    # thermal-only drag) and a second thermo-mechanical one that starts with the balls re-seated (in Python)
+    tl = Timeline([Interval("TM", 0.012, h), Interval("TO", 3.0, 0.1), Interval("TM", 0.004, h)])
+    before = len(reseats)
+    sim.run(tl)
+    return sim, obs, len(reseats) - before
+
+
+def _rel(a, b):
+    a, b = np.asarray(a, float), np.asarray(b, float)
+    scale = np.maximum(np.maximum(np.abs(a), np.abs(b)), 1e-300)
+    return float(np.max(np.abs(a - b) / scale)) if a.size else 0.0
+
+
+def test_compiled_equals_generic_on_the_blade_loss_system(tmp_path, monkeypatch):
+    reseats = []
+    original = BallBearing._reseat
+
+    def counted(self, h):
+        reseats.append(self.name)
+        return original(self, h)
+
+    monkeypatch.setattr(BallBearing, "_reseat", counted)
+    runs = {e: _blade_loss(e, tmp_path, reseats) for e in ("compiled", "python")}
+    (cs, cobs, creseat), (ps, pobs, preseat) = runs["compiled"], runs["python"]
+    assert cs.engines_used == ["compiled", "compiled"]
+    assert ps.engines_used == ["python", "python"]
+    # the re-seating after the thermal-only interval ran in both (the compiled loop hands that step to Python)
+    assert creseat == preseat == 2
+    assert cs.t == ps.t
+    assert cs.engine.steps_taken == ps.engine.steps_taken
+    for name, comp in cs.system.components.items():
+        other = ps.system.components[name]
+        assert comp.time == other.time, name
+        for port, y in comp.y.items():
+            assert _rel(y, other.y[port]) <= RTOL, f"{name}.{port}"
+        for key, s in comp.state.items():
+            assert _rel(s, other.state[key]) <= RTOL, f"{name} state {key}"
+    # the recorded samples: same rows, same times, same values
+    ca = np.loadtxt(tmp_path / "compiled.csv", delimiter=",", skiprows=1)
+    pa = np.loadtxt(tmp_path / "python.csv", delimiter=",", skiprows=1)
+    assert ca.shape == pa.shape and ca.shape[0] > 500
+    assert _rel(ca, pa) <= RTOL
+    # the steady windows and peaks the results come from
+    cw, pw = cobs[1].windows, pobs[1].windows
+    assert len(cw) == len(pw) == 2
+    for a, b in zip(cw, pw):
+        assert a.keys() == b.keys()
+        for key in a:
+            assert _rel(a[key], b[key]) <= RTOL, key
+    for k in cobs[2].peak:
+        for q in cobs[2].peak[k]:
+            assert _rel(cobs[2].peak[k][q], pobs[2].peak[k][q]) <= RTOL
+    # the thermal-only hold (master/hold.py) recorded the same windows and cycle means, hence the same held values
+    for ch, ph in zip(cs.hold.handoffs, ps.hold.handoffs):
+        assert (ch.pos, ch.count, ch.cn) == (ph.pos, ph.count, ph.cn)
+        assert _rel(ch.ring, ph.ring) <= RTOL and _rel(ch.csum, ph.csum) <= RTOL
+        assert len(ch.history) == len(ph.history) and len(ch.cycles) == len(ph.cycles) > 0
+        for ca_, pa_ in zip(sum(ch.history, []), sum(ph.history, [])):
+            assert _rel(ca_[0], pa_[0]) <= RTOL and _rel(ca_[1], pa_[1]) <= RTOL
+    assert cs.report.hold.as_dict() == ps.report.hold.as_dict()
+
+
+def test_components_without_kernels_take_the_generic_loop(tmp_path):
+    """The toy system of the multi-rate tests has no compiled kernels: auto runs the generic loop and says why;
+    --engine compiled is a clear error."""
+    from helpers import two_masses  # noqa: WPS433 (tests/master/helpers.py)
+
+    from rotorcosim.master.simulation import Simulation
+
+    sim = Simulation(two_masses())
+    sim.run(Timeline([Interval("TM", 0.01, 1e-3)]))
+    assert sim.engines_used == ["python"]
+    assert "has no compiled kernel" in sim.engine_note
+    sim = Simulation(two_masses())
+    sim.engine_choice = "compiled"
+    with pytest.raises(CompiledUnavailable, match="cannot compile the thermo-mechanical interval: component"):
+        sim.run(Timeline([Interval("TM", 0.01, 1e-3)]))
