@@ -260,18 +260,18 @@ def _produced(w, j, link, plan, ind, y):
         w(f"{ind}    g{j}[pos, q] = {y}[q]")
         w(f"{ind}m{j}[{_RPOS}] = (pos + 1) % nr")
         w(f"{ind}m{j}[{_RCOUNT}] = min(m{j}[{_RCOUNT}] + 1, nr)")
-        w(f"{ind}y0 = {y}[0]")
-        w(f"{ind}m{j}[{_WLAST}] = y0")
-        w(f"{ind}m{j}[{_CSUM}] += y0")
+        w(f"{ind}ys = {y}[0]")
+        w(f"{ind}m{j}[{_WLAST}] = ys")
+        w(f"{ind}m{j}[{_CSUM}] += ys")
         w(f"{ind}m{j}[{_CN}] += 1.0")
         w(f"{ind}if m{j}[{_CN}] == m{j}[{_NCYC}]:")
-        w(f"{ind}    row = int(m{j}[{_NOUT}])")
-        w(f"{ind}    c{j}[row, 0] = m{j}[{_CSUM}] / m{j}[{_CN}]")
+        w(f"{ind}    cr = int(m{j}[{_NOUT}])")
+        w(f"{ind}    c{j}[cr, 0] = m{j}[{_CSUM}] / m{j}[{_CN}]")
         col = 1
         i_src = plan.index[link.con.src_component]
         for port, size in plan.window_ports[j]:
             w(f"{ind}    for q in range({size}):")
-            w(f"{ind}        c{j}[row, {col} + q] = u{i_src}.{port}[q]")
+            w(f"{ind}        c{j}[cr, {col} + q] = u{i_src}.{port}[q]")
             col += size
         w(f"{ind}    m{j}[{_NOUT}] += 1.0")
         w(f"{ind}    m{j}[{_CSUM}] = 0.0")
