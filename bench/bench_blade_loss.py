@@ -30,6 +30,7 @@ def profile(unbalance: float, seconds: float) -> str:
     sc = resolve("blade_loss")
     apply_unbalance(sc, unbalance)
     sim = build_simulation(sc)
+    sim.engine_choice = "python"  # the profile by component is the generic loop's (bench_compiled.py: both paths)
     h = float(sc.schedule.get("step", 1e-5))
     sim.run(Timeline([Interval("TM", 0.02, h)]))  # past the blade-loss onset, numba kernels compiled
     timer = StepTimer(sim.system)
