@@ -72,33 +72,41 @@ class AutoSchedule(Schedule):
         return cls(total, step, thermal_step, **{k: spec[k] for k in cls.keys if k in spec})
 
     def run(self, sim, first: int = 0) -> None:
+        """Drive ``sim`` to the end. The loop's own state (which phase comes next, the TO length the error
+        control reached) lives in ``sim.schedule_state``, so that a checkpoint taken at an interval end carries
+        it and a resumed run makes the same decisions (master/checkpoint.py); ``first`` is not used."""
         if not sim.speed_rpm:
             raise ScheduleError("the automatic schedule needs speed_rpm (its steadiness test works cycle by cycle)")
         end = sim.t0 + self.duration
         eps = 1e-9
-        to_len = self.to_min
+        state = sim.schedule_state = sim.schedule_state or {"next": "TM", "to_len": self.to_min}
         while sim.t < end - eps:
             remaining = end - sim.t
-            if remaining <= self.tm_max + self.to_min:
-                # no room left for a thermal-only interval: one thermo-mechanical interval to the end (stopping
-                # it early when steady would only start another one)
-                sim.run_interval("TM", remaining, self.step, reason="end")
-                break
-            sim.run_interval("TM", self.tm_max, self.step, _SteadyTest(sim, self), reason="tm_max")
-            if sim.report.stopped:
-                break
-            estimate = sim.hold.report.last_estimate_pct
-            if self.tolerance is not None and estimate is not None:
-                factor = SAFETY * self.tolerance / max(estimate, 1e-12)
-                to_len = min(max(to_len * min(max(factor, GROWTH_LIMITS[0]), GROWTH_LIMITS[1]), self.to_min),
-                             self.to_max)
-            elif self.tolerance is None:
-                to_len = self.to_max
-            remaining = end - sim.t
-            if remaining <= eps:
-                break
+            if state["next"] == "TM":
+                if remaining <= self.tm_max + self.to_min:
+                    # no room left for a thermal-only interval: one thermo-mechanical interval to the end
+                    # (stopping it early when steady would only start another one)
+                    state["next"] = "end"
+                    sim.run_interval("TM", remaining, self.step, reason="end")
+                    break
+                # the TO length is set after this interval, from the estimate its restart gave: flagged before
+                # it runs, so that a checkpoint at its end (which precedes the update) resumes the same way
+                state.update(next="TO", adjust=True)
+                sim.run_interval("TM", self.tm_max, self.step, _SteadyTest(sim, self), reason="tm_max")
+                if sim.report.stopped:
+                    break
+                continue
+            if state.pop("adjust", False):
+                estimate = sim.hold.report.last_estimate_pct
+                if self.tolerance is not None and estimate is not None:
+                    factor = SAFETY * self.tolerance / max(estimate, 1e-12)
+                    state["to_len"] = min(max(state["to_len"] * min(max(factor, GROWTH_LIMITS[0]),
+                                                                    GROWTH_LIMITS[1]), self.to_min), self.to_max)
+                elif self.tolerance is None:
+                    state["to_len"] = self.to_max
             # keep room for a final thermo-mechanical interval, where the results are read
-            d_to = min(to_len, remaining - self.tm_max)
+            state["next"] = "TM"
+            d_to = min(state["to_len"], remaining - self.tm_max)
             if d_to < self.to_min:
                 continue
             sim.run_interval("TO", d_to, self.thermal_step, _DriftTest(sim, self), reason="to_max")

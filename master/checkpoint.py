@@ -13,9 +13,10 @@ uninterrupted one had: its results are bit-identical.
 Pickling: components (and the system) are written as references by name (``persistent_id``) and bound to the
 new simulation's objects when read, so the master's own objects can be saved whole, whatever their internals.
 
-Only explicit timelines (the paper's and monolithic schedules) resume; the automatic schedule's decisions live in
-its loop, and FMUs' states cannot be written to disk through FMI 2.0's Get/SetFMUstate: in both cases the run is
-not checkpointed and says so in its summary.
+The automatic schedule is checkpointed at interval ends only (its stop tests decide inside an interval; its own
+state, ``sim.schedule_state``, is saved with the rest): interrupted inside an interval, it resumes from the end of
+the previous one and recomputes the rest, with the same bit-identical result. FMUs' states cannot be written to
+disk through FMI 2.0's Get/SetFMUstate: a system with FMUs is not checkpointed and says so in its summary.
 
 Signals: :class:`StopRequest` turns the first SIGINT or SIGTERM into a request the Checkpointer honours at the next
 safe point (a checkpoint, then :class:`RunInterrupted`); a second signal interrupts at once.
@@ -40,7 +41,7 @@ from .schedule import Timeline
 from .system import System
 
 CHECKPOINT = "checkpoint.pkl"
-FORMAT = 1
+FORMAT = 2
 #: wall time between two checkpoints inside a long interval (interval ends are always checkpointed)
 EVERY_S = 180.0
 
@@ -127,10 +128,11 @@ class Checkpointer(Observer):
         self.key = key
         self.saved = 0
         self.disabled: str | None = None
+        self.interval_ends_only = False
 
     def start(self, sim, schedule):
-        if not isinstance(schedule, Timeline):
-            self.disabled = "the automatic schedule is not checkpointed (its decisions live in its loop)"
+        # the automatic schedule's stop tests live inside its intervals: only their ends are safe points
+        self.interval_ends_only = not isinstance(schedule, Timeline)
         self._last = time.perf_counter()
 
     def interval_start(self, sim, phase, step):
@@ -142,8 +144,11 @@ class Checkpointer(Observer):
 
     def step(self, sim, t):
         if self.stop is not None and self.stop.signal:
-            self.save(sim, round((t - self._t_start) / self._step))
+            if not self.interval_ends_only:
+                self.save(sim, round((t - self._t_start) / self._step))
             raise RunInterrupted(f"{self.stop.signal} received: stopped at t = {t:.9g} s")
+        if self.interval_ends_only:
+            return
         if self.path is not None and time.perf_counter() - self._last >= self.every_s:
             self.save(sim, round((t - self._t_start) / self._step))
 
@@ -169,6 +174,7 @@ class Checkpointer(Observer):
             data = _dumps({
                 "format": FORMAT, "key": self.key, "interval": index, "k": k, "t_start": self._t_start,
                 "t": sim.t, "components": comps, "engine": sim.engine, "hold": sim.hold, "report": sim.report,
+                "schedule_state": sim.schedule_state,
                 "observers": [o.checkpoint_state() for o in sim.observers if o is not self],
             })
         except Exception as exc:  # an FMU's state (a pointer into the FMU), or another unpicklable object
@@ -210,6 +216,7 @@ class ResumePoint:
         sim.engine = data["engine"]
         sim.hold = data["hold"]  # pickled with the engine: it shares the engine's connection objects
         sim.report = data["report"]
+        sim.schedule_state = data["schedule_state"]
         for name, snap in data["components"].items():
             sim.system.components[name].set_state(snap)
         observers = [o for o in sim.observers if not isinstance(o, Checkpointer)]
@@ -249,9 +256,7 @@ def _peek(raw: bytes) -> dict:
 
 def resume(sim, schedule, point: ResumePoint):
     """Continue ``sim`` (built afresh from the same scenario, observers in the same order) from ``point``."""
-    if not isinstance(schedule, Timeline):
-        raise CheckpointError("--resume: only runs on an explicit timeline resume (not the automatic schedule)")
-    if point.interval > len(schedule.intervals):
+    if isinstance(schedule, Timeline) and point.interval > len(schedule.intervals):
         raise CheckpointError("--resume: the checkpoint lies beyond this schedule's end")
     sim.resume_point = point
     return sim.run(schedule)

@@ -48,6 +48,8 @@ class Simulation:
         self.report = RunReport()
         self._initialised = False
         self.interval_index = 0
+        #: a schedule's own loop state (the automatic schedule's), saved in checkpoints
+        self.schedule_state = None
         #: set by checkpoint.resume: where an interrupted run continues
         self.resume_point = None
         #: "auto" (the compiled loop for a thermo-mechanical interval whenever it can run it), "python" or

@@ -115,3 +115,34 @@ def test_command_line_interrupt_and_resume(tmp_path, reference, sigint_at, capsy
     got, attrs = series(tmp_path / "o")
     want, _ = series(ref_out)
     assert attrs["complete"] == True and all(np.array_equal(got[k], want[k]) for k in want)  # noqa: E712
+
+
+@pytest.fixture(scope="module")
+def auto_reference(tmp_path_factory):
+    out = tmp_path_factory.mktemp("auto_ref")
+    summary = execute(toy(), out, "auto", duration=DURATION, figures=False)
+    return out, summary
+
+
+@pytest.mark.parametrize("t_signal", [2.0, 5.3])  # inside a TO interval, inside a later TM interval
+def test_automatic_schedule_resumes_bit_identically(tmp_path, auto_reference, sigint_at, t_signal):
+    """The automatic schedule is checkpointed at interval ends (with its own loop state): interrupted inside an
+    interval, it resumes from the previous end, makes the same decisions, and gives the same bits."""
+    ref_out, ref = auto_reference
+    assert len(ref["timeline"]) >= 4  # several TM/TO decisions, so the loop state matters
+    out = tmp_path / "run"
+    fired = sigint_at(t_signal)
+    with pytest.raises(checkpoint.RunInterrupted):
+        execute(toy(), out, "auto", duration=DURATION, figures=False)
+    assert fired
+    s = json.loads((out / "summary.json").read_text())
+    assert s["status"] == "interrupted" and s["checkpoint"] == "checkpoint.pkl"
+    summary = execute(toy(), out, "auto", duration=DURATION, figures=False, resume=True)
+    assert summary["status"] == "complete"
+    assert summary["resumed_from_t_s"] < t_signal
+    got, _ = series(out)
+    want, _ = series(ref_out)
+    for k in want:
+        assert np.array_equal(got[k], want[k]), k
+    assert summary["timeline"] == ref["timeline"]
+    assert summary["final_outputs"] == ref["final_outputs"]
