@@ -203,7 +203,7 @@ class _Figures:
                     value, label = line
                     a.axhline(value, color="r", ls=":", lw=0.9, label=label)
                 if line is not None or styles:
-                    a.legend(loc="upper right", fontsize=7)
+                    a.legend(loc="best", fontsize=7)
                 a.set_title(f"bearing #{k}: {title}", fontsize=10)
                 a.set_xlabel("time [s]")
                 a.set_ylabel(ylabel)
