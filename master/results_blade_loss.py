@@ -6,8 +6,15 @@ state the paper tabulates; temperatures at the end of the run):
 1. ``whirl_amplitude_mm``: the largest radius sqrt(x^2 + y^2) of the power turbine at the bearing;
 2. ``transmissibility``: eq. (23), the largest |F_sfd + F_cs| over the window divided by the blade-loss force
    amplitude F_u;
-3. ``max_contact_load_N`` / 4. ``max_contact_stress_MPa``: the largest ball contact load / stress (inner or
-   outer race) over the window;
+3. ``max_contact_load_N``: the largest ball contact load (inner or outer race) over the window;
+4. ``max_contact_stress_MPa``: the largest ball contact stress (eq. 10) over the window and over both contacts,
+   the LARGER of the inner- and outer-race stress, in the summary and in Fig. 12 alike. The paper's text says its
+   Fig. 12 shows the outer-race stress, but its Table 5 load/stress pairs follow the inner-race Hertz law (about
+   248 Q^(1/3) MPa at #0, f_i = 0.53): for one load the inner contact (the less conformal one) is the more highly
+   stressed. Here the outer contact also carries the ball's centrifugal force (52 N at #0, 98 N at #5 at
+   16 000 rev/min, eq. 4), so at light loads the outer-race stress is the larger one and at heavy loads the
+   inner-race stress: the larger one is the damage index the paper compares with 3200 MPa, so it is reported
+   (measured: reporting the inner one alone puts #5 at 0.52-0.59 of the paper's stress below rub);
 5. ``rub_power_W``, 6. ``drag_power_W``, 7. ``sfd_power_W``: mean power over the window;
 8.-11. ``T_inner_race_C``, ``T_ball_C``, ``T_outer_race_C``, ``T_sfd_oil_C``: the final temperatures.
 

@@ -120,9 +120,15 @@ def build_geometry(bearing: int | None = None, *, Z: int | None = None, D: float
         # Outer race: solid steel ring from the groove bottom (d_m + D) to the OD, over the width.
         OD, width = raw["outside_diameter_mm"] * 1e-3, raw["width_mm"] * 1e-3
         m_e = ring_mass(OD, d_m + D, width, rho)
-        # Journal: solid steel sleeve from the bearing OD to the damper journal radius, over the damper length
-        # (Table 3). An upper bound: a real sleeve may be webbed; the paper gives no mass.
-        m_j = ring_mass(2.0 * raw["journal_radius_mm"] * 1e-3, OD, raw["journal_length_mm"] * 1e-3, rho)
+        # Journal (data file, the reading of eq. 5's m_j): journal_wall_mm = 0, a solid steel sleeve from the
+        # bearing OD to the damper journal radius over the damper length (Table 3; the paper's Table 1 R_j);
+        # > 0, "the rings alone": a ring of that radial wall under the film land.
+        d_j = 2.0 * raw["journal_radius_mm"] * 1e-3
+        wall = float(design.get("journal_wall_mm", 0.0)) * 1e-3
+        if not (math.isfinite(wall) and 0.0 <= wall < 0.5 * d_j - 0.5 * OD):
+            raise ValueError(f"bearings.toml [design] journal_wall_mm must be 0 (solid sleeve) or a wall thinner than "
+                             f"the sleeve, got {wall * 1e3!r} mm")
+        m_j = ring_mass(d_j, d_j - 2.0 * wall if wall > 0.0 else OD, raw["journal_length_mm"] * 1e-3, rho)
     return BearingGeometry(Z=Z, D=D, d_m=d_m, alpha0=alpha0, f_i=f_i, f_o=f_o, l_oi=(f_i - 0.5) * D,
                            l_oe=(f_o - 0.5) * D, m_b=m_b, inner=inner, outer=outer, preload=preload,
                            m_outer_race=m_e, m_journal=m_j)

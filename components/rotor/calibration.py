@@ -31,18 +31,31 @@ from . import critical, model
 KNOBS = ("pt_stage_mass_kg", "mount_k")
 
 
-def forward_criticals(data: dict, values=None, n: int = 2) -> np.ndarray:
+def _supports(sup):
+    """The #0/#5 supports of the linear engine: given, or the co-simulated system's (master.linear_engine)."""
+    if sup is not None:
+        return sup
+    from rotorcosim.master import linear_engine
+
+    return linear_engine.supports()
+
+
+def forward_criticals(data: dict, values=None, n: int = 2, sup: dict | None = None) -> np.ndarray:
     d = copy.deepcopy(data)
     if values is not None:
         d["calibration"].update({k: float(v) for k, v in zip(KNOBS, values)})
-    return np.asarray(critical.synchronous_critical_speeds(model.build(d), n=n)["forward_synchronous_rpm"][:n])
+    fw = critical.synchronous_critical_speeds(model.build(d), _supports(sup), n=n)["forward_synchronous_rpm"]
+    return np.asarray(fw[:n])
 
 
-def calibrate(data: dict, tol_rpm: float = 1.0, max_iter: int = 10) -> tuple[np.ndarray, np.ndarray]:
+def calibrate(data: dict, tol_rpm: float = 1.0, max_iter: int = 10, sup: dict | None = None):
+    """Newton on the two knobs until the lowest two forward critical speeds of the linear engine (supports
+    ``sup``, default the co-simulated system linearised) meet [calibration] target_rpm within tol_rpm."""
+    sup = _supports(sup)
     target = np.asarray(data["calibration"]["target_rpm"], float)
     x = np.array([float(data["calibration"][k]) for k in KNOBS])
     for _ in range(max_iter):
-        f = forward_criticals(data, x)
+        f = forward_criticals(data, x, sup=sup)
         print(f"  {dict(zip(KNOBS, x.round(4).tolist()))} -> {f.round(1)} rev/min", flush=True)
         if np.max(np.abs(f - target)) < tol_rpm:
             break
@@ -50,56 +63,28 @@ def calibrate(data: dict, tol_rpm: float = 1.0, max_iter: int = 10) -> tuple[np.
         for j in range(2):
             dx = x.copy()
             dx[j] *= 1.01
-            J[:, j] = (forward_criticals(data, dx) - f) / (dx[j] - x[j])
+            J[:, j] = (forward_criticals(data, dx, sup=sup) - f) / (dx[j] - x[j])
         x = x - np.linalg.solve(J, f - target)
     return x, f
 
 
-def _harmonic(data: dict, rpm: float, F_u: float):
-    """The model and its steady synchronous response X (complex) to F_u at the blade-loss node, bearings #0/#5
-    linearised, by a direct harmonic solve (undamped modes not assumed)."""
-    m = model.build(data)
-    Ks, Cs = m.linear_support()
-    W = rpm * model.RPM
-    A = m.K + Ks - W ** 2 * m.M + 1j * W * (m.C + Cs + W * m.G_pt + W * critical.speed_ratio(m) * m.G_gg)
-    f = np.zeros(m.n, complex)
-    ux, uy = m.ports["unbalance"]
-    f[ux], f[uy] = F_u, -1j * F_u
-    return m, np.linalg.solve(A, f)
+def linear_response_detail(data: dict, rpm: float = 16000.0, F_u: float = 2850.0, sup: dict | None = None) -> dict:
+    """Steady synchronous response of the linear engine (master.linear_engine.response): per bearing "0"/"5"
+    the whirl of the PT node (mm), the journal orbit relative to the housing (mm) and the transmissibility of
+    eq. (23), |F_spring + F_film| / F_u."""
+    from rotorcosim.master import linear_engine
+
+    return linear_engine.response(model.build(data), _supports(sup), F_u, rpm)
 
 
-def _amp(x, y):
-    """Major semi-axis bound |a_f| + |a_b| of the orbit (x, y) (complex amplitudes)."""
-    return (abs(x + 1j * y) + abs(x - 1j * y)) / 2
-
-
-def linear_response(data: dict, rpm: float = 16000.0, F_u: float = 2850.0) -> tuple[float, float]:
-    """Steady whirl amplitude (mm, major semi-axis bound |a_f| + |a_b|) at bearings #0/#5 for F_u at the
-    blade-loss node, bearings #0/#5 linearised, undamped modes not assumed (direct harmonic solve)."""
-    m, X = _harmonic(data, rpm, F_u)
-    return tuple(1e3 * _amp(X[m.ports[b][0]], X[m.ports[b][1]]) for b in ("brg0", "brg5"))
-
-
-def linear_response_detail(data: dict, rpm: float = 16000.0, F_u: float = 2850.0) -> dict:
-    """Like :func:`linear_response`, per bearing "0"/"5": whirl of the PT node (mm), its orbit relative to the
-    housing hub (mm) and the transmissibility of eq. (23), |F_spring + F_film| / F_u, of the linearised support
-    (contact in series with the centering spring, film damping in parallel: the largest force over the orbit)."""
-    m, X = _harmonic(data, rpm, F_u)
-    W = rpm * model.RPM
-    out = {}
-    for key, brg, hub in (("0", "brg0", "housing0"), ("5", "brg5", "housing5")):
-        s = data["linear_support"]["h" + key]
-        k = 1.0 / (1.0 / s["k_contact"] + 1.0 / s["k_spring"])
-        (i, j), (hi, hj) = m.ports[brg][:2], m.ports[hub]
-        rx, ry = X[i] - X[hi], X[j] - X[hj]
-        # force of the support: (k + i W c) times the relative orbit; its largest value over the orbit
-        out[key] = {"whirl_mm": 1e3 * _amp(X[i], X[j]), "relative_mm": 1e3 * _amp(rx, ry),
-                    "transmissibility": _amp((k + 1j * W * s["c"]) * rx, (k + 1j * W * s["c"]) * ry) / F_u}
-    return out
+def linear_response(data: dict, rpm: float = 16000.0, F_u: float = 2850.0, sup: dict | None = None):
+    r = linear_response_detail(data, rpm, F_u, sup)
+    return r["0"]["whirl_mm"], r["5"]["whirl_mm"]
 
 
 def response_study(data: dict) -> list[dict]:
     """The 2850 N response study behind the shipped layout (module docstring, ``--response-study``)."""
+    sup = _supports(None)
     pt = data["power_turbine"]
     i0, i5 = int(pt["bearing0_node"]), 5                   # bearing #0 node, forward intermediate bearing node
     z0 = float(pt["z_mm"][i0])
@@ -128,12 +113,12 @@ def response_study(data: dict) -> list[dict]:
     for span, tube, neck in cases:
         d = variant(span, tube, neck)
         try:
-            x, f = calibrate(d, tol_rpm=10.0, max_iter=10)
+            x, f = calibrate(d, tol_rpm=10.0, max_iter=10, sup=sup)
         except (np.linalg.LinAlgError, ValueError) as exc:
             print(f"span {span} mm, tube {tube}, neck {neck}: fit failed ({exc})")
             continue
         d["calibration"].update(dict(zip(KNOBS, x)))
-        r = linear_response_detail(d)
+        r = linear_response_detail(d, sup=sup)
         row = {"span_mm": span, "tube": tube, "neck_mm": neck, "knobs": x.round(4).tolist(),
                "forward_rpm": [round(v) for v in f],
                **{f"{k}_{b}": round(float(v), 4) for b in r for k, v in r[b].items()}}
@@ -145,6 +130,7 @@ def response_study(data: dict) -> list[dict]:
 def layout_search(data: dict) -> list[dict]:
     import itertools
 
+    sup = _supports(None)
     rows = []
     for strut, mounts, tube in itertools.product((1.0, 3.0), ((1, 4), (1, 6), (0, 6)), ((50, 30), (60, 44))):
         d = copy.deepcopy(data)
@@ -157,13 +143,13 @@ def layout_search(data: dict) -> list[dict]:
         for e in range(5, 16):
             p["d_out_mm"][e], p["d_in_mm"][e] = tube
         try:
-            x, f = calibrate(d, tol_rpm=30.0, max_iter=8)
+            x, f = calibrate(d, tol_rpm=30.0, max_iter=8, sup=sup)
         except (np.linalg.LinAlgError, ValueError) as exc:
             print(f"strut x{strut}, mounts {mounts}, tube {tube}: fit failed ({exc})")
             continue
         d["calibration"].update(dict(zip(KNOBS, x)))
-        fw = critical.synchronous_critical_speeds(model.build(d), n=5)["forward_synchronous_rpm"]
-        r0, r5 = linear_response(d)
+        fw = critical.synchronous_critical_speeds(model.build(d), sup, n=5)["forward_synchronous_rpm"]
+        r0, r5 = linear_response(d, sup=sup)
         row = {"strut": strut, "mounts": mounts, "tube": tube, "knobs": x.round(4).tolist(),
                "forward_rpm": [round(v) for v in fw], "x0_mm": round(float(r0), 4), "x5_mm": round(float(r5), 4),
                "nearest_to_16000": round(float(min(abs(v / 16000 - 1) for v in fw)), 3)}
@@ -181,11 +167,13 @@ if __name__ == "__main__":
     if "--response-study" in sys.argv:
         response_study(d)
         sys.exit(0)
-    x, f = calibrate(d)
+    sup = _supports(None)
+    x, f = calibrate(d, sup=sup)
     for k, v in zip(KNOBS, x):
         print(f"{k} = {v:.4f}")
     print("forward synchronous critical speeds:", f.round(1))
     d["calibration"].update(dict(zip(KNOBS, x)))
-    for b, r in linear_response_detail(d).items():
-        print(f"linear 2850 N response at 16 000 rev/min, #{b}: whirl {r['whirl_mm']:.4f} mm (relative to the housing "
-              f"{r['relative_mm']:.4f} mm), transmissibility {r['transmissibility']:.3f}")
+    for F in (712.0, 2850.0):
+        for b, r in linear_response_detail(d, F_u=F, sup=sup).items():
+            print(f"linear {F:g} N response at 16 000 rev/min, #{b}: whirl {r['whirl_mm']:.4f} mm (journal orbit "
+                  f"{r['journal_mm']:.4f} mm), transmissibility {r['transmissibility']:.3f}")

@@ -1,7 +1,9 @@
 """``rotorcosim critical-speeds``: synchronous critical speeds (and Campbell diagram) of the rotor model.
 
 The gas generator turns at the scenario's speed ratio (15 000 / 16 000) of the power turbine; bearings #0 and #5
-are represented by their linearised supports (data file [linear_support]).
+are the co-simulated system linearised (rotorcosim.master.linear_engine: ball contacts at the preloaded rest, the
+outer race + journal body of eq. 5, O-ring, film at the stated oil temperature), the one engine model the
+calibration uses. ``--json`` reports it under ``support_model``.
 """
 from __future__ import annotations
 
@@ -21,22 +23,37 @@ def add_arguments(parser):
     parser.add_argument("--campbell", metavar="FILE.png", help="also draw the Campbell diagram into this file")
     parser.add_argument("--max-rpm", type=float, default=30000.0, metavar="RPM",
                         help="highest power-turbine speed of the Campbell diagram and the list (default 30000)")
+    parser.add_argument("--oil-temperature", type=float, default=None, metavar="C",
+                        help="oil temperature of the linearised film (default: the model file's "
+                             "[linear_support] oil_temperature_C); the undamped critical speeds do not depend on it")
 
 
-def critical_speeds(model_file: str = "", count: int = 6, max_rpm: float = 30000.0) -> dict:
+def _supports(m, oil_temperature):
+    from rotorcosim.master import linear_engine
+
+    return linear_engine.supports(oil_temperature_C=oil_temperature, data=m.data)
+
+
+def critical_speeds(model_file: str = "", count: int = 6, max_rpm: float = 30000.0,
+                    oil_temperature: float | None = None) -> dict:
     if count < 1:
         raise ValueError(f"--count must be >= 1, got {count}")
     if not (np.isfinite(max_rpm) and max_rpm > 0):
         raise ValueError(f"--max-rpm must be > 0, got {max_rpm}")
     m = fem.load(model_file or None)
-    out = critical.synchronous_critical_speeds(m, n=count, max_rpm=max_rpm)
+    sup = _supports(m, oil_temperature)
+    from rotorcosim.master import linear_engine
+
+    out = critical.synchronous_critical_speeds(m, sup, n=count, max_rpm=max_rpm)
     out["speed_ratio_gg_pt"] = critical.speed_ratio(m)
     out["target_rpm"] = list(m.data.get("calibration", {}).get("target_rpm", []))
     out["model_file"] = str(model_file or fem.DEFAULT_FILE)
+    out["support_model"] = linear_engine.describe(sup)
     return out
 
 
-def draw_campbell(path: str, model_file: str = "", max_rpm: float = 30000.0, crit: dict | None = None) -> None:
+def draw_campbell(path: str, model_file: str = "", max_rpm: float = 30000.0, crit: dict | None = None,
+                  oil_temperature: float | None = None) -> None:
     import matplotlib
 
     matplotlib.use("Agg")
@@ -44,7 +61,7 @@ def draw_campbell(path: str, model_file: str = "", max_rpm: float = 30000.0, cri
 
     m = fem.load(model_file or None)
     rpm = np.linspace(0.0, max_rpm, 61)
-    f, kind = critical.campbell(m, rpm)
+    f, kind = critical.campbell(m, rpm, _supports(m, oil_temperature))
     fig, ax = plt.subplots(figsize=(10, 5))
     styles = ((1, "tab:blue", "forward whirl"), (-1, "tab:orange", "backward whirl"),
               (0, "0.75", "no rotor whirl (axial, torsion, casing)"))
@@ -72,16 +89,17 @@ def draw_campbell(path: str, model_file: str = "", max_rpm: float = 30000.0, cri
     ax.set_xlim(0, max_rpm)
     ax.set_ylim(0, 1.2 * max_rpm / 60.0)
     ax.legend(loc="upper left", bbox_to_anchor=(1.02, 1.0), fontsize=8, framealpha=0.9)
-    ax.set_title("Campbell diagram (linearised #0/#5 supports, undamped)")
+    ax.set_title("Campbell diagram (engine with #0/#5 linearised: contacts, journal body, O-ring; undamped)",
+                 fontsize=9)
     fig.tight_layout()
     fig.savefig(path, dpi=120)
     plt.close(fig)
 
 
 def run(args) -> int:
-    out = critical_speeds(args.model_file, args.count, args.max_rpm)
+    out = critical_speeds(args.model_file, args.count, args.max_rpm, args.oil_temperature)
     if args.campbell:
-        draw_campbell(args.campbell, args.model_file, args.max_rpm, out)
+        draw_campbell(args.campbell, args.model_file, args.max_rpm, out, args.oil_temperature)
         out["campbell"] = args.campbell
     if args.json:
         print(json.dumps(out))
@@ -92,6 +110,11 @@ def run(args) -> int:
         print("  backward:", ", ".join(f"{v:.0f}" for v in out["backward_synchronous_rpm"]))
         if out["target_rpm"]:
             print("  paper (lowest two forward):", ", ".join(f"{v:.0f}" for v in out["target_rpm"]))
+        sm = out["support_model"]
+        print(f"  supports #0/#5: {sm['description']}; film at {sm['oil_temperature_C']:g} C")
+        for b, v in sm["bearings"].items():
+            print(f"    #{b}: contact {v['k_contact']:.3g} N/m, journal {v['m_journal']:.3g} kg, O-ring "
+                  f"{v['k_spring']:.4g} N/m, film {v['c_film']:.4g} N s/m")
         if args.campbell:
             print(f"Campbell diagram: {args.campbell}")
     return 0

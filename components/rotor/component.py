@@ -18,7 +18,13 @@ Conventions:
   balance grade G 2.5 (gas turbines: e W <= 2.5 mm/s) for a ~20 kg power turbine at 16 000 rev/min (F = m G W;
   87 N for the 20.8 kg of the first layout, 83 N for the 19.9 kg of the layout calibrated on the 2850 N response:
   87 N kept, G 2.6 here, 4 N apart, immaterial next to the blade-loss force), all put at the outboard end
-  (conservative: the whole residual at the blade-loss node);
+  (conservative: the whole residual at the blade-loss node). The paper gives neither the residual nor its
+  phase. Default phase 90 deg (quadrature, the residual changes the amplitude by (87/712)^2 / 2 = 0.7 % at
+  712 N): the paper's own 712 N and 1425 N cases have the same whirl per newton (0.0719 and 0.0734 mm/kN) and
+  transmissibility (1.03, 1.02), where a residual in phase (0 deg, the value before issue 17) would make the
+  712 N case 6 % larger per newton than the 1425 N one (+12 % against +6 %), and in opposition 6 % smaller.
+  Eq. (23) divides by the blade-loss force alone (``F_unbalance``, "the unbalance force induced by blade
+  loss"), as master/results_blade_loss.py does;
 * the output ``F_u`` is the total applied rotating force vector (residual + blade loss); it cannot be called
   F_unbalance like the amplitude parameter, since variable names are unique (FMI, contract);
 * the Newmark step map is formed once per step size (sizes equal to 12 significant digits share it, so round-off
@@ -93,8 +99,9 @@ class Rotor(KernelComponent):
                  description="blade-loss force amplitude (rotating at the PT speed, PT outboard end)"),
         Variable("F_residual", "parameter", unit="N", start=87.0,
                  description="residual unbalance force before the blade loss (ISO 21940-11 G 2.5), same node"),
-        Variable("unbalance_phase", "parameter", unit="rad", start=0.0,
-                 description="angle of the lost blade relative to the residual unbalance"),
+        Variable("unbalance_phase", "parameter", unit="rad", start=0.5 * math.pi,
+                 description="angle of the lost blade relative to the residual unbalance (default 90 deg: the "
+                             "residual adds in quadrature; see the module docstring)"),
         Variable("t_blade_loss", "parameter", unit="s", start=0.01, description="blade-loss time (step onset)"),
         Variable("omega_pt", "parameter", unit="rad/s", start=PT_OMEGA, description="power-turbine speed"),
         Variable("omega_gg", "parameter", unit="rad/s", start=GG_OMEGA, description="gas-generator speed"),

@@ -26,26 +26,35 @@ def speed_ratio(model: FullModel) -> float:
     return model.omega_gg / model.omega_pt
 
 
-def synchronous_critical_speeds(model: FullModel, linear_support: bool = True, n: int = 12,
+def _system(model: FullModel, supports: dict | None) -> dict:
+    """The matrices the eigenproblems use: the engine with its #0/#5 supports (:meth:`FullModel.coupled`), or
+    the model alone (supports None: bearings #0/#5 absent, e.g. for the MTA basis)."""
+    if supports is None:
+        return {"M": model.M, "K": model.K, "G_pt": model.G_pt, "G_gg": model.G_gg,
+                "rotor_lateral": model.rotor_lateral}
+    return model.coupled(supports)
+
+
+def synchronous_critical_speeds(model: FullModel, supports: dict | None, n: int = 12,
                                 max_rpm: float = 60000.0, min_share: float = 0.05) -> dict:
-    """Forward and backward synchronous critical speeds (rev/min of the power turbine), ascending."""
-    K = model.K.copy()
-    if linear_support:
-        K += model.linear_support()[0]
-    Gt = model.G_pt + speed_ratio(model) * model.G_gg
-    B = model.M - 1j * Gt
+    """Forward and backward synchronous critical speeds (rev/min of the power turbine), ascending, of the model
+    with the supports of :meth:`FullModel.coupled` (None: without bearings #0/#5)."""
+    sysm = _system(model, supports)
+    K, Mm = sysm["K"], sysm["M"]
+    Gt = sysm["G_pt"] + speed_ratio(model) * sysm["G_gg"]
+    B = Mm - 1j * Gt
     nn = K.shape[0]
     mu, vec = sla.eigh(B, K, subset_by_index=[max(nn - 4 * n, 0), nn - 1])
     out = {"forward_synchronous_rpm": [], "backward_synchronous_rpm": []}
-    lat = model.rotor_lateral
-    Mlat = model.M[np.ix_(lat, lat)]
+    lat = sysm["rotor_lateral"]
+    Mlat = Mm[np.ix_(lat, lat)]
     for m, v in zip(mu[::-1], vec[:, ::-1].T):
         if m <= 0:
             continue
         rpm = 1.0 / np.sqrt(m) / RPM
         if rpm > max_rpm:
             continue
-        share = np.real(v[lat].conj() @ Mlat @ v[lat]) / np.real(v.conj() @ model.M @ v)
+        share = np.real(v[lat].conj() @ Mlat @ v[lat]) / np.real(v.conj() @ Mm @ v)
         if share < min_share:
             continue
         X, Y = v[lat[0::2]], v[lat[1::2]]
@@ -58,15 +67,16 @@ def synchronous_critical_speeds(model: FullModel, linear_support: bool = True, n
     return out
 
 
-def campbell(model: FullModel, rpm_values, n_modes: int = 80, n_show: int = 24, linear_support: bool = True,
+def campbell(model: FullModel, rpm_values, supports: dict | None, n_modes: int = 80, n_show: int = 24,
              min_share: float = 0.05):
     """Undamped whirl frequencies (Hz) vs PT speed on a modal basis of the lowest ``n_modes`` non-spinning modes,
     with a flag per frequency: +1 forward, -1 backward, 0 not a rotor whirl (lateral rotor share < min_share)."""
-    K = model.K + (model.linear_support()[0] if linear_support else 0.0)
-    w2, Phi = sla.eigh(K, model.M, subset_by_index=[0, n_modes - 1])
-    Gt = Phi.T @ (model.G_pt + speed_ratio(model) * model.G_gg) @ Phi
-    lat = model.rotor_lateral
-    Mlat = model.M[np.ix_(lat, lat)]
+    sysm = _system(model, supports)
+    K, Mm = sysm["K"], sysm["M"]
+    w2, Phi = sla.eigh(K, Mm, subset_by_index=[0, n_modes - 1])
+    Gt = Phi.T @ (sysm["G_pt"] + speed_ratio(model) * sysm["G_gg"]) @ Phi
+    lat = sysm["rotor_lateral"]
+    Mlat = Mm[np.ix_(lat, lat)]
     freqs, kind = [], []
     for rpm in rpm_values:
         Om = rpm * RPM
@@ -80,7 +90,7 @@ def campbell(model: FullModel, rpm_values, n_modes: int = 80, n_show: int = 24, 
             q = Phi @ V[:, k]
             X, Y = q[lat[0::2]], q[lat[1::2]]
             f.append(lam[k].imag / (2 * np.pi))
-            share = np.real(q[lat].conj() @ Mlat @ q[lat]) / np.real(q.conj() @ model.M @ q)
+            share = np.real(q[lat].conj() @ Mlat @ q[lat]) / np.real(q.conj() @ Mm @ q)
             if share < min_share:
                 d.append(0)
             else:

@@ -5,8 +5,9 @@ Built from a TOML data file (data/engine.toml by default). Timoshenko shaft elem
 solids for the casing shell (hexa), spring elements for the struts, mounts and bearings.
 
 Bearings #0 and #5 are not in K: their forces, and the damper and rub-ring reactions on the housings, enter as
-external forces at the port DOFs (:attr:`FullModel.ports`). Their linearised version is available separately
-(:meth:`FullModel.linear_support`) for the critical speeds and the full-vs-reduced verification.
+external forces at the port DOFs (:attr:`FullModel.ports`). The engine with them linearised (ball contacts, the
+outer race + journal body of eq. 5, O-ring and film) is :meth:`FullModel.coupled`, given the supports' values,
+which the system's linearisation (rotorcosim.master.linear_engine) takes from the bearing and damper components.
 """
 from __future__ import annotations
 
@@ -64,19 +65,53 @@ class FullModel:
     def n(self) -> int:
         return self.M.shape[0]
 
-    def linear_support(self, which=("h0", "h5")) -> tuple[np.ndarray, np.ndarray]:
-        """Stiffness and damping matrices of bearings #0/#5 linearised (contact in series with the centering
-        spring, film damping in parallel), between the PT node and its hub in x and y."""
+    def coupled(self, supports: dict) -> dict:
+        """The engine with bearings #0/#5 as the co-simulated system linearised (the one engine model of the
+        critical speeds and the calibration): per support ``{pt_node, hub, k_contact, m_journal, k_spring,
+        c_film}``, the ball contacts (radial stiffness at the preloaded rest) join the power-turbine node to a
+        journal body of its own (outer race + SFD journal, eq. 5: 2 DOF, x and y) which the O-ring centering
+        spring and the linearised film join to the casing hub. Returns the augmented matrices ``M, K, C, G_pt,
+        G_gg`` (the model's DOFs first, then x, y of each journal in the order of ``supports``), ``journal``
+        (support key -> its two DOF indices) and ``rotor_lateral``."""
+        n0 = self.n
+        nj = 2 * len(supports)
+        n = n0 + nj
+
+        def grow(A):
+            B = np.zeros((n, n))
+            B[:n0, :n0] = A
+            return B
+
+        M, K, C, Gp, Gg = (grow(A) for A in (self.M, self.K, self.C, self.G_pt, self.G_gg))
+        journal = {}
+        for s_i, (key, s) in enumerate(supports.items()):
+            jx = n0 + 2 * s_i
+            journal[key] = np.array([jx, jx + 1])
+            for d in range(2):
+                i = self.info["dof"]("pt", s["pt_node"], d)
+                h = self.info["dof"]("hub", s["hub"], d)
+                j = jx + d
+                M[j, j] += _positive(f"support {key} m_journal", s["m_journal"])
+                _couple(K, i, j, _positive(f"support {key} k_contact", s["k_contact"]))
+                _couple(K, j, h, _nonneg(f"support {key} k_spring", s["k_spring"]))
+                _couple(C, j, h, _nonneg(f"support {key} c_film", s["c_film"]))
+        return {"M": M, "K": K, "C": C, "G_pt": Gp, "G_gg": Gg, "journal": journal,
+                "rotor_lateral": self.rotor_lateral}
+
+    def linear_support(self, supports: dict) -> tuple[np.ndarray, np.ndarray]:
+        """Bearings #0/#5 as massless springs (contact in series with the centering spring, film damping in
+        parallel) between the PT node and its hub, x and y: the same-size matrices of the MTA verification
+        (verification.py), which needs the model's own DOFs. The engine's critical speeds and calibration use
+        :meth:`coupled` (with the journal mass), not this."""
         K = np.zeros_like(self.K)
         C = np.zeros_like(self.K)
-        for key in which:
-            s = self.data["linear_support"][key]
+        for key, s in supports.items():
             k = 1.0 / (1.0 / s["k_contact"] + 1.0 / s["k_spring"])
             for d in range(2):
                 i = self.info["dof"]("pt", s["pt_node"], d)
                 j = self.info["dof"]("hub", s["hub"], d)
                 _couple(K, i, j, k)
-                _couple(C, i, j, s["c"])
+                _couple(C, i, j, s["c_film"])
         return K, C
 
 

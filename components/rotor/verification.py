@@ -1,7 +1,8 @@
 """Full model against its reductions: the blade-loss transient on linear supports (the MTA check of issue 3).
 
-Bearings #0 and #5 are represented by their linearised supports (model.FullModel.linear_support), so the full
-model is linear and can be integrated directly; the reduced models use the basis the component uses (built on the
+Bearings #0 and #5 are represented by massless linear springs (model.FullModel.linear_support with
+:data:`SUPPORTS`: any linear support serves this check of the reduction; the engine's own linearisation, with the
+journal bodies, is rotorcosim.master.linear_engine), so the full model is linear and can be integrated directly; the reduced models use the basis the component uses (built on the
 model *without* #0/#5, where the co-simulation applies their forces through the ports) with the supports projected
 on it, i.e. the same equations the component + a linear bearing would give with an exact (implicit) coupling.
 All three are integrated by the same Newmark scheme and step, so the differences are the reduction's alone.
@@ -16,8 +17,14 @@ from .mta import modal_basis, mta_basis, project
 from .newmark import integrate
 
 
+#: the supports of the check: contact in series with the O-ring, film damping in parallel (orders of magnitude of
+#: the engine's: master.linear_engine)
+SUPPORTS = {"h0": {"pt_node": 3, "hub": "h0", "k_contact": 2.2e8, "k_spring": 1.05e7, "c_film": 5000.0},
+            "h5": {"pt_node": 21, "hub": "h5", "k_contact": 2.1e8, "k_spring": 1.05e7, "c_film": 12000.0}}
+
+
 def linear_system(full: fem.FullModel):
-    Ks, Cs = full.linear_support()
+    Ks, Cs = full.linear_support(SUPPORTS)
     C = full.C + Cs + full.omega_pt * full.G_pt + full.omega_gg * full.G_gg
     return full.M, C, full.K + Ks
 

@@ -9,7 +9,9 @@ running cluster whose workers may be other machines. A worker runs its case in a
 sends the files back; the client writes them under ``--out`` (write-then-rename, so a case folder is whole or
 absent). The sweep then writes ``DIR/sweep.json`` (cases, where they ran, wall times, errors), ``DIR/sweep.csv``
 (one row per case: its parameters and its Table 4 results) and, for an unbalance-only sweep of a blade-loss
-scenario, ``DIR/table5.csv`` / ``DIR/table5.md`` in the paper's Table 5 format.
+scenario, ``DIR/table5.csv`` / ``DIR/table5.md`` in the paper's Table 5 format and, for the levels that are the
+paper's, ``DIR/paper_comparison.csv`` (result, bearing, unbalance_N, paper, ours, ratio) and
+``DIR/paper_comparison.png`` (master/paper_comparison.py), with the score in ``DIR/sweep.json`` (``paper_score``).
 """
 from __future__ import annotations
 
@@ -24,6 +26,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
+from rotorcosim.master import paper_comparison
 from rotorcosim.master.outputs import write_json
 from rotorcosim.master.overrides import parse_set
 
@@ -233,11 +236,15 @@ def sweep(levels=None, out: Path = Path("sweep"), scenario="blade_loss", schedul
                 cluster.close()
     wall = time.perf_counter() - t0
     summaries = {c.name: results[c.name]["summary"] for c in cases}
+    score = None
     if levels and not grid:
-        write_table5(out, {c.unbalance_N: summaries[c.name] for c in cases})
+        by_level = {c.unbalance_N: summaries[c.name] for c in cases}
+        write_table5(out, by_level)
+        score = paper_comparison.write(out, by_level)
     _write_csv(out / "sweep.csv", cases, summaries)
     info = {"cases": [c.name for c in cases], "levels_N": list(levels or []),
             "parameters": {r: vs for r, vs in grid.items()}, "wall_time_s": wall, "executed_on": where,
+            "paper_score": score,
             "case_hosts": {c.name: results[c.name].get("host") for c in cases},
             "case_wall_time_s": {c.name: summaries[c.name].get("wall_time_s") for c in cases},
             "errors": {c.name: summaries[c.name]["error"] for c in cases if summaries[c.name].get("error")}}
@@ -281,6 +288,10 @@ def run(args) -> int:
     tables = " table5.csv, table5.md," if levels and not grid else ""
     print(f"{len(info['cases'])} cases in {info['wall_time_s']:.3g} s ({info['executed_on']});"
           f"{tables} sweep.csv and sweep.json written in {args.out}")
+    sc = info["paper_score"]
+    if sc:
+        print(f"against the paper's Table 5 ({args.out}/paper_comparison.csv, .png): {sc['within_30pct']}/"
+              f"{sc['cells']} cells within +-30 %, {sc['within_x2']}/{sc['cells']} within x2")
     for name, e in info["errors"].items():
         print(f"  case {name} failed: {e}")
     return 1 if info["errors"] else 0

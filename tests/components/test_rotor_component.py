@@ -47,7 +47,7 @@ def test_ports_match_the_blade_loss_scenario():
 def test_component_steps_like_the_reference_newmark_integrator():
     """With a blade-loss force from t = 0 and no port forces, the component's compiled one-matrix step gives the
     same X_brg0 history as the classical Newmark recursion on the same reduced matrices (1e-9)."""
-    r = _rotor(F_residual=0.0, t_blade_loss=0.0, F_unbalance=1000.0)
+    r = _rotor(F_residual=0.0, t_blade_loss=0.0, F_unbalance=1000.0, unbalance_phase=0.0)
     red = r.reduced
     full = full_model()
     ux, uy = full.ports["unbalance"]
@@ -68,7 +68,7 @@ def test_component_steps_like_the_reference_newmark_integrator():
 def test_unbalance_force_residual_then_blade_loss():
     """F_u is the residual unbalance before t_blade_loss and residual + blade loss after (step onset, phase 0),
     rotating forward at omega_pt: |F_u| and its angle W t checked against the definition."""
-    r = _rotor(F_residual=100.0, F_unbalance=2850.0, t_blade_loss=0.001)
+    r = _rotor(F_residual=100.0, F_unbalance=2850.0, t_blade_loss=0.001, unbalance_phase=0.0)
     for k in range(200):
         t = (k + 1) * H
         r.do_step(k * H, H)
@@ -157,7 +157,8 @@ def test_bad_model_file_content(tmp_path):
 
 def test_calibrated_critical_speeds_of_the_shipped_model():
     """Calibration record of data/engine.toml (not a physics check): the lowest two forward synchronous critical
-    speeds are the paper's 8500 and 10 200 rev/min within 3 % (section 4.1), and every critical speed is listed
+    speeds of the engine with #0/#5 as the co-simulated system linearised (contacts, journal bodies, O-rings) are
+    the paper's 8500 and 10 200 rev/min within 3 % (section 4.1), and every critical speed is listed
     once as forward or backward, ascending."""
     out = critical_speeds(count=4)
     fw = out["forward_synchronous_rpm"]
@@ -170,6 +171,10 @@ def test_critical_speeds_command_json(capsys):
     assert main(["critical-speeds", "--json", "--count", "3"]) == 0
     out = json.loads(capsys.readouterr().out)
     assert len(out["forward_synchronous_rpm"]) == 3 and "backward_synchronous_rpm" in out
+    # which support model: the co-simulated system linearised, with its journal bodies and film temperature
+    sm = out["support_model"]
+    assert sm["kind"] == "coupled" and sm["oil_temperature_C"] == 30.0
+    assert set(sm["bearings"]) == {"0", "5"} and sm["bearings"]["0"]["m_journal"] > 0.5
 
 
 def test_critical_speeds_command_bad_count(capsys):

@@ -51,8 +51,8 @@ def test_energy_balance_over_a_transient():
     of P h, heat out the trapezoidal integral of the ground flows sum g (T - T_ground) of the recorded temperatures
     (ambient air at the shaft; the oil supply at the jet-renewed lubricant nodes, the damper feed and the
     oil-wetted housing), stored the sum of m c_p dT; within 0.1 % of the heat in. The jet oil (advection from the
-    lubricant nodes) carries a real share of it."""
-    c = make(0)
+    lubricant nodes; the jet option, 2 L/min) carries a real share of it."""
+    c = make(0, bearing_oil_flow=2e-3 / 60.0)
     net = c.network
     h, n = 0.005, 12000
     e_in = e_out = e_jet = 0.0

@@ -55,13 +55,20 @@ def test_harris_film_coefficients_by_hand():
     assert 300.0 < h["h_e"] < h["h_i"] < 5000.0
 
 
+JET = {0: 2e-3 / 60.0, 5: 3e-3 / 60.0}      # the jet option's flows (2 and 3 L/min), m^3/s
+
+
 def test_jet_renewal_and_lubricant_heat_mass_by_hand():
-    """Jet 2 L/min at #0, 3 L/min at #5: rho cp Q / 2 per lubricant node = 870 * 2000 * 2e-3/60 / 2 = 29.0 W/K
-    and 43.5 W/K, to the oil supply. Lubricant heat mass (#0): 5 % of the free volume between the raceways,
+    """Jet (an option; the default is none, the paper's Table 1 network) 2 L/min at #0, 3 L/min at #5:
+    rho cp Q / 2 per lubricant node = 870 * 2000 * 2e-3/60 / 2 = 29.0 W/K and 43.5 W/K, to the oil supply.
+    Lubricant heat mass (#0): 5 % of the free volume between the raceways,
     pi (39.565^2 - 30.835^2) 20 - 21 (4/3) pi 4.365^3 = 31 300 mm^3, half per node:
     0.05 * 0.5 * 31.2996e-6 * 870 * 2000 = 1.3615 J/K."""
+    for bearing in (0, 5):
+        net = make(bearing).network
+        assert net.ground[LI] == net.ground[LE] == 0.0      # default: no renewal of the bearing's oil
     for bearing, g in ((0, 29.0), (5, 43.5)):
-        net = make(bearing, T_supply=323.15).network
+        net = make(bearing, T_supply=323.15, bearing_oil_flow=JET[bearing]).network
         assert net.ground[LI] == pytest.approx(g, rel=1e-12)
         assert net.ground[LE] == pytest.approx(g, rel=1e-12)
         assert net.T_ground[LI] == net.T_ground[LE] == 323.15
@@ -74,7 +81,7 @@ def test_lubricant_node_balance_at_the_steady_state_by_hand():
     """At the steady state under drag only (#0, 350 W), the inner lubricant node is a well-mixed control volume:
     what the inner race and the balls give it (hand conductances 6.494 W/K and 2/R_Li + 5.731 W/K) leaves with the
     jet, 29.0 W/K * (T_Li - T_supply)."""
-    c = make(0)
+    c = make(0, bearing_oil_flow=JET[0])
     c.set_inputs({"P_drag": [350.0], "P_sfd": [0.0], "P_rub": [0.0]})
     T = c.network.steady(c.powers())
     R = resistances(0, PT_OMEGA)

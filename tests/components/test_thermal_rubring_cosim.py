@@ -39,7 +39,7 @@ class CircularOrbit(Component):
 
 
 def test_rub_power_of_a_circular_orbit_heats_the_network_like_the_held_power():
-    """By hand (rub ring defaults: k = 2.2e7 N/m, mu = 0.2, R = 25.4 mm, c = 0.508 mm): F_n = 2.2e7 * 0.092e-3 =
+    """By hand (rub ring k = 2.2e7 N/m set here, defaults mu = 0.2, R = 25.4 mm, c = 0.508 mm): F_n = 2.2e7 * 0.092e-3 =
     2024 N, P_rub = 0.2 * 2024 * OMEGA (0.0254 + 0.0006) = 17 634 W, constant on the orbit. Through the master
     (TM 20 ms at 1e-5 s, thermal at 1 ms with mean averaging; TO 5 s at 0.1 s with the RMS hold; TM 20 ms) the
     network must end where a stand-alone network under the same constant powers ends after 5.04 s (1e-9 relative
@@ -49,7 +49,7 @@ def test_rub_power_of_a_circular_orbit_heats_the_network_like_the_held_power():
         "scenario": {"name": "rub_thermal"},
         "components": {
             "orbit": {"implementation": "testing.circular_orbit"},
-            "rubring0": {"implementation": "rubring.contact", "parameters": {"bearing": 0}},
+            "rubring0": {"implementation": "rubring.contact", "parameters": {"bearing": 0, "stiffness": 2.2e7}},
             "thermal0": {"implementation": "thermal.network", "parameters": {"bearing": 0}, "step": 1e-3},
         },
         "connections": [
