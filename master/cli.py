@@ -15,7 +15,7 @@ COMMANDS: dict[str, tuple[str, str]] = {
     "run": ("rotorcosim.master.commands.run", "run a scenario (TOML or SSP), the 2850 N blade-loss case by default"),
     "sweep": ("rotorcosim.master.commands.sweep", "run several unbalance levels in parallel on Dask, write table5.csv"),
     "compare": ("rotorcosim.master.commands.compare", "the paper's Table 6: staggered against monolithic"),
-    "critical-speeds": ("rotorcosim.components.rotor.cli", "synchronous critical speeds and Campbell diagram of the rotor"),
+    "critical-speeds": ("rotorcosim.master.commands.critical_speeds", "synchronous critical speeds and Campbell diagram of the rotor"),
     "bearing-static": ("rotorcosim.components.bearing.cli", "static load distribution of bearing #0 or #5"),
     "damper-force": ("rotorcosim.components.damper.cli", "squeeze film damper force at a journal position and velocity"),
     "thermal-steady": ("rotorcosim.components.thermal.cli", "steady state of a bearing's thermal network"),

@@ -21,7 +21,7 @@ import math
 import numpy as np
 
 from rotorcosim import scenarios
-from rotorcosim.components.rotor import critical
+from rotorcosim.components.rotor import calibration, critical
 from rotorcosim.components.rotor import model as fem
 
 from .scenario import create_component, load_scenario
@@ -96,29 +96,37 @@ def critical_speeds(full: fem.FullModel, sup: dict, n: int = 6, max_rpm: float =
 
 
 def response(full: fem.FullModel, sup: dict, F_u: float, rpm: float | None = None) -> dict:
-    """Steady synchronous response of the linear engine to F_u rotating at the PT speed at the blade-loss node
-    (direct harmonic solve, damping and gyroscopic terms included). Per bearing "0"/"5": ``whirl_mm`` (major
-    semi-axis |a_f| + |a_b| of the PT node's orbit), ``journal_mm`` (orbit of the journal relative to the hub)
-    and ``transmissibility`` |F_spring + F_film| / F_u (eq. 23) of the linear support."""
-    W = (full.omega_pt if rpm is None else rpm * fem.RPM)
-    r = (full.omega_gg / full.omega_pt)
-    s = full.coupled(sup)
-    A = s["K"] - W ** 2 * s["M"] + 1j * W * (s["C"] + W * s["G_pt"] + W * r * s["G_gg"])
-    f = np.zeros(A.shape[0], complex)
-    ux, uy = full.ports["unbalance"]
-    f[ux], f[uy] = F_u, -1j * F_u
-    X = np.linalg.solve(A, f)
+    """Steady synchronous response of the linear engine (:func:`rotorcosim.components.rotor.calibration.
+    coupled_response`): per bearing "0"/"5" whirl_mm, journal_mm, transmissibility (eq. 23)."""
+    return calibration.coupled_response(full, sup, F_u, rpm)
 
-    def amp(x, y):
-        return (abs(x + 1j * y) + abs(x - 1j * y)) / 2.0
 
-    out = {}
-    for key, sp in sup.items():
-        i, j = full.ports[f"brg{key[1:]}"][:2]
-        hi, hj = full.ports[f"housing{key[1:]}"]
-        jx, jy = s["journal"][key]
-        rx, ry = X[jx] - X[hi], X[jy] - X[hj]
-        z = sp["k_spring"] + 1j * W * sp["c_film"]
-        out[key[1:]] = {"whirl_mm": 1e3 * amp(X[i], X[j]), "journal_mm": 1e3 * amp(rx, ry),
-                        "transmissibility": amp(z * rx, z * ry) / F_u if F_u > 0 else float("nan")}
-    return out
+def main(argv=None) -> int:
+    """``python -m rotorcosim.master.linear_engine [FILE] [--layout-search | --response-study]``: the rotor
+    calibration (components/rotor/calibration.py) on this linear engine; prints the knobs to write into the file."""
+    import sys
+
+    argv = sys.argv[1:] if argv is None else argv
+    args = [a for a in argv if not a.startswith("--")]
+    d, _ = fem.load_data(args[0] if args else None)
+    sup = supports(data=d)
+    if "--layout-search" in argv:
+        calibration.layout_search(d, sup)
+        return 0
+    if "--response-study" in argv:
+        calibration.response_study(d, sup)
+        return 0
+    x, f = calibration.calibrate(d, sup=sup)
+    for k, v in zip(calibration.KNOBS, x):
+        print(f"{k} = {v:.4f}")
+    print("forward synchronous critical speeds:", f.round(1))
+    d["calibration"].update(dict(zip(calibration.KNOBS, x)))
+    for F in (712.0, 2850.0):
+        for b, r in calibration.linear_response_detail(d, F_u=F, sup=sup).items():
+            print(f"linear {F:g} N response at 16 000 rev/min, #{b}: whirl {r['whirl_mm']:.4f} mm (journal orbit "
+                  f"{r['journal_mm']:.4f} mm), transmissibility {r['transmissibility']:.3f}")
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())

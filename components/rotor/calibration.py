@@ -4,8 +4,12 @@ The paper (section 4.1) gives 8500 and 10 200 rev/min but not the geometry. Two 
 [calibration] table are solved for by Newton's method with a finite-difference Jacobian (everything else fixed
 beforehand): ``pt_stage_mass_kg`` (mainly the first critical speed, the overhung power turbine on bearing #0) and
 ``mount_k``, the stiffness of each engine-mount link (mainly the second, a casing-on-mounts mode with the gas
-generator and the power turbine whirling with it). Run ``python -m rotorcosim.components.rotor.calibration [FILE]``: it
-prints the knob values to write into the data file (the file is not rewritten, so its comments stay the record).
+generator and the power turbine whirling with it), on the engine with bearings #0/#5 as the co-simulated system
+linearised (``sup``, :meth:`model.FullModel.coupled`). Run ``python -m rotorcosim.master.linear_engine [FILE]``
+(the system's linearisation lives in the master: it takes the bearing and damper components, which this package,
+bundled alone into the rotor's FMU, may not import): it prints the knob values to write into the data file (the
+file is not rewritten, so its comments stay the record). ``--layout-search`` / ``--response-study`` there rerun
+the studies below.
 
 ``--layout-search`` reruns the search that fixed the layout before the fit (data file, [calibration]): for each
 combination of bearing-frame strut stiffness (x1, x3), mount planes and PT tube inside the gas generator, the two
@@ -22,7 +26,6 @@ relative to the housing, transmissibility |F_spring + F_film| / F_u) printed (:f
 from __future__ import annotations
 
 import copy
-import sys
 
 import numpy as np
 
@@ -32,12 +35,9 @@ KNOBS = ("pt_stage_mass_kg", "mount_k")
 
 
 def _supports(sup):
-    """The #0/#5 supports of the linear engine: given, or the co-simulated system's (master.linear_engine)."""
-    if sup is not None:
-        return sup
-    from rotorcosim.master import linear_engine
-
-    return linear_engine.supports()
+    if sup is None:
+        raise ValueError("the #0/#5 supports of the linear engine are needed (rotorcosim.master.linear_engine.supports)")
+    return sup
 
 
 def forward_criticals(data: dict, values=None, n: int = 2, sup: dict | None = None) -> np.ndarray:
@@ -68,13 +68,39 @@ def calibrate(data: dict, tol_rpm: float = 1.0, max_iter: int = 10, sup: dict | 
     return x, f
 
 
-def linear_response_detail(data: dict, rpm: float = 16000.0, F_u: float = 2850.0, sup: dict | None = None) -> dict:
-    """Steady synchronous response of the linear engine (master.linear_engine.response): per bearing "0"/"5"
-    the whirl of the PT node (mm), the journal orbit relative to the housing (mm) and the transmissibility of
-    eq. (23), |F_spring + F_film| / F_u."""
-    from rotorcosim.master import linear_engine
+def coupled_response(full: model.FullModel, sup: dict, F_u: float, rpm: float | None = None) -> dict:
+    """Steady synchronous response of the linear engine (supports ``sup``, :meth:`model.FullModel.coupled`) to F_u
+    rotating at the PT speed at the blade-loss node (direct harmonic solve, damping and gyroscopic terms
+    included). Per bearing "0"/"5": ``whirl_mm`` (major semi-axis |a_f| + |a_b| of the PT node's orbit),
+    ``journal_mm`` (orbit of the journal relative to the hub) and ``transmissibility`` |F_spring + F_film| / F_u
+    (eq. 23) of the linear support."""
+    W = full.omega_pt if rpm is None else rpm * model.RPM
+    r = full.omega_gg / full.omega_pt
+    s = full.coupled(sup)
+    A = s["K"] - W ** 2 * s["M"] + 1j * W * (s["C"] + W * s["G_pt"] + W * r * s["G_gg"])
+    f = np.zeros(A.shape[0], complex)
+    ux, uy = full.ports["unbalance"]
+    f[ux], f[uy] = F_u, -1j * F_u
+    X = np.linalg.solve(A, f)
 
-    return linear_engine.response(model.build(data), _supports(sup), F_u, rpm)
+    def amp(x, y):
+        return (abs(x + 1j * y) + abs(x - 1j * y)) / 2.0
+
+    out = {}
+    for key, sp in sup.items():
+        i, j = full.ports[f"brg{key[1:]}"][:2]
+        hi, hj = full.ports[f"housing{key[1:]}"]
+        jx, jy = s["journal"][key]
+        rx, ry = X[jx] - X[hi], X[jy] - X[hj]
+        z = sp["k_spring"] + 1j * W * sp["c_film"]
+        out[key[1:]] = {"whirl_mm": 1e3 * amp(X[i], X[j]), "journal_mm": 1e3 * amp(rx, ry),
+                        "transmissibility": amp(z * rx, z * ry) / F_u if F_u > 0 else float("nan")}
+    return out
+
+
+def linear_response_detail(data: dict, rpm: float = 16000.0, F_u: float = 2850.0, sup: dict | None = None) -> dict:
+    """:func:`coupled_response` of the model built from ``data``."""
+    return coupled_response(model.build(data), _supports(sup), F_u, rpm)
 
 
 def linear_response(data: dict, rpm: float = 16000.0, F_u: float = 2850.0, sup: dict | None = None):
@@ -82,9 +108,8 @@ def linear_response(data: dict, rpm: float = 16000.0, F_u: float = 2850.0, sup: 
     return r["0"]["whirl_mm"], r["5"]["whirl_mm"]
 
 
-def response_study(data: dict) -> list[dict]:
+def response_study(data: dict, sup: dict) -> list[dict]:
     """The 2850 N response study behind the shipped layout (module docstring, ``--response-study``)."""
-    sup = _supports(None)
     pt = data["power_turbine"]
     i0, i5 = int(pt["bearing0_node"]), 5                   # bearing #0 node, forward intermediate bearing node
     z0 = float(pt["z_mm"][i0])
@@ -127,10 +152,9 @@ def response_study(data: dict) -> list[dict]:
     return rows
 
 
-def layout_search(data: dict) -> list[dict]:
+def layout_search(data: dict, sup: dict) -> list[dict]:
     import itertools
 
-    sup = _supports(None)
     rows = []
     for strut, mounts, tube in itertools.product((1.0, 3.0), ((1, 4), (1, 6), (0, 6)), ((50, 30), (60, 44))):
         d = copy.deepcopy(data)
@@ -156,24 +180,3 @@ def layout_search(data: dict) -> list[dict]:
         print(row, flush=True)
         rows.append(row)
     return rows
-
-
-if __name__ == "__main__":
-    args = [a for a in sys.argv[1:] if not a.startswith("--")]
-    d, _ = model.load_data(args[0] if args else None)
-    if "--layout-search" in sys.argv:
-        layout_search(d)
-        sys.exit(0)
-    if "--response-study" in sys.argv:
-        response_study(d)
-        sys.exit(0)
-    sup = _supports(None)
-    x, f = calibrate(d, sup=sup)
-    for k, v in zip(KNOBS, x):
-        print(f"{k} = {v:.4f}")
-    print("forward synchronous critical speeds:", f.round(1))
-    d["calibration"].update(dict(zip(KNOBS, x)))
-    for F in (712.0, 2850.0):
-        for b, r in linear_response_detail(d, F_u=F, sup=sup).items():
-            print(f"linear {F:g} N response at 16 000 rev/min, #{b}: whirl {r['whirl_mm']:.4f} mm (journal orbit "
-                  f"{r['journal_mm']:.4f} mm), transmissibility {r['transmissibility']:.3f}")

@@ -3,7 +3,8 @@
 The gas generator turns at the scenario's speed ratio (15 000 / 16 000) of the power turbine; bearings #0 and #5
 are the co-simulated system linearised (rotorcosim.master.linear_engine: ball contacts at the preloaded rest, the
 outer race + journal body of eq. 5, O-ring, film at the stated oil temperature), the one engine model the
-calibration uses. ``--json`` reports it under ``support_model``.
+calibration uses. ``--json`` reports it under ``support_model``. (A master command: the system's linearisation
+takes the bearing and damper components, which the rotor package, bundled alone into its FMU, may not import.)
 """
 from __future__ import annotations
 
@@ -11,8 +12,9 @@ import json
 
 import numpy as np
 
-from . import critical
-from . import model as fem
+from rotorcosim.components.rotor import critical
+from rotorcosim.components.rotor import model as fem
+from rotorcosim.master import linear_engine
 
 
 def add_arguments(parser):
@@ -29,8 +31,6 @@ def add_arguments(parser):
 
 
 def _supports(m, oil_temperature):
-    from rotorcosim.master import linear_engine
-
     return linear_engine.supports(oil_temperature_C=oil_temperature, data=m.data)
 
 
@@ -42,8 +42,6 @@ def critical_speeds(model_file: str = "", count: int = 6, max_rpm: float = 30000
         raise ValueError(f"--max-rpm must be > 0, got {max_rpm}")
     m = fem.load(model_file or None)
     sup = _supports(m, oil_temperature)
-    from rotorcosim.master import linear_engine
-
     out = critical.synchronous_critical_speeds(m, sup, n=count, max_rpm=max_rpm)
     out["speed_ratio_gg_pt"] = critical.speed_ratio(m)
     out["target_rpm"] = list(m.data.get("calibration", {}).get("target_rpm", []))
