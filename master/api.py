@@ -150,7 +150,7 @@ class Result:
 def simulate(sc: Scenario | str | Path, duration: float | None = None, schedule=None, out: str | Path | None = None,
              record: Sequence[str] | None = None, figures: bool = True, progress: bool = False, *,
              overwrite: bool = False, resume: bool = False, force: bool = False,
-             checkpoint_every: float = checkpoint.EVERY_S, step_timeout: float = 0.0, engine: str = "auto") -> Result:
+             checkpoint_every: float | None = checkpoint.EVERY_S, step_timeout: float = 0.0, engine: str = "auto") -> Result:
     """Run scenario ``sc`` (a :class:`Scenario`, or a name or path for :func:`load_scenario`).
 
     ``duration`` [s] cuts the schedule; ``schedule`` is ``"paper"`` (the scenario's own), ``"auto"``,
@@ -204,7 +204,9 @@ def simulate(sc: Scenario | str | Path, duration: float | None = None, schedule=
         post_obs = post.observers(sc, speed) if post is not None else []
         observers = [recorder, *post_obs, Progress(sch.duration, disable=not progress, desc=sc.name)]
         if out is not None:
-            saver = checkpoint.Checkpointer(out / checkpoint.CHECKPOINT, stop, checkpoint_every, key)
+            # checkpoint_every=None: no checkpoints (a timing comparison is run again, not resumed)
+            saver = checkpoint.Checkpointer(out / checkpoint.CHECKPOINT if checkpoint_every is not None else None,
+                                            stop, checkpoint_every or checkpoint.EVERY_S, key)
             observers.append(saver)  # last: it sees every other observer done with the step
         sim = build_simulation(sc, observers)
         sim.engine_choice = engine

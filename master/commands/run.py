@@ -104,7 +104,7 @@ def apply_unbalance(sc: Scenario, force: float) -> None:
 
 def execute(sc: Scenario, out: Path, schedule_kind: str | None = None, duration: float | None = None,
             figures: bool = True, quiet: bool = True, schedule=None, *, record=None, overwrite: bool = False,
-            resume: bool = False, force: bool = False, checkpoint_every: float = checkpoint.EVERY_S,
+            resume: bool = False, force: bool = False, checkpoint_every: float | None = checkpoint.EVERY_S,
             step_timeout: float = 0.0, engine: str = "auto") -> dict:
     """Run ``sc`` into ``out``; returns the summary (also written to out/summary.json). A thin layer over
     :func:`rotorcosim.simulate` (its docstring says the rest) kept for the other commands.
