@@ -45,9 +45,12 @@ def _files(folder: Path) -> list[Path]:
 
 
 def _subpackage_of(parts: list[str]) -> str | None:
-    """The sub-package of components/ named by the first element of ``parts``, if it is one."""
+    """The sub-package of components/ named by the first element of ``parts``, if it is one, or a module of
+    components/ itself (``kernels``, ``speeds``: returned as ``name.py``)."""
     if parts and (COMPONENTS_ROOT / parts[0] / "__init__.py").is_file():
         return parts[0]
+    if parts and (COMPONENTS_ROOT / f"{parts[0]}.py").is_file():
+        return f"{parts[0]}.py"
     return None
 
 
@@ -86,6 +89,15 @@ def _imports(path: Path) -> tuple[set[str], list[tuple[int, str]]]:
     return subs, foreign
 
 
+#: modules of components/ that read another sub-package's data files (not seen in their imports)
+DATA_DEPENDENCIES = {"speeds.py": ("rotor",)}   # speeds.py reads rotor/data/engine.toml
+
+
+def _sources(sub: str) -> list[Path]:
+    """The files of a sub-package, or the one file of a module of components/ (``name.py``)."""
+    return [COMPONENTS_ROOT / sub] if sub.endswith(".py") else _files(COMPONENTS_ROOT / sub)
+
+
 def needed_subpackages(kind: str) -> list[str]:
     """``kind`` plus every sibling sub-package reachable through its imports, sorted."""
     todo, seen = [kind], set()
@@ -94,7 +106,8 @@ def needed_subpackages(kind: str) -> list[str]:
         if sub in seen:
             continue
         seen.add(sub)
-        for f in _files(COMPONENTS_ROOT / sub):
+        todo.extend(d for d in DATA_DEPENDENCIES.get(sub, ()) if d not in seen)
+        for f in _sources(sub):
             if f.suffix == ".py":
                 subs, foreign = _imports(f)
                 if foreign:
@@ -115,7 +128,8 @@ def bundle_files(module_path: str) -> list[tuple[str, Path]]:
     out = [(f, COMPONENTS_ROOT / f) for f in CORE]
     if (COMPONENTS_ROOT / first).is_dir():
         for sub in needed_subpackages(first):
-            out += [(f.relative_to(COMPONENTS_ROOT).as_posix(), f) for f in _files(COMPONENTS_ROOT / sub)]
+            out += [(f.relative_to(COMPONENTS_ROOT).as_posix(), f) for f in _sources(sub)
+                    if f.relative_to(COMPONENTS_ROOT).as_posix() not in CORE]
     elif not (COMPONENTS_ROOT / f"{first}.py").is_file():
         raise BundleError(f"cannot find the source of components/{module_path}")
     else:
