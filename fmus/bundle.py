@@ -20,11 +20,8 @@ import rotorcosim.components as _components_pkg
 
 COMPONENTS_ROOT = Path(_components_pkg.__file__).resolve().parent
 COMPONENTS_PACKAGE = "rotorcosim.components"
-#: modules of components/ every bundle carries (the contract the component subclasses, and the modules of the
-#: components/ root that the components import: their kernels' contract, the engine speeds, the cache root)
-CORE = ("__init__.py", "contract.py", "value_types.py", "registry.py", "cache.py", "kernels.py", "speeds.py")
-#: data files the CORE modules read (speeds.py reads the running speeds from the rotor model's data)
-CORE_DATA = ("rotor/data/engine.toml",)
+#: modules of components/ every bundle carries (the contract the component subclasses)
+CORE = ("__init__.py", "contract.py", "value_types.py", "registry.py", "cache.py")
 _SKIP_DIRS = {"__pycache__"}
 _SKIP_SUFFIXES = {".pyc", ".pyo", ".nbi", ".nbc"}
 
@@ -89,9 +86,6 @@ def _imports(path: Path) -> tuple[set[str], list[tuple[int, str]]]:
             sub = _subpackage_of(t)
             if sub:
                 subs.add(sub)
-            elif len(t) >= 1 and (COMPONENTS_ROOT / f"{t[0]}.py").is_file() and f"{t[0]}.py" not in CORE:
-                # a module of the components/ root that no bundle carries: the FMU would not import
-                foreign.append((node.lineno, f"components/{t[0]}.py (add it to fmus/bundle.py CORE)"))
     return subs, foreign
 
 
@@ -131,7 +125,7 @@ def needed_subpackages(kind: str) -> list[str]:
 def bundle_files(module_path: str) -> list[tuple[str, Path]]:
     """``(relative path, source)`` of every file to bundle for a component in ``components/<module_path>``."""
     first = module_path.split(".")[0]
-    out = [(f, COMPONENTS_ROOT / f) for f in CORE + CORE_DATA]
+    out = [(f, COMPONENTS_ROOT / f) for f in CORE]
     if (COMPONENTS_ROOT / first).is_dir():
         for sub in needed_subpackages(first):
             out += [(f.relative_to(COMPONENTS_ROOT).as_posix(), f) for f in _sources(sub)
@@ -140,7 +134,7 @@ def bundle_files(module_path: str) -> list[tuple[str, Path]]:
         raise BundleError(f"cannot find the source of components/{module_path}")
     else:
         out.append((f"{first}.py", COMPONENTS_ROOT / f"{first}.py"))
-    return list(dict(out).items())  # a CORE data file of the component's own sub-package is bundled once
+    return out
 
 
 def digest(files: list[tuple[str, Path]]) -> str:
