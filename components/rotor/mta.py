@@ -15,12 +15,25 @@ import numpy as np
 import scipy.linalg as sla
 
 
+#: eigenvalues closer than this (relative) form one degenerate group, kept or dropped whole
+DEGENERATE_RTOL = 1e-8
+
+
 def modes(K: np.ndarray, M: np.ndarray, n: int) -> tuple[np.ndarray, np.ndarray]:
-    """The lowest ``n`` eigenpairs (w^2, Phi) of eq. (17), Phi mass-normalised."""
-    if not 1 <= n <= K.shape[0]:
-        raise ValueError(f"number of modes must be between 1 and {K.shape[0]}, got {n}")
-    w2, Phi = sla.eigh(K, M, subset_by_index=[0, n - 1])
-    return w2, Phi
+    """The lowest ``n`` eigenpairs (w^2, Phi) of eq. (17), Phi mass-normalised; more than ``n`` when the n-th
+    eigenvalue is degenerate (repeated, e.g. a symmetric casing's pair of modes): the whole group is kept.
+
+    Cutting inside a degenerate group would keep an arbitrary vector of its eigenspace, chosen by LAPACK's
+    rounding: the reduced model (and every result) then changed with nothing but the install (measured: 0.6 %
+    on the first step's response, modes 30/31 of the engine are a pair at 1378.714 Hz)."""
+    size = K.shape[0]
+    if not 1 <= n <= size:
+        raise ValueError(f"number of modes must be between 1 and {size}, got {n}")
+    extra = min(8, size - n)
+    w2, Phi = sla.eigh(K, M, subset_by_index=[0, n - 1 + extra])
+    while n < len(w2) and abs(w2[n] - w2[n - 1]) <= DEGENERATE_RTOL * abs(w2[n - 1]):
+        n += 1
+    return w2[:n], Phi[:, :n]
 
 
 def unit_loads(n: int, dofs) -> np.ndarray:

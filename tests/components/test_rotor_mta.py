@@ -19,9 +19,10 @@ def test_mta_basis_is_mass_orthonormal_and_static_complete(full):
     model (the span contains K^-1 F_o): the property that makes MTA better than modal truncation."""
     load_dofs = np.concatenate([full.ports[g] for g in LOAD_GROUPS])
     phi, n_aug = mta_basis(full.K, full.M, 30, load_dofs)
-    assert n_aug == 16 and phi.shape[1] == 46
+    n = phi.shape[1]
+    assert n_aug == 16 and n - n_aug >= 30   # 30 modes, or more when the 30th is one of a degenerate group
     Mr, Kr = project(phi, full.M, full.K)
-    np.testing.assert_allclose(Mr, np.eye(46), atol=1e-9)
+    np.testing.assert_allclose(Mr, np.eye(n), atol=1e-9)
     off = Kr - np.diag(np.diag(Kr))
     assert np.max(np.abs(off)) < 1e-8 * np.max(np.abs(Kr))
     F = unit_loads(full.n, load_dofs)
@@ -57,7 +58,7 @@ def test_blade_loss_transient_mta_vs_full_and_modal(full):
     ref = ver.blade_loss_transient(full, "full")
     mta = ver.blade_loss_transient(full, "mta", 30)
     modal = ver.blade_loss_transient(full, "modal", 30)
-    assert mta["size"] == modal["size"] == 46 and ref["size"] == full.n
+    assert mta["size"] >= 46 and ref["size"] == full.n
     e_mta = [abs(mta[k] / ref[k] - 1) for k in ("peak0", "peak5")]
     e_modal = [abs(modal[k] / ref[k] - 1) for k in ("peak0", "peak5")]
     print(f"\npeaks full {ref['peak0'] * 1e3:.5f} / {ref['peak5'] * 1e3:.5f} mm; rel. error MTA {e_mta}, "
@@ -89,3 +90,16 @@ def test_dependent_load_vectors_are_dropped():
 def test_bad_mode_count(full):
     with pytest.raises(ValueError, match="number of modes"):
         modes(full.K, full.M, 0)
+
+
+def test_a_degenerate_group_is_kept_whole():
+    """Two identical uncoupled oscillators give a repeated eigenvalue: asking for the first mode of the pair keeps
+    both (any single vector of their eigenspace would be LAPACK's arbitrary choice), an isolated one stays single."""
+    from rotorcosim.components.rotor.mta import modes
+
+    K = np.diag([1.0, 4.0, 4.0, 9.0])
+    M = np.eye(4)
+    w2, Phi = modes(K, M, 2)
+    np.testing.assert_allclose(w2, [1.0, 4.0, 4.0])
+    assert Phi.shape == (4, 3)
+    assert modes(K, M, 1)[1].shape == (4, 1) and modes(K, M, 4)[1].shape == (4, 4)
