@@ -22,6 +22,12 @@ PHASE_CODE = {"TM": 0, "TO": 1}
 DISK_RESERVE_BYTES = 4 * 1024 ** 2
 
 
+def sampled_rows(ks, stride: int) -> list[int]:
+    """The rows of a compiled-loop block (step numbers ``ks``) that an observer of ``stride`` would have seen
+    through ``step()``: the generic loop calls it when ``k % stride == 0``."""
+    return [r for r, k in enumerate(ks) if k % stride == 0]
+
+
 class Observer:
     stride = 1
 
@@ -172,7 +178,7 @@ class Recorder(Observer):
     def step_block(self, sim, ks, ts, data):
         stride = self.stride
         phase = PHASE_CODE.get(sim.phase, 0)
-        rows = [r for r, k in enumerate(ks) if k % stride == 0]
+        rows = sampled_rows(ks, stride)
         if not rows:
             return
         blocks = {ref: data[ref][rows].copy() for ref in self.signals}
@@ -505,7 +511,7 @@ class SteadyWindows(Observer):
     def step_block(self, sim, ks, ts, data):
         if not self.active:
             return
-        rows = [r for r, k in enumerate(ks) if k % self.stride == 0]
+        rows = sampled_rows(ks, self.stride)
         if not rows:
             return
         n = self._n

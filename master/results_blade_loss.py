@@ -27,7 +27,7 @@ from pathlib import Path
 
 import numpy as np
 
-from .observers import Observer, SteadyWindows
+from .observers import Observer, SteadyWindows, sampled_rows
 
 BEARINGS = (0, 5)
 RESULT_KEYS = ("whirl_amplitude_mm", "transmissibility", "max_contact_load_N", "max_contact_stress_MPa",
@@ -70,7 +70,7 @@ class Peaks(Observer):
         """As step() over the block (the same maxima: max is exact, and math.hypot row by row)."""
         if not self.active:
             return
-        rows = [r for r, k in enumerate(ks) if k % self.stride == 0]
+        rows = sampled_rows(ks, self.stride)
         if not rows:
             return
         for k, (p, b, q, s, rotor, xb) in zip(BEARINGS, self._taps):
