@@ -119,7 +119,7 @@ class _Link:
     """Run-time state of one connection."""
 
     __slots__ = ("con", "src", "sport", "dst", "dport", "mode", "acc", "acc2", "weight", "prev", "prev_t",
-                 "cur_t", "frozen", "held", "window", "_last", "conv", "real")
+                 "cur_t", "frozen", "held", "window", "_last", "conv", "real", "ramp")
 
     SAME, FAST_TO_SLOW, SLOW_TO_FAST = 0, 1, 2
 
@@ -135,6 +135,7 @@ class _Link:
         self.frozen = None      # an iteration's override (iterative coupling)
         self.held = None        # the thermal-only hold's value (master/hold.py), or None
         self.window = None      # the thermal-only hold's recorder of this link's hand-off window, or None
+        self.ramp = None        # the hold's restart offset of a hand-back after a thermal-only interval, or None
         self.reset()
 
     def reset(self):
@@ -156,6 +157,7 @@ class _Link:
         y = self.src.y[self.sport]
         if not self.real:
             return np.array(y) if conv is None else conv(np.array(y))
+        out = None
         if self.mode == self.FAST_TO_SLOW and self.con.average != "last" and self.weight > 0.0:
             if self.con.average == "mean":
                 out = self.acc / self.weight
@@ -163,17 +165,19 @@ class _Link:
                 out = np.sqrt(self.acc2 / self.weight)
             self.acc = self.acc2 = None
             self.weight = 0.0
-            return out if conv is None else conv(out)
-        ex = self.con.extrapolation
-        if ex != "hold" and self.prev is not None and self.cur_t > self.prev_t:
-            if ex == "linear" and self.mode == self.SLOW_TO_FAST:
-                out = y + (y - self.prev) * ((t_mid - self.cur_t) / (self.cur_t - self.prev_t))
-                return out if conv is None else conv(out)
-            if ex == "linear-end" and self.mode != self.FAST_TO_SLOW:
-                t_end = t_mid if t_end is None else t_end
-                out = y + (y - self.prev) * ((t_end - self.cur_t) / (self.cur_t - self.prev_t))
-                return out if conv is None else conv(out)
-        return np.array(y, dtype=float) if conv is None else conv(np.array(y, dtype=float))
+        else:
+            ex = self.con.extrapolation
+            if ex != "hold" and self.prev is not None and self.cur_t > self.prev_t:
+                if ex == "linear" and self.mode == self.SLOW_TO_FAST:
+                    out = y + (y - self.prev) * ((t_mid - self.cur_t) / (self.cur_t - self.prev_t))
+                elif ex == "linear-end" and self.mode != self.FAST_TO_SLOW:
+                    te = t_mid if t_end is None else t_end
+                    out = y + (y - self.prev) * ((te - self.cur_t) / (self.cur_t - self.prev_t))
+            if out is None:
+                out = np.array(y, dtype=float)
+        if self.ramp is not None:  # a hand-back just after a thermal-only interval (master/hold.py, Restart)
+            out = out + self.ramp.offset(t_mid if t_end is None else t_end)
+        return out if conv is None else conv(out)
 
     def produced(self, h_src: float, t_end: float) -> None:
         """Called after the producer has stepped."""
@@ -278,7 +282,7 @@ class Engine:
             if type(comps[n]).set_inputs is not Component.set_inputs or self.settings.iterations > 1:
                 continue
             plain = [link for link in self._inputs[n] if link.mode == _Link.SAME and link.frozen is None
-                     and link.held is None and link.con.extrapolation != "linear-end" and link.conv is None]
+                     and link.held is None and link.ramp is None and link.con.extrapolation != "linear-end" and link.conv is None]
             same = [(link.src, link.sport, link.dport) for link in plain]
             other = [link for link in self._inputs[n] if link not in plain]
             self._direct[n] = (same, other)

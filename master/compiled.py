@@ -8,7 +8,8 @@ same semantics, operation for operation:
   over [t_end - n_c h, t_end], t_end = t0 + (k + 1) h);
 * each consumer's inputs gathered just before it fires, as algorithm._Link.value gives them: a copy of the
   producer's output, the mean or RMS over the consumer's window (fast -> slow), linear extrapolation to the
-  middle (``linear``, slow -> fast) or to the end (``linear-end``) of the consumer's step;
+  middle (``linear``, slow -> fast) or to the end (``linear-end``) of the consumer's step; on the thermal-only
+  hold's hand-backs, plus their restart offset after a thermal-only interval (hold.Restart);
 * after each firing, as algorithm.Engine._fire: the step count, the finiteness of the outputs other components
   read, the links' bookkeeping (averages, extrapolation history, the ring buffers of the thermal-only hold);
 * every ``check_every`` base steps the finiteness of all outputs;
@@ -50,9 +51,10 @@ CHUNK = 2048
 
 # link bookkeeping, as numbers (algorithm._Link fields): meta = [has_acc, weight, has_prev, prev_t, has_cur,
 # cur_t, then the hand-off window's (hold.HandOff): pos, count, has t_last, t_last, cycle sum, cycle count, last
-# sample, samples per cycle, cycles written in this chunk]; vec rows = [acc (or acc2), prev, last]
+# sample, samples per cycle, cycles written in this chunk, then a hand-back's restart offset (hold.Restart): its
+# start and length (0: none)]; vec rows = [acc (or acc2), prev, last, the restart offset's delta]
 (_HAS_ACC, _WEIGHT, _HAS_PREV, _PREV_T, _HAS_CUR, _CUR_T, _RPOS, _RCOUNT, _HAS_RT, _RT, _CSUM, _CN, _WLAST, _NCYC,
- _NOUT) = range(15)
+ _NOUT, _R0, _RLEN) = range(17)
 
 
 class CompiledUnavailable(ContractError):
@@ -186,6 +188,22 @@ def _kernel_sources_hash(kernels) -> str:
 
 def _gather(w, j, link, plan, ind):
     """Inputs of a link as algorithm._Link.value gives them (frozen links do not occur in TM intervals)."""
+    _gather_value(w, j, link, plan, ind)
+    if j in plan.handbacks:
+        # hold.Restart.offset at the consumer's step end (the generic loop passes t_end = t + hc)
+        i_dst = plan.index[link.con.dst_component]
+        w(f"{ind}if m{j}[{_RLEN}] > 0.0:")
+        w(f"{ind}    rs = ((t + hc) - m{j}[{_R0}]) / m{j}[{_RLEN}]")
+        w(f"{ind}    if rs < 1.0:")
+        w(f"{ind}        if rs <= 0.0:")
+        w(f"{ind}            rf = 1.0")
+        w(f"{ind}        else:")
+        w(f"{ind}            rf = 0.5 + 0.5 * math.cos(math.pi * rs)")
+        w(f"{ind}        for q in range({plan.size[j]}):")
+        w(f"{ind}            u{i_dst}.{link.dport}[q] = u{i_dst}.{link.dport}[q] + v{j}[3, q] * rf")
+
+
+def _gather_value(w, j, link, plan, ind):
     i_src = plan.index[link.con.src_component]
     i_dst = plan.index[link.con.dst_component]
     src = f"y{i_src}.{link.sport}"
@@ -335,6 +353,9 @@ class Plan:
 
         self.inputs = [[(link_id(l), l) for l in eng._inputs[n]] for n in self.names]
         self.outgoing = [[(link_id(l), l) for l in eng._outgoing[n]] for n in self.names]
+        # the thermal-only hold's hand-backs (a restart offset after a thermal-only interval): known from the
+        # system, so that every thermo-mechanical interval of a run has the same loop source
+        self.handbacks = {lid[id(l)] for l in sim.hold.handbacks if id(l) in lid}
         self.watch = [list(eng._watch[n]) for n in self.names]
         self.window_ports = [[(p, comps[l.con.src_component].variable(p).size) for p in l.window.ports]
                              if l.window is not None else [] for l in self.links]
@@ -354,8 +375,11 @@ class Plan:
 
 
 def _link_arrays(link, n, max_cycles):
-    m = np.zeros(15)
-    v = np.zeros((3, n))
+    m = np.zeros(17)
+    v = np.zeros((4, n))
+    if link.ramp is not None:
+        m[_R0], m[_RLEN] = link.ramp.t0, link.ramp.length
+        v[3] = link.ramp.delta
     acc = link.acc if link.con.average == "mean" else link.acc2
     if acc is not None:
         m[_HAS_ACC] = 1.0

@@ -30,6 +30,17 @@ libcosim would call it a manipulator: it changes what crosses some connections, 
   its hand-off powers in error by the measured amounts; the largest change of a scalar output in K, relative to that
   output in degrees C (the convention of Table 4's relative errors), is the interval's error estimate
   (:class:`HoldReport`; the automatic schedule controls it, master/auto.py).
+* The restart (TO -> TM): the hand-backs are the connections from a thermal component to a mechanical one (the
+  thermal growths, the oil temperatures). Over a TO interval they moved while the mechanical state stayed frozen
+  on the old ones; stepping them into the frozen mechanics at once is a sudden load (a growth of micrometres is an
+  axial force step on the preloaded bearings) that rings the lightly damped modes it meets (measured at 712 N:
+  the rotor's axial mode at ~480 Hz, +-3 um at bearing #0 and the ball loads +-10 %, decaying 4 % in 10 cycles).
+  In the monolithic run they changed over seconds, so the mechanics followed them quasi-statically. The restart
+  does the same on a short scale: each hand-back enters the next TM interval as its value at the end of the
+  previous TM interval and goes over to its present (live) value along a half cosine over ``restart_cycles``
+  rotor cycles (:class:`Restart`; the link adds its offset, algorithm._Link.value, and the compiled loop the
+  same). A mode of frequency f then keeps about 1 / ((2 f T)^2 - 1) of the step's response (T the ramp length:
+  0.02 for f = 480 Hz over 2 cycles). ``restart_cycles = 0``: the paper's step.
 """
 from __future__ import annotations
 
@@ -47,6 +58,11 @@ MIN_SPREAD = 0.05
 ELASTICITY_RANGE = (0.0, 2.0)
 #: TM intervals whose cycles enter the elasticity fit (the latest ones: the law is local)
 FIT_INTERVALS = 3
+#: rotor cycles over which the hand-backs go from their pre-TO to their present values at a TM restart (Restart):
+#: long against the mechanical modes they would ring (the rotor's axial mode, ~480 Hz, is 3.6 periods), short
+#: against the TM intervals whose last ``hold_cycles`` cycles give the results and the hand-off windows (10 cycles
+#: in ``rotorcosim compare``); measured in docs/table6_levels.md
+RESTART_CYCLES = 2.0
 #: the zero of degrees C (K): Table 4 and ``rotorcosim compare`` give temperature errors relative to C values
 ZERO_CELSIUS_K = 273.15
 
@@ -59,6 +75,29 @@ def mechanical(comp) -> bool:
 def feeds_thermal(src, dst) -> bool:
     """True for a hand-off: a connection from a mechanical component to a thermal one (stepped in TO)."""
     return mechanical(src) and not mechanical(dst)
+
+
+def feeds_mechanics(src, dst) -> bool:
+    """True for a hand-back: a connection from a thermal component (stepped in TO) to a mechanical one."""
+    return "TO" in src.phases and not mechanical(src) and mechanical(dst)
+
+
+class Restart:
+    """A hand-back's offset at a TM restart: ``delta`` (its value at the end of the previous TM interval minus its
+    value at the restart) at t0, fading along a half cosine to nothing at t0 + length. A class, not a closure:
+    checkpoints pickle the links. The compiled loop (master/compiled.py) computes the same, operation for
+    operation."""
+
+    def __init__(self, delta: np.ndarray, t0: float, length: float):
+        self.delta, self.t0, self.length = np.array(delta, dtype=float), float(t0), float(length)
+
+    def offset(self, t: float):
+        s = (t - self.t0) / self.length
+        if s >= 1.0:
+            return 0.0
+        if s <= 0.0:
+            return self.delta.copy()
+        return self.delta * (0.5 + 0.5 * math.cos(math.pi * s))
 
 
 class HandOff:
@@ -241,8 +280,12 @@ class StaggeredHold:
     """The thermal-only hold of a system's run (see the module docstring)."""
 
     def __init__(self, system, links, hold: str = DEFAULT_HOLD, hold_cycles: float = 5.0,
-                 speed_rpm: float | None = None):
+                 speed_rpm: float | None = None, restart_cycles: float = RESTART_CYCLES):
         self.system = system
+        self.restart_cycles = float(restart_cycles)
+        self.handbacks: list = []
+        self._tm_end: dict[int, np.ndarray] = {}   # hand-back index -> its value at the end of the last TM interval
+        self._last_phase: str | None = None
         self.links = links
         self.hold = hold
         self.hold_cycles = float(hold_cycles)
@@ -263,6 +306,8 @@ class StaggeredHold:
                 ports = sorted({l.con.dst_port for l in links if l.con.dst_component == link.con.src_component
                                 and not mechanical(comps[l.con.src_component])})
                 self.handoffs.append(HandOff(link, link.con.hold or self.hold, ports))
+        self.handbacks = [link for link in links if link.real and
+                          feeds_mechanics(comps[link.con.src_component], comps[link.con.dst_component])]
 
     @property
     def cycle(self) -> float | None:
@@ -277,7 +322,14 @@ class StaggeredHold:
         for link in self.links:
             link.held = None
             link.window = None
+            link.ramp = None
         if phase == "TM":
+            length = self.restart_cycles * self.cycle if self.cycle else 0.0
+            if self._last_phase == "TO" and length > 0.0:
+                for i, link in enumerate(self.handbacks):
+                    if i in self._tm_end:
+                        link.ramp = Restart(self._tm_end[i] - np.array(link.src.y[link.sport], dtype=float),
+                                            t, length)
             for ho in self.handoffs:
                 ho.end_to()
                 if self.cycle:
@@ -304,6 +356,9 @@ class StaggeredHold:
     def end(self, phase: str, t: float) -> None:
         """End of an interval at time t: after the first TM interval that follows a TO interval, the hand-off
         errors and the estimated temperature error of that TO interval."""
+        self._last_phase = phase
+        if phase == "TM":
+            self._tm_end = {i: np.array(link.src.y[link.sport], dtype=float) for i, link in enumerate(self.handbacks)}
         if phase == "TO":
             for ho in self.handoffs:
                 ho.end_to()

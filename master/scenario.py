@@ -33,6 +33,8 @@
     speed_rpm = 16000                    # rotor cycle for the thermal-only holds and the automatic schedule
     hold = "mean"                        # held statistic of the hand-offs (mean | rms | last), master/hold.py
     hold_cycles = 5
+    restart_cycles = 2                   # TM restart: rotor cycles over which the thermal inputs of the
+                                         # mechanical components go from their pre-TO to their new values
 
     [outputs]
     record = ["m1.x", "m2.x"]
@@ -63,7 +65,7 @@ from rotorcosim.components.contract import Component, ContractError
 
 from . import schema
 from .algorithm import EngineSettings
-from .hold import DEFAULT_HOLD
+from .hold import DEFAULT_HOLD, RESTART_CYCLES
 from .compose import Origins, ScenarioError, compose
 from .schedule import from_spec
 from .simulation import Simulation
@@ -295,7 +297,8 @@ def build_simulation(sc: Scenario, observers=(), system: System | None = None) -
     return Simulation(system, order=sc.algorithm.get("order"), settings=engine_settings(sc),
                       steps={n: c.step for n, c in sc.components.items() if c.step is not None},
                       hold=s.get("hold", DEFAULT_HOLD), hold_cycles=float(s.get("hold_cycles", 5)),
-                      speed_rpm=s.get("speed_rpm"), observers=observers)
+                      speed_rpm=s.get("speed_rpm"), observers=observers,
+                      restart_cycles=float(s.get("restart_cycles", RESTART_CYCLES)))
 
 
 def schedule_of(sc: Scenario, kind: str | None = None, duration: float | None = None):

@@ -56,7 +56,8 @@ class Interval:
 #: the schedules by kind (a registry, like the components'): a new schedule is a new class, registered here
 SCHEDULES: dict[str, type["Schedule"]] = {}
 #: [schedule] keys every kind accepts (the Simulation's, and the step defaults)
-COMMON_KEYS = ("kind", "duration", "step", "thermal_step", "speed_rpm", "hold", "hold_cycles")
+COMMON_KEYS = ("kind", "duration", "step", "thermal_step", "speed_rpm", "hold", "hold_cycles",
+               "restart_cycles")
 
 
 def register_schedule(kind: str):

@@ -62,6 +62,13 @@ def positive(v: Any) -> str | None:
     return err
 
 
+def not_negative(v: Any) -> str | None:
+    err = number(v)
+    if err is None and v < 0:
+        return f"must be a number >= 0, got {v!r}"
+    return err
+
+
 def count(v: Any) -> str | None:
     if not isinstance(v, int) or isinstance(v, bool):
         return f"must be a whole number, got {_kind(v)} ({v!r})"
@@ -131,7 +138,8 @@ TABLES: dict[str, dict[str, Callable | None]] = {
     "inputs": {},       # "component.port" -> number(s)
     "algorithm": {"kind": one_of(*ALGORITHMS), "order": list_of(text), "iterations": count, "tolerance": positive},
     "schedule": {"kind": one_of(*SCHEDULE_KINDS), "duration": positive, "step": positive, "thermal_step": positive,
-                 "speed_rpm": positive, "hold": one_of(*HOLDS), "hold_cycles": positive, "intervals": None,
+                 "speed_rpm": positive, "hold": one_of(*HOLDS), "hold_cycles": positive, "restart_cycles": not_negative,
+                 "intervals": None,
                  "steady_tolerance": positive, "steady_cycles": count, "drift_tolerance": positive,
                  "tm_min": positive, "tm_max": positive, "to_min": positive, "to_max": positive,
                  "tracked": list_of(port_ref), "tolerance": positive},

@@ -16,7 +16,7 @@ from rotorcosim.components.contract import ContractError
 
 from . import compiled
 from .algorithm import Engine, EngineSettings, SimulationDiverged
-from .hold import DEFAULT_HOLD, HOLDS, StaggeredHold
+from .hold import DEFAULT_HOLD, HOLDS, RESTART_CYCLES, StaggeredHold
 from .schedule import RunReport, Schedule, ScheduleError, UsedInterval
 from .system import System
 
@@ -24,11 +24,13 @@ class Simulation:
     def __init__(self, system: System, *, order: Sequence[str] | None = None,
                  settings: EngineSettings | None = None, steps: dict[str, float] | None = None,
                  hold: str = DEFAULT_HOLD, hold_cycles: float = 5.0, speed_rpm: float | None = None,
-                 observers: Sequence = (), t0: float = 0.0):
+                 observers: Sequence = (), t0: float = 0.0, restart_cycles: float = RESTART_CYCLES):
         if hold not in HOLDS:
             raise ContractError(f"hold {hold!r} not in {HOLDS}")
         if not (hold_cycles > 0 and math.isfinite(hold_cycles)):
             raise ContractError(f"hold_cycles must be positive, got {hold_cycles}")
+        if not (restart_cycles >= 0 and math.isfinite(restart_cycles)):
+            raise ContractError(f"restart_cycles must be a number >= 0, got {restart_cycles}")
         if speed_rpm is not None and not (speed_rpm > 0 and math.isfinite(speed_rpm)):
             raise ContractError(f"speed_rpm must be positive, got {speed_rpm}")
         self.system = system
@@ -40,7 +42,7 @@ class Simulation:
             if not (s > 0 and math.isfinite(s)):
                 raise ContractError(f"communication step of {name} must be positive, got {s}")
         self.speed_rpm = speed_rpm
-        self.hold = StaggeredHold(system, self.engine.links, hold, hold_cycles, speed_rpm)
+        self.hold = StaggeredHold(system, self.engine.links, hold, hold_cycles, speed_rpm, restart_cycles)
         self.observers = list(observers)
         self.t = float(t0)
         self.t0 = float(t0)
