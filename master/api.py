@@ -241,6 +241,8 @@ def simulate(sc: Scenario | str | Path, duration: float | None = None, schedule=
             "timeline": [u.as_dict() for u in report.timeline],
             "hold": report.hold.as_dict() if report.hold is not None else None,
             "wall_time_s": time.perf_counter() - t_wall,
+            # the process's CPU time over the run (Simulation.run): beside the wall time on a loaded machine
+            "cpu_time_s": report.cpu_time_s,
             "resumed_from_t_s": point.t if point else None,
             # wall time per base step of this run, beside the estimate's (budget.py): how far the declared
             # step cost is from this machine and scenario

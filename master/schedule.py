@@ -207,6 +207,8 @@ class UsedInterval:
 class RunReport:
     timeline: list[UsedInterval] = field(default_factory=list)
     wall_time_s: float = 0.0
+    #: the process's CPU time over the run (with wall_time_s: the share the machine's other load took)
+    cpu_time_s: float = 0.0
     component_steps: dict[str, int] = field(default_factory=dict)
     t_end: float = 0.0
     error: str | None = None
@@ -219,7 +221,7 @@ class RunReport:
 
     def as_dict(self) -> dict:
         return {"timeline": [u.as_dict() for u in self.timeline], "wall_time_s": self.wall_time_s,
-                "component_steps": dict(self.component_steps), "t_end": self.t_end, "error": self.error,
+                "cpu_time_s": self.cpu_time_s, "component_steps": dict(self.component_steps), "t_end": self.t_end, "error": self.error,
                 "status": self.status, "stopped": self.stopped,
                 "hold": self.hold.as_dict() if self.hold is not None else None}
 

@@ -186,7 +186,7 @@ class Simulation:
         """Run ``schedule``. The components are initialised first, so the first recorded sample (at t0) holds
         the outputs after initialisation. A stop request of a component ends the run early and cleanly:
         ``report.status`` is then ``"stopped"`` and ``report.stopped`` names the component and the time."""
-        t_wall = _time.perf_counter()
+        t_wall, t_cpu = _time.perf_counter(), _time.process_time()
         error = None
         try:
             self.initialise()
@@ -205,6 +205,7 @@ class Simulation:
             raise
         finally:
             self.report.wall_time_s = _time.perf_counter() - t_wall
+            self.report.cpu_time_s = _time.process_time() - t_cpu
             failure = None
             for obs in self.observers:  # every observer closes what it holds, even when one of them fails
                 try:

@@ -24,6 +24,7 @@ def _sim(paper_hold=False):
     apply_unbalance(sc, 14252.0)
     if paper_hold:
         sc.schedule["hold"] = "rms"
+        sc.schedule["restart_cycles"] = 0   # the thermal inputs stepped into the frozen mechanics at the restart
         for k in (0, 5):
             sc.components[f"bearing{k}"].parameters["drag_in_thermal_only"] = False
             sc.components[f"damper{k}"].parameters["power_in_thermal_only"] = False
@@ -54,8 +55,8 @@ def test_no_temperature_jump_across_a_restart(monolithic):
 
 
 def test_the_paper_hold_jumps(monolithic):
-    """The check above can fail: with the paper's hold the SFD oil cools by more than 2 K beyond the monolithic
-    run in the 25 ms after the restart (measured 1.6 K after 10 ms)."""
+    """The check above can fail: with the paper's hold and restart the SFD oil cools by more than 2 K beyond the
+    monolithic run in the 25 ms after the restart (measured 1.6 K after 10 ms)."""
     paper = _change_across_restart(_sim(paper_hold=True), staggered=True)
     print("paper hold - monolithic change across the restart [K]:", dict(zip(NODES, paper - monolithic)))
     assert np.max(np.abs(paper - monolithic)) > 2.0, dict(zip(NODES, paper - monolithic))
