@@ -209,6 +209,8 @@ def simulate(sc: Scenario | str | Path, duration: float | None = None, schedule=
                                             stop, checkpoint_every or checkpoint.EVERY_S, key)
             observers.append(saver)  # last: it sees every other observer done with the step
         sim = build_simulation(sc, observers)
+        if post is not None and hasattr(post, "check"):
+            post.check(sc, sim)  # the scenario's own consistency checks before anything runs
         sim.engine_choice = engine
         head = {"scenario": sc.name, "source": str(sc.source) if sc.source else None,
                 "schedule": kind or sc.schedule.get("kind", "monolithic"), "duration_s": sch.duration,

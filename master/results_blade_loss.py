@@ -95,6 +95,25 @@ def observers(sc, speed_rpm: float):
     return [SteadyWindows(window_signals(sc), speed_rpm, cycles), Peaks()]
 
 
+def check(sc, sim) -> None:
+    """Before the run: ``[schedule] speed_rpm`` (the cycle of the windows and of the hold) is the speed the
+    unbalance turns at, the parameter ``[results] speed_parameter`` names (rad/s; its default comes from
+    components/speeds.py). A mismatch would read every steady window over a wrong cycle: a clear error."""
+    ref = sc.extra.get("results", {}).get("speed_parameter")
+    if not ref:
+        return
+    comp, _, param = ref.partition(".")
+    c = sim.system.components.get(comp)
+    if c is None or param not in c.p:
+        raise ValueError(f"[results] speed_parameter {ref!r}: no such component parameter")
+    rpm = float(c.p[param]) * 30.0 / math.pi
+    speed = sc.schedule.get("speed_rpm")
+    if speed is None or not math.isclose(float(speed), rpm, rel_tol=1e-9):
+        raise ValueError(f"scenario {sc.name!r}: [schedule] speed_rpm = {speed} rev/min but {ref} = "
+                         f"{float(c.p[param]):.9g} rad/s ({rpm:.9g} rev/min), the speed the unbalance turns at: "
+                         f"give them the same speed")
+
+
 def unbalance_force(sc) -> float:
     ref = sc.extra.get("results", {}).get("unbalance_parameter", "rotor.F_unbalance")
     comp, _, param = ref.partition(".")

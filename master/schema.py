@@ -144,7 +144,7 @@ TABLES: dict[str, dict[str, Callable | None]] = {
                  "tm_min": positive, "tm_max": positive, "to_min": positive, "to_max": positive,
                  "tracked": list_of(port_ref), "tolerance": positive},
     "outputs": {"record": list_of(port_ref), "record_step": positive, "format": one_of(*OUTPUT_FORMATS)},
-    "results": {"kind": text, "unbalance_parameter": port_ref, "cycles": positive},
+    "results": {"kind": text, "unbalance_parameter": port_ref, "speed_parameter": port_ref, "cycles": positive},
 }
 COMPONENT = {"implementation": text, "fmu": text, "parameters": None, "step": positive,
              # FMUs only: start values of states / initial = "exact" variables (fmus/importer.py)
@@ -309,9 +309,10 @@ def check(data: Mapping[str, Any], source: str | Path | None = None, origins=Non
     _schedule(c, data.get("schedule", {}), comps)
     for i, ref in enumerate(data.get("outputs", {}).get("record", [])):
         _known_component(c, "outputs", "record", ref, names)
-    ref = data.get("results", {}).get("unbalance_parameter")
-    if ref:
-        _known_component(c, "results", "unbalance_parameter", ref, names)
+    for key in ("unbalance_parameter", "speed_parameter"):
+        ref = data.get("results", {}).get(key)
+        if ref:
+            _known_component(c, "results", key, ref, names)
 
 
 def _known_component(c: _Checker, table: str, key: str, ref: str, names) -> None:

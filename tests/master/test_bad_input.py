@@ -123,3 +123,21 @@ def test_diverging_run_stops_with_clear_error_and_keeps_record(tmp_path):
         assert f["time"].shape[0] > 10
         assert np.all(np.isfinite(f["m1.x"][:10]))
     assert sim.report.error and "diverged" in sim.report.error
+
+
+def test_schedule_speed_must_be_the_unbalance_speed():
+    """[schedule] speed_rpm (the cycle of the hold windows and the results) against the speed the unbalance turns
+    at ([results] speed_parameter, rotor.omega_pt): equal in the shipped scenario, a mismatch a clear error before
+    the run."""
+    import rotorcosim
+
+    sc = rotorcosim.load_scenario("blade_loss_2850")
+    assert sc.extra["results"]["speed_parameter"] == "rotor.omega_pt"
+    sc.schedule["speed_rpm"] = 15000.0
+    with pytest.raises(ValueError, match=r"speed_rpm = 15000.0 rev/min but rotor.omega_pt = .* \(16000 rev/min\)"):
+        rotorcosim.simulate(sc, duration=2e-3, figures=False)
+    sc = rotorcosim.load_scenario("blade_loss_2850").set({"rotor.omega_pt": 15000.0 * math.pi / 30.0})
+    with pytest.raises(ValueError, match=r"speed_rpm = 16000.0 rev/min but rotor.omega_pt"):
+        rotorcosim.simulate(sc, duration=2e-3, figures=False)
+    res = rotorcosim.simulate(rotorcosim.load_scenario("blade_loss_2850"), duration=2e-3, figures=False)
+    assert res.summary["status"] == "complete"

@@ -18,17 +18,20 @@ from rotorcosim.master.schedule import Interval, Timeline
 RTOL = 1e-12
 
 
-def _blade_loss(engine, folder, reseats):
+def _blade_loss(engine, folder, reseats, restart_cycles):
     sc = resolve("blade_loss")
     apply_unbalance(sc, 2850.0)
+    sc.schedule["restart_cycles"] = restart_cycles
     signals = ["rotor.X_brg0", "bearing0.Q_max", "bearing5.sigma_max", "damper0.P_film", "rubring0.P_rub",
                "thermal0.T_nodes", "thermal5.eps"]
-    obs = [Recorder(folder / f"{engine}.csv", signals, 2e-5)] + result_observers(sc, 16000.0)
+    obs = [Recorder(folder / f"{engine}{restart_cycles}.csv", signals, 2e-5)] + result_observers(sc, 16000.0)
     sim = build_simulation(sc, obs)
     sim.engine_choice = engine
     h = float(sc.schedule["step"])
     # blade loss at 0.01 s, thermal steps every 1 ms; a thermal-only interval (held powers, the bearings'
-    # thermal-only drag) and a second thermo-mechanical one that starts with the balls re-seated (in Python)
+    # thermal-only drag) and a second thermo-mechanical one that starts with the thermal growths ramped in (the
+    # hold's restart, over 2 rotor cycles: longer than the interval) or, restart_cycles = 0, stepped in, the balls
+    # re-seated (in Python)
     tl = Timeline([Interval("TM", 0.012, h), Interval("TO", 3.0, 0.1), Interval("TM", 0.004, h)])
     before = len(reseats)
     sim.run(tl)
@@ -41,7 +44,8 @@ def _rel(a, b):
     return float(np.max(np.abs(a - b) / scale)) if a.size else 0.0
 
 
-def test_compiled_equals_generic_on_the_blade_loss_system(tmp_path, monkeypatch):
+@pytest.mark.parametrize("restart_cycles", [2.0, 0.0])
+def test_compiled_equals_generic_on_the_blade_loss_system(tmp_path, monkeypatch, restart_cycles):
     reseats = []
     original = BallBearing._reseat
 
@@ -50,12 +54,19 @@ def test_compiled_equals_generic_on_the_blade_loss_system(tmp_path, monkeypatch)
         return original(self, h)
 
     monkeypatch.setattr(BallBearing, "_reseat", counted)
-    runs = {e: _blade_loss(e, tmp_path, reseats) for e in ("compiled", "python")}
+    runs = {e: _blade_loss(e, tmp_path, reseats, restart_cycles) for e in ("compiled", "python")}
     (cs, cobs, creseat), (ps, pobs, preseat) = runs["compiled"], runs["python"]
     assert cs.engines_used == ["compiled", "compiled"]
     assert ps.engines_used == ["python", "python"]
-    # the re-seating after the thermal-only interval ran in both (the compiled loop hands that step to Python)
-    assert creseat == preseat
+    if restart_cycles:
+        # the restart's offsets were on (hold.Restart) in both: the growths and the two oil temperatures of each bearing
+        for sim in (cs, ps):
+            ramps = [link.ramp for link in sim.hold.handbacks if link.ramp is not None]
+            assert len(ramps) == len(sim.hold.handbacks) == 6 and max(abs(r.delta).max() for r in ramps) > 1e-6
+        assert creseat == preseat
+    else:
+        # the re-seating after the thermal-only interval ran in both (the compiled loop hands that step to Python)
+        assert creseat == preseat == 2
     assert cs.t == ps.t
     assert cs.engine.steps_taken == ps.engine.steps_taken
     for name, comp in cs.system.components.items():
@@ -66,8 +77,8 @@ def test_compiled_equals_generic_on_the_blade_loss_system(tmp_path, monkeypatch)
         for key, s in comp.state.items():
             assert _rel(s, other.state[key]) <= RTOL, f"{name} state {key}"
     # the recorded samples: same rows, same times, same values
-    ca = np.loadtxt(tmp_path / "compiled.csv", delimiter=",", skiprows=1)
-    pa = np.loadtxt(tmp_path / "python.csv", delimiter=",", skiprows=1)
+    ca = np.loadtxt(tmp_path / f"compiled{restart_cycles}.csv", delimiter=",", skiprows=1)
+    pa = np.loadtxt(tmp_path / f"python{restart_cycles}.csv", delimiter=",", skiprows=1)
     assert ca.shape == pa.shape and ca.shape[0] > 500
     assert _rel(ca, pa) <= RTOL
     # the steady windows and peaks the results come from
