@@ -5,6 +5,7 @@ stress eq. (10). Used by the component's set-up (the preloaded rest state) and b
 """
 from __future__ import annotations
 
+import copy
 import math
 from dataclasses import dataclass
 
@@ -190,9 +191,22 @@ def stiffness(g: BearingGeometry, X, Xe=(0.0, 0.0), eps=(0.0, 0.0, 0.0), Fc: flo
     return J
 
 
+#: preload_offset's solutions in this process, by (geometry, centrifugal force): every bearing set-up solves the
+#: same equilibrium (~0.05 s of CPU each, 2 per run: a tenth of a staggered Table 6 run's fixed cost, measured)
+_PRELOAD: dict = {}
+
+
 def preload_offset(g: BearingGeometry, Fc: float = 0.0) -> tuple[float, BallState]:
     """Axial inner race displacement z0 at which the balls (outer race centred, no radial load) carry the axial
-    preload, and the ball state there."""
+    preload, and the ball state there (a copy: the caller may change it)."""
+    key = (g, float(Fc))
+    if key not in _PRELOAD:
+        _PRELOAD[key] = _preload_offset(g, Fc)
+    z0, st = _PRELOAD[key]
+    return z0, copy.deepcopy(st)
+
+
+def _preload_offset(g: BearingGeometry, Fc: float) -> tuple[float, BallState]:
     if g.preload == 0.0:
         X, st = np.zeros(3), ball_state(g, np.zeros(3), Fc=Fc)
         return 0.0, st
