@@ -319,6 +319,7 @@ class StaggeredHold:
         """Set the links up for an interval of ``phase`` with ``active`` components at base step ``step``."""
         if self.handoffs is None:
             self._find_handoffs()
+        under_way = [link.ramp for link in self.handbacks]
         for link in self.links:
             link.held = None
             link.window = None
@@ -330,6 +331,10 @@ class StaggeredHold:
                     if i in self._tm_end:
                         link.ramp = Restart(self._tm_end[i] - np.array(link.src.y[link.sport], dtype=float),
                                             t, length)
+            elif self._last_phase == "TM":  # TM after TM: a restart's ramp still under way goes on
+                for link, ramp in zip(self.handbacks, under_way):
+                    if ramp is not None and t < ramp.t0 + ramp.length:
+                        link.ramp = ramp
             for ho in self.handoffs:
                 ho.end_to()
                 if self.cycle:

@@ -160,3 +160,30 @@ def test_linear_end_extrapolation_is_exact_for_a_ramp():
         seen = s.components["probe"].seen[2:]  # from the third step on, two past values exist
         assert len(seen) == 8
         assert all(abs(u - 3.0 * (t_end - lag)) < 1e-12 for t_end, u in seen), (how, seen)
+
+
+@pytest.mark.parametrize("restart_cycles", [2.0, 0.0])
+def test_restart_ramps_the_thermal_inputs_of_the_frozen_mechanics(restart_cycles):
+    """At a TM restart (master/hold.py, Restart) the oscillator's temperature input goes from its value before the
+    TO interval to the node's present one along a half cosine over restart_cycles forcing periods; with 0 it
+    jumps (the paper)."""
+    s = toy(thermal=THERMAL)
+    sim = Simulation(s, order=["osc", "node"], speed_rpm=SPEED_RPM, restart_cycles=restart_cycles)
+    osc, node = s.components["osc"], s.components["node"]
+    sim.run_interval("TM", 0.3, 1e-3)
+    before = float(osc.u["T"][0])
+    sim.run_interval("TO", 4.7, 0.05)
+    jump = float(node.y["T"][0]) - before
+    assert jump > 5.0   # the node warmed while the oscillator was frozen
+    sim.run_interval("TM", 1e-3, 1e-3)   # the first step after the restart
+    seen = float(osc.u["T"][0]) - before
+    if restart_cycles:
+        # 1 ms into a 44 ms ramp: (1 - cos(pi/44.4)) / 2 = 0.13 % of the jump (+- the node's own change in a step)
+        w = 0.5 * (1.0 - np.cos(np.pi * 1e-3 * SPEED_RPM / 60.0 / 2.0))
+        assert abs(seen - w * jump) < 2e-4 * jump
+        sim.run_interval("TM", 0.021, 1e-3)   # mid-ramp (22 ms of 44.4 ms): about half the jump
+        assert 0.4 * jump < float(osc.u["T"][0]) - before < 0.6 * jump
+        sim.run_interval("TM", 0.03, 1e-3)    # past the ramp: the live value
+        assert float(osc.u["T"][0]) == float(node.y["T"][0]) or abs(float(osc.u["T"][0] - node.y["T"][0])) < 0.05
+    else:
+        assert seen == pytest.approx(jump, rel=0.01)
