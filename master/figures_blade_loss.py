@@ -9,10 +9,10 @@ Conventions, so that each figure reads at a glance:
 * whole-run plots shade the thermal-only (TO) intervals;
 * each orbit is scaled to itself (the last 5 rotor cycles); the rub-ring clearance circle is drawn where it is in
   range of the orbit, and stated otherwise, with the largest rotor-to-housing radius at the ring;
-* Fig. 12 plots the inner-race stress (solid) with the outer race's (dashed): the summary's
-  ``max_contact_stress_MPa`` is the larger of the two over the steady window, the inner race under the blade-loss
-  load, and the paper's Table 5 load/stress pairs follow the inner-race Hertz law (~248 Q^(1/3) MPa) although
-  its text says outer race (at the preload alone, the balls' centrifugal force makes the outer race's the larger);
+* Fig. 12 plots the inner-race stress (solid), the summary's ``max_contact_stress_MPa`` (the contact the paper's
+  Table 5 load/stress pairs describe: they follow the inner-race Hertz law, ~248 Q^(1/3) MPa at #0, although its
+  text says outer race), with the outer race's (dashed, ``max_contact_stress_outer_MPa``; at light loads the
+  balls' centrifugal force makes it the larger);
 * "(paper Fig. N)" only on the paper's own cases (a shipped blade-loss scenario at one of Table 5's levels,
   unchanged); any other run is titled by its scenario name.
 """
@@ -252,9 +252,9 @@ def figures(sc, data: dict, out: Path, F_u: float, speed_rpm: float | None = Non
                   "Transmissibility |F_sfd + F_cs| / F_u", 11)
     stress = {k: 1e-6 * S for k in BEARINGS if (S := f.get(f"bearing{k}.sigma_max")) is not None}
     f.per_bearing(stress, "max contact stress [MPa]", "fig12_contact_stress.png",
-                  "Maximum ball contact stress", 12,
+                  "Maximum ball contact stress (reported: inner race, solid)", 12,
                   line=(PLASTIC_FLOW_MPA, f"incipient plastic flow {PLASTIC_FLOW_MPA:.0f} MPa"),
-                  styles=(("-", "inner race"), ("--", "outer race")))
+                  styles=(("-", "inner race (reported)"), ("--", "outer race")))
     f.temperatures(13, (("inner_race", "(a) inner race"), ("ball", "(b) ball")))
     f.temperatures(14, (("outer_race", "(a) outer race"), ("sfd_oil", "(b) squeeze film damper oil")))
     return f.names
