@@ -4,7 +4,7 @@
 
 Prints (all measured in this process):
 * model build and MTA reduction times (cold, then the in-process cache);
-* the cost of one component do_step at h = 1e-5 s (default reduced size 30 modes + 16 vectors), and of one step
+* the cost of one component do_step at h = 1e-5 s (default reduced size 30 modes + 12 vectors), and of one step
   of the full model (classical Newmark, dense) for the ratio;
 * the blade-loss transient on linear #0/#5 supports (2850 N, 0.03 s, h = 2e-5 s): peak radial displacement at
   bearings #0/#5, MTA and plain modal truncation of the same size against the full model, for several n_modes.

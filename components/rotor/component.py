@@ -7,11 +7,12 @@ truncation augmentation, eqs. (16)-(22) (mta), integrated by the Newmark-beta me
 Conventions:
 * the reduced basis is [lowest ``n_modes`` modes of the model without bearings #0/#5, augmentation vectors for
   every DOF where a force enters]: PT node at bearing #0 and #5 (x y z), the two housing hubs (x y), the PT nodes
-  at the rub rings (x y) and the blade-loss node (x y): 16 vectors. Default 30 modes, from the
+  at the rub rings (x y; the rings act at the bearing nodes, engine.toml, so these add no vector) and the
+  blade-loss node (x y): 12 independent vectors. Default 30 modes, from the
   convergence study of bench/bench_rotor.py: the blade-loss peaks on linear supports are within 0.05 % (#0) and
   0.25 % (#5, a 0.03 mm peak) of the full model there, and at #0 MTA's error keeps falling with n_modes (0.015 %
   at 40) while plain truncation stalls at ~0.2 %. The 30th and 31st modes of the engine are a degenerate pair
-  (1378.714 Hz), kept whole (mta.modes), so the reduced size is 47;
+  (1378.714 Hz), kept whole (mta.modes), so the reduced size is 43;
 * inputs are held over a step; the unbalance force is evaluated at the end of the step (t + h), where Newmark's
   equilibrium is enforced; outputs are the displacements/velocities at t + h;
 * unbalance: F_u(t) = F_residual (cos Wt, sin Wt) from t = 0 plus, from ``t_blade_loss`` on, a step onset of
@@ -107,7 +108,7 @@ class Rotor(KernelComponent):
         Variable("omega_pt", "parameter", unit="rad/s", start=PT_OMEGA, description="power-turbine speed"),
         Variable("omega_gg", "parameter", unit="rad/s", start=GG_OMEGA, description="gas-generator speed"),
         Variable("n_modes", "parameter", unit="1", start=30, type="Integer",
-                 description="retained eigenmodes (the reduced size adds 16 augmentation vectors)"),
+                 description="retained eigenmodes (the reduced size adds 12 augmentation vectors)"),
         Variable("model_file", "parameter", unit="1", start="", type="String",
                  description="TOML model data file ('' = the shipped data/engine.toml)"),
         Variable("newmark_beta", "parameter", unit="1", start=0.25, description="Newmark beta"),

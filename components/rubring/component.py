@@ -10,7 +10,7 @@ over it. The component is memoryless, so ``P_rub`` evaluated at those held input
 over the step that those forces deliver (the held force times the held sliding speed).
 
 Parameters default to ring #0 (``bearing = 0``); ``bearing = 5`` picks ring #5's clearance and radius. Values and
-reasons in data/rubrings.toml: stiffness 2.2e7 N/m (Roark's thin ring), damping 1330 N s/m, friction 0.2, clearance 0.508 mm, radius
+reasons in data/rubrings.toml: stiffness 3e8 N/m (conformal line contact, Johnson), damping 4900 N s/m, friction 0.2, clearance 0.508 mm, radius
 25.4 mm (41.9 mm at #5), omega = 16 000 rev/min (power-turbine speed).
 """
 from __future__ import annotations

@@ -116,7 +116,7 @@ def test_state_rollback_reproduces_the_run():
 def test_reduced_model_is_cached_per_process():
     a = reduced_model("", 30, W_PT, 15000 * 2 * math.pi / 60)
     b = reduced_model("", 30, W_PT, 15000 * 2 * math.pi / 60)
-    assert a is b and a["n"] == 47  # 31 modes (the 30th and 31st are a degenerate pair, kept whole) + 16
+    assert a is b and a["n"] == 43  # 31 modes (the 30th and 31st are a degenerate pair, kept whole) + 12
 
 
 @pytest.mark.parametrize("params,message", [

@@ -20,7 +20,10 @@ def test_mta_basis_is_mass_orthonormal_and_static_complete(full):
     load_dofs = np.concatenate([full.ports[g] for g in LOAD_GROUPS])
     phi, n_aug = mta_basis(full.K, full.M, 30, load_dofs)
     n = phi.shape[1]
-    assert n_aug == 16 and n - n_aug >= 30   # 30 modes, or more when the 30th is one of a degenerate group
+    # 16 load DOFs, 12 distinct: the rub rings act at the bearing nodes (engine.toml), so their x y are already
+    # among the bearings' (a dependent load vector is dropped, not duplicated)
+    assert len(set(load_dofs.tolist())) == 12
+    assert n_aug == 12 and n - n_aug >= 30   # 30 modes, or more when the 30th is one of a degenerate group
     Mr, Kr = project(phi, full.M, full.K)
     np.testing.assert_allclose(Mr, np.eye(n), atol=1e-9)
     off = Kr - np.diag(np.diag(Kr))
@@ -52,13 +55,14 @@ def test_static_blade_loss_deflection_on_linear_supports_mta_exact_modal_not(ful
 
 def test_blade_loss_transient_mta_vs_full_and_modal(full):
     """Blade-loss transient (2850 N rotating at 16 000 rev/min from t = 0, 0.03 s, Newmark h = 2e-5 s) on linear
-    #0/#5 supports: peak radial displacement at bearings #0 and #5 of the MTA model (30 modes + 16 vectors = 46,
-    the component's default) within 1 % of the full 580-DOF model, and closer than plain modal truncation with 46
-    modes (same size); the same for the RMS error of the whole x, y histories at both bearings."""
+    #0/#5 supports: peak radial displacement at bearings #0 and #5 of the MTA model (30 modes + 12 vectors = 42,
+    43 with the degenerate pair kept whole: the component's default) within 1 % of the full 580-DOF model, and
+    closer than plain modal truncation of the same size; the same for the RMS error of the whole x, y histories
+    at both bearings."""
     ref = ver.blade_loss_transient(full, "full")
     mta = ver.blade_loss_transient(full, "mta", 30)
     modal = ver.blade_loss_transient(full, "modal", 30)
-    assert mta["size"] >= 46 and ref["size"] == full.n
+    assert mta["size"] >= 42 and ref["size"] == full.n
     e_mta = [abs(mta[k] / ref[k] - 1) for k in ("peak0", "peak5")]
     e_modal = [abs(modal[k] / ref[k] - 1) for k in ("peak0", "peak5")]
     print(f"\npeaks full {ref['peak0'] * 1e3:.5f} / {ref['peak5'] * 1e3:.5f} mm; rel. error MTA {e_mta}, "
