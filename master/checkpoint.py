@@ -41,7 +41,8 @@ from .schedule import Timeline
 from .system import System
 
 CHECKPOINT = "checkpoint.pkl"
-FORMAT = 2
+#: 3: the hold keeps the restart ramps of its hand-backs (links carry `ramp`): a format-2 checkpoint lacks them
+FORMAT = 3
 #: wall time between two checkpoints inside a long interval (interval ends are always checkpointed)
 EVERY_S = 180.0
 
