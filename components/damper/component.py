@@ -264,7 +264,7 @@ class FastDamper(KernelComponent, _Damper):
         t = self._table
         prm = np.array([t.u0, t.du, t.n, t.eps_max, t.clearance, self._floor, float(self._cav), self._k, self._kw])
         A, B, rho300, drho = _oil()
-        self._kernel_p = DamperParams(t.TR, t.TT, t.ftab, t.bounds, t.Wc, t.Ws, prm, np.zeros(self.N_OUT),
+        self._kernel_p = DamperParams(t.NT, t.G, t.TW, t.toff, t.ftab, t.bounds, t.Wc, t.Ws, prm, np.zeros(self.N_OUT),
                                       np.full(2, np.nan), float(A), float(B), float(rho300), float(drho))
 
     def _film(self, dx, dy, dvx, dvy, mu, out):
@@ -291,7 +291,7 @@ class FastDamper(KernelComponent, _Damper):
     def _compute(self, mu, out):
         """The film, spring and wall at viscosity mu (the thermal-only update's evaluation)."""
         p, u = self._kernel_p, self.u
-        return fast_step(p.TR, p.TT, p.ftab, p.bounds, p.Wc, p.Ws, p.prm, u["X_journal"], u["V_journal"],
+        return fast_step(p.NT, p.G, p.TW, p.toff, p.ftab, p.bounds, p.Wc, p.Ws, p.prm, u["X_journal"], u["V_journal"],
                          u["X_housing"], u["V_housing"], mu, out)
 
     def kernel_status(self, status, t, h):
