@@ -10,8 +10,9 @@
     res.time, res.phase, res["bearing0.P_drag"], res.summary   # numpy arrays; summary as in summary.json
     df = res.to_dataframe()                                    # labelled columns with units (needs pandas)
 
-``rotorcosim run`` is :func:`simulate` with ``out=DIR``; the run is recorded in memory by the same observer
-that streams the time series to disk, so the result never needs the file read back.
+``rotorcosim run`` is :func:`simulate` with ``out=DIR``. Without ``out`` (or with the CSV format) the run is
+recorded in memory; with ``out`` and HDF5, the result's arrays are read from ``timeseries.h5`` when first used
+(a monolithic 2-minute run records ~0.5 GB, which need not sit in memory twice).
 """
 from __future__ import annotations
 
@@ -21,7 +22,7 @@ import os
 import sys
 import time
 from pathlib import Path
-from typing import Any, Sequence
+from typing import Any, Mapping, Sequence
 
 import numpy as np
 
@@ -29,12 +30,14 @@ from rotorcosim import scenarios
 
 from . import budget, checkpoint, watchdog
 from .algorithm import SimulationDiverged
+from .compiled import ENGINES
+from .figure_pool import FigurePool
 from .observers import Progress, Recorder, column_names
 from .outputs import write_json
 from .rundir import RunFolder
-from .compiled import ENGINES
 from .scenario import Scenario, build_simulation, load_scenario as _load_file, schedule_of
 from .schedule import Schedule
+from .series import SeriesFile
 from .simulation import engine_summary
 
 DEFAULT_SCENARIO = "blade_loss_2850"
@@ -83,11 +86,12 @@ def _schedule(sc: Scenario, schedule, duration: float | None):
 
 
 class Result:
-    """A run in memory: ``time`` [s], ``phase`` ("TM" / "TO" per sample), ``res["comp.port"]`` (a 1-D array for a
+    """A run: ``time`` [s], ``phase`` ("TM" / "TO" per sample), ``res["comp.port"]`` (a 1-D array for a
     scalar port, (n, size) for a vector one; SI units, see :meth:`unit` / :meth:`columns`), ``summary`` (the dict
-    written to summary.json), ``files`` (the files written, with ``out=``)."""
+    written to summary.json), ``files`` (the files written, with ``out=``). The arrays are in memory, or read
+    from the run's time series file when first used (a run with ``out=`` and HDF5)."""
 
-    def __init__(self, data: dict[str, np.ndarray], variables: dict, summary: dict, files: Sequence[Path] = ()):
+    def __init__(self, data: Mapping[str, np.ndarray], variables: dict, summary: dict, files: Sequence[Path] = ()):
         self._data = data
         self._vars = variables
         self.summary = summary
@@ -200,7 +204,9 @@ def simulate(sc: Scenario | str | Path, duration: float | None = None, schedule=
             out = folder.path
             point = checkpoint.load(out / checkpoint.CHECKPOINT, key) if resume else None
             series = out / f"timeseries.{fmt}" if signals else None
-        recorder = Recorder(series, signals, float(o.get("record_step", 1e-4)), keep=True)
+        # a file run keeps nothing in memory: the result and the figures read the HDF5 file (CSV is not read back)
+        keep = series is None or fmt != "h5"
+        recorder = Recorder(series, signals, float(o.get("record_step", 1e-4)), keep=keep)
         post_obs = post.observers(sc, speed) if post is not None else []
         observers = [recorder, *post_obs, Progress(sch.duration, disable=not progress, desc=sc.name)]
         if out is not None:
@@ -212,6 +218,10 @@ def simulate(sc: Scenario | str | Path, duration: float | None = None, schedule=
         if post is not None and hasattr(post, "check"):
             post.check(sc, sim)  # the scenario's own consistency checks before anything runs
         sim.engine_choice = engine
+        pool = None
+        if figures and out is not None and post is not None and not keep:
+            pool = FigurePool()  # its workers start now and import matplotlib while the run goes
+            stack.callback(pool.close)
         head = {"scenario": sc.name, "source": str(sc.source) if sc.source else None,
                 "schedule": kind or sc.schedule.get("kind", "monolithic"), "duration_s": sch.duration,
                 "estimate": estimate}
@@ -261,14 +271,17 @@ def simulate(sc: Scenario | str | Path, duration: float | None = None, schedule=
             "checkpoint_note": saver.disabled if saver is not None else None,
             "error": None if error is None else f"{type(error).__name__}: {error}",
         }
-        # a resumed run holds in memory only what it computed itself: the whole series is in the file
-        data = _read_series(series) if point is not None and series is not None else recorder.data()
+        if keep:
+            # a resumed run holds in memory only what it computed itself (CSV is not read back)
+            data = {} if point is not None and series is not None else recorder.data()
+        else:
+            data = SeriesFile(series) if series.exists() else _nothing_recorded(recorder)
         files = [series] if series is not None and series.exists() else []
         try:
             if post is not None:
                 summary.update(post.extract(sc, sim, post_obs, report))
                 if figures and out is not None and status in ("complete", "stopped"):
-                    names = post.figures(sc, data, out)
+                    names = post.figures(sc, data, out, pool=pool)
                     summary["figures"] = names
                     files += [out / n for n in names]
             else:
@@ -296,14 +309,10 @@ def simulate(sc: Scenario | str | Path, duration: float | None = None, schedule=
     return result
 
 
-def _read_series(path: Path) -> dict[str, np.ndarray]:
-    """A time series file back as arrays (only for a resumed run, whose first part was computed earlier)."""
-    if path.suffix.lower() not in (".h5", ".hdf5"):
-        return {}
-    import h5py
-
-    with h5py.File(path, "r") as f:
-        return {k: f[k][:] for k in f}
+def _nothing_recorded(recorder: Recorder) -> dict[str, np.ndarray]:
+    """The arrays of a run that ended before its time series file was written."""
+    return {"time": np.zeros(0), "phase": np.zeros(0, dtype=np.int8),
+            **{ref: np.zeros((0, size)) for ref, size in recorder.sizes.items()}}
 
 
 def _roundtrip(summary: dict) -> dict:

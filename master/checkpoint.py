@@ -34,6 +34,8 @@ import threading
 import time
 from pathlib import Path
 
+import numpy as np
+
 from rotorcosim.components.contract import Component
 
 from .observers import DISK_RESERVE_BYTES, Observer
@@ -158,8 +160,8 @@ class Checkpointer(Observer):
 
     def step_block(self, sim, ks, ts, data):
         # the compiled engine: the components hold the state after the block's last step, a safe point
-        if any(k % self.stride == 0 for k in ks):
-            self.step(sim, ts[-1])
+        if (np.asarray(ks) % self.stride == 0).any():
+            self.step(sim, float(ts[-1]))
 
     def interval_end(self, sim, used):
         # the position is the start of the next interval; the report already holds this one

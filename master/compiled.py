@@ -529,8 +529,8 @@ class Runner:
                 c.time = (t_start + kf * h - hc) + hc
         if rows <= 0:
             return
-        ks = list(range(k0 + 1, k1 + 1))
-        ts = [t_start + kk * h for kk in ks]
+        ks = np.arange(k0 + 1, k1 + 1)
+        ts = t_start + ks * h  # the generic loop's t_start + k * h, element by element
         cols = self._columns(rows)
         for obs in sim.observers:
             obs.step_block(sim, ks, ts, cols)

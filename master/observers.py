@@ -22,10 +22,10 @@ PHASE_CODE = {"TM": 0, "TO": 1}
 DISK_RESERVE_BYTES = 4 * 1024 ** 2
 
 
-def sampled_rows(ks, stride: int) -> list[int]:
-    """The rows of a compiled-loop block (step numbers ``ks``) that an observer of ``stride`` would have seen
-    through ``step()``: the generic loop calls it when ``k % stride == 0``."""
-    return [r for r, k in enumerate(ks) if k % stride == 0]
+def sampled_rows(ks: np.ndarray, stride: int) -> np.ndarray:
+    """The rows of a compiled-loop block (step numbers ``ks``, an integer array) that an observer of ``stride``
+    would have seen through ``step()``: the generic loop calls it when ``k % stride == 0``."""
+    return np.flatnonzero(np.asarray(ks) % stride == 0)
 
 
 class Observer:
@@ -51,8 +51,9 @@ class Observer:
     def block_signals(self, sim) -> list[str] | None:
         return None
 
-    def step_block(self, sim, ks: list[int], ts: list[float], data: dict) -> None:
-        """Base steps ``ks`` (the interval's step counts after each step) at times ``ts``: the same calls as
+    def step_block(self, sim, ks: np.ndarray, ts: np.ndarray, data: dict) -> None:
+        """Base steps ``ks`` (the interval's step counts after each step, an integer array) at times ``ts`` (an
+        array): the same calls as
         ``step(sim, t)`` for every k with ``k % stride == 0``. ``data[ref]`` holds one row per base step of each
         signal named by :meth:`block_signals` (rows valid during the call only); the components hold the state
         after the last of them."""
@@ -88,8 +89,10 @@ class Recorder(Observer):
         self.chunk = int(chunk)
         self.keep = bool(keep) or self.path is None
         self.rows = 0
-        self._buf_t: list[float] = []
-        self._buf_phase: list[int] = []
+        # buffered rows, as blocks of rows (one row from step(), many from step_block())
+        self._buffered = 0
+        self._buf_t: list[np.ndarray] = []
+        self._buf_phase: list[np.ndarray] = []
         self._buf: dict[str, list[np.ndarray]] = {s: [] for s in self.signals}
         self._kept: dict[str, list[np.ndarray]] = {s: [] for s in ["time", "phase", *self.signals]}
         self._file = None
@@ -179,23 +182,28 @@ class Recorder(Observer):
         stride = self.stride
         phase = PHASE_CODE.get(sim.phase, 0)
         rows = sampled_rows(ks, stride)
-        if not rows:
+        if not len(rows):
             return
-        blocks = {ref: data[ref][rows].copy() for ref in self.signals}
-        for j, r in enumerate(rows):
-            self._buf_t.append(ts[r])
-            self._buf_phase.append(phase)
+        # a block is split where a flush falls, so that the file's chunks are the generic loop's
+        start = 0
+        while start < len(rows):
+            take = rows[start:start + self.chunk - self._buffered]
+            self._buf_t.append(np.asarray(ts)[take])
+            self._buf_phase.append(np.full(len(take), phase, dtype=np.int8))
             for ref in self.signals:
-                self._buf[ref].append(blocks[ref][j])
-            if len(self._buf_t) >= self.chunk:
+                self._buf[ref].append(data[ref][take].copy())
+            self._buffered += len(take)
+            start += len(take)
+            if self._buffered >= self.chunk:
                 self.flush()
 
     def _sample(self, sim, t):
-        self._buf_t.append(t)
-        self._buf_phase.append(PHASE_CODE.get(sim.phase, 0))
+        self._buf_t.append(np.array([t], dtype=float))
+        self._buf_phase.append(np.array([PHASE_CODE.get(sim.phase, 0)], dtype=np.int8))
         for ref in self.signals:
-            self._buf[ref].append(np.array(sim.value(ref)))
-        if len(self._buf_t) >= self.chunk:
+            self._buf[ref].append(np.array(sim.value(ref))[None])
+        self._buffered += 1
+        if self._buffered >= self.chunk:
             self.flush()
 
     def _ensure_space(self, n: int) -> None:
@@ -215,13 +223,13 @@ class Recorder(Observer):
                                         f"the {self.rows} rows written so far are kept", str(self.path))
 
     def flush(self):
-        n = len(self._buf_t)
+        n = self._buffered
         if not n:
             return
         if self._file is not None:
             self._ensure_space(n)
-        t, ph = np.asarray(self._buf_t), np.asarray(self._buf_phase, dtype=np.int8)
-        block = {ref: np.vstack(self._buf[ref]) for ref in self.signals}
+        t, ph = np.concatenate(self._buf_t), np.concatenate(self._buf_phase)
+        block = {ref: np.concatenate(self._buf[ref]) for ref in self.signals}
         if self.keep:
             self._kept["time"].append(t)
             self._kept["phase"].append(ph)
@@ -246,6 +254,10 @@ class Recorder(Observer):
                 self._csv.writerow(row)
             self._file.flush()
         self.rows += n
+        self._clear_buffer()
+
+    def _clear_buffer(self):
+        self._buffered = 0
         self._buf_t.clear()
         self._buf_phase.clear()
         for ref in self.signals:
@@ -277,7 +289,7 @@ class Recorder(Observer):
             except OSError as exc:  # disk full: what was flushed before stays readable
                 failed = exc
                 error = error or exc
-                self._buf_t.clear()
+                self._clear_buffer()
             if self._kind == "hdf5":
                 self._file.attrs["complete"] = error is None
                 if error is not None:
@@ -450,9 +462,9 @@ class Progress(Observer):
         return []
 
     def step_block(self, sim, ks, ts, data):
-        last = [t for k, t in zip(ks, ts) if k % self.stride == 0]
-        if last:
-            self.step(sim, last[-1])
+        rows = sampled_rows(ks, self.stride)
+        if len(rows):
+            self.step(sim, float(ts[rows[-1]]))
 
     def end(self, sim, error):
         if self.bar is not None:
@@ -512,14 +524,14 @@ class SteadyWindows(Observer):
         if not self.active:
             return
         rows = sampled_rows(ks, self.stride)
-        if not rows:
+        if not len(rows):
             return
         n = self._n
         keep = rows[-n:]  # the ring keeps the last n samples
         m = len(keep)
         pos = (self._pos + (len(rows) - m)) % n
         idx = (pos + np.arange(m)) % n
-        self._t[idx] = [ts[r] for r in keep]
+        self._t[idx] = ts[keep]
         for r in self.signals:
             self._data[r][idx] = data[r][keep]
         self._pos = (pos + m) % n

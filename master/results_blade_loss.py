@@ -71,17 +71,17 @@ class Peaks(Observer):
                                               f"bearing{k}.{self._taps[BEARINGS.index(k)][3]}", f"rotor.X_brg{k}")]
 
     def step_block(self, sim, ks, ts, data):
-        """As step() over the block (the same maxima: max is exact, and math.hypot row by row)."""
+        """As step() over the block (the same maxima: max is exact, and hypot row by row)."""
         if not self.active:
             return
         rows = sampled_rows(ks, self.stride)
-        if not rows:
+        if not len(rows):
             return
         for k, (p, b, q, s, rotor, xb) in zip(BEARINGS, self._taps):
             p["Q"] = max(p["Q"], float(data[f"bearing{k}.{q}"][rows].max()))
             p["sigma"] = max(p["sigma"], float(data[f"bearing{k}.{s}"][rows, INNER].max()))
-            x = data[f"rotor.{xb}"][rows, :2].tolist()
-            p["whirl"] = max(p["whirl"], max(math.hypot(a, c) for a, c in x))
+            x = data[f"rotor.{xb}"][rows]
+            p["whirl"] = max(p["whirl"], float(np.hypot(x[:, 0], x[:, 1]).max()))
 
     def step(self, sim, t):
         if not self.active:
@@ -91,7 +91,7 @@ class Peaks(Observer):
             p["Q"] = max(p["Q"], *y[q])
             p["sigma"] = max(p["sigma"], y[s][INNER])
             x = rotor.y[xb]
-            p["whirl"] = max(p["whirl"], math.hypot(x[0], x[1]))
+            p["whirl"] = max(p["whirl"], float(np.hypot(x[0], x[1])))
 
 
 def observers(sc, speed_rpm: float):
@@ -158,10 +158,16 @@ def extract(sc, sim, obs, report) -> dict:
 
 
 # -- figures ------------------------------------------------------------------------------------------
-def figures(sc, data: dict, out: Path) -> list[str]:
+def figures(sc, data, out: Path, pool=None) -> list[str]:
     """PNG figures like the paper's Figs. 9-14 from the recorded time series (``data``: ``time``, ``phase`` and
-    one array per recorded port, as :meth:`Recorder.data` gives them); returns their file names. The drawing
-    is in :mod:`rotorcosim.master.figures_blade_loss`."""
-    from .figures_blade_loss import figures as draw
+    one array per recorded port, as :meth:`Recorder.data` gives them, or the run's
+    :class:`~rotorcosim.master.series.SeriesFile`); returns their file names. The drawing is in
+    :mod:`rotorcosim.master.figures_blade_loss`; with a usable :class:`~rotorcosim.master.figure_pool.FigurePool`
+    and a file, the figures are drawn in its worker processes."""
+    from . import figures_blade_loss as fb
+    from .series import SeriesFile
 
-    return draw(sc, data, out, unbalance_force(sc), sc.schedule.get("speed_rpm"))
+    F_u, speed = unbalance_force(sc), sc.schedule.get("speed_rpm")
+    if pool is not None and pool.usable and isinstance(data, SeriesFile) and len(data["time"]):
+        return pool.draw(fb, fb.JOBS, data.path, out, fb.context(sc, F_u, speed))
+    return fb.figures(sc, data, out, F_u, speed)

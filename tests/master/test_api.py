@@ -221,3 +221,16 @@ def test_version(capsys):
     with pytest.raises(SystemExit) as info:
         main(["--version"])
     assert info.value.code == 0 and capsys.readouterr().out.strip() == f"rotorcosim {rotorcosim.__version__}"
+
+
+def test_a_file_run_reads_its_arrays_from_the_file_and_they_equal_a_memory_run(tmp_path):
+    """With out= and HDF5 the recorder keeps nothing in memory (a 2-minute monolithic run records ~0.5 GB): the
+    result reads the file. Its arrays must be the very ones an in-memory run of the same scenario gives."""
+    from rotorcosim.master.series import SeriesFile
+
+    on_file = rotorcosim.simulate("toy_thermomechanical", duration=1.0, record=["node.T"], out=tmp_path / "a")
+    in_memory = rotorcosim.simulate("toy_thermomechanical", duration=1.0, record=["node.T"])
+    assert isinstance(on_file._data, SeriesFile) and not isinstance(in_memory._data, SeriesFile)
+    assert np.array_equal(on_file.time, in_memory.time)
+    assert np.array_equal(on_file["node.T"], in_memory["node.T"])
+    assert list(on_file.phase) == list(in_memory.phase)

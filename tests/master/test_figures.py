@@ -78,3 +78,50 @@ def test_paper_figure_numbers_only_on_the_papers_cases(tmp_path):
     assert not is_paper_case(sc.swap("damper0", "damper.fe"), 2850.0)
     example = rotorcosim.load_scenario(Path(__file__).resolve().parents[2] / "docs/examples/linear_damper/linear_damper.toml")
     assert not is_paper_case(example, 2850.0)
+
+
+def test_envelope_keeps_each_buckets_extremes_in_time_order():
+    from rotorcosim.master.figures_blade_loss import envelope
+
+    t = np.linspace(0.0, 120.0, 1_200_001)  # a 2-minute monolithic run at the 1e-4 s record step
+    y = np.sin(W * t) * (1 + t / 120)
+    te, ye = envelope(t, y, 4000)
+    assert len(te) <= 4000 and np.all(np.diff(te) >= 0)
+    assert ye.max() == y.max() and ye.min() == y.min()
+    # every sample lies within the envelope of its bucket: max of |y| per 1 % of the run is kept
+    for part in np.array_split(np.arange(len(t)), 100):
+        inside = (te >= t[part[0]]) & (te <= t[part[-1]])
+        assert ye[inside].max() >= y[part].max() - 1e-3 and ye[inside].min() <= y[part].min() + 1e-3
+    short = np.arange(10.0)
+    assert envelope(short, short, 4000)[0] is short  # short series drawn as they are
+
+
+def test_figures_drawn_in_worker_processes_equal_those_drawn_here(tmp_path):
+    """The pool draws from the HDF5 file; the same series drawn in this process gives the same PNG bytes."""
+    import h5py
+
+    from rotorcosim.master import figures_blade_loss as fb
+    from rotorcosim.master.figure_pool import FigurePool
+    from rotorcosim.master.series import SeriesFile
+
+    d = synthetic(True)
+    path = tmp_path / "timeseries.h5"
+    with h5py.File(path, "w") as f:
+        for k, v in d.items():
+            f[k] = v
+    sc = rotorcosim.load_scenario("blade_loss_2850")
+    ctx = fb.context(sc, 2850.0, 16000.0)
+    (tmp_path / "here").mkdir()
+    (tmp_path / "pool").mkdir()
+    here = fb.figures(sc, SeriesFile(path), tmp_path / "here", 2850.0, 16000.0)
+    pool = FigurePool()
+    try:
+        if not pool.usable:
+            pytest.skip("one core (or inside a worker): the figures are drawn in process, nothing to compare")
+        drawn = pool.draw(fb, fb.JOBS, path, tmp_path / "pool", ctx)
+    finally:
+        pool.close()
+    assert drawn == here and len(here) == 6
+    for name in here:
+        assert (tmp_path / "pool" / name).read_bytes() == (tmp_path / "here" / name).read_bytes(), name
+    assert not list((tmp_path / "pool").glob("*.part"))
