@@ -128,3 +128,28 @@ def test_inner_race_stress_law_reproduces_the_paper_pairs(bearing):
         assert 1e-6 * g.outer.max_stress(Q) / sigma_paper < 0.93
     if bearing == 0:
         assert 1e-6 * g.outer.max_stress(658.6) == pytest.approx(1960.0, rel=0.01)
+
+
+@pytest.mark.parametrize("m", [0.0, 1e-6, 0.3, 0.9, 0.99, 0.999999])
+def test_elliptic_integrals_by_agm_match_scipy(m):
+    """hertz.elliptic_KE (arithmetic-geometric mean) against scipy.special's K(m), E(m) (Cephes)."""
+    from scipy.special import ellipe, ellipk
+
+    from rotorcosim.components.bearing.hertz import elliptic_KE
+
+    K, E = elliptic_KE(m)
+    assert K == pytest.approx(float(ellipk(m)), rel=1e-14) and E == pytest.approx(float(ellipe(m)), rel=1e-14)
+
+
+def test_ellipticity_solves_its_equation_like_brentq():
+    from scipy.optimize import brentq
+    from scipy.special import ellipe, ellipk
+
+    from rotorcosim.components.bearing.hertz import ellipticity
+
+    for ratio in (1.5, 8.0, 25.0, 400.0):
+        def g(k):
+            m = 1.0 - 1.0 / (k * k)
+            return (k * k * ellipe(m) - ellipk(m)) / (ellipk(m) - ellipe(m)) - ratio
+
+        assert ellipticity(ratio) == pytest.approx(brentq(g, 1.0 + 1e-9, 100.0, xtol=1e-14, rtol=1e-14), rel=1e-12)
