@@ -1,22 +1,30 @@
-"""The figures of a run drawn in worker processes, one figure a task.
+"""The figures of a run drawn in worker processes, a few figures each.
 
 Drawing the six blade-loss figures takes a few seconds of matplotlib, about as long as the compiled 2-minute
-simulation itself; the simulation uses one core. So the workers start (and import matplotlib) while the run goes,
-on the other cores, and draw the figures from the time series file in parallel once it is closed.
+simulation itself, which uses one core. So the workers start (and import matplotlib) while the run goes, on the
+other cores, and draw the figures from the time series file in parallel once it is closed.
 
-Used only where it helps and is safe: at least two cores, in a process that is not itself a worker (a sweep's
-cases already fill the cores; daemonic processes cannot have children). Anything that goes wrong with the pool
-(it cannot start, a worker dies) falls back to drawing in this process: the figures never depend on it.
+The workers are fresh interpreters running ``python -m rotorcosim.master.figure_worker``, not multiprocessing's
+children: those would re-run the user's script (multiprocessing's "spawn" imports ``__main__``), and a forked
+copy of a process with threads is not safe. A worker reads one request (JSON on its stdin) and answers on stdout.
+
+Used only where it helps: at least two cores, in a process that is not itself a worker (a sweep's cases already
+fill the cores). Anything that goes wrong with a worker (it cannot start, import or draw, it dies) falls back to
+drawing in this process: the figures never depend on the workers, and a drawing error is raised from here.
 """
 from __future__ import annotations
 
+import json
 import multiprocessing
 import os
-from concurrent.futures import ProcessPoolExecutor
-from concurrent.futures.process import BrokenProcessPool
+import subprocess
+import sys
+from dataclasses import asdict
 from pathlib import Path
 
 WORKERS = 2
+#: how long a worker may take for its figures before this process draws them itself [s]
+TIMEOUT_S = 300.0
 
 
 def _cores() -> int:
@@ -26,74 +34,67 @@ def _cores() -> int:
         return os.cpu_count() or 1
 
 
-def _warm() -> None:
-    import signal
-
-    # Ctrl-C is the parent's to handle (it checkpoints and exits 130); a worker just ends with it
-    signal.signal(signal.SIGINT, signal.SIG_IGN)
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot  # noqa: F401  (the import is the slow part of the first figure)
-
-    from . import figures_blade_loss  # noqa: F401
-
-
-def _draw(module: str, job: str, series: str, out: str, ctx) -> list[str]:
-    import importlib
-
-    from .series import SeriesFile
-
-    return importlib.import_module(module).draw(job, SeriesFile(series), Path(out), ctx)
-
-
 class FigurePool:
     """Worker processes for figures, or none (:attr:`usable` False) where they would not help."""
 
     def __init__(self, workers: int = WORKERS):
-        self._pool = None
-        if _cores() < 2 or multiprocessing.parent_process() is not None or multiprocessing.current_process().daemon:
+        self._procs: list[subprocess.Popen] = []
+        self.by_workers: list[str] = []
+        if _cores() < 2 or multiprocessing.parent_process() is not None or os.environ.get("ROTORCOSIM_FIGURE_WORKER"):
             return
-        try:
-            pool = ProcessPoolExecutor(max_workers=workers, mp_context=multiprocessing.get_context("spawn"),
-                                       initializer=_warm)
-            # start the workers now, so that their imports overlap the simulation
-            self._warming = [pool.submit(os.getpid) for _ in range(workers)]
-            self._pool = pool
-        except (OSError, RuntimeError, ValueError):
-            self._pool = None
+        env = {**os.environ, "ROTORCOSIM_FIGURE_WORKER": "1"}
+        for _ in range(workers):
+            try:
+                self._procs.append(subprocess.Popen(
+                    [sys.executable, "-m", "rotorcosim.master.figure_worker"], stdin=subprocess.PIPE,
+                    stdout=subprocess.PIPE, stderr=subprocess.PIPE, env=env, text=True,
+                    start_new_session=True))  # Ctrl-C is the parent's to handle; close() ends the workers
+            except OSError:
+                break
 
     @property
     def usable(self) -> bool:
-        return self._pool is not None
+        return bool(self._procs)
 
     def draw(self, module, jobs, series: Path, out: Path, ctx) -> list[str]:
-        """Draw ``jobs`` with ``module.draw(job, SeriesFile(series), out, ctx)``; returns the file names in the
-        jobs' order. A job whose worker died is drawn here instead; an error of the drawing itself is raised."""
+        """Draw ``jobs`` with ``module.draw(job, SeriesFile(series), out, ctx)``, shared among the workers;
+        returns the file names in the jobs' order. A worker that fails leaves its jobs to this process."""
         from .series import SeriesFile
 
-        futures = {}
-        if self._pool is not None:
+        shares = {i: list(jobs[i::len(self._procs)]) for i in range(len(self._procs))} if self._procs else {}
+        for i, p in enumerate(self._procs):
+            req = {"module": module.__name__, "jobs": shares[i], "series": str(series), "out": str(out),
+                   "context": asdict(ctx)}
             try:
-                futures = {job: self._pool.submit(_draw, module.__name__, job, str(series), str(out), ctx)
-                           for job in jobs}
-            except (BrokenProcessPool, RuntimeError):
-                futures = {}
-        names: list[str] = []
+                p.stdin.write(json.dumps(req) + "\n")
+                p.stdin.flush()  # not closed: communicate() below closes it
+            except OSError:  # the worker is gone: its share is drawn here
+                pass
+        drawn: dict[str, list[str]] = {}
+        for i, p in enumerate(self._procs):
+            try:
+                answer, _ = p.communicate(timeout=TIMEOUT_S)
+                if p.returncode == 0:
+                    drawn.update(json.loads(answer.strip().splitlines()[-1])["names"])
+            except (subprocess.TimeoutExpired, ValueError, KeyError, IndexError, OSError):
+                p.kill()
+        self._procs = []
+        self.by_workers = sorted(drawn)  # which jobs the workers drew (the rest were drawn here)
         local = None
+        names: list[str] = []
         for job in jobs:
-            fut = futures.get(job)
-            if fut is not None:
-                try:
-                    names += fut.result()
-                    continue
-                except BrokenProcessPool:
-                    pass
-            local = local or SeriesFile(series)
-            names += module.draw(job, local, out, ctx)
+            if job not in drawn:
+                local = local or SeriesFile(series)
+                drawn[job] = module.draw(job, local, out, ctx)
+            names += drawn[job]
         return names
 
     def close(self) -> None:
-        if self._pool is not None:
-            self._pool.shutdown(wait=False, cancel_futures=True)
-            self._pool = None
+        """End workers that were never given their figures (the run failed or drew none)."""
+        for p in self._procs:
+            try:
+                p.kill()
+                p.communicate(timeout=5)
+            except (OSError, subprocess.TimeoutExpired, ValueError):
+                pass
+        self._procs = []

@@ -97,7 +97,8 @@ def test_envelope_keeps_each_buckets_extremes_in_time_order():
 
 
 def test_figures_drawn_in_worker_processes_equal_those_drawn_here(tmp_path):
-    """The pool draws from the HDF5 file; the same series drawn in this process gives the same PNG bytes."""
+    """The pool's workers (fresh interpreters: python -m rotorcosim.master.figure_worker) draw from the HDF5
+    file; the same series drawn in this process gives the same PNG bytes."""
     import h5py
 
     from rotorcosim.master import figures_blade_loss as fb
@@ -121,6 +122,7 @@ def test_figures_drawn_in_worker_processes_equal_those_drawn_here(tmp_path):
         drawn = pool.draw(fb, fb.JOBS, path, tmp_path / "pool", ctx)
     finally:
         pool.close()
+    assert pool.by_workers == sorted(fb.JOBS)  # the workers drew them all: no fallback to this process
     assert drawn == here and len(here) == 6
     for name in here:
         assert (tmp_path / "pool" / name).read_bytes() == (tmp_path / "here" / name).read_bytes(), name
