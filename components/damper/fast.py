@@ -178,34 +178,50 @@ def _clipped(NT, G, TW, toff, bounds, Wc, Ws, eps, u0, du, n, a, b, floor):
     ht0, ht1, ht2, ht3 = G[k, 13 - tlo[0]], G[k + 1, 13 - tlo[1]], G[k + 2, 13 - tlo[2]], G[k + 3, 13 - tlo[3]]
     a0, a1, a2, a3 = ca[0], ca[1], ca[2], ca[3]
     b0, b1, b2, b3 = cb[0], cb[1], cb[2], cb[3]
-    # classify the tiles (a branch-free pass that vectorises): mf = 1 wholly full-film, mc = 1 wholly cavitated
+    # one branch-free pass over the tiles (it vectorises): mf = 1 wholly full-film, mc = 1 wholly cavitated; the
+    # full-film tiles' sums per table point j (columns as G's 0-3) and the cavitated tiles' weights
     flo = floor + tol
     fhi = floor - tol
     mf = np.empty(nt)
     mc = np.empty(nt)
+    g00, g01, g02, g03 = G[k, 0], G[k, 1], G[k, 2], G[k, 3]
+    g10, g11, g12, g13 = G[k + 1, 0], G[k + 1, 1], G[k + 1, 2], G[k + 1, 3]
+    g20, g21, g22, g23 = G[k + 2, 0], G[k + 2, 1], G[k + 2, 2], G[k + 2, 3]
+    g30, g31, g32, g33 = G[k + 3, 0], G[k + 3, 1], G[k + 3, 2], G[k + 3, 3]
+    TWc = TW[0]
+    TWs = TW[1]
+    s00 = s01 = s02 = s03 = s10 = s11 = s12 = s13 = 0.0
+    s20 = s21 = s22 = s23 = s30 = s31 = s32 = s33 = 0.0
+    cav_c = 0.0
+    cav_s = 0.0
     for t in range(nt):
         lo = (a0 * lr0[t] + a1 * lr1[t] + a2 * lr2[t] + a3 * lr3[t]
               + b0 * lt0[t] + b1 * lt1[t] + b2 * lt2[t] + b3 * lt3[t])
         hi = (a0 * hr0[t] + a1 * hr1[t] + a2 * hr2[t] + a3 * hr3[t]
               + b0 * ht0[t] + b1 * ht1[t] + b2 * ht2[t] + b3 * ht3[t])
-        mf[t] = 1.0 if lo > flo else 0.0
-        mc[t] = 1.0 if hi < fhi else 0.0
-    # the full-film tiles' sums per table point (rows j, columns as G's 0-3), the cavitated tiles' weights
-    full = np.empty((4, 4))
-    for j in range(4):
-        for c in range(4):
-            g = G[k + j, c]
-            sm = 0.0
-            for t in range(nt):
-                sm += mf[t] * g[t]
-            full[j, c] = sm
-    cav_c = 0.0
-    cav_s = 0.0
-    TWc = TW[0]
-    TWs = TW[1]
-    for t in range(nt):
-        cav_c += mc[t] * TWc[t]
-        cav_s += mc[t] * TWs[t]
+        f = 1.0 if lo > flo else 0.0
+        v = 1.0 if hi < fhi else 0.0
+        mf[t] = f
+        mc[t] = v
+        s00 += f * g00[t]
+        s01 += f * g01[t]
+        s02 += f * g02[t]
+        s03 += f * g03[t]
+        s10 += f * g10[t]
+        s11 += f * g11[t]
+        s12 += f * g12[t]
+        s13 += f * g13[t]
+        s20 += f * g20[t]
+        s21 += f * g21[t]
+        s22 += f * g22[t]
+        s23 += f * g23[t]
+        s30 += f * g30[t]
+        s31 += f * g31[t]
+        s32 += f * g32[t]
+        s33 += f * g33[t]
+        cav_c += v * TWc[t]
+        cav_s += v * TWs[t]
+    full = ((s00, s01, s02, s03), (s10, s11, s12, s13), (s20, s21, s22, s23), (s30, s31, s32, s33))
     # the undecided tiles node by node
     acc = np.zeros(8)
     for t in range(nt):
@@ -217,8 +233,8 @@ def _clipped(NT, G, TW, toff, bounds, Wc, Ws, eps, u0, du, n, a, b, floor):
     sd = np.zeros(4)
     for c in range(4):
         for j in range(4):
-            sw[c] += ws[j] * full[j, c]
-            sd[c] += ds[j] * full[j, c]
+            sw[c] += ws[j] * full[j][c]
+            sd[c] += ds[j] * full[j][c]
     # G columns: 0 Wc P_r, 1 Ws P_r, 2 Wc P_t, 3 Ws P_t
     fc = acc[0] + a * sw[0] + b * sw[2] + floor * cav_c
     fs = acc[1] + a * sw[1] + b * sw[3] + floor * cav_s
