@@ -158,32 +158,32 @@ def _clipped(NT, G, TW, toff, bounds, Wc, Ws, eps, u0, du, n, a, b, floor):
     k, w0, w1, w2, w3, d0, d1, d2, d3 = _lagrange4(u, u0, du, n)
     # the tile bounds lo <= p_i <= hi: sum over the table points j of w_j (a P_r + b P_t), each term bounded by
     # the tile's min or max of P_r and P_t as the signs of w_j a and w_j b say (columns 4-7 of G)
-    ws = (w0, w1, w2, w3)
-    ca = np.empty(4)
-    cb = np.empty(4)
-    rlo = np.empty(4, np.int64)
-    tlo = np.empty(4, np.int64)
-    for j in range(4):
-        ca[j] = ws[j] * a
-        cb[j] = ws[j] * b
-        rlo[j] = 4 if ca[j] >= 0.0 else 5
-        tlo[j] = 6 if cb[j] >= 0.0 else 7
+    a0, a1, a2, a3 = w0 * a, w1 * a, w2 * a, w3 * a
+    b0, b1, b2, b3 = w0 * b, w1 * b, w2 * b, w3 * b
+    r0 = 4 if a0 >= 0.0 else 5
+    r1 = 4 if a1 >= 0.0 else 5
+    r2 = 4 if a2 >= 0.0 else 5
+    r3 = 4 if a3 >= 0.0 else 5
+    q0 = 6 if b0 >= 0.0 else 7
+    q1 = 6 if b1 >= 0.0 else 7
+    q2 = 6 if b2 >= 0.0 else 7
+    q3 = 6 if b3 >= 0.0 else 7
     # a round-off margin: a tile within it of the floor is summed node by node (as the untiled sum would)
     tol = 1e-9 * (abs(a) * (bounds[k, 0] + bounds[k + 1, 0] + bounds[k + 2, 0] + bounds[k + 3, 0])
                   + abs(b) * (bounds[k, 1] + bounds[k + 1, 1] + bounds[k + 2, 1] + bounds[k + 3, 1]))
     nt = G.shape[2]
-    lr0, lr1, lr2, lr3 = G[k, rlo[0]], G[k + 1, rlo[1]], G[k + 2, rlo[2]], G[k + 3, rlo[3]]
-    lt0, lt1, lt2, lt3 = G[k, tlo[0]], G[k + 1, tlo[1]], G[k + 2, tlo[2]], G[k + 3, tlo[3]]
-    hr0, hr1, hr2, hr3 = G[k, 9 - rlo[0]], G[k + 1, 9 - rlo[1]], G[k + 2, 9 - rlo[2]], G[k + 3, 9 - rlo[3]]
-    ht0, ht1, ht2, ht3 = G[k, 13 - tlo[0]], G[k + 1, 13 - tlo[1]], G[k + 2, 13 - tlo[2]], G[k + 3, 13 - tlo[3]]
-    a0, a1, a2, a3 = ca[0], ca[1], ca[2], ca[3]
-    b0, b1, b2, b3 = cb[0], cb[1], cb[2], cb[3]
+    # (9 - r is the other column of the pair 4, 5; 13 - q of 6, 7)
+    lr0, lr1, lr2, lr3 = G[k, r0], G[k + 1, r1], G[k + 2, r2], G[k + 3, r3]
+    lt0, lt1, lt2, lt3 = G[k, q0], G[k + 1, q1], G[k + 2, q2], G[k + 3, q3]
+    hr0, hr1, hr2, hr3 = G[k, 9 - r0], G[k + 1, 9 - r1], G[k + 2, 9 - r2], G[k + 3, 9 - r3]
+    ht0, ht1, ht2, ht3 = G[k, 13 - q0], G[k + 1, 13 - q1], G[k + 2, 13 - q2], G[k + 3, 13 - q3]
     # one branch-free pass over the tiles (it vectorises): mf = 1 wholly full-film, mc = 1 wholly cavitated; the
     # full-film tiles' sums per table point j (columns as G's 0-3) and the cavitated tiles' weights
     flo = floor + tol
     fhi = floor - tol
-    mf = np.empty(nt)
-    mc = np.empty(nt)
+    masks = np.empty(2 * nt)   # one allocation per call; views from offset 0 (see _clipped_nodes)
+    mf = masks[:nt]
+    mc = masks[nt:]
     g00, g01, g02, g03 = G[k, 0], G[k, 1], G[k, 2], G[k, 3]
     g10, g11, g12, g13 = G[k + 1, 0], G[k + 1, 1], G[k + 1, 2], G[k + 1, 3]
     g20, g21, g22, g23 = G[k + 2, 0], G[k + 2, 1], G[k + 2, 2], G[k + 2, 3]
@@ -221,27 +221,28 @@ def _clipped(NT, G, TW, toff, bounds, Wc, Ws, eps, u0, du, n, a, b, floor):
         s33 += f * g33[t]
         cav_c += v * TWc[t]
         cav_s += v * TWs[t]
-    full = ((s00, s01, s02, s03), (s10, s11, s12, s13), (s20, s21, s22, s23), (s30, s31, s32, s33))
     # the undecided tiles node by node
     acc = np.zeros(8)
     for t in range(nt):
         if mf[t] == 0.0 and mc[t] == 0.0:
             _clipped_nodes(NT, Wc, Ws, n, k, w0, w1, w2, w3, d0, d1, d2, d3, a, b, floor, toff[t], toff[t + 1],
                            acc)
-    ds = (d0, d1, d2, d3)
-    sw = np.zeros(4)
-    sd = np.zeros(4)
-    for c in range(4):
-        for j in range(4):
-            sw[c] += ws[j] * full[j][c]
-            sd[c] += ds[j] * full[j][c]
-    # G columns: 0 Wc P_r, 1 Ws P_r, 2 Wc P_t, 3 Ws P_t
-    fc = acc[0] + a * sw[0] + b * sw[2] + floor * cav_c
-    fs = acc[1] + a * sw[1] + b * sw[3] + floor * cav_s
+    # the full-film tiles' sums interpolated (w) and differentiated (d) in u; G columns: 0 Wc P_r, 1 Ws P_r,
+    # 2 Wc P_t, 3 Ws P_t
+    sw0 = w0 * s00 + w1 * s10 + w2 * s20 + w3 * s30
+    sw1 = w0 * s01 + w1 * s11 + w2 * s21 + w3 * s31
+    sw2 = w0 * s02 + w1 * s12 + w2 * s22 + w3 * s32
+    sw3 = w0 * s03 + w1 * s13 + w2 * s23 + w3 * s33
+    sd0 = d0 * s00 + d1 * s10 + d2 * s20 + d3 * s30
+    sd1 = d0 * s01 + d1 * s11 + d2 * s21 + d3 * s31
+    sd2 = d0 * s02 + d1 * s12 + d2 * s22 + d3 * s32
+    sd3 = d0 * s03 + d1 * s13 + d2 * s23 + d3 * s33
+    fc = acc[0] + a * sw0 + b * sw2 + floor * cav_c
+    fs = acc[1] + a * sw1 + b * sw3 + floor * cav_s
     du_deps = 1.0 / (1.0 - eps)
-    return (-2.0 * fc, -2.0 * fs, -2.0 * (acc[2] + sw[0]), -2.0 * (acc[3] + sw[2]), -2.0 * (acc[4] + sw[1]),
-            -2.0 * (acc[5] + sw[3]), -2.0 * (acc[6] + a * sd[0] + b * sd[2]) * du_deps,
-            -2.0 * (acc[7] + a * sd[1] + b * sd[3]) * du_deps)
+    return (-2.0 * fc, -2.0 * fs, -2.0 * (acc[2] + sw0), -2.0 * (acc[3] + sw2), -2.0 * (acc[4] + sw1),
+            -2.0 * (acc[5] + sw3), -2.0 * (acc[6] + a * sd0 + b * sd2) * du_deps,
+            -2.0 * (acc[7] + a * sd1 + b * sd3) * du_deps)
 
 
 @njit(cache=True)
