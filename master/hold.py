@@ -63,6 +63,10 @@ FIT_INTERVALS = 3
 #: against the TM intervals whose last ``hold_cycles`` cycles give the results and the hand-off windows (10 cycles
 #: in ``rotorcosim compare``); measured in docs/table6_levels.md
 RESTART_CYCLES = 2.0
+#: least spread (K) of a group temperature over the recorded cycles to drive a hand-off's TO law (_Driver)
+DRIVER_MIN_SPREAD_K = 1.0
+#: the driver's factor exp(b dT) is bounded to exp(+-DRIVER_MAX_LOG) (a factor 3: no extrapolation beyond)
+DRIVER_MAX_LOG = 1.1
 #: the zero of degrees C (K): Table 4 and ``rotorcosim compare`` give temperature errors relative to C values
 ZERO_CELSIUS_K = 273.15
 
@@ -184,7 +188,7 @@ class HandOff:
         return True
 
     # -- TO: hold -----------------------------------------------------------------------------------------
-    def start_to(self, probe, fired, cycles: int) -> None:
+    def start_to(self, probe, fired, cycles: int, group: list["HandOff"] | None = None) -> None:
         S = self.statistic(self.hold)
         self.held = _Held(self.link, S)
         if not self.updates or self.link.src.y[self.link.sport].size != 1 or not float(S[0]) > 0.0:
@@ -192,13 +196,16 @@ class HandOff:
         ref = probe(self.link.src, self.ports, self.window_inputs(cycles), self.link.sport)
         if ref is None or not ref > 0.0:
             return
-        e = self._fit(probe)
+        drive = _Driver.choose(self, group or [self], cycles)
+        e = self._fit(probe, drive)
         if e is not None:
             self.elasticity = e
-        self.held = _HeldLaw(self.link, S, ref, 1.0 if self.elasticity is None else self.elasticity, fired)
+        self.held = _HeldLaw(self.link, S, ref, 1.0 if self.elasticity is None else self.elasticity, fired, drive)
 
-    def _fit(self, probe) -> float | None:
+    def _fit(self, probe, drive: "_Driver | None" = None) -> float | None:
         pts = [c for cycles in self.history for c in cycles[len(cycles) // 2:]]
+        if drive is not None:   # the elasticity of what the driver's law leaves
+            pts = [(u, y * math.exp(-drive.b * (th - drive.w))) for (u, y), th in zip(pts, drive.series)]
         xs, zs = [], []
         for u, y in pts:
             if not y > 0.0:
@@ -235,12 +242,14 @@ class _Held:
 
 
 class _HeldLaw(_Held):
-    """S_w * (y_TO(t) / y_TO,w) ** e, y_TO(t) the producer's own TO output (its last TO step)."""
+    """S_w * (y_TO(t) / y_TO,w) ** e * exp(b (T(t) - T_w)), y_TO(t) the producer's own TO output (its last TO
+    step), T(t) the driver's present temperature (:class:`_Driver`, if any)."""
 
-    def __init__(self, link, S, ref, e, fired):
+    def __init__(self, link, S, ref, e, fired, drive=None):
         super().__init__(link, S)
         self.ref, self.e = float(ref), float(e)
         self.fired = fired     # false until the producer has stepped in this TO interval (its output is its TM one)
+        self.drive = drive
 
     def value(self) -> np.ndarray:
         if not self.fired():
@@ -248,7 +257,58 @@ class _HeldLaw(_Held):
         y = float(self.link.src.y[self.link.sport][0])
         if not y > 0.0:
             return self.S
-        return self.S * (y / self.ref) ** self.e
+        f = (y / self.ref) ** self.e
+        if self.drive is not None:
+            f *= self.drive.factor()
+        return self.S * f
+
+
+class _Driver:
+    """The temperature of a hand-off's group that drives its cycle means (DRIVER_* constants, module docstring):
+    among the thermal inputs of the producers whose hand-offs feed the same thermal component (the bearing's oil
+    and growths, the damper's SFD oil...), the scalar temperature that moved most over the settled cycles of the
+    recorded TM intervals; ``b`` the least-squares slope of ln(cycle mean) against it."""
+
+    def __init__(self, owner: "HandOff", port: str, k: int, b: float, w: float, series: list[float]):
+        self.owner, self.port, self.k = owner, port, k
+        self.b, self.w, self.series = float(b), float(w), series
+
+    def factor(self) -> float:
+        th = float(np.ravel(self.owner.link.src.u[self.port])[self.k])
+        return math.exp(max(-DRIVER_MAX_LOG, min(DRIVER_MAX_LOG, self.b * (th - self.w))))
+
+    @staticmethod
+    def choose(ho: "HandOff", group: list["HandOff"], cycles: int) -> "_Driver | None":
+        own = [[c for c in cyc[len(cyc) // 2:]] for cyc in ho.history]
+        ys = [y for cyc in own for _, y in cyc]
+        if len(ys) < 3 or not all(y > 0.0 for y in ys):
+            return None
+        z = np.log(np.array(ys))
+        best = None
+        for g in group:
+            if len(g.history) != len(ho.history) or any(len(a) != len(b) for a, b in zip(g.history, ho.history)):
+                continue    # not recorded cycle for cycle with this hand-off
+            col = 0
+            for p in g.ports:
+                var = g.link.src.variable(p)
+                for k in range(var.size):
+                    if var.unit == "K":
+                        th = np.array([u[col + k] for cyc in g.history for u, _ in cyc[len(cyc) // 2:]])
+                        spread = float(np.ptp(th))
+                        if spread < DRIVER_MIN_SPREAD_K:
+                            continue
+                        r = abs(float(np.corrcoef(th, z)[0, 1]))
+                        if best is None or r > best[0]:
+                            best = (r, g, p, k, th, col + k)
+                col += var.size
+        if best is None:
+            return None
+        _, g, p, k, th, col = best
+        dth = th - th.mean()
+        b = float(np.dot(dth, z - z.mean()) / np.dot(dth, dth))
+        last = g.cycles[-cycles:] if g.cycles else []
+        w = float(np.mean([u[col] for u, _ in last])) if last else float(np.ravel(g.link.src.u[p])[k])
+        return _Driver(g, p, k, b, w, list(th))
 
 
 @dataclass
@@ -260,6 +320,7 @@ class HoldReport:
     elasticity: dict[str, float] = field(default_factory=dict)
     errors: dict[str, float] = field(default_factory=dict)
     interval_estimates_pct: list[float] = field(default_factory=list)
+    drivers: dict[str, dict | None] = field(default_factory=dict)
 
     @property
     def last_estimate_pct(self) -> float | None:
@@ -270,7 +331,7 @@ class HoldReport:
         return max(self.interval_estimates_pct) if self.interval_estimates_pct else None
 
     def as_dict(self) -> dict:
-        return {"elasticity": dict(self.elasticity),
+        return {"elasticity": dict(self.elasticity), "drivers": dict(self.drivers),
                 "handoff_error_pct": {k: 100.0 * v for k, v in self.errors.items()},
                 "interval_estimates_pct": list(self.interval_estimates_pct),
                 "estimated_error_pct": self.estimated_error_pct}
@@ -353,10 +414,15 @@ class StaggeredHold:
         steps_taken = steps_taken if steps_taken is not None else {}
         for ho in self.handoffs:
             name, n0 = ho.link.con.src_component, steps_taken.get(ho.link.con.src_component, 0)
-            ho.start_to(probe, _Fired(steps_taken, name, n0), max(1, int(round(self.hold_cycles))))
+            group = [g for g in self.handoffs if g.link.con.dst_component == ho.link.con.dst_component]
+            ho.start_to(probe, _Fired(steps_taken, name, n0), max(1, int(round(self.hold_cycles))), group)
             ho.link.held = ho.held
             if isinstance(ho.held, _HeldLaw):
                 self.report.elasticity[f"{ho.link.con.src} -> {ho.link.con.dst}"] = ho.held.e
+                d = ho.held.drive
+                self.report.drivers[f"{ho.link.con.src} -> {ho.link.con.dst}"] = (
+                    None if d is None else {"input": f"{d.owner.link.con.src_component}.{d.port}[{d.k}]",
+                                            "slope_per_K": d.b, "window_K": d.w})
 
     def end(self, phase: str, t: float) -> None:
         """End of an interval at time t: after the first TM interval that follows a TO interval, the hand-off
