@@ -23,6 +23,15 @@ libcosim would call it a manipulator: it changes what crosses some connections, 
   adapt (in the rubbing cases the journal orbit grows as the oil thins: e ~ 0.25-0.3 measured, see
   docs/table6_levels.md). With too little temperature change to measure (``MIN_SPREAD``) the last measured ``e``
   is kept, else e = 1 (the frozen law).
+* The group driver (:class:`_Driver`): a producer's cycle means can drift with a temperature that is none of its
+  own inputs (with the stiff rub ring the bearing's drag follows the SFD oil through the orbit and the loads:
+  2 055 -> 1 215 W while the SFD oil warms 47 -> 80 C at 8 551 N, the bearing's own oil barely moving). Among the
+  thermal inputs (unit K) of the producers whose hand-offs feed the same thermal component (the group: drag,
+  film power, rub power into one bearing's network), the one whose cycle values correlate best with ln(cycle
+  mean) over the settled halves of the recorded TM intervals, if it moved by ``DRIVER_MIN_SPREAD_K``, is the
+  driver; its least-squares slope b multiplies the law by exp(b (T(t) - T_w)), T(t) that input's present value
+  in TO, T_w its window mean; ``e`` is then fitted to what the driver leaves. Only for producers with a TO update
+  (the rub power stays held: it has none). Measured in docs/table6_levels.md (5 700-14 252 N 3.4-4.7 % -> <= 0.7 %).
 * Every TO interval's hand-off error is measured at the next TM restart: the held value at the end of the TO
   interval against the window the mechanics produce at the same temperatures. Its effect on the temperatures is
   estimated by the thermal components themselves (through get_state / do_step / set_state, so any component that
@@ -65,7 +74,8 @@ FIT_INTERVALS = 3
 RESTART_CYCLES = 2.0
 #: least spread (K) of a group temperature over the recorded cycles to drive a hand-off's TO law (_Driver)
 DRIVER_MIN_SPREAD_K = 1.0
-#: the driver's factor exp(b dT) is bounded to exp(+-DRIVER_MAX_LOG) (a factor 3: no extrapolation beyond)
+#: the driver's factor exp(b dT) is bounded to exp(+-DRIVER_MAX_LOG) (a factor 3): a guard against extrapolating
+#: a slope far beyond its data; not reached in the seven Table 6 levels (largest |b dT| 0.81: the SFD oil, 14 252 N)
 DRIVER_MAX_LOG = 1.1
 #: the zero of degrees C (K): Table 4 and ``rotorcosim compare`` give temperature errors relative to C values
 ZERO_CELSIUS_K = 273.15
@@ -265,9 +275,11 @@ class _HeldLaw(_Held):
 
 class _Driver:
     """The temperature of a hand-off's group that drives its cycle means (DRIVER_* constants, module docstring):
-    among the thermal inputs of the producers whose hand-offs feed the same thermal component (the bearing's oil
-    and growths, the damper's SFD oil...), the scalar temperature that moved most over the settled cycles of the
-    recorded TM intervals; ``b`` the least-squares slope of ln(cycle mean) against it."""
+    among the thermal inputs of the producers whose hand-offs feed the same thermal component (the bearing's oil,
+    the damper's SFD oil...), the scalar temperature (unit K, moved by DRIVER_MIN_SPREAD_K) whose values correlate
+    best with ln(cycle mean) over the settled cycles of the recorded TM intervals; ``b`` the least-squares slope
+    of ln(cycle mean) against it. The group's hand-offs are recorded cycle for cycle (same TM intervals, same
+    rotor cycle); one recorded otherwise is skipped."""
 
     def __init__(self, owner: "HandOff", port: str, k: int, b: float, w: float, series: list[float]):
         self.owner, self.port, self.k = owner, port, k
