@@ -226,6 +226,9 @@ class Recorder(Observer):
         n = self._buffered
         if not n:
             return
+        if self._file is None and self._kind is not None:
+            raise ValueError(f"recorder: {self.path} was closed at the end of the run; a run that goes on after "
+                             f"its end needs a new recorder")
         if self._file is not None:
             self._ensure_space(n)
         t, ph = np.concatenate(self._buf_t), np.concatenate(self._buf_phase)
