@@ -216,38 +216,43 @@ class HandOff:
         # of TM and extrapolated over a long TO interval is not (the 2-minute run: 0.07 % against the monolithic
         # run with this rule, 1.4 % with the producer's own temperatures as drivers)
         drive = _Driver.choose(self, [g for g in (group or []) if g is not self], cycles)
-        if drive is not None and drive.r <= self._own_correlation(probe):
+        pts = self._settled_points(probe)
+        if drive is not None and drive.r <= self._own_correlation(pts):
             drive = None
-        e = self._fit(probe, drive)
+        e = self._fit(pts, drive)
         if e is not None:
             self.elasticity = e
         self.held = _HeldLaw(self.link, S, ref, 1.0 if self.elasticity is None else self.elasticity, fired, drive)
 
-    def _own_correlation(self, probe) -> float:
-        """|correlation| of ln(cycle mean) with ln(the producer's own TO output at the cycle's inputs), over the
-        settled cycles (0 when the own output did not move)."""
-        xs, zs = [], []
+    def _settled_points(self, probe) -> list[tuple[float | None, float]]:
+        """The fits' points, one per settled cycle of the recorded TM intervals: (ln of the producer's own TO
+        output at the cycle's inputs, None where it or the cycle mean is not positive; the cycle mean). Probed once
+        per TO interval for both the driver's test and the elasticity fit."""
+        out = []
         for u, y in (c for cycles in self.history for c in cycles[len(cycles) // 2:]):
             v = probe(self.link.src, self.ports, u, self.link.sport) if y > 0.0 else None
-            if v is not None and v > 0.0:
-                xs.append(math.log(v))
-                zs.append(math.log(y))
+            out.append((math.log(v) if v is not None and v > 0.0 else None, y))
+        return out
+
+    @staticmethod
+    def _own_correlation(pts) -> float:
+        """|correlation| of ln(cycle mean) with ln(the producer's own TO output at the cycle's inputs) over the
+        settled points (0 when the own output did not move)."""
+        xs = [x for x, _ in pts if x is not None]
+        zs = [math.log(y) for x, y in pts if x is not None]
         if len(xs) < 3 or float(np.ptp(xs)) < MIN_SPREAD:
             return 0.0
         return abs(float(np.corrcoef(xs, zs)[0, 1]))
 
-    def _fit(self, probe, drive: "_Driver | None" = None) -> float | None:
-        pts = [c for cycles in self.history for c in cycles[len(cycles) // 2:]]
+    @staticmethod
+    def _fit(pts, drive: "_Driver | None" = None) -> float | None:
         if drive is not None:   # the elasticity of what the driver's law leaves
-            pts = [(u, y * math.exp(-drive.b * (th - drive.w))) for (u, y), th in zip(pts, drive.series)]
+            pts = [(x, y * math.exp(-drive.b * (th - drive.w))) for (x, y), th in zip(pts, drive.series)]
         xs, zs = [], []
-        for u, y in pts:
-            if not y > 0.0:
+        for x, y in pts:
+            if x is None or not y > 0.0:
                 continue
-            v = probe(self.link.src, self.ports, u, self.link.sport)
-            if v is None or not v > 0.0:
-                continue
-            xs.append(math.log(v))
+            xs.append(x)
             zs.append(math.log(y))
         if len(xs) < 3:
             return None
