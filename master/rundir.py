@@ -9,12 +9,16 @@
   process ends however it ends, so a killed run never leaves a stale lock;
 * ``summary.json`` is written with ``status = "running"`` when the run starts, and with its final status
   (``complete``, ``interrupted``, ``failed``) when it ends: after a SIGKILL the folder says "running" with a
-  process id that is gone, never an older run's results as if current.
+  process id that is gone, never an older run's results as if current;
+* a folder holding only the summary of a run that failed before its first step (no results: a bad parameter
+  found when the components were set up) is taken by the next run without --overwrite, so that correcting the
+  input and running again into the same --out just works.
 """
 from __future__ import annotations
 
 import fcntl
 import fnmatch
+import json
 import os
 from pathlib import Path
 
@@ -89,7 +93,9 @@ class RunFolder:
             if "checkpoint.pkl" not in present:
                 raise OutputFolderError(f"--resume: {p} has no checkpoint.pkl (no interrupted run to continue)")
             return
-        if not present:
+        if not present or (not self.overwrite and self._failed_before_start(present)):
+            for name in present:
+                (p / name).unlink()
             return
         foreign = [n for n in present if not _ours(n) or (p / n).is_dir()]
         if not self.overwrite:
@@ -102,6 +108,18 @@ class RunFolder:
                                     f"({', '.join(foreign[:5])}): not clearing it; choose another folder")
         for name in present:
             (p / name).unlink()
+
+    def _failed_before_start(self, present: list[str]) -> bool:
+        """Only the summary of a run that failed before its first step (a bad parameter, an unknown signal):
+        it holds no results, so the corrected run may take the folder without --overwrite."""
+        if present != ["summary.json"]:
+            return False
+        try:
+            s = json.loads((self.path / "summary.json").read_text())
+        except (OSError, ValueError):
+            return False
+        return (isinstance(s, dict) and s.get("status") == "failed" and not s.get("timeline")
+                and s.get("t_end_s") in (0, 0.0, None) and not s.get("checkpoint"))
 
     def release(self) -> None:
         if self._fd is not None:

@@ -14,7 +14,13 @@ import math
 
 import numpy as np
 
-from ..contract import Component, Variable
+from ..contract import Component, ContractError, Variable
+
+
+def _positive(comp, keys):
+    for key in keys:
+        if not comp.p[key] > 0.0:
+            raise ContractError(f"{comp.name}.{key} must be > 0, got {comp.p[key]}")
 
 
 class DampedOscillator(Component):
@@ -38,6 +44,9 @@ class DampedOscillator(Component):
 
     def setup(self, t0=0.0):
         super().setup(t0)
+        _positive(self, ("m", "k", "max_substep", "T0"))
+        if self.p["c0"] < 0.0:
+            raise ContractError(f"{self.name}.c0 must be >= 0, got {self.p['c0']}")
         self.state = {"z": np.zeros(3)}  # x, v, dissipated energy
         self.y["P"] = np.zeros(1)
 
@@ -85,6 +94,7 @@ class ThermalNode(Component):
 
     def setup(self, t0=0.0):
         super().setup(t0)
+        _positive(self, ("C", "R", "Ta", "T_init"))
         self.state = {"T": self.p["T_init"], "E": 0.0}
         self.y["T"] = np.array([self.p["T_init"]])
         self.y["E_in"] = np.zeros(1)

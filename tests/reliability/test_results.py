@@ -177,3 +177,20 @@ def test_disk_nearly_full_is_refused_before_hdf5_breaks(tmp_path, monkeypatch):
     with h5py.File(out / "timeseries.h5") as f:
         assert f["time"].shape[0] >= 301 and f.attrs["complete"] == False  # noqa: E712
         assert "No space left" in f.attrs["error"]
+
+
+def test_a_run_that_failed_before_its_first_step_does_not_block_its_folder(tmp_path):
+    """A bad parameter found when the components are set up leaves a failed summary (no results); the corrected
+    run takes the same --out without --overwrite, while a folder with results is still refused."""
+    out = tmp_path / "o"
+    sc = toy()
+    sc.components["node"].parameters["C"] = -10.0
+    with pytest.raises(Exception, match="C"):
+        execute(sc, out, duration=0.01, figures=False)
+    s = summary(out)
+    assert s["status"] == "failed" and s["t_end_s"] == 0.0 and sorted(p.name for p in out.iterdir()
+                                                                       if p.name != LOCK) == ["summary.json"]
+    execute(toy(), out, duration=0.01, figures=False)
+    assert summary(out)["status"] == "complete"
+    with pytest.raises(OutputFolderError, match="not empty"):
+        execute(toy(), out, duration=0.01, figures=False)
