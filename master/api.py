@@ -18,6 +18,7 @@ from __future__ import annotations
 
 import contextlib
 import importlib
+import json
 import os
 import sys
 import time
@@ -309,6 +310,37 @@ def simulate(sc: Scenario | str | Path, duration: float | None = None, schedule=
     return result
 
 
+def draw_figures(sc: Scenario | str | Path, out: str | Path, pool: FigurePool | None = None) -> list[str]:
+    """Draw the figures of the finished run in folder ``out`` (a run of ``sc`` with ``out=`` and the HDF5 format,
+    e.g. one run with ``figures=False``) from its ``timeseries.h5``, with the same drawing code as a run; adds
+    their names to its summary.json (``figures``) and returns them. ``pool``: a
+    :class:`~rotorcosim.master.figure_pool.FigurePool` to draw them in, or None (drawn in this process).
+
+    ``rotorcosim compare`` uses it to draw its two runs' figures after both timed runs, so that no figure worker
+    competes with a timed simulation."""
+    if not isinstance(sc, Scenario):
+        sc = load_scenario(sc)
+    out = Path(out)
+    post = _postprocessor(sc)
+    if post is None:
+        raise ValueError(f"scenario {sc.name!r} has no [results] kind: it draws no figures")
+    f = out / "summary.json"
+    try:
+        summary = json.loads(f.read_text())
+    except (OSError, ValueError) as exc:
+        raise ValueError(f"{out}: no readable summary.json of a finished run ({exc})") from None
+    if summary.get("status") not in ("complete", "stopped"):
+        raise ValueError(f"{f}: the run's status is {summary.get('status')!r}: figures are drawn of a complete "
+                         "or stopped run only")
+    name = summary.get("timeseries")
+    if not name or not name.endswith(".h5") or not (out / name).exists():
+        raise ValueError(f"{f}: the run has no HDF5 time series in {out} (timeseries: {name!r}): the figures "
+                         "are drawn from timeseries.h5 ([outputs] format = \"h5\")")
+    names = post.figures(sc, SeriesFile(out / name), out, pool=pool)
+    write_json(f, {**summary, "figures": names})
+    return names
+
+
 def _nothing_recorded(recorder: Recorder) -> dict[str, np.ndarray]:
     """The arrays of a run that ended before its time series file was written."""
     return {"time": np.zeros(0), "phase": np.zeros(0, dtype=np.int8),
@@ -317,8 +349,6 @@ def _nothing_recorded(recorder: Recorder) -> dict[str, np.ndarray]:
 
 def _roundtrip(summary: dict) -> dict:
     """The summary exactly as summary.json holds it (plain numbers and lists, None for NaN)."""
-    import json
-
     from .outputs import _plain
 
     return json.loads(json.dumps(_plain(summary)))

@@ -5,7 +5,17 @@ rotor revolutions in all, alternating with 2 thermal-only intervals, as the pape
 (one thermo-mechanical interval). Writes ``DIR/table6.json``: ``results`` -> key -> {``staggered``,
 ``monolithic``, ``rel_error_pct``} for bearing #0, ``wall_time_s`` -> {``staggered``, ``monolithic``} and
 ``speedup`` (their ratio), ``cpu_time_s`` and ``speedup_cpu`` the same in the process's CPU time (on a loaded
-machine the wall times also hold the other processes' share, unequally in two runs of 2 and 30 s); each run's own folder (``staggered/``, ``monolithic/``) has its summary and time series.
+machine the wall times also hold the other processes' share, unequally in two runs of 2 and 30 s); each run's
+own folder (``staggered/``, ``monolithic/``) has its summary, time series and figures.
+
+What is timed: each run's simulation whole, as ``rotorcosim run`` times it (``wall_time_s`` of its summary: set-up
+of the intervals, every step, the hold, the recorder writing ``timeseries.h5`` and the result observers), after
+an untimed warm-up of the process. The figures are not: they are no part of the integration schemes' cost that
+Table 6 compares, and on a 2-core machine the figure workers that ``rotorcosim run`` starts at once (to import
+matplotlib while the run goes) took a share of the ~1 s staggered run (speed-up 7.9 with them, 11.9 without, at
+1425 N, measured). So both runs go without figures and with nothing else of this process running beside them;
+their figures (the same files as ``rotorcosim run`` draws) are drawn from each folder's time series after the
+second timed run ends.
 """
 from __future__ import annotations
 
@@ -15,6 +25,8 @@ import sys
 import tempfile
 from pathlib import Path
 
+from rotorcosim.master.api import draw_figures
+from rotorcosim.master.figure_pool import FigurePool
 from rotorcosim.master.outputs import write_json
 from rotorcosim.master.schedule import Interval, Timeline, from_spec
 
@@ -37,7 +49,8 @@ def add_arguments(p):
                    help="rotor revolutions in all thermo-mechanical intervals of the staggered run (default 40; "
                         "the paper: at most 50)")
     p.add_argument("--bearing", type=int, choices=(0, 5), default=0, help="bearing of the table (default 0)")
-    p.add_argument("--no-figures", action="store_true", help="skip the PNG figures of the two runs")
+    p.add_argument("--no-figures", action="store_true",
+                   help="skip the PNG figures of the two runs (they are drawn after both timed runs, untimed)")
     p.add_argument("--quiet", action="store_true", help="no line and progress bar per case")
     p.add_argument("--overwrite", action="store_true", help="replace the results of a previous comparison in --out")
     p.add_argument("--schedule", choices=("paper", "auto"), default="paper",
@@ -102,6 +115,7 @@ def compare(out: Path, duration=2.0, unbalance=2850.0, scenario="blade_loss", re
     sc = resolve(scenario)
     _warm_up(scenario, out, _quantum(sc))
     kinds = ("staggered", "monolithic")
+    scenarios = {}
     for i, kind in enumerate(kinds, 1):
         if kind in runs:
             continue
@@ -120,16 +134,24 @@ def compare(out: Path, duration=2.0, unbalance=2850.0, scenario="blade_loss", re
         else:
             sch = Timeline([Interval("TM", duration, float(s.get("step", 1e-5)))])
         sc.name = f"{sc.name}_{kind}"
+        # figures drawn from the time series file after both timed runs; a run recorded otherwise (CSV, nothing
+        # recorded) draws its own in process, after its timing and without workers (api.simulate)
+        later = figures and sc.outputs.get("format", "h5") == "h5" and bool(sc.outputs.get("record"))
+        if later:
+            scenarios[kind] = sc
         if not quiet:  # a line per case, and the case's own progress bar (time left from its measured step cost)
             what = f"{len(sch.intervals)} interval(s)" if hasattr(sch, "intervals") else "automatic schedule"
             print(f"[{i}/{len(kinds)}] {kind}: {sch.duration:g} s simulated, {what}",
                   file=sys.stderr, flush=True)
         # not checkpointed: a comparison is run again, not resumed, and a save of the whole state at every interval
-        # end (0.2 s each, measured) is no part of the integration schemes' cost the table compares
-        runs[kind] = execute(sc, out / kind, figures=figures, quiet=quiet, schedule=sch, overwrite=overwrite,
-                             checkpoint_every=None)
+        # end (0.2 s each, measured) is no part of the integration schemes' cost the table compares; no figures
+        # (and so no figure workers) during a timed run: drawn below, after both
+        runs[kind] = execute(sc, out / kind, figures=figures and not later, quiet=quiet, schedule=sch,
+                             overwrite=overwrite, checkpoint_every=None)
         if not quiet:
             print(f"[{i}/{len(kinds)}] {kind}: done in {runs[kind]['wall_time_s']:.3g} s", file=sys.stderr, flush=True)
+    if scenarios:
+        _draw(out, scenarios, quiet)
     results = {}
     for key in KEYS:
         a = runs["staggered"]["bearings"][str(bearing)][key]
@@ -148,6 +170,20 @@ def compare(out: Path, duration=2.0, unbalance=2850.0, scenario="blade_loss", re
              "timeline_staggered": runs["staggered"]["timeline"]}
     write_json(out / "table6.json", table)
     return table
+
+
+def _draw(out: Path, scenarios: dict, quiet: bool) -> None:
+    """The figures of the runs made here (not of a reused monolithic run), after the timing: a figure pool per
+    run, all started at once so that the second run's workers import matplotlib while the first run's draw."""
+    pools = {kind: FigurePool() for kind in scenarios}
+    try:
+        for kind, sc in scenarios.items():
+            names = draw_figures(sc, out / kind, pool=pools[kind])
+            if not quiet:
+                print(f"{kind}: {len(names)} figures drawn", file=sys.stderr, flush=True)
+    finally:
+        for p in pools.values():
+            p.close()
 
 
 def _quantum(sc) -> float:

@@ -127,6 +127,43 @@ def test_compare_writes_table6(tmp_path):
     assert t["timeline_staggered"][-1]["t_end"] == pytest.approx(0.1, abs=1e-9)
 
 
+def test_compare_draws_the_figures_after_both_timed_runs(tmp_path, monkeypatch):
+    """`rotorcosim compare` with figures: no figure worker runs beside a timed run (the pool `rotorcosim run`
+    starts at once is never started), and both run folders still get the six figures, drawn after the second
+    timed run ended, from their time series, and listed in their summary.json."""
+    import time
+
+    from rotorcosim.master import api
+    from rotorcosim.master.cli import main
+    from rotorcosim.master.commands import compare as cmp
+
+    def no_pool(*args, **kwargs):
+        pytest.fail("a figure pool was started inside a timed run")
+
+    ended, started = [], []
+    real_execute, real_pool = cmp.execute, cmp.FigurePool
+
+    def timed(*args, **kwargs):
+        summary = real_execute(*args, **kwargs)
+        ended.append(time.monotonic())
+        return summary
+
+    def pool(*args, **kwargs):
+        started.append(time.monotonic())
+        return real_pool(*args, **kwargs)
+
+    monkeypatch.setattr(api, "FigurePool", no_pool)
+    monkeypatch.setattr(cmp, "execute", timed)
+    monkeypatch.setattr(cmp, "FigurePool", pool)
+    assert main(["compare", "--duration", "0.1", "--revolutions", "12", "--quiet", "--out", str(tmp_path)]) == 0
+    assert len(ended) == 3 and len(started) == 2  # the warm-up and the two timed runs; a pool per run
+    assert min(started) > max(ended)
+    for kind in ("staggered", "monolithic"):
+        names = json.loads((tmp_path / kind / "summary.json").read_text())["figures"]
+        assert len(names) == 6 and names[0] == "fig09_response_bearing0.png"
+        assert all((tmp_path / kind / n).stat().st_size > 10_000 for n in names)
+
+
 def test_auto_and_monolithic_schedules_cover_the_scenario_duration():
     """--schedule auto / monolithic without --duration simulate the scenario's own 120 s (not an error)."""
     from rotorcosim.master.scenario import schedule_of

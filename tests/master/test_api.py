@@ -234,3 +234,22 @@ def test_a_file_run_reads_its_arrays_from_the_file_and_they_equal_a_memory_run(t
     assert np.array_equal(on_file.time, in_memory.time)
     assert np.array_equal(on_file["node.T"], in_memory["node.T"])
     assert list(on_file.phase) == list(in_memory.phase)
+
+
+def test_draw_figures_of_a_run_folder_names_what_is_missing(tmp_path):
+    """api.draw_figures (compare draws its runs' figures with it after the timing) refuses, with a clear error,
+    a folder that holds no finished run, a failed run, a run without an HDF5 time series, a scenario without
+    figures."""
+    from rotorcosim.master.api import draw_figures
+
+    sc = rotorcosim.load_scenario("blade_loss_2850")
+    with pytest.raises(ValueError, match="no readable summary.json"):
+        draw_figures(sc, tmp_path)
+    (tmp_path / "summary.json").write_text(json.dumps({"status": "failed", "timeseries": "timeseries.h5"}))
+    with pytest.raises(ValueError, match="status is 'failed'"):
+        draw_figures(sc, tmp_path)
+    (tmp_path / "summary.json").write_text(json.dumps({"status": "complete", "timeseries": "timeseries.csv"}))
+    with pytest.raises(ValueError, match="no HDF5 time series"):
+        draw_figures(sc, tmp_path)
+    with pytest.raises(ValueError, match="no \\[results\\] kind"):
+        draw_figures("toy_thermomechanical", tmp_path)
