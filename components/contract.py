@@ -212,10 +212,10 @@ class Component:
         pass
 
     def get_state(self) -> Any:
-        return copy.deepcopy((self.time, self.state, self.u, self.y))
+        return _copy_snapshot((self.time, self.state, self.u, self.y))
 
     def set_state(self, snapshot: Any) -> None:
-        self.time, self.state, self.u, self.y = copy.deepcopy(snapshot)
+        self.time, self.state, self.u, self.y = _copy_snapshot(snapshot)
 
     def enter_phase(self, phase: str) -> None:
         """Called by the master at the start of every interval with its phase (``"TM"`` or ``"TO"``), for
@@ -225,6 +225,19 @@ class Component:
 
     def __repr__(self) -> str:
         return f"<{type(self).__name__} {self.name!r}>"
+
+
+def _copy_snapshot(snap: tuple) -> tuple:
+    """``copy.deepcopy(snap)`` of a snapshot ``(time, state, u, y)``. Where state, u and y are plain dicts of
+    distinct numeric arrays (what the native components keep) the copy is made directly, the same copy 4-5 times
+    faster than deepcopy's generic walk (12 against 56 us for a bearing, measured): the thermal-only hold probes
+    the producers' TO outputs through get_state / set_state about a hundred times per staggered run."""
+    if len(snap) == 4 and type(snap[0]) in (float, int) and all(type(d) is dict for d in snap[1:]):
+        arrays = [v for d in snap[1:] for v in d.values()]
+        if (all(type(v) is np.ndarray and not v.dtype.hasobject for v in arrays)
+                and len({id(v) for v in arrays}) == len(arrays)):  # no array met twice (deepcopy would share it)
+            return (snap[0], *({k: v.copy(order="K") for k, v in d.items()} for d in snap[1:]))
+    return copy.deepcopy(snap)
 
 
 def as_phases(values: Iterable[str]) -> frozenset[str]:

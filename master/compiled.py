@@ -33,6 +33,7 @@ interval, an observer without step_block, the automatic schedule's steadiness te
 """
 from __future__ import annotations
 
+import functools
 import hashlib
 import importlib.util
 import sys
@@ -172,7 +173,10 @@ def _source(n_components: int) -> str:
     return "\n".join(L) + "\n"
 
 
+@functools.cache
 def _loop_sources_hash() -> str:
+    # once per process: the code a process has loaded does not change, and reading and hashing the sources at
+    # every thermo-mechanical interval was a fixed cost of each (three in a staggered run of rotorcosim compare)
     h = hashlib.sha256()
     for f in (Path(__file__).resolve(), Path(op.__file__).resolve()):
         h.update(f.read_bytes())
