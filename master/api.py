@@ -165,7 +165,8 @@ def simulate(sc: Scenario | str | Path, duration: float | None = None, schedule=
     ``out``: a folder that receives what ``rotorcosim run`` writes (summary.json, the time series, the figures
     unless ``figures=False``). It must be empty, or hold a previous run's results and ``overwrite``, or an
     interrupted run and ``resume`` (rundir.py); runs with a folder are checkpointed every ``checkpoint_every``
-    wall seconds and at each interval end. Any run is refused before it starts if it is estimated above
+    wall seconds, at interval ends at least ``min(checkpoint_every, checkpoint.END_GAP_S)`` after the last
+    checkpoint, and where an interrupt (SIGINT/SIGTERM) stops them. Any run is refused before it starts if it is estimated above
     budget.LIMIT_S of wall time, unless ``force``. ``step_timeout`` [s] (0: none) ends a run whose component
     step hangs (watchdog.py), writing a failed summary first. ``engine``: ``"auto"`` runs each thermo-mechanical
     interval through the compiled loop when every component offers a compiled kernel (master/compiled.py),

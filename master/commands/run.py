@@ -50,7 +50,8 @@ def add_arguments(p):
                    help=f"run even if estimated above {budget.LIMIT_S / 3600:g} h of wall time")
     p.add_argument("--checkpoint-every", type=float, default=checkpoint.EVERY_S, metavar="S",
                    help=f"wall seconds between checkpoints inside an interval (default {checkpoint.EVERY_S:g}; "
-                        "interval ends are always checkpointed)")
+                        f"an interval end is checkpointed when the last checkpoint is min(S, "
+                        f"{checkpoint.END_GAP_S:g}) s old, and an interrupted run where it stops)")
     p.add_argument("--fmu-process", action="store_true",
                    help="run every FMU in a process of its own (a crashing or hanging FMU fails the run cleanly)")
     p.add_argument("--step-timeout", type=float, default=watchdog.STEP_TIMEOUT_S, metavar="S",

@@ -136,15 +136,17 @@ def test_disk_full_keeps_what_was_flushed(tmp_path, monkeypatch):
         original(self)
 
     monkeypatch.setattr(Recorder, "flush", flush)
+    # chunks of 300 rows, so that the disk fills in mid-run (interval ends no longer flush: checkpoint.END_GAP_S)
+    monkeypatch.setattr("rotorcosim.master.api.Recorder", lambda *a, **kw: Recorder(*a, chunk=300, **kw))
     out = tmp_path / "o"
     sc = toy()
     with pytest.raises(OSError, match="No space left"):
         execute(sc, out, duration=20.0, figures=False)
     s = summary(out)
-    assert s["status"] == "failed" and "No space left" in s["error"]
+    assert s["status"] == "failed" and "No space left" in s["error"] and s["t_end_s"] < 20.0
     with h5py.File(out / "timeseries.h5") as f:
         n = f["time"].shape[0]
-        assert n >= 301  # at least the first interval (flushed at its checkpoint) before the disk filled
+        assert n == 600  # the two chunks flushed before the disk filled
         assert np.all(np.isfinite(f["time"][...])) and np.all(np.diff(f["time"][...]) > 0)
         assert f.attrs["complete"] == False  # noqa: E712
 
@@ -170,12 +172,14 @@ def test_disk_nearly_full_is_refused_before_hdf5_breaks(tmp_path, monkeypatch):
         return Full(real(path))
 
     monkeypatch.setattr(observers.os, "statvfs", statvfs)
+    # chunks of 300 rows, so that the disk fills in mid-run (interval ends no longer flush: checkpoint.END_GAP_S)
+    monkeypatch.setattr("rotorcosim.master.api.Recorder", lambda *a, **kw: observers.Recorder(*a, chunk=300, **kw))
     out = tmp_path / "o"
     with pytest.raises(OSError, match="No space left on device for the time series"):
         execute(toy(), out, duration=20.0, figures=False)
     assert summary(out)["status"] == "failed"
     with h5py.File(out / "timeseries.h5") as f:
-        assert f["time"].shape[0] >= 301 and f.attrs["complete"] == False  # noqa: E712
+        assert f["time"].shape[0] >= 300 and f.attrs["complete"] == False  # noqa: E712
         assert "No space left" in f.attrs["error"]
 
 
