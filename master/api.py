@@ -222,7 +222,8 @@ def simulate(sc: Scenario | str | Path, duration: float | None = None, schedule=
         sim.engine_choice = engine
         pool = None
         if figures and out is not None and post is not None and not keep:
-            pool = FigurePool()  # its workers start now and import matplotlib while the run goes
+            # its workers start now and import matplotlib and the figure module while the run goes
+            pool = FigurePool(preload=[m for m in [getattr(post, "FIGURES_MODULE", None)] if m])
             stack.callback(pool.close)
         head = {"scenario": sc.name, "source": str(sc.source) if sc.source else None,
                 "schedule": kind or sc.schedule.get("kind", "monolithic"), "duration_s": sch.duration,

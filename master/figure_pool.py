@@ -19,6 +19,7 @@ import multiprocessing
 import os
 import subprocess
 import sys
+from collections.abc import Sequence
 from dataclasses import asdict
 from pathlib import Path
 
@@ -37,7 +38,9 @@ def _cores() -> int:
 class FigurePool:
     """Worker processes for figures, or none (:attr:`usable` False) where they would not help."""
 
-    def __init__(self, workers: int = WORKERS):
+    def __init__(self, workers: int = WORKERS, preload: Sequence[str] = ()):
+        """``preload``: modules the workers import at start (the figure module the run will use), besides
+        matplotlib."""
         self._procs: list[subprocess.Popen] = []
         self.by_workers: list[str] = []
         if _cores() < 2 or multiprocessing.parent_process() is not None or os.environ.get("ROTORCOSIM_FIGURE_WORKER"):
@@ -46,7 +49,7 @@ class FigurePool:
         for _ in range(workers):
             try:
                 self._procs.append(subprocess.Popen(
-                    [sys.executable, "-m", "rotorcosim.master.figure_worker"], stdin=subprocess.PIPE,
+                    [sys.executable, "-m", "rotorcosim.master.figure_worker", *preload], stdin=subprocess.PIPE,
                     stdout=subprocess.PIPE, stderr=subprocess.PIPE, env=env, text=True,
                     start_new_session=True))  # Ctrl-C is the parent's to handle; close() ends the workers
             except OSError:

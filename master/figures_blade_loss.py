@@ -31,6 +31,9 @@ RUB_CLEARANCE_MM = 0.508  # Table 3 (both rings)
 PLASTIC_FLOW_MPA = 3200.0  # the paper's incipient plastic flow limit of the ball/race contact [13]
 ORBIT_CYCLES = 5
 DPI = 110
+#: zlib level of the PNG files (lossless at any level): 1 instead of Pillow's 6 encodes the six figures in 0.23 s
+#: of CPU instead of 0.42 s, for files ~9 % larger (1.09 MB instead of 1.0 MB in all, 2850 N main job)
+PNG_COMPRESS_LEVEL = 1
 #: points drawn per line at most: a longer stretch is drawn as its min/max envelope (a 2-minute monolithic run
 #: has 1.2 million samples per signal; a panel is ~600 pixels wide, so this loses nothing the eye can see)
 PLOT_POINTS = 4000
@@ -168,7 +171,7 @@ class _Figures:
         _margins(fig)
         # written whole or not at all, like every result file
         tmp = self.out / (name + ".part")
-        fig.savefig(tmp, dpi=DPI, format="png")
+        fig.savefig(tmp, dpi=DPI, format="png", pil_kwargs={"compress_level": PNG_COMPRESS_LEVEL})
         self.plt.close(fig)
         os.replace(tmp, self.out / name)
         self.names.append(name)

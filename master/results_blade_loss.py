@@ -24,6 +24,7 @@ The peaks over the whole run (the blade-loss transient included) are given too, 
 """
 from __future__ import annotations
 
+import importlib
 import math
 from pathlib import Path
 
@@ -38,6 +39,8 @@ RESULT_KEYS = ("whirl_amplitude_mm", "transmissibility", "max_contact_load_N", "
                "rub_power_W", "drag_power_W", "sfd_power_W", "T_inner_race_C", "T_ball_C", "T_outer_race_C",
                "T_sfd_oil_C")
 KELVIN = 273.15
+#: the module that draws the figures (a figure pool's workers import it while the run goes)
+FIGURES_MODULE = "rotorcosim.master.figures_blade_loss"
 #: order of thermal{k}.T_nodes
 NODES = ("shaft", "inner_race", "lub_inner", "ball", "lub_outer", "outer_race", "journal", "sfd_oil", "housing")
 
@@ -164,8 +167,9 @@ def figures(sc, data, out: Path, pool=None) -> list[str]:
     :class:`~rotorcosim.master.series.SeriesFile`); returns their file names. The drawing is in
     :mod:`rotorcosim.master.figures_blade_loss`; with a usable :class:`~rotorcosim.master.figure_pool.FigurePool`
     and a file, the figures are drawn in its worker processes."""
-    from . import figures_blade_loss as fb
     from .series import SeriesFile
+
+    fb = importlib.import_module(FIGURES_MODULE)
 
     F_u, speed = unbalance_force(sc), sc.schedule.get("speed_rpm")
     if pool is not None and pool.usable and isinstance(data, SeriesFile) and len(data["time"]):
