@@ -166,8 +166,8 @@ def simulate(sc: Scenario | str | Path, duration: float | None = None, schedule=
     unless ``figures=False``). It must be empty, or hold a previous run's results and ``overwrite``, or an
     interrupted run and ``resume`` (rundir.py); runs with a folder are checkpointed every ``checkpoint_every``
     wall seconds, at interval ends at least ``min(checkpoint_every, checkpoint.END_GAP_S)`` after the last
-    checkpoint, and where an interrupt (SIGINT/SIGTERM) stops them. Any run is refused before it starts if it is estimated above
-    budget.LIMIT_S of wall time, unless ``force``. ``step_timeout`` [s] (0: none) ends a run whose component
+    checkpoint, and where an interrupt (SIGINT/SIGTERM) stops them. Any run is refused before it starts if it is
+    estimated above budget.LIMIT_S of wall time, unless ``force``. ``step_timeout`` [s] (0: none) ends a run whose component
     step hangs (watchdog.py), writing a failed summary first. ``engine``: ``"auto"`` runs each thermo-mechanical
     interval through the compiled loop when every component offers a compiled kernel (master/compiled.py),
     ``"python"`` through the generic loop, ``"compiled"`` through the compiled loop or not at all (an error); the
@@ -222,7 +222,7 @@ def simulate(sc: Scenario | str | Path, duration: float | None = None, schedule=
         sim.engine_choice = engine
         pool = None
         if figures and out is not None and post is not None and not keep:
-            # its workers start now and import matplotlib and the figure module while the run goes
+            # its workers start now, one after the other, and import matplotlib and the figures while the run goes
             pool = FigurePool(preload=[m for m in [getattr(post, "FIGURES_MODULE", None)] if m])
             stack.callback(pool.close)
         head = {"scenario": sc.name, "source": str(sc.source) if sc.source else None,

@@ -1,15 +1,15 @@
 """Checkpoints and resumption of a run; SIGINT/SIGTERM ending a run at a safe point.
 
-A checkpoint (``checkpoint.pkl`` in the run's folder, written whole or not at all) holds everything the rest of
-the run depends on: every component's state (the contract's ``get_state``), the master's engine (connection
-buffers: averages, extrapolation history, step counts) and thermal-only hold (hand-off windows, measured laws), the run report
-(the timeline so far) and the observers' states (steady windows, peaks, how many rows the time series had). It
-is taken by :class:`Checkpointer`, an observer placed last, every ``every_s`` seconds of wall time, at the end of
+A checkpoint (``checkpoint.pkl`` in the run's folder, written whole or not at all) holds everything the rest of the
+run depends on: every component's state (the contract's ``get_state``), the master's engine (connection buffers:
+averages, extrapolation history, step counts) and thermal-only hold (hand-off windows, measured laws), the run
+report (the timeline so far) and the observers' states (steady windows, peaks, how many rows the time series had).
+It is taken by :class:`Checkpointer`, an observer placed last, every ``every_s`` seconds of wall time, at the end of
 an interval when the last checkpoint is at least ``min(every_s, END_GAP_S)`` old (every interval end with the
 automatic schedule), and when SIGINT/SIGTERM asked the run to stop: always between two base steps, where every
-component has completed its step. :func:`resume` restores it into a freshly built simulation of the same
-scenario (set up as usual, then overwritten), so the resumed run continues with the very numbers the
-uninterrupted one had: its results are bit-identical.
+component has completed its step. :func:`resume` restores it into a freshly built simulation of the same scenario
+(set up as usual, then overwritten), so the resumed run continues with the very numbers the uninterrupted one had:
+its results are bit-identical.
 
 Pickling: components (and the system) are written as references by name (``persistent_id``) and bound to the
 new simulation's objects when read, so the master's own objects can be saved whole, whatever their internals.

@@ -17,8 +17,10 @@ from __future__ import annotations
 import json
 import multiprocessing
 import os
+import select
 import subprocess
 import sys
+import threading
 from collections.abc import Sequence
 from dataclasses import asdict
 from pathlib import Path
@@ -43,17 +45,44 @@ class FigurePool:
         matplotlib."""
         self._procs: list[subprocess.Popen] = []
         self.by_workers: list[str] = []
+        self._lock = threading.Lock()
+        self._closing = False
+        self._hurry = threading.Event()  # the figures are wanted (or the pool closed): start every worker now
+        self._starter: threading.Thread | None = None
         if _cores() < 2 or multiprocessing.parent_process() is not None or os.environ.get("ROTORCOSIM_FIGURE_WORKER"):
             return
-        env = {**os.environ, "ROTORCOSIM_FIGURE_WORKER": "1"}
-        for _ in range(workers):
+        self._cmd = [sys.executable, "-m", "rotorcosim.master.figure_worker", *preload]
+        self._env = {**os.environ, "ROTORCOSIM_FIGURE_WORKER": "1"}
+        if self._start() and workers > 1:
+            # the others one at a time, each when the previous one is ready: two workers importing at once beside
+            # the run make three busy processes on two cores, which takes a third of a core from the run
+            self._starter = threading.Thread(target=self._start_rest, args=(workers - 1,), daemon=True)
+            self._starter.start()
+
+    def _start(self) -> bool:
+        with self._lock:
+            if self._closing:
+                return False
             try:
                 self._procs.append(subprocess.Popen(
-                    [sys.executable, "-m", "rotorcosim.master.figure_worker", *preload], stdin=subprocess.PIPE,
-                    stdout=subprocess.PIPE, stderr=subprocess.PIPE, env=env, text=True,
+                    self._cmd, stdin=subprocess.PIPE, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+                    env=self._env, text=True,
                     start_new_session=True))  # Ctrl-C is the parent's to handle; close() ends the workers
+                return True
             except OSError:
-                break
+                return False
+
+    def _start_rest(self, n: int) -> None:
+        for _ in range(n):
+            _wait_ready(self._procs[-1], self._hurry)
+            if not self._start():
+                return
+
+    def _all_started(self) -> None:
+        self._hurry.set()
+        if self._starter is not None:
+            self._starter.join()
+            self._starter = None
 
     @property
     def usable(self) -> bool:
@@ -64,6 +93,7 @@ class FigurePool:
         returns the file names in the jobs' order. A worker that fails leaves its jobs to this process."""
         from .series import SeriesFile
 
+        self._all_started()
         shares = {i: list(jobs[i::len(self._procs)]) for i in range(len(self._procs))} if self._procs else {}
         for i, p in enumerate(self._procs):
             req = {"module": module.__name__, "jobs": shares[i], "series": str(series), "out": str(out),
@@ -94,6 +124,9 @@ class FigurePool:
 
     def close(self) -> None:
         """End workers that were never given their figures (the run failed or drew none)."""
+        with self._lock:
+            self._closing = True
+        self._all_started()
         for p in self._procs:
             try:
                 p.kill()
@@ -101,3 +134,15 @@ class FigurePool:
             except (OSError, subprocess.TimeoutExpired, ValueError):
                 pass
         self._procs = []
+
+
+def _wait_ready(p: subprocess.Popen, hurry: threading.Event) -> None:
+    """Until worker ``p`` says it is ready (its first line, after its imports), ends, or ``hurry`` is set."""
+    while not hurry.is_set():
+        try:
+            ready, _, _ = select.select([p.stdout], [], [], 0.05)
+        except (OSError, ValueError):  # no select on this pipe (not POSIX): start the next one now
+            return
+        if ready:
+            p.stdout.readline()  # the worker's "ready" line ('' if it ended)
+            return

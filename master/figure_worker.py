@@ -1,10 +1,11 @@
 """``python -m rotorcosim.master.figure_worker [MODULE ...]``: draws figures for a run in another process
 (figure_pool.py).
 
-At once, while the run goes: imports matplotlib, h5py and the figure modules named on the command line, and draws
-a small figure into memory (a process's first figure loads the font and the PNG encoder). Then reads one request
-from stdin, a JSON line ``{"module", "jobs", "series", "out", "context"}``, draws each job with
-``module.draw(job, SeriesFile(series), out, Context(**context))`` and prints ``{"names": {job: [file, ...]}}``.
+At once, while the run goes: imports matplotlib, h5py and the figure modules named on the command line, draws a
+small figure into memory (a process's first figure loads the font and the PNG encoder) and says so on stdout
+(``{"ready": true}``). Then reads one request from stdin, a JSON line ``{"module", "jobs", "series", "out",
+"context"}``, draws each job with ``module.draw(job, SeriesFile(series), out, Context(**context))`` and prints
+``{"names": {job: [file, ...]}}``.
 End of input without a request: exits 0 having drawn nothing.
 """
 from __future__ import annotations
@@ -27,6 +28,7 @@ def main() -> int:
     for name in sys.argv[1:]:
         importlib.import_module(name)
     _warm_up()
+    print(json.dumps({"ready": True}), flush=True)  # the pool starts its next worker now (figure_pool.py)
     line = sys.stdin.readline()
     if not line.strip():
         return 0
