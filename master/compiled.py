@@ -484,15 +484,18 @@ class Runner:
         count = np.zeros(len(comps), dtype=np.int64)
         check = int(eng.settings.check_every)
         r0 = -1
+        addrs = None
         while k < nsteps:
             k1 = min(nsteps, k + CHUNK)
             self._adopt()
             self._windows(G, goff)
-            cargs, addrs = [], []
+            cargs, kargs = [], []
             for c in comps:
                 ka = c.kernel_args()
                 cargs += list(ka)
-                addrs.append(self._address(c, ka))
+                kargs.append(ka)
+            if addrs is None:  # typing the containers costs ~0.5 ms per chunk: again only after a Python step (below)
+                addrs = [self._address(c, ka) for c, ka in zip(comps, kargs)]
             self.fn(k, k1, r0, t_start, h, check, count, self.buf, self.status, plan.mult_arr, plan.width,
                     self.X, LI, M, V, G, C, plan.CT, plan.IDX, *addrs, *cargs)
             code, kk, i = (int(x) for x in self.status)
@@ -504,6 +507,7 @@ class Runner:
             r0 = -1
             if code == 0:
                 continue
+            addrs = None  # a component steps in Python below: its containers may come back with other types
             # base step kk stopped at component i
             name = plan.names[i] if i >= 0 else None
             t_end = t_start + (kk + 1) * h
