@@ -104,14 +104,14 @@ def test_housing_chamber_cooling_by_hand():
 
 
 def test_rub_partition_by_hand():
-    """Blok partition at #0: a = 2 mm, V = 1675.52 rad/s * 25.4 mm = 42.558 m/s, k = 40, kappa = 40/(7800 * 460)
-    = 1.11483e-5 m^2/s: R_1 = 8 a / (3 pi k) = 4.2441e-5, R_2 = (4/3) sqrt(2 kappa a / (pi V)) / k = 6.0876e-7,
-    f = R_2/(R_1 + R_2) = 0.014141 into the rotor. The fast-moving limit holds: Peclet V a/(2 kappa) = 3818.
+    """Blok partition at #0: a = 3 mm, V = 1675.52 rad/s * 25.4 mm = 42.558 m/s, k = 40, kappa = 40/(7800 * 460)
+    = 1.11483e-5 m^2/s: R_1 = 8 a / (3 pi k) = 6.3662e-5, R_2 = (4/3) sqrt(2 kappa a / (pi V)) / k = 7.4558e-7,
+    f = R_2/(R_1 + R_2) = 0.011576 into the rotor. The fast-moving limit holds: Peclet V a/(2 kappa) = 5726.
     The rub column of the source map is then [f at the shaft, 1 - f at the housing]; an explicit fraction
     overrides it."""
     f = rub_partition(0, PT_OMEGA)
-    assert f == pytest.approx(0.014141, rel=1e-4)
-    assert 42.558 * 2e-3 / (2 * 1.11483e-5) > 1000.0
+    assert f == pytest.approx(0.011576, rel=1e-4)
+    assert 42.558 * 3e-3 / (2 * 1.11483e-5) > 1000.0
     S = make(0).network.S
     assert S[SHAFT, 2] == pytest.approx(f, rel=1e-12)
     assert S[HOUSING, 2] == pytest.approx(1.0 - f, rel=1e-12)
