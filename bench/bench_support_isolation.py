@@ -14,7 +14,11 @@ Prints, from the paper's Table 5, the shipped comparison (docs/paper_comparison.
    unbalance, below 1 for any k and c once w > sqrt(2) w_n (the isolator law);
 3. the linear 712 N response at #0 for O-ring readings with and without recalibrating the two knobs to 8500 /
    10 200 rev/min (the recalibrated values are those of sweep H in docs/calibration.md, solved by
-   components/rotor/calibration.py from stage mass 1.5 kg / mounts 7e7 N/m).
+   components/rotor/calibration.py from stage mass 1.5 kg / mounts 7e7 N/m);
+4. two O-rings in parallel with lighter stages (0.3-1.0 kg) and other mounts, not refitted: where the #0 mode
+   goes (its O-ring share), the linear 712 N whirl and T, and whether the bearing point under a rub ring stops
+   being mass-controlled (receptance phase, ring force at 8551 N from bench_rub_modes.py): T passes 1 once the #0
+   mode is above ~11 300 rev/min, but the whirl grows past the paper's and the point stays mass-controlled.
 
     python bench/bench_support_isolation.py
 """
@@ -115,6 +119,29 @@ def main() -> None:
         print(f"   {name:42s} critical speeds {[int(round(x)) for x in crit]}: whirl {r['whirl_mm']:.4f} mm "
               f"(paper 0.0512), journal {r['journal_mm']:.4f} mm, transmissibility {r['transmissibility']:.2f} "
               f"(paper 1.03)")
+
+    print("4. O-rings x 2, stages and mounts varied (not refitted); film at 30 C, ring point at 85 C:")
+    import sys
+
+    sys.path.insert(0, str(Path(__file__).resolve().parent))
+    import bench_rub_modes as brm
+
+    sup2, sup85 = copy.deepcopy(sup), le.supports(oil_temperature_C=85.0)
+    for s_ in (sup2, sup85):
+        for key in s_:
+            s_[key]["k_spring"] *= 2.0
+    for m in (0.3, 0.6, 1.0):
+        for mk in (3e7, 7e7, 1e8):
+            d = copy.deepcopy(data)
+            d["calibration"].update(pt_stage_mass_kg=m, mount_k=mk)
+            f = fem.build(d)
+            modes = " ".join(f"{rpm:.0f} ({s0:.2f})" for rpm, s0, _ in strain_shares(f, sup2)[:3])
+            r = calibration.coupled_response(f, sup2, 712.0)["0"]
+            hu, hg = brm.ring_receptances(f, sup85, int(d["power_turbine"]["rub0_node"]))
+            N = brm.ring_force(hu, hg, 8551.0, 0.508e-3, 3e8, 0.2)
+            print(f"   stages {m:.1f} kg, mounts {mk:.0e} N/m: modes (O-ring #0 share) {modes}; 712 N whirl "
+                  f"{r['whirl_mm']:.4f} mm, T {r['transmissibility']:.2f}; ring point {np.degrees(np.angle(hg)):.0f} deg, "
+                  f"N(8551 N) {N / 1e3:.1f} kN")
 
 
 if __name__ == "__main__":
