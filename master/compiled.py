@@ -542,7 +542,10 @@ class Runner:
         key = (id(fn), tuple(numba.typeof(a) for a in kargs))
         a = cls._ADDR.get(key)
         if a is None:
-            a = cls._ADDR[key] = kernel_address(fn, kargs)
+            try:
+                a = cls._ADDR[key] = kernel_address(fn, kargs)
+            except TypeError as exc:
+                raise ContractError(f"{comp.name}: {exc} (components/kernels.py: STEP returns its status)") from None
         return a
 
     def _back(self, LI, M, V, C, count):
