@@ -6,6 +6,8 @@ Each sub-command lives in the module that owns its subject and offers ``add_argu
 from __future__ import annotations
 
 import argparse
+import atexit
+import gc
 import importlib
 import sys
 import traceback
@@ -43,6 +45,23 @@ def build_parser() -> argparse.ArgumentParser:
     return parser
 
 
+#: the collector's first threshold in a command's own process (Python's default: 700 allocations). Start-up
+#: (numba's registries, the components' models) allocates millions of long-lived objects, on which the default
+#: ran 2 full collections that found nothing to free (0.18-0.28 s of the main job at load 4); the run itself makes
+#: little cyclic garbage, so collecting less often costs no memory that matters
+GC_THRESHOLD0 = 50_000
+
+
+def _command_process() -> None:
+    """Settings for a process that runs one command (the ``rotorcosim`` program, ``python -m``), not for a
+    program that calls :func:`main` among other work: fewer collections, and every object frozen at exit, so
+    that the interpreter's final collections skip them (every file is closed by then; Python does not promise
+    finalizers of objects alive at exit anyway). Measured on the main job at load ~4: the exit took 1.4-1.7 s
+    after the results were written, 0.15-0.2 s with the freeze."""
+    gc.set_threshold(GC_THRESHOLD0, *gc.get_threshold()[1:])
+    atexit.register(gc.freeze)  # registered first, so it runs after the handlers of what the command imports
+
+
 #: errors caused by what the user gave (input files, options, folders): exit status 2
 USER_ERRORS = (ValueError, LookupError, FileNotFoundError, IsADirectoryError, NotADirectoryError, FileExistsError)
 
@@ -62,6 +81,9 @@ def describe_error(exc: BaseException) -> tuple[int, str]:
 
 
 def main(argv: list[str] | None = None) -> int:
+    """Run the command line ``argv``; None: this process's own (``sys.argv``), the process being the command's."""
+    if argv is None:
+        _command_process()
     argv = list(sys.argv[1:] if argv is None else argv)
     # --debug may stand anywhere on the line
     debug = "--debug" in argv

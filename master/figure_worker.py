@@ -10,6 +10,7 @@ End of input without a request: exits 0 having drawn nothing.
 """
 from __future__ import annotations
 
+import gc
 import importlib
 import json
 import sys
@@ -38,6 +39,9 @@ def main() -> int:
     series = SeriesFile(req["series"])
     names = {job: module.draw(job, series, Path(req["out"]), ctx) for job in req["jobs"]}
     print(json.dumps({"names": names}))
+    # the run waits for this process to end: the interpreter's final collections over matplotlib's objects took
+    # 0.5-0.6 s at load ~4, 0.05 s with every object frozen (the figures' files are closed)
+    gc.freeze()
     return 0
 
 

@@ -93,3 +93,25 @@ def test_bearing_static_json_flags_validity(capsys):
     rc, out, _ = call(capsys, "bearing-static", "--bearing", "5", "--radial-load", "1e6", "--json")
     d = json.loads(out)
     assert d["within_elastic_range"] is False and d["max_contact_stress_MPa"] > d["elastic_limit_MPa"]
+
+
+def test_command_process_collects_less_and_freezes_at_exit():
+    """The program's own process (main() without argv): the collector's first threshold raised, and every object
+    frozen at exit, after the other exit handlers (the interpreter's final collections then skip them);
+    main(argv) from another program leaves its collector alone."""
+    import subprocess
+    import sys
+
+    code = ("import atexit, gc, sys\n"
+            "atexit.register(lambda: print('frozen at exit:', gc.get_freeze_count() > 0))\n"
+            "from rotorcosim.master.cli import GC_THRESHOLD0, main\n"
+            "before = gc.get_threshold()\n"
+            "main(['scenarios'])\n"
+            "print('left alone:', gc.get_threshold() == before)\n"
+            "sys.argv = ['rotorcosim', 'scenarios']\n"
+            "main()\n"
+            "print('raised:', gc.get_threshold()[0] == GC_THRESHOLD0 != before[0])\n")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=120)
+    assert out.returncode == 0, out.stderr
+    for line in ("left alone: True", "raised: True", "frozen at exit: True"):
+        assert line in out.stdout, out.stdout
