@@ -5,7 +5,8 @@ rotor revolutions in all, alternating with 2 thermal-only intervals, as the pape
 (one thermo-mechanical interval). Writes ``DIR/table6.json``: ``results`` -> key -> {``staggered``,
 ``monolithic``, ``rel_error_pct``} for bearing #0, ``wall_time_s`` -> {``staggered``, ``monolithic``} and
 ``speedup`` (their ratio), ``cpu_time_s`` and ``speedup_cpu`` the same in the process's CPU time (on a loaded
-machine the wall times also hold the other processes' share, unequally in two runs of 2 and 30 s); each run's
+machine the wall times also hold the other processes' share, unequally in two runs of 2 and 30 s), ``load_average``
+-> {run: [before, after]} the machine's 1-minute load average around each timed run; each run's
 own folder (``staggered/``, ``monolithic/``) has its summary, time series and figures.
 
 What is timed: each run's simulation whole, as ``rotorcosim run`` times it (``wall_time_s`` of its summary: set-up
@@ -21,6 +22,7 @@ from __future__ import annotations
 
 import json
 import math
+import os
 import sys
 import tempfile
 from pathlib import Path
@@ -115,7 +117,7 @@ def compare(out: Path, duration=2.0, unbalance=2850.0, scenario="blade_loss", re
     sc = resolve(scenario)
     _warm_up(scenario, out, _quantum(sc))
     kinds = ("staggered", "monolithic")
-    scenarios = {}
+    scenarios, loads = {}, {}
     for i, kind in enumerate(kinds, 1):
         if kind in runs:
             continue
@@ -146,8 +148,10 @@ def compare(out: Path, duration=2.0, unbalance=2850.0, scenario="blade_loss", re
         # not checkpointed: a comparison is run again, not resumed, and a save of the whole state at every interval
         # end (0.2 s each, measured) is no part of the integration schemes' cost the table compares; no figures
         # (and so no figure workers) during a timed run: drawn below, after both
+        load = _load()
         runs[kind] = execute(sc, out / kind, figures=figures and not later, quiet=quiet, schedule=sch,
                              overwrite=overwrite, checkpoint_every=None)
+        loads[kind] = [load, _load()]
         if not quiet:
             print(f"[{i}/{len(kinds)}] {kind}: done in {runs[kind]['wall_time_s']:.3g} s", file=sys.stderr, flush=True)
     if scenarios:
@@ -162,6 +166,9 @@ def compare(out: Path, duration=2.0, unbalance=2850.0, scenario="blade_loss", re
     cpu = {k: runs[k].get("cpu_time_s") for k in runs}
     table = {"bearing": bearing, "duration_s": duration, "unbalance_N": unbalance, "revolutions_tm": revolutions,
              "results": results, "wall_time_s": wall, "speedup": wall["monolithic"] / wall["staggered"],
+             # the machine's 1-minute load average before and after each timed run: on a shared machine the wall
+             # times hold the other processes' share (and the CPU times some of it), so a reader can judge them
+             "load_average": loads,
              "cpu_time_s": cpu, "speedup_cpu": (cpu["monolithic"] / cpu["staggered"]
                                                 if cpu["monolithic"] and cpu["staggered"] else None),
              "largest_error_pct": max((v["rel_error_pct"] or 0.0) for v in results.values()),
@@ -184,6 +191,13 @@ def _draw(out: Path, scenarios: dict, quiet: bool) -> None:
     finally:
         for p in pools.values():
             p.close()
+
+
+def _load() -> float | None:
+    try:
+        return os.getloadavg()[0]
+    except (OSError, AttributeError):  # not available on this system
+        return None
 
 
 def _quantum(sc) -> float:

@@ -115,6 +115,8 @@ def test_compare_writes_table6(tmp_path):
     t = json.loads((tmp_path / "table6.json").read_text())
     assert set(t["wall_time_s"]) == {"staggered", "monolithic"}
     assert t["speedup"] == pytest.approx(t["wall_time_s"]["monolithic"] / t["wall_time_s"]["staggered"])
+    assert set(t["load_average"]) == {"staggered", "monolithic"}
+    assert all(len(v) == 2 and all(x >= 0 for x in v) for v in t["load_average"].values())
     for key, row in t["results"].items():
         assert set(row) == {"staggered", "monolithic", "rel_error_pct"}
         if row["monolithic"]:
