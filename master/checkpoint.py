@@ -13,6 +13,8 @@ its results are bit-identical.
 
 Pickling: components (and the system) are written as references by name (``persistent_id``) and bound to the
 new simulation's objects when read, so the master's own objects can be saved whole, whatever their internals.
+Reading is guarded (:class:`_Unpickler`): a checkpoint may only name rotorcosim's classes, numpy's arrays and plain
+containers, so a hostile or corrupted file is refused (CheckpointError) instead of running what it names.
 
 The automatic schedule is checkpointed at interval ends only (its stop tests decide inside an interval; its own
 state, ``sim.schedule_state``, is saved with the rest): interrupted inside an interval, it resumes from the end of
@@ -24,13 +26,16 @@ safe point (a checkpoint, then :class:`RunInterrupted`); a second signal interru
 """
 from __future__ import annotations
 
+import enum
 import errno
 import hashlib
+import importlib
 import io
 import json
 import os
 import pickle
 import signal
+import sys
 import threading
 import time
 from pathlib import Path
@@ -100,17 +105,123 @@ class _Pickler(pickle.Pickler):
         return None
 
 
-class _Unpickler(pickle.Unpickler):
-    def __init__(self, data: bytes, system: System):
+class _Unpickler(pickle._Unpickler):
+    """Reads a checkpoint without letting it run code: unpickling calls whatever the file names, so a hostile or
+    corrupted ``checkpoint.pkl`` could otherwise execute anything with the user's rights. Only these are let
+    through: classes of rotorcosim (and of the system's component modules, for plugins) created with
+    ``__new__`` (never their ``__init__``), numpy arrays, dtypes and scalars, and plain containers; any other
+    name, and any call of something else, stops the loading with :class:`CheckpointError` naming it. (The pure
+    Python unpickler, because the C one cannot tell a constructor call from ``__new__``.)
+
+    ``system`` None (reading the plain fields before a simulation exists): references to components are None
+    and a class of another module reads as an inert placeholder."""
+
+    #: the only functions (and call-constructed types) a checkpoint may call, by (module, name)
+    CALLABLE = {("numpy", "dtype"), ("numpy.core.multiarray", "_reconstruct"), ("numpy._core.multiarray", "_reconstruct"),
+                ("numpy.core.multiarray", "scalar"), ("numpy._core.multiarray", "scalar"),
+                ("numpy.core.numeric", "_frombuffer"), ("numpy._core.numeric", "_frombuffer"),
+                ("builtins", "set"), ("builtins", "frozenset"), ("builtins", "complex"), ("builtins", "bytearray"),
+                ("builtins", "slice"), ("builtins", "range"), ("collections", "OrderedDict"),
+                ("collections", "deque")}
+    #: types that may be created with __new__ besides the allowed modules' classes
+    NEW = {("numpy", "ndarray"), ("builtins", "object"), ("builtins", "set"), ("builtins", "frozenset"),
+           ("collections", "OrderedDict"), ("collections", "deque")}
+
+    def __init__(self, data: bytes, system: System | None):
         super().__init__(io.BytesIO(data))
         self.system = system
+        #: ids of the allowed globals read so far -> whether the checkpoint may call them (numpy's reconstructors)
+        self.found: dict[int, bool] = {}
+        self.packages = {"rotorcosim"}
+        if system is not None:  # plugins: their state classes live beside their component class
+            self.packages |= {type(c).__module__.partition(".")[0] for c in system.components.values()}
+        self.dispatch = dict(pickle._Unpickler.dispatch)
+        self.dispatch[pickle.REDUCE[0]] = _Unpickler._reduce
+        self.dispatch[pickle.NEWOBJ[0]] = _Unpickler._newobj
+        self.dispatch[pickle.NEWOBJ_EX[0]] = _Unpickler._newobj_ex
+        self.dispatch[pickle.BUILD[0]] = _Unpickler._build
+        for op in (pickle.INST, pickle.OBJ):  # protocol 0/1 constructor calls: never written by _dumps
+            self.dispatch[op[0]] = _Unpickler._refuse
 
     def persistent_load(self, pid):
-        if pid[0] == "component":
+        if self.system is None:
+            return None
+        if isinstance(pid, tuple) and pid and pid[0] == "component" and len(pid) == 2 \
+                and pid[1] in self.system.components:
             return self.system.components[pid[1]]
-        if pid[0] == "system":
+        if pid == ("system",):
             return self.system
-        raise pickle.UnpicklingError(f"unknown reference {pid!r}")
+        raise CheckpointError(f"the checkpoint refers to {pid!r}, which this run does not have")
+
+    def find_class(self, module, name):
+        if not (isinstance(module, str) and isinstance(name, str)) or "." in name or name.startswith("__"):
+            raise CheckpointError(f"the checkpoint names {module}.{name}, which a checkpoint may not hold")
+        ours = module.partition(".")[0] in self.packages
+        if not ours and (module, name) not in self.CALLABLE | self.NEW:
+            if self.system is None:
+                return _Opaque
+            raise CheckpointError(f"the checkpoint names {module}.{name}, which a checkpoint may not hold")
+        if ours and module not in sys.modules:
+            importlib.import_module(module)
+        obj = getattr(sys.modules.get(module), name, None)
+        if obj is None or (ours and not (isinstance(obj, type) and obj.__module__ == module)):
+            raise CheckpointError(f"the checkpoint names {module}.{name}, which a checkpoint may not hold")
+        self.found[id(obj)] = (module, name) in self.CALLABLE or (isinstance(obj, type) and issubclass(obj, enum.Enum))
+        return obj
+
+    def _refuse(self):
+        raise CheckpointError("the checkpoint holds an old-protocol constructor call (not written by rotorcosim)")
+
+    def _reduce(self):
+        args = self.stack.pop()
+        func = self.stack[-1]
+        if func is _Opaque:
+            self.stack[-1] = _Opaque()
+            return
+        if not self.found.get(id(func)) or not isinstance(args, tuple):
+            raise CheckpointError(f"the checkpoint calls {getattr(func, '__qualname__', type(func).__name__)}, "
+                                  "which a checkpoint may not do")
+        self.stack[-1] = func(*args)
+
+    def _newobj(self):
+        args = self.stack.pop()
+        cls = self.stack.pop()
+        self.append(self._new(cls, args, {}))
+
+    def _newobj_ex(self):
+        kwargs = self.stack.pop()
+        args = self.stack.pop()
+        cls = self.stack.pop()
+        self.append(self._new(cls, args, kwargs))
+
+    def _new(self, cls, args, kwargs):
+        if cls is _Opaque:
+            return _Opaque()
+        if not isinstance(cls, type) or id(cls) not in self.found:
+            raise CheckpointError(f"the checkpoint creates {cls!r}, which a checkpoint may not do")
+        return cls.__new__(cls, *args, **kwargs)
+
+    def _build(self):
+        state = self.stack[-1]
+        inst = self.stack[-2]
+        if isinstance(inst, _Opaque):
+            self.stack.pop()
+            return
+        # __setstate__ only as the type defines it (an instance attribute of that name would be called)
+        setstate = getattr(type(inst), "__setstate__", None)
+        if setstate is None:
+            dicts = state if isinstance(state, tuple) and len(state) == 2 else (state,)
+            if any(isinstance(d, dict) and any(not isinstance(k, str) or k.startswith("__") for k in d)
+                   for d in dicts if d):
+                raise CheckpointError("the checkpoint sets a special attribute, which a checkpoint may not do")
+        pickle._Unpickler.load_build(self)
+
+
+class _Opaque:
+    """What an unknown class reads as while only a checkpoint's plain fields are read (never called)."""
+
+    def __init__(self, *args, **kwargs):
+        pass
 
 
 def _dumps(obj) -> bytes:
@@ -222,7 +333,12 @@ class ResumePoint:
     def restore(self, sim) -> None:
         """Everything the checkpoint holds into ``sim`` (a fresh unpickling each time: the master's objects
         are replaced, never shared with an earlier restore)."""
-        data = _Unpickler(self.raw, sim.system).load()
+        try:
+            data = _Unpickler(self.raw, sim.system).load()
+        except CheckpointError as exc:
+            raise CheckpointError(f"--resume: the checkpoint cannot be used: {exc}") from None
+        except Exception as exc:
+            raise CheckpointError(f"--resume: the checkpoint is not readable ({type(exc).__name__}: {exc})") from None
         sim.engine = data["engine"]
         sim.hold = data["hold"]  # pickled with the engine: it shares the engine's connection objects
         sim.report = data["report"]
@@ -256,12 +372,10 @@ def load(path: str | os.PathLike, key: str) -> ResumePoint:
 
 def _peek(raw: bytes) -> dict:
     """The checkpoint's plain fields, without binding its references (no simulation yet)."""
-
-    class Peek(pickle.Unpickler):
-        def persistent_load(self, pid):
-            return None
-
-    return Peek(io.BytesIO(raw)).load()
+    data = _Unpickler(raw, None).load()
+    if not isinstance(data, dict):
+        raise CheckpointError("not a checkpoint's table of fields")
+    return data
 
 
 def resume(sim, schedule, point: ResumePoint):
