@@ -19,6 +19,7 @@ else:  # pragma: no cover
 
 from rotorcosim.components import registry
 from rotorcosim.components.contract import ContractError
+from rotorcosim.components.value_types import check_value
 
 from .compose import ScenarioError
 
@@ -107,12 +108,13 @@ def _component(sc, name: str):
     return sc.components[name]
 
 
-def _declared_parameters(spec) -> list[str] | None:
-    """The parameters the component's implementation declares (None when not known before it is built: FMUs)."""
+def _declared_parameters(spec) -> dict | None:
+    """The parameters the component's implementation declares, name -> Variable (None when not known before it
+    is built: FMUs)."""
     if spec.implementation is None:
         return None
     cls = registry.lookup(spec.implementation, spec.folder)
-    return [v.name for v in getattr(cls, "variables", ()) if v.causality == "parameter"]
+    return {v.name: v for v in getattr(cls, "variables", ()) if v.causality == "parameter"}
 
 
 def _plain(value: Any) -> Any:
@@ -141,6 +143,11 @@ def apply_set(sc, values: Mapping[str, Any], origin: str = API_ORIGIN):
         if known is not None and param not in known:
             raise ScenarioError(f"set {ref}: {spec.implementation} ({comp}) has no parameter {param!r} "
                                 f"(its parameters: {', '.join(known)})")
+        if known is not None:  # the value's kind and size now, not when the run (or a sweep's case) builds it
+            try:
+                check_value(known[param], value, f"set {ref}")
+            except ContractError as exc:
+                raise ScenarioError(str(exc)) from None
         spec.parameters[param] = _plain(value)
         spec.param_origins[param] = origin
     return out

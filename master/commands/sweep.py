@@ -28,7 +28,7 @@ from typing import Any
 
 from rotorcosim.master import paper_comparison
 from rotorcosim.master.outputs import write_json
-from rotorcosim.master.overrides import parse_set
+from rotorcosim.master.overrides import apply_set, parse_set
 
 from .run import apply_unbalance, execute, resolve
 from .table5 import PAPER_LEVELS, write_table5
@@ -117,17 +117,15 @@ def cases_of(levels: list[float] | None, grid: dict[str, list[Any]]) -> list[Cas
     return out
 
 
-def _apply(sc, case: Case) -> None:
+def _apply(sc, case: Case):
+    """The scenario of ``case``: ``sc`` with its unbalance and its ``--set`` values (checked as ``run --set``'s:
+    the component, the parameter, the value's kind)."""
     if case.unbalance_N is not None:
         apply_unbalance(sc, case.unbalance_N)
-    for ref, value in case.settings.items():
-        comp, _, param = ref.partition(".")
-        if comp not in sc.components:
-            raise ValueError(f"--set {ref}: scenario {sc.name!r} has no component {comp!r} "
-                             f"(components: {', '.join(sc.components)})")
-        sc.components[comp].parameters[param] = value
     if case.settings:
+        sc = apply_set(sc, case.settings, origin="--set")
         sc.name = f"{sc.name}_{case.name}"
+    return sc
 
 
 def run_case(scenario: str, case: Case, schedule: str | None, duration: float | None) -> dict:
@@ -140,8 +138,7 @@ def run_case(scenario: str, case: Case, schedule: str | None, duration: float | 
     work = Path(tempfile.mkdtemp(prefix="rotorcosim-case-"))
     try:
         try:
-            sc = resolve(scenario)
-            _apply(sc, case)
+            sc = _apply(resolve(scenario), case)
             summary = execute(sc, work, schedule, duration, figures=True, quiet=True)
         except Exception as exc:  # one failing case must not lose the others
             summary = {"scenario": case.name, "error": f"{type(exc).__name__}: {exc}", "bearings": {}}

@@ -49,6 +49,11 @@ def test_set_returns_a_new_scenario_and_leaves_the_old_one():
     ({"rotor.F_unbalanc": 1.0}, r"rotor.mta \(rotor\) has no parameter 'F_unbalanc' \(its parameters: .*F_unbalance"),
     ({"rotor": 1.0}, "must be written 'component.parameter'"),
     ({"rotor.F_unbalance": float("nan")}, "not finite"),
+    # the value's kind and size are checked when set, not when the run builds the component
+    ({"rotor.F_unbalance": "abc"}, r"set rotor.F_unbalance: expected a number \(Real\), got 'abc'"),
+    ({"rotor.F_unbalance": [1.0, 2.0]}, r"set rotor.F_unbalance: expected 1 value\(s\), got 2"),
+    ({"damper0.n_theta": 2.5}, r"set damper0.n_theta: expected an integer"),
+    ({"damper0.cavitation": 2}, r"set damper0.cavitation: expected a Boolean"),
 ])
 def test_set_errors_name_the_problem(values, message):
     with pytest.raises((ScenarioError, ValueError), match=message):

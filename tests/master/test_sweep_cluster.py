@@ -123,6 +123,22 @@ def test_set_grid_names_unknown_component(tmp_path, capsys):
     assert "no component 'nosuch'" in capsys.readouterr().err
 
 
+@pytest.mark.parametrize("item, message", [
+    ("osc.nope=1,2", "has no parameter 'nope'"),
+    ("osc.F0=100,abc", "set osc.F0: expected a number"),   # the bad value is the second case's
+])
+def test_set_grid_is_checked_before_any_case_runs(tmp_path, capsys, item, message):
+    """A parameter the component lacks or a value of the wrong kind in any case: exit 2 before the first case
+    runs (not a failed case after the others ran), and no case folder written."""
+    out = tmp_path / "x"
+    rc = main(["sweep", "--set", item, "--scenario", "toy_thermomechanical", "--serial", "--duration", "0.01",
+               "--out", str(out)])
+    assert rc == 2
+    err = capsys.readouterr().err
+    assert message in err and "Traceback" not in err
+    assert not out.exists() or not any(out.iterdir())
+
+
 def test_workers_must_be_positive(tmp_path):
     for n in (0, -1):
         with pytest.raises(ValueError, match="--workers must be at least 1"):
