@@ -218,7 +218,9 @@ def export_scenario(sc, dest_dir: str | Path, only: str | None = None) -> dict[s
             problems.append(f"{n} ({spec.implementation}: {exc})")
     if problems:
         raise ExportError(f"scenario {sc.name!r}: cannot export component(s): " + "; ".join(problems))
-    dest_dir.mkdir(parents=True, exist_ok=True)
+    from rotorcosim.master.rundir import ensure_folder
+
+    ensure_folder(dest_dir, "output folder")  # a file there, an unwritable place: one line naming it
     out = {}
     for n in names:
         spec = sc.components[n]

@@ -23,6 +23,7 @@ from __future__ import annotations
 
 import atexit
 import json
+import os
 import shutil
 import tempfile
 import xml.etree.ElementTree as ET
@@ -180,11 +181,18 @@ def write_ssp(sc: Scenario, path: str | Path) -> Path:
         raise SSPError(f"{path}: an SSP archive's name must end in .ssp")
     if not path.parent.is_dir():
         raise SSPError(f"output folder {path.parent} does not exist")
+    if path.is_dir():
+        raise SSPError(f"{path} is a folder, not an archive's name")
+    if not os.access(path.parent, os.W_OK | os.X_OK):  # before the (slow) export of the FMUs
+        raise SSPError(f"output folder {path.parent} is not writable")
     with tempfile.TemporaryDirectory(prefix="rcs_ssp_") as tmp:
         fmus = export.export_scenario(sc, Path(tmp))
         entries = {f"resources/{n}.fmu": p.read_bytes() for n, p in fmus.items()}
         entries["SystemStructure.ssd"] = system_description(sc, fmus)
-    return export.write_deterministic_zip(entries, path)
+    try:
+        return export.write_deterministic_zip(entries, path)
+    except OSError as exc:  # an unwritable folder, a full disk: the archive is not written (nor a part of it)
+        raise SSPError(f"{path}: cannot write the archive ({exc.strerror or exc})") from None
 
 
 # -- reading -------------------------------------------------------------------------------------------

@@ -36,6 +36,27 @@ def _ours(name: str) -> bool:
     return any(fnmatch.fnmatch(name, pat) for pat in RUN_FILES)
 
 
+def ensure_folder(path, what: str = "--out") -> Path:
+    """``path`` as a folder we can write into, created if missing; else an OutputFolderError naming ``what``
+    (the option or argument that gave it) and why. Every command that writes a folder of results uses it."""
+    p = Path(path)
+    if str(path).strip() == "":
+        raise OutputFolderError(f"{what} is empty: give the folder the results go to")
+    if p.exists() and not p.is_dir():
+        raise OutputFolderError(f"{what} {p} is a file, not a folder")
+    try:
+        p.mkdir(parents=True, exist_ok=True)
+    except FileExistsError:
+        raise OutputFolderError(f"{what} {p}: a part of the path is a file, not a folder") from None
+    except PermissionError:
+        raise OutputFolderError(f"{what} {p}: no permission to create the folder") from None
+    except OSError as exc:
+        raise OutputFolderError(f"{what} {p}: cannot create the folder ({exc.strerror or exc})") from None
+    if not os.access(p, os.W_OK | os.X_OK):
+        raise OutputFolderError(f"{what} {p}: the folder is not writable")
+    return p
+
+
 class RunFolder:
     """``with RunFolder(out, overwrite=..., resume=...) as folder:`` holds the lock for the block."""
 
@@ -51,19 +72,7 @@ class RunFolder:
         self._fd = None
 
     def __enter__(self) -> "RunFolder":
-        p = self.path
-        if p.exists() and not p.is_dir():
-            raise OutputFolderError(f"--out {p} is a file, not a folder")
-        try:
-            p.mkdir(parents=True, exist_ok=True)
-        except FileExistsError:
-            raise OutputFolderError(f"--out {p}: a part of the path is a file, not a folder") from None
-        except PermissionError:
-            raise OutputFolderError(f"--out {p}: no permission to create the folder") from None
-        except OSError as exc:
-            raise OutputFolderError(f"--out {p}: cannot create the folder ({exc.strerror or exc})") from None
-        if not os.access(p, os.W_OK | os.X_OK):
-            raise OutputFolderError(f"--out {p}: the folder is not writable")
+        p = ensure_folder(self.path)
         try:
             self._fd = os.open(p / LOCK, os.O_RDWR | os.O_CREAT, 0o644)
         except OSError as exc:

@@ -29,6 +29,7 @@ from typing import Any
 from rotorcosim.master import paper_comparison
 from rotorcosim.master.outputs import write_json
 from rotorcosim.master.overrides import apply_set, parse_set
+from rotorcosim.master.rundir import ensure_folder
 
 from .run import apply_unbalance, execute, resolve
 from .table5 import PAPER_LEVELS, write_table5
@@ -199,7 +200,7 @@ def sweep(levels=None, out: Path = Path("sweep"), scenario="blade_loss", schedul
     cases = cases_of(list(levels) if levels else None, grid)
     for c in cases:  # fail early: a bad scenario or an unknown component, before any worker starts
         _apply(resolve(scenario), c)
-    out.mkdir(parents=True, exist_ok=True)
+    ensure_folder(out)
     t0 = time.perf_counter()
     results: dict[str, dict] = {}
 

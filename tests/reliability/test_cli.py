@@ -115,3 +115,26 @@ def test_command_process_collects_less_and_freezes_at_exit():
     assert out.returncode == 0, out.stderr
     for line in ("left alone: True", "raised: True", "frozen at exit: True"):
         assert line in out.stdout, out.stdout
+
+
+@pytest.mark.parametrize("command, args, message", [
+    ("sweep", ["--unbalance", "50", "--serial", "--duration", "0.01", "--scenario", "toy_thermomechanical",
+               "--out", "{file}"], "--out {file} is a file, not a folder"),
+    ("sweep", ["--unbalance", "50", "--serial", "--duration", "0.01", "--scenario", "toy_thermomechanical",
+               "--out", "{file}/sub"], "cannot create the folder (Not a directory)"),
+    ("export-fmus", ["{file}", "--scenario", "toy_thermomechanical"], "output folder {file} is a file, not a folder"),
+    ("export-fmus", ["{file}/sub", "--scenario", "toy_thermomechanical"], "cannot create the folder (Not a directory)"),
+    ("export-ssp", ["{dir}/folder.ssp", "toy_thermomechanical"], "is a folder, not an archive's name"),
+    ("export-ssp", ["/proc/rotorcosim_test.ssp", "toy_thermomechanical"], "/proc/rotorcosim_test.ssp: cannot write"),
+])
+def test_output_places_that_cannot_be_written(tmp_path, capsys, command, args, message):
+    """Every command writing results names the output it cannot use, in one line (was: a bare OSError)."""
+    f = tmp_path / "afile"
+    f.write_text("x")
+    (tmp_path / "folder.ssp").mkdir()
+    args = [a.replace("{file}", str(f)).replace("{dir}", str(tmp_path)) for a in args]
+    rc, _, err = call(capsys, command, *args)
+    line = one_line_error(err)
+    assert rc == 2 and message.replace("{file}", str(f)) in line, line
+    assert "Errno" not in line
+    assert f.read_text() == "x"
