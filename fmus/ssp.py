@@ -18,11 +18,15 @@ averaging/extrapolation/hold settings.
 uses Gauss-Seidel in element order and a monolithic schedule over the DefaultExperiment with the smallest
 DefaultExperiment stepSize of the FMUs. The archive is extracted (safely: safezip.py) into a temporary
 folder that lives until the process ends, since the scenario's components point at the FMUs in it.
+What it reads is checked as a TOML scenario is: the annotation's settings through the scenario schema
+(master/schema.py), component names (non-empty, no '.', unique), a parameter value written in another unit
+(``unit`` attribute) converted through ``ssd:Units`` or the unit grammar, or refused.
 """
 from __future__ import annotations
 
 import atexit
 import json
+import math
 import os
 import shutil
 import tempfile
@@ -36,7 +40,7 @@ from .flatten import scalar_names
 from .importer import FMUError, describe, ports_of
 from .model_description import _unit_element, read_annotation
 from .safezip import ArchiveError, open_zip, safe_extract
-from .units import is_dimensionless
+from .units import definition, is_dimensionless
 
 NS = {
     "ssd": "http://ssp-standard.org/SSP1/SystemStructureDescription",
@@ -206,26 +210,30 @@ def _cleanup() -> None:
 
 
 def _value(p: ET.Element, where: str):
+    """The value of an ``ssv:Parameter`` and the unit it is written in (its ``unit`` attribute, or None)."""
     for child in p:
         tag = child.tag.split("}")[-1]
-        v = child.get("value")
-        if tag not in ("Real", "Float64", "Float32", "Integer", "Int32", "Enumeration", "Boolean", "String"):
-            continue
-        if v is None:
-            raise SSPError(f"{where}: parameter {p.get('name')!r}: <ssv:{tag}> has no value attribute")
-        try:
-            if tag in ("Real", "Float64", "Float32"):
-                return float(v)
-            if tag in ("Integer", "Int32", "Enumeration"):
-                return int(v)
-        except ValueError:
-            raise SSPError(f"{where}: parameter {p.get('name')!r}: <ssv:{tag} value={v!r}> is not a number") from None
-        if tag == "Boolean":
-            if v.strip().lower() not in ("true", "false", "1", "0"):
-                raise SSPError(f"{where}: parameter {p.get('name')!r}: <ssv:Boolean value={v!r}> is not true/false")
-            return v.strip().lower() in ("true", "1")
-        return v
+        if tag in ("Real", "Float64", "Float32", "Integer", "Int32", "Enumeration", "Boolean", "String"):
+            return _typed(p, child, tag, where), child.get("unit") or None
     raise SSPError(f"{where}: parameter {p.get('name')!r} has no value this reader understands")
+
+
+def _typed(p: ET.Element, child: ET.Element, tag: str, where: str):
+    v = child.get("value")
+    if v is None:
+        raise SSPError(f"{where}: parameter {p.get('name')!r}: <ssv:{tag}> has no value attribute")
+    try:
+        if tag in ("Real", "Float64", "Float32"):
+            return float(v)
+        if tag in ("Integer", "Int32", "Enumeration"):
+            return int(v)
+    except ValueError:
+        raise SSPError(f"{where}: parameter {p.get('name')!r}: <ssv:{tag} value={v!r}> is not a number") from None
+    if tag == "Boolean":
+        if v.strip().lower() not in ("true", "false", "1", "0"):
+            raise SSPError(f"{where}: parameter {p.get('name')!r}: <ssv:Boolean value={v!r}> is not true/false")
+        return v.strip().lower() in ("true", "1")
+    return v
 
 
 def parse_xml(path: Path, what: str) -> ET.Element:
@@ -242,6 +250,34 @@ def parse_xml(path: Path, what: str) -> ET.Element:
         return ET.fromstring(data)
     except ET.ParseError as exc:
         raise SSPError(f"{what}: not well-formed XML ({exc})") from None
+
+
+def _units_of(root: ET.Element) -> dict[str, tuple]:
+    """The archive's unit definitions (``ssd:Units``): name -> (base-unit exponents, factor, offset)."""
+    out = {}
+    for u in root.findall("ssd:Units/ssc:Unit", NS):
+        b = u.find("ssc:BaseUnit", NS)
+        if u.get("name") is None or b is None:
+            continue
+        try:
+            exps = {k: int(v) for k, v in b.attrib.items() if k not in ("factor", "offset") and int(v)}
+            out[u.get("name")] = (exps, float(b.get("factor", 1.0)), float(b.get("offset", 0.0)))
+        except ValueError:
+            continue  # a malformed definition: the unit is then read by its name, or refused
+    return out
+
+
+def _in_unit(value, unit: str, var, units: dict, where: str):
+    """``value`` written in ``unit`` converted to the variable's unit; a unit that cannot be read, or of another
+    dimension, is refused (never read as if it were the variable's own: a silent misreading)."""
+    src = units.get(unit) or definition(unit)
+    dst = units.get(var.unit) or definition(var.unit)
+    if isinstance(value, (bool, str)) or src is None or dst is None:
+        raise SSPError(f"{where}: given in {unit!r}, which cannot be converted to the variable's unit {var.unit!r} "
+                       "(define it in ssd:Units, or give the value in the variable's unit)")
+    if src[0] != dst[0] or not (src[1] > 0 and dst[1] > 0):
+        raise SSPError(f"{where}: given in {unit!r}, not a unit of the variable's quantity ({var.unit!r})")
+    return ((float(value) * src[1] + src[2]) - dst[2]) / dst[1]
 
 
 def _parameter_values(comp: ET.Element, folder: Path, where: str) -> dict[str, object]:
@@ -263,6 +299,65 @@ def _parameter_values(comp: ET.Element, folder: Path, where: str) -> dict[str, o
         for p in pset.findall("ssv:Parameters/ssv:Parameter", NS):
             out[p.get("name")] = _value(p, where)
     return out
+
+
+#: the annotation's keys (what write_ssp puts there) -> the container each must be
+_PAYLOAD = {"name": str, "description": str, "algorithm": dict, "schedule": (dict, type(None)), "outputs": dict,
+            "results": dict, "steps": dict, "implementations": dict, "connections": list, "inputs": dict}
+
+
+_JSON = {dict: "object", list: "array", str: "string", int: "number", float: "number", bool: "boolean",
+         type(None): "null"}
+
+
+def _payload_shapes(payload: dict, where: str) -> None:
+    """The annotation's keys and their containers (its values are checked by the scenario schema, later)."""
+    what = f"{where}: SystemStructure.ssd: annotation {ANNOTATION}"
+    for key, value in payload.items():
+        if key not in _PAYLOAD:
+            raise SSPError(f"{what}: unknown key {key!r}; known: {', '.join(_PAYLOAD)}")
+        if not isinstance(value, _PAYLOAD[key]):
+            raise SSPError(f"{what}: {key!r} must be a JSON {_JSON[_PAYLOAD[key] if isinstance(_PAYLOAD[key], type) else dict]}, "
+                           f"got a JSON {_JSON.get(type(value), type(value).__name__)}")
+    if not all(isinstance(c, dict) for c in payload.get("connections", [])):
+        raise SSPError(f"{what}: 'connections' must be a list of JSON objects")
+    for key in ("steps", "implementations"):
+        for name, value in payload.get(key, {}).items():
+            ok = isinstance(value, str) if key == "implementations" else \
+                isinstance(value, (int, float)) and not isinstance(value, bool) and math.isfinite(value) and value > 0
+            if not ok:
+                raise SSPError(f"{what}: {key}[{name!r}] = {value!r} is not " +
+                               ("an implementation's name" if key == "implementations" else "a positive step [s]"))
+
+
+def _check_payload(payload: dict, where: str, components: dict) -> None:
+    """The annotation's scenario settings through the scenario schema, as a TOML scenario's (master/schema.py)."""
+    from rotorcosim.master import schema
+
+    data = {"components": {n: {"fmu": c.fmu, **({"step": c.step} if c.step is not None else {})}
+                           for n, c in components.items()},
+            "scenario": {k: payload[k] for k in ("name", "description") if k in payload},
+            "connections": [{k: v for k, v in c.items() if v is not None} for c in payload.get("connections", [])],
+            "inputs": payload.get("inputs", {})}
+    data.update({k: payload[k] for k in ("algorithm", "schedule", "outputs", "results") if payload.get(k)})
+    try:
+        schema.check(data)
+    except schema.SchemaError as exc:
+        msg = str(exc).removeprefix("scenario: ")
+        raise SSPError(f"{where}: SystemStructure.ssd: annotation {ANNOTATION}: {msg}") from None
+
+
+def _time(de, key: str, default: float, where: str) -> float:
+    text = de.get(key) if de is not None else None
+    if text is None or text == "":
+        return default
+    try:
+        value = float(text)
+    except ValueError:
+        value = float("nan")
+    if not math.isfinite(value):
+        raise SSPError(f"{where}: ssd:DefaultExperiment: {key}={text!r} is not a finite number of seconds")
+    return value
 
 
 def read_ssp(path: str | Path) -> Scenario:
@@ -302,6 +397,8 @@ def _scenario_of(path: Path, folder: Path) -> Scenario:
                 raise SSPError(f"{where}: SystemStructure.ssd: annotation {ANNOTATION} is not valid JSON ({exc})") from None
             if not isinstance(payload, dict):
                 raise SSPError(f"{where}: SystemStructure.ssd: annotation {ANNOTATION} must hold a JSON object")
+    _payload_shapes(payload, where)
+    units = _units_of(root)
     components: dict[str, ComponentSpec] = {}
     scalars: dict[str, dict[str, tuple]] = {}
     inputs: dict[str, list] = {}
@@ -310,6 +407,10 @@ def _scenario_of(path: Path, folder: Path) -> Scenario:
         tag = comp.tag.split("}")[-1]
         cname = comp.get("name")
         w = f"{where}: component {cname!r}"
+        if not cname or "." in cname:
+            raise SSPError(f"{w}: a component's name must be non-empty and contain no '.'")
+        if cname in components:
+            raise SSPError(f"{w}: two components have this name")
         if tag != "Component":
             raise SSPError(f"{w}: nested {tag} elements are not supported (flat systems of FMUs only)")
         if comp.get("type", FMU_TYPE) != FMU_TYPE:
@@ -327,10 +428,12 @@ def _scenario_of(path: Path, folder: Path) -> Scenario:
             steps.append(float(md.defaultExperiment.stepSize))
         scalars[cname] = {s: (v, i) for v in variables for i, s in enumerate(scalar_names(v.name, v.size))}
         params: dict[str, list] = {}
-        for sname, value in _parameter_values(comp, folder, w).items():
+        for sname, (value, unit) in _parameter_values(comp, folder, w).items():
             if sname not in scalars[cname]:
                 continue   # SSP: names that match no variable are ignored
             v, i = scalars[cname][sname]
+            if unit is not None and unit != v.unit:
+                value = _in_unit(value, unit, v, units, f"{w}: parameter {sname!r}")
             if v.causality == "parameter":
                 params.setdefault(v.name, [None] * v.size)[i] = value
             elif v.causality == "input":
@@ -368,15 +471,18 @@ def _scenario_of(path: Path, folder: Path) -> Scenario:
         s = settings.get((src, dst), {})
         connections.append(ConnectionSpec(src, dst, s.get("average", "mean"), s.get("extrapolation", "hold"),
                                           s.get("hold"), s.get("convert"), s.get("unit")))
+    _check_payload(payload, where, components)
     schedule = payload.get("schedule")
     if not schedule:
         de = root.find("ssd:DefaultExperiment", NS)
-        start = float(de.get("startTime", 0.0)) if de is not None else 0.0
-        stop = float(de.get("stopTime")) if de is not None and de.get("stopTime") else start + 1.0
+        start = _time(de, "startTime", 0.0, where)
+        stop = _time(de, "stopTime", start + 1.0, where)
+        if not stop > start:
+            raise SSPError(f"{where}: ssd:DefaultExperiment: stopTime {stop!r} is not after startTime {start!r}")
         schedule = {"kind": "monolithic", "duration": stop - start, "step": min(steps) if steps else 1e-3}
     algorithm = payload.get("algorithm") or {"kind": "gauss-seidel", "order": list(components)}
     for ref, values in payload.get("inputs", {}).items():
-        inputs[ref] = list(values)
+        inputs[ref] = list(values) if isinstance(values, list) else values
     return Scenario(name=payload.get("name", system.get("name", path.stem)), components=components,
                     connections=connections, inputs=inputs, algorithm=algorithm, schedule=schedule,
                     outputs=payload.get("outputs", {}), source=path, description=payload.get("description", ""),

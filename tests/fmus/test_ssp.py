@@ -197,3 +197,72 @@ def test_parameter_values_from_an_ssv_file(toy_ssp, tmp_path):
         for n, data in entries.items():
             zf.writestr(n, data)
     assert read_ssp(out).components["node"].parameters == {"C": 20.0, "R": 2.0}
+
+
+# -- hostile or careless SystemStructure.ssd ------------------------------------------------------------------
+def _edited(toy_ssp: Path, dest: Path, edit) -> Path:
+    """A copy of the toy archive with its SystemStructure.ssd text passed through ``edit``."""
+    with zipfile.ZipFile(toy_ssp) as zin, zipfile.ZipFile(dest, "w") as zout:
+        for i in zin.infolist():
+            data = zin.read(i)
+            if i.filename == "SystemStructure.ssd":
+                data = edit(data.decode()).encode()
+            zout.writestr(i, data)
+    return dest
+
+
+def _payload(**changes):
+    """An edit of the rotorcosim annotation's JSON: ``key=value`` replaced (``value`` None: key removed)."""
+    import json
+    import re
+
+    def edit(text):
+        m = re.search(r"<rc:Scenario>(.*)</rc:Scenario>", text)
+        p = json.loads(m.group(1))
+        for k, v in changes.items():
+            p[k] = v
+        return text.replace(m.group(1), json.dumps(p).replace("&", "&amp;").replace("<", "&lt;"))
+    return edit
+
+
+_C10 = '<ssv:Real value="10.0" />'
+
+
+@pytest.mark.parametrize("edit, message", [
+    # the annotation's JSON, each a crash (AttributeError, TypeError) or a silent misreading before
+    (_payload(steps=5), "annotation org.rotorcosim.scenario: 'steps' must be a JSON object, got a JSON number"),
+    (_payload(steps={"osc": "abc"}), "steps['osc'] = 'abc' is not a positive step"),
+    (_payload(connections=[1]), "'connections' must be a list of JSON objects"),
+    (_payload(inputs=[1]), "'inputs' must be a JSON object, got a JSON array"),
+    (_payload(schedule="abc"), "'schedule' must be a JSON object"),
+    (_payload(algorithm={"kind": "gauss-seidel", "order": ["osc", "nod"]}), "no component 'nod'"),
+    (_payload(outputs={"record": ["osc.x"], "record_step": -1}), "record_step: must be a positive number"),
+    (_payload(connections=[{"from": "osc.P", "to": "node.P", "average": "sideways"}]), "'sideways' is not one of"),
+    (_payload(name=5), "'name' must be a JSON string, got a JSON number"),
+    (_payload(bogus=1), "unknown key 'bogus'"),
+    # the experiment's times when the annotation gives no schedule
+    (lambda t: _payload(schedule=None)(t).replace('stopTime="30.0"', 'stopTime="-5"'), "stopTime -5.0 is not after"),
+    (lambda t: _payload(schedule=None)(t).replace('stopTime="30.0"', 'stopTime="inf"'), "is not a finite number"),
+    # component names the rest of the archive cannot tell apart or refer to
+    (lambda t: t.replace('<ssd:Component name="node"', '<ssd:Component name="osc"'), "two components have this name"),
+    (lambda t: t.replace('<ssd:Component name="node"', '<ssd:Component name=""'), "must be non-empty"),
+    (lambda t: t.replace('name="node"', 'name="no.de"').replace('Element="node"', 'Element="no.de"'),
+     "contain no '.'"),
+    # a parameter value written in a unit: converted, or refused, never read as the variable's own unit
+    (lambda t: t.replace(_C10, '<ssv:Real value="10.0" unit="kJ/K" />'), "given in 'kJ/K', which cannot be converted"),
+    (lambda t: t.replace(_C10, '<ssv:Real value="10.0" unit="m" />'), "given in 'm', not a unit of the variable's"),
+])
+def test_careless_or_hostile_system_structure(tmp_path, toy_ssp, edit, message):
+    with pytest.raises(SSPError) as err:
+        read_ssp(_edited(toy_ssp, tmp_path / "edited.ssp", edit))
+    assert message in str(err.value) and "\n" not in str(err.value)
+
+
+def test_parameter_value_in_another_unit_is_converted(tmp_path, toy_ssp):
+    """C = 0.01 kJ/K with kJ defined in ssd:Units (factor 1000) is the scenario's 10 J/K."""
+    def edit(text):
+        text = text.replace(_C10, '<ssv:Real value="0.01" unit="kJ/K" />')
+        return text.replace("<ssd:Units>", '<ssd:Units><ssc:Unit name="kJ/K"><ssc:BaseUnit kg="1" m="2" s="-2" '
+                                           'K="-1" factor="1000" /></ssc:Unit>')
+    sc = read_ssp(_edited(toy_ssp, tmp_path / "kj.ssp", edit))
+    assert sc.components["node"].parameters["C"] == pytest.approx(10.0, rel=1e-12)
