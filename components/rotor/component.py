@@ -69,7 +69,7 @@ def full_model(model_file: str = "", omega_pt=None, omega_gg=None) -> fem.FullMo
     data, digest = fem.load_data(model_file or None)
     key = (digest, omega_pt, omega_gg)
     if key not in _FULL:
-        _FULL[key] = fem.build(data, digest, omega_pt, omega_gg)
+        _FULL[key] = fem.build(data, digest, omega_pt, omega_gg, source=model_file or None)
     return _FULL[key]
 
 

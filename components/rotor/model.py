@@ -167,8 +167,24 @@ def disk_inertia(data: dict, dk: dict) -> tuple[float, float, float]:
     return float(mass), float(dk["Ip"]), float(dk["Id"])
 
 
-def build(data: dict, digest: str = "", omega_pt: float | None = None, omega_gg: float | None = None) -> FullModel:
-    """Assemble the full model from the data (see data/engine.toml for the meaning of each entry)."""
+def build(data: dict, digest: str = "", omega_pt: float | None = None, omega_gg: float | None = None,
+          source: str | Path | None = None) -> FullModel:
+    """Assemble the full model from the data (see data/engine.toml for the meaning of each entry); a missing
+    table or key, or a value of the wrong kind, is a ValueError naming the file (``source``) and the key."""
+    where = f"rotor model file {source or DEFAULT_FILE}"
+    try:
+        return _assemble(data, digest, omega_pt, omega_gg)
+    except KeyError as exc:
+        raise ValueError(f"{where}: missing table or key {exc.args[0]!r} (see data/engine.toml)") from None
+    except (TypeError, IndexError, AttributeError) as exc:
+        raise ValueError(f"{where}: a value of the wrong kind or size ({type(exc).__name__}: {exc}; see "
+                         "data/engine.toml)") from None
+    except ValueError as exc:
+        msg = str(exc)
+        raise ValueError(msg if msg.startswith("rotor model") else f"{where}: {msg}") from None
+
+
+def _assemble(data: dict, digest: str, omega_pt: float | None, omega_gg: float | None) -> FullModel:
     pt, gg, cas = data["power_turbine"], data["gas_generator"], data["casing"]
     zpt = np.asarray(pt["z_mm"], float) * 1e-3
     zgg = np.asarray(gg["z_mm"], float) * 1e-3
@@ -350,4 +366,4 @@ def build(data: dict, digest: str = "", omega_pt: float | None = None, omega_gg:
 
 def load(path: str | Path | None = None, **kw) -> FullModel:
     data, digest = load_data(path)
-    return build(data, digest, **kw)
+    return build(data, digest, source=path, **kw)

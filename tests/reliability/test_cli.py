@@ -138,3 +138,18 @@ def test_output_places_that_cannot_be_written(tmp_path, capsys, command, args, m
     assert rc == 2 and message.replace("{file}", str(f)) in line, line
     assert "Errno" not in line
     assert f.read_text() == "x"
+
+
+@pytest.mark.parametrize("text, message", [
+    ("", "missing table or key 'power_turbine'"),
+    ('[power_turbine]\nz_mm = "abc"\n[gas_generator]\nz_mm = [1]\n[casing]\n', "could not convert string to float"),
+    ("[power_turbine]\nz_mm = [1, 2]\n", "missing table or key 'gas_generator'"),
+])
+def test_rotor_model_file_missing_or_wrong_keys(tmp_path, capsys, text, message):
+    """A model file (critical-speeds --model-file, rotor.model_file) lacking a table or holding a wrong value:
+    one line naming the file and the key (was: "error: 'power_turbine'", a bare KeyError)."""
+    f = tmp_path / "model.toml"
+    f.write_text(text)
+    rc, _, err = call(capsys, "critical-speeds", "--model-file", str(f))
+    line = one_line_error(err)
+    assert rc == 2 and f"rotor model file {f}: " in line and message in line, line
