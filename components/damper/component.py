@@ -39,6 +39,11 @@ DAMPERS = {int(k): v for k, v in _DATA["damper"].items()}
 FILM = _DATA["film"]
 #: parameters that follow the ``damper`` selection (Table 3) unless set explicitly
 GEOMETRY = ("radius", "length", "clearance", "supply_pressure", "k_spring")
+#: the largest radial clearance over journal radius the film model accepts: the Reynolds equation (eq. 7) is the
+#: thin-film limit, its neglected terms of order c/R (Szeri, Fluid Film Lubrication, ch. 2); squeeze film dampers
+#: run at c/R ~ 1e-3 (Table 3: 0.635 mm / 80 mm = 0.008), so 0.05 refuses only what is not a film (or is mm read
+#: as m). An input check: no result of a valid case depends on it.
+THIN_FILM = 0.05
 
 
 class WallContactError(RuntimeError):
@@ -123,6 +128,14 @@ class _Damper(Component):
         for key in ("k_spring", "k_wall", "supply_pressure"):
             if p[key] < 0.0:
                 raise ContractError(f"{self.name}.{key} must be >= 0, got {p[key]}")
+        if p["clearance"] > THIN_FILM * p["radius"]:
+            # the film equation (eq. 7, Reynolds) drops terms of order c/R: a thick "film" is outside the model,
+            # and in practice a length given in mm where metres are meant (0.635 -> 0.635 m)
+            hint = (f"; lengths are in metres: {p['clearance']:g} mm = {p['clearance'] * 1e-3:g} m"
+                    if p["clearance"] * 1e-3 <= THIN_FILM * p["radius"] else "")
+            raise ContractError(f"{self.name}.clearance = {p['clearance']:g} m is not a thin film against the "
+                                f"journal radius {p['radius']:g} m (c/R = {p['clearance'] / p['radius']:.3g} > "
+                                f"{THIN_FILM:g}, the Reynolds equation's assumption){hint}")
         if p["n_theta"] < 8 or p["n_z"] < 2:
             raise ContractError(f"{self.name}: mesh n_theta={p['n_theta']} (>= 8), n_z={p['n_z']} (>= 2)")
         self._c = p["clearance"]

@@ -81,6 +81,12 @@ class RubRing(KernelComponent):
         for key in ("damping", "friction"):
             if p[key] < 0.0:
                 raise ContractError(f"{self.name}.{key} must be >= 0, got {p[key]}")
+        if p["clearance"] >= p["radius"]:
+            # a radial gap as wide as the shaft is no rub ring: in practice mm given where metres are meant
+            hint = (f"; lengths are in metres: {p['clearance']:g} mm = {p['clearance'] * 1e-3:g} m"
+                    if p["clearance"] * 1e-3 < p["radius"] else "")
+            raise ContractError(f"{self.name}.clearance = {p['clearance']:g} m is not smaller than the rotor's radius "
+                                f"at the ring ({p['radius']:g} m){hint}")
         self._args = (p["clearance"], p["stiffness"], p["damping"], p["friction"], p["radius"], p["omega"],
                       p["slip_regularisation"])
         self.state = {}

@@ -104,6 +104,9 @@ def test_ring_5_and_explicit_parameters():
     ({"stiffness": 0.0}, "stiffness must be > 0"),
     ({"friction": -0.1}, "friction must be >= 0"),
     ({"bearing": 2}, "bearing must be one of"),
+    # Table 3's 0.508 mm given as metres: wider than the shaft, refused with the conversion
+    ({"bearing": 0, "clearance": 0.508}, r"clearance = 0.508 m is not smaller than the rotor's radius at the ring "
+     r"\(0.0254 m\); lengths are in metres: 0.508 mm = 0.000508 m"),
 ])
 def test_bad_parameters(params, message):
     with pytest.raises(ContractError, match=message):
