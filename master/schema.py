@@ -427,6 +427,15 @@ def _schedule(c: _Checker, s: Mapping, comps: Mapping) -> None:
         tm_durations.append(("schedule", s["duration"], step))
     if s.get("kind") == "auto" and "tm_min" in s:
         tm_durations.append(("schedule", s["tm_min"], step))
+    speed, cycles = s.get("speed_rpm"), s.get("hold_cycles")
+    if speed and cycles and tm_durations and s.get("kind") != "auto":
+        # the hold averages the last hold_cycles rotor cycles of a TM interval (and sizes its buffers by them): a
+        # window longer than every TM interval never fills; 1e12 cycles asked for terabytes (out of memory)
+        window, longest = cycles * 60.0 / speed, max(d for _, d, _ in tm_durations)
+        if window > longest * (1 + 1e-9):
+            raise c.fail("schedule", "hold_cycles", f"{cycles:g} cycles at {speed:g} rev/min last {window:.4g} s, "
+                         f"longer than the longest thermo-mechanical interval ({longest:.4g} s): the hold's window "
+                         "could never fill")
     for name, spec in comps.items():
         cs = spec.get("step")
         if cs is None:

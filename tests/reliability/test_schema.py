@@ -70,6 +70,11 @@ def load(tmp_path, text):
     (lambda s: s.replace('to = "node.P"', 'to = "nodeP"'), "[connections #1] to: 'nodeP' must be written 'component.port'"),
     (lambda s: s.replace('format = "h5"', 'format = "hdf"'), "[outputs] format: 'hdf' is not one of 'h5', 'csv'"),
     (lambda s: s.replace("[algorithm]", "[algorithm]\niterations = 2.0"), "[algorithm] iterations: must be a whole number"),
+    # a hold window longer than every TM interval never fills (1e12 cycles ran the machine out of memory)
+    (lambda s: s.replace("hold_cycles = 5", "hold_cycles = 1e12"),
+     "[schedule] hold_cycles: 1e+12 cycles at 2700 rev/min last 2.222e+10 s, longer than the longest "
+     "thermo-mechanical interval (0.3 s)"),
+    (lambda s: s.replace("hold_cycles = 5", "hold_cycles = 14"), "hold_cycles: 14 cycles at 2700 rev/min last 0.3111 s"),
 ])
 def test_toy_scenario_mistakes(tmp_path, edit, message):
     text = edit(TOY)
