@@ -112,9 +112,14 @@ def compare(out: Path, duration=2.0, unbalance=2850.0, scenario="blade_loss", re
     if tolerance is not None and (schedule != "auto" or not 0.0 < tolerance < float("inf")):
         raise ValueError("--tolerance is a positive percentage and applies to --schedule auto only")
     runs = {}
-    if monolithic is not None:
-        runs["monolithic"] = _reuse(Path(monolithic), unbalance, duration)
     sc = resolve(scenario)
+    if sc.extra.get("results", {}).get("kind") != "blade_loss":  # before any run: Table 6 is bearing results
+        raise ValueError(f"compare: scenario {sc.name!r} has no bearing results to compare ([results] kind = "
+                         "\"blade_loss\" in the blade-loss scenarios)")
+    if monolithic is not None:
+        mono = resolve(scenario)
+        apply_unbalance(mono, unbalance)
+        runs["monolithic"] = _reuse(Path(monolithic), unbalance, duration, f"{mono.name}_monolithic", bearing)
     _warm_up(scenario, out, _quantum(sc))
     kinds = ("staggered", "monolithic")
     scenarios, loads = {}, {}
@@ -205,20 +210,33 @@ def _quantum(sc) -> float:
     return max([c.step for c in sc.components.values() if c.step] + [float(sc.schedule.get("step", 1e-5))])
 
 
-def _reuse(folder: Path, unbalance: float, duration: float) -> dict:
-    """A previous monolithic run's summary, checked to be the one this comparison needs."""
+def _reuse(folder: Path, unbalance: float, duration: float, name: str | None = None, bearing: int = 0) -> dict:
+    """A previous monolithic run's summary, checked to be the one this comparison needs (``name``: the
+    monolithic run's scenario name this comparison would give it)."""
     f = folder / "summary.json"
     try:
         summary = json.loads(f.read_text())
     except (OSError, ValueError) as exc:
         raise ValueError(f"--monolithic {folder}: no readable summary.json ({exc})") from None
+    if not isinstance(summary, dict):
+        raise ValueError(f"--monolithic {f}: not a run's summary (a JSON {type(summary).__name__})")
+    for key in ("t_end_s", "unbalance_N", "wall_time_s"):
+        if not isinstance(summary.get(key), (int, float)) or isinstance(summary.get(key), bool):
+            raise ValueError(f"--monolithic {f}: {key} is {summary.get(key)!r}, not a number (damaged summary)")
+    res = (summary.get("bearings") or {}).get(str(bearing)) if isinstance(summary.get("bearings"), dict) else None
+    if not isinstance(res, dict) or any(not isinstance(res.get(k), (int, float, type(None))) for k in KEYS):
+        raise ValueError(f"--monolithic {f}: no results of bearing #{bearing} (damaged summary, or not a "
+                         "blade-loss run)")
     tl = summary.get("timeline") or []
-    if summary.get("status", "complete") != "complete" or len(tl) != 1 or tl[0].get("phase") != "TM":
+    if summary.get("status", "complete") != "complete" or not isinstance(tl, list) or len(tl) != 1 \
+            or not isinstance(tl[0], dict) or tl[0].get("phase") != "TM":
         raise ValueError(f"--monolithic {f}: not a complete monolithic run (one thermo-mechanical interval)")
     if abs(float(summary.get("t_end_s", -1.0)) - duration) > 1e-9 * max(1.0, duration):
         raise ValueError(f"--monolithic {f}: it simulated {summary.get('t_end_s')} s, not --duration {duration} s")
     if summary.get("unbalance_N") is None or abs(float(summary["unbalance_N"]) - unbalance) > 1e-9 * max(1.0, unbalance):
         raise ValueError(f"--monolithic {f}: its unbalance is {summary.get('unbalance_N')} N, not {unbalance} N")
+    if name is not None and summary.get("scenario") != name:
+        raise ValueError(f"--monolithic {f}: a run of scenario {summary.get('scenario')!r}, not {name!r}")
     return summary
 
 

@@ -1,0 +1,57 @@
+"""`rotorcosim compare`'s inputs: a scenario without bearing results, and --monolithic folders that are not the
+monolithic run this comparison needs (another scenario, a damaged summary): one line before any run."""
+import json
+
+import pytest
+
+from rotorcosim.master.cli import main
+from rotorcosim.master.commands.compare import KEYS, _reuse
+
+NAME = "blade_loss_monolithic"
+
+
+def _summary(**changes):
+    s = {"scenario": NAME, "status": "complete", "timeline": [{"phase": "TM", "t_start": 0.0, "t_end": 0.1}],
+         "t_end_s": 0.1, "unbalance_N": 2850.0, "wall_time_s": 1.5, "bearings": {"0": {k: 1.0 for k in KEYS}}}
+    s.update(changes)
+    return s
+
+
+def _folder(tmp_path, summary):
+    d = tmp_path / "mono"
+    d.mkdir(exist_ok=True)
+    (d / "summary.json").write_text(summary if isinstance(summary, str) else json.dumps(summary))
+    return d
+
+
+def test_a_matching_monolithic_run_is_reused(tmp_path):
+    assert _reuse(_folder(tmp_path, _summary()), 2850.0, 0.1, NAME, 0)["wall_time_s"] == 1.5
+
+
+@pytest.mark.parametrize("summary, message", [
+    (_summary(scenario="blade_loss_fe_monolithic"), "a run of scenario 'blade_loss_fe_monolithic', not "
+                                                    "'blade_loss_monolithic'"),
+    ("[1, 2]", "not a run's summary (a JSON list)"),
+    (_summary(t_end_s="abc"), "t_end_s is 'abc', not a number (damaged summary)"),
+    (_summary(wall_time_s=None), "wall_time_s is None, not a number"),
+    (_summary(bearings={"5": {}}), "no results of bearing #0"),
+    (_summary(bearings=[]), "no results of bearing #0"),
+    (_summary(bearings={"0": {"transmissibility": "high"}}), "no results of bearing #0"),
+    ("{", "no readable summary.json"),
+    (_summary(timeline="TM"), "not a complete monolithic run"),
+    (_summary(timeline=["TM"]), "not a complete monolithic run"),
+    (_summary(unbalance_N=712.0), "its unbalance is 712.0 N, not 2850.0 N"),
+])
+def test_a_monolithic_folder_that_does_not_fit_is_refused(tmp_path, summary, message):
+    with pytest.raises(ValueError) as err:
+        _reuse(_folder(tmp_path, summary), 2850.0, 0.1, NAME, 0)
+    assert message in str(err.value) and "--monolithic" in str(err.value)
+
+
+def test_a_scenario_without_bearing_results(tmp_path, capsys):
+    """The toy has no bearing results: refused before running anything (was: both runs, then "error: 'bearings'")."""
+    rc = main(["compare", "--scenario", "toy_thermomechanical", "--duration", "3", "--revolutions", "20",
+               "--unbalance", "50", "--no-figures", "--quiet", "--out", str(tmp_path / "o")])
+    err = capsys.readouterr().err
+    assert rc == 2 and "has no bearing results to compare" in err and "Traceback" not in err
+    assert not (tmp_path / "o" / "staggered").exists()
