@@ -19,6 +19,7 @@ from __future__ import annotations
 import contextlib
 import importlib
 import json
+import numbers
 import os
 import sys
 import time
@@ -74,6 +75,8 @@ def _postprocessor(sc: Scenario):
 
 
 def _schedule(sc: Scenario, schedule, duration: float | None):
+    if duration is not None and (not isinstance(duration, numbers.Real) or isinstance(duration, bool)):
+        raise TypeError(f"duration must be a number of seconds, got {type(duration).__name__} {duration!r}")
     if duration is not None and not (duration > 0 and duration < float("inf")):
         raise ValueError(f"duration must be a positive number of seconds, got {duration}")
     if isinstance(schedule, Schedule):
@@ -176,8 +179,12 @@ def simulate(sc: Scenario | str | Path, duration: float | None = None, schedule=
     The summary's ``status`` says how the run ended: ``complete``, ``stopped`` (a component asked to stop),
     ``interrupted`` (SIGINT/SIGTERM) or ``failed``; on ``interrupted`` and ``failed`` the error is raised after
     the summary and the time series are written, carrying the partial :class:`Result` as ``.result``."""
+    if not isinstance(sc, (Scenario, str, os.PathLike)):
+        raise TypeError(f"simulate: give a Scenario, a shipped scenario's name or a file, got {type(sc).__name__}")
     if not isinstance(sc, Scenario):
         sc = load_scenario(sc)
+    if isinstance(record, (str, bytes)):  # a lone name would be read letter by letter
+        raise TypeError(f"record: give a list of 'component.port' names, e.g. record=[{record!r}]")
     if engine not in ENGINES:
         raise ValueError(f"engine {engine!r} not in {ENGINES}")
     sch, kind = _schedule(sc, schedule, duration)

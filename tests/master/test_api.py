@@ -258,3 +258,23 @@ def test_draw_figures_of_a_run_folder_names_what_is_missing(tmp_path):
         draw_figures(sc, tmp_path)
     with pytest.raises(ValueError, match="no \\[results\\] kind"):
         draw_figures("toy_thermomechanical", tmp_path)
+
+
+@pytest.mark.parametrize("kwargs, error, message", [
+    ({"duration": "1"}, TypeError, "duration must be a number of seconds, got str '1'"),
+    ({"duration": True}, TypeError, "duration must be a number of seconds"),
+    ({"record": "osc.x"}, TypeError, r"record: give a list of 'component.port' names, e.g. record=\['osc.x'\]"),
+])
+def test_simulate_arguments_of_the_wrong_kind(kwargs, error, message):
+    """A string where a number or a list is meant: named (was: "'>' not supported", or a record of letters)."""
+    with pytest.raises(error, match=message):
+        rotorcosim.simulate(rotorcosim.load_scenario("toy_thermomechanical"), **kwargs)
+
+
+def test_simulate_accepts_numpy_numbers():
+    import numpy as np
+
+    res = rotorcosim.simulate("toy_thermomechanical", duration=np.float64(0.01), figures=False)
+    assert res.summary["status"] == "complete"
+    with pytest.raises(TypeError, match="give a Scenario, a shipped scenario's name or a file, got int"):
+        rotorcosim.simulate(5)
