@@ -334,12 +334,17 @@ class Recorder(Observer):
             try:
                 f = h5py.File(self._tmp, "r+")
             except OSError as exc:
+                os.replace(self._tmp, self.path)  # the folder stays as the interrupted run left it
                 raise ValueError(f"recorder: {self.path} cannot be reopened ({exc}): resume impossible") from None
             for name in ["time", "phase"] + self.signals:
-                ds = f[name]
-                if ds.shape[0] < n:
+                ds = f.get(name)
+                short = ds is None or not hasattr(ds, "resize") or ds.shape[0] < n
+                if short:
                     f.close()
-                    raise ValueError(f"recorder: {self.path} has fewer rows than its checkpoint: resume impossible")
+                    os.replace(self._tmp, self.path)
+                    what = f"has no dataset {name!r}" if ds is None or not hasattr(ds, "resize") else \
+                        "has fewer rows than its checkpoint"
+                    raise ValueError(f"recorder: {self.path} {what}: resume impossible")
                 ds.resize((n,) + ds.shape[1:])
             for key in ("complete", "error"):
                 if key in f.attrs:

@@ -91,3 +91,25 @@ def test_real_checkpoint_reads_with_the_guard(tmp_path, interrupted):
     out, _ = interrupted
     summary = execute(toy(), out, duration=DURATION, figures=False, resume=True)
     assert summary["status"] == "complete" and summary["resumed_from_t_s"] is not None
+
+
+@pytest.mark.parametrize("damage", ["garbage", "truncated", "dataset-removed"])
+def test_damaged_time_series_refuses_resume_and_leaves_the_folder(interrupted, damage):
+    """A damaged timeseries.h5 beside a good checkpoint: resume refused in one line naming the file, and the
+    folder left as it was (was: the file renamed to timeseries.h5.part; a removed dataset was a bare KeyError)."""
+    import h5py
+
+    out, _ = interrupted
+    h5 = out / "timeseries.h5"
+    if damage == "garbage":
+        h5.write_bytes(b"garbage")
+    elif damage == "truncated":
+        h5.write_bytes(h5.read_bytes()[: h5.stat().st_size // 2])
+    else:
+        with h5py.File(h5, "r+") as f:
+            del f["osc.x"]
+    before = sorted(p.name for p in out.iterdir())
+    with pytest.raises(ValueError) as err:
+        execute(toy(), out, duration=DURATION, figures=False, resume=True)
+    assert str(h5) in str(err.value) and "resume impossible" in str(err.value) and "\n" not in str(err.value)
+    assert sorted(p.name for p in out.iterdir()) == before
