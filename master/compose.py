@@ -76,6 +76,8 @@ def _merge(base: dict, top: Mapping) -> dict:
 
 
 def _load(path: Path) -> dict:
+    if path.is_dir():
+        raise IsADirectoryError(f"scenario file {path} is a folder, not a TOML file")
     if not path.is_file():
         raise FileNotFoundError(f"scenario file {path} not found")
     try:

@@ -9,6 +9,8 @@ takes the bearing and damper components, which the rotor package, bundled alone 
 from __future__ import annotations
 
 import json
+import os
+from pathlib import Path
 
 import numpy as np
 
@@ -94,7 +96,21 @@ def draw_campbell(path: str, model_file: str = "", max_rpm: float = 30000.0, cri
     plt.close(fig)
 
 
+def _check_figure_path(path: str) -> None:
+    """--campbell names a file we can write, checked before the (slow) eigenvalue scan."""
+    p = Path(path)
+    if p.is_dir():
+        raise ValueError(f"--campbell {path}: is a folder; give a file name, e.g. {p / 'campbell.png'}")
+    parent = p.parent if str(p.parent) else Path(".")
+    if not parent.is_dir():
+        raise ValueError(f"--campbell {path}: the folder {parent} does not exist")
+    if not os.access(parent, os.W_OK | os.X_OK):
+        raise ValueError(f"--campbell {path}: the folder {parent} is not writable")
+
+
 def run(args) -> int:
+    if args.campbell:
+        _check_figure_path(args.campbell)
     out = critical_speeds(args.model_file, args.count, args.max_rpm, args.oil_temperature)
     if args.campbell:
         draw_campbell(args.campbell, args.model_file, args.max_rpm, out, args.oil_temperature)

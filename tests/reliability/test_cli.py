@@ -153,3 +153,19 @@ def test_rotor_model_file_missing_or_wrong_keys(tmp_path, capsys, text, message)
     rc, _, err = call(capsys, "critical-speeds", "--model-file", str(f))
     line = one_line_error(err)
     assert rc == 2 and f"rotor model file {f}: " in line and message in line, line
+
+
+def test_a_folder_given_as_the_scenario_file(tmp_path, capsys):
+    rc, _, err = call(capsys, "run", str(tmp_path), "--out", str(tmp_path / "o"))
+    assert rc == 2 and "is a folder, not a TOML file" in one_line_error(err)
+
+
+@pytest.mark.parametrize("target, message", [
+    ("{dir}", "is a folder; give a file name"),           # was: written to {dir}.png beside it, silently
+    ("{dir}/nope/c.png", "the folder {dir}/nope does not exist"),
+])
+def test_campbell_target_checked_before_the_scan(tmp_path, capsys, target, message):
+    target = target.replace("{dir}", str(tmp_path))
+    rc, out, err = call(capsys, "critical-speeds", "--campbell", target)
+    assert rc == 2 and message.replace("{dir}", str(tmp_path)) in one_line_error(err)
+    assert out == "" and not (tmp_path.parent / (tmp_path.name + ".png")).exists()
