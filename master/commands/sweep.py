@@ -179,6 +179,8 @@ def _client(scheduler: str | None, workers: int | None, connect_timeout: float):
             client = Client(scheduler, timeout=connect_timeout)
         except (OSError, TimeoutError) as exc:
             raise ValueError(f"--scheduler {scheduler}: cannot reach the Dask scheduler ({exc})") from None
+        except ValueError as exc:  # not an address (dask: "unknown address scheme ...")
+            raise ValueError(f"--scheduler {scheduler}: not a Dask scheduler's address ({exc})") from None
         n = len(client.scheduler_info().get("workers", {}))
         return client, None, f"{scheduler}, {n} workers"
     n = workers or os.cpu_count() or 1

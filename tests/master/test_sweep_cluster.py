@@ -139,6 +139,12 @@ def test_set_grid_is_checked_before_any_case_runs(tmp_path, capsys, item, messag
     assert not out.exists() or not any(out.iterdir())
 
 
+def test_scheduler_address_that_is_not_one(tmp_path):
+    with pytest.raises(ValueError, match=r"--scheduler bogus://x:1: not a Dask scheduler's address \(unknown "
+                                         r"address scheme"):
+        sweep([50.0], tmp_path / "x", "toy_thermomechanical", scheduler="bogus://x:1", duration=1.0)
+
+
 def test_workers_must_be_positive(tmp_path):
     for n in (0, -1):
         with pytest.raises(ValueError, match="--workers must be at least 1"):
