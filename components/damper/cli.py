@@ -34,8 +34,10 @@ def evaluate(damper: int, position, velocity, temperature_C: float, model: str =
     d.set_inputs({"X_journal": position, "V_journal": velocity, "T_oil": [temperature_C + 273.15]})
     try:
         d.do_step(0.0, d.preferred_step)
-    except RuntimeError as exc:   # the journal far beyond the wall (see wall.py)
-        raise ValueError(str(exc).replace(" at t = 1e-05 s", "")) from None
+    except RuntimeError as exc:   # the journal far beyond the wall (see wall.py): a position, not a run
+        msg = str(exc).replace(" at t = 1e-05 s", "").replace(": the simulation diverged", "")
+        raise ValueError(f"--position: {msg}; the clearance is {d.p['clearance'] * 1e3:g} mm and positions are "
+                         f"in metres") from None
     y = d.get_outputs()
     return {
         "damper": damper,

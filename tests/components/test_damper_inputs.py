@@ -167,6 +167,16 @@ def test_cli_bad_input(capsys):
     assert "must be finite numbers" in capsys.readouterr().err
 
 
+def test_cli_position_far_beyond_the_wall(capsys):
+    """A position in mm where metres are meant (1 m): an input mistake named as one, not "the simulation
+    diverged" (no simulation runs here)."""
+    code = main(["damper-force", "--damper", "0", "--position", "1", "1", "--velocity", "0", "0",
+                 "--temperature", "70"])
+    err = capsys.readouterr().err
+    assert code == 2 and "--position: damper0: the journal is 1414 mm into the damper wall" in err
+    assert "clearance is 0.635 mm and positions are in metres" in err and "diverged" not in err
+
+
 # -- thermal-only update ----------------------------------------------------------------------------------
 def test_thermal_only_film_power_follows_the_viscosity_at_frozen_motion():
     """In a thermal-only interval the damper keeps its forces (the master holds its motion inputs at their frozen
