@@ -194,9 +194,11 @@ def simulate(sc: Scenario | str | Path, duration: float | None = None, schedule=
     post = _postprocessor(sc)
     o = sc.outputs
     signals = list(o.get("record", []) if record is None else record)
-    for ref in signals:
+    for i, ref in enumerate(signals):
         if not isinstance(ref, str) or "." not in ref:
             raise ValueError(f"record: {ref!r} must be written 'component.port'")
+        if ref in signals[:i]:
+            raise ValueError(f"record: {ref!r} is listed twice")
     fmt = o.get("format", "h5")
     if fmt not in ("h5", "csv"):
         raise ValueError(f"[outputs] format {fmt!r} not in ('h5', 'csv')")

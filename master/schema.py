@@ -309,6 +309,8 @@ def check(data: Mapping[str, Any], source: str | Path | None = None, origins=Non
     _schedule(c, data.get("schedule", {}), comps)
     for i, ref in enumerate(data.get("outputs", {}).get("record", [])):
         _known_component(c, "outputs", "record", ref, names)
+        if ref in data["outputs"]["record"][:i]:  # one dataset per signal: a second would collide in the file
+            raise c.fail("outputs", "record", f"{ref!r} is listed twice")
     for key in ("unbalance_parameter", "speed_parameter"):
         ref = data.get("results", {}).get(key)
         if ref:

@@ -264,6 +264,7 @@ def test_draw_figures_of_a_run_folder_names_what_is_missing(tmp_path):
     ({"duration": "1"}, TypeError, "duration must be a number of seconds, got str '1'"),
     ({"duration": True}, TypeError, "duration must be a number of seconds"),
     ({"record": "osc.x"}, TypeError, r"record: give a list of 'component.port' names, e.g. record=\['osc.x'\]"),
+    ({"record": ["osc.x", "osc.x"]}, ValueError, r"record: 'osc.x' is listed twice"),
 ])
 def test_simulate_arguments_of_the_wrong_kind(kwargs, error, message):
     """A string where a number or a list is meant: named (was: "'>' not supported", or a record of letters)."""

@@ -75,6 +75,9 @@ def load(tmp_path, text):
      "[schedule] hold_cycles: 1e+12 cycles at 2700 rev/min last 2.222e+10 s, longer than the longest "
      "thermo-mechanical interval (0.3 s)"),
     (lambda s: s.replace("hold_cycles = 5", "hold_cycles = 14"), "hold_cycles: 14 cycles at 2700 rev/min last 0.3111 s"),
+    # a signal recorded twice (was h5py's "Unable to synchronously create dataset (name already exists)")
+    (lambda s: s.replace('record = ["osc.x", "osc.P", "node.T"]', 'record = ["osc.x", "osc.P", "osc.x"]'),
+     "[outputs] record: 'osc.x' is listed twice"),
 ])
 def test_toy_scenario_mistakes(tmp_path, edit, message):
     text = edit(TOY)
