@@ -111,7 +111,9 @@ class System:
             raise SystemError_(f"{ref}: component {comp!r} ({c!r}) has no {causality} {port!r} "
                                f"(its {causality}s: {known})") from None
         if v.causality != causality:
-            raise SystemError_(f"{ref} is a {v.causality} of {c!r}, used as an {causality}")
+            art = "an" if v.causality[0] in "aeiou" else "a"
+            raise SystemError_(f"{ref} is {art} {v.causality} of component {comp!r} ({type(c).__name__}), used as "
+                               f"an {causality}")
         return v
 
     def check(self) -> None:

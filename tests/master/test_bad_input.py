@@ -51,7 +51,7 @@ def test_good_scenario_runs(tmp_path):
     (lambda s: s.replace('"testing.mass"', '"testing.nope"'), "unknown component implementation 'testing.nope'"),
     (lambda s: s.replace('to = "m2.x_in"', 'to = "m2.x_inn"'), "m2.x_inn"),
     (lambda s: s.replace('from = "m1.x"', 'from = "m3.x"'), "[connections #1] from: 'm3.x': no component 'm3'"),
-    (lambda s: s.replace('from = "m1.x"', 'from = "m1.F"'), "m1.F is a input of <Mass 'm1'>, used as an output"),
+    (lambda s: s.replace('from = "m1.x"', 'from = "m1.F"'), "m1.F is an input of component 'm1' (Mass), used as an output"),
     (lambda s: s.replace('from = "m1.x"\n', 'from = "m1.v"\n'), "units differ"),
     (lambda s: s.replace('[[connections]]\nfrom = "m2.F"\nto = "m1.F"\n', ''), "inputs left unconnected"),
     (lambda s: s.replace("k = 4.0", "k = nan"), "parameters.k: must be a finite number, got nan"),
