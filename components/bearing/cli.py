@@ -43,9 +43,11 @@ def evaluate(bearing: int, radial_load: float, axial_load: float | None = None, 
     try:
         X, st = static_equilibrium(g, np.array([radial_load, 0.0, Fa]), Fc=Fc)
     except (RuntimeError, FloatingPointError, np.linalg.LinAlgError) as exc:
+        spin = f" at {speed_rpm:g} rev/min (ball centrifugal force {Fc:.3g} N)" if speed_rpm else ""
         raise ValueError(f"bearing #{bearing}: no static equilibrium found under {radial_load:g} N radial, {Fa:g} N "
-                         f"axial ({exc}); loads this large are far beyond the elastic (Hertz) range of the "
-                         "bearing") from None
+                         f"axial{spin} ({exc}); loads this large are far beyond the elastic (Hertz) range of the "
+                         "bearing" + (", or the speed is given in another unit than rev/min" if speed_rpm else "")) \
+            from None
     k_r = -stiffness(g, X, Fc=Fc, st=st)[0, 0]
     s_i = np.array([g.inner.max_stress(q) for q in st.Q_i])
     s_e = np.array([g.outer.max_stress(q) for q in st.Q_e])

@@ -85,6 +85,10 @@ def test_bearing_static_absurd_loads(capsys):
     assert rc == 0 and "warning" not in err
     rc, out, err = call(capsys, "bearing-static", "--bearing", "0", "--radial-load", "1e9")
     assert rc == 2 and "no static equilibrium found" in one_line_error(err)
+    # a speed in another unit (rad/s x 1e6...): the message names the speed, not only the loads
+    rc, out, err = call(capsys, "bearing-static", "--bearing", "0", "--radial-load", "5000", "--speed-rpm=1e9")
+    line = one_line_error(err)
+    assert rc == 2 and "at 1e+09 rev/min (ball centrifugal force" in line and "another unit than rev/min" in line
 
 
 def test_bearing_static_json_flags_validity(capsys):
