@@ -106,6 +106,14 @@ def _check_figure_path(path: str) -> None:
         raise ValueError(f"--campbell {path}: the folder {parent} does not exist")
     if not os.access(parent, os.W_OK | os.X_OK):
         raise ValueError(f"--campbell {path}: the folder {parent} is not writable")
+    if p.suffix:
+        from matplotlib.backends.backend_agg import FigureCanvasAgg
+        from matplotlib.figure import Figure
+
+        formats = FigureCanvasAgg(Figure()).get_supported_filetypes()
+        if p.suffix[1:].lower() not in formats:
+            raise ValueError(f"--campbell {path}: {p.suffix!r} is not an image format matplotlib writes "
+                             f"({', '.join(sorted(formats))})")
 
 
 def run(args) -> int:

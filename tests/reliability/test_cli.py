@@ -167,6 +167,7 @@ def test_a_folder_given_as_the_scenario_file(tmp_path, capsys):
 @pytest.mark.parametrize("target, message", [
     ("{dir}", "is a folder; give a file name"),           # was: written to {dir}.png beside it, silently
     ("{dir}/nope/c.png", "the folder {dir}/nope does not exist"),
+    ("{dir}/c.txt", "'.txt' is not an image format matplotlib writes"),   # was: after the scan
 ])
 def test_campbell_target_checked_before_the_scan(tmp_path, capsys, target, message):
     target = target.replace("{dir}", str(tmp_path))
