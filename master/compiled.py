@@ -15,14 +15,17 @@ same semantics, operation for operation:
 * every ``check_every`` base steps the finiteness of all outputs;
 * the same kernel functions as the components' generic do_step.
 
-The loop for a system is generated as Python source (one function, the components' kernels called by name),
-written into the cache folder (components/cache.py) and compiled by numba with ``cache=True``, so a second run
-does not compile again. It runs in chunks: the signals the observers read are written into a buffer, one row per
-base step, which the observers then consume (Observer.step_block); between chunks the components' state and
-outputs are their own arrays (the kernels work on them in place), so checkpoints and observers see what the
-generic path would show them. A kernel that needs Python for a step (the bearing's re-seating of its balls after
-a thermal-only interval) or fails returns its status; the step is finished or the error raised in Python, as the
-generic path would, and the loop resumes after that component.
+The glue is data, not generated code (loop_ops): all components' ports are views of one flat array, the links
+are rows of index tables processed by fixed compiled functions (cached once per package version), and only the
+loop over the components, a few lines per component calling its kernel through the kernel's address, is
+generated as Python source (it depends on the number of components only), written into the cache folder
+(components/cache.py) and compiled by numba with ``cache=True``, so a second run does not compile again. It runs
+in chunks: the signals the observers read are written into a buffer, one row per base step, which the observers
+then consume (Observer.step_block); between chunks the components' state and outputs are their own arrays (the
+kernels work on them in place; the port arrays are the flat array's views), so checkpoints and observers see what
+the generic path would show them. A kernel that needs Python for a step (the bearing's re-seating of its balls
+after a thermal-only interval) or fails returns its status; the step is finished or the error raised in Python,
+as the generic path would, and the loop resumes after that component.
 
 Not compiled (the generic loop runs, and the reason is reported): a component without a kernel (FMUs, Python
 plug-ins), Jacobi or iterative coupling, converted or non-Real links, inputs from components not stepped in the
@@ -33,17 +36,18 @@ from __future__ import annotations
 import functools
 import hashlib
 import importlib.util
-import math
 import sys
 import tempfile
 from pathlib import Path
 
+import numba
 import numpy as np
 
 from rotorcosim.components.cache import cache_dir
 from rotorcosim.components.contract import ContractError
 from rotorcosim.components.kernels import PYTHON, KernelComponent
 
+from . import loop_ops as op
 from .algorithm import GaussSeidel, SimulationDiverged, _Link
 
 ENGINES = ("auto", "python", "compiled")
@@ -56,6 +60,10 @@ CHUNK = 2048
 # start and length (0: none)]; vec rows = [acc (or acc2), prev, last, the restart offset's delta]
 (_HAS_ACC, _WEIGHT, _HAS_PREV, _PREV_T, _HAS_CUR, _CUR_T, _RPOS, _RCOUNT, _HAS_RT, _RT, _CSUM, _CN, _WLAST, _NCYC,
  _NOUT, _R0, _RLEN) = range(17)
+assert (_HAS_ACC, _WEIGHT, _HAS_PREV, _PREV_T, _HAS_CUR, _CUR_T, _RPOS, _RCOUNT, _HAS_RT, _RT, _CSUM, _CN, _WLAST,
+        _NCYC, _NOUT, _R0, _RLEN) == (op.HAS_ACC, op.WEIGHT, op.HAS_PREV, op.PREV_T, op.HAS_CUR, op.CUR_T, op.RPOS,
+                                       op.RCOUNT, op.HAS_RT, op.RT, op.CSUM, op.CN, op.WLAST, op.NCYC, op.NOUT,
+                                       op.R0, op.RLEN)
 
 
 class CompiledUnavailable(ContractError):
@@ -71,6 +79,9 @@ def why_not(sim, active, mult, stop) -> str | None:
             return f"component {n} ({type(c).__name__}) has no compiled kernel"
         if not c.kernel_available():
             return f"component {n} has no compiled kernel in this phase"
+        for port in c.kernel_ports()[3]:  # outputs become views of the loop's float array
+            if np.asarray(c.y[port]).dtype != np.float64:
+                return f"output {n}.{port} is not a float array"
     s = sim.engine.settings
     if type(sim.engine.algorithm) is not GaussSeidel or s.iterations != 1:
         return f"the {s.algorithm} algorithm with {s.iterations} iteration(s) (compiled: Gauss-Seidel, 1 iteration)"
@@ -98,77 +109,64 @@ def why_not(sim, active, mult, stop) -> str | None:
 
 
 # -- code generation --------------------------------------------------------------------------------------
-def _source(plan) -> str:
-    """The numba source of the chunk loop of ``plan`` (see Plan)."""
+def _source(n_components: int) -> str:
+    """The numba source of the chunk loop of a system of ``n_components`` stepped components.
+
+    Only the kernel calls are spelled out (one block per component, a few lines each): the links, the watched
+    outputs and the observers' buffer are tables processed by the fixed functions of loop_ops, and the kernels
+    are called through their addresses, so the source depends on the number of components only and its first
+    compilation is short (the types of the components' containers make one compiled version per system in the
+    same cache file)."""
     L = []
     w = L.append
-    # numba's disk cache checks this file only, not the kernels it calls: their packages' sources are hashed
-    # into it, so that an edited kernel gives another file (and a fresh compilation), never stale machine code
-    w(f"# kernels' sources: {_kernel_sources_hash(tuple(sorted({fn.py_func.__module__ for fn in plan.kernels})))}")
-    w("import math")
-    w("import numpy as np")
+    # numba's disk cache checks this file only, not loop_ops (linked into the loop): its source, and this
+    # module's, are hashed into it, so that an edit gives another file (a fresh compilation), never stale code
+    w(f"# loop sources: {_loop_sources_hash()}")
     w("from numba import njit")
-    for i, fn in enumerate(plan.kernels):
-        w(f"from {fn.py_func.__module__} import {fn.py_func.__name__} as kernel_{i}")
-    args = ["k0", "k1", "rstart", "t0", "h", "check_every", "count", "buf", "status"]
-    for i in range(len(plan.names)):
+    w("from rotorcosim.master import loop_ops as op")
+    args = ["k0", "k1", "rstart", "t0", "h", "check_every", "count", "buf", "status", "mult", "width",
+            "X", "LI", "M", "V", "G", "C", "CT", "IDX"]
+    args += [f"a{i}" for i in range(n_components)]  # the kernels' addresses (kernel_address)
+    for i in range(n_components):
         args += [f"s{i}", f"p{i}", f"u{i}", f"y{i}"]
-    for j in range(len(plan.links)):
-        args += [f"m{j}", f"v{j}", f"g{j}", f"c{j}"]
     w("")
     w("@njit(cache=True)")
     w(f"def run_chunk({', '.join(args)}):")
+    w("    nc = mult.shape[0]")
     w("    for k in range(k0, k1):")
     w("        t_end = t0 + (k + 1) * h")
     w("        resume = k == k0 and rstart >= 0")
-    for i, name in enumerate(plan.names):
-        m = plan.mult[name]
-        w(f"        # {name}")
-        w(f"        if (k + 1) % {m} == 0:")
-        w(f"            hc = {m} * h")
-        w("            t = t_end - hc")
-        w(f"            if not (resume and {i} <= rstart):")
-        for j, link in plan.inputs[i]:
-            _gather(w, j, link, plan, " " * 16)
-        w(f"                st = kernel_{i}(s{i}, p{i}, u{i}, y{i}, t, hc)")
-        w("                if st != 0:")
-        w(f"                    status[0] = st")
-        w(f"                    status[1] = k")
-        w(f"                    status[2] = {i}")
-        w("                    return")
-        w(f"            if not (resume and {i} < rstart):")
-        w(f"                count[{i}] += 1")
-        watch = plan.watch[i]
-        if watch:
-            w("                tot = 0.0")
-            for port in watch:
-                w(f"                for x in y{i}.{port}:")
-                w("                    tot += x")
-            w("                if not math.isfinite(tot):")
-            w("                    status[0] = -1")
-            w("                    status[1] = k")
-            w(f"                    status[2] = {i}")
-            w("                    return")
-        if plan.outgoing[i]:
-            w("                te = t + hc")
-        for j, link in plan.outgoing[i]:
-            _produced(w, j, link, plan, " " * 16, f"y{i}.{link.sport}")
-    # the observers' row of this base step
-    w("        row = k - k0")
-    for ref, (i, port, off, size) in plan.observed.items():
-        w(f"        for q in range({size}):")
-        w(f"            buf[row, {off} + q] = y{i}.{port}[q]")
-    w("        if (k + 1) % check_every == 0:")
-    w("            tot = 0.0")
-    for i in range(len(plan.names)):
-        for port in plan.outputs[i]:
-            w(f"            for x in y{i}.{port}:")
-            w("                tot += x * 0.0")
-    w("            if not math.isfinite(tot):")
-    w("                status[0] = -2")
-    w("                status[1] = k")
-    w("                status[2] = -1")
-    w("                return")
+    # one loop over the components, so that each operation has one call site (LLVM inlines it once)
+    w("        for i in range(nc):")
+    w("            if (k + 1) % mult[i] != 0:")
+    w("                continue")
+    w("            hc = mult[i] * h")
+    w("            t = t_end - hc")
+    w("            if not (resume and i <= rstart):")
+    w("                op.gather(i, t, hc, X, LI, M, V, CT, IDX)")
+    for i in range(n_components):
+        w(f"                {'if' if i == 0 else 'elif'} i == {i}:")
+        w(f"                    st = op.call_kernel(a{i}, s{i}, p{i}, u{i}, y{i}, t, hc)")
+    w("                else:")
+    w("                    st = 0")
+    w("                if st != 0:")
+    w("                    status[0] = st")
+    w("                    status[1] = k")
+    w("                    status[2] = i")
+    w("                    return")
+    w("            if not (resume and i < rstart):")
+    w("                count[i] += 1")
+    w("                if not op.finite(X, CT, IDX, i):")
+    w("                    status[0] = -1")
+    w("                    status[1] = k")
+    w("                    status[2] = i")
+    w("                    return")
+    w("                op.produced(i, t, hc, X, LI, M, V, G, C, CT, IDX)")
+    w("        if not op.end_of_step(k, k0, check_every, X, width, buf):")
+    w("            status[0] = -2")
+    w("            status[1] = k")
+    w("            status[2] = -1")
+    w("            return")
     w("    status[0] = 0")
     w("    status[1] = k1")
     w("    status[2] = -1")
@@ -176,128 +174,25 @@ def _source(plan) -> str:
 
 
 @functools.cache
-def _kernel_sources_hash(modules: tuple[str, ...]) -> str:
+def _loop_sources_hash() -> str:
     # once per process: the code a process has loaded does not change, and reading and hashing the sources at
     # every thermo-mechanical interval was a fixed cost of each (three in a staggered run of rotorcosim compare)
-    files = {Path(__file__).resolve()}
-    for name in modules:
-        files |= set(Path(sys.modules[name].__file__).resolve().parent.glob("*.py"))
-    files.add(Path(sys.modules[KernelComponent.__module__].__file__).resolve())
     h = hashlib.sha256()
-    for f in sorted(files):
-        h.update(f.name.encode())
+    for f in (Path(__file__).resolve(), Path(op.__file__).resolve()):
         h.update(f.read_bytes())
     return h.hexdigest()[:16]
 
 
-def _gather(w, j, link, plan, ind):
-    """Inputs of a link as algorithm._Link.value gives them (frozen links do not occur in TM intervals)."""
-    _gather_value(w, j, link, plan, ind)
-    if j in plan.handbacks:
-        # hold.Restart.offset at the consumer's step end (the generic loop passes t_end = t + hc)
-        i_dst = plan.index[link.con.dst_component]
-        w(f"{ind}if m{j}[{_RLEN}] > 0.0:")
-        w(f"{ind}    rs = ((t + hc) - m{j}[{_R0}]) / m{j}[{_RLEN}]")
-        w(f"{ind}    if rs < 1.0:")
-        w(f"{ind}        if rs <= 0.0:")
-        w(f"{ind}            rf = 1.0")
-        w(f"{ind}        else:")
-        w(f"{ind}            rf = 0.5 + 0.5 * math.cos(math.pi * rs)")
-        w(f"{ind}        for q in range({plan.size[j]}):")
-        w(f"{ind}            u{i_dst}.{link.dport}[q] = u{i_dst}.{link.dport}[q] + v{j}[3, q] * rf")
-
-
-def _gather_value(w, j, link, plan, ind):
-    i_src = plan.index[link.con.src_component]
-    i_dst = plan.index[link.con.dst_component]
-    src = f"y{i_src}.{link.sport}"
-    dst = f"u{i_dst}.{link.dport}"
-    n = plan.size[j]
-    ex = link.con.extrapolation
-    if link.mode == _Link.FAST_TO_SLOW and link.con.average != "last":
-        w(f"{ind}if m{j}[{_WEIGHT}] > 0.0:")
-        if link.con.average == "mean":
-            w(f"{ind}    for q in range({n}):")
-            w(f"{ind}        {dst}[q] = v{j}[0, q] / m{j}[{_WEIGHT}]")
-        else:
-            w(f"{ind}    for q in range({n}):")
-            w(f"{ind}        {dst}[q] = math.sqrt(v{j}[0, q] / m{j}[{_WEIGHT}])")
-        w(f"{ind}    m{j}[{_HAS_ACC}] = 0.0")
-        w(f"{ind}    m{j}[{_WEIGHT}] = 0.0")
-        w(f"{ind}else:")
-        w(f"{ind}    for q in range({n}):")
-        w(f"{ind}        {dst}[q] = {src}[q]")
-        return
-    extrap = (ex == "linear" and link.mode == _Link.SLOW_TO_FAST) or \
-        (ex == "linear-end" and link.mode != _Link.FAST_TO_SLOW)
-    if extrap:
-        when = "t + 0.5 * hc" if ex == "linear" else "t + hc"
-        w(f"{ind}if m{j}[{_HAS_PREV}] != 0.0 and m{j}[{_CUR_T}] > m{j}[{_PREV_T}]:")
-        w(f"{ind}    c = ({when} - m{j}[{_CUR_T}]) / (m{j}[{_CUR_T}] - m{j}[{_PREV_T}])")
-        w(f"{ind}    for q in range({n}):")
-        w(f"{ind}        {dst}[q] = {src}[q] + ({src}[q] - v{j}[1, q]) * c")
-        w(f"{ind}else:")
-        w(f"{ind}    for q in range({n}):")
-        w(f"{ind}        {dst}[q] = {src}[q]")
-        return
-    w(f"{ind}for q in range({n}):")
-    w(f"{ind}    {dst}[q] = {src}[q]")
-
-
-def _produced(w, j, link, plan, ind, y):
-    """algorithm._Link.produced after the producer's step (hc, te = t + hc)."""
-    n = plan.size[j]
-    if link.mode == _Link.FAST_TO_SLOW:
-        how = link.con.average
-        if how in ("mean", "rms"):
-            w(f"{ind}if m{j}[{_HAS_ACC}] == 0.0:")
-            w(f"{ind}    for q in range({n}):")
-            expr = f"{y}[q] * hc" if how == "mean" else f"{y}[q] * {y}[q] * hc"
-            w(f"{ind}        v{j}[0, q] = {expr}")
-            w(f"{ind}    m{j}[{_HAS_ACC}] = 1.0")
-            w(f"{ind}else:")
-            w(f"{ind}    for q in range({n}):")
-            w(f"{ind}        v{j}[0, q] = v{j}[0, q] + {expr}")
-        w(f"{ind}m{j}[{_WEIGHT}] += hc")
-    elif link.mode == _Link.SLOW_TO_FAST or link.con.extrapolation == "linear-end":
-        w(f"{ind}if m{j}[{_HAS_CUR}] != 0.0:")
-        w(f"{ind}    for q in range({n}):")
-        w(f"{ind}        v{j}[1, q] = v{j}[2, q]")
-        w(f"{ind}    m{j}[{_HAS_PREV}] = 1.0")
-        w(f"{ind}else:")
-        w(f"{ind}    m{j}[{_HAS_PREV}] = 0.0")
-        w(f"{ind}m{j}[{_PREV_T}] = m{j}[{_CUR_T}]")
-        w(f"{ind}for q in range({n}):")
-        w(f"{ind}    v{j}[2, q] = {y}[q]")
-        w(f"{ind}m{j}[{_CUR_T}] = te")
-        w(f"{ind}m{j}[{_HAS_CUR}] = 1.0")
-    if link.window is not None:
-        # hold.HandOff.record (a sample per producer step; no repeated steps here): the window ring and the
-        # rotor-cycle means with the producer's thermal inputs at each cycle's end (rows of c{j}: mean, inputs)
-        w(f"{ind}nr = g{j}.shape[0]")
-        w(f"{ind}m{j}[{_HAS_RT}] = 1.0")
-        w(f"{ind}m{j}[{_RT}] = te")
-        w(f"{ind}pos = int(m{j}[{_RPOS}])")
-        w(f"{ind}for q in range({n}):")
-        w(f"{ind}    g{j}[pos, q] = {y}[q]")
-        w(f"{ind}m{j}[{_RPOS}] = (pos + 1) % nr")
-        w(f"{ind}m{j}[{_RCOUNT}] = min(m{j}[{_RCOUNT}] + 1, nr)")
-        w(f"{ind}ys = {y}[0]")
-        w(f"{ind}m{j}[{_WLAST}] = ys")
-        w(f"{ind}m{j}[{_CSUM}] += ys")
-        w(f"{ind}m{j}[{_CN}] += 1.0")
-        w(f"{ind}if m{j}[{_CN}] == m{j}[{_NCYC}]:")
-        w(f"{ind}    cr = int(m{j}[{_NOUT}])")
-        w(f"{ind}    c{j}[cr, 0] = m{j}[{_CSUM}] / m{j}[{_CN}]")
-        col = 1
-        i_src = plan.index[link.con.src_component]
-        for port, size in plan.window_ports[j]:
-            w(f"{ind}    for q in range({size}):")
-            w(f"{ind}        c{j}[cr, {col} + q] = u{i_src}.{port}[q]")
-            col += size
-        w(f"{ind}    m{j}[{_NOUT}] += 1.0")
-        w(f"{ind}    m{j}[{_CSUM}] = 0.0")
-        w(f"{ind}    m{j}[{_CN}] = 0.0")
+def kernel_address(fn, args) -> int:
+    """The address of kernel ``fn`` compiled for the types of ``args`` + (t, h) (compiled here, or loaded from its
+    disk cache, if not yet), for loop_ops.call_kernel, which needs an int64 status."""
+    sig = tuple(numba.typeof(a) for a in args) + (numba.types.float64, numba.types.float64)
+    fn.compile(sig)
+    cres = fn.overloads[sig]
+    if cres.signature.return_type != numba.types.int64:
+        raise TypeError(f"kernel {fn.py_func.__module__}.{fn.py_func.__name__} returns "
+                        f"{cres.signature.return_type}, not an int64 status")
+    return int(cres.library.get_pointer_to_function(cres.fndesc.llvm_func_name))
 
 
 _LOADED: dict[str, object] = {}
@@ -333,8 +228,8 @@ def _compile(source: str):
 
 # -- the plan of an interval ----------------------------------------------------------------------------------
 class Plan:
-    """What the generated loop needs: components in order, their rates, the links into them, the watched and
-    observed outputs."""
+    """What the loop needs: components in order, their rates, the links into them, the watched and observed
+    outputs, the layout of all ports in one flat array and the tables over it (loop_ops)."""
 
     def __init__(self, sim, active, mult):
         eng = sim.engine
@@ -358,29 +253,103 @@ class Plan:
         self.inputs = [[(link_id(l), l) for l in eng._inputs[n]] for n in self.names]
         self.outgoing = [[(link_id(l), l) for l in eng._outgoing[n]] for n in self.names]
         # the thermal-only hold's hand-backs (a restart offset after a thermal-only interval): known from the
-        # system, so that every thermo-mechanical interval of a run has the same loop source
+        # system, so that every thermo-mechanical interval of a run has the same tables
         self.handbacks = {lid[id(l)] for l in sim.hold.handbacks if id(l) in lid}
         self.watch = [list(eng._watch[n]) for n in self.names]
-        self.window_ports = [[(p, comps[l.con.src_component].variable(p).size) for p in l.window.ports]
-                             if l.window is not None else [] for l in self.links]
         self.outputs = [[v.name for v in c.variables if v.causality == "output" and v.carried and v.type == "Real"]
                         for c in self.comps]
-        # every Real output is buffered, whatever the observers read: the loop's source (and its compiled code,
-        # cached on disk) then depends on the system only
-        self.observed = {}
+        # the flat array X of all ports: every Real output first, in the observers' buffer order (the buffer's
+        # row is then X[:width]), the components' other outputs, then their inputs
+        self.ports = []      # (component index, "u" or "y", port, offset, size)
+        self.offset = {}     # (component index, "u" or "y", port) -> offset
         off = 0
-        for i, (n, c) in enumerate(zip(self.names, self.comps)):
+
+        def place(i, kind, port):
+            nonlocal off
+            size = self.comps[i].variable(port).size
+            self.offset[(i, kind, port)] = off
+            self.ports.append((i, kind, port, off, size))
+            off += size
+
+        self.observed = {}
+        for i, n in enumerate(self.names):
             for port in self.outputs[i]:
-                size = c.variable(port).size
-                self.observed[f"{n}.{port}"] = (i, port, off, size)
-                off += size
+                place(i, "y", port)
+                self.observed[f"{n}.{port}"] = (i, port, self.offset[(i, "y", port)], self.comps[i].variable(port).size)
         self.width = max(1, off)
-        self.source = _source(self)
+        for i, c in enumerate(self.comps):
+            _, _, ins, outs = c.kernel_ports()
+            for port in outs:
+                if (i, "y", port) not in self.offset:
+                    place(i, "y", port)
+            for port in ins:
+                place(i, "u", port)
+        self.nx = max(1, off)
+        self._tables()
+
+    def _tables(self):
+        nl, nc = len(self.links), len(self.names)
+        LI = np.zeros((max(1, nl), op.NL), dtype=np.int64)
+        idx = []
+        vo = 0
+        for j, link in enumerate(self.links):
+            i_src = self.index[link.con.src_component]
+            i_dst = self.index[link.con.dst_component]
+            n = self.size[j]
+            row = LI[j]
+            row[op.L_SRC] = self.offset[(i_src, "y", link.sport)]
+            row[op.L_DST] = self.offset[(i_dst, "u", link.dport)]
+            row[op.L_N] = n
+            row[op.L_TAKE], row[op.L_PROD] = _kinds(link)
+            row[op.L_HB] = j in self.handbacks
+            row[op.L_VOFF] = vo
+            vo += 4 * n
+            if link.window is not None:
+                row[op.L_WIN] = 1
+                row[op.L_WP0] = len(idx)
+                for p in link.window.ports:
+                    idx += [self.offset[(i_src, "u", p)], self.comps[i_src].variable(p).size]
+                row[op.L_WP1] = len(idx)
+                row[op.L_CW] = 1 + sum(self.comps[i_src].variable(p).size for p in link.window.ports)
+        self.nv = max(1, vo)
+        CT = np.zeros((max(1, nc), op.NC), dtype=np.int64)
+        for i in range(nc):
+            CT[i, op.C_IN0] = len(idx)
+            idx += [j for j, _ in self.inputs[i]]
+            CT[i, op.C_IN1] = len(idx)
+            CT[i, op.C_OUT0] = len(idx)
+            idx += [j for j, _ in self.outgoing[i]]
+            CT[i, op.C_OUT1] = len(idx)
+            CT[i, op.C_W0] = len(idx)
+            for port in self.watch[i]:
+                idx += [self.offset[(i, "y", port)], self.comps[i].variable(port).size]
+            CT[i, op.C_W1] = len(idx)
+        self.LI, self.CT = LI, CT
+        self.IDX = np.array(idx or [0], dtype=np.int64)
+        self.mult_arr = np.array([self.mult[n] for n in self.names], dtype=np.int64)
 
 
-def _link_arrays(link, n, max_cycles):
-    m = np.zeros(17)
-    v = np.zeros((4, n))
+def _kinds(link):
+    """(take, produce) of a link for loop_ops: algorithm._Link.value's and .produced's cases."""
+    ex = link.con.extrapolation
+    if link.mode == _Link.FAST_TO_SLOW:
+        how = link.con.average
+        take = {"mean": op.TAKE_MEAN, "rms": op.TAKE_RMS}.get(how, op.TAKE_COPY)
+        return take, {"mean": op.PROD_MEAN, "rms": op.PROD_RMS}.get(how, op.PROD_WEIGHT)
+    if ex == "linear" and link.mode == _Link.SLOW_TO_FAST:
+        take = op.TAKE_MID
+    elif ex == "linear-end":
+        take = op.TAKE_END
+    else:
+        take = op.TAKE_COPY
+    hist = link.mode == _Link.SLOW_TO_FAST or ex == "linear-end"
+    return take, (op.PROD_HIST if hist else op.PROD_NONE)
+
+
+def _link_state(link, m, v):
+    """A link's bookkeeping into its row m of M and its rows v (acc, prev, last, restart delta) of V."""
+    m[:] = 0.0
+    v[:] = 0.0
     if link.ramp is not None:
         m[_R0], m[_RLEN] = link.ramp.t0, link.ramp.length
         v[3] = link.ramp.delta
@@ -399,17 +368,10 @@ def _link_arrays(link, n, max_cycles):
         v[2] = link._last
     ho = link.window
     if ho is not None:
-        ring = ho.ring
         m[_RPOS], m[_RCOUNT] = ho.pos, ho.count
         if ho.t_last is not None:
             m[_HAS_RT], m[_RT] = 1.0, ho.t_last
         m[_CSUM], m[_CN], m[_WLAST], m[_NCYC] = ho.csum, ho.cn, ho._last, ho.n_cycle
-        width = 1 + sum(np.ravel(link.src.u[p]).size for p in ho.ports)
-        cycles = np.zeros((max_cycles, width))
-    else:
-        ring = np.zeros((1, n))
-        cycles = np.zeros((1, 1))
-    return [m, v, ring, cycles]
 
 
 def _link_back(link, m, v, cycles):
@@ -445,14 +407,52 @@ class Runner:
         self.sim = sim
         self.plan = plan
         self.h = step
-        self.fn = _compile(plan.source)
+        self.fn = _compile(_source(len(plan.names)))
         # the observers' buffer and the refs each observer reads
         self.buf = np.zeros((CHUNK, plan.width))
         self.status = np.zeros(3, dtype=np.int64)
+        self.X = np.zeros(plan.nx)
+        self._views = {}
 
     def _columns(self, rows):
         b = self.buf[:rows]
         return {ref: b[:, off:off + size] for ref, (_, _, off, size) in self.plan.observed.items()}
+
+    def _adopt(self):
+        """Every component's ports as views of X (the kernels' containers are built from them), taking the
+        values of any port array that is not the view (a port set or replaced in Python since)."""
+        X, views = self.X, self._views
+        for i, kind, port, off, size in self.plan.ports:
+            d = (self.plan.comps[i].u if kind == "u" else self.plan.comps[i].y)
+            a = d[port]
+            view = views.get((i, kind, port))
+            if a is view and view is not None:
+                continue
+            a = np.asarray(a, dtype=float).reshape(-1)
+            if a.shape[0] != size:
+                raise ContractError(f"{self.plan.names[i]}.{port}: {a.shape[0]} values, its variable has {size}")
+            X[off:off + size] = a
+            view = X[off:off + size]
+            views[(i, kind, port)] = view
+            d[port] = view
+
+    def _windows(self, G, goff):
+        """The hand-off windows' rings as views of G (the loop records into them in place)."""
+        for j, link in enumerate(self.plan.links):
+            ho = link.window
+            if ho is None:
+                continue
+            go, nr, n = goff[j]
+            ring = ho.ring
+            view = self._views.get(("ring", j))
+            if ring is view and view is not None:
+                continue
+            if ring.shape != (nr, n):
+                raise RuntimeError(f"{link.con.src}: the hand-off ring changed shape during the interval")
+            G[go:go + nr * n] = ring.reshape(-1)
+            view = G[go:go + nr * n].reshape(nr, n)
+            self._views[("ring", j)] = view
+            ho.ring = view
 
     def run(self, k: int, nsteps: int, t_start: float) -> int:
         """Base steps k .. nsteps - 1; returns nsteps. ``self.k`` holds the steps completed when it raises."""
@@ -462,30 +462,52 @@ class Runner:
         comps = plan.comps
         for c, n in zip(comps, plan.names):
             c.kernel_prepare(plan.mult[n] * h)
-            for key in list(c.u):  # each input its own array (the loop writes them in place)
-                c.u[key] = np.array(c.u[key], dtype=float)
-        args_links = []
-        for link, n in zip(plan.links, plan.size):
-            ncyc = link.window.n_cycle if link.window is not None else 1
-            args_links += _link_arrays(link, n, CHUNK // ncyc + 2)
+        # the links' bookkeeping, rings and cycle means as tables (loop_ops)
+        nl = len(plan.links)
+        LI = plan.LI.copy()
+        M = np.zeros((max(1, nl), 17))
+        V = np.zeros(plan.nv)
+        goff, go, co = {}, 0, 0
+        for j, link in enumerate(plan.links):
+            n = plan.size[j]
+            vo = int(LI[j, op.L_VOFF])
+            _link_state(link, M[j], V[vo:vo + 4 * n].reshape(4, n))
+            if link.window is not None:
+                nr = link.window.ring.shape[0]
+                goff[j] = (go, nr, n)
+                LI[j, op.L_GOFF], LI[j, op.L_GNR] = go, nr
+                go += nr * n
+                LI[j, op.L_COFF] = co
+                co += (CHUNK // link.window.n_cycle + 2) * int(LI[j, op.L_CW])
+        G = np.zeros(max(1, go))
+        C = np.zeros(max(1, co))
         count = np.zeros(len(comps), dtype=np.int64)
         check = int(eng.settings.check_every)
         r0 = -1
+        addrs = None
         while k < nsteps:
             k1 = min(nsteps, k + CHUNK)
-            cargs = []
+            self._adopt()
+            self._windows(G, goff)
+            cargs, kargs = [], []
             for c in comps:
-                cargs += list(c.kernel_args())
-            self.fn(k, k1, r0, t_start, h, check, count, self.buf, self.status, *cargs, *args_links)
+                ka = c.kernel_args()
+                cargs += list(ka)
+                kargs.append(ka)
+            if addrs is None:  # typing the containers costs ~0.5 ms per chunk: again only after a Python step (below)
+                addrs = [self._address(c, ka) for c, ka in zip(comps, kargs)]
+            self.fn(k, k1, r0, t_start, h, check, count, self.buf, self.status, plan.mult_arr, plan.width,
+                    self.X, LI, M, V, G, C, plan.CT, plan.IDX, *addrs, *cargs)
             code, kk, i = (int(x) for x in self.status)
             done = kk  # base steps completed
-            self._back(args_links, count)
+            self._back(LI, M, V, C, count)
             self.k = done
             self._observe(k, done, t_start)
             k = done
             r0 = -1
             if code == 0:
                 continue
+            addrs = None  # a component steps in Python below: its containers may come back with other types
             # base step kk stopped at component i
             name = plan.names[i] if i >= 0 else None
             t_end = t_start + (kk + 1) * h
@@ -511,10 +533,33 @@ class Runner:
         sim.t = t_start + k * h
         return k
 
-    def _back(self, args_links, count):
+    _ADDR: dict = {}
+
+    @classmethod
+    def _address(cls, comp, kargs):
+        """The kernel's address for these containers' types (one look-up per type and process)."""
+        fn = type(comp).STEP
+        key = (id(fn), tuple(numba.typeof(a) for a in kargs))
+        a = cls._ADDR.get(key)
+        if a is None:
+            try:
+                a = cls._ADDR[key] = kernel_address(fn, kargs)
+            except TypeError as exc:
+                raise ContractError(f"{comp.name}: {exc} (components/kernels.py: STEP returns its status)") from None
+        return a
+
+    def _back(self, LI, M, V, C, count):
         plan, eng = self.plan, self.sim.engine
         for j, link in enumerate(plan.links):
-            _link_back(link, args_links[4 * j], args_links[4 * j + 1], args_links[4 * j + 3])
+            n = plan.size[j]
+            vo = int(LI[j, op.L_VOFF])
+            cycles = None
+            if link.window is not None:
+                cw = int(LI[j, op.L_CW])
+                c0 = int(LI[j, op.L_COFF])
+                nout = int(M[j, _NOUT])
+                cycles = C[c0:c0 + nout * cw].reshape(nout, cw)
+            _link_back(link, M[j], V[vo:vo + 4 * n].reshape(4, n), cycles)
         for i, n in enumerate(plan.names):
             eng.steps_taken[n] += int(count[i])
             count[i] = 0
