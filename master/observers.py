@@ -531,6 +531,10 @@ class SteadyWindows(Observer):
         self._taps = [(comps[r.partition(".")[0]], r.partition(".")[2], self._data[r]) for r in self.signals]
         self._pos = 0
         self._count = 0
+        # a step number at or below this cannot be among the interval's last n samples (sampled steps are
+        # multiples of the stride): step_block leaves those ring slots for the later rows that overwrite them
+        steps = sim.interval_steps
+        self._old = None if steps is None else steps - (n + 1) * self.stride
 
     def step(self, sim, t):
         if not self.active:
@@ -556,6 +560,9 @@ class SteadyWindows(Observer):
         m = len(keep)
         pos = (self._pos + (len(rows) - m)) % n
         idx = (pos + np.arange(m)) % n
+        if self._old is not None:
+            new = np.asarray(ks)[keep] > self._old
+            keep, idx = keep[new], idx[new]
         self._t[idx] = ts[keep]
         for r in self.signals:
             self._data[r][idx] = data[r][keep]

@@ -47,6 +47,8 @@ class Simulation:
         self.t = float(t0)
         self.t0 = float(t0)
         self.phase = None
+        #: base steps of the current interval when it runs to its end (None: the automatic schedule may end it)
+        self.interval_steps = None
         self.report = RunReport()
         self._initialised = False
         self.interval_index = 0
@@ -126,6 +128,7 @@ class Simulation:
         self.hold.start(phase, active, mult, step, self.t, self.engine.steps_taken)
         self.engine.prepare(active, mult, step)
         t_start = self.t
+        self.interval_steps = nsteps if stop is None else None
         for obs in self.observers:
             obs.interval_start(self, phase, step)
         k = 0
