@@ -34,8 +34,14 @@ def test_direct_copy_is_deepcopy_and_independent():
     src = _snap()
     out, ref = _copy_snapshot(src), copy.deepcopy(src)
     _same(out, ref)
+    # no array of the copy shares memory with the source: changing the source leaves the copy as it was
+    for part in (1, 2, 3):
+        for key, arr in src[part].items():
+            assert not np.shares_memory(out[part][key], arr), (part, key)
     src[1]["balls"] += 1.0
     src[3]["view"] += 1.0
+    assert out[1]["balls"][0, 0] == 0.0 and out[3]["view"].tolist() == [0.0, 2.0, 4.0, 6.0]
+    assert out[1]["f"].flags.f_contiguous and out[3]["view"].strides == ref[3]["view"].strides
     _same(out, ref)
 
 
