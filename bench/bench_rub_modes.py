@@ -55,18 +55,25 @@ def with_ring(full: fem.FullModel, node: int, k: float) -> fem.FullModel:
     return out
 
 
-def receptance(full: fem.FullModel, sup: dict, node: int) -> complex:
-    """Forward-orbit receptance (m/N) of the PT node relative to hub h0 under a unit force pair between them
-    rotating at the power-turbine speed."""
+def _forced(full: fem.FullModel, sup: dict, force: dict[int, complex]) -> np.ndarray:
+    """The forward synchronous response (complex amplitudes of every DOF) to rotating forces {dof: amplitude} at
+    the power-turbine speed."""
     W = full.omega_pt
     s = full.coupled(sup)
     r = full.omega_gg / full.omega_pt
     A = s["K"] - W ** 2 * s["M"] + 1j * W * (s["C"] + W * s["G_pt"] + W * r * s["G_gg"])
+    f = np.zeros(A.shape[0], complex)
+    for dof, amp in force.items():
+        f[dof] += amp
+    return np.linalg.solve(A, f)
+
+
+def receptance(full: fem.FullModel, sup: dict, node: int) -> complex:
+    """Forward-orbit receptance (m/N) of the PT node relative to hub h0 under a unit force pair between them
+    rotating at the power-turbine speed."""
     ix, iy = (full.info["dof"]("pt", node, d) for d in range(2))
     hx, hy = full.ports["housing0"]
-    g = np.zeros(A.shape[0], complex)
-    g[ix], g[iy], g[hx], g[hy] = 1.0, -1j, -1.0, 1j
-    Y = np.linalg.solve(A, g)
+    Y = _forced(full, sup, {ix: 1.0, iy: -1j, hx: -1.0, hy: 1j})
     return complex(Y[ix] - Y[hx])
 
 
@@ -77,16 +84,10 @@ DOCS = Path(__file__).resolve().parents[1] / "docs" / "paper_comparison.csv"
 def ring_receptances(full: fem.FullModel, sup: dict, node: int) -> tuple[complex, complex]:
     """(H_u, H_g): forward-orbit displacement of PT node ``node`` relative to hub h0 per newton of the rotating
     unbalance, and per newton of a rotating force pair between the node and the hub."""
-    W = full.omega_pt
-    s = full.coupled(sup)
-    r = full.omega_gg / full.omega_pt
-    A = s["K"] - W ** 2 * s["M"] + 1j * W * (s["C"] + W * s["G_pt"] + W * r * s["G_gg"])
-    ix, iy = (full.info["dof"]("pt", node, d) for d in range(2))
-    hx, hy = full.ports["housing0"]
+    ix = full.info["dof"]("pt", node, 0)
+    hx, _ = full.ports["housing0"]
     ux, uy = full.ports["unbalance"]
-    fu = np.zeros(A.shape[0], complex)
-    fu[ux], fu[uy] = 1.0, -1j
-    Yu = np.linalg.solve(A, fu)
+    Yu = _forced(full, sup, {ux: 1.0, uy: -1j})
     return complex(Yu[ix] - Yu[hx]), receptance(full, sup, node)
 
 

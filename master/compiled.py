@@ -48,22 +48,14 @@ from rotorcosim.components.contract import ContractError
 from rotorcosim.components.kernels import PYTHON, KernelComponent
 
 from . import loop_ops as op
+# a link's bookkeeping row M[j]: loop_ops defines its fields
+from .loop_ops import (CN, CSUM, CUR_T, HAS_ACC, HAS_CUR, HAS_PREV, HAS_RT, NCYC, NOUT, PREV_T, R0, RCOUNT, RLEN,
+                       RPOS, RT, WEIGHT, WLAST)
 from .algorithm import GaussSeidel, SimulationDiverged, _Link
 
 ENGINES = ("auto", "python", "compiled")
 #: base steps per compiled chunk (rows of the observers' buffer): ~1 ms of wall time between observer calls
 CHUNK = 2048
-
-# link bookkeeping, as numbers (algorithm._Link fields): meta = [has_acc, weight, has_prev, prev_t, has_cur,
-# cur_t, then the hand-off window's (hold.HandOff): pos, count, has t_last, t_last, cycle sum, cycle count, last
-# sample, samples per cycle, cycles written in this chunk, then a hand-back's restart offset (hold.Restart): its
-# start and length (0: none)]; vec rows = [acc (or acc2), prev, last, the restart offset's delta]
-(_HAS_ACC, _WEIGHT, _HAS_PREV, _PREV_T, _HAS_CUR, _CUR_T, _RPOS, _RCOUNT, _HAS_RT, _RT, _CSUM, _CN, _WLAST, _NCYC,
- _NOUT, _R0, _RLEN) = range(17)
-assert (_HAS_ACC, _WEIGHT, _HAS_PREV, _PREV_T, _HAS_CUR, _CUR_T, _RPOS, _RCOUNT, _HAS_RT, _RT, _CSUM, _CN, _WLAST,
-        _NCYC, _NOUT, _R0, _RLEN) == (op.HAS_ACC, op.WEIGHT, op.HAS_PREV, op.PREV_T, op.HAS_CUR, op.CUR_T, op.RPOS,
-                                       op.RCOUNT, op.HAS_RT, op.RT, op.CSUM, op.CN, op.WLAST, op.NCYC, op.NOUT,
-                                       op.R0, op.RLEN)
 
 
 class CompiledUnavailable(ContractError):
@@ -351,53 +343,53 @@ def _link_state(link, m, v):
     m[:] = 0.0
     v[:] = 0.0
     if link.ramp is not None:
-        m[_R0], m[_RLEN] = link.ramp.t0, link.ramp.length
+        m[R0], m[RLEN] = link.ramp.t0, link.ramp.length
         v[3] = link.ramp.delta
     acc = link.acc if link.con.average == "mean" else link.acc2
     if acc is not None:
-        m[_HAS_ACC] = 1.0
+        m[HAS_ACC] = 1.0
         v[0] = acc
-    m[_WEIGHT] = link.weight
+    m[WEIGHT] = link.weight
     if link.prev is not None:
-        m[_HAS_PREV] = 1.0
+        m[HAS_PREV] = 1.0
         v[1] = link.prev
-        m[_PREV_T] = link.prev_t
+        m[PREV_T] = link.prev_t
     if link.cur_t is not None:
-        m[_HAS_CUR] = 1.0
-        m[_CUR_T] = link.cur_t
+        m[HAS_CUR] = 1.0
+        m[CUR_T] = link.cur_t
         v[2] = link._last
     ho = link.window
     if ho is not None:
-        m[_RPOS], m[_RCOUNT] = ho.pos, ho.count
+        m[RPOS], m[RCOUNT] = ho.pos, ho.count
         if ho.t_last is not None:
-            m[_HAS_RT], m[_RT] = 1.0, ho.t_last
-        m[_CSUM], m[_CN], m[_WLAST], m[_NCYC] = ho.csum, ho.cn, ho._last, ho.n_cycle
+            m[HAS_RT], m[RT] = 1.0, ho.t_last
+        m[CSUM], m[CN], m[WLAST], m[NCYC] = ho.csum, ho.cn, ho._last, ho.n_cycle
 
 
 def _link_back(link, m, v, cycles):
     """The loop's bookkeeping back into the _Link and its hand-off window (thermal-only holds, checkpoints and
     the generic loop use them): prev is None exactly when prev_t is (algorithm._Link.produced), cur_t and _last
     likewise."""
-    acc = v[0].copy() if m[_HAS_ACC] else None
+    acc = v[0].copy() if m[HAS_ACC] else None
     if link.con.average == "mean":
         link.acc = acc
     else:
         link.acc2 = acc
-    link.weight = float(m[_WEIGHT])
-    has_prev = bool(m[_HAS_PREV])
+    link.weight = float(m[WEIGHT])
+    has_prev = bool(m[HAS_PREV])
     link.prev = v[1].copy() if has_prev else None
-    link.prev_t = float(m[_PREV_T]) if has_prev else None
-    if m[_HAS_CUR]:
-        link.cur_t = float(m[_CUR_T])
+    link.prev_t = float(m[PREV_T]) if has_prev else None
+    if m[HAS_CUR]:
+        link.cur_t = float(m[CUR_T])
         link._last = v[2].copy()
     ho = link.window
     if ho is not None:
-        ho.pos, ho.count = int(m[_RPOS]), int(m[_RCOUNT])
-        ho.t_last = float(m[_RT]) if m[_HAS_RT] else None
-        ho.csum, ho.cn, ho._last = float(m[_CSUM]), int(m[_CN]), float(m[_WLAST])
-        for r in range(int(m[_NOUT])):
+        ho.pos, ho.count = int(m[RPOS]), int(m[RCOUNT])
+        ho.t_last = float(m[RT]) if m[HAS_RT] else None
+        ho.csum, ho.cn, ho._last = float(m[CSUM]), int(m[CN]), float(m[WLAST])
+        for r in range(int(m[NOUT])):
             ho.cycles.append((cycles[r, 1:].copy(), float(cycles[r, 0])))
-        m[_NOUT] = 0.0
+        m[NOUT] = 0.0
 
 
 class Runner:
@@ -557,7 +549,7 @@ class Runner:
             if link.window is not None:
                 cw = int(LI[j, op.L_CW])
                 c0 = int(LI[j, op.L_COFF])
-                nout = int(M[j, _NOUT])
+                nout = int(M[j, NOUT])
                 cycles = C[c0:c0 + nout * cw].reshape(nout, cw)
             _link_back(link, M[j], V[vo:vo + 4 * n].reshape(4, n), cycles)
         for i, n in enumerate(plan.names):

@@ -14,7 +14,7 @@ this one agree to round-off 0: tests/master/test_compiled.py).
 
 Tables (built by compiled.Tables):
 * ``LI[j]`` (int64) a link's layout and kinds, columns ``L_*`` below;
-* ``M[j]`` (float64, 17) a link's bookkeeping: compiled._HAS_ACC ... compiled._RLEN;
+* ``M[j]`` (float64, 17) a link's bookkeeping, fields ``HAS_ACC`` ... ``RLEN`` below;
 * ``V`` (float64) per link four rows of its size at ``LI[j, L_VOFF]``: acc (or acc2), prev, last, the restart
   offset's delta;
 * ``G`` the hand-off windows' rings (rows of the link's size), ``C`` their rotor-cycle means (rows of
@@ -31,7 +31,10 @@ from numba import njit, types
 from numba.core import cgutils
 from numba.extending import intrinsic
 
-# the fields of a link's bookkeeping row M[j] (master/compiled.py defines them; asserted equal there)
+# the fields of a link's bookkeeping row M[j] (algorithm._Link's, then the hand-off window's (hold.HandOff):
+# ring position, count, has t_last, t_last, cycle sum, cycle count, last sample, samples per cycle, cycles written
+# in this chunk, then a hand-back's restart offset (hold.Restart): its start and length, 0 for none); V's rows per
+# link: acc (or acc2), prev, last, the restart offset's delta
 HAS_ACC, WEIGHT, HAS_PREV, PREV_T, HAS_CUR, CUR_T, RPOS, RCOUNT, HAS_RT, RT, CSUM, CN, WLAST, NCYC, NOUT, R0, \
     RLEN = range(17)
 
