@@ -30,6 +30,7 @@ from pathlib import Path
 from rotorcosim.master.api import draw_figures
 from rotorcosim.master.figure_pool import FigurePool
 from rotorcosim.master.outputs import write_json
+from rotorcosim.master.rundir import LOCK
 from rotorcosim.master.schedule import Interval, Timeline, from_spec
 
 from .run import apply_unbalance, execute, resolve
@@ -116,6 +117,11 @@ def compare(out: Path, duration=2.0, unbalance=2850.0, scenario="blade_loss", re
     if sc.extra.get("results", {}).get("kind") != "blade_loss":  # before any run: Table 6 is bearing results
         raise ValueError(f"compare: scenario {sc.name!r} has no bearing results to compare ([results] kind = "
                          "\"blade_loss\" in the blade-loss scenarios)")
+    kinds_run = [k for k in ("staggered", "monolithic") if not (k == "monolithic" and monolithic is not None)]
+    held = [k for k in kinds_run if (out / k).is_dir() and any(p.name != LOCK for p in (out / k).iterdir())]
+    if held and not overwrite:  # before the warm-up; compare has no --resume (a comparison is run again)
+        raise ValueError(f"--out {out} already holds a comparison ({', '.join(held)}): results are never mixed; "
+                         "give --overwrite to replace it, or another folder")
     if monolithic is not None:
         mono = resolve(scenario)
         apply_unbalance(mono, unbalance)
