@@ -72,6 +72,8 @@ class RunFolder:
         self._fd = None
 
     def __enter__(self) -> "RunFolder":
+        if self.resume and not self.path.exists():  # nothing to continue: create nothing
+            raise OutputFolderError(f"--resume: {self.path} does not exist, so no checkpoint.pkl (no interrupted run to continue)")
         p = ensure_folder(self.path)
         try:
             self._fd = os.open(p / LOCK, os.O_RDWR | os.O_CREAT, 0o644)

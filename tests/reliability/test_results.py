@@ -198,3 +198,9 @@ def test_a_run_that_failed_before_its_first_step_does_not_block_its_folder(tmp_p
     assert summary(out)["status"] == "complete"
     with pytest.raises(OutputFolderError, match="not empty"):
         execute(toy(), out, duration=0.01, figures=False)
+
+
+def test_resume_into_a_missing_folder_creates_nothing(tmp_path):
+    with pytest.raises(OutputFolderError, match="does not exist"):
+        execute(toy(), tmp_path / "nope", duration=0.01, figures=False, resume=True)
+    assert not (tmp_path / "nope").exists()
