@@ -25,6 +25,7 @@ Mapping of the contract onto FMI 2.0:
   (bit 1: TM, bit 2: TO, bit 4: ``holds_state_in_TO``), since a component may decide them from its
   parameters. Other tools leave the input at 0: the component then always runs thermo-mechanically.
 """
+import contextlib
 import copy
 import importlib
 import json
@@ -32,6 +33,12 @@ import os
 
 import numpy as np
 from pythonfmu import Boolean, Fmi2Causality, Fmi2Slave, Fmi2Variability, Integer, Real, String
+
+try:  # one BLAS thread, as in rotorcosim's own runs (master/threads.py): the host tool may run BLAS multi-threaded,
+    # which sums in another order and changes the last digits of a result
+    from threadpoolctl import ThreadpoolController
+except ImportError:  # a host Python without it: the component runs with the host's BLAS threads
+    ThreadpoolController = None
 
 _TYPES = {"Real": Real, "Integer": Integer, "Boolean": Boolean, "String": String}
 _CONVERT = {"Real": float, "Integer": int, "Boolean": bool, "String": str}
@@ -54,6 +61,7 @@ class RotorcosimSlave(Fmi2Slave):
         self.author = "rotorcosim"
         self.version = cfg["version"]
         self._component = None
+        self._threads = None    # the BLAS/OpenMP pools limited to one thread, known after the component's import
         self._t0 = 0.0
         self._explicit = set(cfg["parameters"])        # parameters passed to the constructor
         self._par, self._u, self._y, self._type = {}, {}, {}, {}
@@ -159,7 +167,8 @@ class RotorcosimSlave(Fmi2Slave):
         interpreter's reference counts: crashes later, in the garbage collector), but kept as the component's
         own message for the importer, and the call reports failure by its return value."""
         try:
-            call(*args)
+            with (self._threads.limit(limits=1) if self._threads is not None else contextlib.nullcontext()):
+                call(*args)
             return True
         except Exception as exc:  # noqa: BLE001 - every failure of the component becomes an FMI error
             self._error = f"{type(exc).__name__}: {exc}"
@@ -174,6 +183,15 @@ class RotorcosimSlave(Fmi2Slave):
         pkg = importlib.import_module(self._cfg["package"])
         module = importlib.import_module(pkg.__name__ + "." + self._cfg["module"])
         cls = getattr(module, self._cfg["class"])
+        if ThreadpoolController is not None:
+            # the libraries the component's module loaded are known now (29 us a step to enter, measured)
+            self._threads = ThreadpoolController()
+            with self._threads.limit(limits=1):
+                self._build(cls)
+        else:
+            self._build(cls)
+
+    def _build(self, cls):
         params = {}
         for v in self._cfg["variables"]:
             n = v["name"]

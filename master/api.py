@@ -41,6 +41,7 @@ from .scenario import Scenario, build_simulation, load_scenario as _load_file, s
 from .schedule import Schedule
 from .series import SeriesFile
 from .simulation import engine_summary
+from .threads import one_thread
 
 DEFAULT_SCENARIO = "blade_loss_2850"
 #: ``schedule=`` names: the scenario's own schedule (its timeline), automatic, one TM interval
@@ -178,7 +179,19 @@ def simulate(sc: Scenario | str | Path, duration: float | None = None, schedule=
 
     The summary's ``status`` says how the run ended: ``complete``, ``stopped`` (a component asked to stop),
     ``interrupted`` (SIGINT/SIGTERM) or ``failed``; on ``interrupted`` and ``failed`` the error is raised after
-    the summary and the time series are written, carrying the partial :class:`Result` as ``.result``."""
+    the summary and the time series are written, carrying the partial :class:`Result` as ``.result``.
+
+    The whole run uses one BLAS thread whatever the calling program set up (threads.py): the same numbers as the
+    command line's, bit for bit."""
+    import scipy.linalg  # noqa: F401  (loads scipy's own BLAS now, so that the limit below covers it too)
+
+    with one_thread():
+        return _simulate(sc, duration, schedule, out, record, progress, figures, overwrite, resume, force,
+                         checkpoint_every, step_timeout, engine)
+
+
+def _simulate(sc, duration, schedule, out, record, progress, figures, overwrite, resume, force, checkpoint_every,
+              step_timeout, engine) -> Result:
     if not isinstance(sc, (Scenario, str, os.PathLike)):
         raise TypeError(f"simulate: give a Scenario, a shipped scenario's name or a file, got {type(sc).__name__}")
     if not isinstance(sc, Scenario):

@@ -96,7 +96,10 @@ def main(argv: list[str] | None = None) -> int:
         return 2
     try:
         module = importlib.import_module(COMMANDS[args.command][0])
-        return int(module.run(args) or 0)
+        from rotorcosim.master.threads import one_thread
+
+        with one_thread():  # the same numbers whatever the calling program imported first (threads.py)
+            return int(module.run(args) or 0)
     except KeyboardInterrupt:
         if debug:
             traceback.print_exc()
