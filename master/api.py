@@ -263,7 +263,10 @@ def _simulate(sc, duration, schedule, out, record, progress, figures, overwrite,
 
         guard = watchdog.Watchdog(step_timeout, hung, "rotorcosim run") if step_timeout > 0 else contextlib.nullcontext()
         try:
-            with guard:
+            # numpy's floating-point warnings (overflow, invalid) off during the steps: the engine checks every
+            # output another component reads after each step and stops with SimulationDiverged naming the port and
+            # the time (algorithm.py), so a warning would only add a stray line of source text before that error
+            with guard, np.errstate(over="ignore", invalid="ignore", divide="ignore"):
                 report = checkpoint.resume(sim, sch, point) if point else sim.run(sch)
             status = report.status  # "complete", or "stopped" (a component asked to stop)
         except checkpoint.RunInterrupted as exc:

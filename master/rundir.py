@@ -36,14 +36,21 @@ def _ours(name: str) -> bool:
     return any(fnmatch.fnmatch(name, pat) for pat in RUN_FILES)
 
 
-def ensure_folder(path, what: str = "--out") -> Path:
-    """``path`` as a folder we can write into, created if missing; else an OutputFolderError naming ``what``
-    (the option or argument that gave it) and why. Every command that writes a folder of results uses it."""
+def check_folder(path, what: str = "--out") -> Path:
+    """``path`` as a Path if it can name a folder of results (not empty, not a file), without creating anything:
+    for a command that checks the rest of its input before it makes the folder (ensure_folder)."""
     p = Path(path)
     if str(path).strip() == "":
         raise OutputFolderError(f"{what} is empty: give the folder the results go to")
     if p.exists() and not p.is_dir():
         raise OutputFolderError(f"{what} {p} is a file, not a folder")
+    return p
+
+
+def ensure_folder(path, what: str = "--out") -> Path:
+    """``path`` as a folder we can write into, created if missing; else an OutputFolderError naming ``what``
+    (the option or argument that gave it) and why. Every command that writes a folder of results uses it."""
+    p = check_folder(path, what)
     try:
         p.mkdir(parents=True, exist_ok=True)
     except FileExistsError:

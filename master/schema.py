@@ -27,6 +27,7 @@ from typing import Any, Callable, Mapping
 from rotorcosim.components.contract import PHASES, ContractError
 
 from .algorithm import ALGORITHMS
+from .hold import RESTART_CYCLES
 from .schedule import SCHEDULES
 from .system import AVERAGES, EXTRAPOLATIONS, HOLDS
 
@@ -438,6 +439,7 @@ def _schedule(c: _Checker, s: Mapping, comps: Mapping) -> None:
             raise c.fail("schedule", "hold_cycles", f"{cycles:g} cycles at {speed:g} rev/min last {window:.4g} s, "
                          f"longer than the longest thermo-mechanical interval ({longest:.4g} s): the hold's window "
                          "could never fill")
+    _restart(c, s, raw)
     for name, spec in comps.items():
         cs = spec.get("step")
         if cs is None:
@@ -451,3 +453,37 @@ def _schedule(c: _Checker, s: Mapping, comps: Mapping) -> None:
             if m < 1 - 1e-9 or abs(m - round(m)) > 1e-6 * m:
                 raise c.fail(f"components.{name}", "step",
                              f"{cs} s is not a whole multiple of the thermo-mechanical step {h} s")
+
+
+def _restart(c: _Checker, s: Mapping, raw) -> None:
+    """restart_cycles against the thermo-mechanical time a restart's ramp has (master/hold.py, Restart): it starts
+    at a TO -> TM change and goes on through the TM intervals that follow, until the next TO interval. A ramp
+    longer than the shortest such run never ends: the hand-backs would stay a blend of held and live values for
+    the whole run (1e12 cycles was accepted). Under the automatic schedule a TM interval after a TO one lasts at
+    most tm_max."""
+    speed, cycles = s.get("speed_rpm"), s.get("restart_cycles")
+    if not speed or not cycles:
+        return
+    ramp = cycles * 60.0 / speed
+    runs, run, after_to = [], 0.0, False
+    if isinstance(raw, list) and s.get("kind", "timeline") != "auto":
+        for iv in raw:
+            d = iv["duration"] if "duration" in iv else iv["cycles"] * 60.0 / speed
+            if iv["phase"] == "TO":
+                if after_to and run > 0.0:
+                    runs.append(run)
+                run, after_to = 0.0, True
+            elif after_to:
+                run += d
+        if after_to and run > 0.0:
+            runs.append(run)
+        what = "the shortest run of thermo-mechanical intervals after a thermal-only one"
+    elif s.get("kind") == "auto":
+        from .auto import AutoSchedule
+
+        runs = [s.get("tm_max", AutoSchedule.tm_max)]
+        what = "tm_max, the longest thermo-mechanical interval of the automatic schedule"
+    if runs and ramp > min(runs) * (1 + 1e-9):
+        raise c.fail("schedule", "restart_cycles", f"{cycles:g} cycles at {speed:g} rev/min last {ramp:.4g} s, "
+                     f"longer than {what} ({min(runs):.4g} s): the restart's ramp would never end (the default is "
+                     f"{RESTART_CYCLES:g} cycles)")

@@ -45,6 +45,7 @@ import numpy as np
 
 from ..contract import ContractError, Variable
 from ..kernels import PYTHON, KernelComponent
+from ..oil_fit import T_MAX_K, T_MIN_K
 from ..speeds import PT_OMEGA
 from .drag import static_load_rating
 from .geometry import DATA, BEARINGS, build_geometry
@@ -179,7 +180,7 @@ class BallBearing(KernelComponent):
         self._out = np.zeros(18)
         self._kernel_p = BearingParams(float(self.z0), self._cb, self._sb, self._geo, self._drag, self._num,
                                        np.full(3, np.nan), self._out, self._eps_jump, float(WALTHER_A),
-                                       float(WALTHER_B))
+                                       float(WALTHER_B), T_MIN_K, T_MAX_K)
         # outputs of the rest state: one zero-length evaluation
         self._advance(0.0, self.time, update_state=False)
 
@@ -190,7 +191,7 @@ class BallBearing(KernelComponent):
         return int(self._out[17])
 
     def _nu(self, T):
-        if not (200.0 < T <= 600.0):
+        if not (T_MIN_K < T <= T_MAX_K):
             try:
                 sae30_kinematic_viscosity(T)       # its error names the fit's range
             except ValueError as exc:

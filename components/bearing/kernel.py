@@ -295,7 +295,8 @@ def step(h, Xa, Va, z0, eps, F0, Kj, Cj, balls, jour, phi, c_b, s_b, geo, drag, 
 #: vectors of step_outputs, a cache [T of nu, T of P_v, P_v], the step's output buffer, the growth jump that
 #: re-seats the balls, the Walther constants of the oil viscosity.
 BearingState = namedtuple("BearingState", "balls journal phi eps_seated")
-BearingParams = namedtuple("BearingParams", "z0 c_b s_b geo drag num cache out eps_jump walther_A walther_B")
+BearingParams = namedtuple("BearingParams",
+                           "z0 c_b s_b geo drag num cache out eps_jump walther_A walther_B T_min T_max")
 
 
 @njit(cache=True)
@@ -330,7 +331,7 @@ def tm_step(s, p, u, y, t, h):
     the growths jumped (a thermal-only interval ended): the balls are re-seated in Python first; 5: T_oil outside
     the viscosity fit; 10 + the flag of step_outputs."""
     T = u.T_oil[0]
-    if not (T > 200.0 and T <= 600.0):
+    if not (T > p.T_min and T <= p.T_max):   # the viscosity fit's range (components/oil_fit.py)
         return 5
     oil_viscosity(p, T)
     eps = u.eps

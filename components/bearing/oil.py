@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import math
 
+from ..oil_fit import check_oil_temperature
 from .geometry import DATA
 
 _OIL = DATA["oil"]
@@ -30,20 +31,13 @@ WALTHER_B = (_Y1 - _Y2) / (math.log10(_T2) - math.log10(_T1))
 WALTHER_A = _Y1 + WALTHER_B * math.log10(_T1)
 
 
-def _check(T_K: float) -> float:
-    T = float(T_K)
-    if not math.isfinite(T) or T <= 200.0 or T > 600.0:
-        raise ValueError(f"oil temperature {T_K!r} K is outside the viscosity fit's range (200 K, 600 K]")
-    return T
-
-
 def sae30_kinematic_viscosity(T_K: float) -> float:
     """Kinematic viscosity of SAE 30 in m^2/s."""
-    T = _check(T_K)
+    T = check_oil_temperature(T_K)
     return (10.0 ** (10.0 ** (WALTHER_A - WALTHER_B * math.log10(T))) - 0.7) * 1e-6
 
 
 def sae30_viscosity(T_K: float) -> float:
     """Dynamic viscosity of SAE 30 in Pa s at ``T_K`` kelvin."""
-    T = _check(T_K)
+    T = check_oil_temperature(T_K)
     return sae30_kinematic_viscosity(T) * oil_density(T)

@@ -27,6 +27,7 @@ import numpy as np
 
 from ..contract import Component, ContractError, Variable
 from ..kernels import KernelComponent
+from ..oil_fit import T_MAX_K, T_MIN_K
 from . import wall
 from .fast import DamperParams, fast_step, film_table, tm_step
 from .reynolds_fe import build_mesh, fe_film_eval
@@ -278,7 +279,8 @@ class FastDamper(KernelComponent, _Damper):
         prm = np.array([t.u0, t.du, t.n, t.eps_max, t.clearance, self._floor, float(self._cav), self._k, self._kw])
         A, B, rho300, drho = _oil()
         self._kernel_p = DamperParams(t.NT, t.G, t.TW, t.toff, t.ftab, t.bounds, t.Wc, t.Ws, prm, np.zeros(self.N_OUT),
-                                      np.full(2, np.nan), float(A), float(B), float(rho300), float(drho))
+                                      np.full(2, np.nan), float(A), float(B), float(rho300), float(drho),
+                                      T_MIN_K, T_MAX_K)
 
     def _film(self, dx, dy, dvx, dvy, mu, out):
         self._table.evaluate(dx, dy, dvx, dvy, mu, self._floor, self._cav, out)

@@ -444,9 +444,10 @@ def fast_film_force(table: FilmTable, dx, dy, dvx, dvy, mu, supply_pressure, cav
 
 
 #: the fast damper's kernel constants (components/kernels.py; the damper has no state): the tables and parameters
-#: of fast_step, its output buffer, a cache [T, mu(T)] and the oil's viscosity constants (viscosity.py)
+#: of fast_step, its output buffer, a cache [T, mu(T)], the oil's viscosity constants (viscosity.py) and the fit's
+#: temperature range (components/oil_fit.py)
 DamperParams = namedtuple("DamperParams",
-                          "NT G TW toff ftab bounds Wc Ws prm out cache walther_A walther_B rho300 drho")
+                          "NT G TW toff ftab bounds Wc Ws prm out cache walther_A walther_B rho300 drho T_min T_max")
 
 
 @njit(cache=True)
@@ -464,7 +465,7 @@ def tm_step(s, p, u, y, t, h):
     """One evaluation at the step's inputs (components/kernels.py contract). Status 5: T_oil outside the
     viscosity fit; 10 + a wall.* code."""
     T = u.T_oil[0]
-    if not (T > 200.0 and T <= 600.0):
+    if not (T > p.T_min and T <= p.T_max):   # the viscosity fit's range (components/oil_fit.py)
         return 5
     mu = oil_viscosity(p, T)
     out = p.out

@@ -15,6 +15,8 @@ import tomllib
 from functools import lru_cache
 from pathlib import Path
 
+from ..oil_fit import check_oil_temperature
+
 DATA = Path(__file__).with_name("data") / "dampers.toml"
 
 
@@ -43,9 +45,7 @@ def walther_constants() -> tuple[float, float]:
 
 def sae30_viscosity(T_kelvin: float) -> float:
     """Dynamic viscosity of SAE 30 in Pa s at ``T_kelvin`` (ASTM D341 / Walther, see module docstring)."""
-    T = float(T_kelvin)
-    if not math.isfinite(T) or T <= 200.0 or T > 600.0:
-        raise ValueError(f"oil temperature {T!r} K is outside the viscosity fit's range (200 K, 600 K]")
+    T = check_oil_temperature(T_kelvin)
     A, B, rho300, drho = _oil()
     nu_cst = 10.0 ** (10.0 ** (A - B * math.log10(T))) - 0.7
     return nu_cst * 1e-6 * (rho300 + drho * (T - 300.0))

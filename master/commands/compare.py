@@ -30,7 +30,7 @@ from pathlib import Path
 from rotorcosim.master.api import draw_figures
 from rotorcosim.master.figure_pool import FigurePool
 from rotorcosim.master.outputs import write_json
-from rotorcosim.master.rundir import LOCK
+from rotorcosim.master.rundir import LOCK, check_folder, ensure_folder
 from rotorcosim.master.schedule import Interval, Timeline, from_spec
 
 from .run import apply_unbalance, execute, resolve
@@ -102,12 +102,7 @@ def compare(out: Path, duration=2.0, unbalance=2850.0, scenario="blade_loss", re
             quiet=True, figures=True, overwrite=False, schedule="paper", tolerance=None, monolithic=None) -> dict:
     if not (duration > 0 and duration < float("inf")):
         raise ValueError(f"--duration must be a positive number of seconds, got {duration}")
-    if str(out).strip() == "":
-        raise ValueError("--out is empty: give the folder the results go to")
-    out = Path(out)
-    if out.exists() and not out.is_dir():
-        raise ValueError(f"--out {out} is a file, not a folder")
-    out.mkdir(parents=True, exist_ok=True)
+    out = check_folder(out)   # made only once every input is checked (ensure_folder, below)
     if schedule not in ("paper", "auto"):
         raise ValueError(f"--schedule must be 'paper' or 'auto', got {schedule!r}")
     if tolerance is not None and (schedule != "auto" or not 0.0 < tolerance < float("inf")):
@@ -126,6 +121,7 @@ def compare(out: Path, duration=2.0, unbalance=2850.0, scenario="blade_loss", re
         mono = resolve(scenario)
         apply_unbalance(mono, unbalance)
         runs["monolithic"] = _reuse(Path(monolithic), unbalance, duration, f"{mono.name}_monolithic", bearing)
+    ensure_folder(out)  # every input checked: only now is a folder made (the runs' messages, rundir.py)
     _warm_up(scenario, out, _quantum(sc))
     kinds = ("staggered", "monolithic")
     scenarios, loads = {}, {}

@@ -129,6 +129,11 @@ def test_command_process_collects_less_and_freezes_at_exit():
     ("export-fmus", ["{file}", "--scenario", "toy_thermomechanical"], "output folder {file} is a file, not a folder"),
     ("export-fmus", ["{file}/sub", "--scenario", "toy_thermomechanical"], "cannot create the folder (Not a directory)"),
     ("export-ssp", ["{dir}/folder.ssp", "toy_thermomechanical"], "is a folder, not an archive's name"),
+    # compare: rundir.ensure_folder's checks and lines, as every other command (it had its own, and made the
+    # folder before checking the rest of its input)
+    ("compare", ["--out", "{file}", "--quiet"], "--out {file} is a file, not a folder"),
+    ("compare", ["--out", "{file}/sub", "--quiet"], "--out {file}/sub: cannot create the folder (Not a directory)"),
+    ("compare", ["--out", "/proc/rotorcosim_test/x", "--quiet"], "cannot create the folder"),
     ("export-ssp", ["/proc/rotorcosim_test.ssp", "toy_thermomechanical"], "/proc/rotorcosim_test.ssp: cannot write"),
 ])
 def test_output_places_that_cannot_be_written(tmp_path, capsys, command, args, message):
@@ -142,6 +147,17 @@ def test_output_places_that_cannot_be_written(tmp_path, capsys, command, args, m
     assert rc == 2 and message.replace("{file}", str(f)) in line, line
     assert "Errno" not in line
     assert f.read_text() == "x"
+
+
+@pytest.mark.parametrize("args, message", [
+    (["--tolerance", "5"], "applies to --schedule auto only"),
+    (["--scenario", "toy_thermomechanical"], "has no bearing results"),
+    (["--duration", "nan"], "--duration must be a positive"),
+])
+def test_compare_makes_no_folder_before_its_input_is_checked(tmp_path, capsys, args, message):
+    rc, _, err = call(capsys, "compare", "--out", str(tmp_path / "new"), "--quiet", *args)
+    assert rc == 2 and message in one_line_error(err), err
+    assert not (tmp_path / "new").exists()
 
 
 @pytest.mark.parametrize("text, message", [

@@ -43,3 +43,21 @@ def test_huge_but_finite_values_are_not_divergence():
     sim = Simulation(System({"src": src, "m": m}, [Connection("src.F", "m.F")]))
     sim.run(Timeline([Interval("TM", 0.01, 1e-3)]))
     assert sim.t == pytest.approx(0.01)
+
+
+def test_overflow_ends_in_the_divergence_message_only(tmp_path, capsys):
+    """C = R = 1e308 overflows inside the thermal node (numpy scalars): the engine's finiteness check names the
+    port; numpy's RuntimeWarning must not come first (a stray line of source text on the command line). Made an
+    error here, so that a warning would change the outcome."""
+    import warnings
+
+    from rotorcosim.master.cli import main
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", RuntimeWarning)
+        rc = main(["run", "toy_thermomechanical", "--set", "node.C=1e308", "--set", "node.R=1e308",
+                   "--duration", "0.01", "--out", str(tmp_path / "o"), "--quiet"])
+    err = capsys.readouterr().err
+    assert rc == 1 and err.count("\n") == 1, err
+    assert "node.T is not finite at t = 0.002 s" in err and "Warning" not in err, err
+    assert (tmp_path / "o" / "summary.json").exists() and (tmp_path / "o" / "timeseries.h5").exists()

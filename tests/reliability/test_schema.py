@@ -75,6 +75,14 @@ def load(tmp_path, text):
      "[schedule] hold_cycles: 1e+12 cycles at 2700 rev/min last 2.222e+10 s, longer than the longest "
      "thermo-mechanical interval (0.3 s)"),
     (lambda s: s.replace("hold_cycles = 5", "hold_cycles = 14"), "hold_cycles: 14 cycles at 2700 rev/min last 0.3111 s"),
+    # a restart ramp longer than the TM time after a TO interval never ends (1e12 was accepted); 0.3 s = 13.5
+    # cycles at 2700 rev/min; under the automatic schedule tm_max bounds it
+    (lambda s: s.replace("hold_cycles = 5", "hold_cycles = 5\nrestart_cycles = 1e12"),
+     "[schedule] restart_cycles: 1e+12 cycles at 2700 rev/min last 2.222e+10 s, longer than the shortest run of "
+     "thermo-mechanical intervals after a thermal-only one (0.3 s)"),
+    (lambda s: s.replace("hold_cycles = 5", "hold_cycles = 5\nrestart_cycles = 14"), "restart_cycles: 14 cycles"),
+    (lambda s: s.replace('kind = "timeline"', 'kind = "auto"\ntm_max = 0.1\nrestart_cycles = 5'),
+     "restart_cycles: 5 cycles at 2700 rev/min last 0.1111 s, longer than tm_max"),
     # a signal recorded twice (was h5py's "Unable to synchronously create dataset (name already exists)")
     (lambda s: s.replace('record = ["osc.x", "osc.P", "node.T"]', 'record = ["osc.x", "osc.P", "osc.x"]'),
      "[outputs] record: 'osc.x' is listed twice"),
