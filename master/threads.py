@@ -17,11 +17,19 @@ from __future__ import annotations
 
 import contextlib
 
-from threadpoolctl import threadpool_limits
+try:
+    from threadpoolctl import threadpool_limits
+except ImportError:  # an environment installed without the dependencies (pip --no-deps): the env default only
+    threadpool_limits = None
 
 
 @contextlib.contextmanager
 def one_thread():
-    """Within: every BLAS and OpenMP pool loaded in the process runs one thread (restored on exit). Nests."""
+    """Within: every BLAS and OpenMP pool loaded in the process runs one thread (restored on exit). Nests.
+    Without threadpoolctl installed (a dependency of the package) only OPENBLAS_NUM_THREADS=1 acts, which a
+    program that imported numpy first defeats (tests/reliability/test_determinism.py then fails)."""
+    if threadpool_limits is None:
+        yield
+        return
     with threadpool_limits(limits=1):
         yield
