@@ -26,12 +26,21 @@ DEFAULT_FILE = Path(__file__).with_name("data") / "engine.toml"
 RPM = 2.0 * math.pi / 60.0
 
 
-def load_data(path: str | Path | None = None) -> tuple[dict, str]:
-    """The model data and the SHA-256 of the file's bytes (the cache key)."""
+def _read(path: str | Path | None) -> tuple[Path, bytes]:
     p = Path(path) if path else DEFAULT_FILE
     if not p.is_file():
         raise FileNotFoundError(f"rotor model file not found: {p}")
-    raw = p.read_bytes()
+    return p, p.read_bytes()
+
+
+def file_digest(path: str | Path | None = None) -> str:
+    """The SHA-256 of the model file's bytes, without parsing it (the per-process caches' key)."""
+    return hashlib.sha256(_read(path)[1]).hexdigest()
+
+
+def load_data(path: str | Path | None = None) -> tuple[dict, str]:
+    """The model data and the SHA-256 of the file's bytes (the cache key)."""
+    p, raw = _read(path)
     try:
         data = tomllib.loads(raw.decode("utf-8"))
     except tomllib.TOMLDecodeError as exc:

@@ -204,3 +204,38 @@ def test_resume_into_a_missing_folder_creates_nothing(tmp_path):
     with pytest.raises(OutputFolderError, match="does not exist"):
         execute(toy(), tmp_path / "nope", duration=0.01, figures=False, resume=True)
     assert not (tmp_path / "nope").exists()
+
+
+def _h5_contents(path):
+    """Every attribute and dataset of an HDF5 file, as plain Python values."""
+    out = {}
+
+    def visit(name, obj):
+        out[name] = ({k: np.asarray(v).tolist() for k, v in obj.attrs.items()},
+                     obj[...].tolist() if isinstance(obj, h5py.Dataset) else None)
+
+    with h5py.File(path) as f:
+        out["/"] = ({k: np.asarray(v).tolist() for k, v in f.attrs.items()}, None)
+        f.visititems(visit)
+    return out
+
+
+def test_a_second_recording_of_the_same_layout_is_the_same_file(tmp_path):
+    """The recorder makes the empty HDF5 file once per process and layout and copies it for the next runs
+    (observers._H5_TEMPLATES): the second run's file holds the same attributes, datasets and rows as the first's,
+    and a run of another sampling interval gets its own attributes (no template of another layout)."""
+    from rotorcosim.master import observers
+
+    observers._H5_TEMPLATES.clear()
+    execute(toy(), tmp_path / "a", duration=0.02, figures=False)
+    assert len(observers._H5_TEMPLATES) == 1
+    execute(toy(), tmp_path / "b", duration=0.02, figures=False)
+    assert len(observers._H5_TEMPLATES) == 1
+    a, b = _h5_contents(tmp_path / "a" / "timeseries.h5"), _h5_contents(tmp_path / "b" / "timeseries.h5")
+    assert a == b and len(a) > 3 and a["time"][1]
+    other = toy()
+    other.outputs["record_step"] = 2 * float(other.outputs.get("record_step", 1e-4))
+    execute(other, tmp_path / "c", duration=0.02, figures=False)
+    c = _h5_contents(tmp_path / "c" / "timeseries.h5")
+    assert len(observers._H5_TEMPLATES) == 2
+    assert c["/"][0]["sampling_interval_s"] == 2 * a["/"][0]["sampling_interval_s"]
