@@ -15,17 +15,17 @@ same semantics, operation for operation:
 * every ``check_every`` base steps the finiteness of all outputs;
 * the same kernel functions as the components' generic do_step.
 
-The glue is data, not generated code (loop_ops): all components' ports are views of one flat array, the links
-are rows of index tables processed by fixed compiled functions (cached once per package version), and only the
-loop over the components, a few lines per component calling its kernel through the kernel's address, is
-generated as Python source (it depends on the number of components only), written into the cache folder
-(components/cache.py) and compiled by numba with ``cache=True``, so a second run does not compile again. It runs
-in chunks: the signals the observers read are written into a buffer, one row per base step, which the observers
-then consume (Observer.step_block); between chunks the components' state and outputs are their own arrays (the
-kernels work on them in place; the port arrays are the flat array's views), so checkpoints and observers see what
-the generic path would show them. A kernel that needs Python for a step (the bearing's re-seating of its balls
-after a thermal-only interval) or fails returns its status; the step is finished or the error raised in Python,
-as the generic path would, and the loop resumes after that component.
+The loop is one fixed compiled function for every system (loop_ops.run_chunk), compiled once per package version
+(numba's disk cache): all components' ports are views of one flat array, the links are rows of index tables
+processed by fixed compiled functions (loop_ops), and each kernel is called through a trampoline on the
+component's containers packed into one memory block (kernel_args), all given by address, so the loop's arguments
+are plain arrays and numbers whatever the system. It runs in chunks: the signals the observers read are written
+into a buffer, one row per base step, which the observers then consume (Observer.step_block); between chunks the
+components' state and outputs are their own arrays (the kernels work on them in place; the port arrays are the
+flat array's views), so checkpoints and observers see what the generic path would show them. A kernel that needs
+Python for a step (the bearing's re-seating of its balls after a thermal-only interval) or fails returns its
+status; the step is finished or the error raised in Python, as the generic path would, and the loop resumes after
+that component.
 
 Not compiled (the generic loop runs, and the reason is reported): a component without a kernel (FMUs, Python
 plug-ins), Jacobi or iterative coupling, converted or non-Real links, inputs from components not stepped in the
@@ -33,21 +33,13 @@ interval, an observer without step_block, the automatic schedule's steadiness te
 """
 from __future__ import annotations
 
-import functools
-import hashlib
-import importlib.util
-import sys
-import tempfile
-from pathlib import Path
-
 import numba
 import numpy as np
 
-from rotorcosim.components.cache import cache_dir
 from rotorcosim.components.contract import ContractError
 from rotorcosim.components.kernels import PYTHON, KernelComponent
 
-from . import loop_ops as op
+from . import kernel_args, loop_ops as op
 # a link's bookkeeping row M[j]: loop_ops defines its fields
 from .loop_ops import (CN, CSUM, CUR_T, HAS_ACC, HAS_CUR, HAS_PREV, HAS_RT, NCYC, NOUT, PREV_T, R0, RCOUNT, RLEN,
                        RPOS, RT, WEIGHT, WLAST)
@@ -100,81 +92,7 @@ def why_not(sim, active, mult, stop) -> str | None:
     return None
 
 
-# -- code generation --------------------------------------------------------------------------------------
-def _source(n_components: int) -> str:
-    """The numba source of the chunk loop of a system of ``n_components`` stepped components.
-
-    Only the kernel calls are spelled out (one block per component, a few lines each): the links, the watched
-    outputs and the observers' buffer are tables processed by the fixed functions of loop_ops, and the kernels
-    are called through their addresses, so the source depends on the number of components only and its first
-    compilation is short (the types of the components' containers make one compiled version per system in the
-    same cache file)."""
-    L = []
-    w = L.append
-    # numba's disk cache checks this file only, not loop_ops (linked into the loop): its source, and this
-    # module's, are hashed into it, so that an edit gives another file (a fresh compilation), never stale code
-    w(f"# loop sources: {_loop_sources_hash()}")
-    w("from numba import njit")
-    w("from rotorcosim.master import loop_ops as op")
-    args = ["k0", "k1", "rstart", "t0", "h", "check_every", "count", "buf", "status", "mult", "width",
-            "X", "LI", "M", "V", "G", "C", "CT", "IDX"]
-    args += [f"a{i}" for i in range(n_components)]  # the kernels' addresses (kernel_address)
-    for i in range(n_components):
-        args += [f"s{i}", f"p{i}", f"u{i}", f"y{i}"]
-    w("")
-    w("@njit(cache=True)")
-    w(f"def run_chunk({', '.join(args)}):")
-    w("    nc = mult.shape[0]")
-    w("    for k in range(k0, k1):")
-    w("        t_end = t0 + (k + 1) * h")
-    w("        resume = k == k0 and rstart >= 0")
-    # one loop over the components, so that each operation has one call site (LLVM inlines it once)
-    w("        for i in range(nc):")
-    w("            if (k + 1) % mult[i] != 0:")
-    w("                continue")
-    w("            hc = mult[i] * h")
-    w("            t = t_end - hc")
-    w("            if not (resume and i <= rstart):")
-    w("                op.gather(i, t, hc, X, LI, M, V, CT, IDX)")
-    for i in range(n_components):
-        w(f"                {'if' if i == 0 else 'elif'} i == {i}:")
-        w(f"                    st = op.call_kernel(a{i}, s{i}, p{i}, u{i}, y{i}, t, hc)")
-    w("                else:")
-    w("                    st = 0")
-    w("                if st != 0:")
-    w("                    status[0] = st")
-    w("                    status[1] = k")
-    w("                    status[2] = i")
-    w("                    return")
-    w("            if not (resume and i < rstart):")
-    w("                count[i] += 1")
-    w("                if not op.finite(X, CT, IDX, i):")
-    w("                    status[0] = -1")
-    w("                    status[1] = k")
-    w("                    status[2] = i")
-    w("                    return")
-    w("                op.produced(i, t, hc, X, LI, M, V, G, C, CT, IDX)")
-    w("        if not op.end_of_step(k, k0, check_every, X, width, buf):")
-    w("            status[0] = -2")
-    w("            status[1] = k")
-    w("            status[2] = -1")
-    w("            return")
-    w("    status[0] = 0")
-    w("    status[1] = k1")
-    w("    status[2] = -1")
-    return "\n".join(L) + "\n"
-
-
-@functools.cache
-def _loop_sources_hash() -> str:
-    # once per process: the code a process has loaded does not change, and reading and hashing the sources at
-    # every thermo-mechanical interval was a fixed cost of each (three in a staggered run of rotorcosim compare)
-    h = hashlib.sha256()
-    for f in (Path(__file__).resolve(), Path(op.__file__).resolve()):
-        h.update(f.read_bytes())
-    return h.hexdigest()[:16]
-
-
+# -- kernels ---------------------------------------------------------------------------------------------------
 def kernel_address(fn, args) -> int:
     """The address of kernel ``fn`` compiled for the types of ``args`` + (t, h) (compiled here, or loaded from its
     disk cache, if not yet), for loop_ops.call_kernel, which needs an int64 status."""
@@ -185,37 +103,6 @@ def kernel_address(fn, args) -> int:
         raise TypeError(f"kernel {fn.py_func.__module__}.{fn.py_func.__name__} returns "
                         f"{cres.signature.return_type}, not an int64 status")
     return int(cres.library.get_pointer_to_function(cres.fndesc.llvm_func_name))
-
-
-_LOADED: dict[str, object] = {}
-
-
-def _compile(source: str):
-    """The run_chunk function of ``source``, from a module file named by its hash (numba caches next to it)."""
-    key = hashlib.sha256(source.encode()).hexdigest()[:20]
-    fn = _LOADED.get(key)
-    if fn is not None:
-        return fn
-    folder = cache_dir("compiled")
-    if folder is not None:
-        try:
-            folder.mkdir(parents=True, exist_ok=True)
-        except OSError:
-            folder = None
-    if folder is None:  # caching off or not writable: compile in a temporary folder (each run compiles)
-        folder = Path(tempfile.mkdtemp(prefix="rotorcosim-compiled-"))
-    path = folder / f"loop_{key}.py"
-    if not path.exists() or path.read_text() != source:
-        tmp = path.with_name(path.name + ".part")
-        tmp.write_text(source)
-        tmp.replace(path)
-    name = f"rotorcosim_compiled_loop_{key}"
-    spec = importlib.util.spec_from_file_location(name, path)
-    module = importlib.util.module_from_spec(spec)
-    sys.modules[name] = module
-    spec.loader.exec_module(module)
-    _LOADED[key] = module.run_chunk
-    return module.run_chunk
 
 
 # -- the plan of an interval ----------------------------------------------------------------------------------
@@ -399,7 +286,7 @@ class Runner:
         self.sim = sim
         self.plan = plan
         self.h = step
-        self.fn = _compile(_source(len(plan.names)))
+        self.packed = [kernel_args.Packed() for _ in plan.comps]
         # the observers' buffer and the refs each observer reads
         self.buf = np.zeros((CHUNK, plan.width))
         self.status = np.zeros(3, dtype=np.int64)
@@ -477,19 +364,21 @@ class Runner:
         check = int(eng.settings.check_every)
         r0 = -1
         addrs = None
+        PA = np.zeros(len(comps), dtype=np.int64)
         while k < nsteps:
             k1 = min(nsteps, k + CHUNK)
             self._adopt()
             self._windows(G, goff)
-            cargs, kargs = [], []
-            for c in comps:
-                ka = c.kernel_args()
-                cargs += list(ka)
-                kargs.append(ka)
+            kargs = [c.kernel_args() for c in comps]
             if addrs is None:  # typing the containers costs ~0.5 ms per chunk: again only after a Python step (below)
                 addrs = [self._address(c, ka) for c, ka in zip(comps, kargs)]
-            self.fn(k, k1, r0, t_start, h, check, count, self.buf, self.status, plan.mult_arr, plan.width,
-                    self.X, LI, M, V, G, C, plan.CT, plan.IDX, *addrs, *cargs)
+                TA = np.array([a[0] for a in addrs], dtype=np.int64)
+                KA = np.array([a[1] for a in addrs], dtype=np.int64)
+            for i, (pk, ka, a) in enumerate(zip(self.packed, kargs, addrs)):
+                if pk.update(ka, a[2]):
+                    PA[i] = pk.address
+            op.run_chunk(k, k1, r0, t_start, h, check, count, self.buf, self.status, plan.mult_arr, plan.width,
+                         self.X, LI, M, V, G, C, plan.CT, plan.IDX, TA, PA, KA)
             code, kk, i = (int(x) for x in self.status)
             done = kk  # base steps completed
             self._back(LI, M, V, C, count)
@@ -529,15 +418,22 @@ class Runner:
 
     @classmethod
     def _address(cls, comp, kargs):
-        """The kernel's address for these containers' types (one look-up per type and process)."""
+        """(trampoline address, kernel address, numba type of the containers) for these containers' types (one
+        look-up per type and process)."""
         fn = type(comp).STEP
         key = (id(fn), tuple(_type_key(a) for a in kargs))
         a = cls._ADDR.get(key)
         if a is None:
+            ctype = kernel_args.container_type(kargs)
             try:
-                a = cls._ADDR[key] = kernel_address(fn, kargs)
+                ka = kernel_address(fn, kargs)
             except TypeError as exc:
                 raise ContractError(f"{comp.name}: {exc} (components/kernels.py: STEP returns its status)") from None
+            try:
+                ta = kernel_args.trampoline_address(ctype)
+            except numba.core.errors.TypingError as exc:
+                raise ContractError(f"{comp.name}: {exc}") from None
+            a = cls._ADDR[key] = (ta, ka, ctype)
         return a
 
     def _back(self, LI, M, V, C, count):

@@ -223,3 +223,71 @@ def call_kernel(typingctx, addr, s, p, u, y, t, h):
         return res
 
     return sig, codegen
+
+
+#: the trampolines' argument types (master/kernel_args.trampoline): the packed containers' address, the kernel's
+#: address, t, h, and the containers' type (a TypeRef, passed as a null pointer: it only types the compilation)
+TRAMPOLINE_ARGS = (types.int64, types.int64, types.float64, types.float64, types.TypeRef(types.int64))
+
+
+@intrinsic
+def call_trampoline(typingctx, taddr, ptr, kaddr, t, h):
+    """status = trampoline(ptr, kaddr, t, h) through the trampoline's address (kernel_args.trampoline compiled
+    for one component's container types): every kernel is called the same way, so the loop below is one
+    function for every system."""
+    sig = types.int64(taddr, ptr, kaddr, t, h)
+
+    def codegen(context, builder, signature, args):
+        fnty = context.call_conv.get_function_type(types.int64, TRAMPOLINE_ARGS)
+        fn = builder.inttoptr(args[0], fnty.as_pointer())
+        proto = cgutils.get_null_value(context.get_value_type(TRAMPOLINE_ARGS[4]))
+        status, res = context.call_conv.call_function(builder, fn, types.int64, TRAMPOLINE_ARGS,
+                                                      list(args[1:]) + [proto])
+        with cgutils.if_unlikely(builder, status.is_error):
+            context.call_conv.return_status_propagate(builder, status)
+        return res
+
+    return sig, codegen
+
+
+@njit(cache=True)
+def run_chunk(k0, k1, rstart, t0, h, check_every, count, buf, status, mult, width, X, LI, M, V, G, C, CT, IDX,
+              TA, PA, KA):
+    """Base steps k0 .. k1 - 1 of an interval (master/compiled.py): per step the components in order, each that
+    fires gathering its inputs, stepping (its kernel at KA[i] called by the trampoline at TA[i] on its packed
+    containers at PA[i]), checked and producing; then the observers' row. status = (code, base step, component):
+    code 0 done, a kernel's non-zero status, -1 a non-finite watched output, -2 a non-finite output; rstart >= 0
+    resumes base step k0 after component rstart (which stepped in Python)."""
+    nc = mult.shape[0]
+    for k in range(k0, k1):
+        t_end = t0 + (k + 1) * h
+        resume = k == k0 and rstart >= 0
+        for i in range(nc):
+            if (k + 1) % mult[i] != 0:
+                continue
+            hc = mult[i] * h
+            t = t_end - hc
+            if not (resume and i <= rstart):
+                gather(i, t, hc, X, LI, M, V, CT, IDX)
+                st = call_trampoline(TA[i], PA[i], KA[i], t, hc)
+                if st != 0:
+                    status[0] = st
+                    status[1] = k
+                    status[2] = i
+                    return
+            if not (resume and i < rstart):
+                count[i] += 1
+                if not finite(X, CT, IDX, i):
+                    status[0] = -1
+                    status[1] = k
+                    status[2] = i
+                    return
+                produced(i, t, hc, X, LI, M, V, G, C, CT, IDX)
+        if not end_of_step(k, k0, check_every, X, width, buf):
+            status[0] = -2
+            status[1] = k
+            status[2] = -1
+            return
+    status[0] = 0
+    status[1] = k1
+    status[2] = -1

@@ -1,0 +1,61 @@
+"""Packed kernel containers (master/kernel_args.py): what the fixed compiled loop hands each kernel.
+
+The loop's own equality with the generic path is tests/master/test_compiled.py; here the packing itself."""
+from __future__ import annotations
+
+from collections import namedtuple
+
+import numpy as np
+import pytest
+from numba import njit, types
+from numba.core.errors import TypingError
+
+from rotorcosim.master import kernel_args, loop_ops
+
+P = namedtuple("P", "a b scale")
+
+
+@njit(cache=False)
+def _kernel(s, p, u, y, t, h):
+    # writes through every container: the arrays are the caller's (borrowed, not copies)
+    y[0][0] = p.scale * (p.a[0] + p.b[1]) + u[0][0] + t + h
+    s[0][0] += 1.0
+    return np.int64(7)
+
+
+@njit(cache=False)
+def _call(taddr, ptr, kaddr, t, h):
+    return loop_ops.call_trampoline(taddr, ptr, kaddr, t, h)
+
+
+def _containers():
+    return (np.zeros(1),), P(np.array([1.0, 2.0]), np.array([3.0, 4.0]), 2.0), (np.array([5.0]),), (np.zeros(1),)
+
+
+def test_a_kernel_called_through_the_trampoline_works_on_the_callers_arrays():
+    ka = _containers()
+    packed = kernel_args.Packed()
+    assert packed.update(ka)
+    from rotorcosim.master.compiled import kernel_address
+    kaddr = kernel_address(_kernel, ka)
+    taddr = kernel_args.trampoline_address(kernel_args.container_type(ka))
+    for _ in range(2):
+        assert _call(taddr, packed.address, kaddr, 0.25, 0.5) == 7
+    assert ka[3][0][0] == 2.0 * (1.0 + 4.0) + 5.0 + 0.75
+    assert ka[0][0][0] == 2.0
+
+
+def test_containers_are_repacked_only_when_one_of_them_is_another_object():
+    ka = _containers()
+    packed = kernel_args.Packed()
+    assert packed.update(ka)
+    # new tuples over the same arrays (kernel_args() builds its port tuples anew at every chunk): nothing to do
+    assert not packed.update(((ka[0][0],), ka[1], (ka[2][0],), (ka[3][0],)))
+    assert packed.update((ka[0], ka[1], (np.array([6.0]),), ka[3]))
+    assert packed.update((ka[0], ka[1]._replace(scale=3.0), ka[2], ka[3]))
+
+
+def test_a_container_the_loop_cannot_pass_is_refused_by_name():
+    with pytest.raises(TypingError, match="kernel container holds"):
+        kernel_args.trampoline_address(types.Tuple((types.Tuple(()), types.unicode_type, types.Tuple(()),
+                                                     types.Tuple(()))))
