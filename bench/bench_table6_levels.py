@@ -1,0 +1,52 @@
+"""Table 6 at the paper's seven unbalance levels: `rotorcosim compare --duration 2 --unbalance F` for each, in one
+process, printed as one table (speed-up in wall and CPU time, each timing of the staggered run, the largest
+relative error of the Table 4 results against the monolithic run, the load average around the runs).
+
+    python bench/bench_table6_levels.py [--levels paper] [--rounds 1] [--out DIR]
+
+Issue 12's target: every result within 2 % and a speed-up of at least 12 at every level. The machine's speed
+drifts by 10-20 % over seconds, which is why `compare` times the staggered run before and after the monolithic
+one (master/commands/compare.py); --rounds repeats the whole table to show the spread that is left.
+"""
+from __future__ import annotations
+
+import argparse
+import statistics
+import tempfile
+from pathlib import Path
+
+from rotorcosim.master.commands.compare import compare
+from rotorcosim.master.commands.sweep import parse_levels
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--levels", default="paper", help="comma-separated forces [N] or 'paper' (default)")
+    ap.add_argument("--rounds", type=int, default=1)
+    ap.add_argument("--duration", type=float, default=2.0)
+    ap.add_argument("--out", default=None, help="keep the comparisons here (default: a temporary folder)")
+    a = ap.parse_args()
+    levels = parse_levels(a.levels)
+    keep = Path(a.out) if a.out else None
+    ratios = {f: [] for f in levels}
+    with tempfile.TemporaryDirectory() as tmp:
+        base = keep or Path(tmp)
+        print("round | F_u [N] | speed-up wall (CPU) | staggered wall [s], before / after | monolithic wall [s] | "
+              "largest error % | load")
+        for r in range(a.rounds):
+            for f in levels:
+                t = compare(base / f"r{r}_{f:g}N", duration=a.duration, unbalance=f, figures=False, overwrite=True)
+                runs = t.get("staggered_runs") or {"wall_time_s": [t["wall_time_s"]["staggered"]]}
+                load = [x for v in t["load_average"].values() for x in v if x is not None]
+                ratios[f].append(t["speedup"])
+                print(f"{r} | {f:g} | {t['speedup']:.2f} ({t['speedup_cpu'] or float('nan'):.2f}) | "
+                      f"{' / '.join(f'{x:.3f}' for x in runs['wall_time_s'])} | {t['wall_time_s']['monolithic']:.2f} | "
+                      f"{t['largest_error_pct']:.2f} | {min(load, default=float('nan')):.1f}-"
+                      f"{max(load, default=float('nan')):.1f}", flush=True)
+    every = [x for v in ratios.values() for x in v]
+    print(f"speed-up: lowest {min(every):.2f}, median {statistics.median(every):.2f}, highest {max(every):.2f}; "
+          f"levels below 12 in some round: {[f'{f:g}' for f, v in ratios.items() if min(v) < 12] or 'none'}")
+
+
+if __name__ == "__main__":
+    main()
