@@ -24,3 +24,21 @@ def cache_dir(kind: str) -> Path | None:
     """The folder of one kind of cache (not created here), or None when caching is off."""
     root = cache_root()
     return None if root is None else root / kind
+
+
+#: while a helper process builds cached results ahead of this process (master/ahead.py): the function that waits
+#: for one of them (None: no helper)
+_ahead = None
+
+
+def await_ahead(key: str) -> None:
+    """Before building the cached result ``key``: wait while a helper process builds it (then the cache has it);
+    returns at once when there is no helper or the helper has not taken it (this process builds it)."""
+    if _ahead is not None:
+        _ahead(key)
+
+
+def set_ahead(hook) -> None:
+    """Install (or remove, with None) the waiting function of :func:`await_ahead`."""
+    global _ahead
+    _ahead = hook

@@ -191,6 +191,15 @@ class Component:
         """Initialise from the parameters (FMI enter/exit initialisation mode). Subclasses extend."""
         self.time = float(t0)
 
+    def prebuild(self) -> list:
+        """What :meth:`setup` and the first steps will build that depends on the parameters only and is kept in
+        an on-disk cache (a compiled kernel, a table): a list of ``(key, function, args)``, run by a helper process
+        on a fresh machine while this one sets up (master/ahead.py). ``function`` is a module-level function
+        called with ``args`` (``key`` names its result for both processes: its builder here waits for it through
+        components/cache.await_ahead), or a numba dispatcher compiled for the signature ``args`` (``key`` None).
+        Nothing by default; an invalid parameter gives nothing here (setup names it)."""
+        return []
+
     def set_inputs(self, values: Mapping[str, Any]) -> None:
         for key, value in values.items():
             v = self._by_name.get(key)

@@ -250,6 +250,13 @@ def call_trampoline(typingctx, taddr, ptr, kaddr, t, h):
     return sig, codegen
 
 
+_I1, _I2, _F1, _F2 = types.int64[::1], types.int64[:, ::1], types.float64[::1], types.float64[:, ::1]
+#: run_chunk's argument types (every system's: compiled.Runner.run); a helper process compiles it ahead on a fresh
+#: machine (master/ahead.py; tests/master/test_ahead.py checks them against the runner's call)
+RUN_CHUNK_SIG = (types.int64, types.int64, types.int64, types.float64, types.float64, types.int64, _I1, _F2, _I1,
+                 _I1, types.int64, _F1, _I2, _F2, _F1, _F1, _F1, _I2, _I1, _I1, _I1, _I1)
+
+
 @njit(cache=True)
 def run_chunk(k0, k1, rstart, t0, h, check_every, count, buf, status, mult, width, X, LI, M, V, G, C, CT, IDX,
               TA, PA, KA):

@@ -14,7 +14,7 @@ import numpy as np
 
 from rotorcosim.components.contract import ContractError
 
-from . import compiled
+from . import ahead, compiled
 from .algorithm import Engine, EngineSettings, SimulationDiverged
 from .hold import DEFAULT_HOLD, HOLDS, RESTART_CYCLES, StaggeredHold
 from .schedule import RunReport, Schedule, ScheduleError, UsedInterval
@@ -51,6 +51,7 @@ class Simulation:
         self.interval_steps = None
         self.report = RunReport()
         self._initialised = False
+        self._ahead = None
         self.interval_index = 0
         #: a schedule's own loop state (the automatic schedule's), saved in checkpoints
         self.schedule_state = None
@@ -82,8 +83,10 @@ class Simulation:
         for ref, value in self.system.inputs.items():
             comp, _, port = ref.partition(".")
             by_comp.setdefault(comp, {})[port] = value
-        for name in self.engine.order:
-            comp = self.system.components[name]
+        comps = [self.system.components[name] for name in self.engine.order]
+        # a fresh machine: a helper process builds the caches' missing kernels and tables meanwhile (ahead.py)
+        self._ahead = ahead.start(comps, self.engine_choice != "python")
+        for name, comp in zip(self.engine.order, comps):
             if name in by_comp:
                 comp.set_inputs(by_comp[name])
             comp.setup(self.t)
@@ -207,6 +210,9 @@ class Simulation:
             self.report.status = "interrupted" if isinstance(exc, KeyboardInterrupt) else "failed"
             raise
         finally:
+            if self._ahead is not None:
+                self._ahead.close()
+                self._ahead = None
             self.report.wall_time_s = _time.perf_counter() - t_wall
             self.report.cpu_time_s = _time.process_time() - t_cpu
             failure = None

@@ -29,7 +29,8 @@ from ..contract import Component, ContractError, Variable
 from ..kernels import KernelComponent
 from ..oil_fit import T_MAX_K, T_MIN_K
 from . import wall
-from .fast import DamperParams, fast_step, film_table, tm_step
+from . import table_cache
+from .fast import EPS_MAX, FAST_STEP_SIG, N_TABLE, DamperParams, fast_step, film_table, tm_step
 from .reynolds_fe import build_mesh, fe_film_eval
 from .viscosity import _oil, sae30_viscosity
 
@@ -281,6 +282,21 @@ class FastDamper(KernelComponent, _Damper):
         self._kernel_p = DamperParams(t.NT, t.G, t.TW, t.toff, t.ftab, t.bounds, t.Wc, t.Ws, prm, np.zeros(self.N_OUT),
                                       np.full(2, np.nan), float(A), float(B), float(rho300), float(drho),
                                       T_MIN_K, T_MAX_K)
+
+    def prebuild(self):
+        """The film table of this geometry (when not in the cache) and the film kernel (contract.prebuild)."""
+        p = self.p
+        try:
+            data = table3(p["damper"])
+            geo = tuple(float(p[k] if k in self.explicit else data[k]) for k in ("radius", "length", "clearance"))
+            args = geo + (int(p["n_theta"]), int(p["n_z"]))
+            k = table_cache.key(*args, N_TABLE, EPS_MAX)
+        except (ValueError, KeyError, TypeError):
+            return []
+        jobs = [(None, fast_step, FAST_STEP_SIG)]
+        if table_cache.enabled() and not table_cache.exists(k):
+            jobs.insert(0, (f"damper/{k}", film_table, args))
+        return jobs
 
     def _film(self, dx, dy, dvx, dvy, mu, out):
         self._table.evaluate(dx, dy, dvx, dvy, mu, self._floor, self._cav, out)

@@ -35,7 +35,7 @@ from collections import namedtuple
 from functools import lru_cache
 
 import numpy as np
-from numba import njit
+from numba import njit, types
 
 from . import table_cache
 from .frame import EPS_DIFF, EPS_NEAR_CENTRE, frame, to_housing_axes
@@ -332,6 +332,13 @@ def fast_step(NT, G, TW, toff, ftab, bounds, Wc, Ws, prm, xj, vj, xh, vh, mu, ou
               cavitation, out)
     out[16] = -(out[0] * dvx + out[1] * dvy)
     return spring_and_wall(dx, dy, clearance, k_spring, k_wall, out)
+
+
+#: fast_step's argument types as the damper calls it (tm_step, _compute): NT, G, TW, toff, ftab, bounds, Wc, Ws,
+#: prm, xj, vj, xh, vh, mu, out. A helper process compiles it ahead on a fresh machine (component.prebuild,
+#: master/ahead.py); tests/master/test_ahead.py checks that these are the types of the calls.
+_A1, _A2, _A3 = types.float64[::1], types.float64[:, ::1], types.float64[:, :, ::1]
+FAST_STEP_SIG = (_A1, _A3, _A2, types.int64[::1], _A2, _A2, _A1, _A1, _A1, _A1, _A1, _A1, _A1, types.float64, _A1)
 
 
 #: tile of the clipped-force sum (_clipped): TILE_Z axial x TILE_THETA circumferential nodes. A performance

@@ -16,7 +16,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ..cache import cache_dir
+from ..cache import await_ahead, cache_dir
 
 _SOURCES = ("reynolds_fe.py", "fast.py")
 
@@ -37,6 +37,7 @@ def load(k: str) -> dict | None:
     d = _directory()
     if d is None:
         return None
+    await_ahead(f"damper/{k}")  # a helper process may be building it (master/ahead.py)
     path = d / f"table_{k}.npz"
     try:
         with np.load(path) as f:
@@ -57,3 +58,14 @@ def save(k: str, arrays: dict) -> None:
         os.replace(tmp, d / f"table_{k}.npz")   # atomic: parallel processes never read half a file
     except OSError:
         pass
+
+
+def enabled() -> bool:
+    """Is the cache on (components/cache.py)?"""
+    return _directory() is not None
+
+
+def exists(k: str) -> bool:
+    """Is table ``k`` in the cache (False when caching is off)?"""
+    d = _directory()
+    return d is not None and (d / f"table_{k}.npz").is_file()

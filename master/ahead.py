@@ -1,0 +1,190 @@
+"""A fresh machine's first run on two cores: a helper process builds, ahead of the set-up, what it and the first
+thermo-mechanical interval will need from the on-disk caches (compiled kernels, the damper's film tables).
+
+numba compiles one function at a time in a process, and the film tables' sparse factorisations hold the GIL, so
+on a fresh machine the set-up and the first interval build one thing after another on one core (notes/h16.md).
+The components name what their set-up will build from their parameters alone (contract.Component.prebuild: the
+damper's film table and film kernel); the master adds the compiled loop (loop_ops.run_chunk, the same types for
+every system). Whatever the caches lack, a plain ``python -m`` child builds in that order into the same caches
+while this process goes on with its set-up. Each result is built by one process: the one that creates its claim
+file first. This process, reaching a result the helper has claimed, waits for it and reads it from the cache
+(components/cache.await_ahead for the tables, a wrapper of the dispatcher's ``compile`` for the kernels, both
+only while the helper lives); one the helper has not reached it claims and builds itself. The results are those
+of the same code whichever process built it, and the caches keep them bit for bit.
+
+When the caches hold everything (every run after the first) no helper starts; ``ROTORCOSIM_AHEAD=0`` turns it
+off, and a helper that fails only leaves this process to build what it had not finished.
+"""
+from __future__ import annotations
+
+import atexit
+import hashlib
+import importlib
+import os
+import pickle
+import shutil
+import subprocess
+import sys
+import tempfile
+import time
+
+#: "0" (or off/no/false): no helper process
+ENV = "ROTORCOSIM_AHEAD"
+#: how often a process waiting for the helper looks for the result (s)
+POLL_S = 0.02
+
+
+def numba_key(fn, sig) -> str:
+    """The claim key of dispatcher ``fn`` compiled for the argument types ``sig``."""
+    return f"numba/{fn.py_func.__module__}.{fn.py_func.__qualname__}{tuple(sig)}"
+
+
+def _file(folder: str, kind: str, key: str) -> str:
+    return os.path.join(folder, f"{kind}-{hashlib.sha256(key.encode()).hexdigest()[:24]}")
+
+
+def _claim(folder: str, key: str) -> bool:
+    try:
+        os.close(os.open(_file(folder, "claim", key), os.O_CREAT | os.O_EXCL | os.O_WRONLY))
+        return True
+    except FileExistsError:
+        return False
+
+
+def _on_disk(fn, sig) -> bool:
+    """Is ``fn`` compiled for ``sig`` here or in its disk cache (True when it has no disk cache: nothing to
+    share)? Reads the cache's index only."""
+    if tuple(sig) in fn.overloads:
+        return True
+    cache = getattr(fn, "_cache", None)
+    if cache is None or type(cache).__name__ == "NullCache":
+        return True
+    try:
+        return cache._index_key(tuple(sig), fn.targetctx.codegen()) in cache._cache_file._load_index()
+    except Exception:  # numba's internals moved: a helper that finds it cached costs only its start
+        return False
+
+
+class Ahead:
+    """The helper process of one set-up, and this process's side of the claims."""
+
+    def __init__(self, jobs, folder: str | None = None):
+        from numba.core.dispatcher import Dispatcher
+
+        from rotorcosim.components import cache
+
+        # the claims' folder (a test may give one holding claims already)
+        self.folder = folder or tempfile.mkdtemp(prefix="rotorcosim-ahead-")
+        self.keys = {key for key, _, _ in jobs}
+        spec = []
+        for key, fn, args in jobs:
+            f = fn.py_func if isinstance(fn, Dispatcher) else fn
+            spec.append((key, f.__module__, f.__qualname__, isinstance(fn, Dispatcher), args))
+        payload = pickle.dumps((self.folder, spec))
+        self.proc = subprocess.Popen([sys.executable, "-m", __name__], stdin=subprocess.PIPE,
+                                     stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+        try:
+            self.proc.stdin.write(payload)
+            self.proc.stdin.close()
+        except OSError:  # it died at once: this process builds everything
+            pass
+        self._wrapped = []
+        for key, fn, args in jobs:
+            if isinstance(fn, Dispatcher) and "compile" not in fn.__dict__:
+                self._wrap(fn)
+        cache.set_ahead(self.wait)
+        atexit.register(self.close)
+
+    def _wrap(self, fn):
+        from numba.core import sigutils
+
+        compile_ = fn.compile
+
+        def compile(sig):
+            self.wait(numba_key(fn, sigutils.normalize_signature(sig)[0]))
+            return compile_(sig)
+
+        fn.compile = compile  # an instance attribute: numba's own calls (nested ones too) go through self.compile
+        self._wrapped.append(fn)
+
+    def wait(self, key: str) -> None:
+        """Return when this process may build or read ``key`` (components/cache.await_ahead)."""
+        if key not in self.keys or self.proc is None or _claim(self.folder, key):
+            return
+        done = _file(self.folder, "done", key)
+        while not os.path.exists(done) and self.proc.poll() is None:
+            time.sleep(POLL_S)
+
+    def close(self) -> None:
+        """Stop the helper (what it builds now is no longer this run's) and undo the hooks."""
+        if self.proc is None:
+            return
+        from rotorcosim.components import cache
+
+        cache.set_ahead(None)
+        for fn in self._wrapped:
+            fn.__dict__.pop("compile", None)
+        self._wrapped = []
+        if self.proc.poll() is None:
+            self.proc.kill()
+        self.proc.wait()
+        self.proc = None
+        shutil.rmtree(self.folder, ignore_errors=True)
+        atexit.unregister(self.close)
+
+
+def start(components, loop: bool) -> Ahead | None:
+    """A helper building what the set-up of ``components`` (and, with ``loop``, the compiled loop) will need and
+    the caches lack; None when nothing is missing, the helper is off or the machine has one core."""
+    if os.environ.get(ENV, "1").lower() in ("0", "off", "no", "false") or (os.cpu_count() or 1) < 2:
+        return None
+    jobs, seen = [], set()
+
+    def add(key, fn, args):
+        if key is None:
+            if _on_disk(fn, args):
+                return
+            key = numba_key(fn, args)
+        if key not in seen:
+            seen.add(key)
+            jobs.append((key, fn, args))
+
+    for c in components:
+        for job in c.prebuild():
+            add(*job)
+    if loop:
+        from . import loop_ops
+
+        add(None, loop_ops.run_chunk, loop_ops.RUN_CHUNK_SIG)
+    if not jobs:
+        return None
+    try:
+        return Ahead(jobs)
+    except (OSError, pickle.PicklingError, TypeError, AttributeError):
+        return None
+
+
+def _helper() -> None:
+    from . import threads
+
+    folder, jobs = pickle.load(sys.stdin.buffer)
+    with threads.one_thread():
+        for key, module, qualname, dispatcher, args in jobs:
+            if not _claim(folder, key):
+                continue
+            try:
+                obj = importlib.import_module(module)
+                for part in qualname.split("."):
+                    obj = getattr(obj, part)
+                if dispatcher:
+                    obj.compile(args)
+                else:
+                    obj(*args)
+            except Exception:  # the waiting process finds no result and builds it itself
+                pass
+            finally:
+                open(_file(folder, "done", key), "w").close()
+
+
+if __name__ == "__main__":
+    _helper()
