@@ -19,6 +19,6 @@ def check_oil_temperature(T_K) -> float:
     """``T_K`` as a float if inside (T_MIN_K, T_MAX_K], else a ValueError that names the value and the range."""
     T = float(T_K)
     if not math.isfinite(T) or T <= T_MIN_K or T > T_MAX_K:
-        raise ValueError(f"oil temperature {T_K!r} K is outside the viscosity fit's range "
+        raise ValueError(f"oil temperature {T:.6g} K is outside the viscosity fit's range "
                          f"({T_MIN_K:g} K, {T_MAX_K:g} K]")
     return T

@@ -4,7 +4,8 @@ from __future__ import annotations
 import json
 import math
 
-from .component import DAMPERS, FastDamper, FEDamper
+from .component import DAMPERS, LAMINAR_FILM_RE, FastDamper, FEDamper
+from .viscosity import _oil, sae30_viscosity
 
 
 def add_arguments(parser):
@@ -31,6 +32,19 @@ def evaluate(damper: int, position, velocity, temperature_C: float, model: str =
     cls = FEDamper if model == "fe" else FastDamper
     d = cls(f"damper{damper}", {"damper": damper, "cavitation": cavitation})
     d.setup(0.0)
+    T = temperature_C + 273.15
+    try:
+        mu = sae30_viscosity(T)
+    except ValueError as exc:
+        raise ValueError(f"--temperature {temperature_C:g} C: {exc}") from None
+    A, B, rho300, drho = _oil()
+    speed = math.hypot(*velocity)
+    re = (rho300 + drho * (T - 300.0)) * speed * d.p["clearance"] / mu
+    if re > LAMINAR_FILM_RE:
+        raise ValueError(f"--velocity {speed:g} m/s gives a film Reynolds number rho |V| c / mu = {re:.3g} at "
+                         f"{temperature_C:g} C, above {LAMINAR_FILM_RE:g}: a turbulent film, outside the laminar "
+                         f"Reynolds equation of the model (velocities are in m/s; at this temperature the limit is "
+                         f"{LAMINAR_FILM_RE * speed / re:.3g} m/s)")
     d.set_inputs({"X_journal": position, "V_journal": velocity, "T_oil": [temperature_C + 273.15]})
     try:
         d.do_step(0.0, d.preferred_step)

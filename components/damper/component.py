@@ -46,6 +46,12 @@ GEOMETRY = ("radius", "length", "clearance", "supply_pressure", "k_spring")
 #: run at c/R ~ 1e-3 (Table 3: 0.635 mm / 80 mm = 0.008), so 0.05 refuses only what is not a film (or is mm read
 #: as m). An input check: no result of a valid case depends on it.
 THIN_FILM = 0.05
+#: largest film Reynolds number rho |V| c / mu of a journal velocity V the film model takes: the Reynolds equation
+#: (eq. 7) is laminar lubrication theory, and film flows turn turbulent from Re ~ 1000-2000 (Hamrock, Schmid &
+#: Jacobson, Fundamentals of Fluid Film Lubrication, 2nd ed., 2004, ch. 4, and Szeri ch. 7 on turbulent films).
+#: The blade-loss runs stay below ~20 (0.17 m/s whirl velocity at 0.635 mm and 11 cP: Re ~ 9); an input check of
+#: `rotorcosim damper-force` (--velocity 1e9 was computed), no run depends on it.
+LAMINAR_FILM_RE = 1000.0
 
 
 class WallContactError(RuntimeError):

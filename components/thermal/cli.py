@@ -4,8 +4,9 @@ from __future__ import annotations
 import json
 import math
 
+from ..oil_fit import check_oil_temperature
 from .component import ThermalNetwork
-from .geometry import BEARINGS, NODES
+from .geometry import BEARINGS, LE, LI, NODES, SFD
 
 KELVIN = 273.15
 
@@ -34,9 +35,23 @@ def steady(bearing: int, drag_power: float, sfd_power: float, rub_power: float =
     Ta = ambient_C + KELVIN
     if Ta <= 0.0:
         raise ValueError(f"ambient must be above absolute zero, got {ambient_C} C")
+    try:  # the ambient is also the oil's supply temperature: an oil temperature of the model (components/oil_fit.py)
+        check_oil_temperature(Ta)
+    except ValueError as exc:
+        raise ValueError(f"--ambient {ambient_C:g} C is also the oil supply temperature: {exc} (temperatures are "
+                         "in degrees C)") from None
     net = ThermalNetwork(f"thermal{bearing}", {"bearing": bearing, "T_ambient": Ta, "T_initial": Ta, "T_supply": Ta})
     net.setup(0.0)
     T = net.steady_state(drag_power, sfd_power, rub_power)
+    for name, Tk in (("bearing oil", 0.5 * (T[LI] + T[LE])), ("squeeze-film oil", T[SFD])):
+        # the network is linear: any power has a steady state, but past the oil's range it no longer describes a
+        # lubricated bearing (a run stops there too: the bearing and damper refuse the oil temperature)
+        try:
+            check_oil_temperature(Tk)
+        except ValueError as exc:
+            raise ValueError(f"powers drag {drag_power:g} W, film {sfd_power:g} W, rub {rub_power:g} W put the "
+                             f"{name} at {Tk - KELVIN:.4g} C in steady state: {exc}; the model does not hold "
+                             "there (powers are in W)") from None
     eps = net.growths_at(T)
     return {
         "bearing": bearing,

@@ -200,3 +200,24 @@ def test_thermal_only_film_power_follows_the_viscosity_at_frozen_motion():
     held = FastDamper("d", {"damper": 0, "power_in_thermal_only": False})
     held.setup(0.0)
     assert held.phases == frozenset({"TM"}) and not held.holds_state_in_TO
+
+
+@pytest.mark.parametrize("velocity, temperature, message", [
+    # 1e9 m/s was computed; a film Reynolds number above LAMINAR_FILM_RE is a turbulent film
+    (["1e9", "0"], "70", "--velocity 1e+09 m/s gives a film Reynolds number rho |V| c / mu = 2.06e+10 at 70 C, "
+                         "above 1000"),
+    (["0", "-60"], "100", "above 1000: a turbulent film"),
+    (["0", "0"], "5000", "--temperature 5000 C: oil temperature 5273.15 K is outside the viscosity fit's range"),
+])
+def test_cli_velocity_and_temperature_outside_the_model(capsys, velocity, temperature, message):
+    code = main(["damper-force", "--damper", "0", "--position", "1e-5", "0", "--velocity", *velocity,
+                 "--temperature", temperature])
+    err = capsys.readouterr().err
+    assert code == 2 and message in err and err.count("\n") == 1, err
+
+
+def test_cli_a_fast_whirl_is_still_a_film(capsys):
+    """The limit is far from the runs: 5 m/s (30 times the 0.17 m/s of a 0.1 mm whirl at 16 000 rev/min) computes."""
+    assert main(["damper-force", "--damper", "5", "--position", "1e-4", "0", "--velocity", "0", "5",
+                 "--temperature", "100", "--json"]) == 0
+    assert json.loads(capsys.readouterr().out)["force_N"][1] < 0.0

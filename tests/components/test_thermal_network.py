@@ -207,3 +207,22 @@ def test_cli_json(capsys):
 def test_cli_rejects_negative_power(capsys):
     assert main(["thermal-steady", "--bearing", "0", "--drag-power", "-1", "--sfd-power", "0"]) == 2
     assert "drag power must be >= 0" in capsys.readouterr().err
+
+
+@pytest.mark.parametrize("args, message", [
+    # the ambient is the oil supply: an oil temperature of the viscosity fit (components/oil_fit.py)
+    (["--ambient", "5000"], "--ambient 5000 C is also the oil supply temperature: oil temperature 5273.15 K is "
+                            "outside the viscosity fit's range (200 K, 600 K]"),
+    (["--ambient", "-100"], "outside the viscosity fit's range"),
+    # any power has a steady state (linear network), but not one of a lubricated bearing
+    (["--drag-power", "1e12"], "put the bearing oil at 3.228e+11 C in steady state: oil temperature"),
+    (["--sfd-power", "1e9"], "in steady state: oil temperature"),
+])
+def test_cli_refuses_what_is_no_oil_temperature(capsys, args, message):
+    base = {"--drag-power": "348", "--sfd-power": "10"}
+    for k, v in zip(args[::2], args[1::2]):
+        base[k] = v
+    argv = ["thermal-steady", "--bearing", "0"] + [x for kv in base.items() for x in kv]
+    assert main(argv) == 2
+    err = capsys.readouterr().err
+    assert message in err and err.count("\n") == 1, err
