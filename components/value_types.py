@@ -127,6 +127,9 @@ def check_value(var, value: Any, where: str) -> np.ndarray:
             if var.fmi_type == "Float32" and abs(x) > float(np.finfo(np.float32).max):
                 raise ContractError(f"{where}: {x!r} is outside the range of Float32")
             if (var.min is not None and x < var.min) or (var.max is not None and x > var.max):
-                raise ContractError(f"{where}: {x!r} is outside the declared range [{var.min}, {var.max}]")
+                lo = "-inf" if var.min is None else f"{var.min:g}"
+                hi = "inf" if var.max is None else f"{var.max:g}"
+                raise ContractError(f"{where}: {x!r} is outside the declared range [{lo}, {hi}]"
+                                    + (f" [{var.unit}]" if var.unit not in ("", "1") else ""))
         out.append(x)
     return np.array(out, dtype=dtype_of(kind, var.fmi_type))

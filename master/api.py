@@ -75,6 +75,13 @@ def _postprocessor(sc: Scenario):
         raise ValueError(f"[results] kind {kind!r}: no such result extraction ({exc})") from None
 
 
+def check_run(sc: Scenario, schedule=None, duration: float | None = None, force: bool = False) -> dict:
+    """The checks :func:`simulate` makes before it starts (the schedule, the duration, the budget), without
+    running: a sweep makes them for every case before the first one runs. Returns the estimate (budget.py)."""
+    sch, _ = _schedule(sc, schedule, duration)
+    return budget.check(sc, sch, force)
+
+
 def _schedule(sc: Scenario, schedule, duration: float | None):
     if duration is not None and (not isinstance(duration, numbers.Real) or isinstance(duration, bool)):
         raise TypeError(f"duration must be a number of seconds, got {type(duration).__name__} {duration!r}")
@@ -253,6 +260,7 @@ def _simulate(sc, duration, schedule, out, record, progress, figures, overwrite,
         if out is not None:
             write_json(out / "summary.json", {**head, "status": "running", "pid": os.getpid(),
                                               "resumed_from_t_s": point.t if point else None})
+            folder.started = True   # from here the folder holds this run's summary, whatever happens
         t_wall = time.perf_counter()
         error = None
 

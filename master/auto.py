@@ -27,6 +27,9 @@ from .schedule import Schedule, ScheduleError, _positive, register_schedule
 #: floors of the relative drift test, by unit (a change smaller than this is no drift)
 DRIFT_FLOORS = {"K": 0.5, "m": 1e-7, "Pa.s": 1e-4, "W": 1.0, "N": 1.0}
 #: the TO length controller: never more than this factor up or down from one interval to the next, and a
+#: the largest ``tolerance`` [%]: an error of a result larger than the result itself accepts anything (1e308 was
+#: accepted); the paper's Table 6 differences are below 2 %
+TOLERANCE_MAX_PCT = 100.0
 #: safety factor on tolerance / estimate
 GROWTH_LIMITS = (0.5, 2.0)
 SAFETY = 0.8
@@ -61,6 +64,9 @@ class AutoSchedule(Schedule):
             setattr(self, name, _positive(name, getattr(self, name)))
         if self.tolerance is not None:
             self.tolerance = _positive("tolerance (percent)", self.tolerance)
+            if self.tolerance > TOLERANCE_MAX_PCT:
+                raise ScheduleError(f"schedule: tolerance {self.tolerance:g} % accepts results off by more than "
+                                    f"they are (at most {TOLERANCE_MAX_PCT:g} %; it is in percent)")
         if self.tm_min > self.tm_max or self.to_min > self.to_max:
             raise ScheduleError("schedule: minimum interval durations must not exceed the maxima")
         if int(self.steady_cycles) < 1:

@@ -21,6 +21,8 @@ MASTER_STEP_S = 30e-6
 COMPONENT_STEP_S = 30e-6
 #: wall time above which a run needs ``--force``
 LIMIT_S = 24 * 3600.0
+#: most base steps of any run, even forced: 2^53, beyond which float64 step times and counts are no longer exact
+MAX_STEPS = 2.0 ** 53
 
 
 class BudgetError(ValueError):
@@ -44,9 +46,14 @@ def estimate(sc, schedule) -> dict:
     n_comp = max(1, len(sc.components))
     per_step = MASTER_STEP_S + COMPONENT_STEP_S * n_comp
     if isinstance(schedule, Timeline):
-        steps = sum(math.ceil(iv.duration / iv.step - 1e-9) for iv in schedule.intervals)
+        counts = [iv.duration / iv.step for iv in schedule.intervals]
     else:  # automatic: at most every step thermo-mechanical
-        steps = math.ceil(schedule.duration / schedule.step - 1e-9)
+        counts = [schedule.duration / schedule.step]
+    if not all(n <= MAX_STEPS for n in counts) or sum(counts) > MAX_STEPS:
+        # not a long run but no run: the time t0 + k h of a step k beyond 2^53 is not even representable
+        raise BudgetError(f"the schedule asks for {sum(counts):.3g} steps, beyond the {MAX_STEPS:.3g} a step "
+                          "counter holds exactly (a --duration in other units than seconds?)")
+    steps = sum(math.ceil(n - 1e-9) for n in counts)
     return {"steps": steps, "wall_s": steps * per_step, "wall": _hms(steps * per_step)}
 
 

@@ -26,10 +26,18 @@ COMMANDS: dict[str, tuple[str, str]] = {
 }
 
 
+class _Parser(argparse.ArgumentParser):
+    """An option mistake is one line, as every other error (argparse prints the whole usage first); the
+    sub-commands' parsers are of this class too (add_subparsers takes the parser's own class)."""
+
+    def error(self, message):
+        self.exit(2, f"{self.prog}: error: {' '.join(message.split())} (see: {self.prog} --help)\n")
+
+
 def build_parser() -> argparse.ArgumentParser:
     from rotorcosim import __version__
 
-    parser = argparse.ArgumentParser(prog="rotorcosim", description=__doc__.splitlines()[0],
+    parser = _Parser(prog="rotorcosim", description=__doc__.splitlines()[0],
                                      epilog="Errors: one line and exit status 2 for a mistake in the input, 1 for a "
                                             "run that failed, 130 for an interrupted run; --debug (anywhere on the "
                                             "line) shows the traceback.")

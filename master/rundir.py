@@ -20,6 +20,7 @@ import fcntl
 import fnmatch
 import json
 import os
+import sys
 from pathlib import Path
 
 LOCK = ".rotorcosim.lock"
@@ -77,11 +78,21 @@ class RunFolder:
         self.overwrite = overwrite
         self.resume = resume
         self._fd = None
+        #: set by the run once it has written its first summary.json (api.simulate): until then an error takes
+        #: back what entering made (the folders, the lock file), so that a run refused at set-up leaves nothing
+        self.started = False
+        self._made: list[Path] = []
+        self._lock_made = False
 
     def __enter__(self) -> "RunFolder":
         if self.resume and not self.path.exists():  # nothing to continue: create nothing
             raise OutputFolderError(f"--resume: {self.path} does not exist, so no checkpoint.pkl (no interrupted run to continue)")
+        missing = self.path
+        while str(missing) not in ("", ".", "/") and not missing.exists():
+            self._made.append(missing)
+            missing = missing.parent
         p = ensure_folder(self.path)
+        self._lock_made = not (p / LOCK).exists()
         try:
             self._fd = os.open(p / LOCK, os.O_RDWR | os.O_CREAT, 0o644)
         except OSError as exc:
@@ -98,7 +109,7 @@ class RunFolder:
         try:
             self._claim()
         except BaseException:
-            self.release()
+            self.__exit__(*sys.exc_info())
             raise
         return self
 
@@ -147,8 +158,23 @@ class RunFolder:
                 os.close(self._fd)
                 self._fd = None
 
-    def __exit__(self, *exc) -> None:
+    def __exit__(self, exc_type=None, *exc) -> None:
         self.release()
+        if exc_type is not None and not self.started:
+            self._take_back()
+
+    def _take_back(self) -> None:
+        """Remove the lock file and the folders entering made (only what is empty: never anything else)."""
+        if self._lock_made:
+            try:
+                (self.path / LOCK).unlink()
+            except OSError:
+                pass
+        for folder in self._made:   # the leaf first
+            try:
+                folder.rmdir()
+            except OSError:
+                break
 
 
 def _read_owner(fd: int) -> str:

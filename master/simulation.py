@@ -89,7 +89,14 @@ class Simulation:
         for name, comp in zip(self.engine.order, comps):
             if name in by_comp:
                 comp.set_inputs(by_comp[name])
-            comp.setup(self.t)
+            try:
+                comp.setup(self.t)
+            except (ContractError, SimulationDiverged, KeyboardInterrupt, MemoryError, OSError):
+                raise
+            except (RuntimeError, ArithmeticError, FloatingPointError) as exc:
+                # a set-up that cannot start from the component's parameters (e.g. the balls' static equilibrium
+                # under a preload of 1e300 N): an input mistake named with its component, not "a bug"
+                raise ContractError(f"{name} could not be set up with its parameters: {exc}") from exc
             if name in by_comp:  # setup may reset inputs to their start values
                 comp.set_inputs(by_comp[name])
         self._initialised = True

@@ -93,9 +93,12 @@ class BallBearing(KernelComponent):
         Variable("axial_direction", "parameter", start=1, type="Integer",
                  description="+1: the preload pushes the inner race towards +z (contact line as in eq. 6); -1: the "
                              "bearing is mounted the other way round (z mirrored), e.g. the second of a pair"),
-        Variable("substeps", "parameter", start=0, type="Integer",
+        # bounds of cost, not of physics: the automatic count at cfl 0.5 is a few sub-steps per step (at least
+        # min_substeps = 2, data/bearings.toml) and symplectic Euler is stable below cfl 2, so 10 000 sub-steps (or
+        # cfl 1e-3, ~1000 times the default's count) gain nothing but multiply the bearing's cost; 1e12 hung the run
+        Variable("substeps", "parameter", start=0, type="Integer", min=0, max=10_000,
                  description="sub-steps per do_step; 0 = automatic from the ball-contact frequency and cfl"),
-        Variable("cfl", "parameter", start=_NUM["cfl"],
+        Variable("cfl", "parameter", start=_NUM["cfl"], min=1e-3, max=2.0,
                  description="automatic sub-step: dt = cfl / highest ball-contact frequency (stable below 2)"),
         Variable("X_inner", "input", 3, "m", "inner race (rotor node) displacement x, y, z"),
         Variable("V_inner", "input", 3, "m/s", "inner race (rotor node) velocity"),

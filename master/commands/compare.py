@@ -32,7 +32,7 @@ import sys
 import tempfile
 from pathlib import Path
 
-from rotorcosim.master.api import draw_figures
+from rotorcosim.master.api import check_run, draw_figures
 from rotorcosim.master.figure_pool import FigurePool
 from rotorcosim.master.outputs import write_json
 from rotorcosim.master.rundir import LOCK, check_folder, ensure_folder
@@ -89,6 +89,26 @@ def staggered_timeline(duration: float, step: float, thermal_step: float, speed_
                      Interval("TO", to, ts), Interval("TM", tm[2], step)])
 
 
+def _plan(kind: str, scenario: str, unbalance: float, schedule: str, tolerance, duration: float, revolutions: float):
+    """(scenario, schedule) of the ``kind`` run ("staggered" or "monolithic")."""
+    sc = resolve(scenario)
+    apply_unbalance(sc, unbalance)
+    s = sc.schedule
+    if kind == "staggered" and schedule == "auto":
+        spec = {k: v for k, v in s.items() if k != "intervals"}
+        spec["kind"] = "auto"
+        if tolerance is not None:
+            spec["tolerance"] = tolerance
+        sch = from_spec(spec, duration)
+    elif kind == "staggered":
+        sch = staggered_timeline(duration, float(s.get("step", 1e-5)), float(s.get("thermal_step", 0.1)),
+                                 float(s["speed_rpm"]), revolutions, _quantum(sc))
+    else:
+        sch = Timeline([Interval("TM", duration, float(s.get("step", 1e-5)))])
+    sc.name = f"{sc.name}_{kind}"
+    return sc, sch
+
+
 def _warm_up(scenario: str, out: Path, quantum: float) -> None:
     """A few milliseconds of the system through every path the timed runs take (a thermo-mechanical interval, a
     thermal-only one with the hold, a restart; the recorder's file and the result observers), untimed, so that
@@ -126,28 +146,18 @@ def compare(out: Path, duration=2.0, unbalance=2850.0, scenario="blade_loss", re
         mono = resolve(scenario)
         apply_unbalance(mono, unbalance)
         runs["monolithic"] = _reuse(Path(monolithic), unbalance, duration, f"{mono.name}_monolithic", bearing)
+    kinds = ("staggered", "monolithic")
+    plans = {kind: _plan(kind, scenario, unbalance, schedule, tolerance, duration, revolutions)
+             for kind in kinds if kind not in runs}
+    for sc_k, sch in plans.values():  # a run's own checks (duration, budget) for both, before anything runs
+        check_run(sc_k, sch)
     ensure_folder(out)  # every input checked: only now is a folder made (the runs' messages, rundir.py)
     _warm_up(scenario, out, _quantum(sc))
-    kinds = ("staggered", "monolithic")
     scenarios, loads = {}, {}
     for i, kind in enumerate(kinds, 1):
         if kind in runs:
             continue
-        sc = resolve(scenario)
-        apply_unbalance(sc, unbalance)
-        s = sc.schedule
-        if kind == "staggered" and schedule == "auto":
-            spec = {k: v for k, v in s.items() if k != "intervals"}
-            spec["kind"] = "auto"
-            if tolerance is not None:
-                spec["tolerance"] = tolerance
-            sch = from_spec(spec, duration)
-        elif kind == "staggered":
-            sch = staggered_timeline(duration, float(s.get("step", 1e-5)), float(s.get("thermal_step", 0.1)),
-                                     float(s["speed_rpm"]), revolutions, _quantum(sc))
-        else:
-            sch = Timeline([Interval("TM", duration, float(s.get("step", 1e-5)))])
-        sc.name = f"{sc.name}_{kind}"
+        sc, sch = plans[kind]
         # figures drawn from the time series file after both timed runs; a run recorded otherwise (CSV, nothing
         # recorded) draws its own in process, after its timing and without workers (api.simulate)
         later = figures and sc.outputs.get("format", "h5") == "h5" and bool(sc.outputs.get("record"))

@@ -27,6 +27,7 @@ from pathlib import Path
 from typing import Any
 
 from rotorcosim.master import paper_comparison
+from rotorcosim.master.api import check_run
 from rotorcosim.master.outputs import write_json
 from rotorcosim.master.overrides import apply_set, parse_set
 from rotorcosim.master.rundir import ensure_folder
@@ -200,8 +201,8 @@ def sweep(levels=None, out: Path = Path("sweep"), scenario="blade_loss", schedul
     out = Path(out)
     grid = dict(grid or {})
     cases = cases_of(list(levels) if levels else None, grid)
-    for c in cases:  # fail early: a bad scenario or an unknown component, before any worker starts
-        _apply(resolve(scenario), c)
+    for c in cases:  # fail early: a bad scenario, an unknown component, a duration or schedule no run takes
+        check_run(_apply(resolve(scenario), c), {None: "paper"}.get(schedule, schedule), duration)
     ensure_folder(out)
     t0 = time.perf_counter()
     results: dict[str, dict] = {}
@@ -293,5 +294,5 @@ def run(args) -> int:
         print(f"against the paper's Table 5 ({args.out}/paper_comparison.csv, .png): {sc['within_30pct']}/"
               f"{sc['cells']} cells within +-30 %, {sc['within_x2']}/{sc['cells']} within x2")
     for name, e in info["errors"].items():
-        print(f"  case {name} failed: {e}")
+        print(f"  case {name} failed: {e}", file=sys.stderr)
     return 1 if info["errors"] else 0

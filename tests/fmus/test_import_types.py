@@ -184,7 +184,7 @@ record_step = 0.1
     ("n", 7.9, r"expected an integer \(Int32|expected an integer \(Integer"),
     ("n", 6, r"6 is outside the range \[1, 5\]"),
     ("flag", 2, r"expected a Boolean \(true/false, or 0/1\), got 2"),
-    ("gain", 11.0, r"11.0 is outside the declared range \[0.0, 10.0\]"),
+    ("gain", 11.0, r"11.0 is outside the declared range \[0, 10\]"),
     ("mode", 4, r"4 is outside the range \[1, 3\]"),
     ("label", 3, "expected a string"),
 ])

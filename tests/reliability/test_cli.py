@@ -32,6 +32,11 @@ def one_line_error(err: str) -> str:
     (["--out", "{dir}/o", "--step-timeout", "-1"], 2, "--step-timeout must be a number of seconds >= 0"),
     (["--out", "{dir}/o", "--overwrite", "--resume"], 2, "exclude each other"),
     (["--out", "{dir}/o", "--unbalance", "nan"], 2, "--unbalance must be a finite force"),
+    # was "unexpected OverflowError: cannot convert float infinity to integer" (exit 1)
+    (["--out", "{dir}/o", "--duration", "1e308"], 2, "the schedule asks for inf steps, beyond the 9.01e+15"),
+    (["--out", "{dir}/o", "--schedule", "monolithic", "--duration", "1e14", "--force"], 2, "asks for 1e+17 steps"),
+    # a tolerance above 100 % accepts anything (1e308 was taken)
+    (["--out", "{dir}/o", "--schedule", "auto", "--tolerance", "1e308"], 2, "tolerance 1e+308 % accepts results"),
 ])
 def test_run_mistakes(tmp_path, capsys, args, status, message):
     f = tmp_path / "afile"
@@ -149,10 +154,23 @@ def test_output_places_that_cannot_be_written(tmp_path, capsys, command, args, m
     assert f.read_text() == "x"
 
 
+def test_sweep_checks_every_case_like_a_run_before_any_runs(tmp_path, capsys):
+    """A duration no run takes failed every case (exit 1, tables of failures written, no line on stderr)."""
+    for duration, message in (("nan", "duration must be a positive number"), ("1e308", "asks for inf steps")):
+        out = tmp_path / f"s{duration}"
+        rc, _, err = call(capsys, "sweep", "--scenario", "toy_thermomechanical", "--serial", "--quiet",
+                          "--unbalance", "10,20", "--duration", duration, "--out", str(out))
+        assert rc == 2 and message in one_line_error(err)
+        assert not out.exists()
+
+
 @pytest.mark.parametrize("args, message", [
     (["--tolerance", "5"], "applies to --schedule auto only"),
     (["--scenario", "toy_thermomechanical"], "has no bearing results"),
     (["--duration", "nan"], "--duration must be a positive"),
+    # both runs' own checks before the warm-up (was: the folder made, the warm-up run, then the overflow)
+    (["--duration", "1e308"], "the schedule asks for inf steps"),
+    (["--schedule", "auto", "--tolerance", "500"], "tolerance 500 % accepts results off by more than they are"),
 ])
 def test_compare_makes_no_folder_before_its_input_is_checked(tmp_path, capsys, args, message):
     rc, _, err = call(capsys, "compare", "--out", str(tmp_path / "new"), "--quiet", *args)
@@ -190,3 +208,52 @@ def test_campbell_target_checked_before_the_scan(tmp_path, capsys, target, messa
     rc, out, err = call(capsys, "critical-speeds", "--campbell", target)
     assert rc == 2 and message.replace("{dir}", str(tmp_path)) in one_line_error(err)
     assert out == "" and not (tmp_path.parent / (tmp_path.name + ".png")).exists()
+
+
+def test_a_run_refused_before_it_starts_leaves_no_folder(tmp_path, capsys):
+    """The blade-loss consistency check runs once the run folder is claimed: refused there, the folder and its lock
+    file are taken back (was: a new folder holding only .rotorcosim.lock)."""
+    out = tmp_path / "new" / "run"
+    rc, _, err = call(capsys, "run", "blade_loss_2850", "--duration", "0.002", "--no-figures", "--quiet",
+                      "--set", "rotor.omega_pt=1", "--out", str(out))
+    assert rc == 2 and "the speed the unbalance turns at" in one_line_error(err)
+    assert not (tmp_path / "new").exists()
+    # a folder that was there keeps what it held, and gets no lock file
+    out.mkdir(parents=True)
+    (out / "notes.txt").write_text("mine")
+    rc, _, err = call(capsys, "run", "blade_loss_2850", "--duration", "0.002", "--no-figures", "--quiet",
+                      "--set", "rotor.omega_pt=1", "--out", str(out))
+    assert rc == 2 and sorted(p.name for p in out.iterdir()) == ["notes.txt"]
+
+
+@pytest.mark.parametrize("param, message", [
+    # absurd values that made the set-up itself fail: "unexpected RuntimeError ... it may be a bug" (exit 1)
+    ("bearing0.preload=1e300", "bearing0 could not be set up with its parameters: ball equilibrium did not converge"),
+    ("bearing0.f0=1e300", "bearing0 could not be set up with its parameters"),
+    # counts that hung the run (1e12 sub-steps in one step): bounded where declared
+    ("bearing0.substeps=1000000000000", "bearing0.substeps: 1000000000000 is outside the range [0, 10000]"),
+    ("bearing0.cfl=1e-9", "bearing0.cfl: 1e-09 is outside the declared range [0.001, 2]"),
+])
+def test_parameters_the_components_cannot_start_from(tmp_path, capsys, param, message):
+    out = tmp_path / "o"
+    rc, _, err = call(capsys, "run", "blade_loss_2850", "--duration", "0.002", "--no-figures", "--quiet",
+                      "--set", param, "--out", str(out))
+    assert rc == 2 and message in one_line_error(err), err
+    if out.exists():  # failed at set-up: the summary says so, nothing else is there
+        assert sorted(p.name for p in out.iterdir()) in (["summary.json"], [".rotorcosim.lock", "summary.json"])
+        assert '"status": "failed"' in (out / "summary.json").read_text()
+
+
+@pytest.mark.parametrize("argv, message", [
+    (["run", "--duration", "abc", "--out", "x"], "rotorcosim run: error: argument --duration: invalid float value: "
+                                                  "'abc' (see: rotorcosim run --help)"),
+    (["run"], "the following arguments are required: --out"),
+    (["bogus"], "rotorcosim: error: argument COMMAND: invalid choice: 'bogus'"),
+    (["thermal-steady", "--bearing", "3"], "argument --bearing: invalid choice: 3"),
+])
+def test_option_mistakes_are_one_line(capsys, argv, message):
+    """argparse printed its whole usage (up to 9 lines) before the error."""
+    with pytest.raises(SystemExit) as info:
+        main(argv)
+    assert info.value.code == 2
+    assert message in one_line_error(capsys.readouterr().err)
