@@ -65,6 +65,35 @@ def _on_disk(fn, sig) -> bool:
         return False
 
 
+_ACTIVE = None      # the live helper of this process, if any
+_COMPILE = None     # numba's own Dispatcher.compile while it is wrapped
+
+
+def _hook(helper) -> None:
+    """Route every numba compilation of this process through ``helper.wait`` (None: undo it); numba's own calls,
+    the nested ones included, go through Dispatcher.compile."""
+    global _ACTIVE, _COMPILE
+    from numba.core import sigutils
+    from numba.core.dispatcher import Dispatcher
+
+    _ACTIVE = helper
+    if helper is None:
+        if _COMPILE is not None:
+            Dispatcher.compile = _COMPILE
+            _COMPILE = None
+        return
+    if _COMPILE is None:
+        _COMPILE = orig = Dispatcher.compile
+
+        def compile(self, sig):
+            h = _ACTIVE
+            if h is not None:
+                h.wait(numba_key(self, sigutils.normalize_signature(sig)[0]))
+            return orig(self, sig)
+
+        Dispatcher.compile = compile
+
+
 class Ahead:
     """The helper process of one set-up, and this process's side of the claims."""
 
@@ -79,33 +108,52 @@ class Ahead:
         spec = []
         for key, fn, args in jobs:
             f = fn.py_func if isinstance(fn, Dispatcher) else fn
-            spec.append((key, f.__module__, f.__qualname__, isinstance(fn, Dispatcher), args))
+            spec.append((key, f.__module__, f.__qualname__, isinstance(fn, Dispatcher), args, None))
         payload = pickle.dumps((self.folder, spec))
         self.proc = subprocess.Popen([sys.executable, "-m", __name__], stdin=subprocess.PIPE,
                                      stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
-        try:
+        try:  # stdin stays open for share()
             self.proc.stdin.write(payload)
-            self.proc.stdin.close()
+            self.proc.stdin.flush()
         except OSError:  # it died at once: this process builds everything
             pass
-        self._wrapped = []
-        for key, fn, args in jobs:
-            if isinstance(fn, Dispatcher) and "compile" not in fn.__dict__:
-                self._wrap(fn)
+        _hook(self)
         cache.set_ahead(self.wait)
         atexit.register(self.close)
 
-    def _wrap(self, fn):
-        from numba.core import sigutils
+    def share(self, comps_kargs) -> None:
+        """More work, known once the first interval's containers are: the kernels of ``comps_kargs``
+        [(component, containers)] and their trampolines and packers (master/kernel_args.py) that the caches
+        lack. The helper takes them from the front; this process (compiled.Runner, in reverse order) from the
+        back."""
+        from numba import types
 
-        compile_ = fn.compile
+        from rotorcosim.components import kernels
 
-        def compile(sig):
-            self.wait(numba_key(fn, sigutils.normalize_signature(sig)[0]))
-            return compile_(sig)
+        from . import kernel_args
 
-        fn.compile = compile  # an instance attribute: numba's own calls (nested ones too) go through self.compile
-        self._wrapped.append(fn)
+        if self.proc is None or self.proc.poll() is not None:
+            return
+        spec = []
+        for comp, kargs in comps_kargs:
+            ctype = kernel_args.container_type(kargs)
+            pack, tramp = kernel_args.functions(ctype)
+            fn = type(comp).STEP
+            for disp, sig, generated in ((fn, tuple(ctype) + (types.float64, types.float64), None),
+                                         (tramp, kernel_args.TRAMPOLINE_ARGS[:4] + (types.TypeRef(ctype),), ctype),
+                                         (pack, tuple(ctype) + (types.int64[::1],), ctype)):
+                key = numba_key(disp, sig)
+                if key in self.keys or _on_disk(disp, sig):
+                    continue
+                self.keys.add(key)
+                spec.append((key, disp.py_func.__module__, disp.py_func.__qualname__, True, sig, generated))
+        if not spec:
+            return
+        try:  # the port tuples first: the signatures name them (components/kernels.port_tuple)
+            self.proc.stdin.write(pickle.dumps(list(kernels._PORT_TUPLES)) + pickle.dumps(spec))
+            self.proc.stdin.flush()
+        except (OSError, pickle.PicklingError, TypeError, AttributeError):
+            pass
 
     def wait(self, key: str) -> None:
         """Return when this process may build or read ``key`` (components/cache.await_ahead)."""
@@ -122,9 +170,12 @@ class Ahead:
         from rotorcosim.components import cache
 
         cache.set_ahead(None)
-        for fn in self._wrapped:
-            fn.__dict__.pop("compile", None)
-        self._wrapped = []
+        if _ACTIVE is self:
+            _hook(None)
+        try:
+            self.proc.stdin.close()
+        except OSError:
+            pass
         if self.proc.poll() is None:
             self.proc.kill()
         self.proc.wait()
@@ -165,25 +216,38 @@ def start(components, loop: bool) -> Ahead | None:
 
 
 def _helper() -> None:
-    from . import threads
+    from rotorcosim.components import kernels
 
-    folder, jobs = pickle.load(sys.stdin.buffer)
+    from . import kernel_args, threads
+
+    stream = sys.stdin.buffer
+    folder, jobs = pickle.load(stream)
     with threads.one_thread():
-        for key, module, qualname, dispatcher, args in jobs:
-            if not _claim(folder, key):
-                continue
-            try:
-                obj = importlib.import_module(module)
-                for part in qualname.split("."):
-                    obj = getattr(obj, part)
-                if dispatcher:
-                    obj.compile(args)
-                else:
-                    obj(*args)
-            except Exception:  # the waiting process finds no result and builds it itself
-                pass
-            finally:
-                open(_file(folder, "done", key), "w").close()
+        while True:
+            for key, module, qualname, dispatcher, args, generated in jobs:
+                if not _claim(folder, key):
+                    continue
+                try:
+                    if generated is not None:  # a trampoline or packer of these containers (kernel_args)
+                        obj = dict(zip(("pack", "trampoline"), kernel_args.functions(generated)))[qualname]
+                    else:
+                        obj = importlib.import_module(module)
+                        for part in qualname.split("."):
+                            obj = getattr(obj, part)
+                    if dispatcher:
+                        obj.compile(args)
+                    else:
+                        obj(*args)
+                except Exception:  # the waiting process finds no result and builds it itself
+                    pass
+                finally:
+                    open(_file(folder, "done", key), "w").close()
+            try:  # more work (Ahead.share): the port tuples its types name, then the jobs
+                for key in pickle.load(stream):
+                    kernels.port_tuple(*key)
+                jobs = pickle.load(stream)
+            except (EOFError, OSError, pickle.UnpicklingError):
+                return
 
 
 if __name__ == "__main__":

@@ -371,12 +371,16 @@ class Runner:
             self._windows(G, goff)
             kargs = [c.kernel_args() for c in comps]
             if addrs is None:  # typing the containers costs ~0.5 ms per chunk: again only after a Python step (below)
-                addrs = [self._address(c, ka) for c, ka in zip(comps, kargs)]
+                helper = getattr(sim, "_ahead", None)
+                if helper is not None:  # a fresh machine: the helper compiles from the front (ahead.py) ...
+                    helper.share(list(zip(comps, kargs)))
+                # ... and this process from the back
+                addrs = [self._address(c, ka) for c, ka in zip(comps[::-1], kargs[::-1])][::-1]
                 TA = np.array([a[0] for a in addrs], dtype=np.int64)
                 KA = np.array([a[1] for a in addrs], dtype=np.int64)
-            for i, (pk, ka, a) in enumerate(zip(self.packed, kargs, addrs)):
-                if pk.update(ka, a[2]):
-                    PA[i] = pk.address
+            for i in reversed(range(len(comps))):
+                if self.packed[i].update(kargs[i], addrs[i][2]):
+                    PA[i] = self.packed[i].address
             op.run_chunk(k, k1, r0, t_start, h, check, count, self.buf, self.status, plan.mult_arr, plan.width,
                          self.X, LI, M, V, G, C, plan.CT, plan.IDX, TA, PA, KA)
             code, kk, i = (int(x) for x in self.status)

@@ -299,9 +299,11 @@ class FastDamper(KernelComponent, _Damper):
             k = table_cache.key(*args, N_TABLE, EPS_MAX)
         except (ValueError, KeyError, TypeError):
             return []
+        # the kernel first: the longest, and needed right after the table, which this process can build while the
+        # helper compiles (a helper building the table first leaves this process waiting for the kernel)
         jobs = [(None, fast_step, FAST_STEP_SIG)]
         if table_cache.enabled() and not table_cache.exists(k):
-            jobs.insert(0, (f"damper/{k}", film_table, args))
+            jobs.append((f"damper/{k}", film_table, args))
         return jobs
 
     def _film(self, dx, dy, dvx, dvy, mu, out):

@@ -68,7 +68,8 @@ def test_a_result_this_process_claimed_first_is_left_to_it(tmp_path, monkeypatch
     k = table_cache.key(*SMALL, fast.N_TABLE, fast.EPS_MAX)
     assert ahead._claim(str(tmp_path), f"damper/{k}")  # this process took it before the helper started
     helper = ahead.Ahead([(f"damper/{k}", fast.film_table, SMALL)], folder=str(tmp_path))
-    assert helper.proc.wait(timeout=120) == 0  # the helper skipped it and ended
+    helper.proc.stdin.close()  # no more work (Ahead.share): it ends after its list
+    assert helper.proc.wait(timeout=120) == 0  # having skipped the claimed job
     helper.close()
     assert not table_cache.exists(k)
 
