@@ -49,6 +49,8 @@ NS = {
 }
 ANNOTATION = "org.rotorcosim.scenario"
 PARAMETER_SET = "initialValues"
+#: the one kind of parameter binding there is to read (SSP 1.0: a parameter set, inline or a .ssv file)
+PARAMETER_SET_TYPE = "application/x-ssp-parameter-set"
 FMU_TYPE = "application/x-fmu-sharedlibrary"
 ET.register_namespace("rc", "urn:rotorcosim:ssp:1")
 for _p, _u in NS.items():
@@ -130,7 +132,7 @@ def system_description(sc: Scenario, fmus: dict[str, Path]) -> bytes:
         if values:
             bindings = ET.SubElement(comp, _q("ssd", "ParameterBindings"))
             binding = ET.SubElement(bindings, _q("ssd", "ParameterBinding"),
-                                    {"type": "application/x-ssp-parameter-set"})
+                                    {"type": PARAMETER_SET_TYPE})
             pv = ET.SubElement(binding, _q("ssd", "ParameterValues"))
             pset = ET.SubElement(pv, _q("ssv", "ParameterSet"), {"version": "1.0", "name": PARAMETER_SET})
             params = ET.SubElement(pset, _q("ssv", "Parameters"))
@@ -252,26 +254,46 @@ def parse_xml(path: Path, what: str) -> ET.Element:
         raise SSPError(f"{what}: not well-formed XML ({exc})") from None
 
 
-def _units_of(root: ET.Element) -> dict[str, tuple]:
-    """The archive's unit definitions (``ssd:Units``): name -> (base-unit exponents, factor, offset)."""
+#: the attributes of ``ssc:BaseUnit`` (SSP 1.0, as FMI 2.0's BaseUnit)
+BASE_UNITS = ("kg", "m", "s", "A", "K", "mol", "cd", "rad")
+
+
+def _units_of(root: ET.Element, where: str, path: str = "ssd:Units/ssc:Unit") -> dict[str, tuple]:
+    """The unit definitions under ``root`` (the SSD's ``ssd:Units``, or a parameter set's ``ssv:Units``):
+    name -> (base-unit exponents, factor, offset). A malformed definition is an error: read by its name instead,
+    a unit the file defines otherwise would be misread."""
     out = {}
-    for u in root.findall("ssd:Units/ssc:Unit", NS):
-        b = u.find("ssc:BaseUnit", NS)
-        if u.get("name") is None or b is None:
+    for u in root.findall(path, NS):
+        name, b = u.get("name"), u.find("ssc:BaseUnit", NS)
+        if not name:
+            raise SSPError(f"{where}: a unit definition (ssc:Unit) has no name")
+        if b is None:   # SSP: no BaseUnit is a unit of dimension one
+            out[name] = ({}, 1.0, 0.0)
             continue
+        unknown = sorted(set(b.attrib) - set(BASE_UNITS) - {"factor", "offset"})
+        if unknown:
+            raise SSPError(f"{where}: unit {name!r}: unknown BaseUnit attribute(s) {', '.join(unknown)} (known: "
+                           f"{', '.join(BASE_UNITS)}, factor, offset)")
         try:
-            exps = {k: int(v) for k, v in b.attrib.items() if k not in ("factor", "offset") and int(v)}
-            out[u.get("name")] = (exps, float(b.get("factor", 1.0)), float(b.get("offset", 0.0)))
+            exps = {k: int(v) for k, v in b.attrib.items() if k in BASE_UNITS and int(v)}
+            factor, offset = float(b.get("factor", 1.0)), float(b.get("offset", 0.0))
         except ValueError:
-            continue  # a malformed definition: the unit is then read by its name, or refused
+            raise SSPError(f"{where}: unit {name!r}: a BaseUnit exponent is not a whole number, or its factor or "
+                           "offset not a number") from None
+        if not (math.isfinite(factor) and factor > 0.0 and math.isfinite(offset)):
+            raise SSPError(f"{where}: unit {name!r}: factor must be a finite number > 0 and offset finite, got "
+                           f"factor={factor!r}, offset={offset!r}")
+        out[name] = (exps, factor, offset)
     return out
 
 
-def _in_unit(value, unit: str, var, units: dict, where: str):
+def _in_unit(value, unit: str, var, units: dict, where: str, local: dict | None = None):
     """``value`` written in ``unit`` converted to the variable's unit; a unit that cannot be read, or of another
-    dimension, is refused (never read as if it were the variable's own: a silent misreading)."""
-    src = units.get(unit) or definition(unit)
-    dst = units.get(var.unit) or definition(var.unit)
+    dimension, is refused (never read as if it were the variable's own: a silent misreading). ``unit`` is looked
+    up in ``local`` (the parameter set's own ssv:Units) first, then ``units`` (the SSD's), then read by its name;
+    the variable's unit is the FMU's own definition, else the SSD's, else its name's."""
+    src = (local or {}).get(unit) or units.get(unit) or definition(unit)
+    dst = var.unit_definition or units.get(var.unit) or definition(var.unit)
     if isinstance(value, (bool, str)) or src is None or dst is None:
         raise SSPError(f"{where}: given in {unit!r}, which cannot be converted to the variable's unit {var.unit!r} "
                        "(define it in ssd:Units, or give the value in the variable's unit)")
@@ -280,24 +302,34 @@ def _in_unit(value, unit: str, var, units: dict, where: str):
     return ((float(value) * src[1] + src[2]) - dst[2]) / dst[1]
 
 
-def _parameter_values(comp: ET.Element, folder: Path, where: str) -> dict[str, object]:
-    """All values of a component's parameter bindings (inline or from .ssv files), later ones winning."""
+def _parameter_values(comp: ET.Element, folder: Path, where: str) -> dict[str, tuple]:
+    """All values of a component's parameter bindings (inline or from .ssv files), later ones winning: name ->
+    (value, unit or None, the unit definitions of the parameter set that holds it, ``ssv:Units``)."""
     out = {}
     for b in comp.findall("ssd:ParameterBindings/ssd:ParameterBinding", NS):
         if b.get("prefix"):
             raise SSPError(f"{where}: parameter bindings with a prefix are not supported")
+        if b.find("ssd:ParameterMapping", NS) is not None:
+            # a mapping renames or transforms the values: applying them unmapped would misread them
+            raise SSPError(f"{where}: parameter bindings with a ParameterMapping (.ssm) are not supported")
+        if b.get("type", PARAMETER_SET_TYPE) != PARAMETER_SET_TYPE:
+            raise SSPError(f"{where}: parameter binding of type {b.get('type')!r} is not supported (only "
+                           f"{PARAMETER_SET_TYPE!r}, SSP parameter values)")
         source = b.get("source")
         if source:
             target = (folder / source).resolve()
             if folder.resolve() not in target.parents or not target.is_file():
                 raise SSPError(f"{where}: parameter source {source!r} is not a file inside the archive")
-            pset = parse_xml(target, f"{where}: parameter file {source!r}")
+            what = f"{where}: parameter file {source!r}"
+            pset = parse_xml(target, what)
         else:
+            what = f"{where}: parameter values"
             pset = b.find("ssd:ParameterValues/ssv:ParameterSet", NS)
             if pset is None:
                 continue
+        local = _units_of(pset, what, "ssv:Units/ssc:Unit")
         for p in pset.findall("ssv:Parameters/ssv:Parameter", NS):
-            out[p.get("name")] = _value(p, where)
+            out[p.get("name")] = (*_value(p, where), local)
     return out
 
 
@@ -398,7 +430,7 @@ def _scenario_of(path: Path, folder: Path) -> Scenario:
             if not isinstance(payload, dict):
                 raise SSPError(f"{where}: SystemStructure.ssd: annotation {ANNOTATION} must hold a JSON object")
     _payload_shapes(payload, where)
-    units = _units_of(root)
+    units = _units_of(root, f"{where}: SystemStructure.ssd")
     components: dict[str, ComponentSpec] = {}
     scalars: dict[str, dict[str, tuple]] = {}
     inputs: dict[str, list] = {}
@@ -428,12 +460,13 @@ def _scenario_of(path: Path, folder: Path) -> Scenario:
             steps.append(float(md.defaultExperiment.stepSize))
         scalars[cname] = {s: (v, i) for v in variables for i, s in enumerate(scalar_names(v.name, v.size))}
         params: dict[str, list] = {}
-        for sname, (value, unit) in _parameter_values(comp, folder, w).items():
+        for sname, (value, unit, local) in _parameter_values(comp, folder, w).items():
             if sname not in scalars[cname]:
                 continue   # SSP: names that match no variable are ignored
             v, i = scalars[cname][sname]
-            if unit is not None and unit != v.unit:
-                value = _in_unit(value, unit, v, units, f"{w}: parameter {sname!r}")
+            if unit is not None and (unit != v.unit or unit in local):
+                # the parameter set's own definitions first (ssv:Units), then the SSD's, then the unit's name
+                value = _in_unit(value, unit, v, units, f"{w}: parameter {sname!r}", local)
             if v.causality == "parameter":
                 params.setdefault(v.name, [None] * v.size)[i] = value
             elif v.causality == "input":

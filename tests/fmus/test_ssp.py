@@ -266,3 +266,52 @@ def test_parameter_value_in_another_unit_is_converted(tmp_path, toy_ssp):
                                            'K="-1" factor="1000" /></ssc:Unit>')
     sc = read_ssp(_edited(toy_ssp, tmp_path / "kj.ssp", edit))
     assert sc.components["node"].parameters["C"] == pytest.approx(10.0, rel=1e-12)
+
+
+_NS = ('xmlns:ssv="http://ssp-standard.org/SSP1/SystemStructureParameterValues" '
+       'xmlns:ssc="http://ssp-standard.org/SSP1/SystemStructureCommon"')
+_KJ = 'kg="1" m="2" s="-2" K="-1" factor="1000"'
+
+
+def _ssv(value: str, unit: str, base: str) -> str:
+    """A parameter file (.ssv) giving node's C in ``unit``, which it defines itself (ssv:Units) as ``base``."""
+    return (f'<?xml version="1.0" encoding="UTF-8"?><ssv:ParameterSet {_NS} version="1.0" name="p"><ssv:Parameters>'
+            f'<ssv:Parameter name="C"><ssv:Real value="{value}" unit="{unit}" /></ssv:Parameter></ssv:Parameters>'
+            f'<ssv:Units><ssc:Unit name="{unit}"><ssc:BaseUnit {base} /></ssc:Unit></ssv:Units></ssv:ParameterSet>')
+
+
+def _with_parameter_file(toy_ssp: Path, dest: Path, ssv: str, binding_extra: str = "") -> Path:
+    """The toy archive with resources/p.ssv bound to node after its inline values (a later binding wins)."""
+    def edit(text):
+        close = "</ssd:ParameterBindings>\n      </ssd:Component>\n    </ssd:Elements>"
+        assert close in text
+        return text.replace(close, f'<ssd:ParameterBinding type="application/x-ssp-parameter-set" '
+                                   f'source="resources/p.ssv">{binding_extra}</ssd:ParameterBinding>' + close)
+    path = _edited(toy_ssp, dest, edit)
+    with zipfile.ZipFile(path, "a") as z:
+        z.writestr("resources/p.ssv", ssv)
+    return path
+
+
+@pytest.mark.parametrize("value, unit, base", [
+    ("0.01", "kJperK", _KJ),      # a unit only the parameter file defines (was refused as unreadable)
+    ("0.01", "J/K", _KJ),         # the file's own "J/K" is 1000 J/K: was read as the FMU's J/K (0.01, silently)
+    ("10", "mine", 'kg="1" m="2" s="-2" K="-1"'),
+])
+def test_parameter_file_units_are_read(tmp_path, toy_ssp, value, unit, base):
+    sc = read_ssp(_with_parameter_file(toy_ssp, tmp_path / "u.ssp", _ssv(value, unit, base)))
+    assert sc.components["node"].parameters["C"] == pytest.approx(10.0, rel=1e-12)
+
+
+@pytest.mark.parametrize("base, extra, message", [
+    ('kg="1" factor="1000"', "", "parameter 'C': given in 'X', not a unit of the variable's quantity ('J/K')"),
+    ('kg="1" m="2" s="-2" K="-1" factor="abc"', "", "unit 'X': a BaseUnit exponent is not a whole number, or its "
+                                                    "factor or offset not a number"),
+    ('kg="1" m="2" s="-2" K="-1" factor="0"', "", "unit 'X': factor must be a finite number > 0"),
+    ('kg="1" furlong="2"', "", "unit 'X': unknown BaseUnit attribute(s) furlong"),
+    (_KJ, '<ssd:ParameterMapping source="resources/m.ssm" />', "ParameterMapping (.ssm) are not supported"),
+])
+def test_parameter_file_units_that_cannot_be_read(tmp_path, toy_ssp, base, extra, message):
+    with pytest.raises(SSPError) as err:
+        read_ssp(_with_parameter_file(toy_ssp, tmp_path / "u.ssp", _ssv("0.01", "X", base), extra))
+    assert message in str(err.value) and "\n" not in str(err.value)
