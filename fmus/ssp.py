@@ -455,7 +455,9 @@ def _scenario_of(path: Path, folder: Path) -> Scenario:
             xml, md = describe(fmu)
             variables, _ = ports_of(md, f"{w} ({source})", read_annotation(xml).hidden)
         except FMUError as exc:
-            raise SSPError(str(exc)) from None
+            # named by the archive and the entry, not by the temporary folder it was unpacked into
+            msg = str(exc).replace(str(fmu), f"{source!r}")
+            raise SSPError(msg if msg.startswith(w) else f"{w}: {msg}") from None
         if md.defaultExperiment is not None and md.defaultExperiment.stepSize:
             steps.append(float(md.defaultExperiment.stepSize))
         scalars[cname] = {s: (v, i) for v in variables for i, s in enumerate(scalar_names(v.name, v.size))}

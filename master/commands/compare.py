@@ -127,6 +127,8 @@ def compare(out: Path, duration=2.0, unbalance=2850.0, scenario="blade_loss", re
             quiet=True, figures=True, overwrite=False, schedule="paper", tolerance=None, monolithic=None) -> dict:
     if not (duration > 0 and duration < float("inf")):
         raise ValueError(f"--duration must be a positive number of seconds, got {duration}")
+    if not (revolutions > 0 and revolutions < float("inf")):  # was "cannot convert float NaN to integer"
+        raise ValueError(f"--revolutions must be a positive number of rotor revolutions, got {revolutions}")
     out = check_folder(out)   # made only once every input is checked (ensure_folder, below)
     if schedule not in ("paper", "auto"):
         raise ValueError(f"--schedule must be 'paper' or 'auto', got {schedule!r}")

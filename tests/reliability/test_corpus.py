@@ -1,0 +1,410 @@
+"""A corpus of careless and hostile inputs, each run through the command line as a user would.
+
+Every input here is wrong. Each must end with exit status 1 or 2, exactly one line on stderr naming the problem
+(no traceback, no "unexpected ... it may be a bug", no warning text), and nothing half-written: no ``*.part``
+file, no temporary extraction folder left, and an output folder only if the run had started (then holding its
+summary with status "failed"). The classes: scenario files (every numeric key of the toy scenario given NaN,
+inf, text, a boolean, a list or a table; broken TOML), ``--set`` values, FMU and SSP archives (truncated, not a
+zip, zip-slip and absolute entry names, a zip bomb, no or a hostile model description, missing binaries),
+checkpoints (truncated, garbage, of another scenario), output places, and the number options of every command.
+Only fast cases (the toy scenario, failures found before or at set-up): the whole file runs in about a minute.
+"""
+from __future__ import annotations
+
+import io
+import os
+import re
+import shutil
+import tempfile
+import warnings
+import zipfile
+from contextlib import redirect_stderr, redirect_stdout
+from pathlib import Path
+
+import pytest
+
+from rotorcosim import scenarios
+from rotorcosim.master.cli import main
+
+TOY = Path(scenarios.__file__).with_name("toy_thermomechanical.toml")
+TOY_TEXT = TOY.read_text()
+RUN = ["run", "--quiet", "--no-figures", "--duration", "0.05"]
+
+
+def cli(argv: list[str]) -> tuple[int, list[str]]:
+    """Exit status and the non-empty stderr lines of ``rotorcosim argv``; every Python warning is made an error
+    (a warning would be a stray line of text on the command line)."""
+    err = io.StringIO()
+    with warnings.catch_warnings(), redirect_stderr(err), redirect_stdout(io.StringIO()):
+        warnings.simplefilter("error")
+        try:
+            rc = main(list(argv))
+        except SystemExit as exc:   # argparse
+            rc = exc.code
+    return rc, [line for line in err.getvalue().splitlines() if line.strip()]
+
+
+@pytest.fixture
+def tmp(tmp_path, monkeypatch):
+    """tmp_path, with the process's temporary folder inside it (so that a leftover extraction is seen)."""
+    t = tmp_path / "systemtmp"
+    t.mkdir()
+    monkeypatch.setattr(tempfile, "tempdir", str(t))
+    return tmp_path
+
+
+def refused(tmp: Path, argv: list[str], message: str | None = None, out: Path | None = None) -> str:
+    rc, lines = cli(argv)
+    text = "\n".join(lines)
+    assert rc in (1, 2), f"exit {rc} for {argv}: {text}"
+    assert len(lines) == 1, f"{len(lines)} lines for {argv}:\n{text}"
+    assert "Traceback" not in text and "unexpected" not in text and "Warning" not in text, text
+    if message is not None:
+        assert re.search(message, lines[0]), lines[0]
+    assert not list(tmp.rglob("*.part")), list(tmp.rglob("*.part"))
+    assert list((tmp / "systemtmp").iterdir()) == [], "a temporary folder was left"
+    if out is not None and out.exists():
+        present = sorted(p.name for p in out.iterdir() if p.name != ".rotorcosim.lock")
+        assert present == ["summary.json"], present
+        assert '"status": "failed"' in (out / "summary.json").read_text()
+    return lines[0]
+
+
+# -- scenario files ----------------------------------------------------------------------------------------
+#: every numeric key written in the toy scenario, as (table header, key); the values below are never numbers
+NUMERIC_KEYS = [("[schedule]", k) for k in ("step", "thermal_step", "speed_rpm", "hold_cycles")] + [
+    ("[outputs]", "record_step"),
+    ("[components.node]", "parameters.C"), ("[components.node]", "parameters.R")]
+NOT_NUMBERS = ["nan", "inf", "-inf", '"10"', "true", "[1, 2]", "{ a = 1 }", "1e999"]
+
+
+def _set_key(text: str, header: str, key: str, value: str) -> str:
+    if key.startswith("parameters."):
+        name = key.split(".", 1)[1]
+        new = re.sub(rf"\b{name} = [^,}}]+", f"{name} = {value}", text, count=1)
+    else:
+        new = re.sub(rf"(?m)^{key} = .*$", f"{key} = {value}", text, count=1)
+    assert new != text, (header, key)
+    return new
+
+
+@pytest.mark.parametrize("value", NOT_NUMBERS)
+@pytest.mark.parametrize("header, key", NUMERIC_KEYS)
+def test_scenario_numbers_that_are_not(tmp, header, key, value):
+    f = tmp / "s.toml"
+    f.write_text(_set_key(TOY_TEXT, header, key, value))
+    out = tmp / "o"
+    line = refused(tmp, [*RUN, str(f), "--out", str(out)], out=out)
+    assert str(f) in line or "s.toml" in line, line   # the file is named
+    assert not out.exists()
+
+
+STRUCTURE = {
+    "empty": "",
+    "binary": "\x00\x01\x02garbage\xff",
+    "truncated": TOY_TEXT[: len(TOY_TEXT) // 2],
+    "unknown table": TOY_TEXT + "\n[shedule]\nstep = 1e-3\n",
+    "duplicate key": TOY_TEXT.replace("step = 1e-3", "step = 1e-3\nstep = 2e-3", 1),
+    "extends a missing file": '[scenario]\nextends = "nope.toml"\nname = "x"\n',
+    "extends itself": '[scenario]\nextends = "s.toml"\nname = "x"\n',
+    "unknown implementation": TOY_TEXT.replace("testing.thermal_node", "testing.thermal_nod"),
+    "implementation and fmu": TOY_TEXT.replace('implementation = "testing.thermal_node"',
+                                               'implementation = "testing.thermal_node"\nfmu = "x.fmu"'),
+    "missing fmu": TOY_TEXT.replace('implementation = "testing.thermal_node"', 'fmu = "nowhere.fmu"'),
+    "fmu is a folder": TOY_TEXT.replace('implementation = "testing.thermal_node"', 'fmu = "."'),
+    "unknown port": TOY_TEXT.replace('from = "osc.P"', 'from = "osc.Power"'),
+    "unknown component in a connection": TOY_TEXT.replace('to = "node.P"', 'to = "nod.P"'),
+    "input used as an output": TOY_TEXT.replace('from = "osc.P"', 'from = "osc.T"'),
+    "dangling input": TOY_TEXT.replace('from = "node.T"\nto = "osc.T"', 'from = "node.T"\nto = "node.P"'),
+    "unknown parameter": TOY_TEXT.replace("C = 10.0", "Cap = 10.0"),
+    "negative record step": TOY_TEXT.replace("record_step = 1e-3", "record_step = -1e-3"),
+    "no intervals": TOY_TEXT.replace("intervals = [", "intervals_ = ["),
+    "hold window longer than every TM interval": TOY_TEXT.replace("hold_cycles = 5", "hold_cycles = 1e12"),
+    "restart ramp that never ends": TOY_TEXT.replace("hold_cycles = 5", "hold_cycles = 5\nrestart_cycles = 1e12"),
+    "record an unknown signal": TOY_TEXT.replace('"node.T"]', '"node.Tx"]'),
+    "unknown schedule kind": TOY_TEXT.replace('kind = "timeline"', 'kind = "staggered"'),
+    "unknown algorithm": TOY_TEXT.replace('kind = "gauss-seidel"', 'kind = "gauss"'),
+    "component named with a dot": TOY_TEXT.replace("[components.node]", '[components."no.de"]'),
+}
+
+
+@pytest.mark.parametrize("case", sorted(STRUCTURE))
+def test_scenario_structure(tmp, case):
+    f = tmp / "s.toml"
+    f.write_text(STRUCTURE[case])
+    out = tmp / "o"
+    refused(tmp, [*RUN, str(f), "--out", str(out)], out=out)
+
+
+def test_scenario_paths(tmp):
+    refused(tmp, [*RUN, str(tmp / "missing.toml"), "--out", str(tmp / "o")], "not found")
+    refused(tmp, [*RUN, str(tmp), "--out", str(tmp / "o")], "is a folder")
+    (tmp / "x.ssp").write_text("not a zip")
+    refused(tmp, [*RUN, str(tmp / "x.ssp"), "--out", str(tmp / "o")])
+
+
+# -- --set values ------------------------------------------------------------------------------------------
+SET_VALUES = ["nan", "inf", "-inf", "abc", "true", "[1,2]", "", "1e999"]
+
+
+@pytest.mark.parametrize("value", SET_VALUES)
+@pytest.mark.parametrize("param", ["osc.m", "osc.k", "osc.max_substep", "node.C", "node.R", "node.Ta"])
+def test_set_values(tmp, param, value):
+    out = tmp / "o"
+    refused(tmp, [*RUN, "toy_thermomechanical", "--set", f"{param}={value}", "--out", str(out)], out=out)
+
+
+@pytest.mark.parametrize("text, message", [
+    ("osc", "expected COMP.PARAM=VALUE"), ("=1", "expected COMP.PARAM=VALUE"), ("nope.m=1", "nope"),
+    ("osc.nope=1", "nope"), ("osc.m", "expected COMP.PARAM=VALUE"), ("node.T=300", "no parameter 'T'"),
+    ("osc.m=-1", "osc.m"), ("osc.m=0", "osc.m"), ("osc.max_substep=0", "max_substep"),
+])
+def test_set_mistakes(tmp, text, message):
+    out = tmp / "o"
+    refused(tmp, [*RUN, "toy_thermomechanical", "--set", text, "--out", str(out)], message, out=out)
+
+
+# -- FMU and SSP archives ----------------------------------------------------------------------------------
+@pytest.fixture(scope="module")
+def archives(tmp_path_factory):
+    """The toy's node as an FMU and the toy system as an SSP archive (built once)."""
+    from rotorcosim.fmus.export import export_component
+    from rotorcosim.fmus.ssp import write_ssp
+    from rotorcosim.master.scenario import load_scenario
+
+    d = tmp_path_factory.mktemp("corpus_archives")
+    fmu = export_component("testing.thermal_node", d / "node.fmu", instance_name="node",
+                           parameters={"C": 10.0, "R": 1.0})
+    ssp = write_ssp(load_scenario(TOY), d / "toy.ssp")
+    return fmu, ssp
+
+
+def _rezip(src: Path, dst: Path, edit=None, extra=(), raw_names=()) -> Path:
+    with zipfile.ZipFile(src) as zin, zipfile.ZipFile(dst, "w", zipfile.ZIP_DEFLATED) as zout:
+        for info in zin.infolist():
+            data = zin.read(info)
+            if edit is not None:
+                data = edit(info.filename, data)
+            if data is not None:
+                zout.writestr(info.filename, data)
+        for name, data in extra:
+            zout.writestr(name, data)
+    return dst
+
+
+def _write(dst: Path, data: bytes) -> Path:
+    dst.write_bytes(data)
+    return dst
+
+
+def _md(fn):
+    return lambda name, data: fn(data.decode()).encode() if name == "modelDescription.xml" else data
+
+
+FMU_FAULTS = {
+    "truncated": lambda src, dst: _write(dst, src.read_bytes()[: src.stat().st_size // 2]),
+    "empty": lambda src, dst: _write(dst, b""),
+    "not a zip": lambda src, dst: _write(dst, b"modelDescription.xml"),
+    "zip slip": lambda src, dst: _rezip(src, dst, extra=[("../../escaped.txt", b"x")]),
+    "absolute entry": lambda src, dst: _rezip(src, dst, extra=[("/tmp/absolute_corpus.txt", b"x")]),
+    "zip bomb": lambda src, dst: _rezip(src, dst, extra=[("resources/zeros.bin", bytes(64 * 1024 ** 2))]),
+    "no model description": lambda src, dst: _rezip(src, dst, lambda n, d: None if n == "modelDescription.xml"
+                                                    else d),
+    "garbage model description": lambda src, dst: _rezip(src, dst, _md(lambda t: "<fmiModelDescription")),
+    "entity bomb": lambda src, dst: _rezip(src, dst, _md(lambda t: re.sub(
+        r"^(<\?xml[^>]*\?>)?", lambda m: (m.group(0) or "") + '<!DOCTYPE fmiModelDescription [<!ENTITY a '
+        '"aaaaaaaaaa"><!ENTITY b "&a;&a;&a;&a;&a;&a;&a;&a;">]>', t, count=1))),
+    "FMI 1.0": lambda src, dst: _rezip(src, dst, _md(lambda t: re.sub(r'fmiVersion="[^"]*"', 'fmiVersion="1.0"',
+                                                                      t, count=1))),
+    "no binaries": lambda src, dst: _rezip(src, dst, lambda n, d: None if n.startswith("binaries/") else d),
+    "model exchange only": lambda src, dst: _rezip(src, dst, _md(lambda t: t.replace("<CoSimulation",
+                                                                                     "<ModelExchange"))),
+}
+
+
+@pytest.mark.parametrize("case", sorted(FMU_FAULTS))
+def test_fmu_archives(tmp, archives, case):
+    bad = FMU_FAULTS[case](archives[0], tmp / "bad.fmu")
+    out = tmp / "o"
+    line = refused(tmp, [*RUN, "toy_thermomechanical", "--swap", f"node={bad}", "--out", str(out)], out=out)
+    assert "bad.fmu" in line, line   # the file is named
+    assert not (tmp.parent / "escaped.txt").exists() and not Path("/tmp/absolute_corpus.txt").exists()
+
+
+def test_fmu_of_another_component(tmp, archives):
+    """The node's FMU in the oscillator's place: its ports are not the oscillator's."""
+    out = tmp / "o"
+    refused(tmp, [*RUN, "toy_thermomechanical", "--swap", f"osc={archives[0]}", "--out", str(out)], out=out)
+
+
+def _ssd(fn):
+    return lambda name, data: fn(data.decode()).encode() if name == "SystemStructure.ssd" else data
+
+
+SSP_FAULTS = {
+    "truncated": lambda src, dst: _write(dst, src.read_bytes()[: src.stat().st_size // 2]),
+    "not a zip": lambda src, dst: _write(dst, b"SystemStructure.ssd"),
+    "zip slip": lambda src, dst: _rezip(src, dst, extra=[("../../escaped.txt", b"x")]),
+    "no structure": lambda src, dst: _rezip(src, dst, lambda n, d: None if n == "SystemStructure.ssd" else d),
+    "garbage structure": lambda src, dst: _rezip(src, dst, _ssd(lambda t: t[: len(t) // 3])),
+    "entity bomb": lambda src, dst: _rezip(src, dst, _ssd(lambda t: t.replace(
+        "<?xml version='1.0' encoding='UTF-8'?>", '<?xml version="1.0"?><!DOCTYPE x [<!ENTITY a "a">]>'))),
+    "fmu outside": lambda src, dst: _rezip(src, dst, _ssd(lambda t: t.replace('source="resources/node.fmu"',
+                                                                             'source="../../node.fmu"'))),
+    "fmu missing": lambda src, dst: _rezip(src, dst, lambda n, d: None if n == "resources/node.fmu" else d),
+    "fmu corrupt": lambda src, dst: _rezip(src, dst, lambda n, d: d[:100] if n == "resources/node.fmu" else d),
+    "parameter in an unknown unit": lambda src, dst: _rezip(src, dst, _ssd(lambda t: t.replace(
+        '<ssv:Real value="10.0" />', '<ssv:Real value="10.0" unit="furlong" />'))),
+    "parameter in a unit of another quantity": lambda src, dst: _rezip(src, dst, _ssd(lambda t: t.replace(
+        '<ssv:Real value="10.0" />', '<ssv:Real value="10.0" unit="m" />'))),
+    "parameter not a number": lambda src, dst: _rezip(src, dst, _ssd(lambda t: t.replace(
+        '<ssv:Real value="10.0" />', '<ssv:Real value="ten" />'))),
+    "parameter file outside": lambda src, dst: _rezip(src, dst, _ssd(lambda t: t.replace(
+        '<ssd:ParameterBinding type="application/x-ssp-parameter-set">',
+        '<ssd:ParameterBinding type="application/x-ssp-parameter-set" source="../../etc/passwd">'))),
+}
+
+
+@pytest.mark.parametrize("case", sorted(SSP_FAULTS))
+def test_ssp_archives(tmp, archives, case):
+    bad = SSP_FAULTS[case](archives[1], tmp / "bad.ssp")
+    out = tmp / "o"
+    line = refused(tmp, [*RUN, str(bad), "--out", str(out)], out=out)
+    assert "bad.ssp" in line and "systemtmp" not in line, line   # the archive is named, not where it was unpacked
+    assert not (tmp.parent / "escaped.txt").exists()
+
+
+# -- checkpoints -------------------------------------------------------------------------------------------
+@pytest.fixture(scope="module")
+def interrupted(tmp_path_factory):
+    """A toy run interrupted at t = 0.2 s (a real SIGINT), leaving its checkpoint."""
+    import signal
+
+    from rotorcosim.master.observers import Progress
+
+    folder = tmp_path_factory.mktemp("corpus_ck") / "run"
+    original = Progress.step
+    fired = []
+
+    def step(self, sim, t):
+        if not fired and t >= 0.2:
+            fired.append(t)
+            os.kill(os.getpid(), signal.SIGINT)
+        original(self, sim, t)
+
+    Progress.step = step
+    try:
+        rc, _ = cli(["run", "toy_thermomechanical", "--quiet", "--duration", "0.3", "--out", str(folder)])
+    finally:
+        Progress.step = original
+    assert rc == 130 and (folder / "checkpoint.pkl").exists()
+    return folder
+
+
+CHECKPOINT_FAULTS = {
+    "truncated": lambda b: b[: len(b) // 2],
+    "empty": lambda b: b"",
+    "garbage": lambda b: os.urandom(4096),
+    "text": lambda b: b"checkpoint",
+}
+
+
+@pytest.mark.parametrize("case", sorted(CHECKPOINT_FAULTS))
+def test_damaged_checkpoints(tmp, interrupted, case):
+    folder = tmp / "run"
+    shutil.copytree(interrupted, folder)
+    ck = folder / "checkpoint.pkl"
+    ck.write_bytes(CHECKPOINT_FAULTS[case](ck.read_bytes()))
+    before = {p.name: p.read_bytes() for p in folder.iterdir()}
+    refused(tmp, ["run", "toy_thermomechanical", "--quiet", "--duration", "0.3", "--resume", "--out", str(folder)])
+    assert {p.name: p.read_bytes() for p in folder.iterdir()} == before   # the folder as it was
+
+
+@pytest.mark.parametrize("argv", [
+    ["--duration", "0.3", "--set", "node.C=20"],          # another scenario's checkpoint
+    ["--duration", "0.25"],                               # another schedule
+    ["--unbalance", "50", "--duration", "0.3"],
+])
+def test_checkpoint_of_another_run(tmp, interrupted, argv):
+    folder = tmp / "run"
+    shutil.copytree(interrupted, folder)
+    before = {p.name: p.read_bytes() for p in folder.iterdir()}
+    refused(tmp, ["run", "toy_thermomechanical", "--quiet", "--resume", *argv, "--out", str(folder)])
+    assert {p.name: p.read_bytes() for p in folder.iterdir()} == before
+
+
+# -- output places -----------------------------------------------------------------------------------------
+@pytest.mark.parametrize("where", ["file", "under a file", "proc", "empty", "holds results", "holds other files"])
+def test_output_places(tmp, where):
+    f = tmp / "afile"
+    f.write_text("x")
+    out = {"file": f, "under a file": f / "sub", "proc": Path("/proc/rotorcosim_corpus"), "empty": ""}.get(where)
+    if where == "holds results":
+        out = tmp / "prev"
+        out.mkdir()
+        (out / "summary.json").write_text('{"status": "complete"}')
+    if where == "holds other files":
+        out = tmp / "mine"
+        out.mkdir()
+        (out / "thesis.tex").write_text("x")
+    refused(tmp, [*RUN, "toy_thermomechanical", "--out", str(out)])
+    assert f.read_text() == "x"
+    if where == "holds other files":
+        assert sorted(p.name for p in out.iterdir()) == ["thesis.tex"]
+
+
+# -- number options of every command -----------------------------------------------------------------------
+BAD_NUMBERS = ["nan", "inf", "-inf", "abc", ""]
+OPTIONS = [
+    (["run", "toy_thermomechanical", "--quiet", "--out", "{out}"],
+     ["--duration", "--unbalance", "--checkpoint-every", "--step-timeout"]),
+    (["sweep", "--scenario", "toy_thermomechanical", "--serial", "--quiet", "--out", "{out}", "--duration", "0.05"],
+     ["--unbalance", "--workers"]),
+    (["compare", "--quiet", "--out", "{out}"], ["--duration", "--unbalance", "--revolutions"]),
+    (["critical-speeds"], ["--count", "--max-rpm", "--oil-temperature"]),
+    (["bearing-static", "--bearing", "0"], ["--radial-load", "--axial-load", "--speed-rpm"]),
+    (["thermal-steady", "--bearing", "0", "--sfd-power", "1"], ["--drag-power"]),
+    (["thermal-steady", "--bearing", "0", "--drag-power", "1"], ["--sfd-power", "--rub-power", "--ambient"]),
+]
+#: inf is a meaning of --checkpoint-every (no checkpoint inside an interval), not a mistake
+CASES = [(base, opt, v) for base, opts in OPTIONS for opt in opts for v in BAD_NUMBERS
+         if (opt, v) != ("--checkpoint-every", "inf")]
+
+
+@pytest.mark.parametrize("base, option, value", CASES, ids=[f"{b[0]} {o} {v!r}" for b, o, v in CASES])
+def test_number_options(tmp, base, option, value):
+    out = tmp / "o"
+    argv = [a.replace("{out}", str(out)) for a in base] + [option, value]
+    if base[0] == "bearing-static" and option != "--radial-load":
+        argv += ["--radial-load", "1000"]
+    refused(tmp, argv)
+    assert not out.exists()
+
+
+@pytest.mark.parametrize("argv, message", [
+    (["damper-force", "--damper", "0", "--position", "1e-5", "0", "--velocity", "1e9", "0", "--temperature", "70"],
+     "turbulent film"),
+    (["damper-force", "--damper", "0", "--position", "1", "1", "--velocity", "0", "0", "--temperature", "70"],
+     "positions are in metres"),
+    (["damper-force", "--damper", "0", "--position", "nan", "0", "--velocity", "0", "0", "--temperature", "70"],
+     "finite"),
+    (["damper-force", "--damper", "0", "--position", "0", "0", "--velocity", "0", "0", "--temperature", "5000"],
+     "viscosity fit"),
+    (["thermal-steady", "--bearing", "0", "--drag-power", "1e12", "--sfd-power", "0"], "viscosity fit"),
+    (["thermal-steady", "--bearing", "0", "--drag-power", "1", "--sfd-power", "0", "--ambient", "5000"],
+     "oil supply"),
+    (["bearing-static", "--bearing", "0", "--radial-load", "1e12"], None),
+    (["compare", "--quiet", "--out", "{out}", "--revolutions", "nan"], "--revolutions must be a positive"),
+    (["critical-speeds", "--count", "0"], None),
+    (["critical-speeds", "--count", "2.5"], None),
+    (["run", "toy_thermomechanical", "--quiet", "--out", "{out}", "--duration", "1e308"], "steps"),
+    (["run", "toy_thermomechanical", "--quiet", "--out", "{out}", "--schedule", "auto", "--tolerance", "1e308"],
+     "tolerance"),
+    (["sweep", "--scenario", "toy_thermomechanical", "--serial", "--out", "{out}", "--unbalance", "1,1"], None),
+    (["sweep", "--scenario", "toy_thermomechanical", "--serial", "--out", "{out}", "--unbalance", "10",
+      "--workers", "0"], None),
+])
+def test_absurd_or_malformed_values(tmp, argv, message):
+    out = tmp / "o"
+    refused(tmp, [a.replace("{out}", str(out)) for a in argv], message)
+    assert not out.exists()
