@@ -34,6 +34,7 @@ import numpy as np
 
 from ..contract import ContractError, Variable
 from ..kernels import KernelComponent
+from ..oil_fit import check_oil_temperature
 from ..speeds import PT_OMEGA
 from .geometry import (BEARINGS, BALL, IR, JOURNAL, LE, LI, NODES, OR, SFD, SHAFT, _DATA, build_network,
                        default_sources, radii)
@@ -103,6 +104,13 @@ class ThermalNetwork(KernelComponent):
         for key in ("T_ambient", "T_initial", "T_supply"):
             if not p[key] > 0.0:
                 raise ContractError(f"{self.name}.{key} must be > 0 K, got {p[key]}")
+        for key in ("T_initial", "T_supply"):
+            # the oil starts at T_initial and is supplied at T_supply: oil temperatures of the viscosity fit (a
+            # value in degrees C, 30 for 303.15 K, ran until the bearing refused its oil as "diverged", or silently)
+            try:
+                check_oil_temperature(p[key])
+            except ValueError as exc:
+                raise ContractError(f"{self.name}.{key}: {exc}; temperatures are in kelvin") from None
         try:
             self.network = build_network(
                 p["bearing"], p["omega"], p["T_ambient"], p["T_supply"], p["drag_inner_fraction"],

@@ -177,6 +177,9 @@ def test_state_roundtrip_for_rollback():
     ({"T_ambient": -1.0}, "T_ambient must be > 0"),
     ({"rub_shaft_fraction": 1.5}, "rub_shaft_fraction must be within"),
     ({"sfd_oil_flow": -1e-5}, "sfd_oil_flow must be finite and >= 0"),
+    # oil temperatures in degrees C where kelvin are meant (ran as "diverged", or silently for the supply)
+    ({"T_supply": 30.0}, r"T_supply: oil temperature 30 K is outside the viscosity fit's range \(200 K, 600 K\]"),
+    ({"T_initial": 5000.0}, "T_initial: oil temperature 5000 K is outside"),
 ])
 def test_bad_parameters(params, message):
     with pytest.raises(ContractError, match=message):
