@@ -431,10 +431,24 @@ def _schedule(c: _Checker, s: Mapping, comps: Mapping) -> None:
     if s.get("kind") == "auto" and "tm_min" in s:
         tm_durations.append(("schedule", s["tm_min"], step))
     speed, cycles = s.get("speed_rpm"), s.get("hold_cycles")
-    if speed and cycles and tm_durations and s.get("kind") != "auto":
+    if speed:
+        # the hold's windows, the restart and the results are counted in rotor cycles sampled at the TM step: a
+        # cycle must span two steps at least (Nyquist); 1e12 rev/min ran with windows of one sample
+        h = max([step] + [hh for _, _, hh in tm_durations])
+        if 60.0 / speed < 2.0 * h:
+            raise c.fail("schedule", "speed_rpm", f"{speed:g} rev/min turns once in {60.0 / speed:.3g} s, less "
+                         f"than two thermo-mechanical steps ({h:g} s): no cycle can be sampled (speeds are in "
+                         "rev/min)")
+    held = tm_durations
+    if speed and cycles and s.get("kind") == "auto":
+        from .auto import AutoSchedule
+
+        # the automatic schedule's TM intervals last at most tm_max (1e308 cycles overflowed the hold's buffers)
+        held = [("schedule", s.get("tm_max", AutoSchedule.tm_max), step)]
+    if speed and cycles and held:
         # the hold averages the last hold_cycles rotor cycles of a TM interval (and sizes its buffers by them): a
         # window longer than every TM interval never fills; 1e12 cycles asked for terabytes (out of memory)
-        window, longest = cycles * 60.0 / speed, max(d for _, d, _ in tm_durations)
+        window, longest = cycles * 60.0 / speed, max(d for _, d, _ in held)
         if window > longest * (1 + 1e-9):
             raise c.fail("schedule", "hold_cycles", f"{cycles:g} cycles at {speed:g} rev/min last {window:.4g} s, "
                          f"longer than the longest thermo-mechanical interval ({longest:.4g} s): the hold's window "

@@ -122,6 +122,9 @@ STRUCTURE = {
     "hold window longer than every TM interval": TOY_TEXT.replace("hold_cycles = 5", "hold_cycles = 1e12"),
     "restart ramp that never ends": TOY_TEXT.replace("hold_cycles = 5", "hold_cycles = 5\nrestart_cycles = 1e12"),
     "record an unknown signal": TOY_TEXT.replace('"node.T"]', '"node.Tx"]'),
+    "speed no step can sample": TOY_TEXT.replace("speed_rpm = 2700.0", "speed_rpm = 1e12"),
+    "auto hold window beyond tm_max": TOY_TEXT.replace('kind = "timeline"', 'kind = "auto"').replace(
+        "hold_cycles = 5", "hold_cycles = 1e308"),
     "unknown schedule kind": TOY_TEXT.replace('kind = "timeline"', 'kind = "staggered"'),
     "unknown algorithm": TOY_TEXT.replace('kind = "gauss-seidel"', 'kind = "gauss"'),
     "component named with a dot": TOY_TEXT.replace("[components.node]", '[components."no.de"]'),

@@ -81,8 +81,16 @@ def load(tmp_path, text):
      "[schedule] restart_cycles: 1e+12 cycles at 2700 rev/min last 2.222e+10 s, longer than the shortest run of "
      "thermo-mechanical intervals after a thermal-only one (0.3 s)"),
     (lambda s: s.replace("hold_cycles = 5", "hold_cycles = 5\nrestart_cycles = 14"), "restart_cycles: 14 cycles"),
-    (lambda s: s.replace('kind = "timeline"', 'kind = "auto"\ntm_max = 0.1\nrestart_cycles = 5'),
-     "restart_cycles: 5 cycles at 2700 rev/min last 0.1111 s, longer than tm_max"),
+    (lambda s: s.replace('kind = "timeline"', 'kind = "auto"\ntm_max = 0.12\nrestart_cycles = 6'),
+     "restart_cycles: 6 cycles at 2700 rev/min last 0.1333 s, longer than tm_max"),
+    # a rotor cycle shorter than two TM steps cannot be sampled (1e12 rev/min ran with one-sample windows)
+    (lambda s: s.replace("speed_rpm = 2700.0", "speed_rpm = 1e12"),
+     "[schedule] speed_rpm: 1e+12 rev/min turns once in 6e-11 s, less than two thermo-mechanical steps (0.001 s)"),
+    (lambda s: s.replace("speed_rpm = 2700.0", "speed_rpm = 30001"), "speed_rpm: 30001 rev/min turns once in 0.002 s"),
+    # under the automatic schedule the hold window is bounded by tm_max (1e308 overflowed in the hold)
+    (lambda s: s.replace('kind = "timeline"', 'kind = "auto"').replace("hold_cycles = 5", "hold_cycles = 1e308"),
+     "[schedule] hold_cycles: 1e+308 cycles at 2700 rev/min last inf s, longer than the longest thermo-mechanical "
+     "interval (0.5 s)"),
     # a signal recorded twice (was h5py's "Unable to synchronously create dataset (name already exists)")
     (lambda s: s.replace('record = ["osc.x", "osc.P", "node.T"]', 'record = ["osc.x", "osc.P", "osc.x"]'),
      "[outputs] record: 'osc.x' is listed twice"),
