@@ -123,7 +123,7 @@ class Ahead:
 
     def share(self, comps_kargs) -> None:
         """More work, known once the first interval's containers are: the kernels of ``comps_kargs``
-        [(component, containers)] and their trampolines and packers (master/kernel_args.py) that the caches
+        [(component, containers)] and their trampolines (master/kernel_args.py) that the caches
         lack. The helper takes them from the front; this process (compiled.Runner, in reverse order) from the
         back."""
         from numba import types
@@ -137,11 +137,10 @@ class Ahead:
         spec = []
         for comp, kargs in comps_kargs:
             ctype = kernel_args.container_type(kargs)
-            pack, tramp = kernel_args.functions(ctype)
+            tramp = kernel_args.functions(ctype)
             fn = type(comp).STEP
             for disp, sig, generated in ((fn, tuple(ctype) + (types.float64, types.float64), None),
-                                         (tramp, kernel_args.TRAMPOLINE_ARGS[:4] + (types.TypeRef(ctype),), ctype),
-                                         (pack, tuple(ctype) + (types.int64[::1],), ctype)):
+                                         (tramp, kernel_args.TRAMPOLINE_ARGS[:4] + (types.TypeRef(ctype),), ctype)):
                 key = numba_key(disp, sig)
                 if key in self.keys or _on_disk(disp, sig):
                     continue
@@ -228,8 +227,8 @@ def _helper() -> None:
                 if not _claim(folder, key):
                     continue
                 try:
-                    if generated is not None:  # a trampoline or packer of these containers (kernel_args)
-                        obj = dict(zip(("pack", "trampoline"), kernel_args.functions(generated)))[qualname]
+                    if generated is not None:  # the trampoline of these containers (kernel_args)
+                        obj = kernel_args.functions(generated)
                     else:
                         obj = importlib.import_module(module)
                         for part in qualname.split("."):

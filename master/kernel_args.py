@@ -6,14 +6,13 @@ are plain arrays and numbers. Before this, the loop took the 36 containers of th
 as arguments: one compiled version per system, whose CPython wrapper (unboxing them) and scalar replacement
 (SROA) over ~1 400 argument values took 13-16 s of CPU on a fresh machine's first run (notes/h16.md).
 
-* ``pack`` writes the containers (s, p, u, y) into a buffer in numba's in-memory layout, every array as a
-  *borrowed* view: its meminfo and parent are null, so the compiled code neither keeps nor frees it (numba's
-  reference counting skips a null meminfo). The arrays stay owned by Python: :class:`Packed` holds the
-  containers, and repacks whenever one of them is another object.
-* ``trampoline`` loads them back and calls the kernel by its address (loop_ops.call_kernel), so a kernel's code
-  is linked into neither.
-
-Both are compiled once per container type, like the kernel itself (:func:`functions`).
+* :class:`Packed` writes the containers (s, p, u, y) into a buffer in numba's in-memory layout (read from its data
+  model, :func:`_layout`), in Python: nothing to compile. Every array goes in as a *borrowed* view: its meminfo
+  and parent are null, so the compiled code neither keeps nor frees it (numba's reference counting skips a null
+  meminfo); the arrays stay owned by Python: :class:`Packed` holds the containers, and repacks whenever one of
+  them is another object.
+* ``trampoline`` (compiled once per container type, like the kernel itself: :func:`functions`) loads them back
+  and calls the kernel by its address (loop_ops.call_kernel), so a kernel's code is linked into neither.
 """
 from __future__ import annotations
 
@@ -21,6 +20,7 @@ import functools
 import hashlib
 import importlib.util
 import os
+import struct
 import sys
 import tempfile
 from pathlib import Path
@@ -39,48 +39,13 @@ from .loop_ops import TRAMPOLINE_ARGS
 
 
 def _check(ty) -> None:
-    if isinstance(ty, (types.Array, types.Number, types.Boolean)):
+    if isinstance(ty, (types.Array, types.Integer, types.Float, types.Boolean)):
         return
     if isinstance(ty, types.BaseTuple):
         for t in ty:
             _check(t)
         return
-    raise TypingError(f"a kernel container holds {ty}: the compiled loop passes arrays, numbers and tuples of them")
-
-
-def _borrowed(context, builder, ty, val):
-    """val with the meminfo and parent of every array in it set to null (see the module docstring)."""
-    if isinstance(ty, types.Array):
-        ary = context.make_array(ty)(context, builder, value=val)
-        ary.meminfo = cgutils.get_null_value(ary.meminfo.type)
-        ary.parent = cgutils.get_null_value(ary.parent.type)
-        return ary._getvalue()
-    if isinstance(ty, types.BaseTuple):
-        for i, t in enumerate(ty):
-            val = builder.insert_value(val, _borrowed(context, builder, t, builder.extract_value(val, i)), i)
-    return val
-
-
-@intrinsic
-def _store(typingctx, buf, args):
-    """Write ``args`` into ``buf`` (an int64 array); returns the bytes written, or minus the bytes needed when
-    ``buf`` is too small (nothing written)."""
-    _check(args)
-
-    def codegen(context, builder, sig, llargs):
-        bty, aty = sig.args
-        dm = context.data_model_manager[aty]
-        size = context.get_abi_sizeof(dm.get_data_type())
-        ary = context.make_array(bty)(context, builder, llargs[0])
-        have = builder.mul(ary.nitems, ary.itemsize)
-        need = context.get_constant(types.int64, size)
-        ok = builder.icmp_signed(">=", have, need)
-        with builder.if_then(ok):
-            data = dm.as_data(builder, _borrowed(context, builder, aty, llargs[1]))
-            builder.store(data, builder.bitcast(ary.data, data.type.as_pointer()))
-        return builder.select(ok, need, builder.neg(need))
-
-    return types.int64(buf, args), codegen
+    raise TypingError(f"a kernel container holds {ty}: the compiled loop passes arrays, integers, floats, booleans and tuples of them")
 
 
 @intrinsic
@@ -101,13 +66,8 @@ _SOURCE = """\
 # containers: {ctype}
 # sources: {sources}
 from numba import njit
-from rotorcosim.master.kernel_args import _load, _store
+from rotorcosim.master.kernel_args import _load
 from rotorcosim.master.loop_ops import call_kernel
-
-
-@njit(cache=True)
-def pack(s, p, u, y, buf):
-    return _store(buf, (s, p, u, y))
 
 
 @njit(cache=True)
@@ -131,11 +91,10 @@ _MODULES: dict = {}
 
 
 def functions(ctype):
-    """(pack, trampoline) for containers of type ``ctype``: ``pack(s, p, u, y, buf)`` writes them into buf (an
-    int64 array) and returns the bytes written (< 0: buf too small, nothing written); ``trampoline(ptr, kaddr, t,
-    h, proto)`` loads them from ptr and returns kernel(s, p, u, y, t, h) of the kernel at address kaddr.
+    """The trampoline of containers of type ``ctype``: ``trampoline(ptr, kaddr, t, h, proto)`` loads them from
+    ptr (packed by :class:`Packed`) and returns kernel(s, p, u, y, t, h) of the kernel at address kaddr.
 
-    One small generated module per container type (in the cache folder, components/cache.py), each compiled with
+    One small generated module per container type (in the cache folder, components/cache.py), compiled with
     numba's disk cache: a cache index holds the types it was compiled for, and unpickling one names every
     component class's port tuples (components/kernels.port_tuple, made when a component first builds them), so an
     index shared by all types could not be read by a process whose system lacks one of those components."""
@@ -162,7 +121,7 @@ def functions(ctype):
         sys.modules[name] = mod
         spec.loader.exec_module(mod)
         _MODULES[ctype] = mod
-    return mod.pack, mod.trampoline
+    return mod.trampoline
 
 
 def container_type(kargs) -> types.Type:
@@ -174,18 +133,72 @@ def trampoline_address(ctype) -> int:
     """The address of the trampoline compiled for containers of type ``ctype`` (compiled or loaded from its disk
     cache if not yet)."""
     _check(ctype)
-    tramp = functions(ctype)[1]
+    tramp = functions(ctype)
     sig = TRAMPOLINE_ARGS[:4] + (types.TypeRef(ctype),)
     tramp.compile(sig)
     cres = tramp.overloads[sig]
     return int(cres.library.get_pointer_to_function(cres.fndesc.llvm_func_name))
 
 
+def _offsets(ctx, llty) -> list[int]:
+    """Byte offsets of the members of an LLVM struct or array type (the target's ABI alignment)."""
+    members = list(llty.elements) if hasattr(llty, "elements") else [llty.element] * llty.count
+    out, off = [], 0
+    for m in members:
+        a = ctx.get_abi_alignment(m)
+        off = (off + a - 1) // a * a
+        out.append(off)
+        off += ctx.get_abi_sizeof(m)
+    return out
+
+
+def _leaves(ctx, ty, llty, base, path, out) -> None:
+    """(offset, struct format, path, ndim) of every array and number in a value of numba type ``ty`` whose
+    in-memory (data model) type is ``llty``, at byte offset ``base``."""
+    if isinstance(ty, types.Array):
+        n = ty.ndim
+        # numba's array struct: meminfo, parent, nitems, itemsize, data, shape[n], strides[n], all 8 bytes
+        if ctx.get_abi_sizeof(llty) != 8 * (5 + 2 * n):
+            raise TypingError(f"numba's array layout changed ({ty}): master/kernel_args.py cannot pack it")
+        out.append((base, f"<5q{2 * n}q", path, n))
+    elif isinstance(ty, types.BaseTuple):
+        for i, (t, off) in enumerate(zip(ty, _offsets(ctx, llty))):
+            sub = llty.elements[i] if hasattr(llty, "elements") else llty.element
+            _leaves(ctx, t, sub, base + off, path + (i,), out)
+    elif isinstance(ty, types.Boolean):
+        out.append((base, "<B", path, -1))
+    elif isinstance(ty, types.Float):
+        out.append((base, "<" + {32: "f", 64: "d"}[ty.bitwidth], path, -1))
+    elif isinstance(ty, types.Integer):
+        code = {8: "b", 16: "h", 32: "i", 64: "q"}[ty.bitwidth]
+        out.append((base, "<" + (code if ty.signed else code.upper()), path, -1))
+    else:
+        _check(ty)
+
+
+_LAYOUTS: dict = {}
+
+
+def _layout(ctype):
+    """(size in bytes, leaves) of containers of numba type ``ctype`` in numba's in-memory representation."""
+    lay = _LAYOUTS.get(ctype)
+    if lay is None:
+        from numba.core.registry import cpu_target
+
+        _check(ctype)
+        ctx = cpu_target.target_context
+        llty = ctx.data_model_manager[ctype].get_data_type()
+        leaves = []
+        _leaves(ctx, ctype, llty, 0, (), leaves)
+        lay = _LAYOUTS[ctype] = (ctx.get_abi_sizeof(llty), leaves)
+    return lay
+
+
 class Packed:
     """One component's containers packed for the loop; :meth:`update` repacks when a container changed."""
 
     def __init__(self):
-        self.buf = np.zeros(64, dtype=np.int64)
+        self.buf = np.zeros(8, dtype=np.int64)
         self.kargs = None
 
     @property
@@ -200,25 +213,17 @@ class Packed:
         if old is not None and all(a is b or (type(a) is type(b) and isinstance(a, tuple) and len(a) == len(b)
                                              and all(x is z for x, z in zip(a, b))) for a, b in zip(old, kargs)):
             return False
-        pack = _pack_entry(container_type(kargs) if ctype is None else ctype)
-        n = pack(*kargs, self.buf)
-        if n < 0:
-            self.buf = np.zeros(-n // 8 + 1, dtype=np.int64)
-            pack(*kargs, self.buf)
+        size, leaves = _layout(container_type(kargs) if ctype is None else ctype)
+        if self.buf.nbytes < size:
+            self.buf = np.zeros(size // 8 + 1, dtype=np.int64)
+        mem = self.buf.view(np.uint8)
+        for off, fmt, path, ndim in leaves:
+            v = kargs
+            for i in path:
+                v = v[i]
+            if ndim >= 0:
+                struct.pack_into(fmt, mem, off, 0, 0, v.size, v.itemsize, v.ctypes.data, *v.shape, *v.strides)
+            else:
+                struct.pack_into(fmt, mem, off, v)
         self.kargs = kargs
         return True
-
-
-_PACK: dict = {}
-
-
-def _pack_entry(ctype):
-    """pack's compiled entry point for containers of type ``ctype``: called without the dispatcher's typing of
-    its arguments (the caller has their type; typing a system's containers again costs ~ms per interval)."""
-    entry = _PACK.get(ctype)
-    if entry is None:
-        pack = functions(ctype)[0]
-        sig = tuple(ctype) + (types.int64[::1],)
-        pack.compile(sig)
-        entry = _PACK[ctype] = pack.overloads[sig].entry_point
-    return entry

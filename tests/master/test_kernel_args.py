@@ -12,13 +12,14 @@ from numba.core.errors import TypingError
 
 from rotorcosim.master import kernel_args, loop_ops
 
-P = namedtuple("P", "a b scale")
+P = namedtuple("P", "a b scale flag n m")
 
 
 @njit(cache=False)
 def _kernel(s, p, u, y, t, h):
     # writes through every container: the arrays are the caller's (borrowed, not copies)
     y[0][0] = p.scale * (p.a[0] + p.b[1]) + u[0][0] + t + h
+    y[0][1] = p.n + p.m[1, 0] if p.flag else -1.0
     s[0][0] += 1.0
     return np.int64(7)
 
@@ -29,7 +30,10 @@ def _call(taddr, ptr, kaddr, t, h):
 
 
 def _containers():
-    return (np.zeros(1),), P(np.array([1.0, 2.0]), np.array([3.0, 4.0]), 2.0), (np.array([5.0]),), (np.zeros(1),)
+    # a bool and an int between the floats and arrays (alignment padding), a 2-d Fortran-ordered array (strides)
+    m = np.asfortranarray(np.array([[1.0, 2.0], [30.0, 4.0]]))
+    return ((np.zeros(1),), P(np.array([1.0, 2.0]), np.array([3.0, 4.0]), 2.0, True, 7, m), (np.array([5.0]),),
+            (np.zeros(2),))
 
 
 def test_a_kernel_called_through_the_trampoline_works_on_the_callers_arrays():
@@ -42,6 +46,7 @@ def test_a_kernel_called_through_the_trampoline_works_on_the_callers_arrays():
     for _ in range(2):
         assert _call(taddr, packed.address, kaddr, 0.25, 0.5) == 7
     assert ka[3][0][0] == 2.0 * (1.0 + 4.0) + 5.0 + 0.75
+    assert ka[3][0][1] == 37.0
     assert ka[0][0][0] == 2.0
 
 
