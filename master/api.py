@@ -252,7 +252,8 @@ def _simulate(sc, duration, schedule, out, record, progress, figures, overwrite,
         pool = None
         if figures and out is not None and post is not None and not keep:
             # its workers start now, one after the other, and import matplotlib and the figures while the run goes
-            pool = FigurePool(preload=[m for m in [getattr(post, "FIGURES_MODULE", None)] if m])
+            pool = FigurePool(preload=[m for m in [getattr(post, "FIGURES_MODULE", None)] if m],
+                              after=sim.first_compiled)
             stack.callback(pool.close)
         head = {"scenario": sc.name, "source": str(sc.source) if sc.source else None,
                 "schedule": kind or sc.schedule.get("kind", "monolithic"), "duration_s": sch.duration,

@@ -378,6 +378,7 @@ class Runner:
                 addrs = [self._address(c, ka) for c, ka in zip(comps[::-1], kargs[::-1])][::-1]
                 TA = np.array([a[0] for a in addrs], dtype=np.int64)
                 KA = np.array([a[1] for a in addrs], dtype=np.int64)
+                sim.compiled_done()  # every kernel of the interval is loaded: the helper has nothing left
             for i in reversed(range(len(comps))):
                 if self.packed[i].update(kargs[i], addrs[i][2]):
                     PA[i] = self.packed[i].address

@@ -40,9 +40,11 @@ def _cores() -> int:
 class FigurePool:
     """Worker processes for figures, or none (:attr:`usable` False) where they would not help."""
 
-    def __init__(self, workers: int = WORKERS, preload: Sequence[str] = ()):
+    def __init__(self, workers: int = WORKERS, preload: Sequence[str] = (), after: threading.Event | None = None):
         """``preload``: modules the workers import at start (the figure module the run will use), besides
-        matplotlib."""
+        matplotlib. ``after``: the workers start once it is set (or the figures are wanted): the simulation's
+        ``first_compiled`` event, so that on a fresh machine they do not take a core from the first compilations
+        (master/ahead.py), while the run's steps leave one idle."""
         self._procs: list[subprocess.Popen] = []
         self.by_workers: list[str] = []
         self._lock = threading.Lock()
@@ -53,11 +55,20 @@ class FigurePool:
             return
         self._cmd = [sys.executable, "-m", "rotorcosim.master.figure_worker", *preload]
         self._env = {**os.environ, "ROTORCOSIM_FIGURE_WORKER": "1"}
-        if self._start() and workers > 1:
+        if after is not None and not after.is_set():
+            self._starter = threading.Thread(target=self._start_after, args=(after, workers), daemon=True)
+            self._starter.start()
+        elif self._start() and workers > 1:
             # the others one at a time, each when the previous one is ready: two workers importing at once beside
             # the run make three busy processes on two cores, which takes a third of a core from the run
             self._starter = threading.Thread(target=self._start_rest, args=(workers - 1,), daemon=True)
             self._starter.start()
+
+    def _start_after(self, after: threading.Event, workers: int) -> None:
+        while not after.wait(0.05) and not self._hurry.is_set():
+            pass
+        if self._start() and workers > 1:
+            self._start_rest(workers - 1)
 
     def _start(self) -> bool:
         with self._lock:

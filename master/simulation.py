@@ -7,6 +7,7 @@ interval resumes from the frozen state with the new temperatures.
 from __future__ import annotations
 
 import math
+import threading
 import time as _time
 from typing import Callable, Sequence
 
@@ -52,6 +53,8 @@ class Simulation:
         self.report = RunReport()
         self._initialised = False
         self._ahead = None
+        #: set once the set-up and the first interval's compilations (or loads from the caches) are over
+        self.first_compiled = threading.Event()
         self.interval_index = 0
         #: a schedule's own loop state (the automatic schedule's), saved in checkpoints
         self.schedule_state = None
@@ -86,6 +89,8 @@ class Simulation:
         comps = [self.system.components[name] for name in self.engine.order]
         # a fresh machine: a helper process builds the caches' missing kernels and tables meanwhile (ahead.py)
         self._ahead = ahead.start(comps, self.engine_choice != "python")
+        if self._ahead is None:
+            self.first_compiled.set()
         for name, comp in zip(self.engine.order, comps):
             if name in by_comp:
                 comp.set_inputs(by_comp[name])
@@ -99,7 +104,17 @@ class Simulation:
                 raise ContractError(f"{name} could not be set up with its parameters: {exc}") from exc
             if name in by_comp:  # setup may reset inputs to their start values
                 comp.set_inputs(by_comp[name])
+        if self.engine_choice == "python":
+            self.compiled_done()
         self._initialised = True
+
+    def compiled_done(self) -> None:
+        """The first compilations are over (the compiled runner's first kernels loaded, or the run ended): stop the
+        helper process of a fresh machine (ahead.py) and set :attr:`first_compiled`."""
+        if self._ahead is not None:
+            self._ahead.close()
+            self._ahead = None
+        self.first_compiled.set()
 
     def _multiples(self, names: Sequence[str], h: float) -> dict[str, int]:
         out = {}
@@ -217,9 +232,7 @@ class Simulation:
             self.report.status = "interrupted" if isinstance(exc, KeyboardInterrupt) else "failed"
             raise
         finally:
-            if self._ahead is not None:
-                self._ahead.close()
-                self._ahead = None
+            self.compiled_done()
             self.report.wall_time_s = _time.perf_counter() - t_wall
             self.report.cpu_time_s = _time.process_time() - t_cpu
             failure = None
