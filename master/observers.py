@@ -191,7 +191,8 @@ class Recorder(Observer):
             ds.attrs["sampling_interval_s"] = self.record_step
 
     def interval_start(self, sim, phase, step):
-        self.stride = 1 if phase == "TO" else max(1, int(round(self.record_step / step)))
+        # capped: a record_step longer than any interval (1e308 overflowed) records each interval's first sample
+        self.stride = 1 if phase == "TO" else max(1, int(round(min(self.record_step / step, 2.0 ** 62))))
 
     def step(self, sim, t):
         self._sample(sim, t)

@@ -125,6 +125,7 @@ STRUCTURE = {
     "speed no step can sample": TOY_TEXT.replace("speed_rpm = 2700.0", "speed_rpm = 1e12"),
     "auto hold window beyond tm_max": TOY_TEXT.replace('kind = "timeline"', 'kind = "auto"').replace(
         "hold_cycles = 5", "hold_cycles = 1e308"),
+    "coupling passes that hang": TOY_TEXT.replace("[algorithm]", "[algorithm]\niterations = 1000000000000"),
     "unknown schedule kind": TOY_TEXT.replace('kind = "timeline"', 'kind = "staggered"'),
     "unknown algorithm": TOY_TEXT.replace('kind = "gauss-seidel"', 'kind = "gauss"'),
     "component named with a dot": TOY_TEXT.replace("[components.node]", '[components."no.de"]'),
@@ -137,6 +138,18 @@ def test_scenario_structure(tmp, case):
     f.write_text(STRUCTURE[case])
     out = tmp / "o"
     refused(tmp, [*RUN, str(f), "--out", str(out)], out=out)
+
+
+def test_a_record_step_longer_than_the_run_records_its_first_sample(tmp):
+    """Not a mistake (one sample per interval), but 1e308 overflowed the recorder's stride (exit 1, "unexpected")."""
+    f = tmp / "s.toml"
+    f.write_text(TOY_TEXT.replace("record_step = 1e-3", "record_step = 1e308"))
+    rc, lines = cli([*RUN, str(f), "--out", str(tmp / "o")])
+    assert rc == 0 and lines == [], lines
+    import h5py
+
+    with h5py.File(tmp / "o" / "timeseries.h5") as h:
+        assert h["time"][()].tolist() == [0.0]
 
 
 def test_scenario_paths(tmp):
