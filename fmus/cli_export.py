@@ -26,6 +26,9 @@ def run(args) -> int:
 
     from .export import export_scenario
 
+    from rotorcosim.master.rundir import check_folder
+
+    check_folder(args.dir, "output folder")   # "" would become Path("."): the FMUs were written where it ran
     sc = resolve(args.scenario)
     written = export_scenario(sc, Path(args.dir), args.component)
     for name, path in written.items():

@@ -411,6 +411,7 @@ def test_number_options(tmp, base, option, value):
      "oil supply"),
     (["bearing-static", "--bearing", "0", "--radial-load", "1e12"], None),
     (["compare", "--quiet", "--out", "{out}", "--revolutions", "nan"], "--revolutions must be a positive"),
+    (["export-fmus", "", "--scenario", "toy_thermomechanical"], "output folder is empty"),
     (["critical-speeds", "--count", "0"], None),
     (["critical-speeds", "--count", "2.5"], None),
     (["run", "toy_thermomechanical", "--quiet", "--out", "{out}", "--duration", "1e308"], "steps"),
