@@ -213,6 +213,25 @@ def _write(dst: Path, data: bytes) -> Path:
     return dst
 
 
+def _declared_huge(src: Path, dst: Path) -> Path:
+    """``src`` plus a 10-byte entry whose headers declare 4 GB uncompressed (central directory and local header)."""
+    import struct
+
+    _rezip(src, dst, extra=[("resources/big.bin", b"0123456789")])
+    data = bytearray(dst.read_bytes())
+    name = b"resources/big.bin"
+    for sig, offset in ((b"PK\x01\x02", 24), (b"PK\x03\x04", 22)):
+        at = data.find(sig)
+        while at >= 0:
+            n = struct.unpack_from("<H", data, at + (28 if sig == b"PK\x01\x02" else 26))[0]
+            start = at + (46 if sig == b"PK\x01\x02" else 30)
+            if bytes(data[start:start + n]) == name:
+                struct.pack_into("<I", data, at + offset, 0xFFFFFFF0)
+            at = data.find(sig, at + 4)
+    dst.write_bytes(bytes(data))
+    return dst
+
+
 def _md(fn):
     return lambda name, data: fn(data.decode()).encode() if name == "modelDescription.xml" else data
 
@@ -224,6 +243,7 @@ FMU_FAULTS = {
     "zip slip": lambda src, dst: _rezip(src, dst, extra=[("../../escaped.txt", b"x")]),
     "absolute entry": lambda src, dst: _rezip(src, dst, extra=[("/tmp/absolute_corpus.txt", b"x")]),
     "zip bomb": lambda src, dst: _rezip(src, dst, extra=[("resources/zeros.bin", bytes(64 * 1024 ** 2))]),
+    "huge declared size": _declared_huge,
     "no model description": lambda src, dst: _rezip(src, dst, lambda n, d: None if n == "modelDescription.xml"
                                                     else d),
     "garbage model description": lambda src, dst: _rezip(src, dst, _md(lambda t: "<fmiModelDescription")),
