@@ -378,12 +378,12 @@ class Runner:
                 addrs = [self._address(c, ka) for c, ka in zip(comps[::-1], kargs[::-1])][::-1]
                 TA = np.array([a[0] for a in addrs], dtype=np.int64)
                 KA = np.array([a[1] for a in addrs], dtype=np.int64)
-                sim.compiled_done()  # every kernel of the interval is loaded: the helper has nothing left
             for i in reversed(range(len(comps))):
                 if self.packed[i].update(kargs[i], addrs[i][2]):
                     PA[i] = self.packed[i].address
             op.run_chunk(k, k1, r0, t_start, h, check, count, self.buf, self.status, plan.mult_arr, plan.width,
                          self.X, LI, M, V, G, C, plan.CT, plan.IDX, TA, PA, KA)
+            sim.compiled_done()  # the loop and every kernel of the interval are loaded: the helper has nothing left
             code, kk, i = (int(x) for x in self.status)
             done = kk  # base steps completed
             self._back(LI, M, V, C, count)
