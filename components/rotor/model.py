@@ -139,6 +139,14 @@ def _positive(name, value):
     return float(value)
 
 
+def _poisson(name, value):
+    """Poisson's ratio of an isotropic solid: -1 < nu < 1/2, where its strain energy is positive definite
+    (Timoshenko & Goodier, Theory of Elasticity; 1e300 overflowed the element matrices)."""
+    if not (isinstance(value, (int, float)) and -1.0 < value < 0.5):
+        raise ValueError(f"rotor model: {name} must be a Poisson's ratio within (-1, 0.5), got {value!r}")
+    return float(value)
+
+
 def _nonneg(name, value):
     if not (isinstance(value, (int, float)) and math.isfinite(value) and value >= 0):
         raise ValueError(f"rotor model: {name} must be a finite number >= 0, got {value!r}")
@@ -182,7 +190,8 @@ def build(data: dict, digest: str = "", omega_pt: float | None = None, omega_gg:
     table or key, or a value of the wrong kind, is a ValueError naming the file (``source``) and the key."""
     where = f"rotor model file {source or DEFAULT_FILE}"
     try:
-        return _assemble(data, digest, omega_pt, omega_gg)
+        with np.errstate(over="ignore", invalid="ignore", divide="ignore"):  # non-finite matrices refused below
+            return _assemble(data, digest, omega_pt, omega_gg)
     except KeyError as exc:
         raise ValueError(f"{where}: missing table or key {exc.args[0]!r} (see data/engine.toml)") from None
     except (TypeError, IndexError, AttributeError) as exc:
@@ -190,7 +199,9 @@ def build(data: dict, digest: str = "", omega_pt: float | None = None, omega_gg:
                          "data/engine.toml)") from None
     except ValueError as exc:
         msg = str(exc)
-        raise ValueError(msg if msg.startswith("rotor model") else f"{where}: {msg}") from None
+        if msg.startswith("rotor model file"):
+            raise ValueError(msg) from None
+        raise ValueError(f"{where}: {msg.removeprefix('rotor model: ')}") from None
 
 
 def _assemble(data: dict, digest: str, omega_pt: float | None, omega_gg: float | None) -> FullModel:
@@ -204,9 +215,11 @@ def _assemble(data: dict, digest: str, omega_pt: float | None, omega_gg: float |
         if not np.all(np.diff(z) > 0):
             raise ValueError(f"rotor model: {name}.z_mm must increase strictly")
     mat_r, mat_c = data["material"]["rotor"], data["material"]["casing"]
-    E, nu, rho = (_positive(f"material.rotor.{k}", mat_r[k]) for k in ("E", "nu", "rho"))
+    E, rho = (_positive(f"material.rotor.{k}", mat_r[k]) for k in ("E", "rho"))
+    nu = _poisson("material.rotor.nu", mat_r["nu"])
     Gmod = E / (2 * (1 + nu))
-    Ec, nuc, rhoc = (_positive(f"material.casing.{k}", mat_c[k]) for k in ("E", "nu", "rho"))
+    Ec, rhoc = (_positive(f"material.casing.{k}", mat_c[k]) for k in ("E", "rho"))
+    nuc = _poisson("material.casing.nu", mat_c["nu"])
 
     # global numbering before constraints: PT nodes, GG nodes (6 DOF), shell nodes, hubs (3 DOF)
     nc = int(cas["n_circ"])
@@ -364,8 +377,19 @@ def _assemble(data: dict, digest: str, omega_pt: float | None, omega_gg: float |
         "unbalance": [dof("pt", pt["unbalance_node"], d) for d in range(2)],
     }
     lateral = [dof(b, n, d) for b, nn in (("pt", 22), ("gg", 16)) for n in range(nn) for d in range(2)]
+    for name, r in (("power_turbine", pt), ("gas_generator", gg)):
+        # the speed ratio gas generator / power turbine divides by the first (0 was a ZeroDivisionError); a
+        # negative speed is a spool turning the other way, kept
+        v = r["spin_rpm"]
+        if not (isinstance(v, (int, float)) and math.isfinite(v) and v != 0):
+            raise ValueError(f"rotor model: {name}.spin_rpm must be a finite, non-zero speed in rev/min, got {v!r}")
     w_pt = pt["spin_rpm"] * RPM if omega_pt is None else float(omega_pt)
     w_gg = gg["spin_rpm"] * RPM if omega_gg is None else float(omega_gg)
+    for name, A in (("mass", M), ("stiffness", K), ("damping", C)):
+        if not np.all(np.isfinite(A)):
+            # a value so large that the element matrices overflow (casing.radius_mm = 1e300)
+            raise ValueError(f"rotor model: the assembled {name} matrix is not finite: a length, modulus or mass "
+                             "of the file is too large (lengths are in mm)")
     info = {"dof": dof, "rayleigh": (alpha, beta), "n_shell_dof": 3 * n_shell_nodes, "n_hub_dof": 3 * len(hubs),
             "pt_lateral": np.array([dof("pt", n, d) for n in range(22) for d in range(2)])}
     return FullModel(M=M[sub], K=K[sub], C=C[sub], G_pt=Gp[sub], G_gg=Gg[sub],

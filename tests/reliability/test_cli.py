@@ -257,3 +257,32 @@ def test_option_mistakes_are_one_line(capsys, argv, message):
         main(argv)
     assert info.value.code == 2
     assert message in one_line_error(capsys.readouterr().err)
+
+
+def _engine(old: str, new: str) -> str:
+    from rotorcosim.components.rotor import model
+
+    text = model.DEFAULT_FILE.read_text()
+    assert old in text
+    return text.replace(old, new, 1)
+
+
+@pytest.mark.parametrize("old, new, message", [
+    # each was a traceback-free but wrong outcome: warnings and "array must not contain infs or NaNs" (no key),
+    # or "unexpected ZeroDivisionError"
+    ("nu = 0.3\n", "nu = 1e300\n", "material.rotor.nu must be a Poisson's ratio within (-1, 0.5), got 1e+300"),
+    ("spin_rpm = 16000.0", "spin_rpm = 0", "power_turbine.spin_rpm must be a finite, non-zero speed in rev/min"),
+    ("spin_rpm = 16000.0", "spin_rpm = nan", "power_turbine.spin_rpm must be a finite, non-zero speed"),
+    ("radius_mm = 300.0", "radius_mm = 1e300", "the assembled mass matrix is not finite"),
+    ("E = 208e9", "E = 0", "material.rotor.E must be a finite number > 0, got 0"),
+])
+def test_rotor_model_file_values_outside_the_model(tmp_path, capsys, old, new, message):
+    import warnings
+
+    f = tmp_path / "model.toml"
+    f.write_text(_engine(old, new))
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        rc, _, err = call(capsys, "critical-speeds", "--model-file", str(f))
+    line = one_line_error(err)
+    assert rc == 2 and f"rotor model file {f}: {message}" in line, line
