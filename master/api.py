@@ -54,6 +54,8 @@ def load_scenario(name_or_path: str | Path | None = None) -> Scenario:
     archive (``.ssp``). None gives the default, ``blade_loss_2850``."""
     if name_or_path is None:
         return _load_file(scenarios.path(DEFAULT_SCENARIO))
+    if isinstance(name_or_path, str) and not name_or_path.strip():  # Path("") is the current folder
+        raise ValueError("load_scenario: an empty name: give a shipped scenario's name or a file")
     p = Path(name_or_path)
     if p.suffix.lower() == ".ssp":
         from rotorcosim.fmus.ssp import read_ssp
@@ -207,6 +209,11 @@ def _simulate(sc, duration, schedule, out, record, progress, figures, overwrite,
         raise TypeError(f"record: give a list of 'component.port' names, e.g. record=[{record!r}]")
     if engine not in ENGINES:
         raise ValueError(f"engine {engine!r} not in {ENGINES}")
+    if not (isinstance(step_timeout, numbers.Real) and 0 <= step_timeout < float("inf")):
+        raise ValueError(f"step_timeout must be a number of seconds >= 0 (0: no limit), got {step_timeout!r}")
+    if checkpoint_every is not None and not (isinstance(checkpoint_every, numbers.Real) and checkpoint_every > 0):
+        raise ValueError(f"checkpoint_every must be a positive number of seconds (or None: no checkpoints), got "
+                         f"{checkpoint_every!r}")
     sch, kind = _schedule(sc, schedule, duration)
     estimate = budget.check(sc, sch, force)
     if progress and estimate["wall_s"] > 60:

@@ -265,11 +265,21 @@ def test_draw_figures_of_a_run_folder_names_what_is_missing(tmp_path):
     ({"duration": True}, TypeError, "duration must be a number of seconds"),
     ({"record": "osc.x"}, TypeError, r"record: give a list of 'component.port' names, e.g. record=\['osc.x'\]"),
     ({"record": ["osc.x", "osc.x"]}, ValueError, r"record: 'osc.x' is listed twice"),
+    # checked by the command line only before: the API ran with them
+    ({"step_timeout": -1}, ValueError, r"step_timeout must be a number of seconds >= 0 \(0: no limit\), got -1"),
+    ({"step_timeout": float("nan")}, ValueError, "step_timeout must be a number of seconds >= 0"),
+    ({"checkpoint_every": 0}, ValueError, "checkpoint_every must be a positive number of seconds"),
 ])
 def test_simulate_arguments_of_the_wrong_kind(kwargs, error, message):
     """A string where a number or a list is meant: named (was: "'>' not supported", or a record of letters)."""
     with pytest.raises(error, match=message):
         rotorcosim.simulate(rotorcosim.load_scenario("toy_thermomechanical"), **kwargs)
+
+
+def test_load_scenario_with_an_empty_name():
+    """Path("") is the current folder: was "scenario file ... is a folder"."""
+    with pytest.raises(ValueError, match="an empty name"):
+        rotorcosim.load_scenario("")
 
 
 def test_simulate_accepts_numpy_numbers():
