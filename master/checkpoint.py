@@ -355,13 +355,19 @@ class ResumePoint:
 
 def load(path: str | os.PathLike, key: str) -> ResumePoint:
     path = Path(path)
+    raw = None
     try:
         raw = path.read_bytes()
         data = _peek(raw)
     except FileNotFoundError:
         raise CheckpointError(f"--resume: no checkpoint {path}") from None
     except Exception as exc:
-        raise CheckpointError(f"--resume: {path} is not a readable checkpoint ({type(exc).__name__}: {exc})") from None
+        # checkpoints are pickles of protocol >= 2, which begin with the PROTO opcode (0x80)
+        why = ("cannot be read" if raw is None else "empty" if not raw else
+               "not a checkpoint" if raw[:1] != b"\x80" else
+               "truncated" if isinstance(exc, EOFError) or "exhausted" in str(exc) else "damaged")
+        raise CheckpointError(f"--resume: {path} is not a readable checkpoint ({why}: {type(exc).__name__}: "
+                              f"{exc}); run again without --resume, into a new folder or with --overwrite") from None
     if data.get("format") != FORMAT:
         raise CheckpointError(f"--resume: {path} was written by another version of rotorcosim")
     if data.get("key") != key:

@@ -352,7 +352,11 @@ def test_damaged_checkpoints(tmp, interrupted, case):
     ck = folder / "checkpoint.pkl"
     ck.write_bytes(CHECKPOINT_FAULTS[case](ck.read_bytes()))
     before = {p.name: p.read_bytes() for p in folder.iterdir()}
-    refused(tmp, ["run", "toy_thermomechanical", "--quiet", "--duration", "0.3", "--resume", "--out", str(folder)])
+    line = refused(tmp, ["run", "toy_thermomechanical", "--quiet", "--duration", "0.3", "--resume", "--out",
+                         str(folder)])
+    why = {"truncated": "truncated", "empty": "empty", "garbage": "not a checkpoint|damaged|truncated",
+           "text": "not a checkpoint"}[case]
+    assert re.search(f"is not a readable checkpoint \\(({why})", line), line
     assert {p.name: p.read_bytes() for p in folder.iterdir()} == before   # the folder as it was
 
 
