@@ -9,6 +9,7 @@ import argparse
 import atexit
 import gc
 import importlib
+import re
 import sys
 import traceback
 
@@ -26,9 +27,19 @@ COMMANDS: dict[str, tuple[str, str]] = {
 }
 
 
+#: what argparse takes for a negative number rather than an option: its own pattern knows only -5 and -.5, so
+#: ``--position -1e-5 0`` failed with "expected 2 arguments" and ``--duration -inf`` with "expected one argument"
+#: (no option of rotorcosim starts with a digit, "inf" or "nan")
+NEGATIVE_NUMBER = re.compile(r"^-(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?$|^-(inf|infinity|nan)$", re.IGNORECASE)
+
+
 class _Parser(argparse.ArgumentParser):
     """An option mistake is one line, as every other error (argparse prints the whole usage first); the
     sub-commands' parsers are of this class too (add_subparsers takes the parser's own class)."""
+
+    def __init__(self, *args, **kwargs):
+        super().__init__(*args, **kwargs)
+        self._negative_number_matcher = NEGATIVE_NUMBER   # argparse's own attribute (Python 3.10-3.13)
 
     def error(self, message):
         self.exit(2, f"{self.prog}: error: {' '.join(message.split())} (see: {self.prog} --help)\n")

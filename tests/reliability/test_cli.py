@@ -286,3 +286,15 @@ def test_rotor_model_file_values_outside_the_model(tmp_path, capsys, old, new, m
         rc, _, err = call(capsys, "critical-speeds", "--model-file", str(f))
     line = one_line_error(err)
     assert rc == 2 and f"rotor model file {f}: {message}" in line, line
+
+
+def test_negative_numbers_in_any_notation_are_values(capsys):
+    """argparse took -1e-5 and -inf for options ("expected 2 arguments"): a journal position in scientific
+    notation could not be given."""
+    rc, out, err = call(capsys, "damper-force", "--damper", "0", "--position", "-1e-5", "0", "--velocity", "0",
+                        "-2e-3", "--temperature", "70", "--json")
+    assert rc == 0 and '"eccentricity_ratio"' in out, err
+    rc, _, err = call(capsys, "run", "toy_thermomechanical", "--duration", "-inf", "--out", "x")
+    assert rc == 2 and "--duration must be a positive number of seconds, got -inf" in one_line_error(err)
+    rc, _, err = call(capsys, "run", "toy_thermomechanical", "--unbalance", "-1E3", "--out", "x")
+    assert rc == 2 and "--unbalance must be a finite force >= 0 N, got -1000.0" in one_line_error(err)
