@@ -208,6 +208,9 @@ def start(components, loop: bool) -> Ahead | None:
         add(None, loop_ops.run_chunk, loop_ops.RUN_CHUNK_SIG)
     if not jobs:
         return None
+    # the compilations first, the tables (and other builds) last: this process builds a table itself when it gets
+    # there first, while a kernel it needs soon after (the damper's, right after its table) takes longest
+    jobs.sort(key=lambda job: not isinstance(job[0], str) or not job[0].startswith("numba/"))
     try:
         return Ahead(jobs)
     except (OSError, pickle.PicklingError, TypeError, AttributeError):
