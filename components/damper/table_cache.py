@@ -1,4 +1,4 @@
-"""On-disk cache of the fast model's tables (60 factorisations of the Reynolds operator, ~2.5 s per damper geometry).
+"""On-disk cache of the fast model's tables (60 factorisations of the Reynolds operator, ~1.6 s per damper geometry).
 
 Every process of a run or a sweep would otherwise rebuild the same tables. The file name is the SHA-256 of
 the table's arguments and of the source of the modules that compute it (reynolds_fe.py, fast.py), so a
