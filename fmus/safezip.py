@@ -43,6 +43,8 @@ class UnsafeArchiveError(ArchiveError):
 
 def open_zip(path: str | Path, what: str = "FMU") -> zipfile.ZipFile:
     path = Path(path)
+    if path.is_dir():
+        raise IsADirectoryError(f"{what} file {path} is a folder, not an {what} file")
     if not path.is_file():
         raise FileNotFoundError(f"{what} file {path} not found")
     if not zipfile.is_zipfile(path):

@@ -161,6 +161,8 @@ def apply_swap(sc, component: str, implementation: str, parameters: Mapping[str,
     impl = str(implementation)
     if impl.lower().endswith(".fmu"):
         path = Path(impl).expanduser().resolve()
+        if path.is_dir():
+            raise IsADirectoryError(f"swap {component}: FMU file {path} is a folder, not an FMU file")
         if not path.is_file():
             raise FileNotFoundError(f"swap {component}: FMU file {path} not found")
         spec.fmu, spec.implementation = str(path), None

@@ -99,45 +99,64 @@ def test_scenario_numbers_that_are_not(tmp, header, key, value):
     assert not out.exists()
 
 
+#: case -> (scenario text, what the one line must say)
 STRUCTURE = {
-    "empty": "",
-    "binary": "\x00\x01\x02garbage\xff",
-    "truncated": TOY_TEXT[: len(TOY_TEXT) // 2],
-    "unknown table": TOY_TEXT + "\n[shedule]\nstep = 1e-3\n",
-    "duplicate key": TOY_TEXT.replace("step = 1e-3", "step = 1e-3\nstep = 2e-3", 1),
-    "extends a missing file": '[scenario]\nextends = "nope.toml"\nname = "x"\n',
-    "extends itself": '[scenario]\nextends = "s.toml"\nname = "x"\n',
-    "unknown implementation": TOY_TEXT.replace("testing.thermal_node", "testing.thermal_nod"),
-    "implementation and fmu": TOY_TEXT.replace('implementation = "testing.thermal_node"',
-                                               'implementation = "testing.thermal_node"\nfmu = "x.fmu"'),
-    "missing fmu": TOY_TEXT.replace('implementation = "testing.thermal_node"', 'fmu = "nowhere.fmu"'),
-    "fmu is a folder": TOY_TEXT.replace('implementation = "testing.thermal_node"', 'fmu = "."'),
-    "unknown port": TOY_TEXT.replace('from = "osc.P"', 'from = "osc.Power"'),
-    "unknown component in a connection": TOY_TEXT.replace('to = "node.P"', 'to = "nod.P"'),
-    "input used as an output": TOY_TEXT.replace('from = "osc.P"', 'from = "osc.T"'),
-    "dangling input": TOY_TEXT.replace('from = "node.T"\nto = "osc.T"', 'from = "node.T"\nto = "node.P"'),
-    "unknown parameter": TOY_TEXT.replace("C = 10.0", "Cap = 10.0"),
-    "negative record step": TOY_TEXT.replace("record_step = 1e-3", "record_step = -1e-3"),
-    "no intervals": TOY_TEXT.replace("intervals = [", "intervals_ = ["),
-    "hold window longer than every TM interval": TOY_TEXT.replace("hold_cycles = 5", "hold_cycles = 1e12"),
-    "restart ramp that never ends": TOY_TEXT.replace("hold_cycles = 5", "hold_cycles = 5\nrestart_cycles = 1e12"),
-    "record an unknown signal": TOY_TEXT.replace('"node.T"]', '"node.Tx"]'),
-    "speed no step can sample": TOY_TEXT.replace("speed_rpm = 2700.0", "speed_rpm = 1e12"),
-    "auto hold window beyond tm_max": TOY_TEXT.replace('kind = "timeline"', 'kind = "auto"').replace(
-        "hold_cycles = 5", "hold_cycles = 1e308"),
-    "coupling passes that hang": TOY_TEXT.replace("[algorithm]", "[algorithm]\niterations = 1000000000000"),
-    "unknown schedule kind": TOY_TEXT.replace('kind = "timeline"', 'kind = "staggered"'),
-    "unknown algorithm": TOY_TEXT.replace('kind = "gauss-seidel"', 'kind = "gauss"'),
-    "component named with a dot": TOY_TEXT.replace("[components.node]", '[components."no.de"]'),
+    "empty": ("", r"no components"),
+    "binary": ("\x00\x01\x02garbage\xff", r"s\.toml:1: not valid TOML"),
+    "truncated": (TOY_TEXT[: len(TOY_TEXT) // 2], r"s\.toml: not valid TOML"),
+    "unknown table": (TOY_TEXT + "\n[shedule]\nstep = 1e-3\n", r"\[shedule\]: unknown table \(did you mean 'schedule'"),
+    "duplicate key": (TOY_TEXT.replace("step = 1e-3", "step = 1e-3\nstep = 2e-3", 1), r"s\.toml:\d+: not valid TOML"),
+    "extends a missing file": ('[scenario]\nextends = "nope.toml"\nname = "x"\n', r"nope\.toml not found"),
+    "extends itself": ('[scenario]\nextends = "s.toml"\nname = "x"\n', r"'extends' loops back on itself"),
+    "unknown implementation": (TOY_TEXT.replace("testing.thermal_node", "testing.thermal_nod"),
+                               r"unknown component implementation 'testing\.thermal_nod'"),
+    "implementation and fmu": (TOY_TEXT.replace('implementation = "testing.thermal_node"',
+                                                'implementation = "testing.thermal_node"\nfmu = "x.fmu"'),
+                               r"give exactly one of 'implementation'"),
+    "missing fmu": (TOY_TEXT.replace('implementation = "testing.thermal_node"', 'fmu = "nowhere.fmu"'),
+                    r"nowhere\.fmu not found"),
+    "fmu is a folder": (TOY_TEXT.replace('implementation = "testing.thermal_node"', 'fmu = "."'),
+                        r"is a folder, not an FMU file"),
+    "unknown port": (TOY_TEXT.replace('from = "osc.P"', 'from = "osc.Power"'), r"has no output 'Power'"),
+    "unknown component in a connection": (TOY_TEXT.replace('to = "node.P"', 'to = "nod.P"'),
+                                          r"no component 'nod' \(did you mean 'node'"),
+    "input used as an output": (TOY_TEXT.replace('from = "osc.P"', 'from = "osc.T"'),
+                                r"osc\.T is an input of component 'osc'"),
+    "dangling input": (TOY_TEXT.replace('from = "node.T"\nto = "osc.T"', 'from = "node.T"\nto = "node.P"'),
+                       r"node\.T -> node\.P: units differ"),
+    "unknown parameter": (TOY_TEXT.replace("C = 10.0", "Cap = 10.0"), r"has no parameter 'Cap'"),
+    "negative record step": (TOY_TEXT.replace("record_step = 1e-3", "record_step = -1e-3"),
+                             r"\[outputs\] record_step: must be a positive number"),
+    "no intervals": (TOY_TEXT.replace("intervals = [", "intervals_ = ["),
+                     r"intervals_: unknown key \(did you mean 'intervals'"),
+    "hold window longer than every TM interval": (TOY_TEXT.replace("hold_cycles = 5", "hold_cycles = 1e12"),
+                                                  r"\[schedule\] hold_cycles: .* could never fill"),
+    "restart ramp that never ends": (TOY_TEXT.replace("hold_cycles = 5", "hold_cycles = 5\nrestart_cycles = 1e12"),
+                                     r"\[schedule\] restart_cycles: 1e\+12 cycles"),
+    "record an unknown signal": (TOY_TEXT.replace('"node.T"]', '"node.Tx"]'), r"unknown signal 'node\.Tx'"),
+    "speed no step can sample": (TOY_TEXT.replace("speed_rpm = 2700.0", "speed_rpm = 1e12"),
+                                 r"\[schedule\] speed_rpm: .* no cycle can be sampled"),
+    "auto hold window beyond tm_max": (TOY_TEXT.replace('kind = "timeline"', 'kind = "auto"').replace(
+        "hold_cycles = 5", "hold_cycles = 1e308"), r"\[schedule\] hold_cycles: 1e\+308 cycles"),
+    "coupling passes that hang": (TOY_TEXT.replace("[algorithm]", "[algorithm]\niterations = 1000000000000"),
+                                  r"iterations must be within \[1, 1000\]"),
+    "unknown schedule kind": (TOY_TEXT.replace('kind = "timeline"', 'kind = "staggered"'),
+                              r"\[schedule\] kind: 'staggered' is not one of"),
+    "unknown algorithm": (TOY_TEXT.replace('kind = "gauss-seidel"', 'kind = "gauss"'),
+                          r"\[algorithm\] kind: 'gauss' is not one of"),
+    "component named with a dot": (TOY_TEXT.replace("[components.node]", '[components."no.de"]'),
+                                   r"component names must be non-empty and contain no '\.'"),
 }
 
 
 @pytest.mark.parametrize("case", sorted(STRUCTURE))
 def test_scenario_structure(tmp, case):
+    text, says = STRUCTURE[case]
     f = tmp / "s.toml"
-    f.write_text(STRUCTURE[case])
+    f.write_text(text)
     out = tmp / "o"
-    refused(tmp, [*RUN, str(f), "--out", str(out)], out=out)
+    line = refused(tmp, [*RUN, str(f), "--out", str(out)], out=out)
+    assert re.search(says, line), line   # the problem is named, not only refused
 
 
 def test_a_record_step_longer_than_the_run_records_its_first_sample(tmp):
@@ -153,10 +172,14 @@ def test_a_record_step_longer_than_the_run_records_its_first_sample(tmp):
 
 
 def test_scenario_paths(tmp):
-    refused(tmp, [*RUN, str(tmp / "missing.toml"), "--out", str(tmp / "o")], "not found")
-    refused(tmp, [*RUN, str(tmp), "--out", str(tmp / "o")], "is a folder")
+    line = refused(tmp, [*RUN, str(tmp / "missing.toml"), "--out", str(tmp / "o")])
+    assert re.search(r"missing\.toml not found", line), line
+    line = refused(tmp, [*RUN, str(tmp), "--out", str(tmp / "o")])
+    assert re.search(r"is a folder, not a TOML file", line), line
     (tmp / "x.ssp").write_text("not a zip")
-    refused(tmp, [*RUN, str(tmp / "x.ssp"), "--out", str(tmp / "o")])
+    line = refused(tmp, [*RUN, str(tmp / "x.ssp"), "--out", str(tmp / "o")])
+    assert re.search(r"x\.ssp is not a zip archive", line), line
+    assert not (tmp / "o").exists()   # refused before any run: no output folder
 
 
 # -- --set values ------------------------------------------------------------------------------------------
@@ -167,7 +190,9 @@ SET_VALUES = ["nan", "inf", "-inf", "abc", "true", "[1,2]", "", "1e999"]
 @pytest.mark.parametrize("param", ["osc.m", "osc.k", "osc.max_substep", "node.C", "node.R", "node.Ta"])
 def test_set_values(tmp, param, value):
     out = tmp / "o"
-    refused(tmp, [*RUN, "toy_thermomechanical", "--set", f"{param}={value}", "--out", str(out)], out=out)
+    line = refused(tmp, [*RUN, "toy_thermomechanical", "--set", f"{param}={value}", "--out", str(out)], out=out)
+    assert param in line, line   # the parameter is named
+    assert re.search(r"not a finite number|expected a number|expected 1 value|an empty value", line), line
 
 
 @pytest.mark.parametrize("text, message", [
@@ -177,7 +202,8 @@ def test_set_values(tmp, param, value):
 ])
 def test_set_mistakes(tmp, text, message):
     out = tmp / "o"
-    refused(tmp, [*RUN, "toy_thermomechanical", "--set", text, "--out", str(out)], message, out=out)
+    line = refused(tmp, [*RUN, "toy_thermomechanical", "--set", text, "--out", str(out)], out=out)
+    assert re.search(message, line), line
 
 
 # -- FMU and SSP archives ----------------------------------------------------------------------------------
@@ -270,7 +296,17 @@ def test_fmu_archives(tmp, archives, case):
 def test_fmu_of_another_component(tmp, archives):
     """The node's FMU in the oscillator's place: its ports are not the oscillator's."""
     out = tmp / "o"
-    refused(tmp, [*RUN, "toy_thermomechanical", "--swap", f"osc={archives[0]}", "--out", str(out)], out=out)
+    line = refused(tmp, [*RUN, "toy_thermomechanical", "--swap", f"osc={archives[0]}", "--out", str(out)], out=out)
+    assert re.search(r"osc\.P is an input of component 'osc' \(FMUComponent\)", line), line
+
+
+def test_fmu_path_that_is_a_folder(tmp):
+    """--swap with a folder named like an FMU (an unpacked FMU, say): named as a folder, not as 'not found'."""
+    (tmp / "node.fmu").mkdir()
+    out = tmp / "o"
+    line = refused(tmp, [*RUN, "toy_thermomechanical", "--swap", f"node={tmp / 'node.fmu'}", "--out", str(out)])
+    assert re.search(r"swap node: FMU file .*node\.fmu is a folder, not an FMU file", line), line
+    assert not out.exists()
 
 
 def _ssd(fn):
