@@ -154,6 +154,9 @@ def compare(out: Path, duration=2.0, unbalance=2850.0, scenario="blade_loss", re
     for sc_k, sch in plans.values():  # a run's own checks (duration, budget) for both, before anything runs
         check_run(sc_k, sch)
     ensure_folder(out)  # every input checked: only now is a folder made (the runs' messages, rundir.py)
+    # --overwrite replaces the runs: the previous table goes now, so that an interrupted comparison never leaves
+    # it beside runs it does not describe
+    (out / "table6.json").unlink(missing_ok=True)
     _warm_up(scenario, out, _quantum(sc))
     scenarios, loads = {}, {}
     for i, kind in enumerate(kinds, 1):

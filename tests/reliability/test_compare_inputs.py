@@ -68,3 +68,21 @@ def test_an_out_folder_holding_a_comparison_is_refused_before_any_run(tmp_path, 
     assert len(err) == 1 and "already holds a comparison (staggered)" in err[0] and "--overwrite" in err[0]
     assert "--resume" not in err[0]
     assert (out / "staggered" / "summary.json").read_text() == "{}" and not (out / "monolithic").exists()
+
+
+def test_an_interrupted_overwrite_leaves_no_previous_table(tmp_path, monkeypatch):
+    """compare --overwrite interrupted during its runs: the previous table6.json is gone, not left beside runs it
+    does not describe (it was kept, with the new runs' folders half made, before)."""
+    from rotorcosim.master.commands import compare as cmp
+
+    out = tmp_path / "cmp"
+    out.mkdir()
+    (out / "table6.json").write_text('{"speedup": 99}')
+
+    def interrupted(*args, **kwargs):
+        raise KeyboardInterrupt
+
+    monkeypatch.setattr(cmp, "_warm_up", lambda *a, **k: None)
+    monkeypatch.setattr(cmp, "execute", interrupted)
+    assert main(["compare", "--duration", "2", "--unbalance", "712", "--out", str(out), "--quiet", "--overwrite"]) == 130
+    assert not (out / "table6.json").exists()
