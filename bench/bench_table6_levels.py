@@ -26,7 +26,12 @@ def main() -> None:
     ap.add_argument("--duration", type=float, default=2.0)
     ap.add_argument("--out", default=None, help="keep the comparisons here (default: a temporary folder)")
     a = ap.parse_args()
-    levels = parse_levels(a.levels)
+    try:
+        levels = parse_levels(a.levels)
+    except ValueError as exc:
+        ap.error(str(exc).replace("--unbalance", "--levels"))
+    if a.rounds < 1:
+        ap.error(f"--rounds must be at least 1, got {a.rounds}")
     keep = Path(a.out) if a.out else None
     ratios = {f: [] for f in levels}
     with tempfile.TemporaryDirectory() as tmp:
