@@ -53,3 +53,22 @@ def test_numpy_imported_first_with_threads_gives_the_command_lines_numbers(tmp_p
     for name in a:
         assert a[name].shape == b[name].shape, name
         assert np.array_equal(a[name], b[name]), f"{name}: max difference {np.max(np.abs(a[name] - b[name]))}"
+
+
+def test_a_dask_worker_gives_the_command_lines_numbers(tmp_path):
+    """The blade-loss case of a sweep, run in a Dask worker process, gives the command line's numbers bit for bit:
+    the sweep runs the same model (scenario resolution, unbalance setting, engine) in another process. (Dask's
+    nanny starts its workers with one BLAS thread of its own accord, so this does not test master/threads.py;
+    the test above does.)"""
+    from rotorcosim.master.commands.sweep import sweep
+
+    cli = tmp_path / "cli"
+    subprocess.run([sys.executable, "-m", "rotorcosim.master.cli", "run", *ARGS[:3], "--unbalance", "2850",
+                    *ARGS[3:], "--out", str(cli)], env=_env(), check=True, timeout=600, capture_output=True)
+    info = sweep([2850.0], tmp_path / "dask", "blade_loss", duration=0.002, workers=1)
+    assert not info["errors"], info["errors"]
+    assert info["executed_on"] != "serial"
+    a, b = _series(cli), _series(tmp_path / "dask" / "F_2850")
+    assert sorted(a) == sorted(b) and len(a) > 2
+    for name in a:
+        assert np.array_equal(a[name], b[name]), f"{name}: max difference {np.max(np.abs(a[name] - b[name]))}"
