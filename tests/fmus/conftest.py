@@ -5,11 +5,7 @@ import sys
 from pathlib import Path
 
 import pytest
-
-sys.path.insert(0, str(Path(__file__).parent))
-
-from fmu_helpers import (build_python_fmu, export_toy, model_description, set_attributes,  # noqa: E402
-                         with_model_description)
+from fmu_helpers import build_python_fmu, export_toy, model_description, set_attributes, with_model_description
 
 
 @pytest.fixture(scope="session")

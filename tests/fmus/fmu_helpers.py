@@ -91,6 +91,21 @@ def with_model_description(src: Path, dst: Path, xml: str) -> Path:
     return dst
 
 
+def rebuild(src: Path, dst: Path, edit=None, extra=()) -> Path:
+    """Copy the zip ``src`` (an FMU or SSP archive) to ``dst``; ``edit(name, data) -> data | None`` changes or
+    drops entries, ``extra`` is ``(name, data)`` pairs added at the end."""
+    with zipfile.ZipFile(src) as zin, zipfile.ZipFile(dst, "w", zipfile.ZIP_DEFLATED) as zout:
+        for info in zin.infolist():
+            data = zin.read(info)
+            if edit is not None:
+                data = edit(info.filename, data)
+            if data is not None:
+                zout.writestr(info.filename, data)
+        for name, data in extra:
+            zout.writestr(name, data)
+    return dst
+
+
 def set_attributes(xml: str, name: str, tag: str, attrs: str, new_tag: str | None = None) -> str:
     """Add ``attrs`` (text) to the type element ``tag`` of the FMI 2.0 variable ``name`` (optionally renaming
     the element), or to the FMI 3.0 variable element ``tag name="..."``."""

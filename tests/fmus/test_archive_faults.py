@@ -7,7 +7,7 @@ import zipfile
 from pathlib import Path
 
 import pytest
-from fmu_helpers import TOY
+from fmu_helpers import TOY, rebuild
 
 from rotorcosim.fmus import safezip
 from rotorcosim.fmus.importer import FMUError, load_fmu_component
@@ -26,20 +26,6 @@ def private_tmp(tmp_path, monkeypatch):
     t.mkdir()
     monkeypatch.setattr(tempfile, "tempdir", str(t))
     return t
-
-
-def rebuild(src: Path, dst: Path, edit=None, extra=()) -> Path:
-    """Copy the zip ``src`` to ``dst``; ``edit(name, data) -> data | None`` changes or drops entries."""
-    with zipfile.ZipFile(src) as zin, zipfile.ZipFile(dst, "w", zipfile.ZIP_DEFLATED) as zout:
-        for info in zin.infolist():
-            data = zin.read(info)
-            if edit is not None:
-                data = edit(info.filename, data)
-            if data is not None:
-                zout.writestr(info.filename, data)
-        for name, data in extra:
-            zout.writestr(name, data)
-    return dst
 
 
 def edit_ssd(fn):

@@ -17,12 +17,12 @@ import re
 import shutil
 import tempfile
 import warnings
-import zipfile
 from contextlib import redirect_stderr, redirect_stdout
 from pathlib import Path
 
 import pytest
 
+from fmu_helpers import rebuild  # tests/fmus (pytest's pythonpath)
 from rotorcosim import scenarios
 from rotorcosim.master.cli import main
 
@@ -221,19 +221,6 @@ def archives(tmp_path_factory):
     return fmu, ssp
 
 
-def _rezip(src: Path, dst: Path, edit=None, extra=(), raw_names=()) -> Path:
-    with zipfile.ZipFile(src) as zin, zipfile.ZipFile(dst, "w", zipfile.ZIP_DEFLATED) as zout:
-        for info in zin.infolist():
-            data = zin.read(info)
-            if edit is not None:
-                data = edit(info.filename, data)
-            if data is not None:
-                zout.writestr(info.filename, data)
-        for name, data in extra:
-            zout.writestr(name, data)
-    return dst
-
-
 def _write(dst: Path, data: bytes) -> Path:
     dst.write_bytes(data)
     return dst
@@ -243,7 +230,7 @@ def _declared_huge(src: Path, dst: Path) -> Path:
     """``src`` plus a 10-byte entry whose headers declare 4 GB uncompressed (central directory and local header)."""
     import struct
 
-    _rezip(src, dst, extra=[("resources/big.bin", b"0123456789")])
+    rebuild(src, dst, extra=[("resources/big.bin", b"0123456789")])
     data = bytearray(dst.read_bytes())
     name = b"resources/big.bin"
     for sig, offset in ((b"PK\x01\x02", 24), (b"PK\x03\x04", 22)):
@@ -266,20 +253,20 @@ FMU_FAULTS = {
     "truncated": lambda src, dst: _write(dst, src.read_bytes()[: src.stat().st_size // 2]),
     "empty": lambda src, dst: _write(dst, b""),
     "not a zip": lambda src, dst: _write(dst, b"modelDescription.xml"),
-    "zip slip": lambda src, dst: _rezip(src, dst, extra=[("../../escaped.txt", b"x")]),
-    "absolute entry": lambda src, dst: _rezip(src, dst, extra=[("/tmp/absolute_corpus.txt", b"x")]),
-    "zip bomb": lambda src, dst: _rezip(src, dst, extra=[("resources/zeros.bin", bytes(64 * 1024 ** 2))]),
+    "zip slip": lambda src, dst: rebuild(src, dst, extra=[("../../escaped.txt", b"x")]),
+    "absolute entry": lambda src, dst: rebuild(src, dst, extra=[("/tmp/absolute_corpus.txt", b"x")]),
+    "zip bomb": lambda src, dst: rebuild(src, dst, extra=[("resources/zeros.bin", bytes(64 * 1024 ** 2))]),
     "huge declared size": _declared_huge,
-    "no model description": lambda src, dst: _rezip(src, dst, lambda n, d: None if n == "modelDescription.xml"
+    "no model description": lambda src, dst: rebuild(src, dst, lambda n, d: None if n == "modelDescription.xml"
                                                     else d),
-    "garbage model description": lambda src, dst: _rezip(src, dst, _md(lambda t: "<fmiModelDescription")),
-    "entity bomb": lambda src, dst: _rezip(src, dst, _md(lambda t: re.sub(
+    "garbage model description": lambda src, dst: rebuild(src, dst, _md(lambda t: "<fmiModelDescription")),
+    "entity bomb": lambda src, dst: rebuild(src, dst, _md(lambda t: re.sub(
         r"^(<\?xml[^>]*\?>)?", lambda m: (m.group(0) or "") + '<!DOCTYPE fmiModelDescription [<!ENTITY a '
         '"aaaaaaaaaa"><!ENTITY b "&a;&a;&a;&a;&a;&a;&a;&a;">]>', t, count=1))),
-    "FMI 1.0": lambda src, dst: _rezip(src, dst, _md(lambda t: re.sub(r'fmiVersion="[^"]*"', 'fmiVersion="1.0"',
+    "FMI 1.0": lambda src, dst: rebuild(src, dst, _md(lambda t: re.sub(r'fmiVersion="[^"]*"', 'fmiVersion="1.0"',
                                                                       t, count=1))),
-    "no binaries": lambda src, dst: _rezip(src, dst, lambda n, d: None if n.startswith("binaries/") else d),
-    "model exchange only": lambda src, dst: _rezip(src, dst, _md(lambda t: t.replace("<CoSimulation",
+    "no binaries": lambda src, dst: rebuild(src, dst, lambda n, d: None if n.startswith("binaries/") else d),
+    "model exchange only": lambda src, dst: rebuild(src, dst, _md(lambda t: t.replace("<CoSimulation",
                                                                                      "<ModelExchange"))),
 }
 
@@ -316,22 +303,22 @@ def _ssd(fn):
 SSP_FAULTS = {
     "truncated": lambda src, dst: _write(dst, src.read_bytes()[: src.stat().st_size // 2]),
     "not a zip": lambda src, dst: _write(dst, b"SystemStructure.ssd"),
-    "zip slip": lambda src, dst: _rezip(src, dst, extra=[("../../escaped.txt", b"x")]),
-    "no structure": lambda src, dst: _rezip(src, dst, lambda n, d: None if n == "SystemStructure.ssd" else d),
-    "garbage structure": lambda src, dst: _rezip(src, dst, _ssd(lambda t: t[: len(t) // 3])),
-    "entity bomb": lambda src, dst: _rezip(src, dst, _ssd(lambda t: t.replace(
+    "zip slip": lambda src, dst: rebuild(src, dst, extra=[("../../escaped.txt", b"x")]),
+    "no structure": lambda src, dst: rebuild(src, dst, lambda n, d: None if n == "SystemStructure.ssd" else d),
+    "garbage structure": lambda src, dst: rebuild(src, dst, _ssd(lambda t: t[: len(t) // 3])),
+    "entity bomb": lambda src, dst: rebuild(src, dst, _ssd(lambda t: t.replace(
         "<?xml version='1.0' encoding='UTF-8'?>", '<?xml version="1.0"?><!DOCTYPE x [<!ENTITY a "a">]>'))),
-    "fmu outside": lambda src, dst: _rezip(src, dst, _ssd(lambda t: t.replace('source="resources/node.fmu"',
+    "fmu outside": lambda src, dst: rebuild(src, dst, _ssd(lambda t: t.replace('source="resources/node.fmu"',
                                                                              'source="../../node.fmu"'))),
-    "fmu missing": lambda src, dst: _rezip(src, dst, lambda n, d: None if n == "resources/node.fmu" else d),
-    "fmu corrupt": lambda src, dst: _rezip(src, dst, lambda n, d: d[:100] if n == "resources/node.fmu" else d),
-    "parameter in an unknown unit": lambda src, dst: _rezip(src, dst, _ssd(lambda t: t.replace(
+    "fmu missing": lambda src, dst: rebuild(src, dst, lambda n, d: None if n == "resources/node.fmu" else d),
+    "fmu corrupt": lambda src, dst: rebuild(src, dst, lambda n, d: d[:100] if n == "resources/node.fmu" else d),
+    "parameter in an unknown unit": lambda src, dst: rebuild(src, dst, _ssd(lambda t: t.replace(
         '<ssv:Real value="10.0" />', '<ssv:Real value="10.0" unit="furlong" />'))),
-    "parameter in a unit of another quantity": lambda src, dst: _rezip(src, dst, _ssd(lambda t: t.replace(
+    "parameter in a unit of another quantity": lambda src, dst: rebuild(src, dst, _ssd(lambda t: t.replace(
         '<ssv:Real value="10.0" />', '<ssv:Real value="10.0" unit="m" />'))),
-    "parameter not a number": lambda src, dst: _rezip(src, dst, _ssd(lambda t: t.replace(
+    "parameter not a number": lambda src, dst: rebuild(src, dst, _ssd(lambda t: t.replace(
         '<ssv:Real value="10.0" />', '<ssv:Real value="ten" />'))),
-    "parameter file outside": lambda src, dst: _rezip(src, dst, _ssd(lambda t: t.replace(
+    "parameter file outside": lambda src, dst: rebuild(src, dst, _ssd(lambda t: t.replace(
         '<ssd:ParameterBinding type="application/x-ssp-parameter-set">',
         '<ssd:ParameterBinding type="application/x-ssp-parameter-set" source="../../etc/passwd">'))),
 }
