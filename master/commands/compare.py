@@ -18,10 +18,13 @@ matplotlib while the run goes) took a share of the ~1 s staggered run (speed-up 
 their figures (the same files as ``rotorcosim run`` draws) are drawn from each folder's time series after the
 second timed run ends.
 
-The staggered run (paper schedule) is timed twice, before and after the monolithic run (the second into a folder
-removed afterwards, its results checked equal to the first's): ``wall_time_s``/``cpu_time_s`` of the staggered run
-are the mean of the two, ``staggered_runs`` keeps both timings. This machine's speed drifts by 10-20 % over
-seconds, and the mean of the runs on either side of the monolithic run follows the speed the monolithic run saw.
+The staggered run (paper schedule) is timed ``--timing-runs`` times (default 6), half before and half after the
+monolithic run (the first into ``staggered/``, the others into folders removed afterwards, each one's results
+checked equal to the first's): ``wall_time_s``/``cpu_time_s`` of the staggered run are the MEAN of those timings
+(not the least: that would bias the ratio), ``staggered_runs`` keeps every one. This machine's speed drifts by
++-20 % within seconds: the ~13 s monolithic run averages it, one ~1 s staggered run is one sample of it (the
+same level's speed-up spread 11.5-14.0 with one timing on either side); the mean of several timings on either
+side of the monolithic run follows the speed the monolithic run saw, and a linear drift cancels.
 """
 from __future__ import annotations
 
@@ -43,6 +46,11 @@ from .run import apply_unbalance, execute, resolve
 #: Table 6's rows (no rub power: there is no rub at 2850 N)
 KEYS = ("whirl_amplitude_mm", "transmissibility", "max_contact_load_N", "max_contact_stress_MPa", "drag_power_W",
         "sfd_power_W", "T_inner_race_C", "T_ball_C", "T_outer_race_C", "T_sfd_oil_C")
+#: timings of the staggered run (--timing-runs): half before, half after the monolithic run. Measured at 2 850 N on
+#: the shared 2-core VM, one ~1 s staggered run cost 0.79-1.12 s of CPU seconds apart (the same work, the same
+#: bearing sub-steps); the mean of 6 narrows such a spread up to sqrt(6) = 2.4 times for ~5 s more per comparison
+#: (the monolithic run takes ~13 s)
+TIMING_RUNS = 6
 
 
 def add_arguments(p):
@@ -66,6 +74,10 @@ def add_arguments(p):
                         "schedule over --duration)")
     p.add_argument("--tolerance", type=float, default=None, metavar="PCT",
                    help="with --schedule auto: the largest Table 4 error accepted, percent (see rotorcosim run)")
+    p.add_argument("--timing-runs", type=int, default=TIMING_RUNS, metavar="N",
+                   help=f"timings of the staggered run (paper schedule, monolithic run made here), half before and "
+                        f"half after the monolithic run; its time in table6.json (wall_time_s, cpu_time_s) is their "
+                        f"mean, each one kept in staggered_runs (default {TIMING_RUNS}; 1: a single timing)")
     p.add_argument("--monolithic", default=None, metavar="DIR",
                    help="reuse the monolithic run in DIR (a previous comparison's monolithic/ folder of the same "
                         "scenario, unbalance and duration) instead of running it again")
@@ -124,11 +136,14 @@ def _warm_up(scenario: str, out: Path, quantum: float) -> None:
 
 
 def compare(out: Path, duration=2.0, unbalance=2850.0, scenario="blade_loss", revolutions=40.0, bearing=0,
-            quiet=True, figures=True, overwrite=False, schedule="paper", tolerance=None, monolithic=None) -> dict:
+            quiet=True, figures=True, overwrite=False, schedule="paper", tolerance=None, monolithic=None,
+            timing_runs=TIMING_RUNS) -> dict:
     if not (duration > 0 and duration < float("inf")):
         raise ValueError(f"--duration must be a positive number of seconds, got {duration}")
     if not (revolutions > 0 and revolutions < float("inf")):  # was "cannot convert float NaN to integer"
         raise ValueError(f"--revolutions must be a positive number of rotor revolutions, got {revolutions}")
+    if isinstance(timing_runs, bool) or not isinstance(timing_runs, int) or timing_runs < 1:
+        raise ValueError(f"--timing-runs must be a whole number of timings >= 1, got {timing_runs!r}")
     out = check_folder(out)   # made only once every input is checked (ensure_folder, below)
     if schedule not in ("paper", "auto"):
         raise ValueError(f"--schedule must be 'paper' or 'auto', got {schedule!r}")
@@ -159,6 +174,10 @@ def compare(out: Path, duration=2.0, unbalance=2850.0, scenario="blade_loss", re
     (out / "table6.json").unlink(missing_ok=True)
     _warm_up(scenario, out, _quantum(sc))
     scenarios, loads = {}, {}
+    # the staggered run's timings (its own, then the repeats): half of them before the monolithic run
+    repeats = timing_runs if monolithic is None and schedule == "paper" else 1
+    before = (repeats + 1) // 2
+    timings = []
     for i, kind in enumerate(kinds, 1):
         if kind in runs:
             continue
@@ -179,13 +198,16 @@ def compare(out: Path, duration=2.0, unbalance=2850.0, scenario="blade_loss", re
         runs[kind] = execute(sc, out / kind, figures=figures and not later, quiet=quiet, schedule=sch,
                              overwrite=overwrite, checkpoint_every=None)
         loads[kind] = [load, _load()]
-        if kind == "staggered":
-            again = (sc, sch)
         if not quiet:
             print(f"[{i}/{len(kinds)}] {kind}: done in {runs[kind]['wall_time_s']:.3g} s", file=sys.stderr, flush=True)
+        if kind == "staggered":
+            again = (sc, sch)
+            timings.append((runs[kind], loads[kind]))
+            timings += _time_again(out, sc, sch, before - 1, len(timings), repeats, quiet)
     repeat = None
-    if monolithic is None and schedule == "paper":
-        repeat = _time_again(out, *again, runs["staggered"], quiet)
+    if repeats > 1:
+        timings += _time_again(out, *again, repeats - before, len(timings), repeats, quiet)
+        repeat = _timings(timings, before)
     if scenarios:
         _draw(out, scenarios, quiet)
     results = {}
@@ -196,10 +218,10 @@ def compare(out: Path, duration=2.0, unbalance=2850.0, scenario="blade_loss", re
         results[key] = {"staggered": a, "monolithic": b, "rel_error_pct": err}
     wall = {k: runs[k]["wall_time_s"] for k in runs}
     cpu = {k: runs[k].get("cpu_time_s") for k in runs}
-    if repeat is not None:  # the staggered run's time: the mean of its runs before and after the monolithic one
-        wall["staggered"] = sum(repeat["wall_time_s"]) / 2
+    if repeat is not None:  # the staggered run's time: the mean of its timings before and after the monolithic one
+        wall["staggered"] = sum(repeat["wall_time_s"]) / len(repeat["wall_time_s"])
         if None not in repeat["cpu_time_s"]:
-            cpu["staggered"] = sum(repeat["cpu_time_s"]) / 2
+            cpu["staggered"] = sum(repeat["cpu_time_s"]) / len(repeat["cpu_time_s"])
     table = {"bearing": bearing, "duration_s": duration, "unbalance_N": unbalance, "revolutions_tm": revolutions,
              "results": results, "wall_time_s": wall, "speedup": wall["monolithic"] / wall["staggered"],
              # the machine's 1-minute load average before and after each timed run: on a shared machine the wall
@@ -208,8 +230,9 @@ def compare(out: Path, duration=2.0, unbalance=2850.0, scenario="blade_loss", re
              "cpu_time_s": cpu, "speedup_cpu": (cpu["monolithic"] / cpu["staggered"]
                                                 if cpu["monolithic"] and cpu["staggered"] else None),
              "largest_error_pct": max((v["rel_error_pct"] or 0.0) for v in results.values()),
-             # each timing of the staggered run (before and after the monolithic run) and whether the two gave the
-             # same results (they must: a run is deterministic); None where it ran once
+             # each timing of the staggered run (the first ``before_monolithic`` before the monolithic run, the others
+             # after it) and whether they all gave the same results (they must: a run is deterministic); None where
+             # it ran once
              "staggered_runs": repeat,
              "schedule": schedule, "tolerance_pct": tolerance, "hold": runs["staggered"].get("hold"),
              "monolithic_reused_from": str(monolithic) if monolithic is not None else None,
@@ -218,25 +241,50 @@ def compare(out: Path, duration=2.0, unbalance=2850.0, scenario="blade_loss", re
     return table
 
 
-def _time_again(out: Path, sc, sch, first: dict, quiet: bool) -> dict:
-    """The staggered run once more, after the monolithic one, into a folder that is then removed: the VM's speed
-    drifts by +-10-20 % over seconds (the same run measured 0.61-1.39 s in one hour on a quiet machine), so one
-    timing of a ~1 s run against one of a ~10 s run made the speed-up a single sample spread 9.6-14.4 at one
-    level; the mean of the staggered timings before and after the monolithic run follows the machine's speed
-    during the monolithic run (a linear drift cancels). Both runs' Table 4 results must be equal."""
-    if not quiet:
-        print("staggered again: its timing after the monolithic run", file=sys.stderr, flush=True)
-    load = _load()
-    with tempfile.TemporaryDirectory(dir=out) as tmp:
-        second = execute(sc, Path(tmp) / "staggered", figures=False, quiet=quiet, schedule=sch,
-                         checkpoint_every=None)
-    same = second.get("bearings") == first.get("bearings")
+def _time_again(out: Path, sc, sch, count: int, done: int, total: int, quiet: bool) -> list:
+    """``count`` more timings of the staggered run, each into a folder removed afterwards: [(summary, [load before,
+    after])]. The VM's speed drifts by +-20 % within seconds (the same run measured 0.61-1.39 s in one hour on a
+    quiet machine), so one timing of a ~1 s run against one of a ~13 s run made the speed-up a single sample
+    spread 9.6-14.4 at one level: the mean of several timings on either side of the monolithic run follows the
+    machine's speed during the monolithic run (a linear drift cancels)."""
+    out_runs = []
+    for j in range(count):
+        if not quiet:
+            print(f"staggered again: timing {done + j + 1} of {total}", file=sys.stderr, flush=True)
+        load = _load()
+        with tempfile.TemporaryDirectory(dir=out) as tmp:
+            summary = execute(sc, Path(tmp) / "staggered", figures=False, quiet=quiet, schedule=sch,
+                              checkpoint_every=None)
+        out_runs.append((summary, [load, _load()]))
+    return out_runs
+
+
+#: what must be equal in every timing of the staggered run (a run is deterministic): its Table 4 results, what
+#: the hold measured, the intervals it ran and the components' step counts
+SAME = ("bearings", "hold", "timeline", "component_steps")
+
+
+def _same(a: dict, b: dict) -> bool:
+    """Equal to the bit in every SAME entry (as JSON text: Python writes a float's shortest exact form, and a NaN
+    equals itself there)."""
+    return all(json.dumps(a.get(k), sort_keys=True) == json.dumps(b.get(k), sort_keys=True) for k in SAME)
+
+
+def _timings(timings: list, before: int) -> dict:
+    """table6.json's ``staggered_runs`` from [(summary, [load before, after])], the first the run reported."""
+    first = timings[0][0]
+    same = all(_same(s, first) for s, _ in timings[1:])
     if not same:
-        print("compare: WARNING: the staggered run gave other results the second time (a run must be "
+        print("compare: WARNING: the staggered run gave other results in another timing (a run must be "
               "deterministic); the first run's are reported", file=sys.stderr, flush=True)
-    return {"wall_time_s": [first["wall_time_s"], second["wall_time_s"]],
-            "cpu_time_s": [first.get("cpu_time_s"), second.get("cpu_time_s")],
-            "load_average": [load, _load()], "identical_results": same}
+    repeats = [load for _, load in timings[1:]]
+    return {"wall_time_s": [s["wall_time_s"] for s, _ in timings],
+            "cpu_time_s": [s.get("cpu_time_s") for s, _ in timings],
+            "before_monolithic": before,
+            # the 1-minute load before the first repeated timing and after the last (each: load_average_each)
+            "load_average": [repeats[0][0], repeats[-1][1]],
+            "load_average_each": [load for _, load in timings],
+            "identical_results": same}
 
 
 def _draw(out: Path, scenarios: dict, quiet: bool) -> None:
@@ -298,7 +346,7 @@ def _reuse(folder: Path, unbalance: float, duration: float, name: str | None = N
 def run(args) -> int:
     t = compare(Path(args.out), args.duration, args.unbalance, args.scenario, args.revolutions, args.bearing,
                 quiet=args.quiet, figures=not args.no_figures, overwrite=args.overwrite, schedule=args.schedule,
-                tolerance=args.tolerance, monolithic=args.monolithic)
+                tolerance=args.tolerance, monolithic=args.monolithic, timing_runs=args.timing_runs)
     est = (t.get("hold") or {}).get("estimated_error_pct")
     cpu = f" (CPU time {t['speedup_cpu']:.1f})" if t.get("speedup_cpu") else ""
     print(f"Table 6 (bearing #{t['bearing']}, {t['duration_s']} s, {t['schedule']} schedule): speed-up "

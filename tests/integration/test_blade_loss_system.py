@@ -4,6 +4,7 @@ the time series are written. The physics of each component is verified in tests/
 bench/."""
 import json
 import math
+from pathlib import Path
 
 import h5py
 import numpy as np
@@ -111,15 +112,18 @@ def test_compare_writes_table6(tmp_path):
     intervals of at most 12 revolutions in all and 2 thermal-only ones, and table6.json has the contract's keys."""
     from rotorcosim.master.cli import main
 
-    assert main(["compare", "--duration", "0.1", "--revolutions", "12", "--no-figures", "--out", str(tmp_path)]) == 0
+    assert main(["compare", "--duration", "0.1", "--revolutions", "12", "--no-figures", "--timing-runs", "3",
+                 "--out", str(tmp_path)]) == 0
     t = json.loads((tmp_path / "table6.json").read_text())
     assert set(t["wall_time_s"]) == {"staggered", "monolithic"}
     assert t["speedup"] == pytest.approx(t["wall_time_s"]["monolithic"] / t["wall_time_s"]["staggered"])
-    # the staggered run timed before and after the monolithic one (the VM's speed drifts): the mean is reported,
-    # both kept, the second run's results equal to the first's and its folder removed
+    # the staggered run timed 3 times, 2 before and 1 after the monolithic one (the VM's speed drifts): the mean is
+    # reported, every timing kept, the repeats' results equal to the first's and their folders removed
     rep = t["staggered_runs"]
-    assert len(rep["wall_time_s"]) == 2 and rep["identical_results"] is True
-    assert t["wall_time_s"]["staggered"] == pytest.approx(sum(rep["wall_time_s"]) / 2)
+    assert len(rep["wall_time_s"]) == len(rep["cpu_time_s"]) == 3 and rep["identical_results"] is True
+    assert rep["before_monolithic"] == 2 and len(rep["load_average_each"]) == 3 and len(rep["load_average"]) == 2
+    assert t["wall_time_s"]["staggered"] == pytest.approx(sum(rep["wall_time_s"]) / 3)
+    assert t["cpu_time_s"]["staggered"] == pytest.approx(sum(rep["cpu_time_s"]) / 3)
     assert sorted(p.name for p in tmp_path.iterdir()) == ["monolithic", "staggered", "table6.json"]
     assert set(t["load_average"]) == {"staggered", "monolithic"}
     assert all(len(v) == 2 and all(x >= 0 for x in v) for v in t["load_average"].values())
@@ -148,12 +152,13 @@ def test_compare_draws_the_figures_after_both_timed_runs(tmp_path, monkeypatch):
     def no_pool(*args, **kwargs):
         pytest.fail("a figure pool was started inside a timed run")
 
-    ended, started = [], []
+    ended, started, folders = [], [], []
     real_execute, real_pool = cmp.execute, cmp.FigurePool
 
     def timed(*args, **kwargs):
         summary = real_execute(*args, **kwargs)
         ended.append(time.monotonic())
+        folders.append(Path(args[1]))
         return summary
 
     def pool(*args, **kwargs):
@@ -164,7 +169,13 @@ def test_compare_draws_the_figures_after_both_timed_runs(tmp_path, monkeypatch):
     monkeypatch.setattr(cmp, "execute", timed)
     monkeypatch.setattr(cmp, "FigurePool", pool)
     assert main(["compare", "--duration", "0.1", "--revolutions", "12", "--quiet", "--out", str(tmp_path)]) == 0
-    assert len(ended) == 4 and len(started) == 2  # the warm-up, the timed runs (staggered twice); a pool per run
+    # the warm-up, then the staggered run timed TIMING_RUNS times, half before and half after the monolithic run
+    # (the first into staggered/, the others into folders removed afterwards); a figure pool per run folder
+    n = cmp.TIMING_RUNS
+    assert len(ended) == 2 + n and len(started) == 2
+    kinds = [{"staggered": "S", "monolithic": "M"}.get(f.name, "W") if f.parent == tmp_path else
+             "s" if f.name == "staggered" else "W" for f in folders]
+    assert kinds == ["W", "S"] + ["s"] * ((n + 1) // 2 - 1) + ["M"] + ["s"] * (n // 2), kinds
     assert min(started) > max(ended)
     for kind in ("staggered", "monolithic"):
         names = json.loads((tmp_path / kind / "summary.json").read_text())["figures"]
