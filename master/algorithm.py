@@ -411,6 +411,11 @@ class Engine:
         self.iterations_used = it + 1
 
     def check_finite(self, t: float) -> None:
+        # all real outputs in one test (~0.1 ms; a test per port cost ~0.4 ms, at every interval end), then the
+        # ports one by one only to name the first that is not finite
+        arrays = [y for n in self.active for y in self._comp[n].y.values() if y.dtype.kind == "f"]
+        if not arrays or np.isfinite(np.concatenate(arrays, axis=None)).all():
+            return
         for n in self.active:
             for port, y in self._comp[n].y.items():
                 if y.dtype.kind == "f" and not np.all(np.isfinite(y)):

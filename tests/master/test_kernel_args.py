@@ -60,6 +60,23 @@ def test_containers_are_repacked_only_when_one_of_them_is_another_object():
     assert packed.update((ka[0], ka[1]._replace(scale=3.0), ka[2], ka[3]))
 
 
+def test_a_partial_repack_writes_what_a_whole_one_does():
+    """Only the containers that are other objects are written again: the buffer then holds what packing all of
+    them into a new buffer gives, byte for byte."""
+    ka = _containers()
+    packed = kernel_args.Packed()
+    assert packed.update(ka)
+    steps = [(ka[0], ka[1], (np.array([6.0]),), ka[3]),                       # one port array replaced
+             ((np.ones(1),), ka[1]._replace(scale=3.0), ka[2], (np.ones(2),)),  # state, a float, outputs
+             ((np.ones(1),), ka[1]._replace(flag=False, n=-3), ka[2], ka[3])]
+    for new in steps:
+        assert packed.update(new)
+        whole = kernel_args.Packed()
+        assert whole.update(new)
+        size = kernel_args._layout(kernel_args.container_type(new))[0]
+        assert packed.buf.view(np.uint8)[:size].tobytes() == whole.buf.view(np.uint8)[:size].tobytes()
+
+
 def test_a_container_the_loop_cannot_pass_is_refused_by_name():
     with pytest.raises(TypingError, match="kernel container holds"):
         kernel_args.trampoline_address(types.Tuple((types.Tuple(()), types.unicode_type, types.Tuple(()),
