@@ -6,7 +6,9 @@ relative error of the Table 4 results against the monolithic run, the load avera
 
 Issue 12's target: every result within 2 % and a speed-up of at least 12 at every level. The machine's speed
 drifts by 10-20 % over seconds, which is why `compare` times the staggered run before and after the monolithic
-one (master/commands/compare.py); --rounds repeats the whole table to show the spread that is left.
+one (master/commands/compare.py: --timing-runs, default 6, half before and half after, their mean reported);
+--rounds repeats the whole table to show the spread that is left, and the last lines pool every round per level
+(the mean of all its monolithic timings over the mean of all its staggered timings).
 """
 from __future__ import annotations
 
@@ -34,20 +36,26 @@ def main() -> None:
         ap.error(f"--rounds must be at least 1, got {a.rounds}")
     keep = Path(a.out) if a.out else None
     ratios = {f: [] for f in levels}
+    pooled = {f: ([], []) for f in levels}  # every staggered and monolithic wall time of the level
     with tempfile.TemporaryDirectory() as tmp:
         base = keep or Path(tmp)
-        print("round | F_u [N] | speed-up wall (CPU) | staggered wall [s], before / after | monolithic wall [s] | "
-              "largest error % | load")
+        print("round | F_u [N] | speed-up wall (CPU) | staggered wall [s], each timing (the first half before the "
+              "monolithic run) | monolithic wall [s] | largest error % | load")
         for r in range(a.rounds):
             for f in levels:
                 t = compare(base / f"r{r}_{f:g}N", duration=a.duration, unbalance=f, figures=False, overwrite=True)
                 runs = t.get("staggered_runs") or {"wall_time_s": [t["wall_time_s"]["staggered"]]}
                 load = [x for v in t["load_average"].values() for x in v if x is not None]
                 ratios[f].append(t["speedup"])
+                pooled[f][0].extend(runs["wall_time_s"])
+                pooled[f][1].append(t["wall_time_s"]["monolithic"])
                 print(f"{r} | {f:g} | {t['speedup']:.2f} ({t['speedup_cpu'] or float('nan'):.2f}) | "
                       f"{' / '.join(f'{x:.3f}' for x in runs['wall_time_s'])} | {t['wall_time_s']['monolithic']:.2f} | "
                       f"{t['largest_error_pct']:.2f} | {min(load, default=float('nan')):.1f}-"
                       f"{max(load, default=float('nan')):.1f}", flush=True)
+    if a.rounds > 1:
+        print("pooled over the rounds (mean monolithic / mean staggered wall): " + ", ".join(
+            f"{f:g} N {statistics.mean(m) / statistics.mean(st):.2f}" for f, (st, m) in pooled.items()))
     every = [x for v in ratios.values() for x in v]
     print(f"speed-up: lowest {min(every):.2f}, median {statistics.median(every):.2f}, highest {max(every):.2f}; "
           f"levels below 12 in some round: {[f'{f:g}' for f, v in ratios.items() if min(v) < 12] or 'none'}")
