@@ -49,7 +49,7 @@ from ..oil_fit import T_MAX_K, T_MIN_K
 from ..speeds import PT_OMEGA
 from .drag import static_load_rating
 from .geometry import DATA, BEARINGS, build_geometry
-from .kernel import BearingParams, BearingState, oil_viscosity, step_outputs, tm_step, viscous_power
+from .kernel import BearingParams, BearingState, oil_viscosity, tm_step, viscous_power
 from .oil import WALTHER_A, WALTHER_B, sae30_kinematic_viscosity
 from .static import preload_offset, solve_balls
 
@@ -185,7 +185,7 @@ class BallBearing(KernelComponent):
                                        np.full(3, np.nan), self._out, self._eps_jump, float(WALTHER_A),
                                        float(WALTHER_B), T_MIN_K, T_MAX_K)
         # outputs of the rest state: one zero-length evaluation
-        self._advance(0.0, self.time, update_state=False)
+        self._advance(0.0, self.time)
 
     # -- stepping ------------------------------------------------------------------------------------------
     @property
@@ -201,28 +201,19 @@ class BallBearing(KernelComponent):
                 raise ContractError(f"{self.name}.T_oil: {exc}") from None
         return oil_viscosity(self._kernel_p, float(T))
 
-    def _advance(self, h, t, update_state=True):
-        """Outputs of the present state for a zero-length step (set-up; the state is not changed)."""
-        u = self.u
-        self._nu(float(u["T_oil"][0]))
-        balls, jour, phi = (self.state["balls"].copy(), self.state["journal"].copy(), self.state["phi"].copy())
-        out = np.empty(18)
-        step_outputs(h, u["X_inner"], u["V_inner"], self.z0, u["eps"], u["F_journal"], u["K_journal"],
-                     u["C_journal"], balls, jour, phi, self._cb, self._sb, self._geo, self._drag, self._num, out)
-        if out[16] != 0.0:
-            self._fail(out[16], t + h)
-        y = self.y
-        y["F_rotor"] = out[0:3]
-        y["X_journal"] = out[3:5]
-        y["V_journal"] = out[5:7]
-        y["Q_max"] = out[7:9]
-        y["Q_max_step"] = out[9:11]
-        y["sigma_max"] = out[11:13]
-        y["sigma_max_step"] = out[13:15]
-        y["P_drag"] = out[15:16]
-        # each output its own array (the kernel writes them in place)
-        for k in self.y:
-            y[k] = y[k].copy()
+    def _advance(self, h, t):
+        """Outputs of the present state for a zero-length step (set-up): the kernel on copies of the state (the
+        balls seated at the present growths), into fresh output arrays."""
+        self._nu(float(self.u["T_oil"][0]))        # names a T_oil outside the viscosity fit
+        st = self.state
+        s = BearingState(st["balls"].copy(), st["journal"].copy(), st["phi"].copy(), self.u["eps"].copy())
+        U, Y, ins, outs = self.kernel_ports()
+        y = Y(*[np.zeros_like(self.y[n]) for n in outs])
+        status = tm_step(s, self._kernel_p, U(*[self.u[n] for n in ins]), y, t, h)
+        if status != 0:
+            self._fail(float(status - 10), t + h)
+        for n, a in zip(outs, y):
+            self.y[n] = a
 
     def _reseat(self, h):
         """Put the balls at their quasi-static positions (eq. 4 without acceleration) for the present race

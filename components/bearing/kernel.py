@@ -119,62 +119,6 @@ def _bad(a, lim):
 
 
 @njit(cache=True)
-def step_outputs(h, X, V, z0, eps, F0, Kj, Cj, balls, jour, phi, c_b, s_b, geo, drag, num, out):
-    """:func:`step` plus the component's outputs in one call (the per-step Python overhead is most of the cost).
-
-    The inner race path is X - V lag + V tau with lag = num[3] (h: inputs at the end of the step; 0: start).
-    geo[11:16] = [preload, stress coefficient inner, outer, omega, eps limit], geo[16] ball damping,
-    geo[17] = axial direction (+1, or -1 for a bearing mounted the other way round: z is mirrored).
-    out (18) <- F_rotor (3), X_journal (2), V_journal (2), Q_max (2), Q_max_step (2), sigma_max (2),
-    sigma_max_step (2), P_drag (1), a flag: 0 ok, 1 non-finite input, 2 eps beyond +-geo[15],
-    3 non-finite state, and the number of sub-steps."""
-    flag = 0.0
-    if (_bad(X, 1e300) or _bad(V, 1e300) or _bad(F0, 1e300) or _bad(Kj, 1e300) or _bad(Cj, 1e300)
-            or _bad(eps, 1e300)):
-        flag = 1.0
-    elif _bad(eps, geo[15]):
-        flag = 2.0
-    if flag != 0.0:
-        out[16] = flag
-        return
-    lag = h if num[3] > 0.0 else 0.0
-    ax = geo[17]
-    Vb = np.empty(3)
-    Xa = np.empty(3)
-    for k in range(3):
-        Vb[k] = V[k]
-    Vb[2] = ax * V[2]
-    for k in range(3):
-        Xa[k] = X[k] - V[k] * lag
-    Xa[2] *= ax
-    res = np.empty(9)
-    step(h, Xa, Vb, z0, eps, F0, Kj, Cj, balls, jour, phi, c_b, s_b, geo, drag, num, res)
-    out[0] = res[0]
-    out[1] = res[1]
-    out[2] = ax * (res[2] + geo[11])
-    out[3] = jour[0]
-    out[4] = jour[1]
-    out[5] = jour[2]
-    out[6] = jour[3]
-    for k in range(4):
-        out[7 + k] = res[3 + k]
-    out[11] = geo[12] * res[3] ** (1.0 / 3.0)
-    out[12] = geo[13] * res[4] ** (1.0 / 3.0)
-    out[13] = geo[12] * res[5] ** (1.0 / 3.0)
-    out[14] = geo[13] * res[6] ** (1.0 / 3.0)
-    out[15] = res[7] * geo[14]
-    ok = True
-    for k in range(16):
-        if not (abs(out[k]) < 1e300):
-            ok = False
-    for v in balls.ravel():
-        if not (abs(v) < 1e300):
-            ok = False
-    out[16] = 0.0 if ok else 3.0
-    out[17] = res[8]
-
-
-@njit(cache=True)
 def step(h, Xa, Va, z0, eps, F0, Kj, Cj, balls, jour, phi, c_b, s_b, geo, drag, num, res):
     """Advance balls, cage angle and journal over h with the inner race on X(tau) = Xa + Va tau (+ z0 axially).
 
@@ -292,7 +236,7 @@ def step(h, Xa, Va, z0, eps, F0, Kj, Cj, balls, jour, phi, c_b, s_b, geo, drag, 
 #: the bearing's kernel containers (components/kernels.py). State: the balls (4, Z), the journal (4), the cage
 #: angle (1), the growths the balls were last seated for (3).
 #: Constants: the inner race's axial offset z0, the balls' angle cosines/sines, the geometry, drag and numerics
-#: vectors of step_outputs, a cache [T of nu, T of P_v, P_v], the step's output buffer, the growth jump that
+#: vectors of tm_step, a cache [T of nu, T of P_v, P_v], the step's output buffer, the growth jump that
 #: re-seats the balls, the Walther constants of the oil viscosity.
 BearingState = namedtuple("BearingState", "balls journal phi eps_seated")
 BearingParams = namedtuple("BearingParams",
@@ -327,9 +271,21 @@ def viscous_power(p, T):
 
 @njit(cache=True)
 def tm_step(s, p, u, y, t, h):
-    """One thermo-mechanical step (component.BallBearing; components/kernels.py contract). Status PYTHON (1):
-    the growths jumped (a thermal-only interval ended): the balls are re-seated in Python first; 5: T_oil outside
-    the viscosity fit; 10 + the flag of step_outputs."""
+    """One thermo-mechanical step (component.BallBearing; components/kernels.py contract): :func:`step` plus the
+    component's outputs. h = 0 gives the outputs of the present state (set-up: component._advance).
+
+    Status PYTHON (1): the growths jumped (a thermal-only interval ended): the balls are re-seated in Python first;
+    5: T_oil outside the viscosity fit; 10 + a flag: 1 non-finite input, 2 eps beyond +-geo[15] (5 % of the ball
+    diameter), 3 non-finite state.
+
+    The inner race path is X - V lag + V tau with lag = num[3] (h: inputs at the end of the step; 0: start).
+    geo[11:16] = [preload, stress coefficient inner, outer, omega, eps limit], geo[16] ball damping,
+    geo[17] = axial direction (+1, or -1 for a bearing mounted the other way round: z is mirrored).
+    p.out (18) <- F_rotor (3), X_journal (2), V_journal (2), Q_max (2), Q_max_step (2), sigma_max (2),
+    sigma_max_step (2), P_drag (1), the flag and the number of sub-steps.
+
+    One compiled function with what was step_outputs (a second entry point compiled the whole step, three
+    contact passes and the drag, once more inside itself: ~2 s of CPU on a fresh machine, notes/h16c.md)."""
     T = u.T_oil[0]
     if not (T > p.T_min and T <= p.T_max):   # the viscosity fit's range (components/oil_fit.py)
         return 5
@@ -347,11 +303,55 @@ def tm_step(s, p, u, y, t, h):
         return 1
     for k in range(3):
         s.eps_seated[k] = eps[k]
-    out = p.out
-    step_outputs(h, u.X_inner, u.V_inner, p.z0, eps, u.F_journal, u.K_journal, u.C_journal, s.balls, s.journal,
-                 s.phi, p.c_b, p.s_b, p.geo, p.drag, p.num, out)
-    if out[16] != 0.0:
-        return 10 + int(out[16])
+    X, V, F0, Kj, Cj = u.X_inner, u.V_inner, u.F_journal, u.K_journal, u.C_journal
+    geo, num, out = p.geo, p.num, p.out
+    if (_bad(X, 1e300) or _bad(V, 1e300) or _bad(F0, 1e300) or _bad(Kj, 1e300) or _bad(Cj, 1e300)
+            or _bad(eps, 1e300)):
+        out[16] = 1.0
+        return 11
+    if _bad(eps, geo[15]):
+        out[16] = 2.0
+        return 12
+    lag = h if num[3] > 0.0 else 0.0
+    ax = geo[17]
+    Vb = np.empty(3)
+    Xa = np.empty(3)
+    for k in range(3):
+        Vb[k] = V[k]
+    Vb[2] = ax * V[2]
+    for k in range(3):
+        Xa[k] = X[k] - V[k] * lag
+    Xa[2] *= ax
+    res = np.empty(9)
+    balls = s.balls
+    step(h, Xa, Vb, p.z0, eps, F0, Kj, Cj, balls, s.journal, s.phi, p.c_b, p.s_b, geo, p.drag, num, res)
+    jour = s.journal
+    out[0] = res[0]
+    out[1] = res[1]
+    out[2] = ax * (res[2] + geo[11])
+    out[3] = jour[0]
+    out[4] = jour[1]
+    out[5] = jour[2]
+    out[6] = jour[3]
+    for k in range(4):
+        out[7 + k] = res[3 + k]
+    out[11] = geo[12] * res[3] ** (1.0 / 3.0)
+    out[12] = geo[13] * res[4] ** (1.0 / 3.0)
+    out[13] = geo[12] * res[5] ** (1.0 / 3.0)
+    out[14] = geo[13] * res[6] ** (1.0 / 3.0)
+    out[15] = res[7] * geo[14]
+    ok = True
+    for k in range(16):
+        if not (abs(out[k]) < 1e300):
+            ok = False
+    for v in balls.ravel():
+        if not (abs(v) < 1e300):
+            ok = False
+    out[17] = res[8]
+    if not ok:
+        out[16] = 3.0
+        return 13
+    out[16] = 0.0
     for k in range(3):
         y.F_rotor[k] = out[k]
     for k in range(2):

@@ -67,7 +67,7 @@ def _lagrange4(u, u0, du, n):
     return k, w0, w1, w2, w3, d0, d1, d2, d3
 
 
-@njit(cache=True, fastmath=True)
+@njit(cache=True, fastmath=True, inline="always")
 def _clipped_nodes(NT, Wc, Ws, n, k, w0, w1, w2, w3, d0, d1, d2, d3, a, b, floor, i0, i1, acc):
     """The clipped sums over the nodes i0 <= i < i1 of one tile, added into acc[0:8] = F_r, F_t (without the
     factor -2), dF_r/da, dF_r/db, dF_t/da, dF_t/db, dF_r/du, dF_t/du.
@@ -245,16 +245,26 @@ def _clipped(NT, G, TW, toff, bounds, Wc, Ws, eps, u0, du, n, a, b, floor):
             -2.0 * (acc[7] + a * sd1 + b * sd3) * du_deps)
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def _linear(ftab, eps, u0, du, n, a, b):
     """Like _clipped without cavitation, from the unit forces ftab (n_table, 4) =
-    [F_r(v_r), F_t(v_r), F_r(v_t), F_t(v_t)] per unit mu v: the force is exactly linear in (a, b)."""
+    [F_r(v_r), F_t(v_r), F_r(v_t), F_t(v_t)] per unit mu v: the force is exactly linear in (a, b).
+
+    Column j of ftab interpolated (f_j) and differentiated in eps (g_j), in scalars: no temporary arrays. Inlined
+    into _aligned (its only caller) at numba's level: a separate compiled function would be optimised and
+    machine-coded once more inside every caller (notes/h16c.md)."""
     u = -math.log1p(-eps)
     k, w0, w1, w2, w3, d0, d1, d2, d3 = _lagrange4(u, u0, du, n)
-    f = w0 * ftab[k] + w1 * ftab[k + 1] + w2 * ftab[k + 2] + w3 * ftab[k + 3]
-    g = (d0 * ftab[k] + d1 * ftab[k + 1] + d2 * ftab[k + 2] + d3 * ftab[k + 3]) / (1.0 - eps)
-    return (a * f[0] + b * f[2], a * f[1] + b * f[3], f[0], f[2], f[1], f[3],
-            a * g[0] + b * g[2], a * g[1] + b * g[3])
+    f0 = w0 * ftab[k, 0] + w1 * ftab[k + 1, 0] + w2 * ftab[k + 2, 0] + w3 * ftab[k + 3, 0]
+    f1 = w0 * ftab[k, 1] + w1 * ftab[k + 1, 1] + w2 * ftab[k + 2, 1] + w3 * ftab[k + 3, 1]
+    f2 = w0 * ftab[k, 2] + w1 * ftab[k + 1, 2] + w2 * ftab[k + 2, 2] + w3 * ftab[k + 3, 2]
+    f3 = w0 * ftab[k, 3] + w1 * ftab[k + 1, 3] + w2 * ftab[k + 2, 3] + w3 * ftab[k + 3, 3]
+    r = 1.0 - eps
+    g0 = (d0 * ftab[k, 0] + d1 * ftab[k + 1, 0] + d2 * ftab[k + 2, 0] + d3 * ftab[k + 3, 0]) / r
+    g1 = (d0 * ftab[k, 1] + d1 * ftab[k + 1, 1] + d2 * ftab[k + 2, 1] + d3 * ftab[k + 3, 1]) / r
+    g2 = (d0 * ftab[k, 2] + d1 * ftab[k + 1, 2] + d2 * ftab[k + 2, 2] + d3 * ftab[k + 3, 2]) / r
+    g3 = (d0 * ftab[k, 3] + d1 * ftab[k + 1, 3] + d2 * ftab[k + 2, 3] + d3 * ftab[k + 3, 3]) / r
+    return a * f0 + b * f2, a * f1 + b * f3, f0, f2, f1, f3, a * g0 + b * g2, a * g1 + b * g3
 
 
 @njit(cache=True)
@@ -274,7 +284,7 @@ def _aligned(NT, G, TW, toff, ftab, bounds, Wc, Ws, eps, u0, du, n, a, b, floor,
     return _linear(ftab, eps, u0, du, n, a, b)
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def film_eval(NT, G, TW, toff, ftab, bounds, Wc, Ws, u0, du, n, eps_max, clearance, dx, dy, dvx, dvy, mu, floor,
               cavitation, out):
     """Film force F (2), K = dF/dd (4) and C = dF/dw (4) in the housing axes into out[0:10].
