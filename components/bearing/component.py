@@ -44,12 +44,12 @@ import math
 import numpy as np
 
 from ..contract import ContractError, Variable
-from ..kernels import PYTHON, KernelComponent
+from ..kernels import PYTHON, KernelComponent, address_of
 from ..oil_fit import T_MAX_K, T_MIN_K
 from ..speeds import PT_OMEGA
 from .drag import static_load_rating
 from .geometry import DATA, BEARINGS, build_geometry
-from .kernel import BearingParams, BearingState, oil_viscosity, tm_step, viscous_power
+from .kernel import BearingParams, BearingState, oil_viscosity, step, tm_step, viscous_power
 from .oil import WALTHER_A, WALTHER_B, sae30_kinematic_viscosity
 from .static import preload_offset, solve_balls
 
@@ -183,7 +183,7 @@ class BallBearing(KernelComponent):
         self._out = np.zeros(18)
         self._kernel_p = BearingParams(float(self.z0), self._cb, self._sb, self._geo, self._drag, self._num,
                                        np.full(3, np.nan), self._out, self._eps_jump, float(WALTHER_A),
-                                       float(WALTHER_B), T_MIN_K, T_MAX_K)
+                                       float(WALTHER_B), T_MIN_K, T_MAX_K, address_of(step))
         # outputs of the rest state: one zero-length evaluation
         self._advance(0.0, self.time)
 

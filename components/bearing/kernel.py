@@ -21,8 +21,9 @@ import math
 from collections import namedtuple
 
 import numpy as np
-from numba import njit
+from numba import njit, types
 
+from ..kernels import by_address, call_at
 from .drag import palmgren_torque
 
 
@@ -233,14 +234,21 @@ def step(h, Xa, Va, z0, eps, F0, Kj, Cj, balls, jour, phi, c_b, s_b, geo, drag, 
     res[8] = n
 
 
+#: step's argument types: called by address from tm_step (components/kernels.call_at), so that tm_step's compilation
+#: does not optimise and machine-code the whole step once more (~2-3 s of CPU on a fresh machine, notes/h16c.md)
+_F1, _F2 = types.float64[::1], types.float64[:, ::1]
+STEP_SIG = (types.float64, _F1, _F1, types.float64, _F1, _F1, _F1, _F1, _F2, _F1, _F1, _F1, _F1, _F1, _F1, _F1, _F1)
+by_address(step, STEP_SIG)
+
+
 #: the bearing's kernel containers (components/kernels.py). State: the balls (4, Z), the journal (4), the cage
 #: angle (1), the growths the balls were last seated for (3).
 #: Constants: the inner race's axial offset z0, the balls' angle cosines/sines, the geometry, drag and numerics
 #: vectors of tm_step, a cache [T of nu, T of P_v, P_v], the step's output buffer, the growth jump that
-#: re-seats the balls, the Walther constants of the oil viscosity.
+#: re-seats the balls, the Walther constants of the oil viscosity, the address of step (kernels.address_of).
 BearingState = namedtuple("BearingState", "balls journal phi eps_seated")
 BearingParams = namedtuple("BearingParams",
-                           "z0 c_b s_b geo drag num cache out eps_jump walther_A walther_B T_min T_max")
+                           "z0 c_b s_b geo drag num cache out eps_jump walther_A walther_B T_min T_max step_at")
 
 
 @njit(cache=True)
@@ -285,7 +293,8 @@ def tm_step(s, p, u, y, t, h):
     sigma_max_step (2), P_drag (1), the flag and the number of sub-steps.
 
     One compiled function with what was step_outputs (a second entry point compiled the whole step, three
-    contact passes and the drag, once more inside itself: ~2 s of CPU on a fresh machine, notes/h16c.md)."""
+    contact passes and the drag, once more inside itself: ~1 s of CPU on a fresh machine, notes/h16c.md); step is
+    called by address (STEP_SIG)."""
     T = u.T_oil[0]
     if not (T > p.T_min and T <= p.T_max):   # the viscosity fit's range (components/oil_fit.py)
         return 5
@@ -324,7 +333,8 @@ def tm_step(s, p, u, y, t, h):
     Xa[2] *= ax
     res = np.empty(9)
     balls = s.balls
-    step(h, Xa, Vb, p.z0, eps, F0, Kj, Cj, balls, s.journal, s.phi, p.c_b, p.s_b, geo, p.drag, num, res)
+    call_at(p.step_at, step, (h, Xa, Vb, p.z0, eps, F0, Kj, Cj, balls, s.journal, s.phi, p.c_b, p.s_b, geo, p.drag,
+                              num, res))
     jour = s.journal
     out[0] = res[0]
     out[1] = res[1]

@@ -23,7 +23,7 @@ from collections import namedtuple
 from numba import njit
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def rub_force(dx, dy, wx, wy, clearance, stiffness, damping, friction, radius, omega, v_reg):
     """(Fx, Fy, P_rub, F_normal) on the rotor; arguments as in the module docstring (SI)."""
     r = math.hypot(dx, dy)
