@@ -70,7 +70,7 @@ from rotorcosim.master.kernel_args import _load
 from rotorcosim.master.loop_ops import call_kernel
 
 
-@njit(cache=True)
+@njit(cache=True, no_cfunc_wrapper=True)
 def trampoline(ptr, kaddr, t, h, proto):
     s, p, u, y = _load(ptr, proto)
     return call_kernel(kaddr, s, p, u, y, t, h)

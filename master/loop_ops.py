@@ -52,7 +52,7 @@ C_IN0, C_IN1, C_OUT0, C_OUT1, C_W0, C_W1 = range(6)
 NC = 6
 
 
-@njit(cache=True)
+@njit(cache=True, no_cfunc_wrapper=True)
 def gather(i, t, hc, X, LI, M, V, CT, IDX):
     """The inputs of component i from its links, just before it fires over [t, t + hc] (algorithm._Link.value,
     then hold.Restart's offset on a hand-back)."""
@@ -103,7 +103,7 @@ def gather(i, t, hc, X, LI, M, V, CT, IDX):
                     X[dst + q] = X[dst + q] + V[vo + 3 * n + q] * rf
 
 
-@njit(cache=True)
+@njit(cache=True, no_cfunc_wrapper=True)
 def finite(X, CT, IDX, i):
     """Are component i's watched outputs (those other components read) finite (Engine._fire)?"""
     tot = 0.0
@@ -114,7 +114,7 @@ def finite(X, CT, IDX, i):
     return math.isfinite(tot)
 
 
-@njit(cache=True)
+@njit(cache=True, no_cfunc_wrapper=True)
 def produced(i, t, hc, X, LI, M, V, G, C, CT, IDX):
     """The bookkeeping of component i's outgoing links after it fired over [t, t + hc] (algorithm._Link.produced;
     hold.HandOff.record for a hand-off window)."""
@@ -186,7 +186,7 @@ def produced(i, t, hc, X, LI, M, V, G, C, CT, IDX):
                 M[j, CN] = 0.0
 
 
-@njit(cache=True)
+@njit(cache=True, no_cfunc_wrapper=True)
 def end_of_step(k, k0, check_every, X, width, buf):
     """The observers' row of base step k (every Real output, the first ``width`` values of X) and, every
     ``check_every`` base steps, the finiteness of them all (Engine.check_finite): False when one is not."""
@@ -257,7 +257,7 @@ RUN_CHUNK_SIG = (types.int64, types.int64, types.int64, types.float64, types.flo
                  _I1, types.int64, _F1, _I2, _F2, _F1, _F1, _F1, _I2, _I1, _I1, _I1, _I1)
 
 
-@njit(cache=True)
+@njit(cache=True, no_cfunc_wrapper=True)
 def run_chunk(k0, k1, rstart, t0, h, check_every, count, buf, status, mult, width, X, LI, M, V, G, C, CT, IDX,
               TA, PA, KA):
     """Base steps k0 .. k1 - 1 of an interval (master/compiled.py): per step the components in order, each that

@@ -27,7 +27,7 @@ from ..kernels import by_address, call_at
 from .drag import palmgren_torque
 
 
-@njit(cache=True)
+@njit(cache=True, no_cfunc_wrapper=True)
 def _forces(Xx, Xy, Xz, Vx, Vy, Vz, xe, ye, vxe, vye, cphi, sphi, wc, balls, Z, c_b, s_b, l_oi, l_oe, ca0, sa0,
             Ki, Ke, ad, Fc, m_b, eps_i, eps_e, eps_b, cb, acc, out):
     """Contact forces of all balls at one instant. Writes ball accelerations into ``acc`` (2, Z) and into
@@ -111,7 +111,7 @@ def _forces(Xx, Xy, Xz, Vx, Vy, Vz, xe, ye, vxe, vye, cphi, sphi, wc, balls, Z, 
     out[9] = kmax
 
 
-@njit(cache=True)
+@njit(cache=True, no_cfunc_wrapper=True)
 def _bad(a, lim):
     for v in a:
         if not (abs(v) <= lim):
@@ -119,7 +119,7 @@ def _bad(a, lim):
     return False
 
 
-@njit(cache=True)
+@njit(cache=True, no_cfunc_wrapper=True)
 def step(h, Xa, Va, z0, eps, F0, Kj, Cj, balls, jour, phi, c_b, s_b, geo, drag, num, res):
     """Advance balls, cage angle and journal over h with the inner race on X(tau) = Xa + Va tau (+ z0 axially).
 
@@ -251,13 +251,13 @@ BearingParams = namedtuple("BearingParams",
                            "z0 c_b s_b geo drag num cache out eps_jump walther_A walther_B T_min T_max step_at")
 
 
-@njit(cache=True)
+@njit(cache=True, no_cfunc_wrapper=True)
 def kinematic_viscosity(A, B, T):
     """SAE 30 kinematic viscosity (m^2/s) at T kelvin, Walther / ASTM D341 (oil.py)."""
     return (10.0 ** (10.0 ** (A - B * math.log10(T))) - 0.7) * 1e-6
 
 
-@njit(cache=True)
+@njit(cache=True, no_cfunc_wrapper=True)
 def oil_viscosity(p, T):
     """nu at T into drag[0], kept for the last T (it changes only at the thermal network's step)."""
     if T != p.cache[0]:
@@ -266,7 +266,7 @@ def oil_viscosity(p, T):
     return p.drag[0]
 
 
-@njit(cache=True)
+@njit(cache=True, no_cfunc_wrapper=True)
 def viscous_power(p, T):
     """omega M_v, the load-independent part of the Palmgren drag power at T, kept for the last T."""
     if T != p.cache[1]:
@@ -277,7 +277,7 @@ def viscous_power(p, T):
     return p.cache[2]
 
 
-@njit(cache=True)
+@njit(cache=True, no_cfunc_wrapper=True)
 def tm_step(s, p, u, y, t, h):
     """One thermo-mechanical step (component.BallBearing; components/kernels.py contract): :func:`step` plus the
     component's outputs. h = 0 gives the outputs of the present state (set-up: component._advance).

@@ -30,7 +30,8 @@ from ..kernels import KernelComponent
 from ..oil_fit import T_MAX_K, T_MIN_K
 from . import wall
 from . import table_cache
-from .fast import EPS_MAX, FAST_STEP_SIG, N_TABLE, DamperParams, fast_step, film_table, tm_step
+from .fast import (EPS_MAX, FAST_STEP_SIG, N_TABLE, DamperParams, fast_step, fast_step_address, film_table,
+                   tm_step)
 from .reynolds_fe import build_mesh, fe_film_eval
 from .viscosity import _oil, sae30_viscosity
 
@@ -287,7 +288,7 @@ class FastDamper(KernelComponent, _Damper):
         A, B, rho300, drho = _oil()
         self._kernel_p = DamperParams(t.NT, t.G, t.TW, t.toff, t.ftab, t.bounds, t.Wc, t.Ws, prm, np.zeros(self.N_OUT),
                                       np.full(2, np.nan), float(A), float(B), float(rho300), float(drho),
-                                      T_MIN_K, T_MAX_K)
+                                      T_MIN_K, T_MAX_K, fast_step_address())
 
     def prebuild(self):
         """The film table of this geometry (when not in the cache) and the film kernel (contract.prebuild)."""

@@ -23,7 +23,7 @@ from collections import namedtuple
 from numba import njit
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, no_cfunc_wrapper=True, inline="always")
 def rub_force(dx, dy, wx, wy, clearance, stiffness, damping, friction, radius, omega, v_reg):
     """(Fx, Fy, P_rub, F_normal) on the rotor; arguments as in the module docstring (SI)."""
     r = math.hypot(dx, dy)
@@ -45,7 +45,7 @@ def rub_force(dx, dy, wx, wy, clearance, stiffness, damping, friction, radius, o
 RubParams = namedtuple("RubParams", "clearance stiffness damping friction radius omega v_reg")
 
 
-@njit(cache=True)
+@njit(cache=True, no_cfunc_wrapper=True)
 def tm_step(s, p, u, y, t, h):
     """One evaluation at the step's inputs (components/kernels.py contract); status 2: non-finite motion."""
     dx = u.X_rotor[0] - u.X_housing[0]
