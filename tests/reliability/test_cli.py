@@ -169,6 +169,8 @@ def test_sweep_checks_every_case_like_a_run_before_any_runs(tmp_path, capsys):
     (["--scenario", "toy_thermomechanical"], "has no bearing results"),
     (["--duration", "nan"], "--duration must be a positive"),
     (["--timing-runs", "0"], "--timing-runs must be a whole number of timings >= 1, got 0"),
+    (["--timing-runs", "3", "--schedule", "auto"], "--timing-runs applies to the paper schedule"),
+    (["--timing-runs", "3", "--monolithic", "elsewhere"], "--timing-runs applies to the paper schedule"),
     # both runs' own checks before the warm-up (was: the folder made, the warm-up run, then the overflow)
     (["--duration", "1e308"], "the schedule asks for inf steps"),
     (["--schedule", "auto", "--tolerance", "500"], "tolerance 500 % accepts results off by more than they are"),
