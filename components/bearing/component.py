@@ -49,7 +49,8 @@ from ..oil_fit import T_MAX_K, T_MIN_K
 from ..speeds import PT_OMEGA
 from .drag import static_load_rating
 from .geometry import DATA, BEARINGS, build_geometry
-from .kernel import BearingParams, BearingState, oil_viscosity, step, tm_step, viscous_power
+from .kernel import (DRAG, G_EPS_LIMIT, G_F_C, GEO, NUM, O_SIZE, O_SUBSTEPS, BearingParams, BearingState, oil_viscosity,
+                     pack, step, tm_step, viscous_power)
 from .oil import WALTHER_A, WALTHER_B, sae30_kinematic_viscosity
 from .static import preload_offset, solve_balls
 
@@ -160,14 +161,16 @@ class BallBearing(KernelComponent):
         self.z0, st = preload_offset(g, Fc)
         self.C0 = static_load_rating(g.Z, g.alpha0, max(g.inner.stress_coeff, g.outer.stress_coeff),
                                      _DRAG["static_rating_stress_MPa"] * 1e6, _DRAG["static_rating_stribeck"])
-        self._geo = np.array([g.l_oi, g.l_oe, math.cos(g.alpha0), math.sin(g.alpha0), g.K_i, g.K_e,
-                              p["contact_damping"], Fc, g.m_b, p["m_journal"], g.cage_speed(omega),
-                              g.preload, g.inner.stress_coeff, g.outer.stress_coeff, omega, 0.05 * g.D,
-                              p["ball_damping"], float(p["axial_direction"])])
-        self._drag = np.array([0.0, omega, g.d_m, p["f0"], _DRAG["f1_z"], _DRAG["f1_y"], _DRAG["X0"],
-                               _DRAG["Y0"], self.C0])
-        self._num = np.array([p["cfl"], float(_NUM["min_substeps"]), float(p["substeps"]),
-                              1.0 if p["inner_motion"] == "step_end" else 0.0])
+        self._geo = pack(GEO, l_oi=g.l_oi, l_oe=g.l_oe, cos_a0=math.cos(g.alpha0), sin_a0=math.sin(g.alpha0),
+                         K_i=g.K_i, K_e=g.K_e, alpha_d=p["contact_damping"], F_c=Fc, m_b=g.m_b,
+                         m_journal=p["m_journal"], omega_cage=g.cage_speed(omega), preload=g.preload,
+                         stress_inner=g.inner.stress_coeff, stress_outer=g.outer.stress_coeff, omega=omega,
+                         eps_limit=0.05 * g.D, ball_damping=p["ball_damping"],
+                         axial_direction=p["axial_direction"])
+        self._drag = pack(DRAG, nu=0.0, omega=omega, d_m=g.d_m, f0=p["f0"], f1_z=_DRAG["f1_z"], f1_y=_DRAG["f1_y"],
+                          X0=_DRAG["X0"], Y0=_DRAG["Y0"], C0=self.C0)
+        self._num = pack(NUM, cfl=p["cfl"], min_substeps=_NUM["min_substeps"], substeps=p["substeps"],
+                         inputs_at_end=1.0 if p["inner_motion"] == "step_end" else 0.0)
         phi = 2.0 * math.pi * np.arange(g.Z) / g.Z
         self._cb, self._sb = np.cos(phi), np.sin(phi)
         self._eps_jump = float(_NUM["eps_jump"])
@@ -180,7 +183,7 @@ class BallBearing(KernelComponent):
         self.phases = frozenset({"TM", "TO"}) if p["drag_in_thermal_only"] else frozenset({"TM"})
         self.holds_state_in_TO = bool(p["drag_in_thermal_only"])
         self.phase = "TM"
-        self._out = np.zeros(18)
+        self._out = np.zeros(O_SIZE)
         self._kernel_p = BearingParams(float(self.z0), self._cb, self._sb, self._geo, self._drag, self._num,
                                        np.full(3, np.nan), self._out, self._eps_jump, float(WALTHER_A),
                                        float(WALTHER_B), T_MIN_K, T_MAX_K, address_of(step))
@@ -191,7 +194,7 @@ class BallBearing(KernelComponent):
     @property
     def substeps_used(self) -> int:
         """Sub-steps of the last step."""
-        return int(self._out[17])
+        return int(self._out[O_SUBSTEPS])
 
     def _nu(self, T):
         if not (T_MIN_K < T <= T_MAX_K):
@@ -232,7 +235,7 @@ class BallBearing(KernelComponent):
         xe, ye = s["journal"][0], s["journal"][1]
         ur = X[0] * c + X[1] * sn
         wr = xe * c + ye * sn
-        v, _ = solve_balls(g, ur, ax * X[2] + self.z0, wr, tuple(u["eps"]), float(self._geo[7]),
+        v, _ = solve_balls(g, ur, ax * X[2] + self.z0, wr, tuple(u["eps"]), float(self._geo[G_F_C]),
                            v0=s["balls"][:2].copy())
         s["balls"][:2] = v
 
@@ -243,7 +246,7 @@ class BallBearing(KernelComponent):
             raise ContractError(f"{self.name}: non-finite input {', '.join(bad)} at t = {t:.9g} s")
         if flag == 2.0:
             raise ContractError(f"{self.name}.eps: thermal growths {self.u['eps']} m exceed 5 % of the ball "
-                                f"diameter ({self._geo[15]:.3g} m); not a thermal growth")
+                                f"diameter ({self._geo[G_EPS_LIMIT]:.3g} m); not a thermal growth")
         raise RuntimeError(f"{self.name}: the bearing state became non-finite at t = {t:.9g} s")
 
     def _viscous_power(self, T):

@@ -26,12 +26,46 @@ from numba import njit, types
 from ..kernels import by_address, call_at
 from .drag import palmgren_torque
 
+# -- The kernel's vectors, each place named once. component.setup packs geo, drag and num by name (:func:`pack`);
+# numba freezes these module-level integers as constants, so the names cost nothing at run time. They live in this
+# file so that numba's cache, keyed by this file, is invalidated when they change.
+
+#: geo: the geometry and contact constants (eqs. 1-10)
+GEO = ("l_oi", "l_oe", "cos_a0", "sin_a0", "K_i", "K_e", "alpha_d", "F_c", "m_b", "m_journal", "omega_cage",
+       "preload", "stress_inner", "stress_outer", "omega", "eps_limit", "ball_damping", "axial_direction")
+(G_L_OI, G_L_OE, G_COS_A0, G_SIN_A0, G_K_I, G_K_E, G_ALPHA_D, G_F_C, G_M_B, G_M_JOURNAL, G_OMEGA_CAGE, G_PRELOAD,
+ G_STRESS_INNER, G_STRESS_OUTER, G_OMEGA, G_EPS_LIMIT, G_BALL_DAMPING, G_AXIAL_DIRECTION) = range(len(GEO))
+#: drag: Palmgren's drag torque (drag.py): oil viscosity (kept for the last T_oil), speed, pitch diameter,
+#: coefficients and the static load rating
+DRAG = ("nu", "omega", "d_m", "f0", "f1_z", "f1_y", "X0", "Y0", "C0")
+D_NU, D_OMEGA, D_DM, D_F0, D_F1_Z, D_F1_Y, D_X0, D_Y0, D_C0 = range(len(DRAG))
+#: num: sub-stepping (cfl, the least sub-steps, a fixed count or 0 for automatic) and where the inputs are (1:
+#: at the end of the step, 0: at its start)
+NUM = ("cfl", "min_substeps", "substeps", "inputs_at_end")
+N_CFL, N_MIN_SUBSTEPS, N_SUBSTEPS, N_INPUTS_AT_END = range(len(NUM))
+#: the contact pass's results (_forces): force on the inner race (3), on the outer race (2), the largest ball
+#: loads on the inner and outer race, the radial and axial load, the largest contact stiffness
+C_F_INNER, C_F_OUTER, C_Q_I, C_Q_E, C_F_R, C_F_A, C_K_MAX, C_SIZE = 0, 3, 5, 6, 7, 8, 9, 10
+#: step's results: force on the inner race (3), ball loads [inner, outer] at the end (2) and largest over the
+#: step (2), the mean drag torque, the sub-steps used
+R_F_INNER, R_Q, R_Q_STEP, R_TORQUE, R_SUBSTEPS, R_SIZE = 0, 3, 5, 7, 8, 9
+#: the component's output buffer (p.out): its output ports in order, the status flag and the sub-steps used
+(O_F_ROTOR, O_X_JOURNAL, O_V_JOURNAL, O_Q_MAX, O_Q_MAX_STEP, O_SIGMA_MAX, O_SIGMA_MAX_STEP, O_P_DRAG, O_FLAG,
+ O_SUBSTEPS, O_SIZE) = 0, 3, 5, 7, 9, 11, 13, 15, 16, 17, 18
+
+
+def pack(fields: tuple[str, ...], **values: float) -> np.ndarray:
+    """The vector of ``fields`` (GEO, DRAG or NUM) from its values by name; every field exactly once."""
+    if set(values) != set(fields):
+        raise ValueError(f"vector fields {sorted(set(fields) ^ set(values))} missing or unknown")
+    return np.array([float(values[f]) for f in fields])
+
 
 @njit(cache=True, no_cfunc_wrapper=True)
 def _forces(Xx, Xy, Xz, Vx, Vy, Vz, xe, ye, vxe, vye, cphi, sphi, wc, balls, Z, c_b, s_b, l_oi, l_oe, ca0, sa0,
             Ki, Ke, ad, Fc, m_b, eps_i, eps_e, eps_b, cb, acc, out):
     """Contact forces of all balls at one instant. Writes ball accelerations into ``acc`` (2, Z) and into
-    ``out``: [Fx, Fy, Fz on the inner race, Fx, Fy on the outer race, Qi_max, Qe_max, Fr, Fa, kmax]."""
+    ``out`` (C_SIZE): the contact pass's results (C_* above)."""
     Fx = 0.0
     Fy = 0.0
     Fz = 0.0
@@ -99,16 +133,23 @@ def _forces(Xx, Xy, Xz, Vx, Vy, Vz, xe, ye, vxe, vye, cphi, sphi, wc, balls, Z, 
             qe_max = Qe
         if ki + ke > kmax:
             kmax = ki + ke
-    out[0] = Fx
-    out[1] = Fy
-    out[2] = Fz
-    out[3] = Gx
-    out[4] = Gy
-    out[5] = qi_max
-    out[6] = qe_max
-    out[7] = math.sqrt(Fx * Fx + Fy * Fy)
-    out[8] = abs(Fz)
-    out[9] = kmax
+    out[C_F_INNER] = Fx
+    out[C_F_INNER + 1] = Fy
+    out[C_F_INNER + 2] = Fz
+    out[C_F_OUTER] = Gx
+    out[C_F_OUTER + 1] = Gy
+    out[C_Q_I] = qi_max
+    out[C_Q_E] = qe_max
+    out[C_F_R] = math.sqrt(Fx * Fx + Fy * Fy)
+    out[C_F_A] = abs(Fz)
+    out[C_K_MAX] = kmax
+
+
+@njit(cache=True, no_cfunc_wrapper=True)
+def _torque(Fr, Fa, d):
+    """Palmgren's drag torque (drag.py) for the radial and axial loads, with the drag vector ``d`` (DRAG)."""
+    return palmgren_torque(Fr, Fa, d[D_NU], d[D_OMEGA], d[D_DM], d[D_F0], d[D_F1_Z], d[D_F1_Y], d[D_X0], d[D_Y0],
+                           d[D_C0])
 
 
 @njit(cache=True, no_cfunc_wrapper=True)
@@ -123,48 +164,42 @@ def _bad(a, lim):
 def step(h, Xa, Va, z0, eps, F0, Kj, Cj, balls, jour, phi, c_b, s_b, geo, drag, num, res):
     """Advance balls, cage angle and journal over h with the inner race on X(tau) = Xa + Va tau (+ z0 axially).
 
-    geo  = [l_oi, l_oe, cos a0, sin a0, K_i, K_e, alpha_d, F_c, m_b, m_journal, omega_c, (5 outputs' constants),
-            ball damping]
-    drag = [nu, omega, d_m, f0, z, y, X0, Y0, C0]
-    num  = [cfl, min_substeps, fixed_substeps (0: automatic), ...]
-    balls (4, Z) [v_r, v_z, dv_r/dt, dv_z/dt] and jour (4) [x, y, vx, vy] are updated in place; phi (1) too.
-    res <- [Fx, Fy, Fz on the inner race (end), Qi, Qe (end), Qi, Qe (max over the step), mean drag torque,
-            substeps used]."""
+    geo, drag, num: the vectors GEO, DRAG, NUM (above). balls (4, Z) [v_r, v_z, dv_r/dt, dv_z/dt] and jour (4)
+    [x, y, vx, vy] are updated in place; phi (1) too. res (R_SIZE) <- step's results (R_* above)."""
     Z = balls.shape[1]
-    l_oi, l_oe, ca0, sa0, Ki, Ke, ad, Fc, m_b, m_j, wc = (geo[0], geo[1], geo[2], geo[3], geo[4], geo[5], geo[6],
-                                                       geo[7], geo[8], geo[9], geo[10])
+    l_oi, l_oe, ca0, sa0 = geo[G_L_OI], geo[G_L_OE], geo[G_COS_A0], geo[G_SIN_A0]
+    Ki, Ke, ad, Fc, m_b = geo[G_K_I], geo[G_K_E], geo[G_ALPHA_D], geo[G_F_C], geo[G_M_B]
+    m_j, wc, cb = geo[G_M_JOURNAL], geo[G_OMEGA_CAGE], geo[G_BALL_DAMPING]
     eps_i = eps[0]
     eps_e = eps[1]
     eps_b = eps[2]
     acc = np.empty((2, Z))
-    out = np.empty(10)
+    out = np.empty(C_SIZE)
     x0 = jour[0]
     y0 = jour[1]
     vx0 = jour[2]
     vy0 = jour[3]
     _forces(Xa[0], Xa[1], Xa[2] + z0, Va[0], Va[1], Va[2], jour[0], jour[1], jour[2], jour[3],
             math.cos(phi[0]), math.sin(phi[0]), wc, balls, Z, c_b, s_b, l_oi, l_oe, ca0, sa0, Ki, Ke, ad, Fc, m_b,
-            eps_i, eps_e, eps_b, geo[16], acc, out)
+            eps_i, eps_e, eps_b, cb, acc, out)
     if h <= 0.0:
         # outputs of the present state only (set-up)
-        M = palmgren_torque(out[7], out[8], drag[0], drag[1], drag[2], drag[3], drag[4], drag[5], drag[6],
-                            drag[7], drag[8])
-        res[0] = out[0]
-        res[1] = out[1]
-        res[2] = out[2]
-        res[3] = out[5]
-        res[4] = out[6]
-        res[5] = out[5]
-        res[6] = out[6]
-        res[7] = M
-        res[8] = 0
+        M = _torque(out[C_F_R], out[C_F_A], drag)
+        for k in range(3):
+            res[R_F_INNER + k] = out[C_F_INNER + k]
+        res[R_Q] = out[C_Q_I]
+        res[R_Q + 1] = out[C_Q_E]
+        res[R_Q_STEP] = out[C_Q_I]
+        res[R_Q_STEP + 1] = out[C_Q_E]
+        res[R_TORQUE] = M
+        res[R_SUBSTEPS] = 0
         return
-    n = int(num[2])
+    n = int(num[N_SUBSTEPS])
     if n <= 0:
-        w = math.sqrt(out[9] / m_b)
-        n = int(math.ceil(h * w / num[0]))
-        if n < int(num[1]):
-            n = int(num[1])
+        w = math.sqrt(out[C_K_MAX] / m_b)
+        n = int(math.ceil(h * w / num[N_CFL]))
+        if n < int(num[N_MIN_SUBSTEPS]):
+            n = int(num[N_MIN_SUBSTEPS])
     dt = h / n
     # journal: (m/dt - dt K - C) v+ = m/dt v + F_contact + F0 + K (x - x0) - C v0, x+ = x + dt v+
     a11 = m_j / dt - dt * Kj[0] - Cj[0]
@@ -172,8 +207,8 @@ def step(h, Xa, Va, z0, eps, F0, Kj, Cj, balls, jour, phi, c_b, s_b, geo, drag, 
     a21 = -dt * Kj[2] - Cj[2]
     a22 = m_j / dt - dt * Kj[3] - Cj[3]
     det = a11 * a22 - a12 * a21
-    qi_step = out[5]
-    qe_step = out[6]
+    qi_step = out[C_Q_I]
+    qe_step = out[C_Q_E]
     drag_sum = 0.0
     cdt = math.cos(wc * dt)
     sdt = math.sin(wc * dt)
@@ -184,13 +219,12 @@ def step(h, Xa, Va, z0, eps, F0, Kj, Cj, balls, jour, phi, c_b, s_b, geo, drag, 
             tau = k * dt
             _forces(Xa[0] + Va[0] * tau, Xa[1] + Va[1] * tau, Xa[2] + z0 + Va[2] * tau, Va[0], Va[1], Va[2],
                     jour[0], jour[1], jour[2], jour[3], cphi, sphi, wc, balls, Z, c_b, s_b, l_oi, l_oe, ca0, sa0,
-                    Ki, Ke, ad, Fc, m_b, eps_i, eps_e, eps_b, geo[16], acc, out)
-            if out[5] > qi_step:
-                qi_step = out[5]
-            if out[6] > qe_step:
-                qe_step = out[6]
-        M = palmgren_torque(out[7], out[8], drag[0], drag[1], drag[2], drag[3], drag[4], drag[5], drag[6],
-                            drag[7], drag[8])
+                    Ki, Ke, ad, Fc, m_b, eps_i, eps_e, eps_b, cb, acc, out)
+            if out[C_Q_I] > qi_step:
+                qi_step = out[C_Q_I]
+            if out[C_Q_E] > qe_step:
+                qe_step = out[C_Q_E]
+        M = _torque(out[C_F_R], out[C_F_A], drag)
         drag_sum += M if k > 0 else 0.5 * M
         for j in range(Z):
             balls[2, j] += dt * acc[0, j]
@@ -199,8 +233,8 @@ def step(h, Xa, Va, z0, eps, F0, Kj, Cj, balls, jour, phi, c_b, s_b, geo, drag, 
             balls[1, j] += dt * balls[3, j]
         dx = jour[0] - x0
         dy = jour[1] - y0
-        r1 = m_j / dt * jour[2] + out[3] + F0[0] + Kj[0] * dx + Kj[1] * dy - Cj[0] * vx0 - Cj[1] * vy0
-        r2 = m_j / dt * jour[3] + out[4] + F0[1] + Kj[2] * dx + Kj[3] * dy - Cj[2] * vx0 - Cj[3] * vy0
+        r1 = m_j / dt * jour[2] + out[C_F_OUTER] + F0[0] + Kj[0] * dx + Kj[1] * dy - Cj[0] * vx0 - Cj[1] * vy0
+        r2 = m_j / dt * jour[3] + out[C_F_OUTER + 1] + F0[1] + Kj[2] * dx + Kj[3] * dy - Cj[2] * vx0 - Cj[3] * vy0
         vxn = (a22 * r1 - a12 * r2) / det
         vyn = (a11 * r2 - a21 * r1) / det
         jour[2] = vxn
@@ -215,23 +249,21 @@ def step(h, Xa, Va, z0, eps, F0, Kj, Cj, balls, jour, phi, c_b, s_b, geo, drag, 
     sphi = math.sin(phi[0])
     _forces(Xa[0] + Va[0] * h, Xa[1] + Va[1] * h, Xa[2] + z0 + Va[2] * h, Va[0], Va[1], Va[2], jour[0], jour[1],
             jour[2], jour[3], cphi, sphi, wc, balls, Z, c_b, s_b, l_oi, l_oe, ca0, sa0, Ki, Ke, ad, Fc, m_b,
-            eps_i, eps_e, eps_b, geo[16], acc, out)
-    if out[5] > qi_step:
-        qi_step = out[5]
-    if out[6] > qe_step:
-        qe_step = out[6]
-    M = palmgren_torque(out[7], out[8], drag[0], drag[1], drag[2], drag[3], drag[4], drag[5], drag[6], drag[7],
-                        drag[8])
+            eps_i, eps_e, eps_b, cb, acc, out)
+    if out[C_Q_I] > qi_step:
+        qi_step = out[C_Q_I]
+    if out[C_Q_E] > qe_step:
+        qe_step = out[C_Q_E]
+    M = _torque(out[C_F_R], out[C_F_A], drag)
     drag_sum += 0.5 * M
-    res[0] = out[0]
-    res[1] = out[1]
-    res[2] = out[2]
-    res[3] = out[5]
-    res[4] = out[6]
-    res[5] = qi_step
-    res[6] = qe_step
-    res[7] = drag_sum / n
-    res[8] = n
+    for k in range(3):
+        res[R_F_INNER + k] = out[C_F_INNER + k]
+    res[R_Q] = out[C_Q_I]
+    res[R_Q + 1] = out[C_Q_E]
+    res[R_Q_STEP] = qi_step
+    res[R_Q_STEP + 1] = qe_step
+    res[R_TORQUE] = drag_sum / n
+    res[R_SUBSTEPS] = n
 
 
 #: step's argument types: called by address from tm_step (components/kernels.call_at), so that tm_step's compilation
@@ -259,11 +291,11 @@ def kinematic_viscosity(A, B, T):
 
 @njit(cache=True, no_cfunc_wrapper=True)
 def oil_viscosity(p, T):
-    """nu at T into drag[0], kept for the last T (it changes only at the thermal network's step)."""
+    """nu at T into drag[D_NU], kept for the last T (it changes only at the thermal network's step)."""
     if T != p.cache[0]:
-        p.drag[0] = kinematic_viscosity(p.walther_A, p.walther_B, T)
+        p.drag[D_NU] = kinematic_viscosity(p.walther_A, p.walther_B, T)
         p.cache[0] = T
-    return p.drag[0]
+    return p.drag[D_NU]
 
 
 @njit(cache=True, no_cfunc_wrapper=True)
@@ -272,7 +304,8 @@ def viscous_power(p, T):
     if T != p.cache[1]:
         d = p.drag
         nu = oil_viscosity(p, T)
-        p.cache[2] = d[1] * palmgren_torque(0.0, 0.0, nu, d[1], d[2], d[3], d[4], d[5], d[6], d[7], d[8])
+        p.cache[2] = d[D_OMEGA] * palmgren_torque(0.0, 0.0, nu, d[D_OMEGA], d[D_DM], d[D_F0], d[D_F1_Z],
+                                                   d[D_F1_Y], d[D_X0], d[D_Y0], d[D_C0])
         p.cache[1] = T
     return p.cache[2]
 
@@ -283,14 +316,12 @@ def tm_step(s, p, u, y, t, h):
     component's outputs. h = 0 gives the outputs of the present state (set-up: component._advance).
 
     Status PYTHON (1): the growths jumped (a thermal-only interval ended): the balls are re-seated in Python first;
-    5: T_oil outside the viscosity fit; 10 + a flag: 1 non-finite input, 2 eps beyond +-geo[15] (5 % of the ball
+    5: T_oil outside the viscosity fit; 10 + a flag: 1 non-finite input, 2 eps beyond +-eps_limit (5 % of the ball
     diameter), 3 non-finite state.
 
-    The inner race path is X - V lag + V tau with lag = num[3] (h: inputs at the end of the step; 0: start).
-    geo[11:16] = [preload, stress coefficient inner, outer, omega, eps limit], geo[16] ball damping,
-    geo[17] = axial direction (+1, or -1 for a bearing mounted the other way round: z is mirrored).
-    p.out (18) <- F_rotor (3), X_journal (2), V_journal (2), Q_max (2), Q_max_step (2), sigma_max (2),
-    sigma_max_step (2), P_drag (1), the flag and the number of sub-steps.
+    The inner race path is X - V lag + V tau with lag = h if inputs_at_end else 0. axial_direction is +1, or -1
+    for a bearing mounted the other way round (z is mirrored). p.out (O_SIZE) <- the output ports, the flag and
+    the number of sub-steps (O_* above).
 
     One compiled function with what was step_outputs (a second entry point compiled the whole step, three
     contact passes and the drag, once more inside itself: ~1 s of CPU on a fresh machine, notes/h16c.md); step is
@@ -316,13 +347,13 @@ def tm_step(s, p, u, y, t, h):
     geo, num, out = p.geo, p.num, p.out
     if (_bad(X, 1e300) or _bad(V, 1e300) or _bad(F0, 1e300) or _bad(Kj, 1e300) or _bad(Cj, 1e300)
             or _bad(eps, 1e300)):
-        out[16] = 1.0
+        out[O_FLAG] = 1.0
         return 11
-    if _bad(eps, geo[15]):
-        out[16] = 2.0
+    if _bad(eps, geo[G_EPS_LIMIT]):
+        out[O_FLAG] = 2.0
         return 12
-    lag = h if num[3] > 0.0 else 0.0
-    ax = geo[17]
+    lag = h if num[N_INPUTS_AT_END] > 0.0 else 0.0
+    ax = geo[G_AXIAL_DIRECTION]
     Vb = np.empty(3)
     Xa = np.empty(3)
     for k in range(3):
@@ -331,45 +362,45 @@ def tm_step(s, p, u, y, t, h):
     for k in range(3):
         Xa[k] = X[k] - V[k] * lag
     Xa[2] *= ax
-    res = np.empty(9)
+    res = np.empty(R_SIZE)
     balls = s.balls
     call_at(p.step_at, step, (h, Xa, Vb, p.z0, eps, F0, Kj, Cj, balls, s.journal, s.phi, p.c_b, p.s_b, geo, p.drag,
                               num, res))
     jour = s.journal
-    out[0] = res[0]
-    out[1] = res[1]
-    out[2] = ax * (res[2] + geo[11])
-    out[3] = jour[0]
-    out[4] = jour[1]
-    out[5] = jour[2]
-    out[6] = jour[3]
-    for k in range(4):
-        out[7 + k] = res[3 + k]
-    out[11] = geo[12] * res[3] ** (1.0 / 3.0)
-    out[12] = geo[13] * res[4] ** (1.0 / 3.0)
-    out[13] = geo[12] * res[5] ** (1.0 / 3.0)
-    out[14] = geo[13] * res[6] ** (1.0 / 3.0)
-    out[15] = res[7] * geo[14]
+    out[O_F_ROTOR] = res[R_F_INNER]
+    out[O_F_ROTOR + 1] = res[R_F_INNER + 1]
+    out[O_F_ROTOR + 2] = ax * (res[R_F_INNER + 2] + geo[G_PRELOAD])
+    for k in range(2):
+        out[O_X_JOURNAL + k] = jour[k]
+        out[O_V_JOURNAL + k] = jour[2 + k]
+        out[O_Q_MAX + k] = res[R_Q + k]
+        out[O_Q_MAX_STEP + k] = res[R_Q_STEP + k]
+    # eq. (10): sigma = (stress coefficient) Q^(1/3), inner and outer race
+    out[O_SIGMA_MAX] = geo[G_STRESS_INNER] * res[R_Q] ** (1.0 / 3.0)
+    out[O_SIGMA_MAX + 1] = geo[G_STRESS_OUTER] * res[R_Q + 1] ** (1.0 / 3.0)
+    out[O_SIGMA_MAX_STEP] = geo[G_STRESS_INNER] * res[R_Q_STEP] ** (1.0 / 3.0)
+    out[O_SIGMA_MAX_STEP + 1] = geo[G_STRESS_OUTER] * res[R_Q_STEP + 1] ** (1.0 / 3.0)
+    out[O_P_DRAG] = res[R_TORQUE] * geo[G_OMEGA]
     ok = True
-    for k in range(16):
+    for k in range(O_FLAG):
         if not (abs(out[k]) < 1e300):
             ok = False
     for v in balls.ravel():
         if not (abs(v) < 1e300):
             ok = False
-    out[17] = res[8]
+    out[O_SUBSTEPS] = res[R_SUBSTEPS]
     if not ok:
-        out[16] = 3.0
+        out[O_FLAG] = 3.0
         return 13
-    out[16] = 0.0
+    out[O_FLAG] = 0.0
     for k in range(3):
-        y.F_rotor[k] = out[k]
+        y.F_rotor[k] = out[O_F_ROTOR + k]
     for k in range(2):
-        y.X_journal[k] = out[3 + k]
-        y.V_journal[k] = out[5 + k]
-        y.Q_max[k] = out[7 + k]
-        y.Q_max_step[k] = out[9 + k]
-        y.sigma_max[k] = out[11 + k]
-        y.sigma_max_step[k] = out[13 + k]
-    y.P_drag[0] = out[15]
+        y.X_journal[k] = out[O_X_JOURNAL + k]
+        y.V_journal[k] = out[O_V_JOURNAL + k]
+        y.Q_max[k] = out[O_Q_MAX + k]
+        y.Q_max_step[k] = out[O_Q_MAX_STEP + k]
+        y.sigma_max[k] = out[O_SIGMA_MAX + k]
+        y.sigma_max_step[k] = out[O_SIGMA_MAX_STEP + k]
+    y.P_drag[0] = out[O_P_DRAG]
     return 0

@@ -279,25 +279,25 @@ def test_bad_inputs_and_parameters():
 def test_separating_contact_pulls_nothing():
     """Eq. (9)'s damping term with a fast separating contact (d(delta)/dt < -1 / (1.5 alpha)) would give a tensile
     force; the contact force is clipped at zero instead, and a contact with delta < 0 carries nothing."""
-    from rotorcosim.components.bearing.kernel import _forces
+    from rotorcosim.components.bearing import kernel as k
     b = make(bearing=0, omega=0.0, ball_damping=0.0)
     g = b.geometry
     geo = b._geo
     balls = b.state["balls"].copy()
-    acc, out = np.empty((2, g.Z)), np.empty(10)
-    args = (g.Z, b._cb, b._sb, geo[0], geo[1], geo[2], geo[3], geo[4], geo[5], geo[6], 0.0, g.m_b, 0.0, 0.0, 0.0,
-            0.0, acc, out)
+    acc, out = np.empty((2, g.Z)), np.empty(k.C_SIZE)
+    args = (g.Z, b._cb, b._sb, geo[k.G_L_OI], geo[k.G_L_OE], geo[k.G_COS_A0], geo[k.G_SIN_A0], geo[k.G_K_I],
+            geo[k.G_K_E], geo[k.G_ALPHA_D], 0.0, g.m_b, 0.0, 0.0, 0.0, 0.0, acc, out)
     # ball 0 moves inwards at 10 m/s: the outer contact separates at ~10 m/s (1.5 alpha v = 3 > 1)
     ca, sa = math.cos(g.alpha0), math.sin(g.alpha0)
     balls[2, 0], balls[3, 0] = -10.0 * ca, -10.0 * sa
-    _forces(0.0, 0.0, b.z0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, balls, *args)
+    k._forces(0.0, 0.0, b.z0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, balls, *args)
     # the outer contact pulls nothing: the ball is pushed by the inner contact only (outwards, along +n_i)
     assert acc[0, 0] > 0.0 and acc[1, 0] > 0.0
     # inner race 20 um towards -x, journal 20 um towards +x: ball 0 (at phi = 0) touches neither race
     balls = b.state["balls"].copy()
-    _forces(-20e-6, 0.0, b.z0, 0.0, 0.0, 0.0, 20e-6, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, balls, *args)
+    k._forces(-20e-6, 0.0, b.z0, 0.0, 0.0, 0.0, 20e-6, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, balls, *args)
     assert acc[0, 0] == 0.0 and acc[1, 0] == 0.0
-    assert out[5] > 0.0                     # the balls on the other side carry the load
+    assert out[k.C_Q_I] > 0.0               # the balls on the other side carry the load
 
 
 def test_axial_direction_mirrors_z():
