@@ -2,7 +2,7 @@
 process, printed as one table (speed-up in wall and CPU time, each timing of the staggered run, the largest
 relative error of the Table 4 results against the monolithic run, the load average around the runs).
 
-    python bench/bench_table6_levels.py [--levels paper] [--rounds 1] [--out DIR]
+    python bench/bench_table6_levels.py [--levels paper] [--rounds 1] [--out DIR] [--timing-runs N]
 
 Issue 12's target: every result within 2 % and a speed-up of at least 12 at every level. The machine's speed
 drifts by 10-20 % over seconds, which is why `compare` times the staggered run before and after the monolithic
@@ -27,6 +27,7 @@ def main() -> None:
     ap.add_argument("--rounds", type=int, default=1)
     ap.add_argument("--duration", type=float, default=2.0)
     ap.add_argument("--out", default=None, help="keep the comparisons here (default: a temporary folder)")
+    ap.add_argument("--timing-runs", type=int, default=None, help="staggered timings per comparison (default: compare's)")
     a = ap.parse_args()
     try:
         levels = parse_levels(a.levels)
@@ -34,6 +35,8 @@ def main() -> None:
         ap.error(str(exc).replace("--unbalance", "--levels"))
     if a.rounds < 1:
         ap.error(f"--rounds must be at least 1, got {a.rounds}")
+    if a.timing_runs is not None and a.timing_runs < 1:
+        ap.error(f"--timing-runs must be at least 1, got {a.timing_runs}")
     keep = Path(a.out) if a.out else None
     ratios = {f: [] for f in levels}
     pooled = {f: ([], []) for f in levels}  # every staggered and monolithic wall time of the level
@@ -43,7 +46,8 @@ def main() -> None:
               "monolithic run) | monolithic wall [s] | largest error % | load")
         for r in range(a.rounds):
             for f in levels:
-                t = compare(base / f"r{r}_{f:g}N", duration=a.duration, unbalance=f, figures=False, overwrite=True)
+                t = compare(base / f"r{r}_{f:g}N", duration=a.duration, unbalance=f, figures=False, overwrite=True,
+                            timing_runs=a.timing_runs)
                 runs = t.get("staggered_runs") or {"wall_time_s": [t["wall_time_s"]["staggered"]]}
                 load = [x for v in t["load_average"].values() for x in v if x is not None]
                 ratios[f].append(t["speedup"])
