@@ -58,7 +58,7 @@ def port_tuple(cls_name: str, kind: str, names: tuple[str, ...]) -> type:
 # -- an inner function called by address ---------------------------------------------------------------------
 # numba compiles each njit function into its own module, and a caller that calls it by name links that module into
 # its own and optimises and machine-codes all of it again: a kernel over a chain of four functions compiles the
-# innermost four times (on a fresh machine's first run most of the compile CPU, notes/h16c.md). A large inner
+# innermost four times (on a fresh machine's first run most of the compile CPU). A large inner
 # function that a kernel calls through its address instead is compiled once, on its own (and can be compiled by
 # the helper process of a fresh machine, master/ahead.py: its signature is declared).
 

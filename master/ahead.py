@@ -2,7 +2,7 @@
 thermo-mechanical interval will need from the on-disk caches (compiled kernels, the damper's film tables).
 
 numba compiles one function at a time in a process, and the film tables' sparse factorisations hold the GIL, so
-on a fresh machine the set-up and the first interval build one thing after another on one core (notes/h16.md).
+on a fresh machine the set-up and the first interval build one thing after another on one core.
 The components name what their set-up will build from their parameters alone (contract.Component.prebuild: the
 damper's film table and film kernel); the master adds the compiled loop (loop_ops.run_chunk, the same types for
 every system). Whatever the caches lack, a plain ``python -m`` child builds in that order into the same caches

@@ -4,7 +4,7 @@ The compiled loop (loop_ops.run_chunk) is one function for every system: it call
 a trampoline on that component's packed containers, all three given by address (int64 arrays), so its arguments
 are plain arrays and numbers. Before this, the loop took the 36 containers of the blade-loss system (~200 arrays)
 as arguments: one compiled version per system, whose CPython wrapper (unboxing them) and scalar replacement
-(SROA) over ~1 400 argument values took 13-16 s of CPU on a fresh machine's first run (notes/h16.md).
+(SROA) over ~1 400 argument values took 13-16 s of CPU on a fresh machine's first run.
 
 * :class:`Packed` writes the containers (s, p, u, y) into a buffer in numba's in-memory layout (read from its data
   model, :func:`_layout`), in Python: nothing to compile. Every array goes in as a *borrowed* view: its meminfo

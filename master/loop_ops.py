@@ -5,7 +5,7 @@ The loop's glue is data, not generated code: all components' ports are views of 
 the functions here loop over table rows at run time. They are compiled once per package version (numba's disk
 cache) whatever the system; only the loop that calls each component's kernel is generated (a few lines per
 component), and it calls the kernels through their addresses (:func:`call_kernel`), so that neither the glue nor
-the kernels are re-optimised inside it. Measured before this design (notes/old/s3/i16.md): one generated
+the kernels are re-optimised inside it. Measured before this design: one generated
 function per system with every link and port spelled out inline took 95-140 s CPU to compile on a fresh machine,
 most of it LLVM's scalar replacement of aggregates over that one large function.
 

@@ -267,7 +267,7 @@ def step(h, Xa, Va, z0, eps, F0, Kj, Cj, balls, jour, phi, c_b, s_b, geo, drag, 
 
 
 #: step's argument types: called by address from tm_step (components/kernels.call_at), so that tm_step's compilation
-#: does not optimise and machine-code the whole step once more (~2-3 s of CPU on a fresh machine, notes/h16c.md)
+#: does not optimise and machine-code the whole step once more (~2-3 s of CPU on a fresh machine)
 _F1, _F2 = types.float64[::1], types.float64[:, ::1]
 STEP_SIG = (types.float64, _F1, _F1, types.float64, _F1, _F1, _F1, _F1, _F2, _F1, _F1, _F1, _F1, _F1, _F1, _F1, _F1)
 by_address(step, STEP_SIG)
@@ -324,7 +324,7 @@ def tm_step(s, p, u, y, t, h):
     the number of sub-steps (O_* above).
 
     One compiled function with what was step_outputs (a second entry point compiled the whole step, three
-    contact passes and the drag, once more inside itself: ~1 s of CPU on a fresh machine, notes/h16c.md); step is
+    contact passes and the drag, once more inside itself: ~1 s of CPU on a fresh machine); step is
     called by address (STEP_SIG)."""
     T = u.T_oil[0]
     if not (T > p.T_min and T <= p.T_max):   # the viscosity fit's range (components/oil_fit.py)

@@ -253,7 +253,7 @@ def _linear(ftab, eps, u0, du, n, a, b):
 
     Column j of ftab interpolated (f_j) and differentiated in eps (g_j), in scalars: no temporary arrays. Inlined
     into _aligned (its only caller) at numba's level: a separate compiled function would be optimised and
-    machine-coded once more inside every caller (notes/h16c.md)."""
+    machine-coded once more inside every caller."""
     u = -math.log1p(-eps)
     k, w0, w1, w2, w3, d0, d1, d2, d3 = _lagrange4(u, u0, du, n)
     f0 = w0 * ftab[k, 0] + w1 * ftab[k + 1, 0] + w2 * ftab[k + 2, 0] + w3 * ftab[k + 3, 0]
@@ -351,7 +351,7 @@ def fast_step(NT, G, TW, toff, ftab, bounds, Wc, Ws, prm, xj, vj, xh, vh, mu, ou
 _A1, _A2, _A3 = types.float64[::1], types.float64[:, ::1], types.float64[:, :, ::1]
 FAST_STEP_SIG = (_A1, _A3, _A2, types.int64[::1], _A2, _A2, _A1, _A1, _A1, _A1, _A1, _A1, _A1, types.float64, _A1)
 # the damper's tm_step calls it by address (components/kernels.call_at): linked by name, tm_step's compilation
-# optimised and machine-coded the whole film kernel a second time (~2 s of CPU on a fresh machine, notes/h16c.md)
+# optimised and machine-coded the whole film kernel a second time (~2 s of CPU on a fresh machine)
 by_address(fast_step, FAST_STEP_SIG)
 
 
