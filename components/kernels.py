@@ -61,7 +61,6 @@ def port_tuple(cls_name: str, kind: str, names: tuple[str, ...]) -> type:
 # innermost four times (on a fresh machine's first run most of the compile CPU). A large inner
 # function that a kernel calls through its address instead is compiled once, on its own (and can be compiled by
 # the helper process of a fresh machine, master/ahead.py: its signature is declared).
-
 #
 # The kernels and the functions they call are compiled with ``no_cfunc_wrapper=True``: numba's C-callable wrapper
 # of each (which nothing here uses: the loop calls kernels through numba's own calling convention) cost ~0.3-0.7 s
