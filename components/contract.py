@@ -236,6 +236,21 @@ class Component:
         return f"<{type(self).__name__} {self.name!r}>"
 
 
+class Memoryless:
+    """Mixin (before Component in the bases) for a component whose outputs follow from its inputs and parameters
+    alone, with nothing carried from one step to the next (the dampers' film, the rub ring's contact): its snapshot
+    is the time and copies of its current inputs and outputs."""
+
+    def get_state(self):
+        return (self.time, {k: v.copy() for k, v in self.u.items()}, {k: v.copy() for k, v in self.y.items()})
+
+    def set_state(self, snapshot):
+        t, u, y = snapshot
+        self.time = t
+        self.u = {k: v.copy() for k, v in u.items()}
+        self.y = {k: v.copy() for k, v in y.items()}
+
+
 def _copy_snapshot(snap: tuple) -> tuple:
     """``copy.deepcopy(snap)`` of a snapshot ``(time, state, u, y)``. Where state, u and y are plain dicts of
     distinct numeric arrays (what the native components keep) the copy is made directly, the same copy 4-5 times

@@ -25,7 +25,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ..contract import Component, ContractError, Variable
+from ..contract import Component, ContractError, Memoryless, Variable
 from ..kernels import KernelComponent
 from ..oil_fit import T_MAX_K, T_MIN_K
 from . import wall
@@ -66,7 +66,7 @@ def table3(damper: int) -> dict:
     return dict(DAMPERS[damper])
 
 
-class _Damper(Component):
+class _Damper(Memoryless, Component):
     """Common ports, parameters, spring, viscosity and checks; subclasses provide :meth:`film_force`."""
 
     required_parameters = ("damper",)  # which of Table 3's gives the data: never a silent default
@@ -235,16 +235,6 @@ class _Damper(Component):
             self._fail(status, t + h)
         self.y["P_film"] = out[16:17]
         self.time = t + h
-
-    def get_state(self):
-        # memoryless: the snapshot is the time and the current inputs/outputs (cheap copies)
-        return (self.time, {k: v.copy() for k, v in self.u.items()}, {k: v.copy() for k, v in self.y.items()})
-
-    def set_state(self, snapshot):
-        t, u, y = snapshot
-        self.time = t
-        self.u = {k: v.copy() for k, v in u.items()}
-        self.y = {k: v.copy() for k, v in y.items()}
 
     def film_force(self, dx, dy, dvx, dvy, mu):
         """(Fx, Fy) of the film alone at relative position/velocity (journal minus housing)."""

@@ -21,7 +21,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ..contract import ContractError, Variable
+from ..contract import ContractError, Memoryless, Variable
 from ..kernels import KernelComponent
 from ..speeds import PT_OMEGA
 from .contact import RubParams, rub_force, tm_step
@@ -35,7 +35,7 @@ CONTACT = _DATA["contact"]
 GEOMETRY = {"clearance": "clearance_mm", "radius": "radius_mm"}
 
 
-class RubRing(KernelComponent):
+class RubRing(Memoryless, KernelComponent):
     """Rotor / rub-ring contact at bearing #0 or #5."""
 
     description = "Rub ring: penalty contact with damping, Coulomb friction (spin + whirl), friction power eq. (11)"
@@ -110,13 +110,3 @@ class RubRing(KernelComponent):
     def _evaluate(self, t):
         self._kernel_p = RubParams(*(float(a) for a in self._args))
         self.kernel_step(t, 0.0)
-
-    def get_state(self):
-        # memoryless: the snapshot is the time and the current inputs/outputs
-        return (self.time, {k: v.copy() for k, v in self.u.items()}, {k: v.copy() for k, v in self.y.items()})
-
-    def set_state(self, snapshot):
-        t, u, y = snapshot
-        self.time = t
-        self.u = {k: v.copy() for k, v in u.items()}
-        self.y = {k: v.copy() for k, v in y.items()}
