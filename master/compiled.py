@@ -386,7 +386,8 @@ class Runner:
                     PA[i] = self.packed[i].address
             op.run_chunk(k, k1, r0, t_start, h, check, count, self.buf, self.status, plan.mult_arr, plan.width,
                          self.X, LI, M, V, G, C, plan.CT, plan.IDX, TA, PA, KA)
-            sim.compiled_done()  # the loop and every kernel of the interval are loaded: the helper has nothing left
+            if not sim.first_compiled.is_set():  # the loop and the interval's kernels are loaded: the helper is done
+                sim.compiled_done()
             code, kk, i = (int(x) for x in self.status)
             done = kk  # base steps completed
             self._back(LI, M, V, C, count)

@@ -200,6 +200,7 @@ class Packed:
     def __init__(self):
         self.buf = np.zeros(8, dtype=np.int64)
         self.kargs = None
+        self.ctype = None  # the numba type of the packed kargs
 
     @property
     def address(self) -> int:
@@ -220,7 +221,7 @@ class Packed:
                 return False
         ctype = container_type(kargs) if ctype is None else ctype
         size, leaves = _layout(ctype)
-        if self.buf.nbytes < size or ctype != getattr(self, "ctype", None) or len(old or ()) != len(kargs):
+        if self.buf.nbytes < size or ctype != self.ctype or len(old or ()) != len(kargs):
             if self.buf.nbytes < size:
                 self.buf = np.zeros(size // 8 + 1, dtype=np.int64)
             fresh = [True] * len(kargs)

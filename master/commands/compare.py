@@ -179,8 +179,7 @@ def compare(out: Path, duration=2.0, unbalance=2850.0, scenario="blade_loss", re
     _warm_up(scenario, out, _quantum(sc))
     scenarios, loads = {}, {}
     # the staggered run's timings (its own, then the repeats): half of them before the monolithic run
-    repeats = (TIMING_RUNS if timing_runs is None else timing_runs) if monolithic is None and schedule == "paper" \
-        else 1
+    repeats = 1 if monolithic is not None or schedule != "paper" else timing_runs or TIMING_RUNS
     before = (repeats + 1) // 2
     timings = []
     for i, kind in enumerate(kinds, 1):
