@@ -88,6 +88,9 @@ def load_plugin(path: str, folder: str | None = None) -> type:
     except Exception as exc:  # a plug-in's own error at import: say whose it is
         raise ContractError(f"plug-in {path!r}: importing module {module!r} failed: "
                             f"{type(exc).__name__}: {exc}") from None
+    except SystemExit as exc:  # sys.exit() at import ended the command with the plug-in's status and no word
+        raise ContractError(f"plug-in {path!r}: module {module!r} called sys.exit({exc.code!r}) while imported") \
+            from None
     finally:
         if added:
             sys.path.remove(folder)

@@ -20,6 +20,7 @@ connection and input, so that an error found after composition can name the file
 from __future__ import annotations
 
 import copy
+import os
 import re
 import sys
 from dataclasses import dataclass, field
@@ -31,6 +32,7 @@ if sys.version_info >= (3, 11):
 else:  # pragma: no cover
     import tomli as tomllib
 
+from rotorcosim.components import toml_text
 from rotorcosim.components.contract import ContractError
 
 
@@ -75,13 +77,20 @@ def _merge(base: dict, top: Mapping) -> dict:
     return out
 
 
+def real_path(path: str | Path) -> Path:
+    """The absolute path without symbolic links (``os.path.realpath``: a link loop is left as it is, for the
+    caller's "not found", where ``Path.resolve`` raised RuntimeError on Python 3.11)."""
+    return Path(os.path.realpath(Path(path).expanduser()))
+
+
 def _load(path: Path) -> dict:
     if path.is_dir():
         raise IsADirectoryError(f"scenario file {path} is a folder, not a TOML file")
     if not path.is_file():
-        raise FileNotFoundError(f"scenario file {path} not found")
+        raise FileNotFoundError(f"scenario file {path} " + ("is a symbolic link to nothing (dangling, or a loop)"
+                                                            if path.is_symlink() else "not found"))
     try:
-        return tomllib.loads(path.read_text())
+        return toml_text.loads(path.read_text())
     except tomllib.TOMLDecodeError as exc:
         m = re.search(r"\(at line (\d+), column \d+\)", str(exc))
         where = f"{path}:{m.group(1)}" if m else str(path)
@@ -92,15 +101,22 @@ def _load(path: Path) -> dict:
         raise ScenarioError(f"{path}: cannot read it ({exc.strerror or exc})") from None
 
 
+def _table(value: Any) -> Mapping:
+    """``value`` if it is a table, else an empty one: composition looks only into tables of the right kind and
+    leaves a value of the wrong kind where it is, for the schema to name with its file and line
+    (``parameters = 3`` was a TypeError here)."""
+    return value if isinstance(value, Mapping) else {}
+
+
 def _own(data: dict, origins: Origins, where: str) -> None:
     """Record ``where`` as the origin of every entry of a file that extends nothing."""
-    for name, spec in (data.get("components") or {}).items():
+    for name, spec in _table(data.get("components")).items():
         origins.components[name] = where
-        if isinstance(spec, Mapping):
-            for p in spec.get("parameters") or {}:
-                origins.parameters[(name, p)] = where
-    origins.connections = [where] * len(data.get("connections") or [])
-    origins.inputs = {ref: where for ref in data.get("inputs") or {}}
+        for p in _table(_table(spec).get("parameters")):
+            origins.parameters[(name, p)] = where
+    cons = data.get("connections")
+    origins.connections = [where] * (len(cons) if isinstance(cons, list) else 0)
+    origins.inputs = {ref: where for ref in _table(data.get("inputs"))}
 
 
 def _str_list(value: Any, where: str, key: str) -> list[str]:
@@ -123,7 +139,7 @@ def _components(base: dict, child: Mapping, origins: Origins, where: str) -> dic
                                        f"here, it inherits no parameter to remove")
             out[name] = spec
             origins.components[name] = where
-            for p in spec.get("parameters") or {}:
+            for p in _table(spec.get("parameters")):
                 origins.parameters[(name, p)] = where
             continue
         merged = dict(out[name])
@@ -133,14 +149,18 @@ def _components(base: dict, child: Mapping, origins: Origins, where: str) -> dic
             merged.pop("fmu", None)
             merged.pop("start", None)
             origins.components[name] = where
-        params = dict(merged.get("parameters") or {})
+        params = dict(_table(merged.get("parameters")))
         for p in remove:
             if p not in params:
                 raise CompositionError(f"{where}: [components.{name}] remove_parameters: {p!r} is not an "
                                        f"inherited parameter (inherited: {sorted(params) or 'none'})")
             del params[p]
             origins.parameters.pop((name, p), None)
-        for p, v in (spec.pop("parameters", None) or {}).items():
+        own = spec.pop("parameters", None)
+        if own is not None and not isinstance(own, Mapping):
+            raise CompositionError(f"{where}: [components.{name}] parameters: must be a table of name = value "
+                                   f"(merged key by key into the inherited ones), got {type(own).__name__}")
+        for p, v in _table(own).items():
             params[p] = v
             origins.parameters[(name, p)] = where
         merged.update(spec)
@@ -186,7 +206,7 @@ def _base_path(path: Path, ref: str) -> Path:
 
 def compose(path: str | Path, _seen: tuple = ()) -> tuple[dict, Origins]:
     """The scenario file ``path`` with its ``extends`` chain composed; returns (data, origins)."""
-    path = Path(path).resolve()
+    path = real_path(path)
     if path in _seen:
         raise CompositionError(f"{path}: 'extends' loops back on itself ({' -> '.join(map(str, _seen + (path,)))})")
     data = _load(path)
@@ -202,7 +222,7 @@ def compose(path: str | Path, _seen: tuple = ()) -> tuple[dict, Origins]:
             raise CompositionError(f"{where}: [scenario] remove_connections needs 'extends' (nothing is inherited)")
         origins = Origins()
         _own(data, origins, where)
-        for name, spec in (data.get("components") or {}).items():
+        for name, spec in _table(data.get("components")).items():
             if isinstance(spec, Mapping) and "remove_parameters" in spec:
                 raise CompositionError(f"{where}: [components.{name}] remove_parameters needs 'extends' "
                                        f"(nothing is inherited)")

@@ -18,10 +18,11 @@ else:  # pragma: no cover
     import tomli as tomllib
 
 from rotorcosim.components import registry
+from rotorcosim.components import toml_text
 from rotorcosim.components.contract import ContractError
 from rotorcosim.components.value_types import check_value
 
-from .compose import ScenarioError
+from .compose import ScenarioError, real_path
 
 #: where a change made by the API or the command line is said to come from, in error messages
 API_ORIGIN = "Scenario.set/swap"
@@ -33,12 +34,15 @@ def _literal(text: str, what: str) -> Any:
     if not text:
         raise ValueError(f"{what}: an empty value")
     try:
-        value = tomllib.loads(f"v = {text}")["v"]
+        parsed = toml_text.loads(f"v = {text}")
     except tomllib.TOMLDecodeError:
         if any(c in text for c in "[]{}\"'=,"):
             raise ValueError(f"{what}: {text!r} is not a value (a number, true/false, a string or [a, list])") \
                 from None
         return text
+    if len(parsed) != 1:  # "10\nR = 5" read as TOML set a second key, which was dropped without a word
+        raise ValueError(f"{what}: {text!r} is not one value (a number, true/false, a string or [a, list])")
+    value = parsed["v"]
     try:
         _check_value(what, value)
     except ValueError:
@@ -160,7 +164,7 @@ def apply_swap(sc, component: str, implementation: str, parameters: Mapping[str,
     spec = _component(out, component)
     impl = str(implementation)
     if impl.lower().endswith(".fmu"):
-        path = Path(impl).expanduser().resolve()
+        path = real_path(impl)
         if path.is_dir():
             raise IsADirectoryError(f"swap {component}: FMU file {path} is a folder, not an FMU file")
         if not path.is_file():

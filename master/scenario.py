@@ -66,7 +66,7 @@ from rotorcosim.components.contract import Component, ContractError
 from . import schema
 from .algorithm import EngineSettings
 from .hold import DEFAULT_HOLD, RESTART_CYCLES
-from .compose import Origins, ScenarioError, compose
+from .compose import Origins, ScenarioError, compose, real_path
 from .schedule import from_spec
 from .simulation import Simulation
 from .system import Connection, System, split_port
@@ -188,7 +188,7 @@ def parse(data: Mapping[str, Any], source: Path | None = None, origins: Origins 
         if (impl is None) == (fmu is None):
             raise _fail(w, "give exactly one of 'implementation' (a registry name) or 'fmu' (a file)")
         if fmu is not None:
-            fmu = str((base / fmu).resolve()) if not Path(fmu).is_absolute() else fmu
+            fmu = str(real_path(base / fmu)) if not Path(fmu).is_absolute() else fmu
         params = dict(spec.get("parameters", {}))
         for k, v in params.items():
             _check_value(f"{w} parameter {k}", v)
@@ -240,7 +240,7 @@ def parse(data: Mapping[str, Any], source: Path | None = None, origins: Origins 
 def load_scenario(path: str | Path) -> Scenario:
     """The scenario file ``path`` (its ``extends`` chain composed). For shipped names see
     :func:`rotorcosim.load_scenario`."""
-    path = Path(path).resolve()
+    path = real_path(path)
     data, origins = compose(path)
     return parse(data, path, origins)
 

@@ -20,6 +20,7 @@ from __future__ import annotations
 
 import difflib
 import math
+import os
 import re
 from pathlib import Path
 from typing import Any, Callable, Mapping
@@ -211,7 +212,7 @@ def _locate_in_bases(source: Path | None, table: str, key: str, seen=()) -> tupl
         return None, None
     for m in _EXTENDS.finditer(text):
         for name in re.findall(r"[\"']([^\"']+)[\"']", m.group(1)):
-            base = (Path(source).parent / name).resolve()
+            base = Path(os.path.realpath(Path(source).parent / name))
             line = locate(base, table, key)
             if line:
                 return base, line

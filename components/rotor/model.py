@@ -19,6 +19,7 @@ from pathlib import Path
 
 import numpy as np
 
+from .. import toml_text
 from .beam import disk, shaft_element
 from .hexa import hex8
 
@@ -28,6 +29,8 @@ RPM = 2.0 * math.pi / 60.0
 
 def _read(path: str | Path | None) -> tuple[Path, bytes]:
     p = Path(path) if path else DEFAULT_FILE
+    if p.is_dir():
+        raise IsADirectoryError(f"rotor model file {p} is a folder, not a TOML file")
     if not p.is_file():
         raise FileNotFoundError(f"rotor model file not found: {p}")
     return p, p.read_bytes()
@@ -42,9 +45,11 @@ def load_data(path: str | Path | None = None) -> tuple[dict, str]:
     """The model data and the SHA-256 of the file's bytes (the cache key)."""
     p, raw = _read(path)
     try:
-        data = tomllib.loads(raw.decode("utf-8"))
+        data = toml_text.loads(raw.decode("utf-8"))
     except tomllib.TOMLDecodeError as exc:
         raise ValueError(f"rotor model file {p}: {exc}") from None
+    except UnicodeDecodeError as exc:
+        raise ValueError(f"rotor model file {p}: not a text file ({exc})") from None
     return data, hashlib.sha256(raw).hexdigest()
 
 

@@ -87,12 +87,19 @@ def resolve(name: str | None) -> Scenario:
     return load_scenario(name)
 
 
-def apply_unbalance(sc: Scenario, force: float) -> None:
+def apply_unbalance(sc: Scenario, force: float, settings=()) -> None:
+    """Set the scenario's unbalance parameter to ``force``; ``settings`` are the ``comp.param`` names the same
+    command sets with ``--set``: naming the unbalance parameter there too is an error (one of the two values was
+    dropped without a word: ``run`` kept --unbalance, ``sweep`` the --set value while its table said the
+    other)."""
     if not (force >= 0.0) or force != force or force == float("inf"):
         raise ValueError(f"--unbalance must be a finite force >= 0 N, got {force}")
     ref = sc.extra.get("results", {}).get("unbalance_parameter")
     if not ref:
         raise ValueError(f"scenario {sc.name!r} has no [results] unbalance_parameter: --unbalance does not apply")
+    if ref in settings:
+        raise ValueError(f"--unbalance and --set {ref}=... both give the unbalance force ({ref}, the scenario's "
+                         "[results] unbalance_parameter): give one of them")
     comp, _, param = ref.partition(".")
     if comp not in sc.components:
         raise ValueError(f"[results] unbalance_parameter {ref!r}: no component {comp!r}")
@@ -138,7 +145,7 @@ def run(args) -> int:
         raise ValueError(f"--duration must be a positive number of seconds, got {args.duration}")
     sc = apply_edits(resolve(args.scenario), args)
     if args.unbalance is not None:
-        apply_unbalance(sc, args.unbalance)
+        apply_unbalance(sc, args.unbalance, [parse_set(text)[0] for text in args.set_values or []])
     if not (0 <= args.step_timeout < float("inf")):
         raise ValueError(f"--step-timeout must be a number of seconds >= 0 (0: no limit), got {args.step_timeout}")
     for spec in sc.components.values():

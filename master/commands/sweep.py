@@ -50,7 +50,8 @@ def add_arguments(p):
     p.add_argument("--scenario", default="blade_loss", help="the scenario every case runs (default blade_loss)")
     p.add_argument("--duration", type=float, default=None, help="simulated duration [s] (cuts the timeline)")
     p.add_argument("--schedule", choices=["paper", "auto", "monolithic"], default="paper")
-    p.add_argument("--workers", type=int, default=None, help="local cluster size (default: number of cores)")
+    p.add_argument("--workers", type=int, default=None,
+                   help="local cluster size (default: number of cores; at most one per case)")
     p.add_argument("--serial", action="store_true", help="run the cases one after another, without Dask")
     p.add_argument("--quiet", action="store_true", help="no line per finished case")
 
@@ -123,7 +124,7 @@ def _apply(sc, case: Case):
     """The scenario of ``case``: ``sc`` with its unbalance and its ``--set`` values (checked as ``run --set``'s:
     the component, the parameter, the value's kind)."""
     if case.unbalance_N is not None:
-        apply_unbalance(sc, case.unbalance_N)
+        apply_unbalance(sc, case.unbalance_N, case.settings)
     if case.settings:
         sc = apply_set(sc, case.settings, origin="--set")
         sc.name = f"{sc.name}_{case.name}"
@@ -172,7 +173,7 @@ def _store(out: Path, case: Case, files: dict[str, bytes]) -> None:
     os.replace(part, final)
 
 
-def _client(scheduler: str | None, workers: int | None, connect_timeout: float):
+def _client(scheduler: str | None, workers: int | None, connect_timeout: float, n_cases: int):
     from dask.distributed import Client, LocalCluster
 
     if scheduler:
@@ -184,7 +185,9 @@ def _client(scheduler: str | None, workers: int | None, connect_timeout: float):
             raise ValueError(f"--scheduler {scheduler}: not a Dask scheduler's address ({exc})") from None
         n = len(client.scheduler_info().get("workers", {}))
         return client, None, f"{scheduler}, {n} workers"
-    n = workers or os.cpu_count() or 1
+    # one process per worker, each running one case at a time: workers beyond the cases would only start and
+    # idle (--workers 100000 spent minutes starting processes, then failed inside Dask)
+    n = min(workers or os.cpu_count() or 1, n_cases)
     cluster = LocalCluster(n_workers=n, threads_per_worker=1, processes=True, dashboard_address=None)
     return Client(cluster), cluster, f"local cluster, {n} workers"
 
@@ -220,7 +223,7 @@ def sweep(levels=None, out: Path = Path("sweep"), scenario="blade_loss", schedul
     else:
         from dask.distributed import as_completed
 
-        client, cluster, where = _client(scheduler, workers, connect_timeout)
+        client, cluster, where = _client(scheduler, workers, connect_timeout, len(cases))
         try:
             futures = {client.submit(run_case, scenario, c, schedule, duration, pure=False): c for c in cases}
             for fut in as_completed(futures):

@@ -472,3 +472,165 @@ def test_absurd_or_malformed_values(tmp, argv, message):
     out = tmp / "o"
     refused(tmp, [a.replace("{out}", str(out)) for a in argv], message)
     assert not out.exists()
+
+
+# -- tables of the wrong kind, in a file, in the file it extends, in one that extends it -------------------
+#: a value that is not the table (or list) the key holds
+WRONG_KINDS = {"int": "3", "string": '"x"', "list of tables": "[{ a = 1 }]", "boolean": "true"}
+TOP_TABLES = ["components", "connections", "inputs", "algorithm", "schedule", "outputs", "results"]
+EXTENDS_TOY = '[scenario]\nextends = "b.toml"\nname = "child"\n'
+
+
+def _without(table: str) -> str:
+    """The toy's text with ``table`` renamed out of the way (``[x...]``), so that a bare key can take its name."""
+    if table == "components":
+        return ""
+    return TOY_TEXT.replace(f"[[{table}]]", f"[[x{table}]]").replace(f"[{table}]", f"[x{table}]")
+
+
+@pytest.mark.parametrize("kind", sorted(WRONG_KINDS))
+@pytest.mark.parametrize("table", TOP_TABLES)
+@pytest.mark.parametrize("where", ["own", "base", "child"])
+def test_tables_of_the_wrong_kind(tmp, table, kind, where):
+    """``components = 3``, ``connections = true``, ``inputs = [{...}]`` ...: the composition of ``extends``
+    looked into them before the schema did (an unexpected TypeError / AttributeError)."""
+    bad = f"{table} = {WRONG_KINDS[kind]}\n"
+    if where == "own":
+        (tmp / "s.toml").write_text(bad + _without(table))
+    elif where == "base":
+        (tmp / "b.toml").write_text(bad + _without(table))
+        (tmp / "s.toml").write_text(EXTENDS_TOY)
+    else:
+        (tmp / "b.toml").write_text(TOY_TEXT)
+        (tmp / "s.toml").write_text(bad + EXTENDS_TOY)
+    refused(tmp, [*RUN, str(tmp / "s.toml"), "--out", str(tmp / "o")], r"\.toml")
+
+
+@pytest.mark.parametrize("kind", sorted(WRONG_KINDS))
+@pytest.mark.parametrize("where", ["own", "child"])
+def test_parameters_of_the_wrong_kind(tmp, kind, where):
+    """A component's ``parameters`` that is not a table, in a file or in one extending another (where they
+    merge key by key): the file that wrote it is named."""
+    if where == "own":
+        (tmp / "s.toml").write_text(TOY_TEXT.replace("parameters = { C = 10.0, R = 1.0 }",
+                                                     f"parameters = {WRONG_KINDS[kind]}"))
+    else:
+        (tmp / "b.toml").write_text(TOY_TEXT)
+        (tmp / "s.toml").write_text(EXTENDS_TOY + f"[components.node]\nparameters = {WRONG_KINDS[kind]}\n")
+    line = refused(tmp, [*RUN, str(tmp / "s.toml"), "--out", str(tmp / "o")])
+    assert re.search(r"s\.toml(:\d+)?: \[components\.node\] parameters: must be a table", line), line
+
+
+# -- TOML text as users write it (components/toml_text.py) -------------------------------------------------
+DEEP = "[" * 5000 + "]" * 5000
+
+
+def test_a_byte_order_mark_is_not_content(tmp):
+    """Windows editors start UTF-8 files with a byte-order mark: "Invalid statement (at line 1, column 1)"."""
+    (tmp / "s.toml").write_bytes(b"\xef\xbb\xbf" + TOY_TEXT.encode())
+    rc, lines = cli([*RUN, str(tmp / "s.toml"), "--out", str(tmp / "o")])
+    assert rc == 0 and lines == [], lines
+    from rotorcosim.components.rotor import model
+
+    (tmp / "engine.toml").write_bytes(b"\xef\xbb\xbf" + model.DEFAULT_FILE.read_bytes())
+    assert model.load_data(tmp / "engine.toml")[0] == model.load_data()[0]
+
+
+@pytest.mark.parametrize("what", ["scenario", "extended scenario", "model file", "--set", "sweep --set"])
+def test_nesting_too_deep_to_read(tmp, what):
+    """Arrays nested thousands deep were an unexpected RecursionError of the TOML parser."""
+    out = tmp / "o"
+    if what == "scenario":
+        (tmp / "s.toml").write_text(f"a = {DEEP}\n")
+        argv = [*RUN, str(tmp / "s.toml"), "--out", str(out)]
+    elif what == "extended scenario":
+        (tmp / "b.toml").write_text(f"a = {DEEP}\n")
+        (tmp / "s.toml").write_text(EXTENDS_TOY)
+        argv = [*RUN, str(tmp / "s.toml"), "--out", str(out)]
+    elif what == "model file":
+        (tmp / "m.toml").write_text(f"a = {DEEP}\n")
+        argv = ["critical-speeds", "--model-file", str(tmp / "m.toml")]
+    elif what == "--set":
+        argv = [*RUN, "toy_thermomechanical", "--set", f"node.C={DEEP}", "--out", str(out)]
+    else:
+        argv = ["sweep", "--scenario", "toy_thermomechanical", "--serial", "--quiet", "--duration", "0.05",
+                "--out", str(out), "--set", f"node.C=1,{DEEP}"]
+    line = refused(tmp, argv)
+    assert re.search(r"nested too deeply|node\.C", line), line
+    assert not out.exists()
+
+
+@pytest.mark.parametrize("what", ["scenario", "extends", "--swap fmu", "scenario fmu", "model file"])
+def test_symbolic_link_loops(tmp, what):
+    """A path that is a loop of symbolic links (Path.resolve raised RuntimeError: "unexpected")."""
+    (tmp / "a.toml").symlink_to(tmp / "b.toml")
+    (tmp / "b.toml").symlink_to(tmp / "a.toml")
+    (tmp / "a.fmu").symlink_to(tmp / "b.fmu")
+    (tmp / "b.fmu").symlink_to(tmp / "a.fmu")
+    out = tmp / "o"
+    argv = {"scenario": [*RUN, str(tmp / "a.toml"), "--out", str(out)],
+            "extends": [*RUN, str(tmp / "s.toml"), "--out", str(out)],
+            "--swap fmu": [*RUN, "toy_thermomechanical", "--swap", f"node={tmp / 'a.fmu'}", "--out", str(out)],
+            "scenario fmu": [*RUN, str(tmp / "s.toml"), "--out", str(out)],
+            "model file": ["critical-speeds", "--model-file", str(tmp / "a.toml")]}[what]
+    (tmp / "s.toml").write_text(
+        '[scenario]\nextends = "a.toml"\nname = "x"\n' if what == "extends"
+        else TOY_TEXT.replace('implementation = "testing.thermal_node"', 'fmu = "a.fmu"'))
+    line = refused(tmp, argv)
+    assert re.search(r"[ab]\.(toml|fmu) (is a symbolic link to nothing|not found)|not found: .*[ab]\.toml", line), line
+    assert not out.exists()
+
+
+@pytest.mark.parametrize("value", ["10\nR = 5", "10\n[x]\ny = 1", "1e-3\nnode.R = 2"])
+@pytest.mark.parametrize("command", ["run", "sweep"])
+def test_a_set_value_is_one_value(tmp, command, value):
+    """``--set node.C=$'10\\nR = 5'`` was read as TOML: C = 10 and the second key dropped without a word."""
+    out = tmp / "o"
+    argv = ([*RUN, "toy_thermomechanical", "--set", f"node.C={value}"] if command == "run" else
+            ["sweep", "--scenario", "toy_thermomechanical", "--serial", "--quiet", "--duration", "0.05",
+             "--set", f"node.C=2,{value}"]) + ["--out", str(out)]
+    line = refused(tmp, argv)
+    assert "is not one value" in line, line
+    assert not out.exists()
+
+
+@pytest.mark.parametrize("command", ["run", "sweep"])
+def test_the_unbalance_given_twice(tmp, command):
+    """``--unbalance 10 --set osc.F0=5`` (the toy's unbalance parameter): run kept 10, sweep ran 5 while its
+    table said 10."""
+    out = tmp / "o"
+    argv = ([*RUN, "toy_thermomechanical", "--unbalance", "10", "--set", "osc.F0=5"] if command == "run" else
+            ["sweep", "--scenario", "toy_thermomechanical", "--serial", "--quiet", "--duration", "0.05",
+             "--unbalance", "10", "--set", "osc.F0=5,6"]) + ["--out", str(out)]
+    line = refused(tmp, argv)
+    assert "--unbalance and --set osc.F0=... both give the unbalance force" in line, line
+    assert not out.exists()
+
+
+def test_a_plugin_that_exits_at_import(tmp):
+    """sys.exit() in a plug-in's module ended the command with its status and not a word."""
+    (tmp / "quitter.py").write_text("import sys\nsys.exit(3)\n")
+    (tmp / "s.toml").write_text(TOY_TEXT.replace('implementation = "testing.thermal_node"',
+                                                 'implementation = "quitter:Node"'))
+    line = refused(tmp, [*RUN, str(tmp / "s.toml"), "--out", str(tmp / "o")])
+    assert "module 'quitter' called sys.exit(3) while imported" in line, line
+
+
+def test_sweep_starts_no_more_workers_than_cases(tmp, monkeypatch):
+    """``--workers 100000`` started processes for minutes, then failed inside Dask (unexpected AssertionError);
+    the local cluster now has at most one worker per case."""
+    import dask.distributed
+
+    from rotorcosim.master.commands import sweep
+
+    started = []
+
+    class Cluster:
+        def __init__(self, n_workers, **kw):
+            started.append(n_workers)
+            raise OSError("no cluster in this test")
+
+    monkeypatch.setattr(dask.distributed, "LocalCluster", Cluster)
+    with pytest.raises(OSError, match="no cluster in this test"):
+        sweep.sweep([1.0, 2.0], tmp / "o", "toy_thermomechanical", duration=0.05, workers=100000)
+    assert started == [2]
