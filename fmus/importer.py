@@ -155,6 +155,23 @@ def describe(path: str | Path):
                            "in DoStep); scheduled execution needs a scheduler of model partitions and clocks")
         raise FMUError(f"{path}: the FMU declares no interface (no co-simulation, model exchange or scheduled "
                        "execution element)")
+    ident = md.coSimulation.modelIdentifier
+    if not ident or not isinstance(ident, str) or ident in (".", "..") or any(c in ident for c in "/\\\0:"):
+        # the binary loaded is binaries/<platform>/<modelIdentifier>.so: a path there ('../../x', '/lib/x')
+        # loaded a library from outside the archive, past the extraction's checks of every entry
+        raise FMUError(f"{path}: CoSimulation modelIdentifier {ident!r} is not a file name (FMI: a C identifier "
+                       "naming the binary inside the FMU)")
+    step = md.defaultExperiment.stepSize if md.defaultExperiment is not None else None
+    if step is not None:
+        # the component's preferred step (and an SSP's schedule step) when nothing else gives one: "abc" was a
+        # bare "could not convert string to float", 0 or -1 a schedule error naming neither the FMU nor the key
+        try:
+            value = float(step)
+        except (TypeError, ValueError):
+            value = float("nan")
+        if not (0.0 < value < float("inf")):
+            raise FMUError(f"{path}: modelDescription.xml: DefaultExperiment stepSize={step!r} is not a positive "
+                           "number of seconds")
     return xml, md
 
 
@@ -164,6 +181,9 @@ def _check_description_text(path: Path, xml: bytes) -> None:
         raise FMUError(f"{path}: modelDescription.xml declares a DTD or entities, which FMI never needs: refused")
     m = re.search(rb'fmiVersion\s*=\s*["\']([^"\']*)["\']', xml)
     version = m.group(1).decode("ascii", "replace") if m else None
+    if version is None and b"\0" not in xml[:256]:   # (not UTF-16/32, where the search cannot see the attribute)
+        # fmpy's own message was "'NoneType' object has no attribute 'startswith'"
+        raise FMUError(f"{path}: modelDescription.xml gives no fmiVersion: not an FMI 2.0 or 3.0 model description")
     if version is not None and not (version == "2.0" or version.startswith("3.")):
         raise FMUError(f"{path}: FMI {version} FMU: rotorcosim imports FMI 2.0 and 3.0 co-simulation FMUs")
 
@@ -378,14 +398,15 @@ class FMUComponent(Component):
     """An FMI 2.0 / 3.0 co-simulation FMU following the component contract."""
 
     def __init__(self, path: str | Path, name: str = "component", parameters: Mapping[str, Any] | None = None,
-                 start_values: Mapping[str, Any] | None = None):
+                 start_values: Mapping[str, Any] | None = None, label: str | None = None):
         self.path = Path(path)
         self.name = name
-        where = f"FMU {self.path} (component {name!r})"
+        # label: how messages name the file when ``path`` is a temporary one (an SSP archive's entry)
+        where = f"FMU {label or self.path} (component {name!r})"
         self._where = where
         xml, md = describe(self.path)
         self.model_description = md
-        ann = mdx.read_annotation(xml)
+        ann = mdx.read_annotation(xml, where)
         variables, self._scalars = ports_of(md, where, ann.hidden)
         refs = {v.name: v.valueReference for v in md.modelVariables}
         self._phase_in = refs.get(ann.phase_input) if ann.phase_input else None
@@ -770,7 +791,8 @@ class FMUComponent(Component):
 
 
 def load_fmu_component(path: str | Path, name: str, params: Mapping[str, Any] | None = None,
-                       start_values: Mapping[str, Any] | None = None) -> FMUComponent:
+                       start_values: Mapping[str, Any] | None = None, label: str | None = None) -> FMUComponent:
     """The FMU at ``path`` as the component ``name`` with parameters ``params`` and the start values of its
-    states / ``initial = "exact"`` variables ``start_values`` (called by master/scenario.py)."""
-    return FMUComponent(path, name, params, start_values)
+    states / ``initial = "exact"`` variables ``start_values`` (called by master/scenario.py); ``label`` names
+    the file in messages instead of ``path``."""
+    return FMUComponent(path, name, params, start_values, label)

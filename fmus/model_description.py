@@ -17,9 +17,13 @@ InitialUnknowns (fmpy's validation rejects it: outputs with ``initial="calculate
 """
 from __future__ import annotations
 
+import math
+import re
 import uuid
 import xml.etree.ElementTree as ET
 from dataclasses import dataclass
+
+from rotorcosim.components.contract import PHASES
 
 from .units import BASE, base_units, is_dimensionless
 
@@ -133,8 +137,23 @@ class Annotation:
         return {n for n in (self.phase_input, self.phases_output) if n}
 
 
-def read_annotation(xml: bytes) -> Annotation:
-    """Our vendor annotation from a modelDescription.xml, or an empty Annotation when there is none."""
+class AnnotationError(ValueError):
+    """Our vendor annotation in a model description that says something we cannot act on."""
+
+
+#: the names :func:`finish` gives the bundle's private package and slave module; the importer deletes modules
+#: of these names from ``sys.modules`` (``_purge_cached``), so any other name (``numpy``, ``rotorcosim``) is
+#: refused rather than purged
+_PACKAGE = re.compile(r"_rcs_[A-Za-z0-9_]+")
+_SLAVE_MODULE = re.compile(r"rcs_slave_[A-Za-z0-9_]+")
+
+
+def read_annotation(xml: bytes, where: str = "modelDescription.xml") -> Annotation:
+    """Our vendor annotation from a modelDescription.xml, or an empty Annotation when there is none.
+
+    Its values are checked (AnnotationError naming ``where``): phases among TM / TO (``phases="XX"`` made a
+    component that no interval ever stepped), a finite positive preferred step (``"abc"`` was a bare
+    ValueError, ``0`` accepted), and the bundle's module names."""
     root = ET.fromstring(xml)
     for tool in root.findall("VendorAnnotations/Tool"):
         if tool.get("name") != TOOL:
@@ -142,11 +161,24 @@ def read_annotation(xml: bytes) -> Annotation:
         comp = tool.find("Component")
         if comp is None:
             continue
+        what = f"{where}: vendor annotation of {TOOL}"
         phases = comp.get("phases")
+        chosen = frozenset(p.strip() for p in phases.split(",") if p.strip()) if phases is not None else None
+        if chosen is not None and (not chosen or not chosen <= set(PHASES)):
+            raise AnnotationError(f"{what}: phases={phases!r} must name one or both of {', '.join(PHASES)}")
         step = comp.get("preferredStep")
-        return Annotation(comp.get("implementation"),
-                          frozenset(p for p in phases.split(",") if p) if phases else None,
-                          float(step) if step else None, comp.get("package"), comp.get("slaveModule"),
-                          comp.get("phaseInput") or None, comp.get("phasesOutput") or None,
+        try:
+            preferred = float(step) if step is not None else None
+        except ValueError:
+            preferred = math.nan
+        if preferred is not None and not (math.isfinite(preferred) and preferred > 0):
+            raise AnnotationError(f"{what}: preferredStep={step!r} is not a positive number of seconds")
+        for key, pattern in (("package", _PACKAGE), ("slaveModule", _SLAVE_MODULE)):
+            value = comp.get(key)
+            if value is not None and not pattern.fullmatch(value):
+                raise AnnotationError(f"{what}: {key}={value!r} is not a name rotorcosim gives its bundles "
+                                      f"({pattern.pattern})")
+        return Annotation(comp.get("implementation"), chosen, preferred, comp.get("package"),
+                          comp.get("slaveModule"), comp.get("phaseInput") or None, comp.get("phasesOutput") or None,
                           comp.get("errorVariable") or None)
     return Annotation()

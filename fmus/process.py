@@ -110,13 +110,16 @@ class ProcessFMU(Component):
     """An FMU as a component, run in a child process with a time limit on every call."""
 
     def __init__(self, path, name: str = "component", parameters: Mapping[str, Any] | None = None,
-                 timeout: float = STEP_TIMEOUT_S, factory=load_fmu, start: Mapping[str, Any] | None = None):
+                 timeout: float = STEP_TIMEOUT_S, factory=load_fmu, start: Mapping[str, Any] | None = None,
+                 label: str | None = None):
         if not (timeout > 0):
-            raise FMUError(f"FMU {path} (component {name!r}): step time limit must be positive, got {timeout}")
+            raise FMUError(f"FMU {label or path} (component {name!r}): step time limit must be positive, got "
+                           f"{timeout}")
         self.path = str(path)
+        self._label = label
         self.name = name
         self.timeout = float(timeout)
-        self._where = f"FMU {path} (component {name!r}, in its own process)"
+        self._where = f"FMU {label or path} (component {name!r}, in its own process)"
         ours, theirs = socket.socketpair()
         env = dict(os.environ, PYTHONPATH=os.pathsep.join(p for p in sys.path if p))
         self._proc = subprocess.Popen(
@@ -162,6 +165,8 @@ class ProcessFMU(Component):
                    else f"exit status {code}")
             raise FMUError(f"{self._where}: the FMU's process died in {what} ({how})") from None
         if status == "error":
+            if self._label:   # the child names the temporary file it loaded
+                value = str(value).replace(f"FMU {self.path}", f"FMU {self._label}")
             raise FMUError(f"{self._where}: {what} failed: {value}")
         if status == "stop":
             self.y, self.time, reason = value

@@ -38,7 +38,7 @@ from rotorcosim.master.scenario import ComponentSpec, ConnectionSpec, Scenario, 
 from . import export
 from .flatten import scalar_names
 from .importer import FMUError, describe, ports_of
-from .model_description import _unit_element, read_annotation
+from .model_description import AnnotationError, _unit_element, read_annotation
 from .safezip import ArchiveError, open_zip, safe_extract
 from .units import definition, is_dimensionless
 
@@ -213,10 +213,13 @@ def _cleanup() -> None:
 
 def _value(p: ET.Element, where: str):
     """The value of an ``ssv:Parameter`` and the unit it is written in (its ``unit`` attribute, or None)."""
-    for child in p:
+    values = [c for c in p if c.tag.split("}")[-1] in ("Real", "Float64", "Float32", "Integer", "Int32",
+                                                        "Enumeration", "Boolean", "String")]
+    if len(values) > 1:  # the first was taken, the others dropped without a word
+        raise SSPError(f"{where}: parameter {p.get('name')!r} has {len(values)} values; give one")
+    for child in values:
         tag = child.tag.split("}")[-1]
-        if tag in ("Real", "Float64", "Float32", "Integer", "Int32", "Enumeration", "Boolean", "String"):
-            return _typed(p, child, tag, where), child.get("unit") or None
+        return _typed(p, child, tag, where), child.get("unit") or None
     raise SSPError(f"{where}: parameter {p.get('name')!r} has no value this reader understands")
 
 
@@ -328,7 +331,13 @@ def _parameter_values(comp: ET.Element, folder: Path, where: str) -> dict[str, t
             if pset is None:
                 continue
         local = _units_of(pset, what, "ssv:Units/ssc:Unit")
+        names = set()
         for p in pset.findall("ssv:Parameters/ssv:Parameter", NS):
+            # a later binding overrides an earlier one, but one parameter set giving a name twice says two
+            # things at once (the last one was taken without a word)
+            if p.get("name") in names:
+                raise SSPError(f"{what}: parameter {p.get('name')!r} is given twice in one parameter set")
+            names.add(p.get("name"))
             out[p.get("name")] = (*_value(p, where), local)
     return out
 
@@ -421,8 +430,11 @@ def _scenario_of(path: Path, folder: Path) -> Scenario:
     if system is None:
         raise SSPError(f"{where}: SystemStructure.ssd has no ssd:System")
     payload = {}
-    for ann in root.findall("ssd:Annotations/ssc:Annotation", NS):
-        if ann.get("type") == ANNOTATION and len(ann):
+    ours = [a for a in root.findall("ssd:Annotations/ssc:Annotation", NS) if a.get("type") == ANNOTATION]
+    if len(ours) > 1:  # the last one was read, the others dropped without a word
+        raise SSPError(f"{where}: SystemStructure.ssd has {len(ours)} annotations {ANNOTATION}; give one")
+    for ann in ours:
+        if len(ann):
             try:
                 payload = json.loads(ann[0].text or "{}")
             except json.JSONDecodeError as exc:
@@ -453,8 +465,8 @@ def _scenario_of(path: Path, folder: Path) -> Scenario:
             raise SSPError(f"{w}: source {source!r} is not an FMU inside the archive")
         try:
             xml, md = describe(fmu)
-            variables, _ = ports_of(md, f"{w} ({source})", read_annotation(xml).hidden)
-        except FMUError as exc:
+            variables, _ = ports_of(md, f"{w} ({source})", read_annotation(xml, f"{w} ({source})").hidden)
+        except (FMUError, AnnotationError) as exc:
             # named by the archive and the entry, not by the temporary folder it was unpacked into
             msg = str(exc).replace(str(fmu), f"{source!r}")
             raise SSPError(msg if msg.startswith(w) else f"{w}: {msg}") from None
@@ -479,7 +491,7 @@ def _scenario_of(path: Path, folder: Path) -> Scenario:
             full = [x if x is not None else s for x, s in zip(values, _flat_values(v, v.start))]
             parameters[pname] = full[0] if len(full) == 1 else full
         components[cname] = ComponentSpec(cname, fmu=str(fmu), parameters=parameters,
-                                          step=payload.get("steps", {}).get(cname))
+                                          step=payload.get("steps", {}).get(cname), fmu_label=f"{source!r} in {path}")
     if not components:
         raise SSPError(f"{where}: the system has no components")
     # scalar connections back to port connections
@@ -503,9 +515,13 @@ def _scenario_of(path: Path, folder: Path) -> Scenario:
         if ssize != dsize or sorted((a, b) for a, b, _, _ in pairs) != [(i, i) for i in range(ssize)]:
             raise SSPError(f"{where}: the scalar connections from {src} to {dst} do not connect the two "
                            f"ports element by element (sizes {ssize} and {dsize})")
-        s = settings.get((src, dst), {})
+        s = settings.pop((src, dst), {})
         connections.append(ConnectionSpec(src, dst, s.get("average", "mean"), s.get("extrapolation", "hold"),
                                           s.get("hold"), s.get("convert"), s.get("unit")))
+    if settings:  # settings (averaging, conversion, unit) for a connection the system does not have: not applied
+        src, dst = next(iter(settings))
+        raise SSPError(f"{where}: SystemStructure.ssd: annotation {ANNOTATION}: connection {src} -> {dst} has "
+                       "settings but no ssd:Connection")
     _check_payload(payload, where, components)
     schedule = payload.get("schedule")
     if not schedule:

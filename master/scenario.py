@@ -87,6 +87,8 @@ class ComponentSpec:
     origin: str | None = None
     folder: str | None = None
     param_origins: dict[str, str] = field(default_factory=dict)
+    #: how messages name the FMU file when ``fmu`` is a temporary extraction (an SSP archive's entry)
+    fmu_label: str | None = None
 
 
 @dataclass
@@ -254,10 +256,10 @@ def create_component(spec: ComponentSpec) -> Component:
             from rotorcosim.fmus.process import STEP_TIMEOUT_S, ProcessFMU
 
             return ProcessFMU(spec.fmu, spec.name, spec.parameters, spec.options.get("step_timeout", STEP_TIMEOUT_S),
-                              start=spec.start)
+                              start=spec.start, label=spec.fmu_label)
         from rotorcosim.fmus.importer import load_fmu_component
 
-        return load_fmu_component(spec.fmu, spec.name, spec.parameters, spec.start)
+        return load_fmu_component(spec.fmu, spec.name, spec.parameters, spec.start, spec.fmu_label)
     try:
         return registry.create(spec.implementation, spec.name, spec.parameters, folder=spec.folder)
     except ContractError as exc:
