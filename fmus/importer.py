@@ -181,8 +181,10 @@ def _check_description_text(path: Path, xml: bytes) -> None:
         raise FMUError(f"{path}: modelDescription.xml declares a DTD or entities, which FMI never needs: refused")
     m = re.search(rb'fmiVersion\s*=\s*["\']([^"\']*)["\']', xml)
     version = m.group(1).decode("ascii", "replace") if m else None
-    if version is None and b"\0" not in xml[:256]:   # (not UTF-16/32, where the search cannot see the attribute)
-        # fmpy's own message was "'NoneType' object has no attribute 'startswith'"
+    start = re.search(rb"<fmiModelDescription\b[^>]*>", xml)
+    if version is None and start is not None and b"fmiVersion" not in start.group(0):
+        # a whole start tag without the attribute: fmpy's own message was "'NoneType' object has no attribute
+        # 'startswith'"
         raise FMUError(f"{path}: modelDescription.xml gives no fmiVersion: not an FMI 2.0 or 3.0 model description")
     if version is not None and not (version == "2.0" or version.startswith("3.")):
         raise FMUError(f"{path}: FMI {version} FMU: rotorcosim imports FMI 2.0 and 3.0 co-simulation FMUs")

@@ -268,6 +268,31 @@ FMU_FAULTS = {
     "no binaries": lambda src, dst: rebuild(src, dst, lambda n, d: None if n.startswith("binaries/") else d),
     "model exchange only": lambda src, dst: rebuild(src, dst, _md(lambda t: t.replace("<CoSimulation",
                                                                                      "<ModelExchange"))),
+    # the binary is binaries/<platform>/<modelIdentifier>.so: a path there loaded a library outside the archive
+    "model identifier climbing out": lambda src, dst: rebuild(src, dst, _md(lambda t: t.replace(
+        'modelIdentifier="node"', 'modelIdentifier="../../../../lib/x86_64-linux-gnu/libc"'))),
+    "model identifier absolute": lambda src, dst: rebuild(src, dst, _md(lambda t: t.replace(
+        'modelIdentifier="node"', 'modelIdentifier="/lib/x86_64-linux-gnu/libc.so.6"'))),
+    "no model identifier": lambda src, dst: rebuild(src, dst, _md(lambda t: t.replace('modelIdentifier="node" ', ""))),
+    "no FMI version": lambda src, dst: rebuild(src, dst, _md(lambda t: re.sub(r'fmiVersion="[^"]*" ', "", t,
+                                                                             count=1))),
+    "default step not a number": lambda src, dst: rebuild(src, dst, _md(lambda t: re.sub(
+        r'stepSize="[^"]*"', 'stepSize="abc"', t, count=1))),
+    "default step zero": lambda src, dst: rebuild(src, dst, _md(lambda t: re.sub(
+        r'stepSize="[^"]*"', 'stepSize="0"', t, count=1))),
+    # our vendor annotation: phases no interval steps, a step that is not one, module names it would purge
+    "annotation phases unknown": lambda src, dst: rebuild(src, dst, _md(lambda t: t.replace('phases="TM,TO"',
+                                                                                           'phases="XX"'))),
+    "annotation phases empty": lambda src, dst: rebuild(src, dst, _md(lambda t: t.replace('phases="TM,TO"',
+                                                                                         'phases=""'))),
+    "annotation step not a number": lambda src, dst: rebuild(src, dst, _md(lambda t: re.sub(
+        r'preferredStep="[^"]*"', 'preferredStep="abc"', t))),
+    "annotation step zero": lambda src, dst: rebuild(src, dst, _md(lambda t: re.sub(
+        r'preferredStep="[^"]*"', 'preferredStep="0"', t))),
+    "annotation package not ours": lambda src, dst: rebuild(src, dst, _md(lambda t: re.sub(
+        r'package="[^"]*"', 'package="numpy"', t))),
+    "annotation slave module not ours": lambda src, dst: rebuild(src, dst, _md(lambda t: re.sub(
+        r'slaveModule="[^"]*"', 'slaveModule="rotorcosim"', t))),
 }
 
 
@@ -321,7 +346,26 @@ SSP_FAULTS = {
     "parameter file outside": lambda src, dst: rebuild(src, dst, _ssd(lambda t: t.replace(
         '<ssd:ParameterBinding type="application/x-ssp-parameter-set">',
         '<ssd:ParameterBinding type="application/x-ssp-parameter-set" source="../../etc/passwd">'))),
+    # two things said at once, where the reader took one without a word
+    "parameter given twice": lambda src, dst: rebuild(src, dst, _ssd(lambda t: t.replace(
+        '<ssv:Parameter name="C">', '<ssv:Parameter name="C"><ssv:Real value="99.0" /></ssv:Parameter>'
+        '<ssv:Parameter name="C">'))),
+    "parameter with two values": lambda src, dst: rebuild(src, dst, _ssd(lambda t: t.replace(
+        '<ssv:Real value="10.0" />', '<ssv:Real value="10.0" /><ssv:Real value="20.0" />'))),
+    "two scenario annotations": lambda src, dst: rebuild(src, dst, _ssd(lambda t: re.sub(
+        r'(<ssc:Annotation type="org.rotorcosim.scenario">.*?</ssc:Annotation>)', r"\1\1", t, flags=re.S))),
+    "connection settings without a connection": lambda src, dst: rebuild(src, dst, _ssd(lambda t: t.replace(
+        '"connections": [', '"connections": [{"from": "node.T", "to": "osc.x"}, ', 1))),
+    "an FMU inside with a bad annotation": lambda src, dst: rebuild(src, dst, lambda n, d: rebuild_bytes(
+        d, _md(lambda t: t.replace('phases="TM,TO"', 'phases="XX"'))) if n == "resources/node.fmu" else d),
 }
+
+
+def rebuild_bytes(data: bytes, edit) -> bytes:
+    """``rebuild`` of a zip held in memory (an FMU inside an SSP archive)."""
+    with tempfile.TemporaryDirectory() as d:
+        (Path(d) / "in.zip").write_bytes(data)
+        return rebuild(Path(d) / "in.zip", Path(d) / "out.zip", edit).read_bytes()
 
 
 @pytest.mark.parametrize("case", sorted(SSP_FAULTS))
@@ -331,6 +375,19 @@ def test_ssp_archives(tmp, archives, case):
     line = refused(tmp, [*RUN, str(bad), "--out", str(out)], out=out)
     assert "bad.ssp" in line and "systemtmp" not in line, line   # the archive is named, not where it was unpacked
     assert not (tmp.parent / "escaped.txt").exists()
+
+
+@pytest.mark.parametrize("value, says", [
+    ('<ssv:Boolean value="true" />', "expected a number"), ('<ssv:String value="ten" />', "expected a number"),
+    ('<ssv:Real value="-10.0" />', "must be > 0"), ('<ssv:Real value="nan" />', "not finite")])
+def test_an_ssp_component_is_named_by_its_entry(tmp, archives, value, says):
+    """An error found when an SSP's FMU is set up named the temporary folder it was unpacked into (gone once the
+    command ends): "FMU /tmp/rcs_ssp_x/resources/node.fmu"; now the archive and the entry."""
+    bad = rebuild(archives[1], tmp / "bad.ssp", _ssd(lambda t: t.replace('<ssv:Real value="10.0" />', value)))
+    rc, lines = cli([*RUN, str(bad), "--out", str(tmp / "o")])
+    assert rc == 2 and len(lines) == 1, lines
+    assert f"FMU 'resources/node.fmu' in {bad} (component 'node')" in lines[0] and says in lines[0], lines[0]
+    assert "systemtmp" not in lines[0], lines[0]
 
 
 # -- checkpoints -------------------------------------------------------------------------------------------
