@@ -296,12 +296,30 @@ FMU_FAULTS = {
 }
 
 
+#: what the line must say, for the faults that could otherwise be refused for another reason
+FMU_SAYS = {
+    "model identifier climbing out": "modelIdentifier '../../../../lib/x86_64-linux-gnu/libc' is not a file name",
+    "model identifier absolute": "modelIdentifier '/lib/x86_64-linux-gnu/libc.so.6' is not a file name",
+    "no model identifier": "modelIdentifier None is not a file name",
+    "no FMI version": "gives no fmiVersion",
+    "default step not a number": "DefaultExperiment stepSize='abc' is not a positive number",
+    "default step zero": "DefaultExperiment stepSize='0' is not a positive number",
+    "annotation phases unknown": "phases='XX' must name one or both of TM, TO",
+    "annotation phases empty": "phases='' must name one or both of TM, TO",
+    "annotation step not a number": "preferredStep='abc' is not a positive number",
+    "annotation step zero": "preferredStep='0' is not a positive number",
+    "annotation package not ours": "package='numpy' is not a name rotorcosim gives its bundles",
+    "annotation slave module not ours": "slaveModule='rotorcosim' is not a name rotorcosim gives its bundles",
+}
+
+
 @pytest.mark.parametrize("case", sorted(FMU_FAULTS))
 def test_fmu_archives(tmp, archives, case):
     bad = FMU_FAULTS[case](archives[0], tmp / "bad.fmu")
     out = tmp / "o"
     line = refused(tmp, [*RUN, "toy_thermomechanical", "--swap", f"node={bad}", "--out", str(out)], out=out)
     assert "bad.fmu" in line, line   # the file is named
+    assert FMU_SAYS.get(case, "") in line, line
     assert not (tmp.parent / "escaped.txt").exists() and not Path("/tmp/absolute_corpus.txt").exists()
 
 
