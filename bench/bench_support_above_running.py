@@ -1,0 +1,265 @@
+"""Is there a plausible layout with bearing #0's support mode ABOVE the 16 000 rev/min running speed? (issue 17,
+fourth session: a time-boxed structural study, linear engine only.)
+
+The question (docs/calibration.md, "A layout with #0's support mode above the running speed"): a layout in which
+  (a) the linear engine (master/linear_engine, as ``rotorcosim critical-speeds``) has its two lowest forward
+      synchronous critical speeds at 8500 and 10 200 rev/min (+-3 %), whatever modes they are;
+  (b) every forward mode that strains bearing #0's O-ring lies above 16 000 rev/min with a design separation
+      margin (15-20 %, i.e. above 18 400-19 200 rev/min), so that the bearing #0 point is stiffness-controlled
+      at the running speed (receptance phase well above -90 deg), the regime the paper's text describes;
+  (c) with the paper's O-ring (5254 N/mm per support, or two in parallel) and every other shipped reading
+      unchanged (rings-alone journal, bearings, damper, rub ring, thermal data).
+
+Part 1 varies the power turbine only (each value with its reason above LAYOUTS below) and prints, per layout and O-ring
+reading: the forward synchronous modes below 25 000 rev/min (share of their strain energy in #0's O-ring), the
+lowest mode above the running speed that strains #0's O-ring by at least 5 % and its margin, the linear 712 N
+whirl and transmissibility at #0 and #5 (film at 30 C), the receptance phase of the bearing #0 point relative to
+its housing at 16 000 rev/min (film at 30 C and at 85 C, the film oil of the rubbing cases) and the rub ring's
+normal force at 8551 N estimated as in bench_rub_modes.py (paper: 3.7 kN).
+
+Part 2 takes the best plausible layout of part 1 (all its #0-straining modes above the running speed) and asks
+whether its two lowest forward critical speeds can be put at 8500 / 10 200 rev/min: mount_k (the shipped second
+knob) places the lowest, the casing on its mounts, at 8500; a second lever must bring another rotor mode to 10 200
+without straining #0: the front / rear mount links apart, the mount planes moved inboard, the gas generator's
+stage masses, the gas generator's bearing frames, the hub masses, the casing's smeared mass, an overhung gas-generator turbine, the power turbine's tube: each scanned over its
+plausible range (and one value outside it, to show what it would take) with mount_k fitted to the first.
+
+    python bench/bench_support_above_running.py          # ~10 min on a quiet machine
+"""
+from __future__ import annotations
+
+import copy
+import math
+import sys
+from pathlib import Path
+
+import numpy as np
+
+from rotorcosim.components.rotor import calibration, critical
+from rotorcosim.components.rotor import model as fem
+from rotorcosim.master import linear_engine as le
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+import bench_rub_modes as brm  # noqa: E402
+import bench_support_isolation as bsi  # noqa: E402
+
+RUN_RPM = 16000.0
+#: a design separation margin of 15-20 % between a critical speed and the running speed (the brief's "typical
+#: engine design margin"; API 617 / API 684 ask 10-26 % above the maximum continuous speed for a mode with an
+#: amplification factor of 2.5 or more, none below 2.5)
+MARGIN = 0.15
+TARGET = (8500.0, 10200.0)
+
+#: The power-turbine levers, each at its plausible end (shipped in brackets):
+#: - stage mass 0.5 kg [1.17]: the light end for a bladed stage of ~0.22 m over the blades on a 50.8 mm bore;
+#:   0.05 kg is a massless bound, not a design;
+#: - overhang 30 mm [60], bearing #0's centre to the inner stage (stage 2 30 mm further out): half a 50.8 mm bore
+#:   bearing (~10 mm) plus half a disk hub (~15 mm), the tightest that fits;
+#: - span 120-150 mm [350], bearing #0 to the forward intermediate bearing (everything aft moves with it): the
+#:   shortest that leaves room for the inter-turbine duct between the PT stages and the GG turbine;
+#: - neck 60/30 mm [45/20] between #0 and the forward intermediate bearing: the largest that still passes the gas
+#:   generator's 95 mm bore inside a thin-section bearing;
+#: - stub 60/44 mm [60/20] under the stages: the disks' hubs carry the stage mass, the shaft there can be hollow.
+LAYOUTS = [
+    ("shipped", {}),
+    ("overhang 30, stages 0.5 kg", dict(m_stage=0.5, overhang=30.0)),
+    ("+ span 150, neck 60/30", dict(m_stage=0.5, overhang=30.0, span=150.0, neck=(60.0, 30.0))),
+    ("+ hollow stub 60/44", dict(m_stage=0.5, overhang=30.0, span=150.0, neck=(60.0, 30.0), stub=(60.0, 44.0))),
+    ("+ span 120", dict(m_stage=0.5, overhang=30.0, span=120.0, neck=(60.0, 30.0), stub=(60.0, 44.0))),
+    ("bound: stages 0.05 kg, span 120", dict(m_stage=0.05, overhang=30.0, span=120.0, neck=(60.0, 30.0),
+                                             stub=(60.0, 44.0))),
+]
+
+
+def variant(data: dict, m_stage=None, overhang=None, span=None, neck=None, stub=None) -> dict:
+    """A copy of the rotor data with the power-turbine levers applied (node 3 is bearing #0, node 5 the forward
+    intermediate bearing; a new span moves the gas generator, the casing rings and hubs aft of #0 with it)."""
+    d = copy.deepcopy(data)
+    p, g, cas = d["power_turbine"], d["gas_generator"], d["casing"]
+    z = list(p["z_mm"])
+    if span is not None:
+        D = span - (z[5] - z[3])
+        z = z[:4] + [z[3] + span / 2, z[3] + span] + [v + D for v in z[6:]]
+        g["z_mm"] = [v + D for v in g["z_mm"]]
+        cas["ring_z_mm"] = [v if v <= z[3] else v + D for v in cas["ring_z_mm"]]
+        for hv in cas["hubs"].values():
+            if hv["z_mm"] > z[3]:
+                hv["z_mm"] += D
+    if overhang is not None:
+        z[0], z[1], z[2] = z[3] - overhang - 30.0, z[3] - overhang, z[3] - overhang / 2
+    p["z_mm"] = z
+    if neck is not None:
+        for e in (3, 4):
+            p["d_out_mm"][e], p["d_in_mm"][e] = neck
+    if stub is not None:
+        for e in (0, 1):
+            p["d_out_mm"][e], p["d_in_mm"][e] = stub
+    if m_stage is not None:
+        d["calibration"]["pt_stage_mass_kg"] = m_stage
+    return d
+
+
+def supports(oring: float, T_C: float | None = None) -> dict:
+    s = le.supports(oil_temperature_C=T_C)
+    for key in s:
+        s[key]["k_spring"] *= oring
+    return s
+
+
+def figures(d: dict, oring: float) -> dict:
+    s30, s85 = supports(oring), supports(oring, 85.0)
+    f = fem.build(d)
+    modes = bsi.strain_shares(f, s30)
+    above = [m for m in modes if m[0] > RUN_RPM and m[1] >= 0.05]
+    below = [m for m in modes if m[0] <= RUN_RPM and m[1] >= 0.05]
+    r = calibration.coupled_response(f, s30, 712.0)
+    _, hg30 = brm.ring_receptances(f, s30, int(d["power_turbine"]["rub0_node"]))
+    hu, hg = brm.ring_receptances(f, s85, int(d["power_turbine"]["rub0_node"]))
+    return {"modes": modes, "first_above": above[0] if above else None, "below": below, "r": r,
+            "phase30": math.degrees(np.angle(hg30)), "phase85": math.degrees(np.angle(hg)),
+            "N8551": brm.ring_force(hu, hg, 8551.0, 0.508e-3, 3e8, 0.2)}
+
+
+def part1(data: dict) -> None:
+    print(f"1. power-turbine layouts (film 30 C; margin wanted {MARGIN:.0%}: #0-straining modes above "
+          f"{RUN_RPM * (1 + MARGIN):.0f} rev/min)")
+    for oring in (1.0, 2.0):
+        print(f"  O-ring {oring:g} x 5254 N/mm")
+        for name, kw in LAYOUTS:
+            g = figures(variant(data, **kw), oring)
+            modes = " ".join(f"{m[0]:.0f} ({m[1]:.2f})" for m in g["modes"][:4])
+            fa = g["first_above"]
+            fa_s = f"{fa[0]:.0f} ({fa[1]:.2f}, margin {fa[0] / RUN_RPM - 1:+.1%})" if fa else "none"
+            r0, r5 = g["r"]["0"], g["r"]["5"]
+            print(f"    {name:34s} modes {modes}")
+            print(f"    {'':34s} #0-straining: {len(g['below'])} below 16 000, first above {fa_s}; 712 N #0 "
+                  f"{r0['whirl_mm']:.4f} mm T {r0['transmissibility']:.2f}, #5 {r5['whirl_mm']:.4f} mm "
+                  f"T {r5['transmissibility']:.3f}; #0 point phase {g['phase30']:.0f} deg (30 C) "
+                  f"{g['phase85']:.0f} deg (85 C); ring force at 8551 N {g['N8551'] / 1e3:.1f} kN", flush=True)
+
+
+def _mount_front_over_rear(d, s):
+    """Front links at s x mount_k, rear at mount_k (the pitch / bounce ratio)."""
+    r0 = min(m["ring"] for m in d["casing"]["mounts"])
+    for m in d["casing"]["mounts"]:
+        if m["ring"] == r0:
+            m["k"] = d["calibration"]["mount_k"] * s
+
+
+def _mount_planes(d, s):
+    """Both mount planes moved inboard by s rings (0: the casing's end frames, as shipped)."""
+    n = len(d["casing"]["ring_z_mm"]) - 1
+    for m in d["casing"]["mounts"]:
+        m["ring"] = int(s) if m["ring"] == 0 else n - int(s)
+
+
+def _gg_mass(d, s):
+    for dk in d["gas_generator"]["disks"]:
+        for k in ("mass", "Ip", "Id"):
+            dk[k] *= s
+
+
+def _gg_frames(d, s):
+    for h in ("b1", "b2", "b3", "b4"):
+        d["casing"]["hubs"][h]["struts"] = {k: v * s for k, v in d["casing"]["struts"].items()}
+
+
+def _hub_mass(d, s):
+    for h in d["casing"]["hubs"].values():
+        h["mass"] = s
+
+
+def _casing_mass(d, s):
+    d["material"]["casing"]["rho"] *= s
+
+
+def _gg_overhung(d, node):
+    """GG bearing 4 moved from ahead of the GG turbine stages to GG node ``node`` behind them (an overhung gas
+    generator turbine, as in engines whose compressor turbine sits outboard of its bearings)."""
+    if node == 1:
+        return
+    g, cas = d["gas_generator"], d["casing"]
+    zb4 = g["z_mm"][int(node)]
+    for s in d["support"]:
+        if s["name"] == "GG bearing 4":
+            s["a"] = ["gg", int(node)]
+    cas["ring_z_mm"] = sorted(set(cas["ring_z_mm"]) - {cas["hubs"]["b4"]["z_mm"]} | {zb4})
+    cas["hubs"]["b4"]["z_mm"] = zb4
+
+
+def _pt_tube(d, d_out):
+    p = d["power_turbine"]
+    for e in range(5, 16):
+        p["d_out_mm"][e], p["d_in_mm"][e] = d_out, d_out - 12.0     # a 6 mm wall
+
+
+#: (lever, apply(data, value), values: the plausible range first, then (in brackets in the output) a value outside
+#: it showing what the lever would need, why that range)
+LEVERS2 = [
+    ("front / rear mount links", _mount_front_over_rear, (0.3, 1.0, 3.0, 0.05), "ratio 0.3-3"),
+    ("mount planes inboard by n rings", _mount_planes, (0, 1, 2), "the casing's rings"),
+    ("GG stage masses x s", _gg_mass, (0.5, 1.0, 2.0, 4.0), "8 / 4 kg stages shipped: s 0.5-2"),
+    ("GG bearing frames x s", _gg_frames, (0.25, 1.0, 0.05, 0.01),
+     "s >= 0.25: a frame softer than the Table 2 bearing it carries makes the bearing data meaningless"),
+    ("hub masses (kg)", _hub_mass, (3.0, 10.0, 20.0, 100.0), "3-20 kg (bearing housing + race + SFD housing)"),
+    ("casing smeared mass x s", _casing_mass, (1.0, 2.0, 5.0), "s 1-2 (flanges, accessories)"),
+    ("GG bearing 4 at GG node (1 = shipped)", _gg_overhung, (1, 5, 6), "ahead of or behind the GG turbine"),
+    ("PT tube outer diameter (mm, 6 mm wall)", _pt_tube, (66.0, 50.0, 40.0, 20.0), "40-70 mm (torque, the GG bore)"),
+]
+
+
+def _forward(d, sup, n=3):
+    fw = critical.synchronous_critical_speeds(fem.build(d), sup, n=n)["forward_synchronous_rpm"]
+    return (fw + [math.nan] * n)[:n]
+
+
+def fit_mounts(d, sup, target=TARGET[0], iters=8):
+    """mount_k (all links, as the shipped calibration) such that the lowest forward critical speed is ``target``
+    (secant on log k: the casing-on-mounts mode goes about as sqrt(k)); returns (data, forward speeds)."""
+    def at(k):
+        d2 = copy.deepcopy(d)
+        d2["calibration"]["mount_k"] = k
+        for m in d2["casing"]["mounts"]:
+            if not isinstance(m["k"], str):       # front / rear split: keep the ratio to mount_k
+                m["k"] = m["k"] / d["calibration"]["mount_k"] * k
+        return d2, _forward(d2, sup)
+    k = float(d["calibration"]["mount_k"])
+    for _ in range(iters):
+        d2, f = at(k)
+        if not math.isfinite(f[0]) or abs(f[0] - target) < 5.0:
+            break
+        k *= (target / f[0]) ** 2
+    return d2, f
+
+
+def part2(data: dict) -> None:
+    name, kw = LAYOUTS[4]
+    oring = 2.0
+    base = variant(data, **kw)
+    sup = supports(oring)
+    print(f"2. criterion (a) on the layout '{name}' (O-rings {oring:g} x 5254 N/mm; its forward modes "
+          f"{[round(m[0]) for m in bsi.strain_shares(fem.build(base), sup)[:4]]} rev/min): mount_k fitted so "
+          f"that the lowest forward critical speed is {TARGET[0]:.0f}; is the second at {TARGET[1]:.0f} +-3 %?")
+    for label, apply, values, why in LEVERS2:
+        print(f"   {label} ({why}):")
+        for v in values:
+            d = copy.deepcopy(base)
+            apply(d, v)
+            d, f = fit_mounts(d, sup)
+            g = figures(d, oring)
+            fa = g["first_above"]
+            ok = abs(f[0] / TARGET[0] - 1) < 0.03 and abs(f[1] / TARGET[1] - 1) < 0.03
+            print(f"      {v:>6g}: mount_k {d['calibration']['mount_k']:.3e} N/m, forward {[round(x) for x in f]} "
+                  f"rev/min ({'MET' if ok else 'not met'}); #0-straining modes below 16 000: {len(g['below'])}, "
+                  f"first above {fa[0]:.0f} rev/min" if fa else "none above", f"; #0 point {g['phase30']:.0f} deg",
+                  flush=True)
+
+
+def main() -> None:
+    data, _ = fem.load_data(None)
+    part1(data)
+    part2(data)
+
+
+if __name__ == "__main__":
+    main()
