@@ -25,6 +25,7 @@ stage masses, the gas generator's bearing frames, the hub masses, the casing's s
 plausible range (and one value outside it, to show what it would take) with mount_k fitted to the first.
 
     python bench/bench_support_above_running.py          # ~10 min on a quiet machine
+    python bench/bench_support_above_running.py --write-candidate PATH [O-RING FACTOR]   # the study file
 """
 from __future__ import annotations
 
@@ -187,6 +188,21 @@ def _gg_overhung(d, node):
     cas["hubs"]["b4"]["z_mm"] = zb4
 
 
+def _stretch_aft(d, s):
+    """Everything aft of the forward intermediate bearing (gas generator, PT tube, casing, aft overhang) stretched
+    by s: a longer gas generator (more or wider compressor stages)."""
+    p, g, cas = d["power_turbine"], d["gas_generator"], d["casing"]
+    z5 = p["z_mm"][5]
+
+    def f(z):
+        return z if z <= z5 else z5 + s * (z - z5)
+    p["z_mm"] = [f(z) for z in p["z_mm"]]
+    g["z_mm"] = [f(z) for z in g["z_mm"]]
+    cas["ring_z_mm"] = [f(z) for z in cas["ring_z_mm"]]
+    for h in cas["hubs"].values():
+        h["z_mm"] = f(h["z_mm"])
+
+
 def _pt_tube(d, d_out):
     p = d["power_turbine"]
     for e in range(5, 16):
@@ -204,6 +220,8 @@ LEVERS2 = [
     ("hub masses (kg)", _hub_mass, (3.0, 10.0, 20.0, 100.0), "3-20 kg (bearing housing + race + SFD housing)"),
     ("casing smeared mass x s", _casing_mass, (1.0, 2.0, 5.0), "s 1-2 (flanges, accessories)"),
     ("GG bearing 4 at GG node (1 = shipped)", _gg_overhung, (1, 5, 6), "ahead of or behind the GG turbine"),
+    ("engine aft of the forward intermediate bearing stretched x s", _stretch_aft, (1.0, 1.3, 1.5),
+     "a 700-1050 mm gas generator"),
     ("PT tube outer diameter (mm, 6 mm wall)", _pt_tube, (66.0, 50.0, 40.0, 20.0), "40-70 mm (torque, the GG bore)"),
 ]
 
@@ -249,13 +267,60 @@ def part2(data: dict) -> None:
             g = figures(d, oring)
             fa = g["first_above"]
             ok = abs(f[0] / TARGET[0] - 1) < 0.03 and abs(f[1] / TARGET[1] - 1) < 0.03
+            below = ", ".join(f"{m[0]:.0f} ({m[1]:.2f})" for m in g["below"]) or "none"
+            above = f"{fa[0]:.0f} ({fa[1]:.2f})" if fa else "none"
+            r0, r5 = g["r"]["0"], g["r"]["5"]
             print(f"      {v:>6g}: mount_k {d['calibration']['mount_k']:.3e} N/m, forward {[round(x) for x in f]} "
-                  f"rev/min ({'MET' if ok else 'not met'}); #0-straining modes below 16 000: {len(g['below'])}, "
-                  f"first above {fa[0]:.0f} rev/min" if fa else "none above", f"; #0 point {g['phase30']:.0f} deg",
-                  flush=True)
+                  f"rev/min ({'MET' if ok else 'not met'}); #0-straining (O-ring share) below 16 000: {below}, "
+                  f"first above: {above}; #0 point {g['phase30']:.0f} deg; 712 N whirl #0 {r0['whirl_mm']:.4f} "
+                  f"mm T {r0['transmissibility']:.2f}, #5 {r5['whirl_mm']:.4f} mm", flush=True)
+
+
+def _fmt(v) -> str:
+    return f"{v:g}" if isinstance(v, float) else str(v)
+
+
+def write_candidate(path: str, oring: float = 2.0) -> None:
+    """Write the layout '+ span 120' with mount_k fitted to the first critical speed (8500 rev/min) as an engine
+    data file (the shipped file's text with the changed values replaced, its comments kept): a STUDY file for
+    ``rotorcosim sweep --set rotor.model_file=PATH`` (with ``--set damper0.k_spring=... --set damper5.k_spring=...``
+    for the O-ring reading), not a calibrated engine: its second critical speed is not 10 200 rev/min."""
+    import re
+
+    data, _ = fem.load_data(None)
+    d, f = fit_mounts(variant(data, **LAYOUTS[4][1]), supports(oring))
+    text = fem.DEFAULT_FILE.read_text().splitlines()
+    section, out = "", []
+    lists = {("power_turbine", "z_mm"), ("power_turbine", "d_out_mm"), ("power_turbine", "d_in_mm"),
+             ("gas_generator", "z_mm"), ("casing", "ring_z_mm")}
+    for line in text:
+        m = re.match(r"^\[([\w.]+)\]", line)
+        if m:
+            section = m.group(1)
+        key = line.split("=")[0].strip()
+        if (section, key) in lists:
+            line = f"{key} = [{', '.join(_fmt(float(v)) for v in d[section][key])}]"
+        elif section == "calibration" and key in ("pt_stage_mass_kg", "mount_k"):
+            line = f"{key} = {d['calibration'][key]:.4g}"
+        elif section == "casing.hubs" and key in d["casing"]["hubs"]:
+            h = d["casing"]["hubs"][key]
+            line = f"{key} = {{ z_mm = {_fmt(float(h['z_mm']))}, mass = {_fmt(float(h['mass']))} }}"
+        out.append(line)
+    header = (f"# STUDY FILE written by bench/bench_support_above_running.py --write-candidate: layout '{LAYOUTS[4][0]}' "
+              f"({LAYOUTS[4][1]}),\n# mount_k fitted to a first forward critical speed of 8500 rev/min with O-rings "
+              f"{oring:g} x 5254 N/mm; forward critical speeds {[round(x) for x in f]} rev/min (NOT the paper's "
+              "8500 / 10 200).\n")
+    Path(path).write_text(header + "\n".join(out) + "\n")
+    back, _ = fem.load_data(path)
+    for sec, key in lists:
+        assert np.allclose(back[sec][key], d[sec][key]), (sec, key)
+    print(f"wrote {path}: forward critical speeds {[round(x) for x in f]} rev/min")
 
 
 def main() -> None:
+    if len(sys.argv) > 2 and sys.argv[1] == "--write-candidate":
+        write_candidate(sys.argv[2], float(sys.argv[3]) if len(sys.argv) > 3 else 2.0)
+        return
     data, _ = fem.load_data(None)
     part1(data)
     part2(data)
