@@ -273,9 +273,21 @@ def _simulate(sc, duration, schedule, out, record, progress, figures, overwrite,
         error = None
 
         def hung(msg: str) -> None:  # the watchdog's last act before it ends the process
-            if out is not None:
-                write_json(out / "summary.json", {**head, "status": "failed", "error": msg, "t_end_s": sim.t,
-                                                  "checkpoint": checkpoint.CHECKPOINT if saver.saved else None})
+            if out is None:
+                return
+            closed = None
+            if series is not None:
+                # the rows still buffered (up to a flush's worth: all of a short run's) written and the file
+                # closed, marked incomplete, under its final name; before, they were lost and the file left as
+                # timeseries.h5.part. The run's thread is inside the hung component's step, not in the recorder.
+                try:
+                    recorder.end(sim, TimeoutError(msg))
+                    closed = series.name
+                except Exception:  # noqa: BLE001 - the process ends now whatever happens: the .part file stays
+                    pass
+            write_json(out / "summary.json", {**head, "status": "failed", "error": msg, "t_end_s": sim.t,
+                                              "timeseries": closed,
+                                              "checkpoint": checkpoint.CHECKPOINT if saver.saved else None})
 
         guard = watchdog.Watchdog(step_timeout, hung, "rotorcosim run") if step_timeout > 0 else contextlib.nullcontext()
         try:

@@ -24,7 +24,8 @@ def test_hung_step_ends_the_process_with_a_clear_error(tmp_path):
                 self.y["y"] = np.array([t])
 
         sc = parse({{"components": {{"c": {{"implementation": "testing.stuck"}}}},
-                    "schedule": {{"kind": "monolithic", "duration": 1.0, "step": 1e-3}}}})
+                    "schedule": {{"kind": "monolithic", "duration": 1.0, "step": 1e-3}},
+                    "outputs": {{"record": ["c.y"], "record_step": 1e-3}}}})
         execute(sc, {str(tmp_path / "o")!r}, figures=False, step_timeout=1.0)
     """)
     t0 = time.perf_counter()
@@ -36,6 +37,15 @@ def test_hung_step_ends_the_process_with_a_clear_error(tmp_path):
     assert "c did not return from its step at t = 0.005 s within 1 s (the step time limit)" in lines[0]
     s = json.loads((tmp_path / "o" / "summary.json").read_text())
     assert s["status"] == "failed" and "did not return" in s["error"]
+    # what was recorded is kept: the buffered rows written, the file closed under its name, marked incomplete
+    # (before: timeseries.h5.part holding the rows of earlier flushes only, none in a run this short)
+    import h5py
+
+    assert s["timeseries"] == "timeseries.h5" and not (tmp_path / "o" / "timeseries.h5.part").exists()
+    with h5py.File(tmp_path / "o" / "timeseries.h5") as f:
+        assert f.attrs["complete"] == False and "did not return" in f.attrs["error"]  # noqa: E712 (numpy bool)
+        assert list(f["time"][()]) == [0.0, 0.001, 0.002, 0.003, 0.004, 0.005]
+        assert list(f["c.y"][()].ravel()) == [0.0, 0.0, 0.001, 0.002, 0.003, 0.004]
 
 
 def test_watchdog_costs_nothing_when_steps_return(tmp_path):
