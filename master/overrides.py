@@ -35,7 +35,9 @@ def _literal(text: str, what: str) -> Any:
         raise ValueError(f"{what}: an empty value")
     try:
         parsed = toml_text.loads(f"v = {text}")
-    except tomllib.TOMLDecodeError:
+    except tomllib.TOMLDecodeError as exc:
+        if toml_text.BEYOND_64_BITS in str(exc):  # a number, not a bare word
+            raise ValueError(f"{what}: {exc}") from None
         if any(c in text for c in "[]{}\"'=,"):
             raise ValueError(f"{what}: {text!r} is not a value (a number, true/false, a string or [a, list])") \
                 from None
@@ -88,7 +90,11 @@ def _check_value(ref: str, value: Any) -> None:
     if isinstance(value, (bool, str)):
         return
     if isinstance(value, (int, float)):
-        if not math.isfinite(value):
+        try:
+            finite = math.isfinite(value)
+        except OverflowError:  # an int beyond any float (the API takes Python ints as they come)
+            finite = False
+        if not finite:
             raise ValueError(f"{ref}: value {value!r} is not finite")
         return
     if isinstance(value, (list, tuple)):

@@ -709,3 +709,41 @@ def test_sweep_starts_no_more_workers_than_cases(tmp, monkeypatch):
     with pytest.raises(OSError, match="no cluster in this test"):
         sweep.sweep([1.0, 2.0], tmp / "o", "toy_thermomechanical", duration=0.05, workers=100000)
     assert started == [2]
+
+
+# -- integers beyond 64 bits -------------------------------------------------------------------------------
+BIG = "1" + "0" * 400
+
+
+@pytest.mark.parametrize("where", ["parameter", "parameter list", "step", "hold_cycles", "interval", "input",
+                                   "record_step", "--set", "sweep --set", "model file"])
+def test_integers_beyond_64_bits(tmp, where):
+    """tomllib returns a 400-digit integer as a Python int, which overflowed every check comparing it as a float
+    (unexpected OverflowError); TOML's integers are 64-bit."""
+    out = tmp / "o"
+    edits = {"parameter": ("C = 10.0", f"C = {BIG}"), "parameter list": ("C = 10.0", f"C = [{BIG}]"),
+             "step": ("step = 1e-3\n", f"step = {BIG}\n"), "hold_cycles": ("hold_cycles = 5", f"hold_cycles = -{BIG}"),
+             "interval": ('{ phase = "TM", duration = 0.3 }', f'{{ phase = "TM", duration = {BIG} }}'),
+             "input": ("[outputs]", f'[inputs]\n"osc.T" = {BIG}\n\n[outputs]'),
+             "record_step": ("record_step = 1e-3", f"record_step = {BIG}")}
+    if where in edits:
+        (tmp / "s.toml").write_text(TOY_TEXT.replace(*edits[where], 1))
+        argv = [*RUN, str(tmp / "s.toml"), "--out", str(out)]
+    elif where == "--set":
+        argv = [*RUN, "toy_thermomechanical", "--set", f"node.C={BIG}", "--out", str(out)]
+    elif where == "sweep --set":
+        argv = ["sweep", "--scenario", "toy_thermomechanical", "--serial", "--quiet", "--duration", "0.05",
+                "--out", str(out), "--set", f"node.C=1,{BIG}"]
+    else:
+        (tmp / "m.toml").write_text(f"n = {BIG}\n")
+        argv = ["critical-speeds", "--model-file", str(tmp / "m.toml")]
+    line = refused(tmp, argv)
+    assert "(401 digits) is beyond 64 bits" in line, line
+    assert not out.exists()
+
+
+def test_64_bit_integers_are_read():
+    from rotorcosim.components import toml_text
+
+    assert toml_text.loads(f"a = {2**64 - 1}\nb = {-2**63}\nc = [[{2**63}]]") == {
+        "a": 2**64 - 1, "b": -2**63, "c": [[2**63]]}
