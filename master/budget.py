@@ -29,7 +29,7 @@ class BudgetError(ValueError):
     """A run refused before it starts: too long without --force, or too short to mean anything."""
 
 
-def _hms(s: float) -> str:
+def hms(s: float) -> str:
     if not math.isfinite(s):
         return "forever"
     if s < 120:
@@ -54,7 +54,7 @@ def estimate(sc, schedule) -> dict:
         raise BudgetError(f"the schedule asks for {sum(counts):.3g} steps, beyond the {MAX_STEPS:.3g} a step "
                           "counter holds exactly (a --duration in other units than seconds?)")
     steps = sum(math.ceil(n - 1e-9) for n in counts)
-    return {"steps": steps, "wall_s": steps * per_step, "wall": _hms(steps * per_step)}
+    return {"steps": steps, "wall_s": steps * per_step, "wall": hms(steps * per_step)}
 
 
 def check(sc, schedule, force: bool = False) -> dict:
@@ -83,6 +83,6 @@ def check(sc, schedule, force: bool = False) -> dict:
     if est["wall_s"] > LIMIT_S and not force:
         raise BudgetError(f"this run would take {est['steps']:.3g} steps, about {est['wall']} of wall time "
                           f"(estimated at {(MASTER_STEP_S + COMPONENT_STEP_S * max(1, len(sc.components))) * 1e6:.0f} us "
-                          f"per step), above the {_hms(LIMIT_S)} limit: give --force to run it anyway, or a shorter "
+                          f"per step), above the {hms(LIMIT_S)} limit: give --force to run it anyway, or a shorter "
                           "--duration")
     return est

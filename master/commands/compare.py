@@ -35,6 +35,7 @@ import sys
 import tempfile
 from pathlib import Path
 
+from rotorcosim.master import budget
 from rotorcosim.master.api import check_run, draw_figures
 from rotorcosim.master.figure_pool import FigurePool
 from rotorcosim.master.outputs import write_json
@@ -182,8 +183,17 @@ def compare(out: Path, duration=2.0, unbalance=2850.0, scenario="blade_loss", re
     kinds = ("staggered", "monolithic")
     plans = {kind: _plan(kind, scenario, unbalance, schedule, tolerance, duration, revolutions)
              for kind in kinds if kind not in runs}
-    for sc_k, sch in plans.values():  # a run's own checks (duration, budget) for both, before anything runs
-        check_run(sc_k, sch)
+    # a run's own checks (duration, budget) for both, before anything runs; then the comparison's whole budget:
+    # the staggered run is timed --timing-runs times (10**400 timings were accepted and ran until stopped)
+    ests = {kind: check_run(sc_k, sch) for kind, (sc_k, sch) in plans.items()}
+    n_timed = 1 if monolithic is not None or schedule != "paper" else timing_runs or TIMING_RUNS
+    total = sum(e["wall_s"] * (n_timed if kind == "staggered" else 1) for kind, e in ests.items())
+    if total > budget.LIMIT_S:
+        raise budget.BudgetError(f"this comparison would take about {budget.hms(total)} of wall time ("
+                                 f"{n_timed} timing(s) of the staggered run, estimated "
+                                 f"{budget.hms(ests['staggered']['wall_s'])} each), above the "
+                                 f"{budget.hms(budget.LIMIT_S)} limit: give fewer --timing-runs or a shorter "
+                                 "--duration")
     ensure_folder(out)  # every input checked: only now is a folder made (the runs' messages, rundir.py)
     # --overwrite replaces the runs: the previous table goes now, so that an interrupted comparison never leaves
     # it beside runs it does not describe

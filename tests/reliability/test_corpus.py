@@ -533,6 +533,8 @@ def test_number_options(tmp, base, option, value):
      "oil supply"),
     (["bearing-static", "--bearing", "0", "--radial-load", "1e12"], None),
     (["compare", "--quiet", "--out", "{out}", "--revolutions", "nan"], "--revolutions must be a positive"),
+    # 10**11 timings of the staggered run were accepted and ran until stopped
+    (["compare", "--quiet", "--out", "{out}", "--timing-runs", "100000000000"], "fewer --timing-runs"),
     (["export-fmus", "", "--scenario", "toy_thermomechanical"], "output folder is empty"),
     (["critical-speeds", "--count", "0"], None),
     (["critical-speeds", "--count", "2.5"], None),
