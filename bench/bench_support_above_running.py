@@ -24,8 +24,12 @@ without straining #0: the front / rear mount links apart, the mount planes moved
 stage masses, the gas generator's bearing frames, the hub masses, the casing's smeared mass, an overhung gas-generator turbine, the power turbine's tube: each scanned over its
 plausible range (and one value outside it, to show what it would take) with mount_k fitted to the first.
 
+Part 3 tries (a) by the #5 end instead: the second critical speed as bearing #5's support mode (the power turbine's
+output end on #5's O-ring, below the running speed, which leaves #0 alone), with bearing #5 further behind the aft
+intermediate bearing and the output coupling's mass at #5 as a third knob (solved with mount_k).
+
     python bench/bench_support_above_running.py          # ~10 min on a quiet machine
-    python bench/bench_support_above_running.py --write-candidate PATH [O-RING FACTOR]   # the study file
+    python bench/bench_support_above_running.py --write-candidate span120|end5 FILE [O-RING FACTOR]  # study files
 """
 from __future__ import annotations
 
@@ -174,6 +178,14 @@ def _casing_mass(d, s):
     d["material"]["casing"]["rho"] *= s
 
 
+def _casing_wall(d, t_mm):
+    d["casing"]["thickness_mm"] = t_mm
+
+
+def _casing_radius(d, r_mm):
+    d["casing"]["radius_mm"] = r_mm
+
+
 def _gg_overhung(d, node):
     """GG bearing 4 moved from ahead of the GG turbine stages to GG node ``node`` behind them (an overhung gas
     generator turbine, as in engines whose compressor turbine sits outboard of its bearings)."""
@@ -219,6 +231,8 @@ LEVERS2 = [
      "s >= 0.25: a frame softer than the Table 2 bearing it carries makes the bearing data meaningless"),
     ("hub masses (kg)", _hub_mass, (3.0, 10.0, 20.0, 100.0), "3-20 kg (bearing housing + race + SFD housing)"),
     ("casing smeared mass x s", _casing_mass, (1.0, 2.0, 5.0), "s 1-2 (flanges, accessories)"),
+    ("casing wall (mm)", _casing_wall, (12.0, 6.0, 3.0), "3-12 mm (an engine casing is a few mm thick)"),
+    ("casing mean radius (mm)", _casing_radius, (300.0, 200.0), "200-300 mm (clears the 0.2 m turbine disks)"),
     ("GG bearing 4 at GG node (1 = shipped)", _gg_overhung, (1, 5, 6), "ahead of or behind the GG turbine"),
     ("engine aft of the forward intermediate bearing stretched x s", _stretch_aft, (1.0, 1.3, 1.5),
      "a 700-1050 mm gas generator"),
@@ -280,15 +294,103 @@ def _fmt(v) -> str:
     return f"{v:g}" if isinstance(v, float) else str(v)
 
 
-def write_candidate(path: str, oring: float = 2.0) -> None:
-    """Write the layout '+ span 120' with mount_k fitted to the first critical speed (8500 rev/min) as an engine
-    data file (the shipped file's text with the changed values replaced, its comments kept): a STUDY file for
-    ``rotorcosim sweep --set rotor.model_file=PATH`` (with ``--set damper0.k_spring=... --set damper5.k_spring=...``
-    for the O-ring reading), not a calibrated engine: its second critical speed is not 10 200 rev/min."""
+def _aft_overhang(d, L_mm):
+    """Bearing #5 at L_mm behind the aft intermediate bearing (PT node 16; shipped 150 mm), its casing ring and hub
+    with it: the power turbine's output end reaching further forward through the gas generator's inlet."""
+    p, cas = d["power_turbine"], d["casing"]
+    z16 = p["z_mm"][16]
+    p["z_mm"] = p["z_mm"][:17] + [z16 + L_mm * k / 5.0 for k in range(1, 6)]
+    cas["ring_z_mm"][-1] = z16 + L_mm
+    cas["hubs"]["h5"]["z_mm"] = z16 + L_mm
+
+
+#: gyration radius of the output coupling (flange + spline adapter of ~0.12 m diameter)
+COUPLING_R = 0.06
+
+
+def _coupling(d, m_kg):
+    """The output coupling at the #5 end (PT node 21) as a rigid disk of m_kg (Ip = m r^2, Id = Ip / 2)."""
+    if m_kg > 0:
+        Ip = m_kg * COUPLING_R ** 2
+        d["power_turbine"]["disks"].append({"node": 21, "name": "output coupling", "mass": m_kg, "Ip": Ip,
+                                            "Id": Ip / 2.0})
+
+
+def fit_mounts_coupling(d0, sup, x0=(7e7, 6.0), iters=10):
+    """Newton on (mount_k, output coupling mass) to the two lowest forward critical speeds; returns (data, knobs,
+    forward speeds)."""
+    def build(x):
+        d = copy.deepcopy(d0)
+        d["calibration"]["mount_k"] = float(x[0])
+        _coupling(d, float(x[1]))
+        return d
+    x, t = np.array(x0, float), np.array(TARGET)
+    for _ in range(iters):
+        f = np.array(_forward(build(x), sup)[:2])
+        if np.max(np.abs(f - t)) < 3.0:
+            break
+        J = np.empty((2, 2))
+        for j in range(2):
+            dx = x.copy()
+            dx[j] *= 1.02
+            J[:, j] = (np.array(_forward(build(dx), sup)[:2]) - f) / (dx[j] - x[j])
+        x = np.clip(x - np.linalg.solve(J, f - t), x / 2.0, 2.0 * x)
+    d = build(x)
+    return d, x, _forward(d, sup, n=4)
+
+
+def part3(data: dict) -> None:
+    """(a) by the #5 end: the second critical speed as bearing #5's support mode (the power turbine's output end on
+    #5's O-ring), with a longer aft overhang and the output coupling's mass as a third knob."""
+    oring = 2.0
+    sup = supports(oring)
+    print(f"3. (a) by the #5 end on '{LAYOUTS[4][0]}' (O-rings {oring:g} x): output coupling mass at #5 (third knob) "
+          f"and mount_k solved for {TARGET[0]:.0f} / {TARGET[1]:.0f} rev/min, bearing #5 at L behind the aft "
+          f"intermediate bearing (shipped 150 mm)")
+    for L in (150.0, 250.0, 350.0):
+        d0 = variant(data, **LAYOUTS[4][1])
+        _aft_overhang(d0, L)
+        try:
+            d, x, f = fit_mounts_coupling(d0, sup)
+        except np.linalg.LinAlgError as exc:
+            print(f"   L {L:.0f} mm: fit failed ({exc})")
+            continue
+        g = figures(d, oring)
+        modes = " ".join(f"{m[0]:.0f} (#0 {m[1]:.2f}, #5 {m[2]:.2f})" for m in g["modes"][:4])
+        fa = g["first_above"]
+        r0, r5 = g["r"]["0"], g["r"]["5"]
+        above = f"{fa[0]:.0f} ({fa[0] / RUN_RPM - 1:+.1%})" if fa else "none"
+        print(f"   L {L:.0f} mm: coupling {x[1]:.2f} kg, mount_k {x[0]:.3e} N/m, forward {[round(v) for v in f]}; "
+              f"modes (O-ring strain shares) {modes}; #0-straining below 16 000: {len(g['below'])}, first above "
+              f"{above}; #0 point {g['phase30']:.0f} / {g['phase85']:.0f} deg (30 / 85 C); 712 N #0 "
+              f"{r0['whirl_mm']:.4f} mm T {r0['transmissibility']:.2f}, #5 {r5['whirl_mm']:.4f} mm T "
+              f"{r5['transmissibility']:.3f}; ring force at 8551 N {g['N8551'] / 1e3:.1f} kN", flush=True)
+
+
+def candidate(kind: str, oring: float) -> tuple[dict, list, str]:
+    """The study layouts as data: 'span120' ('+ span 120', mount_k fitted to 8500 rev/min) or 'end5' (the same
+    with bearing #5 350 mm behind the aft intermediate bearing and the output coupling and mount_k solved for
+    8500 / 10 200 rev/min)."""
+    data, _ = fem.load_data(None)
+    d0 = variant(data, **LAYOUTS[4][1])
+    if kind == "span120":
+        d, f = fit_mounts(d0, supports(oring))
+        return d, f, f"layout '{LAYOUTS[4][0]}' ({LAYOUTS[4][1]}), mount_k fitted to 8500 rev/min"
+    if kind == "end5":
+        _aft_overhang(d0, 350.0)
+        d, x, f = fit_mounts_coupling(d0, supports(oring))
+        return d, f, (f"layout '{LAYOUTS[4][0]}' ({LAYOUTS[4][1]}), bearing #5 350 mm behind the aft intermediate "
+                      f"bearing, output coupling {x[1]:.3f} kg and mount_k solved for 8500 / 10 200 rev/min")
+    raise ValueError(f"unknown candidate {kind!r} (span120, end5)")
+
+
+def write_candidate(path: str, kind: str = "span120", oring: float = 2.0) -> None:
+    """Write a study layout (:func:`candidate`) as an engine data file (the shipped file's text with the changed
+    values replaced, its comments kept): a STUDY file for ``rotorcosim sweep --set rotor.model_file=FILE`` (with
+    ``--set damper0.k_spring=... --set damper5.k_spring=...`` for the O-ring reading), not a shipped engine."""
     import re
 
-    data, _ = fem.load_data(None)
-    d, f = fit_mounts(variant(data, **LAYOUTS[4][1]), supports(oring))
+    d, f, what = candidate(kind, oring)
     text = fem.DEFAULT_FILE.read_text().splitlines()
     section, out = "", []
     lists = {("power_turbine", "z_mm"), ("power_turbine", "d_out_mm"), ("power_turbine", "d_in_mm"),
@@ -301,29 +403,33 @@ def write_candidate(path: str, oring: float = 2.0) -> None:
         if (section, key) in lists:
             line = f"{key} = [{', '.join(_fmt(float(v)) for v in d[section][key])}]"
         elif section == "calibration" and key in ("pt_stage_mass_kg", "mount_k"):
-            line = f"{key} = {d['calibration'][key]:.4g}"
+            line = f"{key} = {d['calibration'][key]:.6g}"
         elif section == "casing.hubs" and key in d["casing"]["hubs"]:
             h = d["casing"]["hubs"][key]
             line = f"{key} = {{ z_mm = {_fmt(float(h['z_mm']))}, mass = {_fmt(float(h['mass']))} }}"
         out.append(line)
-    header = (f"# STUDY FILE written by bench/bench_support_above_running.py --write-candidate: layout '{LAYOUTS[4][0]}' "
-              f"({LAYOUTS[4][1]}),\n# mount_k fitted to a first forward critical speed of 8500 rev/min with O-rings "
-              f"{oring:g} x 5254 N/mm; forward critical speeds {[round(x) for x in f]} rev/min (NOT the paper's "
-              "8500 / 10 200).\n")
+        if section == "power_turbine" and line.lstrip().startswith('{ node = 1, name = "PT stage 1"'):
+            for dk in d["power_turbine"]["disks"][2:]:
+                out.append(f'  {{ node = {dk["node"]}, name = "{dk["name"]}", mass = {dk["mass"]:.6g}, '
+                           f'Ip = {dk["Ip"]:.6g}, Id = {dk["Id"]:.6g} }},')
+    header = (f"# STUDY FILE written by bench/bench_support_above_running.py --write-candidate {kind}: {what},\n"
+              f"# O-rings {oring:g} x 5254 N/mm; forward critical speeds {[round(x) for x in f]} rev/min.\n")
     Path(path).write_text(header + "\n".join(out) + "\n")
     back, _ = fem.load_data(path)
     for sec, key in lists:
         assert np.allclose(back[sec][key], d[sec][key]), (sec, key)
+    assert len(back["power_turbine"]["disks"]) == len(d["power_turbine"]["disks"])
     print(f"wrote {path}: forward critical speeds {[round(x) for x in f]} rev/min")
 
 
 def main() -> None:
-    if len(sys.argv) > 2 and sys.argv[1] == "--write-candidate":
-        write_candidate(sys.argv[2], float(sys.argv[3]) if len(sys.argv) > 3 else 2.0)
+    if len(sys.argv) > 3 and sys.argv[1] == "--write-candidate":
+        write_candidate(sys.argv[3], sys.argv[2], float(sys.argv[4]) if len(sys.argv) > 4 else 2.0)
         return
     data, _ = fem.load_data(None)
     part1(data)
     part2(data)
+    part3(data)
 
 
 if __name__ == "__main__":
