@@ -8,8 +8,9 @@ Cases run on Dask: a local cluster (one single-threaded worker process per core)
 running cluster whose workers may be other machines. A worker runs its case in a temporary folder of its own and
 sends the files back; the client writes them under ``--out`` (write-then-rename, so a case folder is whole or
 absent). The sweep then writes ``DIR/sweep.json`` (cases, where they ran, wall times, errors), ``DIR/sweep.csv``
-(one row per case: its parameters and its Table 4 results) and, for an unbalance-only sweep of a blade-loss
-scenario, ``DIR/table5.csv`` / ``DIR/table5.md`` in the paper's Table 5 format and, for the levels that are the
+(one row per case: its parameters and its Table 4 results) and, for a sweep of unbalance levels of a blade-loss
+scenario with at most one value of each ``--set`` parameter (one case a level: e.g. a modified model at the
+paper's levels), ``DIR/table5.csv`` / ``DIR/table5.md`` in the paper's Table 5 format and, for the levels that are the
 paper's, ``DIR/paper_comparison.csv`` (result, bearing, unbalance_N, paper, ours, ratio) and
 ``DIR/paper_comparison.png`` (master/paper_comparison.py), with the score in ``DIR/sweep.json`` (``paper_score``).
 """
@@ -18,6 +19,7 @@ from __future__ import annotations
 import csv
 import itertools
 import os
+import re
 import shutil
 import sys
 import tempfile
@@ -100,23 +102,43 @@ class Case:
     unbalance_N: float | None = None
 
 
+#: the longest case folder name (file systems take 255 bytes; the sweep adds ".part" while it writes)
+NAME_MAX = 200
+
+
 def _fmt(v: Any) -> str:
-    return f"{v:g}" if isinstance(v, float) else str(v).lower() if isinstance(v, bool) else str(v)
+    """A value as it stands in a case's folder name: a file path by its file name (``--set
+    rotor.model_file=/abs/engine.toml`` -> ``engine.toml``), control characters and other slashes (inside a list
+    value) as ``_``."""
+    text = f"{v:g}" if isinstance(v, float) else str(v).lower() if isinstance(v, bool) else str(v)
+    if isinstance(v, str) and ("/" in text or "\\" in text):
+        text = re.split(r"[/\\]", text.rstrip("/\\"))[-1] or "root"
+    return re.sub(r"[\x00-\x1f\x7f/\\]", "_", text)
 
 
 def cases_of(levels: list[float] | None, grid: dict[str, list[Any]]) -> list[Case]:
-    """The grid of cases: unbalance levels (outer) times the ``--set`` parameters' values."""
+    """The grid of cases: unbalance levels (outer) times the ``--set`` parameters' values. Each case's folder
+    name says its values (:func:`_fmt`); two cases whose names would be the same (two files of one name in
+    different folders) are an error naming both values."""
     if not levels and not grid:
         raise ValueError("nothing to sweep: give --unbalance and/or --set")
-    out = []
+    out, seen = [], {}
     refs = list(grid)
     for f in levels or [None]:
         for combo in itertools.product(*(grid[r] for r in refs)):
             parts = ([f"F_{f:g}"] if f is not None else []) + [f"{r}={_fmt(v)}" for r, v in zip(refs, combo)]
             name = "_".join(parts)
-            if "/" in name or name.startswith("."):
-                raise ValueError(f"case name {name!r} is not a usable folder name: use plainer values")
-            out.append(Case(name, dict(zip(refs, combo)), f))
+            if len(name.encode()) > NAME_MAX:
+                raise ValueError(f"case name {name[:60]!r}... is {len(name.encode())} bytes, longer than a folder "
+                                 f"name may be ({NAME_MAX}): use shorter values")
+            if name.startswith("."):
+                raise ValueError(f"case name {name!r} is not a usable folder name (a hidden one): use plainer values")
+            settings = dict(zip(refs, combo))
+            if name in seen:
+                raise ValueError(f"two cases would share the folder {name!r}: {seen[name]} and {settings} (give "
+                                 f"the files different names)")
+            seen[name] = settings
+            out.append(Case(name, settings, f))
     return out
 
 
@@ -241,7 +263,7 @@ def sweep(levels=None, out: Path = Path("sweep"), scenario="blade_loss", schedul
     wall = time.perf_counter() - t0
     summaries = {c.name: results[c.name]["summary"] for c in cases}
     score = None
-    if levels and not grid:
+    if levels and all(len(v) == 1 for v in grid.values()):  # one case a level: the levels' table of this model
         by_level = {c.unbalance_N: summaries[c.name] for c in cases}
         write_table5(out, by_level)
         score = paper_comparison.write(out, by_level)
@@ -289,7 +311,7 @@ def run(args) -> int:
 
     info = sweep(levels, Path(args.out), args.scenario, args.scheduler, kind, args.duration, args.workers,
                  args.serial, grid, None if args.quiet else progress)
-    tables = " table5.csv, table5.md," if levels and not grid else ""
+    tables = " table5.csv, table5.md," if levels and all(len(v) == 1 for v in grid.values()) else ""
     print(f"{len(info['cases'])} cases in {info['wall_time_s']:.3g} s ({info['executed_on']});"
           f"{tables} sweep.csv and sweep.json written in {args.out}")
     sc = info["paper_score"]

@@ -149,3 +149,35 @@ def test_workers_must_be_positive(tmp_path):
     for n in (0, -1):
         with pytest.raises(ValueError, match="--workers must be at least 1"):
             sweep([50.0], tmp_path / "x", "toy_thermomechanical", duration=1.0, workers=n)
+
+
+def test_case_folder_names_from_file_paths_and_collisions():
+    """A file path names its case by its file name (``--set rotor.model_file=/abs/x.toml`` was refused as "not a
+    usable folder name"); two files of one name would share a folder: refused, naming both."""
+    cases = cases_of([712.0], {"rotor.model_file": ["/tmp/study/cand.toml"], "damper0.c": [0.1]})
+    assert [c.name for c in cases] == ["F_712_rotor.model_file=cand.toml_damper0.c=0.1"]
+    assert cases[0].settings["rotor.model_file"] == "/tmp/study/cand.toml"   # the value itself is kept whole
+    assert [c.name for c in cases_of(None, {"a.b": [["/x/y", "z"], "p\nq"]})] == ["a.b=['_x_y', 'z']", "a.b=p_q"]
+    with pytest.raises(ValueError, match="two cases would share the folder 'rotor.model_file=e.toml'"):
+        cases_of(None, {"rotor.model_file": ["/a/e.toml", "/b/e.toml"]})
+    with pytest.raises(ValueError, match="longer than a folder name may be"):
+        cases_of(None, {"a.b": ["x" * 300]})
+
+
+def test_levels_with_one_value_per_parameter_get_the_paper_tables(tmp_path):
+    """A modified model at the paper's levels (one --set value: one case a level) gets table5.csv and
+    paper_comparison.csv like a plain level sweep; a model file given by an absolute path runs."""
+    from rotorcosim.components.rotor import model as fem
+
+    model = tmp_path / "models" / "engine copy.toml"
+    model.parent.mkdir()
+    model.write_bytes(fem.DEFAULT_FILE.read_bytes())
+    info = sweep([712.0, 1425.0], tmp_path / "out", "blade_loss", duration=0.002, serial=True,
+                 grid={"rotor.model_file": [str(model)]})
+    assert info["errors"] == {}
+    assert sorted(p.name for p in (tmp_path / "out").iterdir() if p.is_dir()) == [
+        "F_1425_rotor.model_file=engine copy.toml", "F_712_rotor.model_file=engine copy.toml"]
+    for name in ("table5.csv", "table5.md", "paper_comparison.csv", "paper_comparison.png"):
+        assert (tmp_path / "out" / name).is_file(), name
+    # the two levels' cells: 11 results x 2 bearings x 2, less 712 N's two printed zeros that are rounding
+    assert info["paper_score"]["cells"] == 42
