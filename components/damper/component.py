@@ -53,6 +53,10 @@ THIN_FILM = 0.05
 #: The blade-loss runs stay below ~20 (0.17 m/s whirl velocity at 0.635 mm and 11 cP: Re ~ 9); an input check of
 #: `rotorcosim damper-force` (--velocity 1e9 was computed), no run depends on it.
 LAMINAR_FILM_RE = 1000.0
+#: the largest film mesh (n_theta x n_z nodes), 16 times the paper's 128 x 64: the fast model's table (60 sparse
+#: factorisations) took 5.4 s at 128 x 64 and 43 s at 256 x 128 (measured, ROTORCOSIM_CACHE=off), growing about as
+#: nodes^1.5, so ~6 min here and hours beyond; n_theta = 100000 reached 2.6 GB in a minute with no end in sight
+MAX_MESH_NODES = 16 * 128 * 64
 
 
 class WallContactError(RuntimeError):
@@ -147,6 +151,14 @@ class _Damper(Memoryless, Component):
                                 f"{THIN_FILM:g}, the Reynolds equation's assumption){hint}")
         if p["n_theta"] < 8 or p["n_z"] < 2:
             raise ContractError(f"{self.name}: mesh n_theta={p['n_theta']} (>= 8), n_z={p['n_z']} (>= 2)")
+        if p["n_theta"] * p["n_z"] > MAX_MESH_NODES:
+            raise ContractError(f"{self.name}: mesh n_theta x n_z = {p['n_theta']} x {p['n_z']} = "
+                                f"{p['n_theta'] * p['n_z']:.4g} nodes, above {MAX_MESH_NODES} (16 times the paper's "
+                                f"{FILM['n_theta']} x {FILM['n_z']}): its film table would take hours to build")
+        if p["cavitation"] and p["cavitation_pressure"] > p["supply_pressure"]:
+            raise ContractError(f"{self.name}.cavitation_pressure = {p['cavitation_pressure']:g} Pa must not exceed "
+                                f"the supply pressure ({p['supply_pressure']:g} Pa, gauge): the film ruptures below "
+                                "the pressure it is fed at, never above it")
         self._c = p["clearance"]
         self._k = p["k_spring"]
         self._kw = p["k_wall"]

@@ -221,3 +221,24 @@ def test_cli_a_fast_whirl_is_still_a_film(capsys):
     assert main(["damper-force", "--damper", "5", "--position", "1e-4", "0", "--velocity", "0", "5",
                  "--temperature", "100", "--json"]) == 0
     assert json.loads(capsys.readouterr().out)["force_N"][1] < 0.0
+
+
+@pytest.mark.parametrize("cls", [FastDamper, FEDamper])
+@pytest.mark.parametrize("params, says", [
+    # a mesh no table could be built for in a working day (n_theta = 100000 took 2.6 GB in a minute, no end)
+    ({"n_theta": 100000}, r"100000 x 64 = 6.4e\+06 nodes, above 131072"),
+    ({"n_z": 2049}, r"128 x 2049 = 2.623e\+05 nodes, above 131072"),
+    # the film cannot rupture above the pressure it is fed at (1e9 Pa ran, the whole film clipped up to it)
+    ({"cavitation_pressure": 1e9}, r"cavitation_pressure = 1e\+09 Pa must not exceed the supply pressure"),
+    ({"cavitation_pressure": 1.0, "supply_pressure": 0.0}, r"must not exceed the supply pressure \(0 Pa"),
+])
+def test_parameters_outside_the_film_model(cls, params, says):
+    d = cls("damper0", {"damper": 0, **params})
+    with pytest.raises(ContractError, match=says):
+        d.setup(0.0)
+
+
+def test_cavitation_at_the_supply_pressure_is_the_half_film():
+    """Equal pressures (0 and 0: the classic half-Sommerfeld film) stay allowed; full film ignores the value."""
+    FastDamper("d", {"damper": 0, "cavitation_pressure": 0.0, "supply_pressure": 0.0}).setup(0.0)
+    FastDamper("d", {"damper": 0, "cavitation": False, "cavitation_pressure": 1e9}).setup(0.0)
