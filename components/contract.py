@@ -136,6 +136,10 @@ class Component:
     #: parameters a scenario must give: no default is right for all uses (the bearing, damper or ring number
     #: picks that one's Table 3 data; a forgotten ``bearing = 5`` must not silently give bearing #0's)
     required_parameters: tuple[str, ...] = ()
+    #: String parameters that name a file: a relative path a scenario gives is read from the folder of the scenario
+    #: file that wrote it, as an ``fmu = ...`` path is (it was read from the working folder: another folder's file
+    #: of that name was used without a word)
+    file_parameters: tuple[str, ...] = ()
     #: short description shown by ``rotorcosim`` and written to exported FMUs
     description: str = ""
 

@@ -135,6 +135,21 @@ def _plain(value: Any) -> Any:
     return value
 
 
+def resolve_file_parameters(impl: str, params: dict, folder_of, lookup_folder: str | None, names=None) -> None:
+    """The implementation's file parameters (``Component.file_parameters``) in ``params`` made absolute paths,
+    a relative one read from ``folder_of(param)``: the folder of the scenario file that wrote it, or the working
+    folder for a value given on the command line or to :meth:`Scenario.set` (a sweep's case may run elsewhere)."""
+    try:
+        cls = registry.lookup(impl, lookup_folder)
+    except (ContractError, ImportError, AttributeError):  # the schema or the build names it
+        return
+    for p in getattr(cls, "file_parameters", ()):
+        value = params.get(p)
+        if isinstance(value, str) and value and (names is None or p in names):
+            path = Path(value).expanduser()
+            params[p] = str(real_path(path if path.is_absolute() else Path(folder_of(p)) / path))
+
+
 def apply_set(sc, values: Mapping[str, Any], origin: str = API_ORIGIN):
     """A copy of ``sc`` with ``{"comp.param": value}`` applied (see :meth:`Scenario.set`)."""
     if not isinstance(values, Mapping):
@@ -160,6 +175,8 @@ def apply_set(sc, values: Mapping[str, Any], origin: str = API_ORIGIN):
                 raise ScenarioError(str(exc)) from None
         spec.parameters[param] = _plain(value)
         spec.param_origins[param] = origin
+        if spec.implementation is not None:
+            resolve_file_parameters(spec.implementation, spec.parameters, lambda p: Path.cwd(), spec.folder, (param,))
     return out
 
 

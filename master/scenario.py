@@ -67,6 +67,7 @@ from . import schema
 from .algorithm import EngineSettings
 from .hold import DEFAULT_HOLD, RESTART_CYCLES
 from .compose import Origins, ScenarioError, compose, real_path
+from .overrides import resolve_file_parameters
 from .schedule import from_spec
 from .simulation import Simulation
 from .system import Connection, System, split_port
@@ -207,6 +208,12 @@ def parse(data: Mapping[str, Any], source: Path | None = None, origins: Origins 
                            "initial state from its parameters")
         options = {k: spec[k] for k in ("process", "step_timeout") if k in spec}
         came = origins.component(name)
+        if impl is not None:
+            def folder_of(p: str, name=name) -> Path:  # the folder of the file that wrote the parameter
+                wrote = origins.parameter(name, p)
+                return Path(wrote).parent if wrote else base
+
+            resolve_file_parameters(impl, params, folder_of, str(Path(came).parent if came else base))
         components[name] = ComponentSpec(name, impl, fmu, params, None if step is None else float(step), start,
                                          options, origin=came or (str(source) if source else None),
                                          folder=str(Path(came).parent if came else base),

@@ -98,6 +98,7 @@ class Rotor(KernelComponent):
 
     description = ("Flexible dual-rotor gas turbine engine with casing: Timoshenko FE model reduced by modal "
                    "truncation augmentation, Newmark-beta integration, rotating blade-loss force")
+    file_parameters = ("model_file",)   # a relative path: from the scenario file's folder
     variables = (
         Variable("F_unbalance", "parameter", unit="N", start=2850.0,
                  description="blade-loss force amplitude (rotating at the PT speed, PT outboard end)"),

@@ -749,3 +749,25 @@ def test_64_bit_integers_are_read():
 
     assert toml_text.loads(f"a = {2**64 - 1}\nb = {-2**63}\nc = [[{2**63}]]") == {
         "a": 2**64 - 1, "b": -2**63, "c": [[2**63]]}
+
+
+# -- relative file parameters ------------------------------------------------------------------------------
+def test_a_relative_model_file_is_read_from_the_scenario_folder(tmp_path, monkeypatch):
+    """``parameters = { model_file = "engine2.toml" }`` was opened from the working folder: run from elsewhere, a
+    file of that name there was used without a word (or "not found"). Now from the folder of the scenario file
+    that wrote it, as ``fmu = ...``; a --set / Scenario.set value from the working folder."""
+    from rotorcosim.master.api import load_scenario
+
+    (tmp_path / "a").mkdir()
+    (tmp_path / "b").mkdir()
+    (tmp_path / "a" / "base.toml").write_text(
+        '[scenario]\nextends = "blade_loss_2850"\nname = "a"\n'
+        '[components.rotor]\nparameters = { model_file = "engine2.toml" }\n')
+    (tmp_path / "a" / "sub").mkdir()
+    (tmp_path / "a" / "sub" / "child.toml").write_text('[scenario]\nextends = "../base.toml"\nname = "c"\n')
+    monkeypatch.chdir(tmp_path / "b")
+    for f in (tmp_path / "a" / "base.toml", tmp_path / "a" / "sub" / "child.toml"):
+        sc = load_scenario(str(f))
+        assert sc.components["rotor"].parameters["model_file"] == str(tmp_path / "a" / "engine2.toml")
+    assert sc.set({"rotor.model_file": "mine.toml"}).components["rotor"].parameters["model_file"] == \
+        str(tmp_path / "b" / "mine.toml")
