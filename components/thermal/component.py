@@ -1,7 +1,8 @@
 """The bearing thermal network component (paper section 2.3: Fig. 5, Table 1, eqs. (12)-(15)).
 
 Nine lumped nodes per bearing (``T_nodes`` order: shaft, inner_race, lub_inner, ball, lub_outer, outer_race,
-journal, sfd_oil, housing), eq. (12) at each, the Table 1 resistances from the Table 3 geometry (geometry.py), heat
+journal, sfd_oil, housing; the journal sleeve's inner radial shells are further state nodes, geometry.py), eq. (12)
+at each, the Table 1 resistances from the Table 3 geometry (geometry.py), heat
 sources from the three power inputs, and the growths of eqs. (13)-(15) (growth.py).
 
 Added to the paper's network (geometry.py, data/thermal.toml): the oil-wetted convection between the races / balls
@@ -122,12 +123,12 @@ class ThermalNetwork(KernelComponent):
         st = _DATA["steel"]
         self._growth_args = (p["T_initial"], st["expansion"], st["poisson"], g["r_i"], g["r_e"], g["r_j"], g["r_b"])
         self._method = p["method"]
-        self.state = {"T": np.full(9, p["T_initial"])}
+        self.state = {"T": np.full(self.network.n, p["T_initial"])}
         self._kernel_h = None
         self._publish(self.state["T"])
 
     def _publish(self, T):
-        Tl = T.tolist()
+        Tl = T[:9].tolist()      # the nine named nodes (the journal's inner shells follow, geometry.py)
         eps = growths(Tl[SHAFT], Tl[LI], Tl[BALL], Tl[LE], Tl[JOURNAL], *self._growth_args)
         # one fresh buffer per step; the outputs are views of it
         buf = np.array((*Tl, *eps, 0.5 * (Tl[LI] + Tl[LE]), Tl[SFD], Tl[IR], Tl[BALL], Tl[OR]))
@@ -161,7 +162,8 @@ class ThermalNetwork(KernelComponent):
             if not h > 0.0:
                 raise ContractError(f"{self.name}: step size must be > 0, got {h}")
             Phi, gb, GS = self.network.step_matrices(h, self._method)
-            self._kernel_p = ThermalParams(Phi, gb, GS, np.empty(9), *(float(a) for a in self._growth_args))
+            self._kernel_p = ThermalParams(Phi, gb, GS, np.empty(self.network.n),
+                                           *(float(a) for a in self._growth_args))
             self._kernel_h = h
 
     def kernel_params(self):
@@ -172,7 +174,8 @@ class ThermalNetwork(KernelComponent):
         raise RuntimeError(f"{self.name}: kernel status {status} at t = {t + h:.9g} s")
 
     def steady_state(self, P_drag: float, P_sfd: float, P_rub: float) -> np.ndarray:
-        """Node temperatures (K) of the steady state under constant powers (the linear solve K T = b + S u)."""
+        """Node temperatures (K) of the steady state under constant powers (the linear solve K T = b + S u): the
+        nine named nodes, then the journal's inner shells."""
         self.set_inputs({"P_drag": [P_drag], "P_sfd": [P_sfd], "P_rub": [P_rub]})
         return self.network.steady(self.powers())
 

@@ -16,6 +16,7 @@ Branches (Table 1 resistances; a lubricant node sits in the middle of its layer,
     inner_race - ball, ball - outer_race   R_b = 1/(n k_b pi r_b) each (ball centre to each contact)
     ball - lub_outer - outer_race          R_Le/2 + R_Le/2,  R_Le = r_b / (k_l (2 pi r_e W_e - pi n r_b^2))
     outer_race - journal  R_e + R_j,   R_e = ln(r_o/r_e)/(2 pi k_e W_e),  R_j = ln(r_j/r_o)/(2 pi k_j W_e)
+                          (R_j in N radial shells of the journal sleeve, see below)
     journal - sfd_oil     R_sf1 = ln((r_j + c_sf/2)/r_j) / (2 pi k_sf L_j)
     sfd_oil - housing     R_sf2 = ln(r_hi/(r_j + c_sf/2)) / (2 pi k_sf L_j)
     housing - oil supply  R_h = R_hr R_ha / (R_hr + R_ha)   (oil-wetted in the bearing chamber, see below)
@@ -42,6 +43,15 @@ n (4/3) pi r_b^3; lubricant, the free annulus r_i..r_e over W minus the balls, h
 (only the oil actually in the bearing: ``lubricant_fill_fraction`` of that free volume); outer race, annulus
 r_e..r_o over W_e; journal, annulus r_o..r_j over L_j; SFD oil, the film 2 pi r_j c_sf L_j;
 housing, annulus r_hi..r_h over L_h.
+
+The journal sleeve in radial shells (data/thermal.toml [lumping] ``journal_shells`` = N): the sleeve r_o..r_j is
+thick (25-45 mm) and its own conduction time r^2/kappa (~60-180 s) is that of the 2-minute run, so one node at r_j
+holding the whole sleeve's heat mass behind the whole R_j (N = 1, the paper's Fig. 5 node) misstates the
+transient: the sleeve's inner layers, which take the outer race's heat at once, sit behind all of R_j. With N > 1
+the sleeve is N nodes at the radii rr_m = r_o (r_j/r_o)^(m/N), m = 1..N (the last one the journal node at r_j),
+joined by ln(rr_{m+1}/rr_m)/(2 pi k_j W_e) (summing to Table 1's R_j exactly: the steady state is that of the
+paper's network for any N), each holding the sleeve between the midpoints to its neighbours (the first from r_o,
+the last to r_j). Nodes 9.. are the inner shells (rr_1 .. rr_{N-1}); the nine named nodes keep their indices.
 
 Heat sources (the three power inputs, W):
 
@@ -189,21 +199,45 @@ def resistances(bearing: int, omega: float) -> dict:
     return R
 
 
+def journal_shells() -> int:
+    """N, the journal sleeve's radial shells (data/thermal.toml [lumping]); 1 is the paper's single node."""
+    n = _DATA["lumping"]["journal_shells"]
+    if isinstance(n, bool) or not isinstance(n, int) or not 1 <= n <= 64:
+        raise ValueError(f"{DATA}: [lumping] journal_shells must be an integer in [1, 64], got {n!r}")
+    return n
+
+
+def shell_radii(bearing: int) -> np.ndarray:
+    """The radii r_o = rr_0 < rr_1 < ... < rr_N = r_j of the journal's shell nodes (equal log steps), m."""
+    g = radii(bearing)
+    N = journal_shells()
+    return g["r_o"] * (g["r_j"] / g["r_o"]) ** (np.arange(N + 1) / N)
+
+
+def shell_nodes() -> list:
+    """Node indices of the journal sleeve from the outer race outwards: the N - 1 inner shells, then JOURNAL."""
+    return list(range(9, 9 + journal_shells() - 1)) + [JOURNAL]
+
+
 def heat_masses(bearing: int) -> np.ndarray:
-    """m c_p of the nine nodes, J/K."""
+    """m c_p of the nine named nodes, then the journal's inner shells (see the module docstring), J/K."""
     g = radii(bearing)
     st, oil = _DATA["steel"], _DATA["oil"]
     rc_s, rc_o = st["density"] * st["specific_heat"], oil["density"] * oil["specific_heat"]
     pi = math.pi
     v_balls = g["n"] * 4.0 / 3.0 * pi * g["r_b"] ** 3
     v_free = pi * (g["r_e"] ** 2 - g["r_i"] ** 2) * g["W"] - v_balls
-    C = np.empty(9)
+    N = journal_shells()
+    C = np.empty(9 + N - 1)
     C[SHAFT] = rc_s * pi * g["r_s"] ** 2 * g["L_s"]
     C[IR] = rc_s * pi * (g["r_i"] ** 2 - g["r_s"] ** 2) * g["W"]
     C[LI] = C[LE] = rc_o * 0.5 * v_free * _DATA["oil_flow"]["lubricant_fill_fraction"]
     C[BALL] = rc_s * v_balls
     C[OR] = rc_s * pi * (g["r_o"] ** 2 - g["r_e"] ** 2) * g["W"]
-    C[JOURNAL] = rc_s * pi * (g["r_j"] ** 2 - g["r_o"] ** 2) * g["L_j"]
+    rr = shell_radii(bearing)
+    edges = np.concatenate(([rr[0]], 0.5 * (rr[1:-1] + rr[2:]), [rr[-1]]))   # owned by node m: edges[m-1..m]
+    for node, a, b in zip(shell_nodes(), edges[:-1], edges[1:]):
+        C[node] = rc_s * pi * (b ** 2 - a ** 2) * g["L_j"]
     C[SFD] = rc_o * 2 * pi * g["r_j"] * g["c_sf"] * g["L_j"]
     C[HOUSING] = rc_s * pi * (g["r_h"] ** 2 - g["r_hi"] ** 2) * g["L_h"]
     return C
@@ -264,9 +298,15 @@ def build_network(bearing: int, omega: float, T_ambient: float, T_supply: float,
         (IR, LI, R["R_Li"] / 2), (LI, BALL, R["R_Li"] / 2),
         (IR, BALL, R["R_b"]), (BALL, OR, R["R_b"]),
         (BALL, LE, R["R_Le"] / 2), (LE, OR, R["R_Le"] / 2),
-        (OR, JOURNAL, R["R_e"] + R["R_j"]),
         (JOURNAL, SFD, R["R_sf1"]), (SFD, HOUSING, R["R_sf2"]),
     ]
+    # outer race - journal (R_e + R_j), the journal sleeve in shells (module docstring; one branch for N = 1)
+    rr, shells = shell_radii(bearing), shell_nodes()
+    k_j = _DATA["steel"]["conductivity"]
+    seg = [math.log(rr[m + 1] / rr[m]) / (2 * math.pi * k_j * radii(bearing)["W"]) for m in range(len(shells))]
+    seg[-1] = R["R_j"] - sum(seg[:-1])     # the segments sum to R_j to round-off
+    branches.append((OR, shells[0], R["R_e"] + seg[0]))
+    branches += [(shells[m - 1], shells[m], seg[m]) for m in range(1, len(shells))]
     if omega != 0.0:                      # oil-wetted convection (Harris), in parallel with the Table 1 layers
         h = oil_convection(bearing, omega)
         branches += [
@@ -274,23 +314,26 @@ def build_network(bearing: int, omega: float, T_ambient: float, T_supply: float,
             (BALL, LI, 2.0 / (h["h_b"] * h["A_b"])), (BALL, LE, 2.0 / (h["h_b"] * h["A_b"])),
             (LE, OR, 1.0 / (h["h_e"] * h["A_e"])),
         ]
-    K = np.zeros((9, 9))
+    C = heat_masses(bearing)
+    n = len(C)
+    K = np.zeros((n, n))
     for a, b, r in branches:
         g = 1.0 / r
         K[a, a] += g
         K[b, b] += g
         K[a, b] -= g
         K[b, a] -= g
-    ground = np.zeros(9)
-    T_ground = np.full(9, float(T_ambient))
+    ground = np.zeros(n)
+    T_ground = np.full(n, float(T_ambient))
     ground[SHAFT] = 1.0 / R["R_sa"]
     ground[HOUSING] = 1.0 / R["R_h"]
     T_ground[HOUSING] = T_supply          # oil-wetted in the bearing chamber (data/thermal.toml [convection])
     for node, q in ((LI, 0.5 * q_b), (LE, 0.5 * q_b), (SFD, q_s)):
         ground[node] = rc_o * q
         T_ground[node] = T_supply
-    K[np.diag_indices(9)] += ground
-    S = source_map(src["drag_inner_fraction"] if drag_inner_fraction is None else drag_inner_fraction,
-                   src["contact_race_fraction"] if contact_race_fraction is None else contact_race_fraction,
-                   rub_shaft_fraction, rub_ring_housing_fraction)
-    return LinearNetwork(C=heat_masses(bearing), K=K, b=ground * T_ground, S=S, ground=ground, T_ground=T_ground)
+    K[np.diag_indices(n)] += ground
+    S = np.zeros((n, 3))
+    S[:9] = source_map(src["drag_inner_fraction"] if drag_inner_fraction is None else drag_inner_fraction,
+                       src["contact_race_fraction"] if contact_race_fraction is None else contact_race_fraction,
+                       rub_shaft_fraction, rub_ring_housing_fraction)
+    return LinearNetwork(C=C, K=K, b=ground * T_ground, S=S, ground=ground, T_ground=T_ground)

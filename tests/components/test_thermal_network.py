@@ -40,7 +40,8 @@ def test_integration_reaches_the_analytic_steady_state(bearing, method):
     for i in range(n):
         c.do_step(float(i), 1.0)
     T_ss = np.linalg.solve(c.network.K, c.network.b + c.network.S @ np.array(P))
-    rise = c.y["T_nodes"] - TA
+    rise = c.state["T"] - TA                 # every node: the nine named ones and the journal's inner shells
+    assert np.array_equal(c.y["T_nodes"], c.state["T"][:9])
     assert np.max(np.abs(rise - (T_ss - TA)) / (T_ss - TA)) < 1e-3
     # and at the steady state all the heat put in leaves through the grounds (ambient, oil supply)
     assert c.network.heat_out(T_ss) == pytest.approx(sum(P), rel=1e-9)
@@ -56,8 +57,8 @@ def test_energy_balance_over_a_transient():
     net = c.network
     h, n = 0.005, 12000
     e_in = e_out = e_jet = 0.0
-    T0 = c.y["T_nodes"].copy()
-    jet = np.zeros(9)
+    T0 = c.state["T"].copy()                 # every node, the journal's inner shells included
+    jet = np.zeros(net.n)
     jet[[2, 4]] = net.ground[[2, 4]]
 
     def q_jet(T):
@@ -72,12 +73,12 @@ def test_energy_balance_over_a_transient():
         powers(c, drag, sfd, rub)
         c.do_step(t, h)
         e_in += (drag + sfd + rub) * h
-        T = c.y["T_nodes"]
+        T = c.state["T"]
         q, j = net.heat_out(T), q_jet(T)
         e_out += 0.5 * (q + q_prev) * h
         e_jet += 0.5 * (j + j_prev) * h
         q_prev, j_prev = q, j
-    stored = net.stored(c.y["T_nodes"], T0)
+    stored = net.stored(c.state["T"], T0)
     assert stored > 0.25 * e_in         # a genuine transient: a large share of the heat is still stored
     assert e_jet > 0.05 * e_in          # the jet renewal is one of the ways out
     assert abs(e_in - e_out - stored) / e_in < 1e-3
@@ -126,7 +127,7 @@ def test_step_size_independence_of_the_exact_scheme():
     for i in range(100):
         a.do_step(i * 1e-3, 1e-3)
     b.do_step(0.0, 0.1)
-    assert np.max(np.abs(a.y["T_nodes"] - b.y["T_nodes"])) < 1e-9
+    assert np.max(np.abs(a.state["T"] - b.state["T"])) < 1e-9
 
 
 def test_uniform_temperature_growths_by_hand():

@@ -133,14 +133,14 @@ def test_the_largest_rub_stays_bounded_and_conserves_energy():
     net = c.network
     n, h = 1200, 0.1
     e_out = 0.0
-    q_prev = net.heat_out(c.y["T_nodes"])
+    q_prev = net.heat_out(c.state["T"])
     for i in range(n):
         c.do_step(i * h, h)
-        q = net.heat_out(c.y["T_nodes"])
+        q = net.heat_out(c.state["T"])
         e_out += 0.5 * (q + q_prev) * h
         q_prev = q
-    T = c.y["T_nodes"]
-    stored = net.stored(T, np.full(9, TA))
+    T = c.state["T"]                       # every node, the journal's inner shells included
+    stored = net.stored(T, np.full(net.n, TA))
     assert stored + e_out == pytest.approx(P.sum() * 120.0, rel=2e-3)
     assert np.all(T - TA <= P.sum() * 120.0 / net.C)
     assert np.all(np.linalg.eigvalsh(0.5 * (net.K + net.K.T)) > 0.0)
@@ -156,3 +156,62 @@ def test_ring_share_leaves_the_network():
     np.testing.assert_allclose(c.network.S.sum(axis=0), [1.0, 1.0, f], rtol=1e-12)
     half = make(0, rub_ring_housing_fraction=0.5)
     assert half.network.S[HOUSING, 2] == pytest.approx(0.5 * (1 - f), rel=1e-12)
+
+
+def _sleeve_by_hand(bearing):
+    """m c_p of the whole journal sleeve r_o..r_j over L_j, J/K (#5: pi (0.1^2 - 0.055^2) 0.04 * 7800 * 460)."""
+    r_o, r_j, L = {0: (45e-3, 80e-3, 32e-3), 5: (55e-3, 100e-3, 40e-3)}[bearing]
+    return math.pi * (r_j ** 2 - r_o ** 2) * L * 7800.0 * 460.0
+
+
+@pytest.mark.parametrize("bearing", [0, 5])
+def test_journal_shells_keep_the_papers_steady_state_and_heat_mass(bearing, monkeypatch):
+    """The journal sleeve in N radial shells (data/thermal.toml [lumping]) only moves heat mass: the shells'
+    resistances sum to Table 1's R_e + R_j, so the steady state of the nine named nodes is the single-node
+    network's (the paper's Fig. 5) to round-off, and the shells' heat masses sum to the whole sleeve's (#5:
+    3145.5 J/K by hand), each shell node holding a positive share."""
+    from rotorcosim.components.thermal import geometry as geo
+    P = np.array([625.0, 30.0, 500.0])
+    steady, masses = {}, {}
+    for N in (1, 8):
+        monkeypatch.setitem(geo._DATA["lumping"], "journal_shells", N)
+        c = make(bearing)
+        assert c.network.n == 9 + N - 1
+        steady[N] = c.network.steady(P)[:9]
+        masses[N] = c.network.C[geo.shell_nodes()]
+        assert np.all(masses[N] > 0.0)
+        assert masses[N].sum() == pytest.approx(_sleeve_by_hand(bearing), rel=1e-12)
+        totals = masses.setdefault("total", [])
+        totals.append(c.network.C.sum())
+    assert totals[1] == pytest.approx(totals[0], rel=1e-12)       # the network's whole heat mass is unchanged
+    np.testing.assert_allclose(steady[8], steady[1], rtol=1e-10)
+    if bearing == 5:
+        assert _sleeve_by_hand(5) == pytest.approx(3144.9, abs=0.1)
+
+
+def test_journal_shells_converge_over_the_two_minute_run(monkeypatch):
+    """Convergence study of the sleeve's lumping: #5 at the paper's below-rub powers (624.6 W drag, 0.95 W film)
+    held for 120 s (one exact step): the inner race with the shipped N = 8 is within 0.5 K of N = 32, while the
+    single node (N = 1, the paper's Fig. 5 lumping with the whole sleeve at r_j) is more than 20 K hotter: the
+    sleeve's own conduction time (45 mm)^2 / kappa = 180 s is that of the run, so one node does not represent it."""
+    from rotorcosim.components.thermal import geometry as geo
+    shipped = geo.journal_shells()
+    assert shipped == 8
+    T = {}
+    for N in (1, 8, 32):
+        monkeypatch.setitem(geo._DATA["lumping"], "journal_shells", N)
+        c = make(5)
+        c.set_inputs({"P_drag": [624.6], "P_sfd": [0.95], "P_rub": [0.0]})
+        c.do_step(0.0, 120.0)
+        T[N] = c.y["T_inner_race"][0]
+    assert abs(T[8] - T[32]) < 0.5
+    assert T[1] - T[32] > 20.0
+
+
+def test_journal_shells_must_be_a_small_positive_integer(monkeypatch):
+    from rotorcosim.components.contract import ContractError
+    from rotorcosim.components.thermal import geometry as geo
+    for bad in (0, 2.5, True, 65):
+        monkeypatch.setitem(geo._DATA["lumping"], "journal_shells", bad)
+        with pytest.raises((ValueError, ContractError), match="journal_shells"):
+            make(5)
