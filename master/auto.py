@@ -126,6 +126,13 @@ class _StopTest:
     def sample(self, sim) -> None:
         pass
 
+    def block_refs(self) -> list[str]:
+        """The outputs ``sample`` reads (the compiled loop hands their rows to ``sample_block``)."""
+        return []
+
+    def sample_block(self, cols) -> None:
+        """``sample`` for a block of base steps: ``cols[ref]`` holds one row per step."""
+
     def check(self, sim, t: float) -> str | None:
         return None
 
@@ -154,6 +161,20 @@ class _SteadyTest(_StopTest):
         vals = np.concatenate([np.ravel(sim.value(r)) for r in self.refs])
         self.acc = vals * vals if self.acc is None else self.acc + vals * vals
         self.n += 1
+
+    def block_refs(self):
+        return list(self.refs)
+
+    def sample_block(self, cols):
+        if not self.refs:
+            return
+        rows = np.concatenate([cols[r] for r in self.refs], axis=1)
+        sq = rows * rows
+        if self.acc is not None:
+            sq = np.vstack([self.acc[None, :], sq])
+        # added in order, row after row, as ``sample`` does step by step (np.sum would pair them otherwise)
+        self.acc = np.add.accumulate(sq, axis=0)[-1]
+        self.n += rows.shape[0]
 
     def check(self, sim, t):
         if self.acc is None:

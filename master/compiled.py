@@ -87,8 +87,6 @@ def why_not(sim, active, mult, stop) -> str | None:
     for obs in sim.observers:
         if obs.block_signals(sim) is None:
             return f"observer {type(obs).__name__} has no step_block"
-    if stop is not None:
-        return "the automatic schedule's steadiness test samples every step in Python"
     return None
 
 
@@ -333,10 +331,16 @@ class Runner:
             self._views[("ring", j)] = view
             ho.ring = view
 
-    def run(self, k: int, nsteps: int, t_start: float) -> int:
-        """Base steps k .. nsteps - 1; returns nsteps. ``self.k`` holds the steps completed when it raises."""
+    def run(self, k: int, nsteps: int, t_start: float, stop=None, period: int = 0) -> int:
+        """Base steps k .. nsteps - 1; returns the steps completed (nsteps, or fewer where ``stop`` ended the
+        interval: its reason in ``self.why``). ``self.k`` holds the steps completed when it raises.
+
+        ``stop`` (the automatic schedule's test, master/auto.py) is fed each chunk's rows of the signals it samples
+        (``sample_block``) and checked where the generic loop checks it, after every ``period``-th base step: the
+        chunks end there."""
         sim, plan, h = self.sim, self.plan, self.h
         self.k = k
+        self.why = ""
         for key in [key for key in self._views if key[0] == "ring"]:  # the last interval's rings, in its own G
             del self._views[key]
         eng = sim.engine
@@ -370,6 +374,8 @@ class Runner:
         PA = np.array([pk.address if pk.kargs is not None else 0 for pk in self.packed], dtype=np.int64)
         while k < nsteps:
             k1 = min(nsteps, k + CHUNK)
+            if period:
+                k1 = min(k1, (k // period + 1) * period)
             self._adopt()
             self._windows(G, goff)
             kargs = [c.kernel_args() for c in comps]
@@ -393,9 +399,15 @@ class Runner:
             self._back(LI, M, V, C, count)
             self.k = done
             self._observe(k, done, t_start)
+            if stop is not None and done > k:
+                stop.sample_block(self._columns(done - k))
             k = done
             r0 = -1
             if code == 0:
+                if period and k % period == 0:
+                    self.why = stop.check(sim, sim.t) or ""
+                    if self.why:
+                        return k
                 continue
             addrs = None  # a component steps in Python below: its containers may come back with other types
             # base step kk stopped at component i
@@ -505,6 +517,11 @@ def runner(sim, phase, active, mult, step, stop, choice: str):
     if reason is not None:
         return _refuse(sim, choice, reason)
     comps = sim.system.components
+    for ref in (stop.block_refs() if stop is not None else ()):
+        comp, _, port = ref.partition(".")
+        if comp not in mult or comps[comp].variable(port).type != "Real":
+            return _refuse(sim, choice, f"the automatic schedule's steadiness test samples {ref}, not a Real output "
+                                        "stepped in this interval")
     for obs in sim.observers:
         for ref in obs.block_signals(sim):
             comp, _, port = ref.partition(".")

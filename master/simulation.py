@@ -171,10 +171,11 @@ class Simulation:
         try:
             if runner is not None:
                 try:
-                    k = runner.run(k, nsteps, t_start)
+                    k = runner.run(k, nsteps, t_start, stop, math.lcm(stop.every, lcm) if stop is not None else 0)
+                    why = runner.why or why
                 finally:
                     k = runner.k
-            while k < nsteps:
+            while k < nsteps and not (runner is not None and runner.why):
                 self.engine.base_step(t_start, k)
                 k += 1
                 self.t = t_start + k * step
@@ -193,8 +194,9 @@ class Simulation:
                 if stop is not None:
                     stop.sample(self)
                     if k % stop.every == 0 and k % lcm == 0:
-                        why = stop.check(self, self.t) or ""
-                        if why:
+                        found = stop.check(self, self.t)
+                        if found:  # otherwise the interval keeps the reason it was given (its maximum reached)
+                            why = found
                             break
             self.engine.check_finite(self.t)
         finally:
