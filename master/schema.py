@@ -71,6 +71,15 @@ def not_negative(v: Any) -> str | None:
     return err
 
 
+def whole_positive(v: Any) -> str | None:
+    """A positive whole number, written as an integer or a float (5, 5.0, 1e12): a count of rotor cycles whose
+    mean is taken. 2.5 cycles of a periodic power average to a value that depends on where the window starts."""
+    err = positive(v)
+    if err is None and v != int(v):
+        return f"must be a whole number of rotor cycles, got {v!r}"
+    return err
+
+
 def count(v: Any) -> str | None:
     if not isinstance(v, int) or isinstance(v, bool):
         return f"must be a whole number, got {_kind(v)} ({v!r})"
@@ -140,13 +149,13 @@ TABLES: dict[str, dict[str, Callable | None]] = {
     "inputs": {},       # "component.port" -> number(s)
     "algorithm": {"kind": one_of(*ALGORITHMS), "order": list_of(text), "iterations": count, "tolerance": positive},
     "schedule": {"kind": one_of(*SCHEDULE_KINDS), "duration": positive, "step": positive, "thermal_step": positive,
-                 "speed_rpm": positive, "hold": one_of(*HOLDS), "hold_cycles": positive, "restart_cycles": not_negative,
+                 "speed_rpm": positive, "hold": one_of(*HOLDS), "hold_cycles": whole_positive, "restart_cycles": not_negative,
                  "intervals": None,
                  "steady_tolerance": positive, "steady_cycles": count, "drift_tolerance": positive,
                  "tm_min": positive, "tm_max": positive, "to_min": positive, "to_max": positive,
                  "tracked": list_of(port_ref), "tolerance": positive},
     "outputs": {"record": list_of(port_ref), "record_step": positive, "format": one_of(*OUTPUT_FORMATS)},
-    "results": {"kind": text, "unbalance_parameter": port_ref, "speed_parameter": port_ref, "cycles": positive},
+    "results": {"kind": text, "unbalance_parameter": port_ref, "speed_parameter": port_ref, "cycles": whole_positive},
 }
 COMPONENT = {"implementation": text, "fmu": text, "parameters": None, "step": positive,
              # FMUs only: start values of states / initial = "exact" variables (fmus/importer.py)

@@ -136,6 +136,10 @@ STRUCTURE = {
     "record an unknown signal": (TOY_TEXT.replace('"node.T"]', '"node.Tx"]'), r"unknown signal 'node\.Tx'"),
     "speed no step can sample": (TOY_TEXT.replace("speed_rpm = 2700.0", "speed_rpm = 1e12"),
                                  r"\[schedule\] speed_rpm: .* no cycle can be sampled"),
+    "fractional hold window": (TOY_TEXT.replace("hold_cycles = 5", "hold_cycles = 2.5"),
+                               r"\[schedule\] hold_cycles: must be a whole number of rotor cycles, got 2\.5"),
+    "fractional result window": (TOY_TEXT.replace("[results]", "[results]\ncycles = 4.5"),
+                                 r"\[results\] cycles: must be a whole number of rotor cycles, got 4\.5"),
     "auto hold window beyond tm_max": (TOY_TEXT.replace('kind = "timeline"', 'kind = "auto"').replace(
         "hold_cycles = 5", "hold_cycles = 1e308"), r"\[schedule\] hold_cycles: 1e\+308 cycles"),
     "coupling passes that hang": (TOY_TEXT.replace("[algorithm]", "[algorithm]\niterations = 1000000000000"),
