@@ -33,7 +33,7 @@ class OutputFolderError(ValueError):
     """An output folder that cannot be used (the message says which and why)."""
 
 
-def _ours(name: str) -> bool:
+def is_run_file(name: str) -> bool:
     return any(fnmatch.fnmatch(name, pat) for pat in RUN_FILES)
 
 
@@ -126,7 +126,7 @@ class RunFolder:
             for name in present:
                 (p / name).unlink()
             return
-        foreign = [n for n in present if not _ours(n) or (p / n).is_dir()]
+        foreign = [n for n in present if not is_run_file(n) or (p / n).is_dir()]
         if not self.overwrite:
             raise OutputFolderError(f"--out {p} is not empty ({', '.join(present[:5])}"
                                     f"{', ...' if len(present) > 5 else ''}): results are never mixed; give "

@@ -17,6 +17,7 @@ paper's, ``DIR/paper_comparison.csv`` (result, bearing, unbalance_N, paper, ours
 from __future__ import annotations
 
 import csv
+import fnmatch
 import itertools
 import os
 import re
@@ -32,7 +33,7 @@ from rotorcosim.master import paper_comparison
 from rotorcosim.master.api import check_run
 from rotorcosim.master.outputs import write_json
 from rotorcosim.master.overrides import apply_set, parse_set
-from rotorcosim.master.rundir import ensure_folder
+from rotorcosim.master.rundir import OutputFolderError, check_folder, ensure_folder, is_run_file
 
 from .run import apply_unbalance, execute, resolve
 from .table5 import PAPER_LEVELS, write_table5
@@ -56,6 +57,8 @@ def add_arguments(p):
                    help="local cluster size (default: number of cores; at most one per case)")
     p.add_argument("--serial", action="store_true", help="run the cases one after another, without Dask")
     p.add_argument("--quiet", action="store_true", help="no line per finished case")
+    p.add_argument("--overwrite", action="store_true",
+                   help="replace the results of a previous sweep in --out (which must otherwise be empty)")
 
 
 def parse_levels(text: str) -> list[float]:
@@ -214,9 +217,42 @@ def _client(scheduler: str | None, workers: int | None, connect_timeout: float, 
     return Client(cluster), cluster, f"local cluster, {n} workers"
 
 
+#: what a sweep writes at the top of its folder (beside one folder of run files per case, rundir.RUN_FILES)
+SWEEP_FILES = ("sweep.csv", "sweep.json", "table5.csv", "table5.md", "paper_comparison.csv", "paper_comparison.png",
+               "*.part", "*.part.png", ".*.part")
+
+
+def _previous_results(out: Path, overwrite: bool) -> None:
+    """A sweep's folder holds this sweep's results only: a non-empty one is refused (a second sweep into it left
+    the first one's cases beside its own, and a sweep.csv listing only the new ones), or with ``overwrite``
+    cleared, if it holds nothing but a sweep's files and case folders of run files."""
+    if not out.is_dir():
+        return
+    old = sorted(p.name for p in out.iterdir())
+    if not old:
+        return
+    if not overwrite:
+        raise OutputFolderError(f"--out {out} is not empty ({', '.join(old[:4])}{', ...' if len(old) > 4 else ''}"
+                                "): results are never mixed; give --overwrite to replace a previous sweep's "
+                                "results, or another folder")
+
+    def ours(p: Path) -> bool:
+        if p.is_dir() and not p.is_symlink():
+            return all(q.is_file() and is_run_file(q.name) for q in p.iterdir())
+        return p.is_file() and any(fnmatch.fnmatch(p.name, pat) for pat in SWEEP_FILES)
+
+    foreign = [n for n in old if not ours(out / n)]
+    if foreign:
+        raise OutputFolderError(f"--overwrite: {out} holds files that are not a sweep's results "
+                                f"({', '.join(foreign[:4])}): not clearing it; choose another folder")
+    for n in old:
+        p = out / n
+        shutil.rmtree(p) if p.is_dir() else p.unlink()
+
+
 def sweep(levels=None, out: Path = Path("sweep"), scenario="blade_loss", scheduler=None, schedule=None,
           duration=None, workers=None, serial=False, grid: dict[str, list[Any]] | None = None,
-          progress=None, connect_timeout: float = CONNECT_TIMEOUT_S) -> dict:
+          progress=None, connect_timeout: float = CONNECT_TIMEOUT_S, overwrite: bool = False) -> dict:
     """Run the grid of ``levels`` (unbalance forces [N]) x ``grid`` (``{"comp.param": [values]}``).
 
     ``progress(done, total, case, result)`` is called as each case finishes. Returns the contents of
@@ -228,6 +264,7 @@ def sweep(levels=None, out: Path = Path("sweep"), scenario="blade_loss", schedul
     cases = cases_of(list(levels) if levels else None, grid)
     for c in cases:  # fail early: a bad scenario, an unknown component, a duration or schedule no run takes
         check_run(_apply(resolve(scenario), c), {None: "paper"}.get(schedule, schedule), duration)
+    _previous_results(check_folder(out), overwrite)
     ensure_folder(out)
     t0 = time.perf_counter()
     results: dict[str, dict] = {}
@@ -310,7 +347,7 @@ def run(args) -> int:
         print(f"[{done}/{total}] {case.name}: {state}", file=sys.stderr, flush=True)
 
     info = sweep(levels, Path(args.out), args.scenario, args.scheduler, kind, args.duration, args.workers,
-                 args.serial, grid, None if args.quiet else progress)
+                 args.serial, grid, None if args.quiet else progress, overwrite=args.overwrite)
     tables = " table5.csv, table5.md," if levels and all(len(v) == 1 for v in grid.values()) else ""
     print(f"{len(info['cases'])} cases in {info['wall_time_s']:.3g} s ({info['executed_on']});"
           f"{tables} sweep.csv and sweep.json written in {args.out}")

@@ -775,3 +775,25 @@ def test_a_relative_model_file_is_read_from_the_scenario_folder(tmp_path, monkey
         assert sc.components["rotor"].parameters["model_file"] == str(tmp_path / "a" / "engine2.toml")
     assert sc.set({"rotor.model_file": "mine.toml"}).components["rotor"].parameters["model_file"] == \
         str(tmp_path / "b" / "mine.toml")
+
+
+# -- a sweep's folder --------------------------------------------------------------------------------------
+SWEEP = ["sweep", "--scenario", "toy_thermomechanical", "--serial", "--quiet", "--duration", "0.05"]
+
+
+def test_a_sweep_is_never_mixed_with_a_previous_one(tmp):
+    """A second sweep into a folder left the first one's case folders beside its own and a sweep.csv listing
+    only the new cases; now a non-empty --out is refused, --overwrite replaces a previous sweep's results (only a
+    sweep's files and case folders of run files: anything else is never cleared)."""
+    out = tmp / "s"
+    assert cli([*SWEEP, "--unbalance", "1,2", "--out", str(out)])[0] == 0
+    before = sorted(p.name for p in out.iterdir())
+    line = refused(tmp, [*SWEEP, "--unbalance", "3", "--out", str(out)])
+    assert "is not empty (F_1, F_2, sweep.csv, sweep.json, ...): results are never mixed" in line, line
+    assert sorted(p.name for p in out.iterdir()) == before
+    assert cli([*SWEEP, "--unbalance", "3", "--out", str(out), "--overwrite"])[0] == 0
+    assert sorted(p.name for p in out.iterdir()) == ["F_3", "sweep.csv", "sweep.json", "table5.csv", "table5.md"]
+    (out / "F_3" / "notes.txt").write_text("mine")
+    line = refused(tmp, [*SWEEP, "--unbalance", "4", "--out", str(out), "--overwrite"])
+    assert "holds files that are not a sweep's results (F_3): not clearing it" in line, line
+    assert (out / "F_3" / "notes.txt").read_text() == "mine"
