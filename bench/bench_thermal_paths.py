@@ -11,7 +11,12 @@ For each bearing, at the paper's below-rub powers (Table 5: #0 348.3 W drag + 30
 3. the steady state (what the network reaches after ~1 h; NOT what Table 5 compares);
 4. the 120 s inner race under one change at a time of the values the paper does not give, and the journal's
    radial shells N (data/thermal.toml [lumping]) as a convergence study;
-5. the 2 s state of bearing #0 against the paper's Table 6 (2850 N, 2 s: drag 599.85 W, film 587.7 W).
+5. the 2 s state of bearing #0 against the paper's Table 6 (2850 N, 2 s: drag 599.85 W, film 587.7 W);
+6. a reference for the inner race's way out: Table 1's shaft branch (R_i + R_sr, R_sr = 1/(pi k W_i), and the
+   shaft node's heat mass behind it) against a resolved axisymmetric shaft (finite volumes, 100 mm long, the band
+   under the race joined to the inner race through R_i): the band's rise per watt Z(t) of the shaft alone
+   (checked at 2 s against the 1-D semi-infinite solid, 2 q sqrt(t / (pi rho c k)), an upper bound), and the
+   whole network at the paper's powers with the resolved shaft (implicit Euler, 0.1 s).
 
     python bench/bench_thermal_paths.py
 """
@@ -21,11 +26,14 @@ import contextlib
 import copy
 
 import numpy as np
+import scipy.sparse as sp
+import scipy.sparse.linalg as spl
 
 import rotorcosim.components.thermal.geometry as geo
 from rotorcosim.components.thermal.component import ThermalNetwork
-from rotorcosim.components.thermal.geometry import (BALL, HOUSING, IR, JOURNAL, LE, LI, NODES, OR, SFD, SHAFT,
-                                                    shell_nodes)
+from rotorcosim.components.speeds import PT_OMEGA
+from rotorcosim.components.thermal.geometry import (BALL, HOUSING, IR, JOURNAL, LE, LI, OR, SFD, SHAFT,
+                                                    build_network, radii, resistances, shell_nodes)
 
 KELVIN = 273.15
 PAPER = {0: (348.3, 30.56), 5: (624.6, 0.95)}          # Table 5 below rub (712 N at #0, 2850 N at #5)
@@ -144,9 +152,87 @@ def table6():
           .format(*got))
 
 
+def shaft_grid(r_out, r_in, W, L, nr=30, nz=150):
+    """Finite volumes of an axisymmetric shaft r_in..r_out, |z| < L/2 (adiabatic outside the band): conductance
+    matrix, heat masses, and the surface cells under the race (|z| < W/2)."""
+    st = geo._DATA["steel"]
+    k, rc = st["conductivity"], st["density"] * st["specific_heat"]
+    dr, dz = (r_out - r_in) / nr, L / nz
+    r = r_in + (np.arange(nr) + 0.5) * dr
+    z = -L / 2 + (np.arange(nz) + 0.5) * dz
+    idx = np.arange(nr * nz).reshape(nr, nz)
+    C = (rc * 2 * np.pi * r * dr * dz)[:, None].repeat(nz, axis=1).ravel()
+    g_r = np.broadcast_to((k * 2 * np.pi * (r[:-1] + dr / 2) * dz / dr)[:, None], (nr - 1, nz))  # radial faces
+    g_z = np.broadcast_to((k * 2 * np.pi * r * dr / dz)[:, None], (nr, nz - 1))                  # axial faces
+    a = np.concatenate([idx[:-1, :].ravel(), idx[:, :-1].ravel()])
+    b = np.concatenate([idx[1:, :].ravel(), idx[:, 1:].ravel()])
+    g = np.concatenate([g_r.ravel(), g_z.ravel()])
+    K = sp.csr_matrix((np.concatenate([g, g, -g, -g]), (np.concatenate([a, b, a, b]), np.concatenate([a, b, b, a]))),
+                      shape=(C.size, C.size))
+    band = idx[-1, np.abs(z) < W / 2]
+    return K, C, band
+
+
+def shaft_reference():
+    st = geo._DATA["steel"]
+    k, rc = st["conductivity"], st["density"] * st["specific_heat"]
+    print("\nthe shaft under the inner race: band rise per watt Z(t), K/W (resolved 2-D shaft / Table 1's"
+          " R_sr + t / C_shaft):")
+    for b in (0, 5):
+        g = radii(b)
+        K, C, band = shaft_grid(g["r_s"], 0.0, g["W"], g["L_s"])
+        q = np.zeros(C.size)
+        q[band] = 1.0 / band.size
+        dt, T, t, out = 0.05, np.zeros(C.size), 0.0, {}
+        lu = spl.splu((sp.diags(C / dt) + K).tocsc())
+        for mark in (2.0, 30.0, 120.0):
+            while t < mark - 1e-9:
+                T = lu.solve(C / dt * T + q)
+                t += dt
+            out[mark] = T[band].mean()
+        A = 2 * np.pi * g["r_s"] * g["W"]
+        semi = 2.0 / A * np.sqrt(2.0 / (np.pi * rc * k))
+        R_sr = 1.0 / (np.pi * k * g["W"])
+        print(f"  #{b}: " + ", ".join(f"{m:g} s {v:.3f} / {R_sr + m / C.sum():.3f}" for m, v in out.items())
+              + f" (1-D semi-infinite at 2 s: {semi:.3f})")
+    print("network at the paper's powers, 120 s, inner race / ball / outer race, C:")
+    for b in (0, 5):
+        for label, r_in in (("Table 1 shaft", None), ("resolved solid shaft", 0.0),
+                            ("resolved hollow shaft (rotor model's bore)", {0: 10e-3, 5: 20e-3}[b])):
+            net = build_network(b, PT_OMEGA, 303.15, 303.15)
+            n, Kn = net.n, net.K.copy()
+            rhs = net.b + net.S @ np.array([*PAPER[b], 0.0])
+            if r_in is None:
+                K, C = sp.csr_matrix(Kn), net.C
+            else:
+                g, R = radii(b), resistances(b, PT_OMEGA)
+                gs = -Kn[SHAFT, IR]                      # Table 1's shaft branch out, the resolved shaft in
+                Kn[SHAFT, SHAFT] -= gs
+                Kn[IR, IR] -= gs
+                Kn[SHAFT, IR] = Kn[IR, SHAFT] = 0.0
+                Kg, Cg, band = shaft_grid(g["r_s"], r_in, g["W"], g["L_s"])
+                gi = 1.0 / R["R_i"] / band.size         # the inner race's own R_i, shared over the band
+                extra = sp.lil_matrix((n + Cg.size,) * 2)
+                extra[IR, IR] = gi * band.size
+                for m in n + band:
+                    extra[m, m] = gi
+                    extra[IR, m] = extra[m, IR] = -gi
+                K = sp.block_diag([sp.csr_matrix(Kn), Kg]).tocsr() + extra
+                C = np.concatenate([net.C, Cg])
+                rhs = np.concatenate([rhs, np.zeros(Cg.size)])
+            dt = 0.1
+            lu = spl.splu((sp.diags(C / dt) + K).tocsc())
+            T = np.full(C.size, 303.15)
+            for _ in range(1200):
+                T = lu.solve(C / dt * T + rhs)
+            print(f"  #{b} {label:44s} {T[IR] - KELVIN:6.1f} {T[BALL] - KELVIN:6.1f} {T[OR] - KELVIN:6.1f}"
+                  f"   (paper {PAPER_T[b][0]} {PAPER_T[b][1]} {PAPER_T[b][2]})")
+
+
 if __name__ == "__main__":
     for b in (0, 5):
         breakdown(b, PAPER[b], "the paper's powers")
         breakdown(b, OURS[b], "our powers (docs/table5.csv, 712 N)")
     sensitivity()
     table6()
+    shaft_reference()
