@@ -56,13 +56,14 @@ TIMING_RUNS = 6
 #: quarter in each of the other two). The paper's interval lengths are "decided on a trial and error basis"
 #: (section 3.2); its 50 revolutions cap the speed-up at 2 / 0.1875 s = 10.7 whatever the implementation. Chosen by
 #: the largest error of any Table 4 result against the monolithic run at the seven paper levels (2 s, `python
-#: bench/bench_table6_levels.py`; issue 12 accepts 2 %), measured per count (712 ... 14 252 N):
-#:   40: 0.41 0.32 0.36 0.96 0.69 0.81 0.95 %   (largest 0.96)
-#:   36: 0.43 0.39 0.49 1.05 0.80 1.07 1.29 %   (1.29)
-#:   32: 0.41 0.45 0.66 1.27 0.90 1.01 1.27 %   (1.27)
-#:   28: 0.60 0.73 0.97 1.60 1.21 1.10 1.36 %   (1.60)
-#:   24: 0.65 0.99 3.83 4.69 1.89 2.42 2.66 %   (4.69: fails)
-#:   20: 2.47 2.36 2.69 5.68 15.7 18.6 20.5 %   (fails)
+#: bench/bench_table6_levels.py`; issue 12 accepts 2 %), measured per count (712 ... 14 252 N; main b0fa112, the
+#: thermal network's journal in shells):
+#:   40: 0.29 0.29 0.30 0.96 0.71 0.80 0.93 %   (largest 0.96)
+#:   36: 0.31 0.30 0.33 1.06 0.80 1.06 1.27 %   (1.27)
+#:   32: 0.28 0.34 0.50 1.28 0.93 1.00 1.25 %   (1.28)
+#:   28: 0.42 0.61 0.67 1.60 1.20 1.03 1.18 %   (1.60)
+#:   24: 0.63 0.97 3.70 4.46 1.67 2.13 2.26 %   (4.46: fails)
+#: (with the single journal node before it, 2c20aac: 32 -> 1.27 % at most, 28 -> 1.60, 24 -> 4.69, 20 -> 20.5)
 #: 32 is one step of 4 above the fewest that pass at every level (28), on the plateau that 36 shares; the cap on
 #: the speed-up is then 400 000 / 24 000 TM steps = 16.7 (40: 13.4), which the run's fixed costs (~75 ms) and this
 #: machine's +-20 % drift otherwise kept from showing >= 12 in every comparison
