@@ -235,8 +235,10 @@ def _simulate(sc, duration, schedule, out, record, progress, figures, overwrite,
     with contextlib.ExitStack() as stack:
         point = saver = series = None
         if out is not None:
+            # the recorded signals too: a resume with another --record continued some datasets and not others
+            # (a file whose osc.x had 301 rows and node.T 257, beside a 301-row time)
             key = checkpoint.fingerprint(sc.name, sc.components, sc.connections, sc.inputs, sc.algorithm,
-                                         sc.schedule, sc.outputs, sc.extra, sch)
+                                         sc.schedule, sc.outputs, sc.extra, sch, signals)
             folder = stack.enter_context(RunFolder(out, overwrite=overwrite, resume=resume))
             stop = stack.enter_context(checkpoint.StopRequest())
             out = folder.path

@@ -466,6 +466,9 @@ def test_damaged_checkpoints(tmp, interrupted, case):
     ["--duration", "0.3", "--set", "node.C=20"],          # another scenario's checkpoint
     ["--duration", "0.25"],                               # another schedule
     ["--unbalance", "50", "--duration", "0.3"],
+    # fewer signals: the resumed file's osc.x went on to 301 rows while node.T and osc.P stayed at 257 (rc 0)
+    ["--duration", "0.3", "--record", "osc.x"],
+    ["--duration", "0.3", "--record", "osc.x,osc.P,node.T,osc.v"],
 ])
 def test_checkpoint_of_another_run(tmp, interrupted, argv):
     folder = tmp / "run"
