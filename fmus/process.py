@@ -129,7 +129,11 @@ class ProcessFMU(Component):
         self._conn = Connection(ours.detach())
         self._conn.send((factory, self.path, name, dict(parameters or {}), dict(start or {})))
         # loading takes seconds (a fresh interpreter, imports, extraction): the generous default limit at least
-        info = self._call(None, (), "loading", max(self.timeout, STEP_TIMEOUT_S))
+        try:
+            info = self._call(None, (), "loading", max(self.timeout, STEP_TIMEOUT_S))
+        except BaseException:  # the child is stopped and reaped now (it was left "still running" to the collector)
+            self._kill()
+            raise
         self.variables = tuple(info["variables"])
         self._by_name = {v.name: v for v in self.variables}
         self.phases = info["phases"]
@@ -222,6 +226,10 @@ class ProcessFMU(Component):
         proc = getattr(self, "_proc", None)
         if proc is not None and proc.poll() is None:
             proc.kill()
+            try:
+                proc.wait(1)
+            except subprocess.TimeoutExpired:
+                pass
 
     def __repr__(self) -> str:
         return f"<ProcessFMU {self.name!r} from {self.path}>"

@@ -277,13 +277,24 @@ def create_component(spec: ComponentSpec) -> Component:
 
 
 def build_system(sc: Scenario) -> System:
+    comps = {}
     try:
-        comps = {name: create_component(spec) for name, spec in sc.components.items()}
+        for name, spec in sc.components.items():
+            comps[name] = create_component(spec)
         cons = [Connection(c.src, c.dst, c.average, c.extrapolation, c.hold, c.convert, c.unit, c.origin)
                 for c in sc.connections]
         return System(comps, cons, {k: v for k, v in sc.inputs.items()},
                       origins={n: c.origin for n, c in sc.components.items() if c.origin})
-    except ContractError as exc:
+    except BaseException as exc:
+        # the components made so far are let go now: an FMU's process or extraction folder is not left to the
+        # garbage collector (a system refused for its units kept an FMU's child process running until then)
+        for comp in comps.values():
+            try:
+                comp.terminate()
+            except Exception:  # noqa: BLE001 - the error being raised is the one to report
+                pass
+        if not isinstance(exc, ContractError):
+            raise
         # the file the problem is in, unless the message names one already (the composed file that brought it)
         named = {str(sc.source)} | {c.origin for c in sc.components.values() if c.origin} \
             | {c.origin for c in sc.connections if c.origin}

@@ -800,3 +800,32 @@ def test_a_sweep_is_never_mixed_with_a_previous_one(tmp):
     line = refused(tmp, [*SWEEP, "--unbalance", "4", "--out", str(out), "--overwrite"])
     assert "holds files that are not a sweep's results (F_3): not clearing it" in line, line
     assert (out / "F_3" / "notes.txt").read_text() == "mine"
+
+
+@pytest.mark.parametrize("case", ["annotation phases unknown", "model identifier climbing out", "default step zero",
+                                  "input of another quantity"])
+def test_fmu_faults_in_their_own_process(tmp, archives, case):
+    """With --fmu-process the FMU loads in a child process: a load that failed left the child to the garbage
+    collector ("ResourceWarning: subprocess N is still running" on stderr when warnings show), and a system
+    refused after loading (units) kept the child running until the command ended; now both are stopped and reaped
+    at once. The one line still names the problem."""
+    faults = dict(FMU_FAULTS)
+    faults["input of another quantity"] = lambda src, dst: rebuild(src, dst, _md(lambda t: t.replace(
+        '<Real unit="W" start="0" />', '<Real unit="K" start="0" />')))
+    bad = faults[case](archives[0], tmp / "bad.fmu")
+    before = _children()
+    line = refused(tmp, [*RUN, "toy_thermomechanical", "--swap", f"node={bad}", "--fmu-process", "--out",
+                         str(tmp / "o")], out=tmp / "o")
+    assert FMU_SAYS.get(case, "units differ") in line, line
+    assert _children() - before == set(), "the FMU's child process is still there (running or unreaped)"
+
+
+def _children() -> set[int]:
+    """This process's child processes, zombies included (Linux /proc)."""
+    out = set()
+    for task in Path(f"/proc/{os.getpid()}/task").iterdir():
+        try:
+            out |= {int(p) for p in (task / "children").read_text().split()}
+        except OSError:
+            pass
+    return out
