@@ -61,6 +61,10 @@ def load_scenario(name_or_path: str | Path | None = None) -> Scenario:
         from rotorcosim.fmus.ssp import read_ssp
 
         return read_ssp(p)
+    if p.is_dir() and not p.suffix and (scenarios.FOLDER / f"{p.name}.toml").is_file() and len(p.parts) == 1:
+        # a shipped name that is also a folder here, typically the results of `run NAME --out NAME`: the folder is
+        # no scenario ("is a folder, not a TOML file" refused the second run of that same command)
+        return _load_file(scenarios.path(str(name_or_path)))
     if p.exists() or p.suffix:
         return _load_file(p)
     return _load_file(scenarios.path(str(name_or_path)))

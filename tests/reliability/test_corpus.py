@@ -829,3 +829,15 @@ def _children() -> set[int]:
         except OSError:
             pass
     return out
+
+
+def test_a_shipped_name_that_is_also_a_folder_here(tmp, monkeypatch):
+    """`rotorcosim run toy_thermomechanical --out toy_thermomechanical` a second time (with --overwrite) read the
+    results folder as the scenario: "is a folder, not a TOML file". A folder is no scenario: the shipped one."""
+    monkeypatch.chdir(tmp)
+    argv = [*RUN, "toy_thermomechanical", "--out", "toy_thermomechanical"]
+    assert cli(argv) == (0, [])
+    assert cli([*argv, "--overwrite"]) == (0, [])
+    (tmp / "sub" / "toy_thermomechanical").mkdir(parents=True)   # a path, not a name: still a folder
+    line = refused(tmp, [*RUN, "sub/toy_thermomechanical", "--out", "o2"])
+    assert "is a folder, not a TOML file" in line, line
