@@ -78,7 +78,12 @@ def apply_edits(sc: Scenario, args) -> Scenario:
     can give the new implementation's parameters)."""
     for text in getattr(args, "swap", []) or []:
         sc = apply_swap(sc, *parse_swap(text), origin=CLI_ORIGIN)
-    values = dict(parse_set(text) for text in getattr(args, "set_values", []) or [])
+    values = {}
+    for text in getattr(args, "set_values", []) or []:
+        key, value = parse_set(text)
+        if key in values:  # the last one was taken without a word (sweep --set refused it already)
+            raise ValueError(f"--set {key} is given twice ({values[key]!r} and {value!r}): give it once")
+        values[key] = value
     return apply_set(sc, values, origin=CLI_ORIGIN) if values else sc
 
 

@@ -210,6 +210,14 @@ def test_set_mistakes(tmp, text, message):
     assert re.search(message, line), line
 
 
+def test_a_parameter_set_twice(tmp):
+    """``--set node.C=10 --set node.C=20``: the last was taken without a word (sweep refused it already)."""
+    out = tmp / "o"
+    line = refused(tmp, [*RUN, "toy_thermomechanical", "--set", "node.C=10", "--set", "node.C=20", "--out", str(out)])
+    assert "--set node.C is given twice (10 and 20): give it once" in line, line
+    assert not out.exists()
+
+
 # -- FMU and SSP archives ----------------------------------------------------------------------------------
 @pytest.fixture(scope="module")
 def archives(tmp_path_factory):
