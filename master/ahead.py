@@ -26,12 +26,15 @@ import shutil
 import subprocess
 import sys
 import tempfile
+import threading
 import time
 
 #: "0" (or off/no/false): no helper process
 ENV = "ROTORCOSIM_AHEAD"
 #: how often a process waiting for the helper looks for the result (s)
 POLL_S = 0.02
+#: how often the helper looks whether the process that started it is still there
+PARENT_POLL_S = 0.5
 
 
 def numba_key(fn, sig) -> str:
@@ -217,11 +220,28 @@ def start(components, loop: bool) -> Ahead | None:
         return None
 
 
+def _end_with_parent() -> None:
+    """End this helper when the process that started it is gone: a run killed with SIGKILL (or a sweep's worker)
+    left it building on, orphaned (a film table of a huge mesh: 10.8 GB after 56 minutes). A thread polls the
+    parent's id (not PR_SET_PDEATHSIG: it fires when the starting *thread* ends, and a sweep case starts the
+    helper from a worker thread)."""
+    parent = os.getppid()
+
+    def watch() -> None:
+        while True:
+            time.sleep(PARENT_POLL_S)
+            if os.getppid() != parent:
+                os._exit(0)
+
+    threading.Thread(target=watch, name="rotorcosim-ahead-parent", daemon=True).start()
+
+
 def _helper() -> None:
     from rotorcosim.components import kernels
 
     from . import kernel_args, threads
 
+    _end_with_parent()
     stream = sys.stdin.buffer
     folder, jobs = pickle.load(stream)
     with threads.one_thread():
