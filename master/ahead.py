@@ -108,6 +108,10 @@ class Ahead:
         # the claims' folder (a test may give one holding claims already)
         self.folder = folder or tempfile.mkdtemp(prefix="rotorcosim-ahead-")
         self.keys = {key for key, _, _ in jobs}
+        # the keys this process claimed (it builds them itself): numba compiles a signature again, nested inside
+        # another compilation, and waiting then for a "done" that only this process would write hung the run
+        # (a fresh cache, a damper swapped for its FMU: tests/fmus/test_swap.py)
+        self.mine: set[str] = set()
         spec = []
         for key, fn, args in jobs:
             f = fn.py_func if isinstance(fn, Dispatcher) else fn
@@ -159,7 +163,10 @@ class Ahead:
 
     def wait(self, key: str) -> None:
         """Return when this process may build or read ``key`` (components/cache.await_ahead)."""
-        if key not in self.keys or self.proc is None or _claim(self.folder, key):
+        if key not in self.keys or key in self.mine or self.proc is None:
+            return
+        if _claim(self.folder, key):
+            self.mine.add(key)
             return
         done = _file(self.folder, "done", key)
         while not os.path.exists(done) and self.proc.poll() is None:

@@ -111,3 +111,23 @@ def test_the_helper_ends_with_the_process_that_started_it():
     if not ended:
         os.kill(helper, 9)
     assert ended, "the helper outlived the process that started it"
+
+
+def test_a_key_this_process_claimed_is_not_waited_for_again(tmp_path):
+    """numba compiles a signature again, nested inside another compilation: a second wait on a key this process
+    claimed (and builds itself) waited for a "done" only this process would write. Found on a fresh cache with a
+    damper swapped for its FMU (tests/fmus/test_swap.py hung); the helper here sleeps, as a busy one would."""
+    import time
+
+    h = ahead.Ahead([("table/sleep", time.sleep, (120,)), ("table/mine", time.sleep, (0,))], folder=str(tmp_path))
+    try:
+        t0 = time.perf_counter()
+        deadline = time.perf_counter() + 30
+        while not os.path.exists(ahead._file(h.folder, "claim", "table/sleep")) and time.perf_counter() < deadline:
+            time.sleep(0.01)   # the helper took its first job and sleeps in it
+        h.keys.add("table/own")
+        h.wait("table/own")    # claimed here: this process builds it
+        h.wait("table/own")    # asked again (nested): returns at once
+        assert time.perf_counter() - t0 < 20
+    finally:
+        h.close()
