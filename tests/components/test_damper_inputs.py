@@ -240,5 +240,10 @@ def test_parameters_outside_the_film_model(cls, params, says):
 
 def test_cavitation_at_the_supply_pressure_is_the_half_film():
     """Equal pressures (0 and 0: the classic half-Sommerfeld film) stay allowed; full film ignores the value."""
-    FastDamper("d", {"damper": 0, "cavitation_pressure": 0.0, "supply_pressure": 0.0}).setup(0.0)
-    FastDamper("d", {"damper": 0, "cavitation": False, "cavitation_pressure": 1e9}).setup(0.0)
+    half = FastDamper("d", {"damper": 0, "cavitation_pressure": 0.0, "supply_pressure": 0.0})
+    half.setup(0.0)
+    full = FastDamper("d", {"damper": 0, "cavitation": False, "cavitation_pressure": 1e9})
+    full.setup(0.0)
+    # both set up with their values as given (no error, nothing replaced)
+    assert half.p["cavitation_pressure"] == half.p["supply_pressure"] == 0.0
+    assert full.p["cavitation"] is False and full.p["cavitation_pressure"] == 1e9
