@@ -119,6 +119,12 @@ def _fmt(v: Any) -> str:
     return re.sub(r"[\x00-\x1f\x7f/\\]", "_", text)
 
 
+def one_case_a_level(levels, grid: dict[str, list[Any]]) -> bool:
+    """Whether the sweep has unbalance levels and one case at each (one value of every ``--set`` parameter): the
+    sweeps that get the levels' Table 5 and the paper comparison."""
+    return bool(levels) and all(len(v) == 1 for v in grid.values())
+
+
 def cases_of(levels: list[float] | None, grid: dict[str, list[Any]]) -> list[Case]:
     """The grid of cases: unbalance levels (outer) times the ``--set`` parameters' values. Each case's folder
     name says its values (:func:`_fmt`); two cases whose names would be the same (two files of one name in
@@ -300,7 +306,7 @@ def sweep(levels=None, out: Path = Path("sweep"), scenario="blade_loss", schedul
     wall = time.perf_counter() - t0
     summaries = {c.name: results[c.name]["summary"] for c in cases}
     score = None
-    if levels and all(len(v) == 1 for v in grid.values()):  # one case a level: the levels' table of this model
+    if one_case_a_level(levels, grid):
         by_level = {c.unbalance_N: summaries[c.name] for c in cases}
         write_table5(out, by_level)
         score = paper_comparison.write(out, by_level)
@@ -348,7 +354,7 @@ def run(args) -> int:
 
     info = sweep(levels, Path(args.out), args.scenario, args.scheduler, kind, args.duration, args.workers,
                  args.serial, grid, None if args.quiet else progress, overwrite=args.overwrite)
-    tables = " table5.csv, table5.md," if levels and all(len(v) == 1 for v in grid.values()) else ""
+    tables = " table5.csv, table5.md," if one_case_a_level(levels, grid) else ""
     print(f"{len(info['cases'])} cases in {info['wall_time_s']:.3g} s ({info['executed_on']});"
           f"{tables} sweep.csv and sweep.json written in {args.out}")
     sc = info["paper_score"]
