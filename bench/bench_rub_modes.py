@@ -16,7 +16,7 @@ of bearing #0. Prints
   point whose receptance to the hub is mass-controlled (phase near -175 deg), so the only orbit it can hold is the
   one turned in phase with the unbalance, N = |c + N/k_r + H_u F_u| / |H_g| ~ (c + |H_u| F_u) / |H_g|, at least
   c / |H_g| ~ 10 kN at contact; against the co-simulation's N = P_rub / (mu omega (R + c)) from
-  docs/paper_comparison.csv and the paper's (its rub power over the same speed: 2.2-15 kN);
+  docs/results/paper_comparison.csv and the paper's (its rub power over the same speed: 2.2-15 kN);
 * N with the Table 2 intermediate bearings at 0.5 / 2 / 4 x: they move the third forward critical speed (the power
   turbine's tube on the intermediate bearings and #5, 17 900 rev/min) by -4 / +2 / +3 % and N by under 4 %: that
   mode is not what loads the ring (its strain energy in the ring is nil), the receptance at the bearing is;
@@ -78,7 +78,7 @@ def receptance(full: fem.FullModel, sup: dict, node: int) -> complex:
 
 
 RUB_LEVELS = (5700.0, 8551.0, 11401.0, 14252.0)
-DOCS = Path(__file__).resolve().parents[1] / "docs" / "paper_comparison.csv"
+DOCS = Path(__file__).resolve().parents[1] / "docs" / "results" / "paper_comparison.csv"
 
 
 def ring_receptances(full: fem.FullModel, sup: dict, node: int) -> tuple[complex, complex]:
@@ -130,7 +130,7 @@ def ring_force_study(data: dict) -> None:
     cos = cosim_ring_forces(c, R, mu)
     for F in RUB_LEVELS:
         print(f"  {F:7.0f} N: linear N = {ring_force(Hu, Hg, F, c, k_r, mu) / 1e3:5.1f} kN; co-simulation "
-              f"(docs/paper_comparison.csv) {cos[F][0] / 1e3:5.1f} kN; paper (its rub power) {cos[F][1] / 1e3:5.1f} kN")
+              f"(docs/results/paper_comparison.csv) {cos[F][0] / 1e3:5.1f} kN; paper (its rub power) {cos[F][1] / 1e3:5.1f} kN")
     for fac in (0.5, 2.0, 4.0):
         d = copy.deepcopy(data)
         for s in d["support"]:

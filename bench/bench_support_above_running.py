@@ -1,7 +1,7 @@
 """Is there a plausible layout with bearing #0's support mode ABOVE the 16 000 rev/min running speed? (issue 17,
 fourth session: a time-boxed structural study, linear engine only.)
 
-The question (docs/calibration.md, "A layout with #0's support mode above the running speed"): a layout in which
+The question (docs/results/calibration.md, "A layout with #0's support mode above the running speed"): a layout in which
   (a) the linear engine (master/linear_engine, as ``rotorcosim critical-speeds``) has its two lowest forward
       synchronous critical speeds at 8500 and 10 200 rev/min (+-3 %), whatever modes they are;
   (b) every forward mode that strains bearing #0's O-ring lies above 16 000 rev/min with a design separation

@@ -1,6 +1,6 @@
 """Why bearing #0's transmissibility is 0.6-0.75 below rub where the paper has 1.02-1.27 (issue 17, third session).
 
-Prints, from the paper's Table 5, the shipped comparison (docs/paper_comparison.csv) and the linear engine
+Prints, from the paper's Table 5, the shipped comparison (docs/results/paper_comparison.csv) and the linear engine
 (master/linear_engine.py, film linearised about the centred journal):
 
 1. eq. (23) read backwards. For a circular synchronous journal orbit of radius e (relative to the housing), the
@@ -13,7 +13,7 @@ Prints, from the paper's Table 5, the shipped comparison (docs/paper_comparison.
    it, and for a support-dominated mode the force through the support is |k + i c w| / |k - m w^2 + i c w| of the
    unbalance, below 1 for any k and c once w > sqrt(2) w_n (the isolator law);
 3. the linear 712 N response at #0 for O-ring readings with and without recalibrating the two knobs to 8500 /
-   10 200 rev/min (the recalibrated values are those of sweep H in docs/calibration.md, solved by
+   10 200 rev/min (the recalibrated values are those of sweep H in docs/results/calibration.md, solved by
    components/rotor/calibration.py from stage mass 1.5 kg / mounts 7e7 N/m);
 4. two O-rings in parallel with lighter stages (0.3-1.0 kg) and other mounts, not refitted: where the #0 mode
    goes (its O-ring share), the linear 712 N whirl and T, and whether the bearing point under a rub ring stops
@@ -38,8 +38,8 @@ from rotorcosim.master import linear_engine as le
 from rotorcosim.master.commands.table5 import paper_table5
 
 W = 16000.0 * math.pi / 30.0
-DOCS = Path(__file__).resolve().parents[1] / "docs" / "paper_comparison.csv"
-#: sweep H (docs/calibration.md): both O-rings 2 x 5254 N/mm, knobs refitted to 8500 / 10 200 rev/min
+DOCS = Path(__file__).resolve().parents[1] / "docs" / "results" / "paper_comparison.csv"
+#: sweep H (docs/results/calibration.md): both O-rings 2 x 5254 N/mm, knobs refitted to 8500 / 10 200 rev/min
 H_KNOBS = {"pt_stage_mass_kg": 1.9696, "mount_k": 7.2300e7}
 
 

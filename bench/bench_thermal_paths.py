@@ -1,7 +1,7 @@
 """Where bearing #0's and #5's heat goes (issue 17: the #5 network's temperature rise per watt).
 
 For each bearing, at the paper's below-rub powers (Table 5: #0 348.3 W drag + 30.56 W film at 712 N, #5 624.6 W
-+ 0.95 W at 2850 N) and at ours (docs/table5.csv, 712 N: #0 312.8 + 35.2 W, #5 499.4 + 0.06 W), the network alone
++ 0.95 W at 2850 N) and at ours (docs/results/table5.csv, 712 N: #0 312.8 + 35.2 W, #5 499.4 + 0.06 W), the network alone
 (no mechanics) under those constant powers:
 
 1. each path's conductance (W/K) and the heat masses (J/K);
@@ -37,7 +37,7 @@ from rotorcosim.components.thermal.geometry import (BALL, HOUSING, IR, JOURNAL, 
 
 KELVIN = 273.15
 PAPER = {0: (348.3, 30.56), 5: (624.6, 0.95)}          # Table 5 below rub (712 N at #0, 2850 N at #5)
-OURS = {0: (312.756, 35.1559), 5: (499.443, 0.0564861)}  # docs/table5.csv at 712 N
+OURS = {0: (312.756, 35.1559), 5: (499.443, 0.0564861)}  # docs/results/table5.csv at 712 N
 PAPER_T = {0: (68.2, 68.9, 67.1, 33.0), 5: (86.1, 86.2, 83.0, 36.7)}   # inner race, ball, outer race, SFD oil
 
 
@@ -232,7 +232,7 @@ def shaft_reference():
 if __name__ == "__main__":
     for b in (0, 5):
         breakdown(b, PAPER[b], "the paper's powers")
-        breakdown(b, OURS[b], "our powers (docs/table5.csv, 712 N)")
+        breakdown(b, OURS[b], "our powers (docs/results/table5.csv, 712 N)")
     sensitivity()
     table6()
     shaft_reference()
