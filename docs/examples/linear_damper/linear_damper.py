@@ -1,8 +1,8 @@
-"""A linear spring-damper in place of a squeeze film damper: the worked example of docs/plugins.md.
+"""A linear spring-damper in place of a squeeze film damper: the worked example of docs/how-to/plugins.md.
 
     F_journal = -k (X_journal - X_housing) - c (V_journal - V_housing),   F_housing = -F_journal
 
-The damper contract (see docs/plugins.md): journal and housing motion in, the force on the journal and its
+The damper contract (see docs/how-to/plugins.md): journal and housing motion in, the force on the journal and its
 reaction on the housing out, with the force's Jacobian (K_film = dF_journal/dX_journal, C_film =
 dF_journal/dV_journal, row-major 2x2, so -k and -c on the diagonal here) for the bearing's linearly implicit
 journal, and the dissipated power P_film = c |V_journal - V_housing|^2 (>= 0) for the thermal network.
