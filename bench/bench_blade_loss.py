@@ -13,9 +13,9 @@ import tempfile
 import time
 from pathlib import Path
 
-from rotorcosim.master.commands.run import apply_unbalance, execute, resolve
-from rotorcosim.master.profiling import StepTimer
-from rotorcosim.master.scenario import build_simulation
+from rotorcosim.master.cli.run import apply_unbalance, execute, resolve
+from rotorcosim.master.run.profiling import StepTimer
+from rotorcosim.master.scenario.build import build_simulation
 from rotorcosim.master.schedule import Interval, Timeline
 
 

@@ -19,11 +19,11 @@ import numpy as np
 from numba import njit
 
 from rotorcosim.components.kernels import KernelComponent
-from rotorcosim.master.commands.run import apply_unbalance, resolve
-from rotorcosim.master.observers import Recorder
-from rotorcosim.master.profiling import StepTimer
-from rotorcosim.master.results_blade_loss import observers as result_observers
-from rotorcosim.master.scenario import build_simulation
+from rotorcosim.master.cli.run import apply_unbalance, resolve
+from rotorcosim.master.observer.observers import Recorder
+from rotorcosim.master.run.profiling import StepTimer
+from rotorcosim.cases.blade_loss.results import observers as result_observers
+from rotorcosim.master.scenario.build import build_simulation
 from rotorcosim.master.schedule import Interval, Timeline
 
 

@@ -22,8 +22,8 @@ import time
 from pathlib import Path
 
 from rotorcosim import scenarios
-from rotorcosim.master.commands.run import execute
-from rotorcosim.master.scenario import load_scenario
+from rotorcosim.master.cli.run import execute
+from rotorcosim.master.scenario.build import load_scenario
 from rotorcosim.master.schedule import Interval, Timeline
 
 

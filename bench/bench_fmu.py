@@ -26,7 +26,8 @@ from pathlib import Path
 import numpy as np
 
 from rotorcosim.components import registry
-from rotorcosim.fmus.export import export_component, export_scenario
+from rotorcosim.fmus.export import export_component
+from rotorcosim.master.scenario.export import export_scenario
 from rotorcosim.fmus.importer import load_fmu_component
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -87,7 +88,7 @@ def component_costs(names, steps: int, folder: Path):
 def toy_scenario(folder: Path):
     from fmu_helpers import TOY, run_intervals
 
-    from rotorcosim.master.scenario import load_scenario
+    from rotorcosim.master.scenario.build import load_scenario
 
     sc = load_scenario(TOY)
     fmus = export_scenario(sc, folder / "toy")
@@ -119,8 +120,8 @@ def ecos_vs_master(folder: Path):
         return
     from fmu_helpers import TOY, run_intervals
 
-    from rotorcosim.fmus.ssp import read_ssp, write_ssp
-    from rotorcosim.master.scenario import load_scenario
+    from rotorcosim.master.scenario.ssp import read_ssp, write_ssp
+    from rotorcosim.master.scenario.build import load_scenario
 
     ssp = write_ssp(load_scenario(TOY), folder / "toy.ssp")
     step, n = 1e-3, 300
@@ -141,8 +142,8 @@ def blade_loss(folder: Path, n: int = 200):
     from fmu_helpers import max_rel_diff, run_intervals
 
     from rotorcosim import scenarios
-    from rotorcosim.fmus.ssp import read_ssp, write_ssp
-    from rotorcosim.master.scenario import load_scenario
+    from rotorcosim.master.scenario.ssp import read_ssp, write_ssp
+    from rotorcosim.master.scenario.build import load_scenario
 
     sc = load_scenario(scenarios.path("blade_loss"))
     h = float(sc.schedule.get("step", 1e-5))
@@ -182,8 +183,8 @@ def blade_loss(folder: Path, n: int = 200):
 _SETUP = """
 import sys, time
 t0 = time.perf_counter()
-from rotorcosim.fmus.ssp import read_ssp
-from rotorcosim.master.scenario import build_simulation
+from rotorcosim.master.scenario.ssp import read_ssp
+from rotorcosim.master.scenario.build import build_simulation
 sim = build_simulation(read_ssp(sys.argv[1]), [])
 sim.initialise()
 print(time.perf_counter() - t0)
@@ -193,8 +194,8 @@ print(time.perf_counter() - t0)
 def setup_time(folder: Path) -> None:
     """Set-up of the blade-loss SSP's nine FMUs in a fresh process: empty cache, then the cache left behind."""
     from rotorcosim import scenarios
-    from rotorcosim.fmus.ssp import write_ssp
-    from rotorcosim.master.scenario import load_scenario
+    from rotorcosim.master.scenario.ssp import write_ssp
+    from rotorcosim.master.scenario.build import load_scenario
 
     ssp = write_ssp(load_scenario(scenarios.path("blade_loss")), folder / "blade_loss_setup.ssp")
     env = {**os.environ, "ROTORCOSIM_CACHE": str(folder / "cache")}

@@ -17,7 +17,7 @@ from rotorcosim.fmus.importer import load_fmu_component
 from rotorcosim.fmus.process import ProcessFMU
 from rotorcosim.master.schedule import Interval, Timeline
 from rotorcosim.master.simulation import Simulation
-from rotorcosim.master.system import Connection, System
+from rotorcosim.master.core.system import Connection, System
 
 
 def main() -> None:

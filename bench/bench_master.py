@@ -21,7 +21,7 @@ import numpy as np
 from rotorcosim.components.contract import Component, Variable
 from rotorcosim.master.schedule import Interval, Timeline
 from rotorcosim.master.simulation import Simulation
-from rotorcosim.master.system import Connection, System
+from rotorcosim.master.core.system import Connection, System
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tests" / "master"))
 
@@ -60,8 +60,8 @@ def ecos_vs_master_rate(ssp: Path, n: int) -> tuple[float, float]:
     """Steps per second of ``ssp`` over ``n`` fixed steps at its default step: (our master, Ecos)."""
     from ecospy import EcosSimulation
 
-    from rotorcosim.fmus.ssp import read_ssp
-    from rotorcosim.master.scenario import build_simulation
+    from rotorcosim.master.scenario.ssp import read_ssp
+    from rotorcosim.master.scenario.build import build_simulation
 
     sc = read_ssp(ssp)
     sc.algorithm = {"kind": "jacobi", "order": sc.algorithm.get("order")}  # Ecos exchanges Jacobi-style
@@ -88,8 +88,8 @@ def ecos_comparison(blade_loss: bool, n: int) -> None:
         print(f"Ecos vs our master: skipped, ecospy unavailable ({exc})")
         return
     from rotorcosim import scenarios
-    from rotorcosim.fmus.ssp import write_ssp
-    from rotorcosim.master.scenario import load_scenario
+    from rotorcosim.master.scenario.ssp import write_ssp
+    from rotorcosim.master.scenario.build import load_scenario
 
     names = ["toy_thermomechanical"] + (["blade_loss"] if blade_loss else [])
     with tempfile.TemporaryDirectory(prefix="bench_master_") as tmp:

@@ -20,10 +20,10 @@ import h5py
 import numpy as np
 
 from rotorcosim import scenarios
-from rotorcosim.master import checkpoint
-from rotorcosim.master.commands.run import execute
-from rotorcosim.master.observers import Progress
-from rotorcosim.master.scenario import load_scenario
+from rotorcosim.master.run import checkpoint
+from rotorcosim.master.cli.run import execute
+from rotorcosim.master.observer.observers import Progress
+from rotorcosim.master.scenario.build import load_scenario
 
 
 def main() -> None:

@@ -1,6 +1,6 @@
 """Why the rotor overshoots a soft rub ring: the linear engine with the ring in contact (issue 17, rubbing branch).
 
-The co-simulated engine linearised (master/linear_engine.py: film at 30 C about the centred journal) with the rub
+The co-simulated engine linearised (cases/blade_loss/linear_engine.py: film at 30 C about the centred journal) with the rub
 ring in contact represented as a radial spring k_r between the power-turbine node of the ring and the casing hub
 of bearing #0. Prints
 
@@ -37,7 +37,7 @@ from scipy.optimize import brentq
 
 from rotorcosim.components.rotor import critical
 from rotorcosim.components.rotor import model as fem
-from rotorcosim.master import linear_engine as le
+from rotorcosim.cases.blade_loss import linear_engine as le
 
 
 def with_ring(full: fem.FullModel, node: int, k: float) -> fem.FullModel:

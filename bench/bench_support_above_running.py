@@ -42,7 +42,7 @@ import numpy as np
 
 from rotorcosim.components.rotor import calibration, critical
 from rotorcosim.components.rotor import model as fem
-from rotorcosim.master import linear_engine as le
+from rotorcosim.cases.blade_loss import linear_engine as le
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 import bench_rub_modes as brm  # noqa: E402

@@ -1,7 +1,7 @@
 """Why bearing #0's transmissibility is 0.6-0.75 below rub where the paper has 1.02-1.27 (issue 17, third session).
 
 Prints, from the paper's Table 5, the shipped comparison (docs/results/paper_comparison.csv) and the linear engine
-(master/linear_engine.py, film linearised about the centred journal):
+(cases/blade_loss/linear_engine.py, film linearised about the centred journal):
 
 1. eq. (23) read backwards. For a circular synchronous journal orbit of radius e (relative to the housing), the
    film's tangential force is P / (omega e) (P the film power) and the O-ring's force k e, at right angles, so
@@ -34,8 +34,8 @@ import scipy.linalg as sla
 
 from rotorcosim.components.rotor import calibration, critical
 from rotorcosim.components.rotor import model as fem
-from rotorcosim.master import linear_engine as le
-from rotorcosim.master.commands.table5 import paper_table5
+from rotorcosim.cases.blade_loss import linear_engine as le
+from rotorcosim.cases.blade_loss.table5 import paper_table5
 
 W = 16000.0 * math.pi / 30.0
 DOCS = Path(__file__).resolve().parents[1] / "docs" / "results" / "paper_comparison.csv"

@@ -12,8 +12,8 @@ import argparse
 import tempfile
 from pathlib import Path
 
-from rotorcosim.master.commands.sweep import sweep
-from rotorcosim.master.commands.table5 import PAPER_LEVELS
+from rotorcosim.master.cli.sweep import sweep
+from rotorcosim.cases.blade_loss.table5 import PAPER_LEVELS
 
 if __name__ == "__main__":
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])

@@ -6,7 +6,7 @@ relative error of the Table 4 results against the monolithic run, the load avera
 
 Issue 12's target: every result within 2 % and a speed-up of at least 12 at every level. The machine's speed
 drifts by 10-20 % over seconds, which is why `compare` times the staggered run before and after the monolithic
-one (master/commands/compare.py: --timing-runs, default 6, half before and half after, their mean reported);
+one (cases/blade_loss/compare.py: --timing-runs, default 6, half before and half after, their mean reported);
 --rounds repeats the whole table to show the spread that is left, and the last lines pool every round per level
 (the mean of all its monolithic timings over the mean of all its staggered timings).
 """
@@ -17,8 +17,9 @@ import statistics
 import tempfile
 from pathlib import Path
 
-from rotorcosim.master.commands.compare import compare
-from rotorcosim.master.commands.sweep import parse_levels
+from rotorcosim.cases.blade_loss.compare import compare
+from rotorcosim.cases.blade_loss import LEVELS
+from rotorcosim.master.cli.sweep import parse_levels
 
 
 def main() -> None:
@@ -30,7 +31,7 @@ def main() -> None:
     ap.add_argument("--timing-runs", type=int, default=None, help="staggered timings per comparison (default: compare's)")
     a = ap.parse_args()
     try:
-        levels = parse_levels(a.levels)
+        levels = parse_levels(a.levels, LEVELS)
     except ValueError as exc:
         ap.error(str(exc).replace("--unbalance", "--levels"))
     if a.rounds < 1:

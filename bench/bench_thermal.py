@@ -23,7 +23,7 @@ import numpy as np
 from rotorcosim.components.rubring.component import RubRing
 from rotorcosim.components.thermal.component import ThermalNetwork
 
-from rotorcosim.master.commands.table5 import PAPER_TABLE5 as TABLE5  # the paper's Table 5, shipped
+from rotorcosim.cases.blade_loss.table5 import PAPER_TABLE5 as TABLE5  # the paper's Table 5, shipped
 
 
 def per_call(fn, n):

@@ -26,7 +26,7 @@ def cache_dir(kind: str) -> Path | None:
     return None if root is None else root / kind
 
 
-#: while a helper process builds cached results ahead of this process (master/ahead.py): the function that waits
+#: while a helper process builds cached results ahead of this process (master/compiled/ahead.py): the function that waits
 #: for one of them (None: no helper)
 _ahead = None
 

@@ -21,30 +21,12 @@ from typing import Any, Iterable, Mapping
 
 import numpy as np
 
+from .errors import ContractError, StopRequested
 from .value_types import KINDS, UNCARRIED, check_value, dtype_of
 
 CAUSALITIES = ("parameter", "input", "output")
 TYPES = KINDS
 PHASES = ("TM", "TO")
-
-
-class ContractError(ValueError):
-    """A component or its use breaks the contract (unknown variable, wrong size, bad value)."""
-
-
-class StopRequested(Exception):
-    """Raised by ``do_step`` when the component asks to end the simulation (FMI 2: ``fmi2Discard`` with the
-    ``fmi2Terminated`` status; FMI 3: ``terminateSimulation`` / early return from ``fmi3DoStep``).
-
-    The component has advanced to ``t_stop`` (at most the step's end) and its outputs are valid there: the
-    master ends the run at that time and keeps what was computed (a stop is an answer, not a failure)."""
-
-    def __init__(self, component: str, t_stop: float, reason: str = ""):
-        self.component = component
-        self.t_stop = float(t_stop)
-        self.reason = reason
-        super().__init__(f"{component} asked to stop the simulation at t = {self.t_stop:.9g} s"
-                         + (f" ({reason})" if reason else ""))
 
 
 @dataclass(frozen=True)
@@ -129,7 +111,7 @@ class Component:
     #: True for a component that takes part in thermal-only (TO) intervals only for its TO update: in its TO phase
     #: (:meth:`enter_phase`) ``do_step`` recomputes, from its frozen mechanical state and its present thermal
     #: inputs, the outputs it hands to thermal components (the bearing's drag at the oil viscosity, the damper's
-    #: film power), and changes nothing else. The master treats it as mechanical (master/hold.py: its inputs from
+    #: film power), and changes nothing else. The master treats it as mechanical (master/manipulator/hold.py: its inputs from
     #: frozen components are held at their last value, and the held window of each of those outputs follows its
     #: TO update). It keeps no window or average of its own: those are the master's.
     holds_state_in_TO: bool = False
@@ -198,7 +180,7 @@ class Component:
     def prebuild(self) -> list:
         """What :meth:`setup` and the first steps will build that depends on the parameters only and is kept in
         an on-disk cache (a compiled kernel, a table): a list of ``(key, function, args)``, run by a helper process
-        on a fresh machine while this one sets up (master/ahead.py). ``function`` is a module-level function
+        on a fresh machine while this one sets up (master/compiled/ahead.py). ``function`` is a module-level function
         called with ``args`` (``key`` names its result for both processes: its builder here waits for it through
         components/cache.await_ahead), or a numba dispatcher compiled for the signature ``args`` (``key`` None).
         Nothing by default; an invalid parameter gives nothing here (setup names it)."""

@@ -15,7 +15,7 @@ A component that can offer a compiled kernel (numba) derives from :class:`Kernel
   re-seating of the balls after a thermal-only interval).
 
 The generic ``do_step`` calls the same ``STEP`` (so both master paths do the same arithmetic: compiled and
-generic runs are equal by construction); the master's compiled loop (master/compiled.py) calls ``STEP`` from a
+generic runs are equal by construction); the master's compiled loop (master/compiled/runner.py) calls ``STEP`` from a
 compiled loop over a whole thermo-mechanical interval. Outputs are written in place: the master copies what it
 keeps (links, rings, observers), so an output array is never held across a step.
 """
@@ -60,7 +60,7 @@ def port_tuple(cls_name: str, kind: str, names: tuple[str, ...]) -> type:
 # its own and optimises and machine-codes all of it again: a kernel over a chain of four functions compiles the
 # innermost four times (on a fresh machine's first run most of the compile CPU). A large inner
 # function that a kernel calls through its address instead is compiled once, on its own (and can be compiled by
-# the helper process of a fresh machine, master/ahead.py: its signature is declared).
+# the helper process of a fresh machine, master/compiled/ahead.py: its signature is declared).
 #
 # The kernels and the functions they call are compiled with ``no_cfunc_wrapper=True``: numba's C-callable wrapper
 # of each (which nothing here uses: the loop calls kernels through numba's own calling convention) cost ~0.3-0.7 s

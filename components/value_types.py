@@ -29,6 +29,8 @@ from typing import Any
 
 import numpy as np
 
+from .errors import ContractError
+
 KINDS = ("Real", "Integer", "Boolean", "String", "Binary", "Clock")
 #: kinds whose values the master does not carry (ports of these kinds may only stay unconnected)
 UNCARRIED = ("Binary", "Clock")
@@ -82,8 +84,6 @@ def check_value(var, value: Any, where: str) -> np.ndarray:
     """``value`` as an array of ``var.size`` values of ``var``'s kind, or a ContractError naming ``where``.
 
     Used for parameters, constant inputs and start values alike (never in the stepping loop)."""
-    from .contract import ContractError
-
     kind = var.type
     if kind in UNCARRIED:
         raise ContractError(f"{where}: a {var.fmi_type or kind} variable cannot be given a value here "

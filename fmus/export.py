@@ -26,7 +26,7 @@ import rotorcosim
 from rotorcosim.components import registry
 from rotorcosim.components.contract import Component, ContractError
 
-from . import bundle, model_description
+from rotorcosim.fmus import bundle, model_description
 
 TEMPLATE = Path(__file__).with_name("slave_template.py")
 #: the schedule phase in, and the phases a component takes part in out (slave_template.py explains)
@@ -188,50 +188,6 @@ def export_component(implementation: str, dest: str | Path, *, instance_name: st
         preferred_step=config["preferred_step"], package=package, slave_module=slave_module,
         content_hash=content_hash)
     return write_deterministic_zip(entries, dest)
-
-
-def export_scenario(sc, dest_dir: str | Path, only: str | None = None) -> dict[str, Path]:
-    """Export the components of scenario ``sc`` (all, or the one named ``only``) into ``dest_dir`` as
-    ``<component>.fmu``, each with the scenario's parameters. A component already given as an FMU is copied.
-
-    Every selected component is checked first (implementation importable, parameters valid), so a scenario
-    naming components that do not exist yet fails before anything is written, naming all of them."""
-    dest_dir = Path(dest_dir)
-    names = list(sc.components)
-    if only is not None:
-        if only not in sc.components:
-            raise ExportError(f"scenario {sc.name!r} has no component {only!r}; its components: {', '.join(names)}")
-        names = [only]
-    problems = []
-    for n in names:
-        spec = sc.components[n]
-        if spec.fmu is not None:
-            if not Path(spec.fmu).is_file():
-                problems.append(f"{n} (FMU {spec.fmu} not found)")
-            continue
-        try:
-            cls = registry.lookup(spec.implementation)
-            cls(n, dict(spec.parameters))
-        except ImportError as exc:
-            problems.append(f"{n} ({spec.implementation}: its implementation cannot be imported yet: {exc})")
-        except (ContractError, TypeError, ValueError) as exc:
-            problems.append(f"{n} ({spec.implementation}: {exc})")
-    if problems:
-        raise ExportError(f"scenario {sc.name!r}: cannot export component(s): " + "; ".join(problems))
-    from rotorcosim.master.rundir import ensure_folder
-
-    ensure_folder(dest_dir, "output folder")  # a file there, an unwritable place: one line naming it
-    out = {}
-    for n in names:
-        spec = sc.components[n]
-        target = dest_dir / f"{n}.fmu"
-        if spec.fmu is not None:
-            write_deterministic_zip(_entries(Path(spec.fmu)), target)
-        else:
-            export_component(spec.implementation, target, instance_name=n, parameters=spec.parameters,
-                             model_identifier=n)
-        out[n] = target
-    return out
 
 
 def _entries(path: Path) -> dict[str, bytes]:

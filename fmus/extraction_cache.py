@@ -22,7 +22,7 @@ from pathlib import Path
 
 from rotorcosim.components.cache import cache_dir
 
-from .safezip import safe_extract
+from rotorcosim.fmus.safezip import safe_extract
 
 _lock = threading.Lock()
 _in_use: set[Path] = set()

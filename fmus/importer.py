@@ -26,7 +26,7 @@ Types: every FMI 2.0 / 3.0 co-simulation type becomes a port (components/value_t
 Integer/Enumeration and every FMI 3.0 integer width, Boolean, String; FMI 3.0 arrays are vector ports of
 prod(shape) values (row-major); Binary and Clock ports are declared but not carried (they may stay unconnected).
 Ranges (min/max, enumeration items) and unit definitions (BaseUnit exponents, factor, offset) are kept on the
-contract variables, for the checks of values and the unit conversions of connections (master/conversions.py).
+contract variables, for the checks of values and the unit conversions of connections (master/core/conversions.py).
 
 The hot path calls the FMU's C functions directly with preallocated ctypes buffers, one Get/Set call per FMI type
 (fmpy's convenience wrappers build new arrays on every call): the FMU boundary should cost what FMI costs, not
@@ -52,11 +52,11 @@ import numpy as np
 from rotorcosim.components.contract import Component, ContractError, StopRequested, Variable
 from rotorcosim.components.value_types import KIND_OF, UNCARRIED, check_value, dtype_of
 
-from . import extraction_cache
-from . import model_description as mdx
-from .flatten import FlattenError, regroup
-from .units import BASE
-from .safezip import ArchiveError, check_entries, open_zip
+from rotorcosim.fmus import extraction_cache
+from rotorcosim.fmus import model_description as mdx
+from rotorcosim.fmus.flatten import FlattenError, regroup
+from rotorcosim.fmus.units import BASE
+from rotorcosim.fmus.safezip import ArchiveError, check_entries, open_zip
 
 _OK_STATUS = 1  # OK = 0, Warning = 1 (FMI 2.0 and 3.0): anything above is a failure
 _DISCARD = 2
@@ -795,6 +795,6 @@ class FMUComponent(Component):
 def load_fmu_component(path: str | Path, name: str, params: Mapping[str, Any] | None = None,
                        start_values: Mapping[str, Any] | None = None, label: str | None = None) -> FMUComponent:
     """The FMU at ``path`` as the component ``name`` with parameters ``params`` and the start values of its
-    states / ``initial = "exact"`` variables ``start_values`` (called by master/scenario.py); ``label`` names
+    states / ``initial = "exact"`` variables ``start_values`` (called by master/scenario/build.py); ``label`` names
     the file in messages instead of ``path``."""
     return FMUComponent(path, name, params, start_values, label)

@@ -25,7 +25,7 @@ from dataclasses import dataclass
 
 from rotorcosim.components.contract import PHASES
 
-from .units import BASE, base_units, is_dimensionless
+from rotorcosim.fmus.units import BASE, base_units, is_dimensionless
 
 TOOL = "rotorcosim"
 _ORDER = ("UnitDefinitions", "TypeDefinitions", "LogCategories", "DefaultExperiment", "VendorAnnotations",

@@ -25,14 +25,14 @@ from typing import Any, Mapping
 
 from rotorcosim.components.contract import Component, StopRequested
 
-from .importer import FMUError
+from rotorcosim.fmus.importer import FMUError
 
 #: the default FMU step time limit (s): generous, a doStep of our FMUs takes microseconds to milliseconds
 STEP_TIMEOUT_S = 600.0
 
 
 def load_fmu(path: str, name: str, parameters: dict, start: dict):
-    from .importer import FMUComponent
+    from rotorcosim.fmus.importer import FMUComponent
 
     return FMUComponent(path, name, parameters, start)
 

@@ -34,7 +34,7 @@ import os
 import numpy as np
 from pythonfmu import Boolean, Fmi2Causality, Fmi2Slave, Fmi2Variability, Integer, Real, String
 
-try:  # one BLAS thread, as in rotorcosim's own runs (master/threads.py): the host tool may run BLAS multi-threaded,
+try:  # one BLAS thread, as in rotorcosim's own runs (master/core/threads.py): the host tool may run BLAS multi-threaded,
     # which sums in another order and changes the last digits of a result
     from threadpoolctl import ThreadpoolController
 except ImportError:  # a host Python without it: the component runs with the host's BLAS threads

@@ -1,0 +1,57 @@
+"""The co-simulation master: it steps a system of components through a schedule and records what happens.
+
+Sub-packages, lowest layer first; a module imports only from its own layer or the layers below it (checked by
+the import-linter contract in ``pyproject.toml``, run by ``tests/test_architecture.py``):
+
+============================  ===========================================================================
+``core``                      a system of components and connections (checked when built), the links that
+                              carry values between them, the stepping algorithms (Gauss-Seidel, Jacobi)
+``manipulator``               the staggered scheme's thermal-only hold (freeze, held values, TM restart)
+``observer``                  recorder (``timeseries.h5``), progress, steady windows, energy; they never
+                              change a run
+``compiled``                  the optional fast path for thermo-mechanical intervals (numba kernels)
+``schedule``                  timelines of thermo-mechanical / thermal-only intervals, the automatic schedule,
+                              the time budget
+``simulation`` (module)       :class:`~rotorcosim.master.simulation.Simulation`: runs a system through a
+                              schedule with its observers and hold
+``scenario``                  scenarios as data: TOML / SSP, schema checks, ``extends``, ``--set`` / ``--swap``
+``run``                       run folders, checkpoints and resume, watchdog, figure workers
+``case`` (module)             how a case (results, figures, commands of a study) plugs in
+``api`` (module)              the Python API: :func:`load_scenario`, :func:`simulate`, :class:`Result`
+``cli``                       the ``rotorcosim`` program, a thin layer over the API
+============================  ===========================================================================
+
+Below the master: ``rotorcosim.components`` (the physics; it imports nothing of the master) and
+``rotorcosim.fmus`` (the FMI boundary: FMUs as components, components as FMUs). Above it: ``rotorcosim.cases``
+(the paper's blade-loss case, :mod:`rotorcosim.cases.blade_loss`), which plugs in as a user's case would.
+
+The public names, importable from here (loaded on first use)::
+
+    from rotorcosim.master import load_scenario, simulate
+    res = simulate(load_scenario("blade_loss_2850"), duration=0.05)
+    res["bearing0.P_drag"], res.summary
+"""
+_PUBLIC = {
+    "load_scenario": "rotorcosim.master.api",
+    "simulate": "rotorcosim.master.api",
+    "Result": "rotorcosim.master.api",
+    "Scenario": "rotorcosim.master.scenario.build",
+    "SimulationDiverged": "rotorcosim.master.core.algorithm",
+    "Simulation": "rotorcosim.master.simulation",
+    "System": "rotorcosim.master.core.system",
+    "Observer": "rotorcosim.master.observer.observers",
+}
+
+__all__ = sorted(_PUBLIC)
+
+
+def __getattr__(name):
+    if name in _PUBLIC:
+        import importlib
+
+        return getattr(importlib.import_module(_PUBLIC[name]), name)
+    raise AttributeError(f"module 'rotorcosim.master' has no attribute {name!r}")
+
+
+def __dir__():
+    return sorted(list(globals()) + __all__)

@@ -17,7 +17,6 @@ recorded in memory; with ``out`` and HDF5, the result's arrays are read from ``t
 from __future__ import annotations
 
 import contextlib
-import importlib
 import json
 import numbers
 import os
@@ -29,19 +28,22 @@ from typing import Any, Mapping, Sequence
 import numpy as np
 
 from rotorcosim import scenarios
+from rotorcosim.master import case
 
-from . import budget, checkpoint, watchdog
-from .algorithm import SimulationDiverged
-from .compiled import ENGINES
-from .figure_pool import FigurePool
-from .observers import Progress, Recorder, column_names
-from .outputs import write_json
-from .rundir import RunFolder
-from .scenario import Scenario, build_simulation, load_scenario as _load_file, schedule_of
-from .schedule import Schedule
-from .series import SeriesFile
-from .simulation import engine_summary
-from .threads import one_thread
+from rotorcosim.master.schedule import budget
+from rotorcosim.master.run import checkpoint
+from rotorcosim.master.run import watchdog
+from rotorcosim.master.core.algorithm import SimulationDiverged
+from rotorcosim.master.compiled.runner import ENGINES
+from rotorcosim.master.run.figure_pool import FigurePool
+from rotorcosim.master.observer.observers import Progress, Recorder, column_names
+from rotorcosim.master.run.outputs import write_json
+from rotorcosim.master.run.rundir import RunFolder
+from rotorcosim.master.scenario.build import Scenario, build_simulation, load_scenario as _load_file, schedule_of
+from rotorcosim.master.schedule.timeline import Schedule
+from rotorcosim.master.observer.series import SeriesFile
+from rotorcosim.master.simulation import engine_summary
+from rotorcosim.master.core.threads import one_thread
 
 DEFAULT_SCENARIO = "blade_loss_2850"
 #: ``schedule=`` names: the scenario's own schedule (its timeline), automatic, one TM interval
@@ -58,7 +60,7 @@ def load_scenario(name_or_path: str | Path | None = None) -> Scenario:
         raise ValueError("load_scenario: an empty name: give a shipped scenario's name or a file")
     p = Path(name_or_path)
     if p.suffix.lower() == ".ssp":
-        from rotorcosim.fmus.ssp import read_ssp
+        from rotorcosim.master.scenario.ssp import read_ssp
 
         return read_ssp(p)
     if p.is_dir() and not p.suffix and (scenarios.FOLDER / f"{p.name}.toml").is_file() and len(p.parts) == 1:
@@ -71,13 +73,13 @@ def load_scenario(name_or_path: str | Path | None = None) -> Scenario:
 
 
 def _postprocessor(sc: Scenario):
-    """The module that turns a run into the scenario's results (``[results] kind``), or None."""
+    """The module that turns a run into the scenario's results (its case's, ``[results] kind``), or None."""
     kind = sc.extra.get("results", {}).get("kind")
     if not kind:
         return None
     try:
-        return importlib.import_module(f"rotorcosim.master.results_{kind}")
-    except ModuleNotFoundError as exc:
+        return case.results_of(kind)
+    except case.CaseError as exc:
         raise ValueError(f"[results] kind {kind!r}: no such result extraction ({exc})") from None
 
 
@@ -176,7 +178,7 @@ def simulate(sc: Scenario | str | Path, duration: float | None = None, schedule=
     """Run scenario ``sc`` (a :class:`Scenario`, or a name or path for :func:`load_scenario`).
 
     ``duration`` [s] cuts the schedule; ``schedule`` is ``"paper"`` (the scenario's own), ``"auto"``,
-    ``"monolithic"`` or a :class:`~rotorcosim.master.schedule.Timeline` / ``AutoSchedule``; ``record`` the ports
+    ``"monolithic"`` or a :class:`~rotorcosim.master.schedule.timeline.Timeline` / ``AutoSchedule``; ``record`` the ports
     to record (default: the scenario's ``[outputs] record``); ``progress`` shows a progress bar.
 
     ``out``: a folder that receives what ``rotorcosim run`` writes (summary.json, the time series, the figures
@@ -186,7 +188,7 @@ def simulate(sc: Scenario | str | Path, duration: float | None = None, schedule=
     checkpoint, and where an interrupt (SIGINT/SIGTERM) stops them. Any run is refused before it starts if it is
     estimated above budget.LIMIT_S of wall time, unless ``force``. ``step_timeout`` [s] (0: none) ends a run whose component
     step hangs (watchdog.py), writing a failed summary first. ``engine``: ``"auto"`` runs each thermo-mechanical
-    interval through the compiled loop when every component offers a compiled kernel (master/compiled.py),
+    interval through the compiled loop when every component offers a compiled kernel (master/compiled/runner.py),
     ``"python"`` through the generic loop, ``"compiled"`` through the compiled loop or not at all (an error); the
     summary's ``engine`` says which ran (``engine_note`` why the generic loop did under auto).
 
@@ -375,7 +377,7 @@ def draw_figures(sc: Scenario | str | Path, out: str | Path, pool: FigurePool | 
     """Draw the figures of the finished run in folder ``out`` (a run of ``sc`` with ``out=`` and the HDF5 format,
     e.g. one run with ``figures=False``) from its ``timeseries.h5``, with the same drawing code as a run; adds
     their names to its summary.json (``figures``) and returns them. ``pool``: a
-    :class:`~rotorcosim.master.figure_pool.FigurePool` to draw them in, or None (drawn in this process).
+    :class:`~rotorcosim.master.run.figure_pool.FigurePool` to draw them in, or None (drawn in this process).
 
     ``rotorcosim compare`` uses it to draw its two runs' figures after both timed runs, so that no figure worker
     competes with a timed simulation."""
@@ -410,6 +412,6 @@ def _nothing_recorded(recorder: Recorder) -> dict[str, np.ndarray]:
 
 def _roundtrip(summary: dict) -> dict:
     """The summary exactly as summary.json holds it (plain numbers and lists, None for NaN)."""
-    from .outputs import _plain
+    from rotorcosim.master.run.outputs import _plain
 
     return json.loads(json.dumps(_plain(summary)))

@@ -1,7 +1,7 @@
 """Runs a system through a schedule: intervals, phases, observers.
 
 The staggered scheme of the paper (section 3.2) alternates thermo-mechanical (TM) and thermal-only (TO)
-intervals; what is frozen and held in a TO interval is the thermal-only hold's (master/hold.py). The next TM
+intervals; what is frozen and held in a TO interval is the thermal-only hold's (master/manipulator/hold.py). The next TM
 interval resumes from the frozen state with the new temperatures.
 """
 from __future__ import annotations
@@ -15,11 +15,12 @@ import numpy as np
 
 from rotorcosim.components.contract import ContractError
 
-from . import ahead, compiled
-from .algorithm import Engine, EngineSettings, SimulationDiverged
-from .hold import DEFAULT_HOLD, HOLDS, RESTART_CYCLES, StaggeredHold
-from .schedule import RunReport, Schedule, ScheduleError, UsedInterval
-from .system import System
+from rotorcosim.master.compiled import ahead
+from rotorcosim.master.compiled import runner as compiled
+from rotorcosim.master.core.algorithm import Engine, EngineSettings, SimulationDiverged
+from rotorcosim.master.manipulator.hold import DEFAULT_HOLD, HOLDS, RESTART_CYCLES, StaggeredHold
+from rotorcosim.master.schedule.timeline import RunReport, Schedule, ScheduleError, UsedInterval
+from rotorcosim.master.core.system import System
 
 class Simulation:
     def __init__(self, system: System, *, order: Sequence[str] | None = None,

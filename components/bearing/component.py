@@ -82,7 +82,7 @@ class BallBearing(KernelComponent):
                  description="viscous damping of each ball against the mean race motion (oil/cage; not in the paper)"),
         Variable("drag_in_thermal_only", "parameter", start=True, type="Boolean",
                  description="in thermal-only intervals, update the drag power from the frozen state at the oil "
-                             "viscosity (the master's hold follows it, master/hold.py); false: held (the paper)"),
+                             "viscosity (the master's hold follows it, master/manipulator/hold.py); false: held (the paper)"),
         Variable("m_journal", "parameter", unit="kg", start=0.0,
                  description="outer race + journal mass of eq. (5); 0 (default): solid steel rings from Table 3"),
         Variable("preload", "parameter", unit="N", start=BEARINGS[0]["preload_N"],
@@ -300,7 +300,7 @@ class BallBearing(KernelComponent):
     def _thermal_only_step(self, t, h):
         """Thermal-only interval (TO update): the balls, races and journal stay frozen; the drag power of the
         frozen state at the present oil temperature: Palmgren's load term as it froze plus his viscous term at
-        the input T_oil (the only term that depends on it). The master's hold (master/hold.py) carries the
+        the input T_oil (the only term that depends on it). The master's hold (master/manipulator/hold.py) carries the
         window's mean drag along this output; holding the drag power as it was (the paper) keeps the cold-oil
         drag of the first interval, about three times the warm value, over the whole thermal-only interval."""
         T = float(self.u["T_oil"][0])

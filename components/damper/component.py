@@ -97,7 +97,7 @@ class _Damper(Memoryless, Component):
                              " error)"),
         Variable("power_in_thermal_only", "parameter", unit="1", start=True, type="Boolean",
                  description="in thermal-only intervals, update the film power from the frozen journal motion at "
-                             "the SFD oil viscosity (the master's hold follows it, master/hold.py); false: held"),
+                             "the SFD oil viscosity (the master's hold follows it, master/manipulator/hold.py); false: held"),
         Variable("X_journal", "input", 2, "m", "journal displacement (absolute)"),
         Variable("V_journal", "input", 2, "m/s", "journal velocity (absolute)"),
         Variable("X_housing", "input", 2, "m", "housing displacement (absolute)"),

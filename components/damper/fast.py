@@ -347,7 +347,7 @@ def fast_step(NT, G, TW, toff, ftab, bounds, Wc, Ws, prm, xj, vj, xh, vh, mu, ou
 
 #: fast_step's argument types as the damper calls it (tm_step, _compute): NT, G, TW, toff, ftab, bounds, Wc, Ws,
 #: prm, xj, vj, xh, vh, mu, out. A helper process compiles it ahead on a fresh machine (component.prebuild,
-#: master/ahead.py); tests/master/test_ahead.py checks that these are the types of the calls.
+#: master/compiled/ahead.py); tests/master/test_ahead.py checks that these are the types of the calls.
 _A1, _A2, _A3 = types.float64[::1], types.float64[:, ::1], types.float64[:, :, ::1]
 FAST_STEP_SIG = (_A1, _A3, _A2, types.int64[::1], _A2, _A2, _A1, _A1, _A1, _A1, _A1, _A1, _A1, types.float64, _A1)
 # the damper's tm_step calls it by address (components/kernels.call_at): linked by name, tm_step's compilation

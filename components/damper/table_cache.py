@@ -37,7 +37,7 @@ def load(k: str) -> dict | None:
     d = _directory()
     if d is None:
         return None
-    await_ahead(f"damper/{k}")  # a helper process may be building it (master/ahead.py)
+    await_ahead(f"damper/{k}")  # a helper process may be building it (master/compiled/ahead.py)
     path = d / f"table_{k}.npz"
     try:
         with np.load(path) as f:

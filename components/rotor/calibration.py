@@ -5,7 +5,7 @@ The paper (section 4.1) gives 8500 and 10 200 rev/min but not the geometry. Two 
 beforehand): ``pt_stage_mass_kg`` (mainly the first critical speed, the overhung power turbine on bearing #0) and
 ``mount_k``, the stiffness of each engine-mount link (mainly the second, a casing-on-mounts mode with the gas
 generator and the power turbine whirling with it), on the engine with bearings #0/#5 as the co-simulated system
-linearised (``sup``, :meth:`model.FullModel.coupled`). Run ``python -m rotorcosim.master.linear_engine [FILE]``
+linearised (``sup``, :meth:`model.FullModel.coupled`). Run ``python -m rotorcosim.cases.blade_loss.linear_engine [FILE]``
 (the system's linearisation lives in the master: it takes the bearing and damper components, which this package,
 bundled alone into the rotor's FMU, may not import): it prints the knob values to write into the data file (the
 file is not rewritten, so its comments stay the record). ``--layout-search`` / ``--response-study`` there rerun
@@ -36,7 +36,7 @@ KNOBS = ("pt_stage_mass_kg", "mount_k")
 
 def _supports(sup):
     if sup is None:
-        raise ValueError("the #0/#5 supports of the linear engine are needed (rotorcosim.master.linear_engine.supports)")
+        raise ValueError("the #0/#5 supports of the linear engine are needed (rotorcosim.cases.blade_loss.linear_engine.supports)")
     return sup
 
 

@@ -26,7 +26,7 @@ Conventions:
   transmissibility (1.03, 1.02), where a residual in phase (0 deg, the value before issue 17) would make the
   712 N case 6 % larger per newton than the 1425 N one (+12 % against +6 %), and in opposition 6 % smaller.
   Eq. (23) divides by the blade-loss force alone (``F_unbalance``, "the unbalance force induced by blade
-  loss"), as master/results_blade_loss.py does;
+  loss"), as cases/blade_loss/results.py does;
 * the output ``F_u`` is the total applied rotating force vector (residual + blade loss); it cannot be called
   F_unbalance like the amplitude parameter, since variable names are unique (FMI, contract);
 * the Newmark step map is formed once per step size (sizes equal to 12 significant digits share it, so round-off

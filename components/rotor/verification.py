@@ -2,7 +2,7 @@
 
 Bearings #0 and #5 are represented by massless linear springs (model.FullModel.linear_support with
 :data:`SUPPORTS`: any linear support serves this check of the reduction; the engine's own linearisation, with the
-journal bodies, is rotorcosim.master.linear_engine), so the full model is linear and can be integrated directly; the reduced models use the basis the component uses (built on the
+journal bodies, is rotorcosim.cases.blade_loss.linear_engine), so the full model is linear and can be integrated directly; the reduced models use the basis the component uses (built on the
 model *without* #0/#5, where the co-simulation applies their forces through the ports) with the supports projected
 on it, i.e. the same equations the component + a linear bearing would give with an exact (implicit) coupling.
 All three are integrated by the same Newmark scheme and step, so the differences are the reduction's alone.

@@ -349,7 +349,7 @@ def test_thermal_only_drag_follows_the_oil_viscosity():
     """In a thermal-only interval (its TO update) the bearing keeps its mechanical state and outputs, and its drag
     power is the load term as it froze plus Palmgren's viscous term at the new oil temperature, computed here by
     hand in Palmgren's units: M_v = 1e-7 f0 (nu n)^(2/3) d_m^3 (N mm), P = M omega. It keeps no window of its
-    own (the master's hold averages, master/hold.py)."""
+    own (the master's hold averages, master/manipulator/hold.py)."""
     b = make(bearing=0)
     b.set_inputs({"T_oil": [303.15]})
     run(b, 2000, X=(2e-5, 0.0, 0.0))

@@ -119,7 +119,7 @@ PAPER_PAIRS = {0: ((198.85, 1449.6), (658.6, 2161.0), (2252.5, 3255.5)),
 
 @pytest.mark.parametrize("bearing", [0, 5])
 def test_inner_race_stress_law_reproduces_the_paper_pairs(bearing):
-    """The stress the results report (the inner race's, master/results_blade_loss.py) against the paper's own
+    """The stress the results report (the inner race's, cases/blade_loss/results.py) against the paper's own
     pairs within 2 % (measured 1.011 at #0, 0.996 at #5), and the outer race's law, which the paper's text names,
     does not reproduce them (0.90-0.92): the comparison can tell the two contacts apart."""
     g = build_geometry(bearing)

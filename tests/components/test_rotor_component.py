@@ -10,7 +10,7 @@ import pytest
 
 from rotorcosim.components.contract import ContractError
 from rotorcosim.components.registry import create
-from rotorcosim.master.commands.critical_speeds import critical_speeds
+from rotorcosim.cases.blade_loss.critical_speeds import critical_speeds
 from rotorcosim.components.rotor.component import Rotor, full_model, reduced_model
 from rotorcosim.components.rotor.newmark import integrate
 from rotorcosim.master.cli import main

@@ -8,7 +8,7 @@ import pytest
 from rotorcosim.components.contract import Component, Variable
 from rotorcosim.components.registry import register
 from rotorcosim.components.thermal.component import ThermalNetwork
-from rotorcosim.master.scenario import build_simulation, parse, schedule_of
+from rotorcosim.master.scenario.build import build_simulation, parse, schedule_of
 
 OMEGA = 16000 * 2 * math.pi / 60
 ORBIT = 0.6e-3

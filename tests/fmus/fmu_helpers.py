@@ -10,15 +10,15 @@ from pathlib import Path
 import numpy as np
 
 from rotorcosim import scenarios
-from rotorcosim.master.observers import Observer
-from rotorcosim.master.scenario import build_simulation, load_scenario
+from rotorcosim.master.observer.observers import Observer
+from rotorcosim.master.scenario.build import build_simulation, load_scenario
 from rotorcosim.master.schedule import Interval, Timeline
 
 TOY = Path(scenarios.__file__).with_name("toy_thermomechanical.toml")
 
 
 def export_toy(dest: Path) -> dict[str, Path]:
-    from rotorcosim.fmus.export import export_scenario
+    from rotorcosim.master.scenario.export import export_scenario
 
     return export_scenario(load_scenario(TOY), dest)
 

@@ -11,8 +11,8 @@ from fmu_helpers import TOY, rebuild
 
 from rotorcosim.fmus import safezip
 from rotorcosim.fmus.importer import FMUError, load_fmu_component
-from rotorcosim.fmus.ssp import SSPError, read_ssp, write_ssp
-from rotorcosim.master.scenario import load_scenario
+from rotorcosim.master.scenario.ssp import SSPError, read_ssp, write_ssp
+from rotorcosim.master.scenario.build import load_scenario
 
 
 @pytest.fixture(scope="module")
@@ -144,7 +144,7 @@ def test_ssp_malformed_parts(toy_ssp, tmp_path, private_tmp):
 def test_ssv_file_malformed_or_bomb(toy_ssp, tmp_path, private_tmp):
     import xml.etree.ElementTree as ET
 
-    from rotorcosim.fmus.ssp import NS
+    from rotorcosim.master.scenario.ssp import NS
 
     def with_ssv(ssv: bytes) -> Path:
         with zipfile.ZipFile(toy_ssp) as zf:

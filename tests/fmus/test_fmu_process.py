@@ -12,10 +12,10 @@ from rotorcosim.components.contract import Component, Variable
 from rotorcosim.components.registry import create
 from rotorcosim.fmus.importer import FMUError, load_fmu_component
 from rotorcosim.fmus.process import ProcessFMU
-from rotorcosim.master.algorithm import SimulationDiverged
+from rotorcosim.master.core.algorithm import SimulationDiverged
 from rotorcosim.master.schedule import Interval, Timeline
 from rotorcosim.master.simulation import Simulation
-from rotorcosim.master.system import Connection, System
+from rotorcosim.master.core.system import Connection, System
 
 
 class Faulty(Component):
@@ -83,7 +83,7 @@ def test_state_handles_do_not_go_to_disk(mass_fmu):
 
 
 def test_scenario_option(mass_fmu, tmp_path):
-    from rotorcosim.master.scenario import build_system, parse
+    from rotorcosim.master.scenario.build import build_system, parse
 
     data = {"components": {"m": {"fmu": str(mass_fmu), "step_timeout": 30.0}, "s": {"implementation": "testing.spring"}},
             "connections": [{"from": "m.x", "to": "s.x_in"}, {"from": "m.v", "to": "s.v_in"}, {"from": "s.F", "to": "m.F"}]}

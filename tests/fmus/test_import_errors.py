@@ -12,8 +12,8 @@ import numpy as np
 import pytest
 
 from rotorcosim.fmus.importer import FMUError, load_fmu_component
-from rotorcosim.master.scenario import build_system, parse
-from rotorcosim.master.system import SystemError_
+from rotorcosim.master.scenario.build import build_system, parse
+from rotorcosim.master.core.system import SystemError_
 
 
 def rewrite(src: Path, dst: Path, replace: dict | None = None, extra: list | None = None) -> Path:

@@ -10,8 +10,8 @@ import numpy as np
 import pytest
 from fmu_helpers import TOY, max_rel_diff, run_intervals
 
-from rotorcosim.fmus.ssp import SSPError, read_ssp, write_ssp
-from rotorcosim.master.scenario import load_scenario
+from rotorcosim.master.scenario.ssp import SSPError, read_ssp, write_ssp
+from rotorcosim.master.scenario.build import load_scenario
 
 TM = [("TM", 0.3, 1e-3)]           # the toy's thermo-mechanical interval
 
@@ -178,7 +178,7 @@ def test_parameter_values_from_an_ssv_file(toy_ssp, tmp_path):
     """Parameter bindings may point at an .ssv file instead of carrying the values inline."""
     import xml.etree.ElementTree as ET
 
-    from rotorcosim.fmus.ssp import NS
+    from rotorcosim.master.scenario.ssp import NS
 
     with zipfile.ZipFile(toy_ssp) as zf:
         entries = {n: zf.read(n) for n in zf.namelist()}

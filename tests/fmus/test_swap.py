@@ -14,7 +14,7 @@ from fmu_helpers import TOY, max_rel_diff, run_intervals
 
 from rotorcosim.components import registry
 from rotorcosim.components.contract import Component, Variable
-from rotorcosim.master.scenario import load_scenario, parse
+from rotorcosim.master.scenario.build import load_scenario, parse
 
 TOL = 1e-9
 

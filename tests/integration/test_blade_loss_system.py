@@ -10,8 +10,8 @@ import h5py
 import numpy as np
 import pytest
 
-from rotorcosim.master.commands.run import apply_unbalance, execute, resolve
-from rotorcosim.master.results_blade_loss import RESULT_KEYS
+from rotorcosim.master.cli.run import apply_unbalance, execute, resolve
+from rotorcosim.cases.blade_loss.results import RESULT_KEYS
 from rotorcosim.master.schedule import Interval, Timeline
 
 SHORT = Timeline([Interval("TM", 0.03, 1e-5), Interval("TO", 2.0, 0.1), Interval("TM", 0.02, 1e-5)])
@@ -89,7 +89,7 @@ def test_thermal_only_interval_resumes_the_frozen_orbit():
     2.5 %, the small real effect of the temperatures and growths that changed during the interval, applied at
     once); with the global-time unbalance angle the unbalance is turned by 240 degrees after 0.1 s and the whirl
     jumps by +200 %."""
-    from rotorcosim.master.scenario import build_simulation
+    from rotorcosim.master.scenario.build import build_simulation
 
     def radii(to):
         sim = build_simulation(resolve("blade_loss"))
@@ -147,7 +147,7 @@ def test_compare_draws_the_figures_after_both_timed_runs(tmp_path, monkeypatch):
 
     from rotorcosim.master import api
     from rotorcosim.master.cli import main
-    from rotorcosim.master.commands import compare as cmp
+    from rotorcosim.cases.blade_loss import compare as cmp
 
     def no_pool(*args, **kwargs):
         pytest.fail("a figure pool was started inside a timed run")
@@ -185,7 +185,7 @@ def test_compare_draws_the_figures_after_both_timed_runs(tmp_path, monkeypatch):
 
 def test_auto_and_monolithic_schedules_cover_the_scenario_duration():
     """--schedule auto / monolithic without --duration simulate the scenario's own 120 s (not an error)."""
-    from rotorcosim.master.scenario import schedule_of
+    from rotorcosim.master.scenario.build import schedule_of
 
     sc = resolve("blade_loss")
     assert schedule_of(sc).duration == pytest.approx(120.0)

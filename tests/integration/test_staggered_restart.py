@@ -10,8 +10,8 @@ jumps of issue 12 over the paper's 24 s TO intervals)."""
 import numpy as np
 import pytest
 
-from rotorcosim.master.commands.run import apply_unbalance, resolve
-from rotorcosim.master.scenario import build_simulation
+from rotorcosim.master.cli.run import apply_unbalance, resolve
+from rotorcosim.master.scenario.build import build_simulation
 
 STEP = 1e-5
 TM1, TO, TM2 = 0.04, 0.2, 0.025

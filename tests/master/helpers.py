@@ -5,7 +5,7 @@ import numpy as np
 from scipy.linalg import expm
 
 from rotorcosim.components.registry import create
-from rotorcosim.master.system import Connection, System
+from rotorcosim.master.core.system import Connection, System
 
 P1 = dict(m=1.0, k=40.0, c=0.0, x0=0.1, v0=0.0)
 P2 = dict(m=2.0, k=30.0, c=0.0, kc=100.0, cc=0.0, x0=0.0, v0=0.0)

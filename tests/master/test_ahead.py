@@ -1,4 +1,4 @@
-"""The helper process of a fresh machine's first run (master/ahead.py): it builds what the set-up will need while
+"""The helper process of a fresh machine's first run (master/compiled/ahead.py): it builds what the set-up will need while
 this process sets up; this process waits for what the helper has taken and reads it from the cache.
 
 The declared signatures must be those of the real calls, or the helper compiles something nobody loads."""
@@ -13,9 +13,10 @@ import numpy as np
 from rotorcosim.components import cache
 from rotorcosim.components.damper import fast, table_cache
 from rotorcosim.components.damper.component import FastDamper
-from rotorcosim.master import ahead, loop_ops
-from rotorcosim.master.commands.run import apply_unbalance, resolve
-from rotorcosim.master.scenario import build_simulation
+from rotorcosim.master.compiled import ahead
+from rotorcosim.master.compiled import loop_ops
+from rotorcosim.master.cli.run import apply_unbalance, resolve
+from rotorcosim.master.scenario.build import build_simulation
 from rotorcosim.master.schedule import Interval, Timeline
 
 # a coarse mesh: its table builds in a fraction of a second
@@ -89,7 +90,7 @@ def test_the_helper_ends_with_the_process_that_started_it():
 
     script = textwrap.dedent("""
         import os, time
-        from rotorcosim.master import ahead
+        from rotorcosim.master.compiled import ahead
         h = ahead.Ahead([("table/sleep", time.sleep, (120,))])
         print(h.proc.pid, flush=True)
         time.sleep(1)

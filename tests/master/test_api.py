@@ -17,7 +17,7 @@ import pytest
 import rotorcosim
 from rotorcosim import scenarios
 from rotorcosim.master.cli import main
-from rotorcosim.master.scenario import ScenarioError
+from rotorcosim.master.scenario.build import ScenarioError
 
 
 # -- load_scenario -------------------------------------------------------------------------------------
@@ -197,7 +197,7 @@ def test_cli_set_swap_record(tmp_path, capsys):
 
 
 def test_parse_set_values():
-    from rotorcosim.master.overrides import parse_set
+    from rotorcosim.master.scenario.overrides import parse_set
 
     assert parse_set("rotor.F_unbalance=5700") == ("rotor.F_unbalance", 5700)
     assert parse_set("thermal0.method=exact") == ("thermal0.method", "exact")
@@ -231,7 +231,7 @@ def test_version(capsys):
 def test_a_file_run_reads_its_arrays_from_the_file_and_they_equal_a_memory_run(tmp_path):
     """With out= and HDF5 the recorder keeps nothing in memory (a 2-minute monolithic run records ~0.5 GB): the
     result reads the file. Its arrays must be the very ones an in-memory run of the same scenario gives."""
-    from rotorcosim.master.series import SeriesFile
+    from rotorcosim.master.observer.series import SeriesFile
 
     on_file = rotorcosim.simulate("toy_thermomechanical", duration=1.0, record=["node.T"], out=tmp_path / "a")
     in_memory = rotorcosim.simulate("toy_thermomechanical", duration=1.0, record=["node.T"])

@@ -7,11 +7,11 @@ import pytest
 
 from rotorcosim.components.contract import ContractError, Variable
 from rotorcosim.components.registry import create
-from rotorcosim.master.algorithm import SimulationDiverged
-from rotorcosim.master.scenario import ScenarioError, build_simulation, build_system, load_scenario, parse, schedule_of
+from rotorcosim.master.core.algorithm import SimulationDiverged
+from rotorcosim.master.scenario.build import ScenarioError, build_simulation, build_system, load_scenario, parse, schedule_of
 from rotorcosim.master.schedule import Interval, ScheduleError, Timeline, from_spec
 from rotorcosim.master.simulation import Simulation
-from rotorcosim.master.system import Connection, System, SystemError_
+from rotorcosim.master.core.system import Connection, System, SystemError_
 
 GOOD = textwrap.dedent("""
     [components.m1]
@@ -111,7 +111,7 @@ def test_diverging_run_stops_with_clear_error_and_keeps_record(tmp_path):
     keeps (and marks incomplete) what it had."""
     import h5py
 
-    from rotorcosim.master.observers import Recorder
+    from rotorcosim.master.observer.observers import Recorder
 
     s = System({"m1": create("testing.mass", "m1", {"x0": 1.0, "c": -2000.0, "k": 1.0})}, [], {"m1.F": 0.0})
     rec = Recorder(tmp_path / "ts.h5", ["m1.x"], record_step=1e-3)

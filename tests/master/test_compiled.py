@@ -1,4 +1,4 @@
-"""The compiled thermo-mechanical loop (master/compiled.py) against the generic loop: one semantics.
+"""The compiled thermo-mechanical loop (master/compiled/runner.py) against the generic loop: one semantics.
 
 The first test compiles the blade-loss system's loop (about a minute on a quiet machine; numba caches it on disk,
 so later runs load it)."""
@@ -8,11 +8,11 @@ import numpy as np
 import pytest
 
 from rotorcosim.components.bearing.component import BallBearing
-from rotorcosim.master.commands.run import apply_unbalance, resolve
-from rotorcosim.master.compiled import CompiledUnavailable
-from rotorcosim.master.observers import Recorder
-from rotorcosim.master.results_blade_loss import observers as result_observers
-from rotorcosim.master.scenario import build_simulation
+from rotorcosim.master.cli.run import apply_unbalance, resolve
+from rotorcosim.master.compiled.runner import CompiledUnavailable
+from rotorcosim.master.observer.observers import Recorder
+from rotorcosim.cases.blade_loss.results import observers as result_observers
+from rotorcosim.master.scenario.build import build_simulation
 from rotorcosim.master.schedule import Interval, Timeline
 
 RTOL = 1e-12
@@ -91,7 +91,7 @@ def test_compiled_equals_generic_on_the_blade_loss_system(tmp_path, monkeypatch,
     for k in cobs[2].peak:
         for q in cobs[2].peak[k]:
             assert _rel(cobs[2].peak[k][q], pobs[2].peak[k][q]) <= RTOL
-    # the thermal-only hold (master/hold.py) recorded the same windows and cycle means, hence the same held values
+    # the thermal-only hold (master/manipulator/hold.py) recorded the same windows and cycle means, hence the same held values
     for ch, ph in zip(cs.hold.handoffs, ps.hold.handoffs):
         assert (ch.pos, ch.count, ch.cn) == (ph.pos, ph.count, ph.cn)
         assert _rel(ch.ring, ph.ring) <= RTOL and _rel(ch.csum, ph.csum) <= RTOL
@@ -123,7 +123,7 @@ def test_automatic_schedule_runs_compiled_and_decides_as_the_generic_loop(tmp_pa
     rows of the powers it samples (added in the generic loop's order) and is checked at the same base steps (the
     chunks end there), so both loops end the intervals at the same steps for the same reasons, with the same
     results. (The generic loop took ~250 us a step, five times the monolithic run's wall time at 14 252 N.)"""
-    from rotorcosim.master.auto import AutoSchedule
+    from rotorcosim.master.schedule.auto import AutoSchedule
 
     sims = {}
     for engine in ("compiled", "python"):

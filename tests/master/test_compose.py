@@ -1,9 +1,9 @@
-"""Scenario composition (master/compose.py): replace, remove, add, and errors that name the file."""
+"""Scenario composition (master/scenario/compose.py): replace, remove, add, and errors that name the file."""
 import pytest
 
 from rotorcosim.components.contract import ContractError
-from rotorcosim.master.compose import compose
-from rotorcosim.master.scenario import ScenarioError, build_system, load_scenario
+from rotorcosim.master.scenario.compose import compose
+from rotorcosim.master.scenario.build import ScenarioError, build_system, load_scenario
 
 BASE = """
 [scenario]

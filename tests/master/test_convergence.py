@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 from helpers import energy, exact, two_masses
 
-from rotorcosim.master.algorithm import EngineSettings
+from rotorcosim.master.core.algorithm import EngineSettings
 from rotorcosim.master.schedule import Timeline, Interval
 from rotorcosim.master.simulation import Simulation
 

@@ -1,11 +1,11 @@
-"""The blade-loss figures (master/figures_blade_loss.py) on synthetic series: which panels, which titles, which axes."""
+"""The blade-loss figures (cases/blade_loss/figures.py) on synthetic series: which panels, which titles, which axes."""
 from pathlib import Path
 
 import numpy as np
 import pytest
 
 import rotorcosim
-from rotorcosim.master.figures_blade_loss import _absolute_time, _panels, figures, is_paper_case, tm_blocks, to_spans
+from rotorcosim.cases.blade_loss.figures import _absolute_time, _panels, figures, is_paper_case, tm_blocks, to_spans
 
 W = 16000 * 2 * np.pi / 60  # rad/s
 
@@ -81,7 +81,7 @@ def test_paper_figure_numbers_only_on_the_papers_cases(tmp_path):
 
 
 def test_envelope_keeps_each_buckets_extremes_in_time_order():
-    from rotorcosim.master.figures_blade_loss import envelope
+    from rotorcosim.cases.blade_loss.figures import envelope
 
     t = np.linspace(0.0, 120.0, 1_200_001)  # a 2-minute monolithic run at the 1e-4 s record step
     y = np.sin(W * t) * (1 + t / 120)
@@ -97,13 +97,13 @@ def test_envelope_keeps_each_buckets_extremes_in_time_order():
 
 
 def test_figures_drawn_in_worker_processes_equal_those_drawn_here(tmp_path):
-    """The pool's workers (fresh interpreters: python -m rotorcosim.master.figure_worker) draw from the HDF5
+    """The pool's workers (fresh interpreters: python -m rotorcosim.master.run.figure_worker) draw from the HDF5
     file; the same series drawn in this process gives the same PNG bytes."""
     import h5py
 
-    from rotorcosim.master import figures_blade_loss as fb
-    from rotorcosim.master.figure_pool import FigurePool
-    from rotorcosim.master.series import SeriesFile
+    from rotorcosim.cases.blade_loss import figures as fb
+    from rotorcosim.master.run.figure_pool import FigurePool
+    from rotorcosim.master.observer.series import SeriesFile
 
     d = synthetic(True)
     path = tmp_path / "timeseries.h5"

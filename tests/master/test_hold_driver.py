@@ -1,4 +1,4 @@
-"""The hold's group driver (master/hold.py _Driver): a hand-off whose cycle means follow the temperature of
+"""The hold's group driver (master/manipulator/hold.py _Driver): a hand-off whose cycle means follow the temperature of
 ANOTHER producer of the same thermal component's hand-offs (the bearing's drag following the SFD oil through the
 orbit) gets that temperature, with its ln-slope, as the driver of its TO law."""
 import math
@@ -7,7 +7,7 @@ from types import SimpleNamespace
 import numpy as np
 import pytest
 
-from rotorcosim.master.hold import DRIVER_MIN_SPREAD_K, HandOff, _Driver
+from rotorcosim.master.manipulator.hold import DRIVER_MIN_SPREAD_K, HandOff, _Driver
 
 
 class _Var(SimpleNamespace):

@@ -1,4 +1,4 @@
-"""Packed kernel containers (master/kernel_args.py): what the fixed compiled loop hands each kernel.
+"""Packed kernel containers (master/compiled/kernel_args.py): what the fixed compiled loop hands each kernel.
 
 The loop's own equality with the generic path is tests/master/test_compiled.py; here the packing itself."""
 from __future__ import annotations
@@ -10,7 +10,8 @@ import pytest
 from numba import njit, types
 from numba.core.errors import TypingError
 
-from rotorcosim.master import kernel_args, loop_ops
+from rotorcosim.master.compiled import kernel_args
+from rotorcosim.master.compiled import loop_ops
 
 P = namedtuple("P", "a b scale flag n m")
 
@@ -40,7 +41,7 @@ def test_a_kernel_called_through_the_trampoline_works_on_the_callers_arrays():
     ka = _containers()
     packed = kernel_args.Packed()
     assert packed.update(ka)
-    from rotorcosim.master.compiled import kernel_address
+    from rotorcosim.master.compiled.runner import kernel_address
     kaddr = kernel_address(_kernel, ka)
     taddr = kernel_args.trampoline_address(kernel_args.container_type(ka))
     for _ in range(2):

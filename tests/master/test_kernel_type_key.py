@@ -6,7 +6,7 @@ from collections import namedtuple
 import numba
 import numpy as np
 
-from rotorcosim.master.compiled import _type_key
+from rotorcosim.master.compiled.runner import _type_key
 
 P = namedtuple("P", "a b c")
 Q = namedtuple("Q", "a b c")

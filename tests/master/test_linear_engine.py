@@ -5,8 +5,8 @@ import math
 import pytest
 
 from rotorcosim.components.rotor import model as fem
-from rotorcosim.master import linear_engine
-from rotorcosim.master.commands.run import apply_unbalance, execute, resolve
+from rotorcosim.cases.blade_loss import linear_engine
+from rotorcosim.master.cli.run import apply_unbalance, execute, resolve
 
 
 @pytest.fixture(scope="module")
@@ -43,7 +43,7 @@ def test_linear_whirl_at_712N_matches_the_cosimulation(engine, tmp_path):
     full, sup = engine
     sc = resolve("blade_loss")
     apply_unbalance(sc, 712.0)
-    from rotorcosim.master.scenario import create_component
+    from rotorcosim.master.scenario.build import create_component
 
     rotor = create_component(sc.components["rotor"])
     F_res = rotor.p["F_residual"]

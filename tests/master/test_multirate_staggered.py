@@ -4,10 +4,10 @@ import numpy as np
 import pytest
 
 from rotorcosim.components.registry import create
-from rotorcosim.master.algorithm import EngineSettings
+from rotorcosim.master.core.algorithm import EngineSettings
 from rotorcosim.master.schedule import Interval, Timeline, from_spec, AutoSchedule
 from rotorcosim.master.simulation import Simulation
-from rotorcosim.master.system import Connection, System
+from rotorcosim.master.core.system import Connection, System
 
 SPEED_RPM = 45.0 * 60.0  # the oscillator's forcing frequency: one "rotor cycle" = one forcing period
 
@@ -43,7 +43,7 @@ def test_multirate_rms_overestimates_energy():
 
 def test_hold_linear_extrapolation_slow_to_fast():
     """A slow ramp seen by a fast consumer: linear extrapolation reproduces the ramp at mid-step exactly."""
-    from rotorcosim.master.algorithm import _Link
+    from rotorcosim.master.core.algorithm import _Link
 
     s = toy()
     link = _Link(Connection("node.T", "osc.T", extrapolation="linear"), s.components["node"], s.components["osc"])
@@ -164,7 +164,7 @@ def test_linear_end_extrapolation_is_exact_for_a_ramp():
 
 @pytest.mark.parametrize("restart_cycles", [2.0, 0.0])
 def test_restart_ramps_the_thermal_inputs_of_the_frozen_mechanics(restart_cycles):
-    """At a TM restart (master/hold.py, Restart) the oscillator's temperature input goes from its value before the
+    """At a TM restart (master/manipulator/hold.py, Restart) the oscillator's temperature input goes from its value before the
     TO interval to the node's present one along a half cosine over restart_cycles forcing periods; with 0 it
     jumps (the paper)."""
     s = toy(thermal=THERMAL)

@@ -1,11 +1,11 @@
-"""The Table 5 score (master/paper_comparison.py): which cells are compared and how a cell is judged."""
+"""The Table 5 score (cases/blade_loss/paper_comparison.py): which cells are compared and how a cell is judged."""
 import csv
 import copy
 
 import pytest
 
-from rotorcosim.master import paper_comparison as pc
-from rotorcosim.master.commands.table5 import paper_table5
+from rotorcosim.cases.blade_loss import paper_comparison as pc
+from rotorcosim.cases.blade_loss.table5 import paper_table5
 
 
 def _paper_as_ours():

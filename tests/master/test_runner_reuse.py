@@ -1,4 +1,4 @@
-"""The compiled runner (master/compiled.py) is built once per run and reused by every thermo-mechanical interval
+"""The compiled runner (master/compiled/runner.py) is built once per run and reused by every thermo-mechanical interval
 of a staggered run (its plan, flat port array, buffers and packed containers): the same results, to the bit, as a
 runner built anew for each interval, through thermal-only intervals, the hold's probes (which replace the
 producers' arrays) and the bearings' re-seating in Python."""
@@ -7,11 +7,11 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from rotorcosim.master import compiled
-from rotorcosim.master.commands.run import apply_unbalance, resolve
-from rotorcosim.master.observers import Recorder
-from rotorcosim.master.results_blade_loss import observers as result_observers
-from rotorcosim.master.scenario import build_simulation
+from rotorcosim.master.compiled import runner as compiled
+from rotorcosim.master.cli.run import apply_unbalance, resolve
+from rotorcosim.master.observer.observers import Recorder
+from rotorcosim.cases.blade_loss.results import observers as result_observers
+from rotorcosim.master.scenario.build import build_simulation
 from rotorcosim.master.schedule import Interval, Timeline
 
 SIGNALS = ["rotor.X_brg0", "bearing0.Q_max", "bearing5.P_drag", "damper0.P_film", "rubring0.P_rub",

@@ -17,7 +17,7 @@ from pathlib import Path
 import pytest
 
 from rotorcosim.master.cli import main
-from rotorcosim.master.commands.sweep import cases_of, parse_grid, sweep
+from rotorcosim.master.cli.sweep import cases_of, parse_grid, sweep
 
 
 def _free_port() -> int:

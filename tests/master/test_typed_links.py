@@ -9,10 +9,10 @@ import pytest
 
 from rotorcosim.components.contract import Component, StopRequested, Variable
 from rotorcosim.components.registry import create
-from rotorcosim.master.observers import Observer, Recorder
+from rotorcosim.master.observer.observers import Observer, Recorder
 from rotorcosim.master.schedule import Interval, Timeline
 from rotorcosim.master.simulation import Simulation
-from rotorcosim.master.system import Connection, System, SystemError_
+from rotorcosim.master.core.system import Connection, System, SystemError_
 
 
 class Counter(Component):

@@ -6,9 +6,9 @@ import pickle
 import pytest
 
 from rotorcosim import scenarios
-from rotorcosim.master import checkpoint
-from rotorcosim.master.commands.run import execute
-from rotorcosim.master.scenario import load_scenario
+from rotorcosim.master.run import checkpoint
+from rotorcosim.master.cli.run import execute
+from rotorcosim.master.scenario.build import load_scenario
 
 DURATION = 1.0
 
@@ -68,9 +68,9 @@ def test_hostile_checkpoint_is_refused_without_running_it(tmp_path, interrupted,
         raw = pickle.dumps({**{k: fields[k] for k in ("format", "key", "interval", "k", "t_start", "t")},
                             "x": _Call(os.system, cmd)}, protocol=4)
     elif how == "dotted":  # protocol 4 resolves dotted names: os.system reached through one of our modules
-        raw = _fields_then(fields, _global("rotorcosim.master.checkpoint", "os.system") + _str(cmd) + b"\x85R")
+        raw = _fields_then(fields, _global("rotorcosim.master.run.checkpoint", "os.system") + _str(cmd) + b"\x85R")
     elif how == "module-attribute":  # a module (not a class) of ours, then getattr on it
-        raw = _fields_then(fields, _global("builtins", "getattr") + _global("rotorcosim.master.checkpoint", "os")
+        raw = _fields_then(fields, _global("builtins", "getattr") + _global("rotorcosim.master.run.checkpoint", "os")
                            + _str("system") + b"\x86R" + _str(cmd) + b"\x85R")
     elif how == "new":  # __new__ of a type outside the allowed ones
         raw = _fields_then(fields, _global("subprocess", "Popen") + b")\x81")

@@ -65,7 +65,7 @@ def test_run_failure_is_status_1(tmp_path, capsys, monkeypatch):
     """An environment fault during the run (here: the disk fills while the time series is written)."""
     import errno
 
-    from rotorcosim.master.observers import Recorder
+    from rotorcosim.master.observer.observers import Recorder
 
     def full(self):
         raise OSError(errno.ENOSPC, "No space left on device", str(self.path))
@@ -113,7 +113,7 @@ def test_command_process_collects_less_and_freezes_at_exit():
 
     code = ("import atexit, gc, sys\n"
             "atexit.register(lambda: print('frozen at exit:', gc.get_freeze_count() > 0))\n"
-            "from rotorcosim.master.cli import GC_THRESHOLD0, main\n"
+            "from rotorcosim.master.cli.program import GC_THRESHOLD0, main\n"
             "before = gc.get_threshold()\n"
             "main(['scenarios'])\n"
             "print('left alone:', gc.get_threshold() == before)\n"

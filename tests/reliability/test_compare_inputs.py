@@ -5,7 +5,7 @@ import json
 import pytest
 
 from rotorcosim.master.cli import main
-from rotorcosim.master.commands.compare import KEYS, _reuse
+from rotorcosim.cases.blade_loss.compare import KEYS, _reuse
 
 NAME = "blade_loss_monolithic"
 
@@ -73,7 +73,7 @@ def test_an_out_folder_holding_a_comparison_is_refused_before_any_run(tmp_path, 
 def test_an_interrupted_overwrite_leaves_no_previous_table(tmp_path, monkeypatch):
     """compare --overwrite interrupted during its runs: the previous table6.json is gone, not left beside runs it
     does not describe (it was kept, with the new runs' folders half made, before)."""
-    from rotorcosim.master.commands import compare as cmp
+    from rotorcosim.cases.blade_loss import compare as cmp
 
     out = tmp_path / "cmp"
     out.mkdir()

@@ -223,8 +223,8 @@ def test_a_parameter_set_twice(tmp):
 def archives(tmp_path_factory):
     """The toy's node as an FMU and the toy system as an SSP archive (built once)."""
     from rotorcosim.fmus.export import export_component
-    from rotorcosim.fmus.ssp import write_ssp
-    from rotorcosim.master.scenario import load_scenario
+    from rotorcosim.master.scenario.ssp import write_ssp
+    from rotorcosim.master.scenario.build import load_scenario
 
     d = tmp_path_factory.mktemp("corpus_archives")
     fmu = export_component("testing.thermal_node", d / "node.fmu", instance_name="node",
@@ -426,7 +426,7 @@ def interrupted(tmp_path_factory):
     """A toy run interrupted at t = 0.2 s (a real SIGINT), leaving its checkpoint."""
     import signal
 
-    from rotorcosim.master.observers import Progress
+    from rotorcosim.master.observer.observers import Progress
 
     folder = tmp_path_factory.mktemp("corpus_ck") / "run"
     original = Progress.step
@@ -718,7 +718,7 @@ def test_sweep_starts_no_more_workers_than_cases(tmp, monkeypatch):
     the local cluster now has at most one worker per case."""
     import dask.distributed
 
-    from rotorcosim.master.commands import sweep
+    from rotorcosim.master.cli import sweep
 
     started = []
 

@@ -1,7 +1,7 @@
 """The same scenario gives the same numbers bit for bit, whatever the calling program imported first.
 
 A program that imports numpy before rotorcosim gets OpenBLAS with one thread per core (rotorcosim's
-OPENBLAS_NUM_THREADS=1 comes too late); multi-threaded BLAS sums in another order. master/threads.py limits the
+OPENBLAS_NUM_THREADS=1 comes too late); multi-threaded BLAS sums in another order. master/core/threads.py limits the
 pools to one thread around every run. Without it the API run below differed from the command line's by up to
 1e-5 relative (measured on 2 cores)."""
 import os
@@ -58,9 +58,9 @@ def test_numpy_imported_first_with_threads_gives_the_command_lines_numbers(tmp_p
 def test_a_dask_worker_gives_the_command_lines_numbers(tmp_path):
     """The blade-loss case of a sweep, run in a Dask worker process, gives the command line's numbers bit for bit:
     the sweep runs the same model (scenario resolution, unbalance setting, engine) in another process. (Dask's
-    nanny starts its workers with one BLAS thread of its own accord, so this does not test master/threads.py;
+    nanny starts its workers with one BLAS thread of its own accord, so this does not test master/core/threads.py;
     the test above does.)"""
-    from rotorcosim.master.commands.sweep import sweep
+    from rotorcosim.master.cli.sweep import sweep
 
     cli = tmp_path / "cli"
     subprocess.run([sys.executable, "-m", "rotorcosim.master.cli", "run", *ARGS[:3], "--unbalance", "2850",

@@ -4,10 +4,10 @@ import pytest
 
 from rotorcosim.components.contract import Component, Variable
 from rotorcosim.components.registry import create
-from rotorcosim.master.algorithm import SimulationDiverged
+from rotorcosim.master.core.algorithm import SimulationDiverged
 from rotorcosim.master.schedule import Interval, Timeline
 from rotorcosim.master.simulation import Simulation
-from rotorcosim.master.system import Connection, System
+from rotorcosim.master.core.system import Connection, System
 
 
 class Source(Component):

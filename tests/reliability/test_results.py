@@ -7,11 +7,11 @@ import numpy as np
 import pytest
 
 from rotorcosim import scenarios
-from rotorcosim.master import checkpoint
-from rotorcosim.master.commands.run import execute
-from rotorcosim.master.observers import Recorder
-from rotorcosim.master.rundir import LOCK, OutputFolderError, RunFolder
-from rotorcosim.master.scenario import load_scenario
+from rotorcosim.master.run import checkpoint
+from rotorcosim.master.cli.run import execute
+from rotorcosim.master.observer.observers import Recorder
+from rotorcosim.master.run.rundir import LOCK, OutputFolderError, RunFolder
+from rotorcosim.master.scenario.build import load_scenario
 
 
 def toy():
@@ -67,7 +67,7 @@ def test_lock_from_another_process(tmp_path):
 
     out = tmp_path / "o"
     with RunFolder(out):
-        code = (f"from rotorcosim.master.rundir import RunFolder\n"
+        code = (f"from rotorcosim.master.run.rundir import RunFolder\n"
                 f"try:\n    RunFolder({str(out)!r}).__enter__()\nexcept ValueError as e:\n    print(e)\n")
         res = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=60)
     assert "another run is writing into this folder" in res.stdout
@@ -106,7 +106,7 @@ def test_sigterm_too(tmp_path, monkeypatch):
     import os
     import signal
 
-    from rotorcosim.master.observers import Progress
+    from rotorcosim.master.observer.observers import Progress
 
     original = Progress.step
 
@@ -157,7 +157,7 @@ def test_disk_nearly_full_is_refused_before_hdf5_breaks(tmp_path, monkeypatch):
     first flushes here, through the free space the recorder asks the system for."""
     import os as _os
 
-    from rotorcosim.master import observers
+    from rotorcosim.master.observer import observers
 
     real = _os.statvfs
     calls = []
@@ -224,7 +224,7 @@ def test_a_second_recording_of_the_same_layout_is_the_same_file(tmp_path):
     """The recorder makes the empty HDF5 file once per process and layout and copies it for the next runs
     (observers._H5_TEMPLATES): the second run's file holds the same attributes, datasets and rows as the first's,
     and a run of another sampling interval gets its own attributes (no template of another layout)."""
-    from rotorcosim.master import observers
+    from rotorcosim.master.observer import observers
 
     observers._H5_TEMPLATES.clear()
     execute(toy(), tmp_path / "a", duration=0.02, figures=False)

@@ -6,9 +6,9 @@ import numpy as np
 import pytest
 
 from rotorcosim import scenarios
-from rotorcosim.master import checkpoint
-from rotorcosim.master.commands.run import execute
-from rotorcosim.master.scenario import load_scenario
+from rotorcosim.master.run import checkpoint
+from rotorcosim.master.cli.run import execute
+from rotorcosim.master.scenario.build import load_scenario
 
 DURATION = 5.6  # toy timeline: TM 0.3 + TO 4.7 + TM 0.3 + TO 0.3 (cut)
 

@@ -6,8 +6,8 @@ import pytest
 from rotorcosim import scenarios
 from rotorcosim.components.contract import ContractError
 from rotorcosim.components.registry import create
-from rotorcosim.master.scenario import load_scenario, parse
-from rotorcosim.master.schema import SchemaError, check, locate
+from rotorcosim.master.scenario.build import load_scenario, parse
+from rotorcosim.master.scenario.schema import SchemaError, check, locate
 
 TOY = scenarios.path("toy_thermomechanical").read_text()
 BEARING = textwrap.dedent("""

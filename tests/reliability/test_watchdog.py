@@ -12,8 +12,8 @@ def test_hung_step_ends_the_process_with_a_clear_error(tmp_path):
         import numpy as np
         from rotorcosim.components.contract import Component, Variable
         from rotorcosim.components.registry import register
-        from rotorcosim.master.commands.run import execute
-        from rotorcosim.master.scenario import parse
+        from rotorcosim.master.cli.run import execute
+        from rotorcosim.master.scenario.build import parse
 
         @register("testing.stuck")
         class Stuck(Component):
@@ -50,9 +50,9 @@ def test_hung_step_ends_the_process_with_a_clear_error(tmp_path):
 
 def test_watchdog_costs_nothing_when_steps_return(tmp_path):
     from rotorcosim import scenarios
-    from rotorcosim.master import algorithm
-    from rotorcosim.master.commands.run import execute
-    from rotorcosim.master.scenario import load_scenario
+    from rotorcosim.master.core import algorithm
+    from rotorcosim.master.cli.run import execute
+    from rotorcosim.master.scenario.build import load_scenario
 
     s = execute(load_scenario(scenarios.path("toy_thermomechanical")), tmp_path / "o", duration=1.0, figures=False,
                 step_timeout=0.5)

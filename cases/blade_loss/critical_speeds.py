@@ -1,0 +1,142 @@
+"""``rotorcosim critical-speeds``: synchronous critical speeds (and Campbell diagram) of the rotor model.
+
+The gas generator turns at the scenario's speed ratio (15 000 / 16 000) of the power turbine; bearings #0 and #5
+are the co-simulated system linearised (rotorcosim.cases.blade_loss.linear_engine: ball contacts at the preloaded rest, the
+outer race + journal body of eq. 5, O-ring, film at the stated oil temperature), the one engine model the
+calibration uses. ``--json`` reports it under ``support_model``. (A master command: the system's linearisation
+takes the bearing and damper components, which the rotor package, bundled alone into its FMU, may not import.)
+"""
+from __future__ import annotations
+
+import json
+import os
+from pathlib import Path
+
+import numpy as np
+
+from rotorcosim.components.rotor import critical
+from rotorcosim.components.rotor import model as fem
+from rotorcosim.cases.blade_loss import linear_engine
+
+
+def add_arguments(parser):
+    parser.add_argument("--model-file", default="", metavar="FILE",
+                        help="model data file (TOML); default: the shipped data/engine.toml")
+    parser.add_argument("--count", type=int, default=6, metavar="N", help="how many of each kind to list (default 6)")
+    parser.add_argument("--json", action="store_true", help="print a JSON object")
+    parser.add_argument("--campbell", metavar="FILE.png", help="also draw the Campbell diagram into this file")
+    parser.add_argument("--max-rpm", type=float, default=30000.0, metavar="RPM",
+                        help="highest power-turbine speed of the Campbell diagram and the list (default 30000)")
+    parser.add_argument("--oil-temperature", type=float, default=None, metavar="C",
+                        help="oil temperature of the linearised film (default: the model file's "
+                             "[linear_support] oil_temperature_C); the undamped critical speeds do not depend on it")
+
+
+def _supports(m, oil_temperature):
+    return linear_engine.supports(oil_temperature_C=oil_temperature, data=m.data)
+
+
+def critical_speeds(model_file: str = "", count: int = 6, max_rpm: float = 30000.0,
+                    oil_temperature: float | None = None) -> dict:
+    if count < 1:
+        raise ValueError(f"--count must be >= 1, got {count}")
+    if not (np.isfinite(max_rpm) and max_rpm > 0):
+        raise ValueError(f"--max-rpm must be > 0, got {max_rpm}")
+    m = fem.load(model_file or None)
+    sup = _supports(m, oil_temperature)
+    out = critical.synchronous_critical_speeds(m, sup, n=count, max_rpm=max_rpm)
+    out["speed_ratio_gg_pt"] = critical.speed_ratio(m)
+    out["target_rpm"] = list(m.data.get("calibration", {}).get("target_rpm", []))
+    out["model_file"] = str(model_file or fem.DEFAULT_FILE)
+    out["support_model"] = linear_engine.describe(sup)
+    return out
+
+
+def draw_campbell(path: str, model_file: str = "", max_rpm: float = 30000.0, crit: dict | None = None,
+                  oil_temperature: float | None = None) -> None:
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    m = fem.load(model_file or None)
+    rpm = np.linspace(0.0, max_rpm, 61)
+    f, kind = critical.campbell(m, rpm, _supports(m, oil_temperature))
+    fig, ax = plt.subplots(figsize=(10, 5))
+    styles = ((1, "tab:blue", "forward whirl"), (-1, "tab:orange", "backward whirl"),
+              (0, "0.75", "no rotor whirl (axial, torsion, casing)"))
+    for code, colour, label in styles:
+        sel = kind == code
+        ax.scatter(np.broadcast_to(rpm[:, None], f.shape)[sel], f[sel], s=5, c=colour, label=label)
+    ax.plot(rpm, rpm / 60.0, "k--", lw=1, label="1x power-turbine speed")
+    ratio = critical.speed_ratio(m)
+    ax.plot(rpm, ratio * rpm / 60.0, ":", color="0.35", lw=1, label=f"1x gas-generator speed ({ratio:.4g} x PT)")
+    if crit:
+        r = np.asarray(crit["forward_synchronous_rpm"], dtype=float)
+        r = r[r <= max_rpm]
+        ax.plot(r, r / 60.0, "o", mfc="none", mec="tab:red", ms=9, ls="none",
+                label="forward synchronous critical speeds")
+        for v in r[:2]:
+            ax.annotate(f"{v:,.0f}".replace(",", " "), (v, v / 60.0), textcoords="offset points", xytext=(8, -12),
+                        fontsize=8, color="tab:red")
+    # the operating point: the power turbine at its spin speed, the gas generator at its own (model data)
+    pt = m.omega_pt * 30.0 / np.pi
+    gg = m.omega_gg * 30.0 / np.pi
+    ax.axvline(pt, color="tab:green", lw=1.2,
+               label=f"operating speed: PT {pt:,.0f} / GG {gg:,.0f} rev/min".replace(",", " "))
+    ax.set_xlabel("power-turbine speed [rev/min] (gas generator at 15/16)")
+    ax.set_ylabel("whirl frequency [Hz]")
+    ax.set_xlim(0, max_rpm)
+    ax.set_ylim(0, 1.2 * max_rpm / 60.0)
+    ax.legend(loc="upper left", bbox_to_anchor=(1.02, 1.0), fontsize=8, framealpha=0.9)
+    ax.set_title("Campbell diagram (engine with #0/#5 linearised: contacts, journal body, O-ring; undamped)",
+                 fontsize=9)
+    fig.tight_layout()
+    fig.savefig(path, dpi=120)
+    plt.close(fig)
+
+
+def _check_figure_path(path: str) -> None:
+    """--campbell names a file we can write, checked before the (slow) eigenvalue scan."""
+    p = Path(path)
+    if p.is_dir():
+        raise ValueError(f"--campbell {path}: is a folder; give a file name, e.g. {p / 'campbell.png'}")
+    parent = p.parent if str(p.parent) else Path(".")
+    if not parent.is_dir():
+        raise ValueError(f"--campbell {path}: the folder {parent} does not exist")
+    if not os.access(parent, os.W_OK | os.X_OK):
+        raise ValueError(f"--campbell {path}: the folder {parent} is not writable")
+    if p.suffix:
+        from matplotlib.backends.backend_agg import FigureCanvasAgg
+        from matplotlib.figure import Figure
+
+        formats = FigureCanvasAgg(Figure()).get_supported_filetypes()
+        if p.suffix[1:].lower() not in formats:
+            raise ValueError(f"--campbell {path}: {p.suffix!r} is not an image format matplotlib writes "
+                             f"({', '.join(sorted(formats))})")
+
+
+def run(args) -> int:
+    if args.campbell:
+        _check_figure_path(args.campbell)
+    out = critical_speeds(args.model_file, args.count, args.max_rpm, args.oil_temperature)
+    if args.campbell:
+        draw_campbell(args.campbell, args.model_file, args.max_rpm, out, args.oil_temperature)
+        out["campbell"] = args.campbell
+    if args.json:
+        print(json.dumps(out))
+    else:
+        print("synchronous critical speeds of the power turbine (gas generator at "
+              f"{out['speed_ratio_gg_pt']:.4f} x), rev/min:")
+        print("  forward :", ", ".join(f"{v:.0f}" for v in out["forward_synchronous_rpm"]))
+        print("  backward:", ", ".join(f"{v:.0f}" for v in out["backward_synchronous_rpm"]))
+        if out["target_rpm"]:
+            print("  paper (lowest two forward):", ", ".join(f"{v:.0f}" for v in out["target_rpm"]))
+        sm = out["support_model"]
+        print(f"  supports #0/#5: {sm['description']}; film at {sm['oil_temperature_C']:g} C")
+        for b, v in sm["bearings"].items():
+            print(f"    #{b}: contact {v['k_contact']:.3g} N/m, journal {v['m_journal']:.3g} kg, O-ring "
+                  f"{v['k_spring']:.4g} N/m, film {v['c_film']:.4g} N s/m")
+        if args.campbell:
+            print(f"Campbell diagram: {args.campbell}")
+    return 0

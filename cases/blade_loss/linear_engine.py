@@ -1,0 +1,132 @@
+"""The co-simulated engine linearised: the one linear model behind ``rotorcosim critical-speeds`` and the
+calibration of the rotor data (issue 17; DESIGN, "Calibrate on the system that is simulated").
+
+Each support of bearings #0 and #5 is taken from the components the blade-loss scenario simulates, with the
+scenario's parameters, at the preloaded rest state and the running speed:
+
+* ball contacts: the radial stiffness d(sum T^T Q)/dX of the bearing's own quasi-static model (eqs. 1-9 at rest,
+  balls re-equilibrated, centrifugal force at the running speed) about the preloaded rest state;
+* outer race + SFD journal: the bearing's body of eq. (5) with its mass ``m_journal``;
+* O-ring: the damper's centering spring ``k_spring``;
+* film: the damper's own film model linearised about the centred journal, ``c_film = -F_t / v_t`` for a
+  vanishing circular orbit (the full, uncavitated film: the 0.2 MPa supply keeps a small orbit's film whole), at
+  a STATED oil temperature (data/engine.toml [linear_support] ``oil_temperature_C``, or the caller's).
+
+The undamped critical speeds do not depend on the film; the forced response does (``response``).
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from rotorcosim import scenarios
+from rotorcosim.components.rotor import calibration, critical
+from rotorcosim.components.rotor import model as fem
+
+from rotorcosim.master.scenario.build import create_component, load_scenario
+
+KELVIN = 273.15
+BEARINGS = (0, 5)
+
+
+def _scenario(sc):
+    return load_scenario(scenarios.path("blade_loss")) if sc is None else sc
+
+
+def supports(sc=None, oil_temperature_C: float | None = None, data: dict | None = None) -> dict:
+    """{"h0": {...}, "h5": {...}}: pt_node, hub (rotor data [linear_support]) and k_contact, m_journal,
+    k_spring, c_film, oil_temperature_C taken from the scenario's bearing{k} and damper{k} components."""
+    sc = _scenario(sc)
+    if data is None:
+        data, _ = fem.load_data(sc.components["rotor"].parameters.get("model_file") or None)
+    ls = data.get("linear_support", {})
+    T_C = float(ls.get("oil_temperature_C", 30.0) if oil_temperature_C is None else oil_temperature_C)
+    if not (math.isfinite(T_C) and -20.0 < T_C < 300.0):
+        raise ValueError(f"oil temperature for the linearised film must be a temperature in C, got {T_C!r}")
+    out = {}
+    for k in BEARINGS:
+        key = f"h{k}"
+        if key not in ls:
+            raise ValueError(f"rotor model data: [linear_support] has no entry {key!r} (pt_node, hub)")
+        brg = create_component(sc.components[f"bearing{k}"])
+        brg.setup(0.0)
+        dmp = create_component(sc.components[f"damper{k}"])
+        dmp.setup(0.0)
+        out[key] = {"pt_node": int(ls[key]["pt_node"]), "hub": ls[key]["hub"],
+                    "k_contact": contact_stiffness(brg), "m_journal": float(brg.p["m_journal"]),
+                    "k_spring": float(dmp.p["k_spring"]), "c_film": film_damping(dmp, T_C),
+                    "oil_temperature_C": T_C}
+    return out
+
+
+def contact_stiffness(bearing) -> float:
+    """Radial stiffness (N/m) of the ball set about the preloaded rest state (inner race at the preload offset,
+    outer race centred), from the bearing component's quasi-static model."""
+    from rotorcosim.components.bearing.static import stiffness
+
+    g = bearing.geometry
+    Fc = g.centrifugal_force(bearing.p["omega"])
+    J = stiffness(g, np.array([0.0, 0.0, bearing.z0]), Fc=Fc)
+    return float(-(J[0, 0] + J[1, 1]) / 2.0)
+
+
+def film_damping(damper, T_C: float) -> float:
+    """Linear damping (N s/m) of the damper's film about the centred journal at oil temperature T_C: the
+    tangential force over the speed of a vanishing circular orbit (radius 1e-4 of the clearance)."""
+    mu = damper.viscosity(T_C + KELVIN)
+    r = 1e-4 * damper.p["clearance"]
+    W = 1000.0                          # rad/s; the ratio does not depend on it for a vanishing orbit
+    _, Fy = damper.film_force(r, 0.0, 0.0, W * r, mu)
+    return float(-Fy / (W * r))
+
+
+def describe(sup: dict) -> dict:
+    """The support model in words and numbers, for ``critical-speeds --json``."""
+    return {"kind": "coupled", "description": "co-simulated system linearised: ball contacts at the preloaded "
+            "rest -> outer race + journal body (eq. 5) -> O-ring spring + film (linearised at the oil temperature, "
+            "centred journal) -> casing hub",
+            "oil_temperature_C": next(iter(sup.values()))["oil_temperature_C"],
+            "bearings": {k[1:]: {n: v for n, v in s.items() if n not in ("pt_node", "hub", "oil_temperature_C")}
+                         for k, s in sup.items()}}
+
+
+def critical_speeds(full: fem.FullModel, sup: dict, n: int = 6, max_rpm: float = 60000.0) -> dict:
+    return critical.synchronous_critical_speeds(full, sup, n=n, max_rpm=max_rpm)
+
+
+def response(full: fem.FullModel, sup: dict, F_u: float, rpm: float | None = None) -> dict:
+    """Steady synchronous response of the linear engine (:func:`rotorcosim.components.rotor.calibration.
+    coupled_response`): per bearing "0"/"5" whirl_mm, journal_mm, transmissibility (eq. 23)."""
+    return calibration.coupled_response(full, sup, F_u, rpm)
+
+
+def main(argv=None) -> int:
+    """``python -m rotorcosim.cases.blade_loss.linear_engine [FILE] [--layout-search | --response-study]``: the rotor
+    calibration (components/rotor/calibration.py) on this linear engine; prints the knobs to write into the file."""
+    import sys
+
+    argv = sys.argv[1:] if argv is None else argv
+    args = [a for a in argv if not a.startswith("--")]
+    d, _ = fem.load_data(args[0] if args else None)
+    sup = supports(data=d)
+    if "--layout-search" in argv:
+        calibration.layout_search(d, sup)
+        return 0
+    if "--response-study" in argv:
+        calibration.response_study(d, sup)
+        return 0
+    x, f = calibration.calibrate(d, sup=sup)
+    for k, v in zip(calibration.KNOBS, x):
+        print(f"{k} = {v:.4f}")
+    print("forward synchronous critical speeds:", f.round(1))
+    d["calibration"].update(dict(zip(calibration.KNOBS, x)))
+    for F in (712.0, 2850.0):
+        for b, r in calibration.linear_response_detail(d, F_u=F, sup=sup).items():
+            print(f"linear {F:g} N response at 16 000 rev/min, #{b}: whirl {r['whirl_mm']:.4f} mm (journal orbit "
+                  f"{r['journal_mm']:.4f} mm), transmissibility {r['transmissibility']:.3f}")
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())

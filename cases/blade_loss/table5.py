@@ -1,0 +1,67 @@
+"""Our Table 5 in the paper's format, and beside the paper's, cell by cell."""
+from __future__ import annotations
+
+import csv
+import os
+from pathlib import Path
+
+from rotorcosim.cases.blade_loss.results import BEARINGS, RESULT_KEYS
+
+from rotorcosim.cases.blade_loss import LEVELS
+
+PAPER_LEVELS = LEVELS["paper"]
+#: the paper's Table 5 is shipped beside the scenarios (a copy of shared/reference/table5.csv)
+PAPER_TABLE5 = Path(__file__).resolve().with_name("reference_table5.csv")
+
+
+def paper_table5() -> dict[tuple[str, int], dict[float, float]]:
+    out = {}
+    with open(PAPER_TABLE5) as f:
+        rows = [r for r in csv.reader(line for line in f if not line.startswith("#"))]
+    header = rows[0]
+    levels = [float(x) for x in header[2:]]
+    for r in rows[1:]:
+        out[(r[0], int(r[1]))] = {lv: float(x) for lv, x in zip(levels, r[2:])}
+    return out
+
+
+def _fmt(x) -> str:
+    return "" if x is None else f"{x:.6g}"
+
+
+def write_table5(out: Path, by_level: dict[float, dict]) -> None:
+    levels = list(by_level)
+    rows = [["result", "bearing"] + [f"{f:g}" for f in levels]]
+    for key in RESULT_KEYS:
+        for k in BEARINGS:
+            rows.append([key, str(k)] + [_fmt(by_level[f].get("bearings", {}).get(str(k), {}).get(key)) for f in levels])
+    tmp = out / "table5.csv.part"
+    with open(tmp, "w", newline="") as fh:
+        fh.write("# rotorcosim: blade-loss results (paper Table 4 definitions); columns: unbalance force in N\n")
+        csv.writer(fh).writerows(rows)
+    os.replace(tmp, out / "table5.csv")
+
+    paper = paper_table5()
+    lines = ["# Table 5: rotorcosim beside the paper", "",
+             "Each cell: ours / paper (difference in % of the paper's value).", "",
+             "| result | brg | " + " | ".join(f"{f:g} N" for f in levels) + " |",
+             "|---|---|" + "---|" * len(levels)]
+    for key in RESULT_KEYS:
+        for k in BEARINGS:
+            cells = []
+            for f in levels:
+                ours = by_level[f].get("bearings", {}).get(str(k), {}).get(key)
+                ref = paper.get((key, k), {}).get(f)
+                if ours is None:
+                    cells.append("n/a")
+                elif ref is None:
+                    cells.append(f"{ours:.4g} / -")
+                elif ref == 0:
+                    cells.append(f"{ours:.4g} / 0")
+                else:
+                    cells.append(f"{ours:.4g} / {ref:.4g} ({100 * (ours - ref) / ref:+.0f} %)")
+            lines.append(f"| {key} | {k} | " + " | ".join(cells) + " |")
+    tmp = out / "table5.md.part"
+    tmp.write_text("\n".join(lines) + "\n")
+    os.replace(tmp, out / "table5.md")
+

@@ -1,0 +1,5 @@
+import sys
+
+from rotorcosim.master.cli.program import main
+
+sys.exit(main())

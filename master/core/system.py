@@ -1,0 +1,172 @@
+"""A system: components plus connections, checked when built.
+
+Checks (each error names the ports): unknown component or port, causality (an output drives an input), vector
+size, value type and unit (conversions.py: what converts implicitly, what needs the connection's ``convert`` or
+``unit``, what is refused), an input driven twice, an input left unconnected (unless the scenario gives it a
+constant value, checked against the input's type and range; Binary and Clock inputs, which carry no value, may
+stay unconnected). An output driving nothing is fine.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Mapping, Sequence
+
+import numpy as np
+
+from rotorcosim.components.contract import Component, ContractError
+from rotorcosim.components.value_types import check_value
+
+from rotorcosim.master.core.conversions import ConversionError, link_conversion
+
+
+#: what a slower input sees of a faster output over its step (``average``), and what a thermal-only interval
+#: holds of a signal over the hand-off window (``hold``): the same three statistics
+STATISTICS = ("mean", "rms", "last")
+AVERAGES = HOLDS = STATISTICS
+EXTRAPOLATIONS = ("hold", "linear", "linear-end")
+
+
+class SystemError_(ContractError):
+    """A system that cannot be built: the message names the offending ports."""
+
+
+@dataclass
+class Connection:
+    """``src`` output drives ``dst`` input; both written ``component.port``.
+
+    ``average``: how a slower consumer sees a faster producer (mean or RMS over its step, or the last value);
+    ``extrapolation``: how a faster consumer sees a slower producer (hold, or linear to the middle of the
+    consumer's step); ``linear-end`` extrapolates linearly to the END of the consumer's step, for same-rate links
+    too: a consumer that enforces equilibrium at the step end with the held input (Newmark) then sees the
+    producer's force at the right time, which lifts the coupling lag from first to second order;
+    ``hold``: what replaces a frozen producer's output in a thermal-only interval (None: the schedule default);
+    averaging, extrapolation and the held statistic apply to Real signals only (others are held as they are);
+    ``convert``: the explicit type conversion of the connection (conversions.py), e.g. ``"round"`` for a Real
+    output into an Integer input; ``unit``: the unit of the side that has none (conversions.py).
+    """
+
+    src: str
+    dst: str
+    average: str = "mean"
+    extrapolation: str = "hold"
+    hold: str | None = None
+    convert: str | None = None
+    unit: str | None = None
+    origin: str | None = None  #: the scenario file that brought it (named in errors)
+
+    def __post_init__(self):
+        for label, value, allowed in (("average", self.average, AVERAGES),
+                                      ("extrapolation", self.extrapolation, EXTRAPOLATIONS)):
+            if value not in allowed:
+                raise SystemError_(f"connection {self.src} -> {self.dst}: {label} {value!r} not in {allowed}")
+        if self.hold is not None and self.hold not in HOLDS:
+            raise SystemError_(f"connection {self.src} -> {self.dst}: hold {self.hold!r} not in {HOLDS}")
+
+    @property
+    def src_component(self) -> str:
+        return split_port(self.src)[0]
+
+    @property
+    def src_port(self) -> str:
+        return split_port(self.src)[1]
+
+    @property
+    def dst_component(self) -> str:
+        return split_port(self.dst)[0]
+
+    @property
+    def dst_port(self) -> str:
+        return split_port(self.dst)[1]
+
+
+def split_port(ref: str) -> tuple[str, str]:
+    comp, dot, port = str(ref).partition(".")
+    if not dot or not comp or not port:
+        raise SystemError_(f"port reference {ref!r} must be written 'component.port'")
+    return comp, port
+
+
+@dataclass
+class System:
+    components: dict[str, Component]
+    connections: list[Connection]
+    inputs: dict[str, np.ndarray] = field(default_factory=dict)
+    #: component name -> the scenario file that chose its implementation (named in errors)
+    origins: dict[str, str] = field(default_factory=dict)
+
+    def __post_init__(self):
+        self.check()
+
+    def component(self, name: str) -> Component:
+        try:
+            return self.components[name]
+        except KeyError:
+            raise SystemError_(f"unknown component {name!r}; components: {', '.join(self.components)}") from None
+
+    def _port(self, ref: str, causality: str):
+        comp, port = split_port(ref)
+        c = self.component(comp)
+        try:
+            v = c.variable(port)
+        except ContractError:
+            known = ", ".join(x.name for x in c.variables if x.causality == causality)
+            raise SystemError_(f"{ref}: component {comp!r} ({c!r}) has no {causality} {port!r} "
+                               f"(its {causality}s: {known})") from None
+        if v.causality != causality:
+            art = "an" if v.causality[0] in "aeiou" else "a"
+            raise SystemError_(f"{ref} is {art} {v.causality} of component {comp!r} ({type(c).__name__}), used as "
+                               f"an {causality}")
+        return v
+
+    def check(self) -> None:
+        #: input reference -> the conversion its connection applies (only links that need one)
+        self.converters: dict[str, object] = {}
+        driven: dict[str, str] = {}
+        for con in self.connections:
+            try:
+                self._check_connection(con, driven)
+            except SystemError_ as exc:
+                if con.origin is None:
+                    raise
+                raise SystemError_(f"{exc} (connection from {con.origin})") from None
+            driven[con.dst] = con.src
+        for ref, value in list(self.inputs.items()):
+            inp = self._port(ref, "input")
+            if ref in driven:
+                raise SystemError_(f"{ref} has a constant value and is also driven by {driven[ref]}")
+            items = list(value) if isinstance(value, (list, tuple, np.ndarray)) else [value]
+            if len(items) == 1 and inp.size > 1:
+                items = items * inp.size   # a scalar constant fills a vector input
+            try:
+                self.inputs[ref] = check_value(inp, items, f"constant input {ref}")
+            except ContractError as exc:
+                raise SystemError_(str(exc)) from None
+        missing = [f"{name}.{v.name}" for name, c in self.components.items() for v in c.variables
+                   if v.causality == "input" and v.carried and f"{name}.{v.name}" not in driven
+                   and f"{name}.{v.name}" not in self.inputs]
+        if missing:
+            where = sorted({self.origins[m.partition(".")[0]] for m in missing if m.partition(".")[0] in self.origins})
+            raise SystemError_("inputs left unconnected (connect them or give a constant under [inputs]): "
+                               + ", ".join(missing) + (f" (components from {', '.join(where)})" if where else ""))
+
+    def _check_connection(self, con: Connection, driven: dict[str, str]) -> None:
+        out = self._port(con.src, "output")
+        inp = self._port(con.dst, "input")
+        if out.size != inp.size:
+            raise SystemError_(f"{con.src} (size {out.size}) -> {con.dst} (size {inp.size}): sizes differ")
+        try:
+            fn = link_conversion(out, inp, con.convert, con.unit, f"{con.src} -> {con.dst}")
+        except ConversionError as exc:
+            raise SystemError_(str(exc)) from None
+        if fn is not None:
+            self.converters[con.dst] = fn
+        if con.dst in driven:
+            raise SystemError_(f"{con.dst} is driven twice: by {driven[con.dst]} and by {con.src}")
+
+    def connections_into(self, component: str) -> list[Connection]:
+        return [c for c in self.connections if c.dst_component == component]
+
+
+def build(components: Mapping[str, Component], connections: Sequence[Connection],
+          inputs: Mapping[str, Sequence[float]] | None = None) -> System:
+    return System(dict(components), list(connections), dict(inputs or {}))

@@ -1,0 +1,569 @@
+"""The staggered scheme's thermal-only hold (paper section 3.2): ONE master concept, in this module.
+
+libcosim would call it a manipulator: it changes what crosses some connections, never a component's insides.
+
+* Which components freeze in a thermal-only (TO) interval: those that take no part in TO, and those that declare
+  ``holds_state_in_TO`` (stepped in TO only to update some outputs from their frozen state: the bearing's drag at
+  the new oil viscosity, the damper's film power at the new SFD oil viscosity). Both are *mechanical*.
+* The hand-offs: the connections from a mechanical component to a thermal one (the power losses). Over each
+  thermo-mechanical (TM) interval the master records, per hand-off, the window of its last ``hold_cycles`` rotor
+  cycles (the rotor cycle from ``speed_rpm``, the one source of the rotor speed of a run) and the cycle means of
+  the signal and of the thermal inputs its producer received.
+* The held value over a TO interval: the window's statistic, per connection (``hold`` of the connection, else the
+  schedule's): ``mean`` by default (it keeps the energy of a power), ``rms`` the paper's option, or ``last``.
+* The TO update of a producer that declares one: the held statistic S_w follows the producer's own TO output
+  y_TO(t) (computed by the producer from its frozen state and its present thermal inputs) along the law
+
+      y(t) = S_w * (y_TO(t) / y_TO,w) ** e
+
+  where y_TO,w is the producer's TO output at the window's mean thermal inputs and ``e`` the *elasticity*
+  measured by the master: the least-squares slope of ln(cycle mean of y) against ln(y_TO at that cycle's thermal
+  inputs) over the settled halves of the TM intervals so far. The frozen state gives the shape (the SFD power
+  at fixed kinematics scales with the oil viscosity); ``e`` measures how much of it survives once the mechanics
+  adapt (in the rubbing cases the journal orbit grows as the oil thins: e ~ 0.25-0.3 measured, see
+  docs/table6_levels.md). With too little temperature change to measure (``MIN_SPREAD``) the last measured ``e``
+  is kept, else e = 1 (the frozen law).
+* The group driver (:class:`_Driver`): a producer's cycle means can drift with a temperature that is none of its
+  own inputs (with the stiff rub ring the bearing's drag follows the SFD oil through the orbit and the loads:
+  2 055 -> 1 215 W while the SFD oil warms 47 -> 80 C at 8 551 N, the bearing's own oil barely moving). Among the
+  thermal inputs (unit K) of the producers whose hand-offs feed the same thermal component (the group: drag,
+  film power, rub power into one bearing's network), the one whose cycle values correlate best with ln(cycle
+  mean) over the settled halves of the recorded TM intervals, if it moved by ``DRIVER_MIN_SPREAD_K``, is the
+  driver; its least-squares slope b multiplies the law by exp(b (T(t) - T_w)), T(t) that input's present value
+  in TO, T_w its window mean; ``e`` is then fitted to what the driver leaves. The candidates are the OTHER
+  producers' temperatures, and a driver is kept only where it tracks the cycle means better than the producer's
+  own TO law (|correlation| with ln of its own TO output at the cycle's inputs): the own inputs are that physical
+  law's, and an exponential fitted on a few K of TM and stacked on it would extrapolate the same dependence again
+  over a long TO interval (the 2-minute run at 2 850 N: 1.41 % off the monolithic run with own temperatures as
+  drivers, 0.27 % with this rule). Only for producers with a TO update (the rub power stays held: it has none).
+  Measured in docs/table6_levels.md (5 700-14 252 N 3.4-4.7 % without a driver, 0.68-0.97 % with).
+* Every TO interval's hand-off error is measured at the next TM restart: the held value at the end of the TO
+  interval against the window the mechanics produce at the same temperatures. Its effect on the temperatures is
+  estimated by the thermal components themselves (through get_state / do_step / set_state, so any component that
+  can save its state): each one is stepped over the TO interval's length from its present state with and without
+  its hand-off powers in error by the measured amounts; the largest change of a scalar output in K, relative to that
+  output in degrees C (the convention of Table 4's relative errors), is the interval's error estimate
+  (:class:`HoldReport`; the automatic schedule controls it, master/schedule/auto.py).
+* The restart (TO -> TM): the hand-backs are the connections from a thermal component to a mechanical one (the
+  thermal growths, the oil temperatures). Over a TO interval they moved while the mechanical state stayed frozen
+  on the old ones; stepping them into the frozen mechanics at once is a sudden load (a growth of micrometres is an
+  axial force step on the preloaded bearings) that rings the lightly damped modes it meets (measured at 712 N:
+  the rotor's axial mode at ~480 Hz, +-3 um at bearing #0 and the ball loads +-10 %, decaying 4 % in 10 cycles).
+  In the monolithic run they changed over seconds, so the mechanics followed them quasi-statically. The restart
+  does the same on a short scale: each hand-back enters the next TM interval as its value at the end of the
+  previous TM interval and goes over to its present (live) value along a half cosine over ``restart_cycles``
+  rotor cycles (:class:`Restart`; the link adds its offset, algorithm._Link.value, and the compiled loop the
+  same). A mode of frequency f then keeps about 1 / ((2 f T)^2 - 1) of the step's response (T the ramp length:
+  0.02 for f = 480 Hz over 2 cycles). ``restart_cycles = 0``: the paper's step.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from rotorcosim.master.core.system import HOLDS
+
+#: the default statistic: the mean keeps the energy of a power (the paper's RMS overstates a fluctuating one)
+DEFAULT_HOLD = "mean"
+#: least spread of ln(y_TO) over the recorded cycles to measure an elasticity (5 %)
+MIN_SPREAD = 0.05
+#: elasticities outside this range are no viscous law: clipped
+ELASTICITY_RANGE = (0.0, 2.0)
+#: TM intervals whose cycles enter the elasticity fit (the latest ones: the law is local)
+FIT_INTERVALS = 3
+#: rotor cycles over which the hand-backs go from their pre-TO to their present values at a TM restart (Restart):
+#: long against the mechanical modes they would ring (the rotor's axial mode, ~480 Hz, is 3.6 periods), short
+#: against the TM intervals whose last ``hold_cycles`` cycles give the results and the hand-off windows (10 cycles
+#: in ``rotorcosim compare``); measured in docs/table6_levels.md
+RESTART_CYCLES = 2.0
+#: least spread (K) of a group temperature over the recorded cycles to drive a hand-off's TO law (_Driver)
+DRIVER_MIN_SPREAD_K = 1.0
+#: the driver's factor exp(b dT) is bounded to exp(+-DRIVER_MAX_LOG) (a factor 3): a guard against extrapolating
+#: a slope far beyond its data; not reached in the seven Table 6 levels (largest |b dT| 0.81: the SFD oil, 14 252 N)
+DRIVER_MAX_LOG = 1.1
+#: the zero of degrees C (K): Table 4 and ``rotorcosim compare`` give temperature errors relative to C values
+ZERO_CELSIUS_K = 273.15
+
+
+def mechanical(comp) -> bool:
+    """Frozen in TO, or stepped there only for its TO update with its mechanical state frozen."""
+    return "TO" not in comp.phases or bool(getattr(comp, "holds_state_in_TO", False))
+
+
+def feeds_thermal(src, dst) -> bool:
+    """True for a hand-off: a connection from a mechanical component to a thermal one (stepped in TO)."""
+    return mechanical(src) and not mechanical(dst)
+
+
+def feeds_mechanics(src, dst) -> bool:
+    """True for a hand-back: a connection from a thermal component (stepped in TO) to a mechanical one."""
+    return "TO" in src.phases and not mechanical(src) and mechanical(dst)
+
+
+class Restart:
+    """A hand-back's offset at a TM restart: ``delta`` (its value at the end of the previous TM interval minus its
+    value at the restart) at t0, fading along a half cosine to nothing at t0 + length. A class, not a closure:
+    checkpoints pickle the links. The compiled loop (master/compiled/runner.py) computes the same, operation for
+    operation."""
+
+    def __init__(self, delta: np.ndarray, t0: float, length: float):
+        self.delta, self.t0, self.length = np.array(delta, dtype=float), float(t0), float(length)
+
+    def offset(self, t: float):
+        s = (t - self.t0) / self.length
+        if s >= 1.0:
+            return 0.0
+        if s <= 0.0:
+            return self.delta.copy()
+        return self.delta * (0.5 + 0.5 * math.cos(math.pi * s))
+
+
+class HandOff:
+    """One mechanical -> thermal connection: its window, its cycle means, its held value in TO."""
+
+    def __init__(self, link, hold: str, thermal_ports: list[str]):
+        self.link = link
+        self.hold = hold
+        self.ports = thermal_ports          # the producer's inputs that come from thermal components
+        self.updates = bool(getattr(link.src, "holds_state_in_TO", False))
+        self.elasticity: float | None = None
+        self.history: list[list[tuple[np.ndarray, float]]] = []   # per TM interval: (thermal inputs, cycle mean)
+        self.held = None
+        self.error: float | None = None
+        self._to_end: np.ndarray | None = None
+        self.count = 0                      # samples in the window (none before the first TM interval)
+
+    # -- TM: record -------------------------------------------------------------------------------------
+    def start_tm(self, n_window: int, n_cycle: int, size: int) -> None:
+        self.ring = np.zeros((max(1, n_window), size))
+        self.pos = self.count = 0
+        self.t_last = None
+        self.n_cycle = max(1, n_cycle)
+        self.csum, self.cn, self._last = 0.0, 0, 0.0     # the rotor cycle being recorded
+        self.cycles: list[tuple[np.ndarray, float]] = []
+        self.history.append(self.cycles)
+        del self.history[:-FIT_INTERVALS]
+
+    def record(self, y: np.ndarray, t_end: float) -> None:
+        """One sample of the producer's output (every step it takes in a TM interval)."""
+        if self.t_last == t_end:  # a repeated iteration of the same step replaces its sample
+            self.pos = (self.pos - 1) % len(self.ring)
+            self.count -= 1
+            if self.cn == 0 and self.cycles:
+                _, m = self.cycles.pop()
+                self.csum, self.cn = m * self.n_cycle, self.n_cycle
+            self.csum -= self._last
+            self.cn -= 1
+        self.t_last = t_end
+        self.ring[self.pos] = y
+        self.pos = (self.pos + 1) % len(self.ring)
+        self.count = min(self.count + 1, len(self.ring))
+        y0 = float(y[0])
+        self._last = y0
+        self.csum += y0
+        self.cn += 1
+        if self.cn == self.n_cycle:  # a whole rotor cycle: its mean, and the thermal inputs at its end (they
+            # change at the thermal step, far slower than the rotor)
+            self.cycles.append((self._thermal_inputs(), self.csum / self.cn))
+            self.csum, self.cn = 0.0, 0
+
+    def _thermal_inputs(self) -> np.ndarray:
+        u = self.link.src.u
+        return np.concatenate([np.ravel(u[p]) for p in self.ports]) if self.ports else np.zeros(0)
+
+    def _data(self):
+        return self.ring if self.count == len(self.ring) else self.ring[: self.count]
+
+    def statistic(self, how: str) -> np.ndarray:
+        """RMS, mean or last of the window (the last ``hold_cycles`` rotor cycles of the TM interval)."""
+        if self.count == 0:
+            return np.array(self.link.src.y[self.link.sport], dtype=float)
+        data = self._data()
+        if how == "rms":
+            return np.sqrt(np.mean(data * data, axis=0))
+        if how == "mean":
+            return data.mean(axis=0)
+        return np.array(self.link.src.y[self.link.sport], dtype=float)
+
+    def window_inputs(self, cycles: int) -> np.ndarray:
+        """The producer's thermal inputs over the window: their mean over its last ``cycles`` whole cycles."""
+        last = self.cycles[-cycles:] if self.cycles else []
+        return np.mean([u for u, _ in last], axis=0) if last else self._thermal_inputs()
+
+    def measure_restart_error(self) -> bool:
+        """At the end of the first TM interval after a TO interval: the held value the TO interval ended with
+        against the window the mechanics now produce (the hand-off error of that TO interval). True if measured."""
+        if self._to_end is None or self.count == 0:
+            return False
+        now = self.statistic(self.hold)
+        scale = max(float(np.max(np.abs(now))), 1e-300)
+        self.error = float(np.max(np.abs(self._to_end - now))) / scale
+        self._to_end = None
+        return True
+
+    # -- TO: hold -----------------------------------------------------------------------------------------
+    def start_to(self, probe, fired, cycles: int, group: list["HandOff"] | None = None) -> None:
+        S = self.statistic(self.hold)
+        self.held = _Held(self.link, S)
+        if not self.updates or self.link.src.y[self.link.sport].size != 1 or not float(S[0]) > 0.0:
+            return
+        ref = probe(self.link.src, self.ports, self.window_inputs(cycles), self.link.sport)
+        if ref is None or not ref > 0.0:
+            return
+        # a driver only where another producer's temperature tracks the cycle means better than the producer's
+        # own TO law does: its own inputs are that law's (physical) business, and an exponential fitted on a few K
+        # of TM and extrapolated over a long TO interval is not (the 2-minute run: 0.07 % against the monolithic
+        # run with this rule, 1.4 % with the producer's own temperatures as drivers)
+        drive = _Driver.choose(self, [g for g in (group or []) if g is not self], cycles)
+        pts = self._settled_points(probe)
+        if drive is not None and drive.r <= self._own_correlation(pts):
+            drive = None
+        e = self._fit(pts, drive)
+        if e is not None:
+            self.elasticity = e
+        self.held = _HeldLaw(self.link, S, ref, 1.0 if self.elasticity is None else self.elasticity, fired, drive)
+
+    def _settled_points(self, probe) -> list[tuple[float | None, float]]:
+        """The fits' points, one per settled cycle of the recorded TM intervals: (ln of the producer's own TO
+        output at the cycle's inputs, None where it or the cycle mean is not positive; the cycle mean). Probed once
+        per TO interval for both the driver's test and the elasticity fit."""
+        out = []
+        for u, y in (c for cycles in self.history for c in cycles[len(cycles) // 2:]):
+            v = probe(self.link.src, self.ports, u, self.link.sport) if y > 0.0 else None
+            out.append((math.log(v) if v is not None and v > 0.0 else None, y))
+        return out
+
+    @staticmethod
+    def _own_correlation(pts) -> float:
+        """|correlation| of ln(cycle mean) with ln(the producer's own TO output at the cycle's inputs) over the
+        settled points (0 when the own output did not move)."""
+        xs = [x for x, _ in pts if x is not None]
+        zs = [math.log(y) for x, y in pts if x is not None]
+        if len(xs) < 3 or float(np.ptp(xs)) < MIN_SPREAD:
+            return 0.0
+        return abs(float(np.corrcoef(xs, zs)[0, 1]))
+
+    @staticmethod
+    def _fit(pts, drive: "_Driver | None" = None) -> float | None:
+        if drive is not None:   # the elasticity of what the driver's law leaves
+            pts = [(x, y * math.exp(-drive.b * (th - drive.w))) for (x, y), th in zip(pts, drive.series)]
+        xs, zs = [], []
+        for x, y in pts:
+            if x is None or not y > 0.0:
+                continue
+            xs.append(x)
+            zs.append(math.log(y))
+        if len(xs) < 3:
+            return None
+        x, z = np.array(xs), np.array(zs)
+        dx = x - x.mean()
+        if float(np.ptp(x)) < MIN_SPREAD:
+            return None
+        e = float(np.dot(dx, z - z.mean()) / np.dot(dx, dx))
+        return min(max(e, ELASTICITY_RANGE[0]), ELASTICITY_RANGE[1])
+
+    def end_to(self) -> None:
+        if self.held is not None:
+            self._to_end = np.array(self.held.value(), dtype=float)
+        self.held = None
+
+
+class _Held:
+    """The window statistic, constant over the TO interval (the paper)."""
+
+    def __init__(self, link, S):
+        # a Real statistic as float; an Integer, Boolean or String value kept as it is (issue 15: held, not averaged)
+        self.link, self.S = link, (np.array(S, dtype=float) if link.real else np.array(S))
+
+    def value(self) -> np.ndarray:
+        return self.S
+
+
+class _HeldLaw(_Held):
+    """S_w * (y_TO(t) / y_TO,w) ** e * exp(b (T(t) - T_w)), y_TO(t) the producer's own TO output (its last TO
+    step), T(t) the driver's present temperature (:class:`_Driver`, if any)."""
+
+    def __init__(self, link, S, ref, e, fired, drive=None):
+        super().__init__(link, S)
+        self.ref, self.e = float(ref), float(e)
+        self.fired = fired     # false until the producer has stepped in this TO interval (its output is its TM one)
+        self.drive = drive
+
+    def value(self) -> np.ndarray:
+        if not self.fired():
+            return self.S
+        y = float(self.link.src.y[self.link.sport][0])
+        if not y > 0.0:
+            return self.S
+        f = (y / self.ref) ** self.e
+        if self.drive is not None:
+            f *= self.drive.factor()
+        return self.S * f
+
+
+class _Driver:
+    """The temperature of a hand-off's group that drives its cycle means (DRIVER_* constants, module docstring):
+    among the thermal inputs of the producers whose hand-offs feed the same thermal component (the bearing's oil,
+    the damper's SFD oil...), the scalar temperature (unit K, moved by DRIVER_MIN_SPREAD_K) whose values correlate
+    best with ln(cycle mean) over the settled cycles of the recorded TM intervals; ``b`` the least-squares slope
+    of ln(cycle mean) against it. The group's hand-offs are recorded cycle for cycle (same TM intervals, same
+    rotor cycle); one recorded otherwise is skipped."""
+
+    def __init__(self, owner: "HandOff", port: str, k: int, b: float, w: float, series: list[float], r: float = 1.0):
+        self.owner, self.port, self.k = owner, port, k
+        self.b, self.w, self.series, self.r = float(b), float(w), series, float(r)
+
+    def factor(self) -> float:
+        th = float(np.ravel(self.owner.link.src.u[self.port])[self.k])
+        return math.exp(max(-DRIVER_MAX_LOG, min(DRIVER_MAX_LOG, self.b * (th - self.w))))
+
+    @staticmethod
+    def choose(ho: "HandOff", group: list["HandOff"], cycles: int) -> "_Driver | None":
+        own = [[c for c in cyc[len(cyc) // 2:]] for cyc in ho.history]
+        ys = [y for cyc in own for _, y in cyc]
+        if len(ys) < 3 or not all(y > 0.0 for y in ys):
+            return None
+        z = np.log(np.array(ys))
+        best = None
+        for g in group:
+            if len(g.history) != len(ho.history) or any(len(a) != len(b) for a, b in zip(g.history, ho.history)):
+                continue    # not recorded cycle for cycle with this hand-off
+            col = 0
+            for p in g.ports:
+                var = g.link.src.variable(p)
+                for k in range(var.size):
+                    if var.unit == "K":
+                        th = np.array([u[col + k] for cyc in g.history for u, _ in cyc[len(cyc) // 2:]])
+                        spread = float(np.ptp(th))
+                        if spread < DRIVER_MIN_SPREAD_K:
+                            continue
+                        r = abs(float(np.corrcoef(th, z)[0, 1]))
+                        if best is None or r > best[0]:
+                            best = (r, g, p, k, th, col + k)
+                col += var.size
+        if best is None:
+            return None
+        r, g, p, k, th, col = best
+        dth = th - th.mean()
+        b = float(np.dot(dth, z - z.mean()) / np.dot(dth, dth))
+        last = g.cycles[-cycles:] if g.cycles else []
+        w = float(np.mean([u[col] for u, _ in last])) if last else float(np.ravel(g.link.src.u[p])[k])
+        return _Driver(g, p, k, b, w, list(th), r)
+
+
+@dataclass
+class HoldReport:
+    """What the hold measured: per hand-off, the elasticity of its last TO law and its last hand-off error
+    (relative power, at the restart); per TO interval, the estimated error of the temperatures (percent of their
+    C values); the largest of those is the run's estimate."""
+
+    elasticity: dict[str, float] = field(default_factory=dict)
+    errors: dict[str, float] = field(default_factory=dict)
+    interval_estimates_pct: list[float] = field(default_factory=list)
+    drivers: dict[str, dict | None] = field(default_factory=dict)
+
+    @property
+    def last_estimate_pct(self) -> float | None:
+        return self.interval_estimates_pct[-1] if self.interval_estimates_pct else None
+
+    @property
+    def estimated_error_pct(self) -> float | None:
+        return max(self.interval_estimates_pct) if self.interval_estimates_pct else None
+
+    def as_dict(self) -> dict:
+        return {"elasticity": dict(self.elasticity), "drivers": dict(self.drivers),
+                "handoff_error_pct": {k: 100.0 * v for k, v in self.errors.items()},
+                "interval_estimates_pct": list(self.interval_estimates_pct),
+                "estimated_error_pct": self.estimated_error_pct}
+
+
+class StaggeredHold:
+    """The thermal-only hold of a system's run (see the module docstring)."""
+
+    def __init__(self, system, links, hold: str = DEFAULT_HOLD, hold_cycles: float = 5.0,
+                 speed_rpm: float | None = None, restart_cycles: float = RESTART_CYCLES):
+        self.system = system
+        self.restart_cycles = float(restart_cycles)
+        self.handbacks: list = []
+        self._tm_end: dict[int, np.ndarray] = {}   # hand-back index -> its value at the end of the last TM interval
+        self._last_phase: str | None = None
+        self.links = links
+        self.hold = hold
+        self.hold_cycles = float(hold_cycles)
+        self.speed_rpm = speed_rpm
+        self.handoffs: list[HandOff] | None = None
+        self.report = HoldReport()
+        self._to_start = 0.0
+        self._to_length: float | None = None
+
+    def _find_handoffs(self) -> None:
+        """After set-up: a component may decide its phases from its parameters (the bearing's drag update)."""
+        comps = self.system.components
+        links = self.links
+        self.handoffs = []
+        for link in links:
+            src, dst = comps[link.con.src_component], comps[link.con.dst_component]
+            if feeds_thermal(src, dst) and link.real:   # (Integer/Boolean/String links: held at their last value)
+                ports = sorted({l.con.dst_port for l in links if l.con.dst_component == link.con.src_component
+                                and not mechanical(comps[l.con.src_component])})
+                self.handoffs.append(HandOff(link, link.con.hold or self.hold, ports))
+        self.handbacks = [link for link in links if link.real and
+                          feeds_mechanics(comps[link.con.src_component], comps[link.con.dst_component])]
+
+    @property
+    def cycle(self) -> float | None:
+        return 60.0 / self.speed_rpm if self.speed_rpm else None
+
+    # -- intervals ---------------------------------------------------------------------------------------
+    def start(self, phase: str, active: list[str], mult: dict[str, int], step: float, t: float = 0.0,
+              steps_taken: dict[str, int] | None = None) -> None:
+        """Set the links up for an interval of ``phase`` with ``active`` components at base step ``step``."""
+        if self.handoffs is None:
+            self._find_handoffs()
+        under_way = [link.ramp for link in self.handbacks]
+        for link in self.links:
+            link.held = None
+            link.window = None
+            link.ramp = None
+        if phase == "TM":
+            length = self.restart_cycles * self.cycle if self.cycle else 0.0
+            if self._last_phase == "TO" and length > 0.0:
+                for i, link in enumerate(self.handbacks):
+                    if i in self._tm_end:
+                        link.ramp = Restart(self._tm_end[i] - np.array(link.src.y[link.sport], dtype=float),
+                                            t, length)
+            elif self._last_phase == "TM":  # TM after TM: a restart's ramp still under way goes on
+                for link, ramp in zip(self.handbacks, under_way):
+                    if ramp is not None and t < ramp.t0 + ramp.length:
+                        link.ramp = ramp
+            for ho in self.handoffs:
+                ho.end_to()
+                if self.cycle:
+                    hs = mult.get(ho.link.con.src_component, 1) * step
+                    n_cycle = int(math.ceil(self.cycle / hs - 1e-9))
+                    n = int(math.ceil(self.hold_cycles * self.cycle / hs - 1e-9))
+                    ho.start_tm(n, n_cycle, ho.link.src.variable(ho.link.sport).size)
+                    ho.link.window = ho
+            return
+        on = set(active)
+        for link in self.links:  # inputs of stepped components from frozen ones: their last value
+            if link.con.dst_component in on and link.con.src_component not in on:
+                link.held = _Held(link, link.src.y[link.sport])
+        self._to_start = t
+        probe = _Probe(t, step)
+        steps_taken = steps_taken if steps_taken is not None else {}
+        for ho in self.handoffs:
+            name, n0 = ho.link.con.src_component, steps_taken.get(ho.link.con.src_component, 0)
+            group = [g for g in self.handoffs if g.link.con.dst_component == ho.link.con.dst_component]
+            ho.start_to(probe, _Fired(steps_taken, name, n0), max(1, int(round(self.hold_cycles))), group)
+            ho.link.held = ho.held
+            if isinstance(ho.held, _HeldLaw):
+                self.report.elasticity[f"{ho.link.con.src} -> {ho.link.con.dst}"] = ho.held.e
+                d = ho.held.drive
+                self.report.drivers[f"{ho.link.con.src} -> {ho.link.con.dst}"] = (
+                    None if d is None else {"input": f"{d.owner.link.con.src_component}.{d.port}[{d.k}]",
+                                            "slope_per_K": d.b, "window_K": d.w})
+
+    def end(self, phase: str, t: float) -> None:
+        """End of an interval at time t: after the first TM interval that follows a TO interval, the hand-off
+        errors and the estimated temperature error of that TO interval."""
+        self._last_phase = phase
+        if phase == "TM":
+            self._tm_end = {i: np.array(link.src.y[link.sport], dtype=float) for i, link in enumerate(self.handbacks)}
+        if phase == "TO":
+            for ho in self.handoffs:
+                ho.end_to()
+            self._to_length = t - self._to_start
+            return
+        fresh = []
+        for ho in self.handoffs:
+            if ho.measure_restart_error():
+                fresh.append(ho)
+                self.report.errors[f"{ho.link.con.src} -> {ho.link.con.dst}"] = ho.error
+        if fresh and self._to_length:
+            self.report.interval_estimates_pct.append(100.0 * self._temperature_error(fresh, self._to_length))
+            self._to_length = None
+
+    def _temperature_error(self, handoffs: list[HandOff], length: float) -> float:
+        """Largest relative change of a thermal output in K (relative to its C value) when each thermal component
+        runs ``length`` seconds from its present state with its hand-off powers in error by the measured
+        amounts, against the same run without."""
+        by_dst: dict[str, list[HandOff]] = {}
+        for ho in handoffs:
+            by_dst.setdefault(ho.link.con.dst_component, []).append(ho)
+        worst = 0.0
+        for name, hos in by_dst.items():
+            comp = self.system.components[name]
+            # its scalar temperatures (the thermal network's reported ones: Table 4's and the oil's); a vector of
+            # every node (recorded for figures) would let a barely warmed node's relative error rule the estimate
+            outs = [v.name for v in comp.variables if v.causality == "output" and v.unit == "K" and v.size == 1]
+            if not outs:
+                continue
+            try:
+                snap = comp.get_state()
+            except Exception:  # cannot save its state: no estimate from it
+                continue
+            try:
+                base = _run_thermal(comp, {}, length, outs)
+                comp.set_state(snap)
+                change = np.zeros_like(base)
+                for ho in hos:
+                    u = np.array(comp.u[ho.link.dport], dtype=float) * (1.0 + ho.error)
+                    change += np.abs(_run_thermal(comp, {ho.link.dport: u}, length, outs) - base)
+                    comp.set_state(snap)
+            finally:
+                comp.set_state(snap)
+            worst = max(worst, float(np.max(change / np.maximum(np.abs(base - ZERO_CELSIUS_K), 1.0))))
+        return worst
+
+
+def _run_thermal(comp, inputs: dict, length: float, outs: list[str]) -> np.ndarray:
+    if inputs:
+        comp.set_inputs(inputs)
+    comp.do_step(comp.time, length)
+    return np.concatenate([np.ravel(np.array(comp.y[o], dtype=float)) for o in outs])
+
+
+class _Fired:
+    """True once component ``name`` has stepped since the count ``n0`` (a class, not a closure: checkpoints
+    pickle the hold)."""
+
+    def __init__(self, steps_taken: dict, name: str, n0: int):
+        self.steps_taken, self.name, self.n0 = steps_taken, name, n0
+
+    def __call__(self) -> bool:
+        return self.steps_taken.get(self.name, 0) > self.n0
+
+
+class _Probe:
+    """A producer's TO output at given thermal inputs with its frozen state, through the contract's own calls
+    (get_state, set_inputs, do_step in its TO phase, set_state): the state is restored after each probe, so it
+    works for any component that can save its state (FMUs included)."""
+
+    def __init__(self, t: float, h: float):
+        self.t, self.h = t, h
+        # one snapshot per producer: every probe restores it, so the state each probe starts from is the same
+        # (a fresh get_state per probe cost a copy of the bearing's state ~100 times per staggered run)
+        self._snaps: dict[int, object] = {}
+
+    def __call__(self, comp, ports, u, port) -> float | None:
+        snap = self._snaps.get(id(comp))
+        if snap is None:
+            try:
+                snap = self._snaps[id(comp)] = comp.get_state()
+            except Exception:  # a component (FMU) that cannot save its state: no TO law, the plain hold
+                return None
+        try:
+            values, i = {}, 0
+            for p in ports:
+                n = comp.u[p].size
+                values[p] = np.array(u[i:i + n], dtype=float)
+                i += n
+            if values:
+                comp.set_inputs(values)
+            comp.do_step(self.t, self.h)
+            return float(comp.y[port][0])
+        finally:
+            comp.set_state(snap)

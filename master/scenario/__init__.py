@@ -1,0 +1,18 @@
+"""Scenarios: a system, its parameters and its schedule as data (TOML or SSP), checked before anything runs.
+
+- :mod:`.build`: :class:`Scenario`, :func:`load_scenario`, and the system / simulation built from a scenario;
+- :mod:`.schema`: the checks of a scenario file, each error naming the file, table and key;
+- :mod:`.compose`: ``[scenario] extends = ...`` (a scenario stating only what it changes);
+- :mod:`.overrides`: ``--set comp.param=value`` and ``--swap comp=IMPL`` (and their API forms);
+- :mod:`.ssp`: SSP 1.0 archives written from a scenario and read into one.
+
+::
+
+    from rotorcosim.master.scenario import load_scenario
+    sc = load_scenario("scenarios/blade_loss_2850.toml").set({"rotor.F_unbalance": 5700.0})
+"""
+from rotorcosim.master.scenario.build import (ComponentSpec, ConnectionSpec, Scenario, ScenarioError, build_simulation,
+                                              build_system, create_component, load_scenario, schedule_of)
+
+__all__ = ["ComponentSpec", "ConnectionSpec", "Scenario", "ScenarioError", "build_simulation", "build_system",
+           "create_component", "load_scenario", "schedule_of"]

@@ -1,0 +1,209 @@
+"""Changing a loaded scenario: parameter values (``--set comp.param=value``, :meth:`Scenario.set`) and
+implementations (``--swap comp=IMPL|FILE.fmu``, :meth:`Scenario.swap`). Both return a new scenario.
+
+:func:`parse_set` is the one parser of ``comp.param=value`` texts; ``values=True`` reads a comma-separated list
+of values (a sweep's ``comp.param=v1,v2,...``).
+"""
+from __future__ import annotations
+
+import copy
+import math
+import sys
+from pathlib import Path
+from typing import Any, Mapping
+
+if sys.version_info >= (3, 11):
+    import tomllib
+else:  # pragma: no cover
+    import tomli as tomllib
+
+from rotorcosim.components import registry
+from rotorcosim.components import toml_text
+from rotorcosim.components.contract import ContractError
+from rotorcosim.components.value_types import check_value
+
+from rotorcosim.master.scenario.compose import ScenarioError, real_path
+
+#: where a change made by the API or the command line is said to come from, in error messages
+API_ORIGIN = "Scenario.set/swap"
+
+
+def _literal(text: str, what: str) -> Any:
+    """A value written as in TOML (``5700``, ``1e-5``, ``true``, ``"a"``, ``[1, 2]``); a bare word is a string."""
+    text = text.strip()
+    if not text:
+        raise ValueError(f"{what}: an empty value")
+    try:
+        parsed = toml_text.loads(f"v = {text}")
+    except tomllib.TOMLDecodeError as exc:
+        if toml_text.BEYOND_64_BITS in str(exc):  # a number, not a bare word
+            raise ValueError(f"{what}: {exc}") from None
+        if any(c in text for c in "[]{}\"'=,"):
+            raise ValueError(f"{what}: {text!r} is not a value (a number, true/false, a string or [a, list])") \
+                from None
+        return text
+    if len(parsed) != 1:  # "10\nR = 5" read as TOML set a second key, which was dropped without a word
+        raise ValueError(f"{what}: {text!r} is not one value (a number, true/false, a string or [a, list])")
+    value = parsed["v"]
+    try:
+        _check_value(what, value)
+    except ValueError:
+        raise ValueError(f"{what}: {text!r} is not a finite number") from None
+    return value
+
+
+def parse_set(text: str, values: bool = False) -> tuple[str, Any]:
+    """``"comp.param=value"`` -> (``"comp.param"``, value). With ``values=True`` the right-hand side is a
+    comma-separated list (``"rotor.F_unbalance=712,1425"`` -> (``"rotor.F_unbalance"``, [712, 1425])), a
+    bracketed ``[...]`` staying one value."""
+    key, eq, rhs = str(text).partition("=")
+    key = key.strip()
+    what = f"--set {text!r}"
+    comp, dot, param = key.partition(".")
+    if not eq or not dot or not comp or not param:
+        raise ValueError(f"{what}: expected COMP.PARAM=" + ("V1,V2,..." if values else "VALUE"))
+    if not values:
+        return key, _literal(rhs, what)
+    items, depth, cur = [], 0, ""
+    for ch in rhs:  # split on the commas outside brackets
+        depth += ch == "["
+        depth -= ch == "]"
+        if ch == "," and depth == 0:
+            items.append(cur)
+            cur = ""
+        else:
+            cur += ch
+    items.append(cur)
+    return key, [_literal(v, what) for v in items]
+
+
+def parse_swap(text: str) -> tuple[str, str]:
+    """``"comp=IMPL"`` or ``"comp=FILE.fmu"`` -> (component, implementation)."""
+    comp, eq, impl = str(text).partition("=")
+    if not eq or not comp.strip() or not impl.strip():
+        raise ValueError(f"--swap {text!r}: write it component=implementation (a registry name, module:Class "
+                         f"or a .fmu file)")
+    return comp.strip(), impl.strip()
+
+
+def _check_value(ref: str, value: Any) -> None:
+    if isinstance(value, (bool, str)):
+        return
+    if isinstance(value, (int, float)):
+        try:
+            finite = math.isfinite(value)
+        except OverflowError:  # an int beyond any float (the API takes Python ints as they come)
+            finite = False
+        if not finite:
+            raise ValueError(f"{ref}: value {value!r} is not finite")
+        return
+    if isinstance(value, (list, tuple)):
+        for v in value:
+            _check_value(ref, v)
+        return
+    try:  # numpy scalars and arrays
+        import numpy as np
+
+        arr = np.asarray(value, dtype=float)
+        if not np.all(np.isfinite(arr)):
+            raise ValueError(f"{ref}: value {value!r} is not finite")
+        return
+    except (TypeError, ValueError):
+        raise ValueError(f"{ref}: unsupported value {value!r}") from None
+
+
+def _component(sc, name: str):
+    if name not in sc.components:
+        raise ScenarioError(f"scenario {sc.name!r}: no component {name!r} (components: {', '.join(sc.components)})")
+    return sc.components[name]
+
+
+def _declared_parameters(spec) -> dict | None:
+    """The parameters the component's implementation declares, name -> Variable (None when not known before it
+    is built: FMUs)."""
+    if spec.implementation is None:
+        return None
+    cls = registry.lookup(spec.implementation, spec.folder)
+    return {v.name: v for v in getattr(cls, "variables", ()) if v.causality == "parameter"}
+
+
+def _plain(value: Any) -> Any:
+    if hasattr(value, "tolist"):
+        return value.tolist()
+    if isinstance(value, tuple):
+        return list(value)
+    return value
+
+
+def resolve_file_parameters(impl: str, params: dict, folder_of, lookup_folder: str | None, names=None) -> None:
+    """The implementation's file parameters (``Component.file_parameters``) in ``params`` made absolute paths,
+    a relative one read from ``folder_of(param)``: the folder of the scenario file that wrote it, or the working
+    folder for a value given on the command line or to :meth:`Scenario.set` (a sweep's case may run elsewhere)."""
+    try:
+        cls = registry.lookup(impl, lookup_folder)
+    except (ContractError, ImportError, AttributeError):  # the schema or the build names it
+        return
+    for p in getattr(cls, "file_parameters", ()):
+        value = params.get(p)
+        if isinstance(value, str) and value and (names is None or p in names):
+            path = Path(value).expanduser()
+            params[p] = str(real_path(path if path.is_absolute() else Path(folder_of(p)) / path))
+
+
+def apply_set(sc, values: Mapping[str, Any], origin: str = API_ORIGIN):
+    """A copy of ``sc`` with ``{"comp.param": value}`` applied (see :meth:`Scenario.set`)."""
+    if not isinstance(values, Mapping):
+        raise TypeError(f"set() takes a dict {{'component.parameter': value}}, got {type(values).__name__}")
+    out = copy.deepcopy(sc)
+    for ref, value in values.items():
+        comp, dot, param = str(ref).partition(".")
+        if not dot or not comp or not param:
+            raise ValueError(f"set: {ref!r} must be written 'component.parameter'")
+        spec = _component(out, comp)
+        _check_value(ref, value)
+        try:
+            known = _declared_parameters(spec)
+        except ContractError as exc:
+            raise ScenarioError(f"set {ref}: {exc}") from None
+        if known is not None and param not in known:
+            raise ScenarioError(f"set {ref}: {spec.implementation} ({comp}) has no parameter {param!r} "
+                                f"(its parameters: {', '.join(known)})")
+        if known is not None:  # the value's kind and size now, not when the run (or a sweep's case) builds it
+            try:
+                check_value(known[param], value, f"set {ref}")
+            except ContractError as exc:
+                raise ScenarioError(str(exc)) from None
+        spec.parameters[param] = _plain(value)
+        spec.param_origins[param] = origin
+        if spec.implementation is not None:
+            resolve_file_parameters(spec.implementation, spec.parameters, lambda p: Path.cwd(), spec.folder, (param,))
+    return out
+
+
+def apply_swap(sc, component: str, implementation: str, parameters: Mapping[str, Any] | None = None,
+               origin: str = API_ORIGIN):
+    """A copy of ``sc`` with ``component``'s implementation replaced (see :meth:`Scenario.swap`)."""
+    out = copy.deepcopy(sc)
+    spec = _component(out, component)
+    impl = str(implementation)
+    if impl.lower().endswith(".fmu"):
+        path = real_path(impl)
+        if path.is_dir():
+            raise IsADirectoryError(f"swap {component}: FMU file {path} is a folder, not an FMU file")
+        if not path.is_file():
+            raise FileNotFoundError(f"swap {component}: FMU file {path} not found")
+        spec.fmu, spec.implementation = str(path), None
+    else:
+        try:
+            registry.lookup(impl, spec.folder)  # fail now, naming the implementation, not at build time
+        except ContractError as exc:
+            raise ScenarioError(f"swap {component}: {exc}") from None
+        spec.implementation, spec.fmu = impl, None
+        spec.start = {}  # start values belong to the FMU it replaces
+    spec.origin = origin
+    if parameters is not None:
+        for k, v in parameters.items():
+            _check_value(f"{component}.{k}", v)
+        spec.parameters = {k: _plain(v) for k, v in parameters.items()}
+        spec.param_origins = {k: origin for k in parameters}
+    return out

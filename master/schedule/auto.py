@@ -1,0 +1,214 @@
+"""The automatic staggered schedule (``[schedule] kind = "auto"``, ``rotorcosim run --schedule auto``).
+
+TM intervals run until the mechanical outputs handed to the thermal side are steady cycle to cycle (the paper's
+assumption: "once the mechanical steady state is reached, there is no significant change in the dynamic
+response"); TO intervals run until the thermal outputs that feed the mechanical side have drifted by more than
+``drift_tolerance``, within min/max durations. The last stretch is one TM interval, where results are read.
+
+Error control (``tolerance``, percent; ``--tolerance PCT``): every TO interval's error is estimated at the next
+restart by the thermal-only hold (master/manipulator/hold.py: the hand-off error of each held power, carried through the
+thermal components over the interval's length, relative to the temperatures in degrees C as Table 4 reports them),
+and the next TO interval's length is scaled by tolerance / estimate (at most halved or doubled per interval; the
+estimate grows with the extrapolation over the interval). The first TO interval is ``to_min`` long. The run
+reports the largest estimate of its intervals (``estimated_error_pct``): an estimate of the largest error of a
+Table 4 temperature against the monolithic run, which bounds the others (the mechanical results follow the
+temperatures they are read at).
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Sequence
+
+import numpy as np
+
+from rotorcosim.master.manipulator.hold import feeds_thermal
+from rotorcosim.master.schedule.timeline import Schedule, ScheduleError, _positive, register_schedule
+
+#: floors of the relative drift test, by unit (a change smaller than this is no drift)
+DRIFT_FLOORS = {"K": 0.5, "m": 1e-7, "Pa.s": 1e-4, "W": 1.0, "N": 1.0}
+#: the TO length controller: never more than this factor up or down from one interval to the next, and a
+#: the largest ``tolerance`` [%]: an error of a result larger than the result itself accepts anything (1e308 was
+#: accepted); the paper's Table 6 differences are below 2 %
+TOLERANCE_MAX_PCT = 100.0
+#: safety factor on tolerance / estimate
+GROWTH_LIMITS = (0.5, 2.0)
+SAFETY = 0.8
+
+
+@register_schedule("auto")
+@dataclass
+class AutoSchedule(Schedule):
+    """TM until the tracked mechanical outputs are steady cycle to cycle, TO until the thermal outputs that
+    feed the mechanical side have drifted by more than ``drift_tolerance`` (relative), within min/max durations;
+    with ``tolerance`` (percent), TO lengths follow the estimated error (module docstring)."""
+
+    duration: float
+    step: float
+    thermal_step: float
+    steady_tolerance: float = 0.01
+    steady_cycles: int = 3
+    drift_tolerance: float = 0.02
+    tm_min: float = 0.02
+    tm_max: float = 0.5
+    to_min: float = 0.5
+    to_max: float = 30.0
+    tracked: Sequence[str] = ()
+    tolerance: float | None = None
+
+    keys = ("steady_tolerance", "steady_cycles", "drift_tolerance", "tm_min", "tm_max", "to_min", "to_max",
+            "tracked", "tolerance")
+
+    def __post_init__(self):
+        for name in ("duration", "step", "thermal_step", "steady_tolerance", "drift_tolerance",
+                     "tm_min", "tm_max", "to_min", "to_max"):
+            setattr(self, name, _positive(name, getattr(self, name)))
+        if self.tolerance is not None:
+            self.tolerance = _positive("tolerance (percent)", self.tolerance)
+            if self.tolerance > TOLERANCE_MAX_PCT:
+                raise ScheduleError(f"schedule: tolerance {self.tolerance:g} % accepts results off by more than "
+                                    f"they are (at most {TOLERANCE_MAX_PCT:g} %; it is in percent)")
+        if self.tm_min > self.tm_max or self.to_min > self.to_max:
+            raise ScheduleError("schedule: minimum interval durations must not exceed the maxima")
+        if int(self.steady_cycles) < 1:
+            raise ScheduleError("schedule: steady_cycles must be >= 1")
+
+    @classmethod
+    def from_spec(cls, spec, duration, step, thermal_step, speed_rpm):
+        total = _positive("duration", duration if duration is not None else spec.get("duration"))
+        return cls(total, step, thermal_step, **{k: spec[k] for k in cls.keys if k in spec})
+
+    def run(self, sim, first: int = 0) -> None:
+        """Drive ``sim`` to the end. The loop's own state (which phase comes next, the TO length the error
+        control reached) lives in ``sim.schedule_state``, so that a checkpoint taken at an interval end carries
+        it and a resumed run makes the same decisions (master/run/checkpoint.py); ``first`` is not used."""
+        if not sim.speed_rpm:
+            raise ScheduleError("the automatic schedule needs speed_rpm (its steadiness test works cycle by cycle)")
+        end = sim.t0 + self.duration
+        eps = 1e-9
+        state = sim.schedule_state = sim.schedule_state or {"next": "TM", "to_len": self.to_min}
+        while sim.t < end - eps:
+            remaining = end - sim.t
+            if state["next"] == "TM":
+                if remaining <= self.tm_max + self.to_min:
+                    # no room left for a thermal-only interval: one thermo-mechanical interval to the end
+                    # (stopping it early when steady would only start another one)
+                    state["next"] = "end"
+                    sim.run_interval("TM", remaining, self.step, reason="end")
+                    break
+                # the TO length is set after this interval, from the estimate its restart gave: flagged before
+                # it runs, so that a checkpoint at its end (which precedes the update) resumes the same way
+                state.update(next="TO", adjust=True)
+                sim.run_interval("TM", self.tm_max, self.step, _SteadyTest(sim, self), reason="tm_max")
+                if sim.report.stopped:
+                    break
+                continue
+            if state.pop("adjust", False):
+                estimate = sim.hold.report.last_estimate_pct
+                if self.tolerance is not None and estimate is not None:
+                    factor = SAFETY * self.tolerance / max(estimate, 1e-12)
+                    state["to_len"] = min(max(state["to_len"] * min(max(factor, GROWTH_LIMITS[0]),
+                                                                    GROWTH_LIMITS[1]), self.to_min), self.to_max)
+                elif self.tolerance is None:
+                    state["to_len"] = self.to_max
+            # keep room for a final thermo-mechanical interval, where the results are read
+            state["next"] = "TM"
+            d_to = min(state["to_len"], remaining - self.tm_max)
+            if d_to < self.to_min:
+                continue
+            sim.run_interval("TO", d_to, self.thermal_step, _DriftTest(sim, self), reason="to_max")
+            if sim.report.stopped:
+                break
+
+
+class _StopTest:
+    every = 1
+
+    def sample(self, sim) -> None:
+        pass
+
+    def block_refs(self) -> list[str]:
+        """The outputs ``sample`` reads (the compiled loop hands their rows to ``sample_block``)."""
+        return []
+
+    def sample_block(self, cols) -> None:
+        """``sample`` for a block of base steps: ``cols[ref]`` holds one row per step."""
+
+    def check(self, sim, t: float) -> str | None:
+        return None
+
+
+class _SteadyTest(_StopTest):
+    """Steady when the RMS of the tracked outputs over a rotor cycle changes by less than the tolerance
+    (relative) for ``steady_cycles`` consecutive cycles, after ``tm_min``."""
+
+    def __init__(self, sim, sch: AutoSchedule):
+        self.sch = sch
+        comps = sim.system.components
+        self.refs = list(sch.tracked) or sorted({l.con.src for l in sim.engine.links if feeds_thermal(
+            comps[l.con.src_component], comps[l.con.dst_component])})
+        for r in self.refs:
+            sim.system._port(r, "output")
+        self.every = max(1, int(round(sim.cycle / sch.step)))
+        self.t_begin = sim.t
+        self.acc = None
+        self.n = 0
+        self.last = None
+        self.steady = 0
+
+    def sample(self, sim):
+        if not self.refs:
+            return
+        vals = np.concatenate([np.ravel(sim.value(r)) for r in self.refs])
+        self.acc = vals * vals if self.acc is None else self.acc + vals * vals
+        self.n += 1
+
+    def block_refs(self):
+        return list(self.refs)
+
+    def sample_block(self, cols):
+        if not self.refs:
+            return
+        rows = np.concatenate([cols[r] for r in self.refs], axis=1)
+        sq = rows * rows
+        if self.acc is not None:
+            sq = np.vstack([self.acc[None, :], sq])
+        # added in order, row after row, as ``sample`` does step by step (np.sum would pair them otherwise)
+        self.acc = np.add.accumulate(sq, axis=0)[-1]
+        self.n += rows.shape[0]
+
+    def check(self, sim, t):
+        if self.acc is None:
+            return "steady" if t - self.t_begin >= self.sch.tm_min - 1e-12 else None
+        rms = np.sqrt(self.acc / self.n)
+        self.acc, self.n = None, 0
+        if self.last is not None:
+            scale = np.maximum(np.abs(self.last), 1e-12)
+            change = float(np.max(np.abs(rms - self.last) / scale))
+            self.steady = self.steady + 1 if change < self.sch.steady_tolerance else 0
+        self.last = rms
+        if t - self.t_begin >= self.sch.tm_min - 1e-12 and self.steady >= self.sch.steady_cycles:
+            return "steady"
+        return None
+
+
+class _DriftTest(_StopTest):
+    """Ends a thermal-only interval when an output of a thermal component that feeds a frozen (mechanical)
+    component has drifted from its value at the interval start by more than the tolerance, after ``to_min``."""
+
+    def __init__(self, sim, sch: AutoSchedule):
+        self.sch = sch
+        comps = sim.system.components
+        self.refs = sorted({l.con.src for l in sim.engine.links
+                            if feeds_thermal(comps[l.con.dst_component], comps[l.con.src_component])})
+        self.start = {r: np.array(sim.value(r), dtype=float) for r in self.refs}
+        self.floors = {r: DRIFT_FLOORS.get(sim.system._port(r, "output").unit, 0.0) for r in self.refs}
+        self.t_begin = sim.t
+
+    def check(self, sim, t):
+        if t - self.t_begin < self.sch.to_min - 1e-12:
+            return None
+        for r in self.refs:
+            d = np.abs(sim.value(r) - self.start[r])
+            if np.any(d > self.sch.drift_tolerance * np.abs(self.start[r]) + self.floors[r]):
+                return f"drift of {r}"
+        return None

@@ -1,0 +1,227 @@
+"""Schedules: which phase runs when, at which step (the paper's staggered scheme, section 3.2).
+
+* ``TM`` (thermo-mechanical): every component steps at small steps;
+* ``TO`` (thermal-only): components that take no part in TO are frozen, the others step at a large step,
+  fed with the frozen components' outputs held at their RMS (or mean) over the last N rotor cycles of the
+  previous TM interval.
+
+A schedule is a class behind a registry (``kind`` of a scenario's ``[schedule]``): an explicit ``timeline``,
+``monolithic`` (one TM interval) or ``auto`` (master/schedule/auto.py: decided while the run goes, optionally to an error
+tolerance). A new schedule is a new registered class with ``from_spec`` and ``run``. Every run reports the timeline
+it actually used.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import Any, Mapping
+
+from rotorcosim.components.contract import ContractError, PHASES
+
+
+class ScheduleError(ContractError):
+    pass
+
+
+def _positive(name: str, value: Any) -> float:
+    try:
+        x = float(value)
+    except (TypeError, ValueError):
+        raise ScheduleError(f"schedule: {name} must be a number, got {value!r}") from None
+    if not math.isfinite(x) or x <= 0.0:
+        raise ScheduleError(f"schedule: {name} must be a positive finite number, got {value!r}")
+    return x
+
+
+@dataclass(frozen=True)
+class Interval:
+    phase: str
+    duration: float
+    step: float
+
+    def __post_init__(self):
+        if self.phase not in PHASES:
+            raise ScheduleError(f"schedule: interval phase {self.phase!r} not in {PHASES}")
+        _positive("interval duration", self.duration)
+        _positive("interval step", self.step)
+        if self.step > self.duration * (1 + 1e-12):
+            raise ScheduleError(f"schedule: {self.phase} interval step {self.step} s is longer than its duration {self.duration} s")
+
+    @property
+    def steps(self) -> int:
+        """Number of steps; the last one may be shortened so the interval ends exactly at its duration."""
+        return max(1, math.ceil(self.duration / self.step - 1e-9))
+
+
+#: the schedules by kind (a registry, like the components'): a new schedule is a new class, registered here
+SCHEDULES: dict[str, type["Schedule"]] = {}
+#: [schedule] keys every kind accepts (the Simulation's, and the step defaults)
+COMMON_KEYS = ("kind", "duration", "step", "thermal_step", "speed_rpm", "hold", "hold_cycles",
+               "restart_cycles")
+
+
+def register_schedule(kind: str):
+    """Class decorator: make a :class:`Schedule` available as ``[schedule] kind``."""
+
+    def add(cls):
+        cls.kind = kind
+        SCHEDULES[kind] = cls
+        return cls
+
+    return add
+
+
+class Schedule:
+    """What runs when. ``from_spec`` builds one from a scenario's ``[schedule]`` table (its own keys in
+    ``keys``); ``run`` drives a Simulation through it."""
+
+    kind = ""
+    #: the [schedule] keys this kind reads beyond COMMON_KEYS
+    keys: tuple[str, ...] = ()
+
+    @classmethod
+    def from_spec(cls, spec: Mapping[str, Any], duration: float | None, step: float, thermal_step: float,
+                  speed_rpm: float | None) -> "Schedule":
+        raise NotImplementedError
+
+    # every schedule has a ``duration`` (s): the simulated time it covers
+
+    def run(self, sim, first: int = 0) -> None:
+        """Drive ``sim`` through the schedule, from its interval ``first`` on (a resumed run)."""
+        raise NotImplementedError
+
+
+def _interval_duration(spec: Mapping[str, Any], speed_rpm: float | None) -> float:
+    if "duration" in spec and "cycles" in spec:
+        raise ScheduleError(f"schedule: interval {dict(spec)} gives both duration and cycles")
+    if "cycles" in spec:
+        if not speed_rpm:
+            raise ScheduleError("schedule: an interval in rotor cycles needs schedule.speed_rpm")
+        return _positive("interval cycles", spec["cycles"]) * 60.0 / _positive("speed_rpm", speed_rpm)
+    if "duration" not in spec:
+        raise ScheduleError(f"schedule: interval {dict(spec)} needs a duration (s) or cycles")
+    return _positive("interval duration", spec["duration"])
+
+
+@register_schedule("timeline")
+@dataclass
+class Timeline(Schedule):
+    """An explicit list of intervals (the paper's Fig. 8): ``[[schedule.intervals]]`` with phase, duration or
+    cycles, and an optional step."""
+
+    intervals: list[Interval]
+    keys = ("intervals",)
+
+    @property
+    def duration(self) -> float:
+        return sum(i.duration for i in self.intervals)
+
+    @classmethod
+    def from_spec(cls, spec, duration, step, thermal_step, speed_rpm):
+        raw = spec.get("intervals")
+        if not raw:
+            raise ScheduleError("schedule: kind 'timeline' needs [[schedule.intervals]]")
+        intervals = []
+        for item in raw:
+            phase = item.get("phase")
+            d = _interval_duration(item, speed_rpm)
+            h = item.get("step", step if phase == "TM" else thermal_step)
+            intervals.append(Interval(phase, d, min(_positive("interval step", h), d)))
+        tl = cls(intervals)
+        if duration is not None:
+            tl = cut_timeline(tl, _positive("duration", duration))
+        return tl
+
+    def run(self, sim, first: int = 0) -> None:
+        if any(iv.phase == "TO" for iv in self.intervals) and not sim.speed_rpm:
+            raise ScheduleError("a schedule with thermal-only intervals needs speed_rpm (the rotor cycle over which "
+                                "the held outputs are averaged)")
+        for i, iv in enumerate(self.intervals[first:], first):
+            sim.interval_index = i
+            sim.run_interval(iv.phase, iv.duration, iv.step)
+            if sim.report.stopped:
+                break
+
+
+@register_schedule("monolithic")
+class Monolithic(Timeline):
+    """One thermo-mechanical interval over ``duration`` at ``step``."""
+
+    keys = ()
+
+    @classmethod
+    def from_spec(cls, spec, duration, step, thermal_step, speed_rpm):
+        total = _positive("duration", duration if duration is not None else spec.get("duration"))
+        return cls([Interval("TM", total, min(step, total))])
+
+
+def from_spec(spec: Mapping[str, Any], duration: float | None = None) -> Schedule:
+    """Build a schedule from a scenario's ``[schedule]`` table: ``kind`` names a registered :class:`Schedule`
+    (default ``monolithic``), which reads its own keys. ``duration`` overrides the scenario's total duration
+    (a timeline is then cut or its last interval stretched)."""
+    known = set(COMMON_KEYS).union(*(c.keys for c in SCHEDULES.values()))
+    unknown = set(spec) - known
+    if unknown:
+        raise ScheduleError(f"schedule: unknown key(s) {sorted(unknown)}; known: {sorted(known)}")
+    kind = spec.get("kind", "monolithic")
+    cls = SCHEDULES.get(kind)
+    if cls is None:
+        raise ScheduleError(f"schedule: kind {kind!r} not in {tuple(SCHEDULES)}")
+    step = _positive("step", spec.get("step", 1e-5))
+    thermal_step = _positive("thermal_step", spec.get("thermal_step", 0.1))
+    return cls.from_spec(spec, duration, step, thermal_step, spec.get("speed_rpm"))
+
+
+def cut_timeline(tl: Timeline, duration: float) -> Timeline:
+    """The timeline cut at ``duration``; if it is shorter, its last interval is stretched."""
+    out: list[Interval] = []
+    t = 0.0
+    for iv in tl.intervals:
+        if t + iv.duration >= duration - 1e-12:
+            d = duration - t
+            if d > 1e-12:
+                out.append(Interval(iv.phase, d, min(iv.step, d)))
+            return Timeline(out)
+        out.append(iv)
+        t += iv.duration
+    last = out[-1]
+    out[-1] = Interval(last.phase, last.duration + duration - t, last.step)
+    return Timeline(out)
+
+
+@dataclass
+class UsedInterval:
+    phase: str
+    t_start: float
+    t_end: float
+    step: float
+    steps: int
+    reason: str = ""
+
+    def as_dict(self) -> dict:
+        return {"phase": self.phase, "t_start": self.t_start, "t_end": self.t_end, "step": self.step,
+                "steps": self.steps, "reason": self.reason}
+
+
+@dataclass
+class RunReport:
+    timeline: list[UsedInterval] = field(default_factory=list)
+    wall_time_s: float = 0.0
+    #: the process's CPU time over the run (with wall_time_s: the share the machine's other load took)
+    cpu_time_s: float = 0.0
+    component_steps: dict[str, int] = field(default_factory=dict)
+    t_end: float = 0.0
+    error: str | None = None
+    #: "complete", "stopped" (a component asked to stop: see ``stopped``), "failed" or "interrupted"
+    status: str = "complete"
+    #: ``{"component", "t_s", "reason"}`` of the stop request that ended the run, or None
+    stopped: dict | None = None
+    #: what the thermal-only hold measured (master/manipulator/hold.py HoldReport), or None
+    hold: object = None
+
+    def as_dict(self) -> dict:
+        return {"timeline": [u.as_dict() for u in self.timeline], "wall_time_s": self.wall_time_s,
+                "cpu_time_s": self.cpu_time_s, "component_steps": dict(self.component_steps), "t_end": self.t_end, "error": self.error,
+                "status": self.status, "stopped": self.stopped,
+                "hold": self.hold.as_dict() if self.hold is not None else None}
+
