@@ -2,12 +2,12 @@
 
     python docs/reference/generate.py [OUT_DIR]
 
-- cli.md: every command's ``--help`` text, from the argparse parsers (``rotorcosim.master.cli``: ``build_parser``,
-  ``COMMANDS``, each command module's ``add_arguments(parser)``);
+- cli.md: every command's ``--help`` text, from the argparse parsers (``rotorcosim.master.cli.program``:
+  ``build_parser``, ``commands()``, the master's and the cases' commands, each module's ``add_arguments(parser)``);
 - components.md: every built-in component implementation (``rotorcosim.components.registry.BUILTIN``) with its
   parameters and ports (causality, size, unit, description; ``components/contract.py``'s ``Variable``);
 - scenario.md: every table and key the scenario schema accepts (the schema's ``TABLES``, ``COMPONENT``,
-  ``CONNECTION`` and ``INTERVAL``) with the values it takes.
+  ``CONNECTION`` and ``INTERVAL``, ``rotorcosim.master.scenario.schema``) with the values it takes.
 
 OUT_DIR defaults to this file's folder. ``tests/test_docs.py`` regenerates into a temporary folder and fails if a
 committed page differs: after changing a command, a component's declarations or the schema, run this script and
@@ -44,8 +44,21 @@ def cli_page() -> str:
             os.environ["COLUMNS"] = columns
 
 
+def _cli():
+    """The module holding the program's parser and command table."""
+    for module in ("rotorcosim.master.cli.program", "rotorcosim.master.cli"):
+        try:
+            cli = importlib.import_module(module)
+        except ModuleNotFoundError:
+            continue
+        if hasattr(cli, "build_parser"):
+            return cli
+    raise ModuleNotFoundError("the rotorcosim program's parser (rotorcosim.master.cli.program.build_parser)")
+
+
 def _cli_page() -> str:
-    cli = importlib.import_module("rotorcosim.master.cli")
+    cli = _cli()
+    table = cli.commands() if hasattr(cli, "commands") else cli.COMMANDS   # the master's and the cases' commands
     parser = cli.build_parser()
     parser.prog = "rotorcosim"
     out = [HEADER, "# Command line reference\n\n",
@@ -53,7 +66,7 @@ def _cli_page() -> str:
            "shipped name (`rotorcosim scenarios`), a TOML file or an `.ssp` archive.\n\n",
            "## rotorcosim\n\n```text\n", parser.format_help(), "```\n"]
     sub = next(a for a in parser._actions if isinstance(a, argparse._SubParsersAction))
-    for name, (module, _help) in cli.COMMANDS.items():
+    for name, (module, _help) in table.items():
         p = sub.choices[name]
         if len(p._actions) <= 1:   # build_parser adds a command's options only for the command being run
             importlib.import_module(module).add_arguments(p)
