@@ -55,15 +55,13 @@ TIMING_RUNS = 6
 #: rotor revolutions in all the staggered run's TM intervals (half in the first, which holds the blade loss, a
 #: quarter in each of the other two). The paper's interval lengths are "decided on a trial and error basis"
 #: (section 3.2); its 50 revolutions cap the speed-up at 2 / 0.1875 s = 10.7 whatever the implementation. Chosen by
-#: the largest error of any Table 4 result against the monolithic run at the seven paper levels (2 s, `python
-#: bench/bench_table6_levels.py`; issue 12 accepts 2 %), measured per count (712 ... 14 252 N; main b0fa112, the
-#: thermal network's journal in shells):
+#: the largest error of any Table 4 result against the monolithic run at the seven paper levels over 2 s (`python
+#: bench/bench_table6_levels.py`; the acceptance is 2 %), measured per count (712 ... 14 252 N):
 #:   40: 0.29 0.29 0.30 0.96 0.71 0.80 0.93 %   (largest 0.96)
 #:   36: 0.31 0.30 0.33 1.06 0.80 1.06 1.27 %   (1.27)
 #:   32: 0.28 0.34 0.50 1.28 0.93 1.00 1.25 %   (1.28)
 #:   28: 0.42 0.61 0.67 1.60 1.20 1.03 1.18 %   (1.60)
 #:   24: 0.63 0.97 3.70 4.46 1.67 2.13 2.26 %   (4.46: fails)
-#: (with the single journal node before it, 2c20aac: 32 -> 1.27 % at most, 28 -> 1.60, 24 -> 4.69, 20 -> 20.5)
 #: 32 is one step of 4 above the fewest that pass at every level (28), on the plateau that 36 shares; the cap on
 #: the speed-up is then 400 000 / 24 000 TM steps = 16.7 (40: 13.4), which the run's fixed costs (~75 ms) and this
 #: machine's +-20 % drift otherwise kept from showing >= 12 in every comparison

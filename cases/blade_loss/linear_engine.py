@@ -1,5 +1,5 @@
 """The co-simulated engine linearised: the one linear model behind ``rotorcosim critical-speeds`` and the
-calibration of the rotor data (issue 17; DESIGN, "Calibrate on the system that is simulated").
+calibration of the rotor data (calibrated on the system that is simulated).
 
 Each support of bearings #0 and #5 is taken from the components the blade-loss scenario simulates, with the
 scenario's parameters, at the preloaded rest state and the running speed:

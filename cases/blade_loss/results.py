@@ -8,7 +8,7 @@ state the paper tabulates; temperatures at the end of the run):
    amplitude F_u;
 3. ``max_contact_load_N``: the largest ball contact load (inner or outer race) over the window;
 4. ``max_contact_stress_MPa``: the largest ball contact stress (eq. 10) of the INNER race over the window, in
-   the summary and in Fig. 12 alike (issue 17 item 5). The paper's text says its Fig. 12 shows the outer-race
+   the summary and in Fig. 12 alike. The paper's text says its Fig. 12 shows the outer-race
    stress, but its Table 5 load/stress pairs follow the inner-race Hertz law (248 Q^(1/3) MPa at #0, 235 at #5,
    f_i = 0.53; tests/components/test_bearing_hertz.py), so the inner race is the contact its stresses describe,
    and the one whose stress reaches the 3200 MPa of its damage criterion under the blade-loss load. The outer

@@ -41,7 +41,7 @@ def export_scenario(sc, dest_dir: str | Path, only: str | None = None) -> dict[s
     try:
         dest_dir.mkdir(parents=True, exist_ok=True)
     except OSError as exc:  # a file on the path, no permission: one line naming the folder
-        raise ExportError(f"output folder {dest_dir}: cannot create it ({exc.strerror or exc})") from None
+        raise ExportError(f"output folder {dest_dir}: cannot create the folder ({exc.strerror or exc})") from None
     out = {}
     for n in names:
         spec = sc.components[n]
