@@ -50,6 +50,26 @@ def test_every_schema_key_is_in_the_scenario_page():
     assert not missing, f"docs/reference/scenario.md does not mention {missing}"
 
 
+def test_outputs_page_names_every_key(tmp_path):
+    """Every key of a run's summary.json and every attribute of its timeseries.h5 is in docs/reference/outputs.md
+    (a small run without a case), and so is every Table 4 result of the blade-loss case."""
+    import h5py
+
+    gen = _generator()
+    gen._import_checkout()
+    import rotorcosim
+    from rotorcosim.cases.blade_loss import results
+
+    res = rotorcosim.simulate("toy_thermomechanical", duration=0.01, out=tmp_path / "run", figures=False)
+    page = (ROOT / "docs" / "reference" / "outputs.md").read_text(encoding="utf-8")
+    names = set(res.summary) | set(res.summary["estimate"]) | set(results.RESULT_KEYS)
+    names |= {k for interval in res.summary["timeline"] for k in interval}
+    with h5py.File(tmp_path / "run" / "timeseries.h5") as f:
+        names |= set(f.attrs) | {a for ds in f.values() for a in ds.attrs}
+    missing = sorted(n for n in names if f"`{n}`" not in page)
+    assert not missing, f"docs/reference/outputs.md does not name {missing}"
+
+
 def _markdown_files():
     return [ROOT / "README.md"] + sorted((ROOT / "docs").rglob("*.md"))
 
