@@ -5,7 +5,7 @@ the bearing's drag torque (bearing/oil.py) and the damper's film (damper/viscosi
 another unit, a diverged thermal network), not the fit's validity: ASTM D341 holds over the liquid range, for an
 SAE 30 oil roughly from its pour point (about 250 K) to its flash point (about 500 K). The guard is wider so that
 an overshoot of a run stays computable; no run of the paper's cases comes near either end except the largest
-unbalances (docs/calibration.md: bearing #0's oil passed 600 K at 14 252 N, and that run stops with this message).
+unbalances (docs/results/calibration.md: bearing #0's oil passed 600 K at 14 252 N, and that run stops with this message).
 """
 from __future__ import annotations
 

@@ -7,7 +7,7 @@ packages add theirs through the entry-point group ``rotorcosim.components``::
     "bearing.mine" = "mypackage.bearing:MyBearing"
 
 Without packaging, a scenario names a plug-in class directly as ``"module:Class"``: the module is imported from
-the scenario file's folder first, then from ``sys.path`` (docs/plugins.md).
+the scenario file's folder first, then from ``sys.path`` (docs/how-to/plugins.md).
 """
 from __future__ import annotations
 

@@ -47,7 +47,7 @@ composition rules (an ``implementation`` replaces an inherited ``fmu`` and the o
 :mod:`rotorcosim.master.scenario.compose`; errors found after composition name the file that brought the entry.
 
 An implementation may also be a plug-in class written ``"module:Class"``: the module is imported from the
-folder of the scenario file that names it first, then from ``sys.path`` (no packaging needed; docs/plugins.md).
+folder of the scenario file that names it first, then from ``sys.path`` (no packaging needed; docs/how-to/plugins.md).
 
 Relative paths (FMU files, model files) are resolved against the scenario file's folder. Everything SI;
 quantities at the edges carry their unit in the key name (``speed_rpm``).

@@ -1,4 +1,4 @@
-"""Plug-ins without packaging (docs/plugins.md): the worked example runs, and bad plug-ins get clear errors."""
+"""Plug-ins without packaging (docs/how-to/plugins.md): the worked example runs, and bad plug-ins get clear errors."""
 from pathlib import Path
 
 import numpy as np
