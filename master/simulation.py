@@ -16,7 +16,7 @@ import numpy as np
 from rotorcosim.components.contract import ContractError
 
 from rotorcosim.master.compiled import ahead
-from rotorcosim.master.compiled import runner as compiled
+from rotorcosim.master.compiled import choice as compiled
 from rotorcosim.master.core.algorithm import Engine, EngineSettings, SimulationDiverged
 from rotorcosim.master.manipulator.hold import DEFAULT_HOLD, HOLDS, RESTART_CYCLES, StaggeredHold
 from rotorcosim.master.schedule.timeline import RunReport, Schedule, ScheduleError, UsedInterval

@@ -4,7 +4,7 @@ The loop's glue is data, not generated code: all components' ports are views of 
 (the kernels keep their named tuples: the tuple fields are those views), the links are rows of index tables, and
 the functions here loop over table rows at run time. They are compiled once per package version (numba's disk
 cache) whatever the system; only the loop that calls each component's kernel is generated (a few lines per
-component), and it calls the kernels through their addresses (:func:`call_kernel`), so that neither the glue nor
+component), and it calls the kernels through their addresses (numba_internals.call_kernel), so that neither the glue nor
 the kernels are re-optimised inside it. Measured before this design: one generated
 function per system with every link and port spelled out inline took 95-140 s CPU to compile on a fresh machine,
 most of it LLVM's scalar replacement of aggregates over that one large function.
@@ -27,9 +27,9 @@ from __future__ import annotations
 
 import math
 
-from numba import njit, types
-from numba.core import cgutils
-from numba.extending import intrinsic
+from numba import types
+
+from rotorcosim.components.numba_internals import call_trampoline, kernel_jit
 
 # the fields of a link's bookkeeping row M[j] (algorithm._Link's, then the hand-off window's (hold.HandOff):
 # ring position, count, has t_last, t_last, cycle sum, cycle count, last sample, samples per cycle, cycles written
@@ -52,7 +52,7 @@ C_IN0, C_IN1, C_OUT0, C_OUT1, C_W0, C_W1 = range(6)
 NC = 6
 
 
-@njit(cache=True, no_cfunc_wrapper=True)
+@kernel_jit
 def gather(i, t, hc, X, LI, M, V, CT, IDX):
     """The inputs of component i from its links, just before it fires over [t, t + hc] (algorithm._Link.value,
     then hold.Restart's offset on a hand-back)."""
@@ -103,7 +103,7 @@ def gather(i, t, hc, X, LI, M, V, CT, IDX):
                     X[dst + q] = X[dst + q] + V[vo + 3 * n + q] * rf
 
 
-@njit(cache=True, no_cfunc_wrapper=True)
+@kernel_jit
 def finite(X, CT, IDX, i):
     """Are component i's watched outputs (those other components read) finite (Engine._fire)?"""
     tot = 0.0
@@ -114,7 +114,7 @@ def finite(X, CT, IDX, i):
     return math.isfinite(tot)
 
 
-@njit(cache=True, no_cfunc_wrapper=True)
+@kernel_jit
 def produced(i, t, hc, X, LI, M, V, G, C, CT, IDX):
     """The bookkeeping of component i's outgoing links after it fired over [t, t + hc] (algorithm._Link.produced;
     hold.HandOff.record for a hand-off window)."""
@@ -186,7 +186,7 @@ def produced(i, t, hc, X, LI, M, V, G, C, CT, IDX):
                 M[j, CN] = 0.0
 
 
-@njit(cache=True, no_cfunc_wrapper=True)
+@kernel_jit
 def end_of_step(k, k0, check_every, X, width, buf):
     """The observers' row of base step k (every Real output, the first ``width`` values of X) and, every
     ``check_every`` base steps, the finiteness of them all (Engine.check_finite): False when one is not."""
@@ -201,55 +201,6 @@ def end_of_step(k, k0, check_every, X, width, buf):
     return True
 
 
-@intrinsic
-def call_kernel(typingctx, addr, s, p, u, y, t, h):
-    """status = kernel(s, p, u, y, t, h) through the address of the kernel's compiled function (numba's own
-    calling convention, exceptions propagated), for a kernel compiled for exactly these argument types and
-    returning int64 (compiled.kernel_address checks both).
-
-    By address rather than by name so that the kernels' code is not linked into the loop's module: numba
-    re-optimises and re-emits every function linked into a module, so a loop calling nine kernels by name compiled
-    them all a second time inside itself. Each kernel keeps its own compilation and disk cache; the loop's
-    compiled code holds no address (they are arguments), so its disk cache stays valid across processes."""
-    sig = types.int64(addr, s, p, u, y, t, h)
-
-    def codegen(context, builder, signature, args):
-        argtys = signature.args[1:]
-        fnty = context.call_conv.get_function_type(types.int64, argtys)
-        fn = builder.inttoptr(args[0], fnty.as_pointer())
-        status, res = context.call_conv.call_function(builder, fn, types.int64, argtys, args[1:])
-        with cgutils.if_unlikely(builder, status.is_error):
-            context.call_conv.return_status_propagate(builder, status)
-        return res
-
-    return sig, codegen
-
-
-#: the trampolines' argument types (master/kernel_args.trampoline): the packed containers' address, the kernel's
-#: address, t, h, and the containers' type (a TypeRef, passed as a null pointer: it only types the compilation)
-TRAMPOLINE_ARGS = (types.int64, types.int64, types.float64, types.float64, types.TypeRef(types.int64))
-
-
-@intrinsic
-def call_trampoline(typingctx, taddr, ptr, kaddr, t, h):
-    """status = trampoline(ptr, kaddr, t, h) through the trampoline's address (kernel_args.trampoline compiled
-    for one component's container types): every kernel is called the same way, so the loop below is one
-    function for every system."""
-    sig = types.int64(taddr, ptr, kaddr, t, h)
-
-    def codegen(context, builder, signature, args):
-        fnty = context.call_conv.get_function_type(types.int64, TRAMPOLINE_ARGS)
-        fn = builder.inttoptr(args[0], fnty.as_pointer())
-        proto = cgutils.get_null_value(context.get_value_type(TRAMPOLINE_ARGS[4]))
-        status, res = context.call_conv.call_function(builder, fn, types.int64, TRAMPOLINE_ARGS,
-                                                      list(args[1:]) + [proto])
-        with cgutils.if_unlikely(builder, status.is_error):
-            context.call_conv.return_status_propagate(builder, status)
-        return res
-
-    return sig, codegen
-
-
 _I1, _I2, _F1, _F2 = types.int64[::1], types.int64[:, ::1], types.float64[::1], types.float64[:, ::1]
 #: run_chunk's argument types (every system's: compiled.Runner.run); a helper process compiles it ahead on a fresh
 #: machine (master/compiled/ahead.py; tests/master/test_ahead.py checks them against the runner's call)
@@ -257,7 +208,7 @@ RUN_CHUNK_SIG = (types.int64, types.int64, types.int64, types.float64, types.flo
                  _I1, types.int64, _F1, _I2, _F2, _F1, _F1, _F1, _I2, _I1, _I1, _I1, _I1)
 
 
-@njit(cache=True, no_cfunc_wrapper=True)
+@kernel_jit
 def run_chunk(k0, k1, rstart, t0, h, check_every, count, buf, status, mult, width, X, LI, M, V, G, C, CT, IDX,
               TA, PA, KA):
     """Base steps k0 .. k1 - 1 of an interval (master/compiled/runner.py): per step the components in order, each that

@@ -33,75 +33,32 @@ interval, an observer without step_block, the automatic schedule's steadiness te
 """
 from __future__ import annotations
 
+import weakref
+
 import numba
 import numpy as np
 
 from rotorcosim.components.contract import ContractError
 from rotorcosim.components.kernels import PYTHON, KernelComponent
+from rotorcosim.components.numba_internals import TypingError, compile_for, native_address
 
 from rotorcosim.master.compiled import kernel_args
 from rotorcosim.master.compiled import loop_ops as op
 # a link's bookkeeping row M[j]: loop_ops defines its fields
 from rotorcosim.master.compiled.loop_ops import (CN, CSUM, CUR_T, HAS_ACC, HAS_CUR, HAS_PREV, HAS_RT, NCYC, NOUT, PREV_T, R0, RCOUNT, RLEN,
                        RPOS, RT, WEIGHT, WLAST)
-from rotorcosim.master.core.algorithm import GaussSeidel, SimulationDiverged, _Link
+from rotorcosim.master.core.algorithm import SimulationDiverged, _Link
 
-ENGINES = ("auto", "python", "compiled")
 #: base steps per compiled chunk (rows of the observers' buffer): ~1 ms of wall time between observer calls
 CHUNK = 2048
-
-
-class CompiledUnavailable(ContractError):
-    """``--engine compiled`` asked for an interval the compiled path cannot run (the message says why)."""
-
-
-def why_not(sim, active, mult, stop) -> str | None:
-    """None when the interval can run compiled, else the reason it cannot."""
-    comps = sim.system.components
-    for n in active:
-        c = comps[n]
-        if not isinstance(c, KernelComponent) or c.STEP is None:
-            return f"component {n} ({type(c).__name__}) has no compiled kernel"
-        if not c.kernel_available():
-            return f"component {n} has no compiled kernel in this phase"
-        for port in c.kernel_ports()[3]:  # outputs become views of the loop's float array
-            if np.asarray(c.y[port]).dtype != np.float64:
-                return f"output {n}.{port} is not a float array"
-    s = sim.engine.settings
-    if type(sim.engine.algorithm) is not GaussSeidel or s.iterations != 1:
-        return f"the {s.algorithm} algorithm with {s.iterations} iteration(s) (compiled: Gauss-Seidel, 1 iteration)"
-    for link in sim.engine.links:
-        d, src = link.con.dst_component, link.con.src_component
-        if d not in mult:
-            continue
-        if src not in mult:
-            return f"{link.con.src} -> {link.con.dst}: its producer does not step in this interval"
-        if link.conv is not None or not link.real:
-            return f"{link.con.src} -> {link.con.dst}: a converted or non-Real connection"
-        if link.held is not None or link.frozen is not None:
-            return f"{link.con.src} -> {link.con.dst}: held by the master"
-    for link in sim.engine.links:
-        if link.window is not None and link.con.src_component in mult:
-            src = comps[link.con.src_component]
-            if any(src.variable(p).type != "Real" for p in link.window.ports):
-                return f"{link.con.src}: its hand-off window records non-Real inputs"
-    for obs in sim.observers:
-        if obs.block_signals(sim) is None:
-            return f"observer {type(obs).__name__} has no step_block"
-    return None
 
 
 # -- kernels ---------------------------------------------------------------------------------------------------
 def kernel_address(fn, args) -> int:
     """The address of kernel ``fn`` compiled for the types of ``args`` + (t, h) (compiled here, or loaded from its
-    disk cache, if not yet), for loop_ops.call_kernel, which needs an int64 status."""
+    disk cache, if not yet), for numba_internals.call_kernel, which needs an int64 status."""
     sig = tuple(numba.typeof(a) for a in args) + (numba.types.float64, numba.types.float64)
-    fn.compile(sig)
-    cres = fn.overloads[sig]
-    if cres.signature.return_type != numba.types.int64:
-        raise TypeError(f"kernel {fn.py_func.__module__}.{fn.py_func.__name__} returns "
-                        f"{cres.signature.return_type}, not an int64 status")
-    return int(cres.library.get_pointer_to_function(cres.fndesc.llvm_func_name))
+    return native_address(fn, sig, returns=numba.types.int64)
 
 
 # -- the plan of an interval ----------------------------------------------------------------------------------
@@ -282,7 +239,8 @@ class Runner:
     """Runs base steps k..nsteps of one interval through the compiled loop."""
 
     def __init__(self, sim, plan: Plan, step: float):
-        self.sim = sim
+        # a weak reference: the module's cache of runners (_RUNNERS) is keyed weakly by the simulation
+        self._sim = weakref.ref(sim)
         self.plan = plan
         self.h = step
         self.packed = [kernel_args.Packed() for _ in plan.comps]
@@ -291,6 +249,10 @@ class Runner:
         self.status = np.zeros(3, dtype=np.int64)
         self.X = np.zeros(plan.nx)
         self._views = {}
+
+    @property
+    def sim(self):
+        return self._sim()
 
     def _columns(self, rows):
         b = self.buf[:rows]
@@ -371,6 +333,9 @@ class Runner:
         check = int(eng.settings.check_every)
         r0 = -1
         addrs = None
+        # the loop compiled (or loaded from its disk cache) as an explicit step: a helper process of a fresh machine
+        # may be building it (ahead.py)
+        compile_for(op.run_chunk, op.RUN_CHUNK_SIG)
         # containers packed in an earlier interval of the run (a reused runner) and unchanged keep their block
         PA = np.array([pk.address if pk.kargs is not None else 0 for pk in self.packed], dtype=np.int64)
         while k < nsteps:
@@ -450,10 +415,10 @@ class Runner:
             try:
                 ka = kernel_address(fn, kargs)
             except TypeError as exc:
-                raise ContractError(f"{comp.name}: {exc} (components/kernels.py: STEP returns its status)") from None
+                raise ContractError(f"{comp.name}: kernel {exc} (components/kernels.py: STEP returns its status)") from None
             try:
                 ta = kernel_args.trampoline_address(ctype)
-            except numba.core.errors.TypingError as exc:
+            except TypingError as exc:
                 raise ContractError(f"{comp.name}: {exc}") from None
             a = cls._ADDR[key] = (ta, ka, ctype)
         return a
@@ -510,38 +475,38 @@ def _type_key(v):
     return numba.typeof(v)
 
 
-def runner(sim, phase, active, mult, step, stop, choice: str):
-    """A Runner for this interval, or None for the generic loop (the reason in sim.engine_note)."""
-    if choice == "python" or phase != "TM":
-        return None
-    reason = why_not(sim, active, mult, stop)
-    if reason is not None:
-        return _refuse(sim, choice, reason)
+def runner(sim, active, mult, step, stop):
+    """A Runner for this thermo-mechanical interval, which choice.why_not found compilable, or the reason the
+    compiled loop cannot run it after all (a str)."""
     comps = sim.system.components
     for ref in (stop.block_refs() if stop is not None else ()):
         comp, _, port = ref.partition(".")
         if comp not in mult or comps[comp].variable(port).type != "Real":
-            return _refuse(sim, choice, f"the automatic schedule's steadiness test samples {ref}, not a Real output "
-                                        "stepped in this interval")
+            return (f"the automatic schedule's steadiness test samples {ref}, not a Real output stepped in this "
+                    "interval")
     for obs in sim.observers:
         for ref in obs.block_signals(sim):
             comp, _, port = ref.partition(".")
             if comp not in mult:
-                return _refuse(sim, choice, f"observer {type(obs).__name__} reads {ref}, not stepped in this interval")
+                return f"observer {type(obs).__name__} reads {ref}, not stepped in this interval"
             if comps[comp].variable(port).type != "Real":
-                return _refuse(sim, choice, f"observer {type(obs).__name__} reads {ref}, not a Real output")
+                return f"observer {type(obs).__name__} reads {ref}, not a Real output"
     # the thermo-mechanical intervals of a run have the same plan (the hold's windows and hand-backs are set up
     # alike in each): its tables, flat port array, buffers and packed containers are built once per run and reused,
     # ~1.5 ms a staggered interval (plan, buffer pages, ports copied and containers packed anew)
     key = _plan_key(sim, mult)
-    cached = getattr(sim, "_compiled_runner", None)
+    cached = _RUNNERS.get(sim)
     if cached is not None and cached[0] == key:
         cached[1].h = step
         return cached[1]
     plan = Plan(sim, active, mult)
     r = Runner(sim, plan, step)
-    sim._compiled_runner = (key, r)
+    _RUNNERS[sim] = (key, r)
     return r
+
+
+#: each simulation's runner and the key of its plan (kept while the simulation lives)
+_RUNNERS: "weakref.WeakKeyDictionary" = weakref.WeakKeyDictionary()
 
 
 def _plan_key(sim, mult) -> tuple:
@@ -556,10 +521,3 @@ def _plan_key(sim, mult) -> tuple:
             tuple(tuple(eng._watch[n]) for n in eng.active),
             tuple((link.mode, None if link.window is None else tuple(link.window.ports)) for link in eng.links),
             tuple(map(id, sim.hold.handbacks)))
-
-
-def _refuse(sim, choice, reason):
-    if choice == "compiled":
-        raise CompiledUnavailable(f"--engine compiled: cannot compile the thermo-mechanical interval: {reason}")
-    sim.engine_note = reason
-    return None
