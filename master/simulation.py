@@ -117,6 +117,12 @@ class Simulation:
             self._ahead = None
         self.first_compiled.set()
 
+    @property
+    def ahead(self):
+        """The helper process building the caches' missing kernels and tables on a fresh machine
+        (master/compiled/ahead.py), or None."""
+        return self._ahead
+
     def _multiples(self, names: Sequence[str], h: float) -> dict[str, int]:
         out = {}
         for n in names:
