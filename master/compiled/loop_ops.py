@@ -35,7 +35,7 @@ import numba
 import numpy as np
 
 from rotorcosim.components import numba_internals
-from rotorcosim.components.numba_internals import call_trampoline, kernel_jit
+from rotorcosim.components.numba_internals import call_trampoline, kernel_jit, loop_jit
 
 from rotorcosim.master.core import links
 from rotorcosim.master.core.links import CMEAN, NOUT, R0, RLEN
@@ -93,17 +93,18 @@ class Results(NamedTuple):
     status: np.ndarray
 
 
-# link semantics (links.py) compiled as they are
-take = kernel_jit(links.take)
-add_restart = kernel_jit(links.add_restart)
-produce = kernel_jit(links.produce)
-record = kernel_jit(links.record)
+# link semantics (links.py) compiled as they are, inlined into the loop (numba's IR), which runs without reference
+# counting (numba_internals.loop_jit)
+take = kernel_jit(links.take, inline="always")
+add_restart = kernel_jit(links.add_restart, inline="always")
+produce = kernel_jit(links.produce, inline="always")
+record = kernel_jit(links.record, inline="always")
 
 
-# The helpers below are compiled only into run_chunk (no disk cache of their own): numba's disk cache keys a
+# The helpers below are inlined into run_chunk and have no disk cache of their own: numba's disk cache keys a
 # function by its own file, so run_chunk's key carries the sources it is made of (_sources, in its closure), and
 # helpers cached on their own would bring back their old code into a new run_chunk.
-@kernel_jit(cache=False)
+@loop_jit(cache=False, inline="always")
 def gather(i, t, hc, X, tab, st):
     """The inputs of component i from its links, just before it fires over [t, t + hc] (links.take, then
     links.add_restart on a hand-back)."""
@@ -119,7 +120,7 @@ def gather(i, t, hc, X, tab, st):
             add_restart(X, dst, st.vectors, vo + 3 * n, n, t + hc, m[R0], m[RLEN])
 
 
-@kernel_jit(cache=False)
+@loop_jit(cache=False, inline="always")
 def finite(X, tab, i):
     """Are component i's watched outputs (those other components read) finite (Engine._fire)?"""
     tot = 0.0
@@ -131,7 +132,7 @@ def finite(X, tab, i):
     return math.isfinite(tot)
 
 
-@kernel_jit(cache=False)
+@loop_jit(cache=False, inline="always")
 def produced(i, t, hc, X, tab, st):
     """The bookkeeping of component i's outgoing links after it fired over [t, t + hc] (links.produce;
     links.record for a hand-off window, whose completed cycles go to the rows of LinkState.cycles with the
@@ -157,7 +158,7 @@ def produced(i, t, hc, X, tab, st):
             m[NOUT] += 1.0
 
 
-@kernel_jit(cache=False)
+@loop_jit(cache=False, inline="always")
 def end_of_step(k, k0, check_every, X, width, buf):
     """The observers' row of base step k (every Real output, the first ``width`` values of X) and, every
     ``check_every`` base steps, the finiteness of them all (Engine.check_finite): False when one is not."""
@@ -225,7 +226,7 @@ def _loop(sources: str):
         status[2] = -1
 
     run_chunk.__qualname__ = "run_chunk"
-    return kernel_jit(run_chunk)
+    return loop_jit(run_chunk)
 
 
 #: the loop of every system (module docstring); its key in numba's disk cache carries the sources it is made of
