@@ -180,8 +180,8 @@ def _link_state(link, m, v):
 def _link_back(link, m, v, cycles):
     """The loop's state back into the link's own arrays (the generic loop, the hold and checkpoints read them),
     and the rotor cycles the loop completed into the link's hand-off window."""
-    link.state[:] = m
-    link.vectors[:] = v
+    link.state[:] = m.tolist()
+    link.vectors[:] = v.tolist()
     ho = link.window
     if ho is not None:
         for r in range(int(m[links.NOUT])):

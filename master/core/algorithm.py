@@ -136,9 +136,11 @@ class _Link:
         self.real = var.type == "Real"
         #: values carried (the producer's port size)
         self.n = var.size
-        #: the link's state row and vectors (links.py's layout; a hand-off window records into the same row)
-        self.state = np.zeros(links.NM)
-        self.vectors = np.zeros(links.NV * self.n)
+        #: the link's state row and vectors (links.py's layout; a hand-off window records into the same row). Lists
+        #: of floats: the generic loop runs links.py's functions in Python, where a list's item costs a third of an
+        #: array's (the compiled loop copies them into its tables and back)
+        self.state = [0.0] * links.NM
+        self.vectors = [0.0] * (links.NV * self.n)
         self.frozen = None      # an iteration's override (iterative coupling)
         self.held = None        # the thermal-only hold's value (master/manipulator/hold.py), or None
         self.window = None      # the thermal-only hold's recorder of this link's hand-off window, or None
@@ -159,8 +161,8 @@ class _Link:
 
     def reset(self):
         """Forget averages and extrapolation history (a new interval); a hand-off window keeps its fields."""
-        self.state[:links.OWN] = 0.0
-        self.vectors[:] = 0.0
+        self.state[:links.OWN] = [0.0] * links.OWN
+        self.vectors[:] = [0.0] * len(self.vectors)
 
     def value(self, t_mid: float, t_end: float | None = None) -> np.ndarray:
         """What the consumer sees, converted (type, unit) when the connection needs it (``conv``; one call,

@@ -2,17 +2,17 @@
 
 A link carries a producer's output ``y`` (n values) to a consumer's input ``u``. Between the two it may average
 (fast producer -> slow consumer), extrapolate (slow -> fast, or ``linear-end``), add a hand-back's restart offset
-(master/manipulator/hold.py, Restart) and record a hand-off window (hold.HandOff). Its state is two float64 arrays
-with the layout below, the same for the generic loop (algorithm._Link keeps them: ``link.state``, ``link.vectors``)
-and the compiled loop (master/compiled/loop_ops: one row of ``M`` and a slice of ``V`` per link, copied from and
-back to the link's arrays around each chunk).
+(master/manipulator/hold.py, Restart) and record a hand-off window (hold.HandOff). Its state is two sequences of
+floats with the layout below, the same for the generic loop (algorithm._Link keeps them as lists: ``link.state``,
+``link.vectors``) and the compiled loop (master/compiled/loop_ops: a row of a float64 table and a slice of another
+per link, copied from and back to the link's lists around each chunk).
 
 The operations are plain functions over arrays with offsets, written with element loops and no calls, so that the
 compiled loop compiles these very functions (numba) and the generic loop calls them in Python: one source, the
 same arithmetic operation for operation (tests/master/test_compiled.py holds the two paths equal). The copy
 (``u = y``), the common case, the generic loop does with numpy.
 
-State row ``m`` (float64, :data:`NM` fields):
+State row ``m`` (:data:`NM` floats):
 
 * the link's own: ``HAS_ACC`` (the integral A below holds a value), ``WEIGHT`` (W), ``HAS_PREV``, ``PREV_T``
   (t_prev), ``HAS_CUR``, ``CUR_T`` (t_cur);
@@ -23,7 +23,7 @@ State row ``m`` (float64, :data:`NM` fields):
 * a hand-back's restart offset (hold.Restart, copied there by the compiled loop): ``R0`` (t0), ``RLEN`` (its
   length, 0 for none).
 
-Vectors ``v`` (float64, :data:`NV` rows of n, flat): ``V_ACC`` (A: the integral of y, or of y^2 for ``rms``, over
+Vectors ``v`` (:data:`NV` rows of n floats, flat): ``V_ACC`` (A: the integral of y, or of y^2 for ``rms``, over
 the consumer's window so far), ``V_PREV`` (y_prev), ``V_LAST`` (y_cur: the output at t_cur), ``V_DELTA`` (a
 restart's delta).
 """
@@ -166,11 +166,13 @@ def record(y, yo, n, m, ring, ro, nr, t_end):
     m[RCOUNT] = min(m[RCOUNT] + 1, nr)
     ys = y[yo]
     m[WLAST] = ys
-    m[CSUM] += ys
-    m[CN] += 1.0
-    if m[CN] == m[NCYC]:
-        m[CMEAN] = m[CSUM] / m[CN]
+    csum = m[CSUM] + ys
+    cn = m[CN] + 1.0
+    if cn == m[NCYC]:
+        m[CMEAN] = csum / cn
         m[CSUM] = 0.0
         m[CN] = 0.0
         return True
+    m[CSUM] = csum
+    m[CN] = cn
     return False

@@ -179,19 +179,21 @@ class HandOff:
 
     def record(self, y: np.ndarray, t_end: float) -> None:
         """One sample of the producer's output (every step it takes in a TM interval)."""
-        if self.t_last == t_end:  # a repeated iteration of the same step replaces its sample
+        m = self.link.state
+        if m[links.HAS_RT] and m[links.RT] == t_end:  # a repeated iteration of the same step replaces its sample
             self.pos = (self.pos - 1) % len(self.ring)
             self.count -= 1
             if self.cn == 0 and self.cycles:
-                _, m = self.cycles.pop()
-                self.csum, self.cn = m * self.n_cycle, self.n_cycle
+                _, mean = self.cycles.pop()
+                self.csum, self.cn = mean * self.n_cycle, self.n_cycle
             self.csum -= self._last
             self.cn -= 1
         # the sample and the cycle it belongs to (links.record: the compiled loop records with the same function)
-        if links.record(y, 0, self.ring.shape[1], self.link.state, self.ring.reshape(-1), 0, len(self.ring), t_end):
+        ring = self.ring
+        if links.record(y, 0, ring.shape[1], m, ring.reshape(-1), 0, ring.shape[0], t_end):
             # a whole rotor cycle: its mean, and the thermal inputs at its end (they change at the thermal step, far
             # slower than the rotor)
-            self.cycles.append((self._thermal_inputs(), float(self.link.state[links.CMEAN])))
+            self.cycles.append((self._thermal_inputs(), float(m[links.CMEAN])))
 
     def _thermal_inputs(self) -> np.ndarray:
         u = self.link.src.u
