@@ -39,7 +39,7 @@ import numba
 import numpy as np
 
 from rotorcosim.components.contract import ContractError
-from rotorcosim.components.kernels import PYTHON, KernelComponent
+from rotorcosim.components.kernels import PYTHON
 from rotorcosim.components.numba_internals import TypingError, compile_for, native_address
 
 from rotorcosim.master.compiled import kernel_args
