@@ -122,8 +122,8 @@ class Packed:
     def update(self, kargs, ctype=None) -> bool:
         """Pack ``kargs`` (of type ``ctype``, typed here if None) unless they are the packed ones (the same objects,
         or tuples of the same objects); True when packed anew. Only the containers that are other objects are
-        written again (after a thermal-only interval the bearings' state and ports are new arrays, their constants
-        the same: ~0.2 ms a bearing saved), unless the type or the buffer changed. The packed arrays are borrowed:
+        written again (after a thermal-only interval a component's state and ports may be new arrays, its
+        constants the same: ~0.2 ms a component saved), unless the type or the buffer changed. The packed arrays are borrowed:
         ``self.kargs`` keeps them alive."""
         old = self.kargs
         fresh = [True] * len(kargs)

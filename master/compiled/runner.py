@@ -23,7 +23,7 @@ are named records of plain arrays and numbers whatever the system. It runs in ch
 into a buffer, one row per base step, which the observers then consume (Observer.step_block); between chunks the
 components' state and outputs are their own arrays (the kernels work on them in place; the port arrays are the
 flat array's views), so checkpoints and observers see what the generic path would show them. A kernel that needs
-Python for a step (the bearing's re-seating of its balls after a thermal-only interval) or fails returns its
+Python for a step (a quasi-static re-seating after a thermal-only interval, for example) or fails returns its
 status; the step is finished or the error raised in Python, as the generic path would, and the loop resumes after
 that component.
 
@@ -421,7 +421,7 @@ class Runner:
 def _type_key(v):
     """What numba's type of ``v`` depends on, read without numba: a key at least as fine as ``numba.typeof``
     (an array's dtype, dimensions, layout flags, writeability and alignment; a tuple's class and items; any other
-    value through numba itself), ~10 times cheaper on the containers of the blade-loss system (numba.typeof
+    value through numba itself), ~10 times cheaper on the containers of a system of nine kernels (numba.typeof
     costs ~0.3 ms per kernel and interval, ~10 ms of a 0.7 s staggered run)."""
     if isinstance(v, np.ndarray):
         f = v.flags
