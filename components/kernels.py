@@ -24,11 +24,6 @@ from __future__ import annotations
 import hashlib
 from collections import namedtuple
 
-from numba import types
-from numba.core import cgutils
-from numba.core.errors import TypingError
-from numba.extending import intrinsic
-
 from .contract import Component
 
 #: kernel status codes: 0 done; PYTHON: nothing changed, run the step through kernel_status; >= 2: component errors
@@ -58,57 +53,20 @@ def port_tuple(cls_name: str, kind: str, names: tuple[str, ...]) -> type:
 # -- an inner function called by address ---------------------------------------------------------------------
 # numba compiles each njit function into its own module, and a caller that calls it by name links that module into
 # its own and optimises and machine-codes all of it again: a kernel over a chain of four functions compiles the
-# innermost four times (on a fresh machine's first run most of the compile CPU). A large inner
-# function that a kernel calls through its address instead is compiled once, on its own (and can be compiled by
-# the helper process of a fresh machine, master/compiled/ahead.py: its signature is declared).
-#
-# The kernels and the functions they call are compiled with ``no_cfunc_wrapper=True``: numba's C-callable wrapper
-# of each (which nothing here uses: the loop calls kernels through numba's own calling convention) cost ~0.3-0.7 s
-# of CPU per compiled function on a fresh machine.
-
-_BY_ADDRESS: dict = {}
+# innermost four times (on a fresh machine's first run most of the compile CPU). A large inner function that a
+# kernel calls through its address instead (numba_internals.by_address / address_of / call_at) is compiled once,
+# on its own (and can be compiled by the helper process of a fresh machine, master/compiled/ahead.py: its
+# signature is declared). They live with numba's other internals; the names stay importable from here.
+_BY_ADDRESS_NAMES = ("by_address", "address_of", "call_at")
 
 
-def by_address(fn, sig):
-    """Declare the numba dispatcher ``fn`` callable by address (:func:`call_at`) for exactly the argument types
-    ``sig``; returns ``fn``."""
-    _BY_ADDRESS[fn.py_func] = tuple(sig)
-    return fn
+def __getattr__(name):
+    # imported on first use: this module (KernelComponent, the status codes) does not import numba
+    if name in _BY_ADDRESS_NAMES:
+        from . import numba_internals
 
-
-def address_of(fn) -> int:
-    """The address of ``fn``'s native code for its declared signature (compiled here, or loaded from its disk cache,
-    if not yet): the value a kernel passes to :func:`call_at`, kept in its constants ``p``."""
-    sig = _BY_ADDRESS[fn.py_func]
-    fn.compile(sig)
-    cres = fn.overloads[sig]
-    return int(cres.library.get_pointer_to_function(cres.fndesc.llvm_func_name))
-
-
-@intrinsic
-def call_at(typingctx, addr, fn, args):
-    """``fn(*args)`` through ``addr`` = :func:`address_of(fn) <address_of>` (numba's calling convention, exceptions
-    propagated). The arguments must have the declared types (:func:`by_address`): a TypingError says otherwise. The
-    caller's compiled code holds no address (it is an argument), so its disk cache stays valid across processes."""
-    disp = getattr(fn, "dispatcher", None)
-    declared = _BY_ADDRESS.get(getattr(disp, "py_func", None))
-    argtys = tuple(args) if isinstance(args, types.BaseTuple) else None
-    if declared is None or argtys != declared:
-        name = getattr(getattr(disp, "py_func", None), "__qualname__", fn)
-        raise TypingError(f"call_at: {name} is called by address with {argtys}, declared for {declared} "
-                          f"(components/kernels.by_address)")
-    restype = fn.get_call_type(typingctx, argtys, {}).return_type
-
-    def codegen(context, builder, signature, llargs):
-        fnty = context.call_conv.get_function_type(restype, argtys)
-        ptr = builder.inttoptr(llargs[0], fnty.as_pointer())
-        vals = [builder.extract_value(llargs[2], i) for i in range(len(argtys))]
-        status, res = context.call_conv.call_function(builder, ptr, restype, argtys, vals)
-        with cgutils.if_unlikely(builder, status.is_error):
-            context.call_conv.return_status_propagate(builder, status)
-        return res
-
-    return restype(addr, fn, args), codegen
+        return getattr(numba_internals, name)
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 
 class KernelComponent(Component):

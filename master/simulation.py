@@ -16,7 +16,7 @@ import numpy as np
 from rotorcosim.components.contract import ContractError
 
 from rotorcosim.master.compiled import ahead
-from rotorcosim.master.compiled import runner as compiled
+from rotorcosim.master.compiled import choice as compiled
 from rotorcosim.master.core.algorithm import Engine, EngineSettings, SimulationDiverged
 from rotorcosim.master.manipulator.hold import DEFAULT_HOLD, HOLDS, RESTART_CYCLES, StaggeredHold
 from rotorcosim.master.schedule.timeline import RunReport, Schedule, ScheduleError, UsedInterval
@@ -116,6 +116,12 @@ class Simulation:
             self._ahead.close()
             self._ahead = None
         self.first_compiled.set()
+
+    @property
+    def ahead(self):
+        """The helper process building the caches' missing kernels and tables on a fresh machine
+        (master/compiled/ahead.py), or None."""
+        return self._ahead
 
     def _multiples(self, names: Sequence[str], h: float) -> dict[str, int]:
         out = {}

@@ -44,7 +44,8 @@ import math
 import numpy as np
 
 from ..contract import ContractError, Variable
-from ..kernels import PYTHON, KernelComponent, address_of
+from ..kernels import PYTHON, KernelComponent
+from ..numba_internals import address_of
 from ..oil_fit import T_MAX_K, T_MIN_K
 from ..speeds import PT_OMEGA
 from .drag import static_load_rating

@@ -12,12 +12,12 @@ from __future__ import annotations
 
 import math
 
-from numba import njit
+from ..numba_internals import kernel_jit
 
 RPM_PER_RAD_S = 30.0 / math.pi
 
 
-@njit(cache=True, no_cfunc_wrapper=True)
+@kernel_jit
 def palmgren_torque(Fr, Fa, nu, omega, d_m, f0, z, y, X0, Y0, C0):
     """Drag torque (N m) for radial load Fr and axial load Fa (N), kinematic viscosity nu (m^2/s), speed of the
     inner race relative to the outer race omega (rad/s), pitch diameter d_m (m), static load rating C0 (N)."""

@@ -21,9 +21,9 @@ import math
 from collections import namedtuple
 
 import numpy as np
-from numba import njit, types
+from numba import types
 
-from ..kernels import by_address, call_at
+from ..numba_internals import by_address, call_at, kernel_jit
 from .drag import palmgren_torque
 
 # -- The kernel's vectors, each place named once. component.setup packs geo, drag and num by name (:func:`pack`);
@@ -61,7 +61,7 @@ def pack(fields: tuple[str, ...], **values: float) -> np.ndarray:
     return np.array([float(values[f]) for f in fields])
 
 
-@njit(cache=True, no_cfunc_wrapper=True)
+@kernel_jit
 def _forces(Xx, Xy, Xz, Vx, Vy, Vz, xe, ye, vxe, vye, cphi, sphi, wc, balls, Z, c_b, s_b, l_oi, l_oe, ca0, sa0,
             Ki, Ke, ad, Fc, m_b, eps_i, eps_e, eps_b, cb, acc, out):
     """Contact forces of all balls at one instant. Writes ball accelerations into ``acc`` (2, Z) and into
@@ -145,14 +145,14 @@ def _forces(Xx, Xy, Xz, Vx, Vy, Vz, xe, ye, vxe, vye, cphi, sphi, wc, balls, Z, 
     out[C_K_MAX] = kmax
 
 
-@njit(cache=True, no_cfunc_wrapper=True)
+@kernel_jit
 def _torque(Fr, Fa, d):
     """Palmgren's drag torque (drag.py) for the radial and axial loads, with the drag vector ``d`` (DRAG)."""
     return palmgren_torque(Fr, Fa, d[D_NU], d[D_OMEGA], d[D_DM], d[D_F0], d[D_F1_Z], d[D_F1_Y], d[D_X0], d[D_Y0],
                            d[D_C0])
 
 
-@njit(cache=True, no_cfunc_wrapper=True)
+@kernel_jit
 def _bad(a, lim):
     for v in a:
         if not (abs(v) <= lim):
@@ -160,7 +160,7 @@ def _bad(a, lim):
     return False
 
 
-@njit(cache=True, no_cfunc_wrapper=True)
+@kernel_jit
 def step(h, Xa, Va, z0, eps, F0, Kj, Cj, balls, jour, phi, c_b, s_b, geo, drag, num, res):
     """Advance balls, cage angle and journal over h with the inner race on X(tau) = Xa + Va tau (+ z0 axially).
 
@@ -266,7 +266,7 @@ def step(h, Xa, Va, z0, eps, F0, Kj, Cj, balls, jour, phi, c_b, s_b, geo, drag, 
     res[R_SUBSTEPS] = n
 
 
-#: step's argument types: called by address from tm_step (components/kernels.call_at), so that tm_step's compilation
+#: step's argument types: called by address from tm_step (components/numba_internals.call_at), so that tm_step's compilation
 #: does not optimise and machine-code the whole step once more (~2-3 s of CPU on a fresh machine)
 _F1, _F2 = types.float64[::1], types.float64[:, ::1]
 STEP_SIG = (types.float64, _F1, _F1, types.float64, _F1, _F1, _F1, _F1, _F2, _F1, _F1, _F1, _F1, _F1, _F1, _F1, _F1)
@@ -277,19 +277,19 @@ by_address(step, STEP_SIG)
 #: angle (1), the growths the balls were last seated for (3).
 #: Constants: the inner race's axial offset z0, the balls' angle cosines/sines, the geometry, drag and numerics
 #: vectors of tm_step, a cache [T of nu, T of P_v, P_v], the step's output buffer, the growth jump that
-#: re-seats the balls, the Walther constants of the oil viscosity, the address of step (kernels.address_of).
+#: re-seats the balls, the Walther constants of the oil viscosity, the address of step (numba_internals.address_of).
 BearingState = namedtuple("BearingState", "balls journal phi eps_seated")
 BearingParams = namedtuple("BearingParams",
                            "z0 c_b s_b geo drag num cache out eps_jump walther_A walther_B T_min T_max step_at")
 
 
-@njit(cache=True, no_cfunc_wrapper=True)
+@kernel_jit
 def kinematic_viscosity(A, B, T):
     """SAE 30 kinematic viscosity (m^2/s) at T kelvin, Walther / ASTM D341 (oil.py)."""
     return (10.0 ** (10.0 ** (A - B * math.log10(T))) - 0.7) * 1e-6
 
 
-@njit(cache=True, no_cfunc_wrapper=True)
+@kernel_jit
 def oil_viscosity(p, T):
     """nu at T into drag[D_NU], kept for the last T (it changes only at the thermal network's step)."""
     if T != p.cache[0]:
@@ -298,7 +298,7 @@ def oil_viscosity(p, T):
     return p.drag[D_NU]
 
 
-@njit(cache=True, no_cfunc_wrapper=True)
+@kernel_jit
 def viscous_power(p, T):
     """omega M_v, the load-independent part of the Palmgren drag power at T, kept for the last T."""
     if T != p.cache[1]:
@@ -310,7 +310,7 @@ def viscous_power(p, T):
     return p.cache[2]
 
 
-@njit(cache=True, no_cfunc_wrapper=True)
+@kernel_jit
 def tm_step(s, p, u, y, t, h):
     """One thermo-mechanical step (component.BallBearing; components/kernels.py contract): :func:`step` plus the
     component's outputs. h = 0 gives the outputs of the present state (set-up: component._advance).

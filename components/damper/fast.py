@@ -35,9 +35,9 @@ from collections import namedtuple
 from functools import lru_cache
 
 import numpy as np
-from numba import njit, types
+from numba import types
 
-from ..kernels import address_of, by_address, call_at
+from ..numba_internals import address_of, by_address, call_at, kernel_jit
 from . import table_cache
 from .frame import EPS_DIFF, EPS_NEAR_CENTRE, frame, to_housing_axes
 from .wall import NOT_FINITE, spring_and_wall
@@ -47,7 +47,7 @@ EPS_MAX = EPS_FILM_MAX   # table end = the film model's limit (reynolds_fe); the
 N_TABLE = 60        # table points in u = -ln(1 - eps); step 0.078 (convergence: see the tests / bench)
 
 
-@njit(cache=True, no_cfunc_wrapper=True)
+@kernel_jit
 def _lagrange4(u, u0, du, n):
     """Start index, 4-point Lagrange weights and their u-derivatives at u on the grid u0 + k du, k < n."""
     s = (u - u0) / du
@@ -68,7 +68,7 @@ def _lagrange4(u, u0, du, n):
     return k, w0, w1, w2, w3, d0, d1, d2, d3
 
 
-@njit(cache=True, no_cfunc_wrapper=True, fastmath=True, inline="always")
+@kernel_jit(fastmath=True, inline="always")
 def _clipped_nodes(NT, Wc, Ws, n, k, w0, w1, w2, w3, d0, d1, d2, d3, a, b, floor, i0, i1, acc):
     """The clipped sums over the nodes i0 <= i < i1 of one tile, added into acc[0:8] = F_r, F_t (without the
     factor -2), dF_r/da, dF_r/db, dF_t/da, dF_t/db, dF_r/du, dF_t/du.
@@ -138,7 +138,7 @@ def _clipped_nodes(NT, Wc, Ws, n, k, w0, w1, w2, w3, d0, d1, d2, d3, a, b, floor
     acc[7] += us
 
 
-@njit(cache=True, no_cfunc_wrapper=True, fastmath=True)
+@kernel_jit(fastmath=True)
 def _clipped(NT, G, TW, toff, bounds, Wc, Ws, eps, u0, du, n, a, b, floor):
     """Aligned force of the Guembel-clipped interpolated field and its derivatives.
 
@@ -246,7 +246,7 @@ def _clipped(NT, G, TW, toff, bounds, Wc, Ws, eps, u0, du, n, a, b, floor):
             -2.0 * (acc[7] + a * sd1 + b * sd3) * du_deps)
 
 
-@njit(cache=True, no_cfunc_wrapper=True, inline="always")
+@kernel_jit(inline="always")
 def _linear(ftab, eps, u0, du, n, a, b):
     """Like _clipped without cavitation, from the unit forces ftab (n_table, 4) =
     [F_r(v_r), F_t(v_r), F_r(v_t), F_t(v_t)] per unit mu v: the force is exactly linear in (a, b).
@@ -268,7 +268,7 @@ def _linear(ftab, eps, u0, du, n, a, b):
     return a * f0 + b * f2, a * f1 + b * f3, f0, f2, f1, f3, a * g0 + b * g2, a * g1 + b * g3
 
 
-@njit(cache=True, no_cfunc_wrapper=True)
+@kernel_jit
 def _aligned(NT, G, TW, toff, ftab, bounds, Wc, Ws, eps, u0, du, n, a, b, floor, cavitation):
     """Aligned force and derivatives. With cavitation, when no node can fall below the floor the clipped sum
     is the linear one (the same interpolated field, summed in the other order), so the cheap path is exact:
@@ -285,7 +285,7 @@ def _aligned(NT, G, TW, toff, ftab, bounds, Wc, Ws, eps, u0, du, n, a, b, floor,
     return _linear(ftab, eps, u0, du, n, a, b)
 
 
-@njit(cache=True, no_cfunc_wrapper=True, inline="always")
+@kernel_jit(inline="always")
 def film_eval(NT, G, TW, toff, ftab, bounds, Wc, Ws, u0, du, n, eps_max, clearance, dx, dy, dvx, dvy, mu, floor,
               cavitation, out):
     """Film force F (2), K = dF/dd (4) and C = dF/dw (4) in the housing axes into out[0:10].
@@ -323,7 +323,7 @@ def film_eval(NT, G, TW, toff, ftab, bounds, Wc, Ws, u0, du, n, eps_max, clearan
     to_housing_axes(c, s, e_div, clearance, mu, Fr, Ft, Jra, Jrb, Jta, Jtb, dr, dt, gr, gt, out)
 
 
-@njit(cache=True, no_cfunc_wrapper=True)
+@kernel_jit
 def fast_step(NT, G, TW, toff, ftab, bounds, Wc, Ws, prm, xj, vj, xh, vh, mu, out):
     """One damper evaluation in a single call: film (F, K, C), spring, wall, F_journal and P_film into out
     (the component's layout: see component._Damper.OUT). Returns a wall.* status code.
@@ -350,7 +350,7 @@ def fast_step(NT, G, TW, toff, ftab, bounds, Wc, Ws, prm, xj, vj, xh, vh, mu, ou
 #: master/compiled/ahead.py); tests/master/test_ahead.py checks that these are the types of the calls.
 _A1, _A2, _A3 = types.float64[::1], types.float64[:, ::1], types.float64[:, :, ::1]
 FAST_STEP_SIG = (_A1, _A3, _A2, types.int64[::1], _A2, _A2, _A1, _A1, _A1, _A1, _A1, _A1, _A1, types.float64, _A1)
-# the damper's tm_step calls it by address (components/kernels.call_at): linked by name, tm_step's compilation
+# the damper's tm_step calls it by address (components/numba_internals.call_at): linked by name, tm_step's compilation
 # optimised and machine-coded the whole film kernel a second time (~2 s of CPU on a fresh machine)
 by_address(fast_step, FAST_STEP_SIG)
 
@@ -477,7 +477,7 @@ DamperParams = namedtuple("DamperParams", "NT G TW toff ftab bounds Wc Ws prm ou
                                           "drho T_min T_max fast_step_at")
 
 
-@njit(cache=True, no_cfunc_wrapper=True)
+@kernel_jit
 def oil_viscosity(p, T):
     """SAE 30 dynamic viscosity at T (viscosity.sae30_viscosity), kept for the last T."""
     if T != p.cache[0]:
@@ -487,7 +487,7 @@ def oil_viscosity(p, T):
     return p.cache[1]
 
 
-@njit(cache=True, no_cfunc_wrapper=True)
+@kernel_jit
 def tm_step(s, p, u, y, t, h):
     """One evaluation at the step's inputs (components/kernels.py contract). Status 5: T_oil outside the
     viscosity fit; 10 + a wall.* code."""

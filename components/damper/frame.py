@@ -18,7 +18,7 @@ from __future__ import annotations
 
 import math
 
-from numba import njit
+from ..numba_internals import kernel_jit
 
 #: below this eccentricity ratio the callers remove the centred model's g_phi (mesh error) before dividing by e
 EPS_NEAR_CENTRE = 0.02
@@ -26,7 +26,7 @@ EPS_NEAR_CENTRE = 0.02
 EPS_DIFF = 1e-4
 
 
-@njit(cache=True, no_cfunc_wrapper=True, inline="always")
+@kernel_jit(inline="always")
 def frame(dx, dy):
     """(e, cos phi, sin phi); phi = 0 for a centred journal."""
     e = math.sqrt(dx * dx + dy * dy)
@@ -35,7 +35,7 @@ def frame(dx, dy):
     return 0.0, 1.0, 0.0
 
 
-@njit(cache=True, no_cfunc_wrapper=True, inline="always")
+@kernel_jit(inline="always")
 def to_housing_axes(c, s, e_div, clearance, mu, Fr, Ft, Jra, Jrb, Jta, Jtb, dFr_deps, dFt_deps, gphi_r, gphi_t,
                     out):
     """Write F (2), K = dF/dd (4, row-major) and C = dF/dw (4, row-major) into out[0:10].
@@ -53,7 +53,7 @@ def to_housing_axes(c, s, e_div, clearance, mu, Fr, Ft, Jra, Jrb, Jta, Jtb, dFr_
     _rotate(c, s, mu * Jra, mu * Jrb, mu * Jta, mu * Jtb, out, 6)
 
 
-@njit(cache=True, no_cfunc_wrapper=True, inline="always")
+@kernel_jit(inline="always")
 def _rotate(c, s, a11, a12, a21, a22, out, i):
     """out[i:i+4] = R A R^T (row-major)."""
     # B = R A

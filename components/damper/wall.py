@@ -14,7 +14,7 @@ from __future__ import annotations
 
 import math
 
-from numba import njit
+from ..numba_internals import kernel_jit
 
 #: e / c at which the wall penetration is taken as a diverged simulation
 EPS_DIVERGED = 2.0
@@ -23,7 +23,7 @@ EPS_DIVERGED = 2.0
 OK, NOT_FINITE, WALL_ERROR, DIVERGED = 0, 1, 2, 3
 
 
-@njit(cache=True, no_cfunc_wrapper=True, inline="always")
+@kernel_jit(inline="always")
 def spring_and_wall(dx, dy, clearance, k_spring, k_wall, out):
     """Spring and contact forces into out[10:14], their stiffness added to out[2:6] (row-major dF/dd),
     F_journal = film + spring + contact into out[14:16]. Returns a status code."""

@@ -12,17 +12,18 @@ import math
 from collections import namedtuple
 
 import numpy as np
-from numba import njit
+
+from ..numba_internals import kernel_jit
 
 
-@njit(cache=True, no_cfunc_wrapper=True, inline="always")
+@kernel_jit(inline="always")
 def _put(f, k, a, n):
     for i in range(n):
         f[k + i] = a[i]
     return k + n
 
 
-@njit(cache=True, no_cfunc_wrapper=True, inline="always")
+@kernel_jit(inline="always")
 def gather(f, fb0, fb5, fs0, fr0, fs5, fr5, fq0, fq5, fux, fuy):
     """Fill the force vector in the order of component._INPUTS, then the unbalance; returns the sum of squares
     (non-finite if any input is)."""
@@ -42,7 +43,7 @@ def gather(f, fb0, fb5, fs0, fr0, fs5, fr5, fq0, fq5, fux, fuy):
     return acc
 
 
-@njit(cache=True, no_cfunc_wrapper=True, inline="always")
+@kernel_jit(inline="always")
 def step(TB, O, s, f, s_out, xv):
     """s_out = TB [s; f] (TB = [T B], Fortran order), xv = O s_out; returns s_out . s_out."""
     n3 = s.shape[0]
@@ -80,7 +81,7 @@ RotorState = namedtuple("RotorState", "s tau")
 RotorParams = namedtuple("RotorParams", "TB O f s_new xv W F_residual F_unbalance unbalance_phase t_blade_loss")
 
 
-@njit(cache=True, no_cfunc_wrapper=True, inline="always")
+@kernel_jit(inline="always")
 def unbalance(p, t, tau):
     """The rotating unbalance force at time t, at the rotor's own angle W tau (component._unbalance)."""
     a = p.W * tau
@@ -93,7 +94,7 @@ def unbalance(p, t, tau):
     return fx, fy
 
 
-@njit(cache=True, no_cfunc_wrapper=True)
+@kernel_jit
 def tm_step(s, p, u, y, t, h):
     """One Newmark step from t to t + h (components/kernels.py contract); status 2: a non-finite input force,
     3: a non-finite response."""

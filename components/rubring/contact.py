@@ -20,10 +20,10 @@ from __future__ import annotations
 import math
 from collections import namedtuple
 
-from numba import njit
+from ..numba_internals import kernel_jit
 
 
-@njit(cache=True, no_cfunc_wrapper=True, inline="always")
+@kernel_jit(inline="always")
 def rub_force(dx, dy, wx, wy, clearance, stiffness, damping, friction, radius, omega, v_reg):
     """(Fx, Fy, P_rub, F_normal) on the rotor; arguments as in the module docstring (SI)."""
     r = math.hypot(dx, dy)
@@ -45,7 +45,7 @@ def rub_force(dx, dy, wx, wy, clearance, stiffness, damping, friction, radius, o
 RubParams = namedtuple("RubParams", "clearance stiffness damping friction radius omega v_reg")
 
 
-@njit(cache=True, no_cfunc_wrapper=True)
+@kernel_jit
 def tm_step(s, p, u, y, t, h):
     """One evaluation at the step's inputs (components/kernels.py contract); status 2: non-finite motion."""
     dx = u.X_rotor[0] - u.X_housing[0]

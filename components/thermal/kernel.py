@@ -6,12 +6,12 @@ from __future__ import annotations
 import math
 from collections import namedtuple
 
-from numba import njit
 
+from ..numba_internals import kernel_jit
 from .geometry import BALL, IR, JOURNAL, LE, LI, OR, SFD, SHAFT
 from .growth import growths as _growths
 
-growths = njit(cache=True, no_cfunc_wrapper=True, inline="always")(_growths)
+growths = kernel_jit(inline="always")(_growths)
 
 #: state: the nine node temperatures; constants: the step matrices of the step size in use, a scratch vector,
 #: the arguments of growths() after the temperatures
@@ -19,7 +19,7 @@ ThermalState = namedtuple("ThermalState", "T")
 ThermalParams = namedtuple("ThermalParams", "Phi gb GS T_new T_ref xi nu r_i r_e r_j r_b")
 
 
-@njit(cache=True, no_cfunc_wrapper=True, inline="always")
+@kernel_jit(inline="always")
 def publish(p, T, y):
     """The outputs of node temperatures T."""
     ei, ee, eb = growths(T[SHAFT], T[LI], T[BALL], T[LE], T[JOURNAL], p.T_ref, p.xi, p.nu, p.r_i, p.r_e, p.r_j,
@@ -36,7 +36,7 @@ def publish(p, T, y):
     y.T_outer_race[0] = T[OR]
 
 
-@njit(cache=True, no_cfunc_wrapper=True)
+@kernel_jit
 def tm_step(s, p, u, y, t, h):
     """One step with the powers held; status 2: a non-finite power, 3: a negative one."""
     q0 = u.P_drag[0]

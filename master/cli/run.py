@@ -20,7 +20,7 @@ from rotorcosim.master.run import checkpoint
 from rotorcosim.master.run import watchdog
 from rotorcosim.master.core.algorithm import SimulationDiverged
 from rotorcosim.master.api import DEFAULT_SCENARIO, SCHEDULES, load_scenario, simulate
-from rotorcosim.master.compiled.runner import ENGINES
+from rotorcosim.master.compiled.choice import ENGINES
 from rotorcosim.master.scenario.overrides import apply_set, apply_swap, parse_set, parse_swap
 from rotorcosim.master.scenario.build import Scenario
 

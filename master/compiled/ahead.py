@@ -8,8 +8,9 @@ damper's film table and film kernel); the master adds the compiled loop (loop_op
 every system). Whatever the caches lack, a plain ``python -m`` child builds in that order into the same caches
 while this process goes on with its set-up. Each result is built by one process: the one that creates its claim
 file first. This process, reaching a result the helper has claimed, waits for it and reads it from the cache
-(components/cache.await_ahead for the tables, a wrapper of the dispatcher's ``compile`` for the kernels, both
-only while the helper lives); one the helper has not reached it claims and builds itself. The results are those
+(components/cache.await_ahead, called by the tables' builders and, for the compiled kernels, by
+components/numba_internals.compile_for: the explicit compile step of every kernel, trampoline and loop that a
+helper may build; only while the helper lives); one the helper has not reached it claims and builds itself. The results are those
 of the same code whichever process built it, and the caches keep them bit for bit.
 
 When the caches hold everything (every run after the first) no helper starts; ``ROTORCOSIM_AHEAD=0`` turns it
@@ -37,11 +38,6 @@ POLL_S = 0.02
 PARENT_POLL_S = 0.5
 
 
-def numba_key(fn, sig) -> str:
-    """The claim key of dispatcher ``fn`` compiled for the argument types ``sig``."""
-    return f"numba/{fn.py_func.__module__}.{fn.py_func.__qualname__}{tuple(sig)}"
-
-
 def _file(folder: str, kind: str, key: str) -> str:
     return os.path.join(folder, f"{kind}-{hashlib.sha256(key.encode()).hexdigest()[:24]}")
 
@@ -54,68 +50,23 @@ def _claim(folder: str, key: str) -> bool:
         return False
 
 
-def _on_disk(fn, sig) -> bool:
-    """Is ``fn`` compiled for ``sig`` here or in its disk cache (True when it has no disk cache: nothing to
-    share)? Reads the cache's index only."""
-    if tuple(sig) in fn.overloads:
-        return True
-    cache = getattr(fn, "_cache", None)
-    if cache is None or type(cache).__name__ == "NullCache":
-        return True
-    try:
-        return cache._index_key(tuple(sig), fn.targetctx.codegen()) in cache._cache_file._load_index()
-    except Exception:  # numba's internals moved: a helper that finds it cached costs only its start
-        return False
-
-
-_ACTIVE = None      # the live helper of this process, if any
-_COMPILE = None     # numba's own Dispatcher.compile while it is wrapped
-
-
-def _hook(helper) -> None:
-    """Route every numba compilation of this process through ``helper.wait`` (None: undo it); numba's own calls,
-    the nested ones included, go through Dispatcher.compile."""
-    global _ACTIVE, _COMPILE
-    from numba.core import sigutils
-    from numba.core.dispatcher import Dispatcher
-
-    _ACTIVE = helper
-    if helper is None:
-        if _COMPILE is not None:
-            Dispatcher.compile = _COMPILE
-            _COMPILE = None
-        return
-    if _COMPILE is None:
-        _COMPILE = orig = Dispatcher.compile
-
-        def compile(self, sig):
-            h = _ACTIVE
-            if h is not None:
-                h.wait(numba_key(self, sigutils.normalize_signature(sig)[0]))
-            return orig(self, sig)
-
-        Dispatcher.compile = compile
-
-
 class Ahead:
     """The helper process of one set-up, and this process's side of the claims."""
 
     def __init__(self, jobs, folder: str | None = None):
-        from numba.core.dispatcher import Dispatcher
-
         from rotorcosim.components import cache
 
         # the claims' folder (a test may give one holding claims already)
         self.folder = folder or tempfile.mkdtemp(prefix="rotorcosim-ahead-")
         self.keys = {key for key, _, _ in jobs}
-        # the keys this process claimed (it builds them itself): numba compiles a signature again, nested inside
-        # another compilation, and waiting then for a "done" that only this process would write hung the run
-        # (a fresh cache, a damper swapped for its FMU: tests/fmus/test_swap.py)
+        # the keys this process claimed (it builds them itself): a second wait on one of them would wait for a
+        # "done" that only this process writes
         self.mine: set[str] = set()
         spec = []
         for key, fn, args in jobs:
-            f = fn.py_func if isinstance(fn, Dispatcher) else fn
-            spec.append((key, f.__module__, f.__qualname__, isinstance(fn, Dispatcher), args, None))
+            dispatcher = _is_dispatcher(fn)
+            f = fn.py_func if dispatcher else fn
+            spec.append((key, f.__module__, f.__qualname__, dispatcher, args, None))
         payload = pickle.dumps((self.folder, spec))
         self.proc = subprocess.Popen([sys.executable, "-m", __name__], stdin=subprocess.PIPE,
                                      stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
@@ -124,7 +75,6 @@ class Ahead:
             self.proc.stdin.flush()
         except OSError:  # it died at once: this process builds everything
             pass
-        _hook(self)
         cache.set_ahead(self.wait)
         atexit.register(self.close)
 
@@ -136,6 +86,7 @@ class Ahead:
         from numba import types
 
         from rotorcosim.components import kernels
+        from rotorcosim.components.numba_internals import TRAMPOLINE_ARGS, compile_key, in_disk_cache
 
         from rotorcosim.master.compiled import kernel_args
 
@@ -147,9 +98,9 @@ class Ahead:
             tramp = kernel_args.functions(ctype)
             fn = type(comp).STEP
             for disp, sig, generated in ((fn, tuple(ctype) + (types.float64, types.float64), None),
-                                         (tramp, kernel_args.TRAMPOLINE_ARGS[:4] + (types.TypeRef(ctype),), ctype)):
-                key = numba_key(disp, sig)
-                if key in self.keys or _on_disk(disp, sig):
+                                         (tramp, TRAMPOLINE_ARGS[:4] + (types.TypeRef(ctype),), ctype)):
+                key = compile_key(disp, sig)
+                if key in self.keys or in_disk_cache(disp, sig):
                     continue
                 self.keys.add(key)
                 spec.append((key, disp.py_func.__module__, disp.py_func.__qualname__, True, sig, generated))
@@ -162,7 +113,8 @@ class Ahead:
             pass
 
     def wait(self, key: str) -> None:
-        """Return when this process may build or read ``key`` (components/cache.await_ahead)."""
+        """Return when this process may build or read ``key`` (components/cache.await_ahead; the compilations'
+        keys through components/numba_internals.compile_for)."""
         if key not in self.keys or key in self.mine or self.proc is None:
             return
         if _claim(self.folder, key):
@@ -179,8 +131,6 @@ class Ahead:
         from rotorcosim.components import cache
 
         cache.set_ahead(None)
-        if _ACTIVE is self:
-            _hook(None)
         try:
             self.proc.stdin.close()
         except OSError:
@@ -201,10 +151,12 @@ def start(components, loop: bool) -> Ahead | None:
     jobs, seen = [], set()
 
     def add(key, fn, args):
-        if key is None:
-            if _on_disk(fn, args):
+        if key is None:  # a compilation: numba is in use already (the component's own kernels import it)
+            from rotorcosim.components.numba_internals import compile_key, in_disk_cache
+
+            if in_disk_cache(fn, args):
                 return
-            key = numba_key(fn, args)
+            key = compile_key(fn, args)
         if key not in seen:
             seen.add(key)
             jobs.append((key, fn, args))
@@ -212,7 +164,9 @@ def start(components, loop: bool) -> Ahead | None:
     for c in components:
         for job in c.prebuild():
             add(*job)
-    if loop:
+    if loop and any(getattr(type(c), "STEP", None) is not None for c in components):
+        # the compiled loop runs only components with kernels (numba is then in use; an FMU-only system never
+        # imports it)
         from rotorcosim.master.compiled import loop_ops
 
         add(None, loop_ops.run_chunk, loop_ops.RUN_CHUNK_SIG)
@@ -225,6 +179,11 @@ def start(components, loop: bool) -> Ahead | None:
         return Ahead(jobs)
     except (OSError, pickle.PicklingError, TypeError, AttributeError):
         return None
+
+
+def _is_dispatcher(fn) -> bool:
+    """A numba dispatcher (compiled for a signature), not a plain function (called)? Without importing numba."""
+    return hasattr(fn, "py_func") and hasattr(fn, "overloads")
 
 
 def _end_with_parent() -> None:

@@ -6,12 +6,12 @@ same semantics, operation for operation:
 
 * the Gauss-Seidel order and the multi-rate firing (component c fires at base step k when (k + 1) % n_c == 0,
   over [t_end - n_c h, t_end], t_end = t0 + (k + 1) h);
-* each consumer's inputs gathered just before it fires, as algorithm._Link.value gives them: a copy of the
-  producer's output, the mean or RMS over the consumer's window (fast -> slow), linear extrapolation to the
-  middle (``linear``, slow -> fast) or to the end (``linear-end``) of the consumer's step; on the thermal-only
-  hold's hand-backs, plus their restart offset after a thermal-only interval (hold.Restart);
+* each consumer's inputs gathered just before it fires, and each link's bookkeeping after its producer fired
+  (averages, extrapolation history, the thermal-only hold's windows and restart offsets), by the very functions
+  of master/core/links.py the generic loop calls, on the same state layout (each link's state is copied into the
+  loop's tables and back around each chunk);
 * after each firing, as algorithm.Engine._fire: the step count, the finiteness of the outputs other components
-  read, the links' bookkeeping (averages, extrapolation history, the ring buffers of the thermal-only hold);
+  read;
 * every ``check_every`` base steps the finiteness of all outputs;
 * the same kernel functions as the components' generic do_step.
 
@@ -19,11 +19,11 @@ The loop is one fixed compiled function for every system (loop_ops.run_chunk), c
 (numba's disk cache): all components' ports are views of one flat array, the links are rows of index tables
 processed by fixed compiled functions (loop_ops), and each kernel is called through a trampoline on the
 component's containers packed into one memory block (kernel_args), all given by address, so the loop's arguments
-are plain arrays and numbers whatever the system. It runs in chunks: the signals the observers read are written
+are named records of plain arrays and numbers whatever the system. It runs in chunks: the signals the observers read are written
 into a buffer, one row per base step, which the observers then consume (Observer.step_block); between chunks the
 components' state and outputs are their own arrays (the kernels work on them in place; the port arrays are the
 flat array's views), so checkpoints and observers see what the generic path would show them. A kernel that needs
-Python for a step (the bearing's re-seating of its balls after a thermal-only interval) or fails returns its
+Python for a step (a quasi-static re-seating after a thermal-only interval, for example) or fails returns its
 status; the step is finished or the error raised in Python, as the generic path would, and the loop resumes after
 that component.
 
@@ -33,75 +33,30 @@ interval, an observer without step_block, the automatic schedule's steadiness te
 """
 from __future__ import annotations
 
+import weakref
+
 import numba
 import numpy as np
 
 from rotorcosim.components.contract import ContractError
-from rotorcosim.components.kernels import PYTHON, KernelComponent
+from rotorcosim.components.kernels import PYTHON
+from rotorcosim.components.numba_internals import TypingError, compile_for, native_address
 
 from rotorcosim.master.compiled import kernel_args
 from rotorcosim.master.compiled import loop_ops as op
-# a link's bookkeeping row M[j]: loop_ops defines its fields
-from rotorcosim.master.compiled.loop_ops import (CN, CSUM, CUR_T, HAS_ACC, HAS_CUR, HAS_PREV, HAS_RT, NCYC, NOUT, PREV_T, R0, RCOUNT, RLEN,
-                       RPOS, RT, WEIGHT, WLAST)
-from rotorcosim.master.core.algorithm import GaussSeidel, SimulationDiverged, _Link
+from rotorcosim.master.core import links
+from rotorcosim.master.core.algorithm import SimulationDiverged
 
-ENGINES = ("auto", "python", "compiled")
 #: base steps per compiled chunk (rows of the observers' buffer): ~1 ms of wall time between observer calls
 CHUNK = 2048
-
-
-class CompiledUnavailable(ContractError):
-    """``--engine compiled`` asked for an interval the compiled path cannot run (the message says why)."""
-
-
-def why_not(sim, active, mult, stop) -> str | None:
-    """None when the interval can run compiled, else the reason it cannot."""
-    comps = sim.system.components
-    for n in active:
-        c = comps[n]
-        if not isinstance(c, KernelComponent) or c.STEP is None:
-            return f"component {n} ({type(c).__name__}) has no compiled kernel"
-        if not c.kernel_available():
-            return f"component {n} has no compiled kernel in this phase"
-        for port in c.kernel_ports()[3]:  # outputs become views of the loop's float array
-            if np.asarray(c.y[port]).dtype != np.float64:
-                return f"output {n}.{port} is not a float array"
-    s = sim.engine.settings
-    if type(sim.engine.algorithm) is not GaussSeidel or s.iterations != 1:
-        return f"the {s.algorithm} algorithm with {s.iterations} iteration(s) (compiled: Gauss-Seidel, 1 iteration)"
-    for link in sim.engine.links:
-        d, src = link.con.dst_component, link.con.src_component
-        if d not in mult:
-            continue
-        if src not in mult:
-            return f"{link.con.src} -> {link.con.dst}: its producer does not step in this interval"
-        if link.conv is not None or not link.real:
-            return f"{link.con.src} -> {link.con.dst}: a converted or non-Real connection"
-        if link.held is not None or link.frozen is not None:
-            return f"{link.con.src} -> {link.con.dst}: held by the master"
-    for link in sim.engine.links:
-        if link.window is not None and link.con.src_component in mult:
-            src = comps[link.con.src_component]
-            if any(src.variable(p).type != "Real" for p in link.window.ports):
-                return f"{link.con.src}: its hand-off window records non-Real inputs"
-    for obs in sim.observers:
-        if obs.block_signals(sim) is None:
-            return f"observer {type(obs).__name__} has no step_block"
-    return None
 
 
 # -- kernels ---------------------------------------------------------------------------------------------------
 def kernel_address(fn, args) -> int:
     """The address of kernel ``fn`` compiled for the types of ``args`` + (t, h) (compiled here, or loaded from its
-    disk cache, if not yet), for loop_ops.call_kernel, which needs an int64 status."""
+    disk cache, if not yet), for numba_internals.call_kernel, which needs an int64 status."""
     sig = tuple(numba.typeof(a) for a in args) + (numba.types.float64, numba.types.float64)
-    fn.compile(sig)
-    cres = fn.overloads[sig]
-    if cres.signature.return_type != numba.types.int64:
-        raise TypeError(f"kernel {fn.py_func.__module__}.{fn.py_func.__name__} returns "
-                        f"{cres.signature.return_type}, not an int64 status")
-    return int(cres.library.get_pointer_to_function(cres.fndesc.llvm_func_name))
+    return native_address(fn, sig, returns=numba.types.int64)
 
 
 # -- the plan of an interval ----------------------------------------------------------------------------------
@@ -128,12 +83,12 @@ class Plan:
                 self.size.append(comps[link.con.src_component].variable(link.sport).size)
             return lid[id(link)]
 
-        self.inputs = [[(link_id(l), l) for l in eng._inputs[n]] for n in self.names]
-        self.outgoing = [[(link_id(l), l) for l in eng._outgoing[n]] for n in self.names]
+        self.inputs = [[(link_id(l), l) for l in eng.inputs_of(n)] for n in self.names]
+        self.outgoing = [[(link_id(l), l) for l in eng.outgoing_of(n)] for n in self.names]
         # the thermal-only hold's hand-backs (a restart offset after a thermal-only interval): known from the
         # system, so that every thermo-mechanical interval of a run has the same tables
         self.handbacks = {lid[id(l)] for l in sim.hold.handbacks if id(l) in lid}
-        self.watch = [list(eng._watch[n]) for n in self.names]
+        self.watch = [list(eng.watched_of(n)) for n in self.names]
         self.outputs = [[v.name for v in c.variables if v.causality == "output" and v.carried and v.type == "Real"]
                         for c in self.comps]
         # the flat array X of all ports: every Real output first, in the observers' buffer order (the buffer's
@@ -178,10 +133,10 @@ class Plan:
             row[op.L_SRC] = self.offset[(i_src, "y", link.sport)]
             row[op.L_DST] = self.offset[(i_dst, "u", link.dport)]
             row[op.L_N] = n
-            row[op.L_TAKE], row[op.L_PROD] = _kinds(link)
+            row[op.L_TAKE], row[op.L_PROD] = link.take_kind, link.produce_kind
             row[op.L_HB] = j in self.handbacks
             row[op.L_VOFF] = vo
-            vo += 4 * n
+            vo += links.NV * n
             if link.window is not None:
                 row[op.L_WIN] = 1
                 row[op.L_WP0] = len(idx)
@@ -207,82 +162,40 @@ class Plan:
         self.mult_arr = np.array([self.mult[n] for n in self.names], dtype=np.int64)
 
 
-def _kinds(link):
-    """(take, produce) of a link for loop_ops: algorithm._Link.value's and .produced's cases."""
-    ex = link.con.extrapolation
-    if link.mode == _Link.FAST_TO_SLOW:
-        how = link.con.average
-        take = {"mean": op.TAKE_MEAN, "rms": op.TAKE_RMS}.get(how, op.TAKE_COPY)
-        return take, {"mean": op.PROD_MEAN, "rms": op.PROD_RMS}.get(how, op.PROD_WEIGHT)
-    if ex == "linear" and link.mode == _Link.SLOW_TO_FAST:
-        take = op.TAKE_MID
-    elif ex == "linear-end":
-        take = op.TAKE_END
-    else:
-        take = op.TAKE_COPY
-    hist = link.mode == _Link.SLOW_TO_FAST or ex == "linear-end"
-    return take, (op.PROD_HIST if hist else op.PROD_NONE)
-
-
 def _link_state(link, m, v):
-    """A link's bookkeeping into its row m of M and its rows v (acc, prev, last, restart delta) of V."""
-    m[:] = 0.0
-    v[:] = 0.0
-    if link.ramp is not None:
-        m[R0], m[RLEN] = link.ramp.t0, link.ramp.length
-        v[3] = link.ramp.delta
-    acc = link.acc if link.con.average == "mean" else link.acc2
-    if acc is not None:
-        m[HAS_ACC] = 1.0
-        v[0] = acc
-    m[WEIGHT] = link.weight
-    if link.prev is not None:
-        m[HAS_PREV] = 1.0
-        v[1] = link.prev
-        m[PREV_T] = link.prev_t
-    if link.cur_t is not None:
-        m[HAS_CUR] = 1.0
-        m[CUR_T] = link.cur_t
-        v[2] = link._last
-    ho = link.window
-    if ho is not None:
-        m[RPOS], m[RCOUNT] = ho.pos, ho.count
-        if ho.t_last is not None:
-            m[HAS_RT], m[RT] = 1.0, ho.t_last
-        m[CSUM], m[CN], m[WLAST], m[NCYC] = ho.csum, ho.cn, ho._last, ho.n_cycle
+    """A link's state (links.py's layout) into its row m of the loop's rows and its slice v of the vectors, with a
+    hand-back's restart offset (links.R0, RLEN, V_DELTA) from the hold's Restart."""
+    m[:] = link.state
+    v[:] = link.vectors
+    m[links.NOUT] = 0.0
+    n = link.n
+    ramp = link.ramp
+    if ramp is not None:
+        m[links.R0], m[links.RLEN] = ramp.t0, ramp.length
+        v[links.V_DELTA * n:(links.V_DELTA + 1) * n] = ramp.delta
+    else:
+        m[links.R0] = m[links.RLEN] = 0.0
 
 
 def _link_back(link, m, v, cycles):
-    """The loop's bookkeeping back into the _Link and its hand-off window (thermal-only holds, checkpoints and
-    the generic loop use them): prev is None exactly when prev_t is (algorithm._Link.produced), cur_t and _last
-    likewise."""
-    acc = v[0].copy() if m[HAS_ACC] else None
-    if link.con.average == "mean":
-        link.acc = acc
-    else:
-        link.acc2 = acc
-    link.weight = float(m[WEIGHT])
-    has_prev = bool(m[HAS_PREV])
-    link.prev = v[1].copy() if has_prev else None
-    link.prev_t = float(m[PREV_T]) if has_prev else None
-    if m[HAS_CUR]:
-        link.cur_t = float(m[CUR_T])
-        link._last = v[2].copy()
+    """The loop's state back into the link's own arrays (the generic loop, the hold and checkpoints read them),
+    and the rotor cycles the loop completed into the link's hand-off window."""
+    link.state[:] = m.tolist()
+    link.vectors[:] = v.tolist()
     ho = link.window
     if ho is not None:
-        ho.pos, ho.count = int(m[RPOS]), int(m[RCOUNT])
-        ho.t_last = float(m[RT]) if m[HAS_RT] else None
-        ho.csum, ho.cn, ho._last = float(m[CSUM]), int(m[CN]), float(m[WLAST])
-        for r in range(int(m[NOUT])):
+        for r in range(int(m[links.NOUT])):
             ho.cycles.append((cycles[r, 1:].copy(), float(cycles[r, 0])))
-        m[NOUT] = 0.0
+    m[links.NOUT] = 0.0
+    link.state[links.NOUT] = 0.0
 
 
 class Runner:
     """Runs base steps k..nsteps of one interval through the compiled loop."""
 
     def __init__(self, sim, plan: Plan, step: float):
-        self.sim = sim
+        # a weak reference: the module's cache of runners (_RUNNERS) is keyed weakly by the simulation
+        self._sim = weakref.ref(sim)
         self.plan = plan
         self.h = step
         self.packed = [kernel_args.Packed() for _ in plan.comps]
@@ -291,6 +204,10 @@ class Runner:
         self.status = np.zeros(3, dtype=np.int64)
         self.X = np.zeros(plan.nx)
         self._views = {}
+
+    @property
+    def sim(self):
+        return self._sim()
 
     def _columns(self, rows):
         b = self.buf[:rows]
@@ -351,13 +268,13 @@ class Runner:
         # the links' bookkeeping, rings and cycle means as tables (loop_ops)
         nl = len(plan.links)
         LI = plan.LI.copy()
-        M = np.zeros((max(1, nl), 17))
+        M = np.zeros((max(1, nl), links.NM))
         V = np.zeros(plan.nv)
         goff, go, co = {}, 0, 0
         for j, link in enumerate(plan.links):
             n = plan.size[j]
             vo = int(LI[j, op.L_VOFF])
-            _link_state(link, M[j], V[vo:vo + 4 * n].reshape(4, n))
+            _link_state(link, M[j], V[vo:vo + links.NV * n])
             if link.window is not None:
                 nr = link.window.ring.shape[0]
                 goff[j] = (go, nr, n)
@@ -371,6 +288,12 @@ class Runner:
         check = int(eng.settings.check_every)
         r0 = -1
         addrs = None
+        # the loop compiled (or loaded from its disk cache) as an explicit step: a helper process of a fresh machine
+        # may be building it (ahead.py)
+        compile_for(op.run_chunk, op.RUN_CHUNK_SIG)
+        tab = op.Tables(LI, plan.CT, plan.IDX, plan.mult_arr)
+        state = op.LinkState(M, V, G, C)
+        res = op.Results(count, self.buf, self.status)
         # containers packed in an earlier interval of the run (a reused runner) and unchanged keep their block
         PA = np.array([pk.address if pk.kargs is not None else 0 for pk in self.packed], dtype=np.int64)
         while k < nsteps:
@@ -381,7 +304,7 @@ class Runner:
             self._windows(G, goff)
             kargs = [c.kernel_args() for c in comps]
             if addrs is None:  # typing the containers costs ~0.5 ms per chunk: again only after a Python step (below)
-                helper = getattr(sim, "_ahead", None)
+                helper = sim.ahead
                 if helper is not None:  # a fresh machine: the helper compiles from the front (ahead.py) ...
                     helper.share(list(zip(comps, kargs)))
                 # ... and this process from the back
@@ -391,8 +314,8 @@ class Runner:
             for i in reversed(range(len(comps))):
                 if self.packed[i].update(kargs[i], addrs[i][2]):
                     PA[i] = self.packed[i].address
-            op.run_chunk(k, k1, r0, t_start, h, check, count, self.buf, self.status, plan.mult_arr, plan.width,
-                         self.X, LI, M, V, G, C, plan.CT, plan.IDX, TA, PA, KA)
+            chunk = op.Chunk(int(k), int(k1), int(r0), float(t_start), float(h), check, int(plan.width))
+            op.run_chunk(chunk, self.X, tab, state, op.Kernels(TA, PA, KA), res)
             if not sim.first_compiled.is_set():  # the loop and the interval's kernels are loaded: the helper is done
                 sim.compiled_done()
             code, kk, i = (int(x) for x in self.status)
@@ -421,7 +344,7 @@ class Runner:
             hc = plan.mult[name] * h
             t = t_end - hc
             if code == -1:
-                eng._diverged(name, t, t + hc)
+                eng.diverged(name, t, t + hc)
             comp = comps[i]
             try:
                 comp.kernel_status(code, t, hc)
@@ -450,10 +373,10 @@ class Runner:
             try:
                 ka = kernel_address(fn, kargs)
             except TypeError as exc:
-                raise ContractError(f"{comp.name}: {exc} (components/kernels.py: STEP returns its status)") from None
+                raise ContractError(f"{comp.name}: kernel {exc} (components/kernels.py: STEP returns its status)") from None
             try:
                 ta = kernel_args.trampoline_address(ctype)
-            except numba.core.errors.TypingError as exc:
+            except TypingError as exc:
                 raise ContractError(f"{comp.name}: {exc}") from None
             a = cls._ADDR[key] = (ta, ka, ctype)
         return a
@@ -467,9 +390,9 @@ class Runner:
             if link.window is not None:
                 cw = int(LI[j, op.L_CW])
                 c0 = int(LI[j, op.L_COFF])
-                nout = int(M[j, NOUT])
+                nout = int(M[j, links.NOUT])
                 cycles = C[c0:c0 + nout * cw].reshape(nout, cw)
-            _link_back(link, M[j], V[vo:vo + 4 * n].reshape(4, n), cycles)
+            _link_back(link, M[j], V[vo:vo + links.NV * n], cycles)
         for i, n in enumerate(plan.names):
             eng.steps_taken[n] += int(count[i])
             count[i] = 0
@@ -498,7 +421,7 @@ class Runner:
 def _type_key(v):
     """What numba's type of ``v`` depends on, read without numba: a key at least as fine as ``numba.typeof``
     (an array's dtype, dimensions, layout flags, writeability and alignment; a tuple's class and items; any other
-    value through numba itself), ~10 times cheaper on the containers of the blade-loss system (numba.typeof
+    value through numba itself), ~10 times cheaper on the containers of a system of nine kernels (numba.typeof
     costs ~0.3 ms per kernel and interval, ~10 ms of a 0.7 s staggered run)."""
     if isinstance(v, np.ndarray):
         f = v.flags
@@ -510,38 +433,38 @@ def _type_key(v):
     return numba.typeof(v)
 
 
-def runner(sim, phase, active, mult, step, stop, choice: str):
-    """A Runner for this interval, or None for the generic loop (the reason in sim.engine_note)."""
-    if choice == "python" or phase != "TM":
-        return None
-    reason = why_not(sim, active, mult, stop)
-    if reason is not None:
-        return _refuse(sim, choice, reason)
+def runner(sim, active, mult, step, stop):
+    """A Runner for this thermo-mechanical interval, which choice.why_not found compilable, or the reason the
+    compiled loop cannot run it after all (a str)."""
     comps = sim.system.components
     for ref in (stop.block_refs() if stop is not None else ()):
         comp, _, port = ref.partition(".")
         if comp not in mult or comps[comp].variable(port).type != "Real":
-            return _refuse(sim, choice, f"the automatic schedule's steadiness test samples {ref}, not a Real output "
-                                        "stepped in this interval")
+            return (f"the automatic schedule's steadiness test samples {ref}, not a Real output stepped in this "
+                    "interval")
     for obs in sim.observers:
         for ref in obs.block_signals(sim):
             comp, _, port = ref.partition(".")
             if comp not in mult:
-                return _refuse(sim, choice, f"observer {type(obs).__name__} reads {ref}, not stepped in this interval")
+                return f"observer {type(obs).__name__} reads {ref}, not stepped in this interval"
             if comps[comp].variable(port).type != "Real":
-                return _refuse(sim, choice, f"observer {type(obs).__name__} reads {ref}, not a Real output")
+                return f"observer {type(obs).__name__} reads {ref}, not a Real output"
     # the thermo-mechanical intervals of a run have the same plan (the hold's windows and hand-backs are set up
     # alike in each): its tables, flat port array, buffers and packed containers are built once per run and reused,
     # ~1.5 ms a staggered interval (plan, buffer pages, ports copied and containers packed anew)
     key = _plan_key(sim, mult)
-    cached = getattr(sim, "_compiled_runner", None)
+    cached = _RUNNERS.get(sim)
     if cached is not None and cached[0] == key:
         cached[1].h = step
         return cached[1]
     plan = Plan(sim, active, mult)
     r = Runner(sim, plan, step)
-    sim._compiled_runner = (key, r)
+    _RUNNERS[sim] = (key, r)
     return r
+
+
+#: each simulation's runner and the key of its plan (kept while the simulation lives)
+_RUNNERS: "weakref.WeakKeyDictionary" = weakref.WeakKeyDictionary()
 
 
 def _plan_key(sim, mult) -> tuple:
@@ -551,15 +474,8 @@ def _plan_key(sim, mult) -> tuple:
     eng = sim.engine
     return (id(eng), tuple(eng.active), tuple(int(mult.get(n, 1)) for n in eng.active),
             tuple(id(sim.system.components[n]) for n in eng.active),
-            tuple(tuple(map(id, eng._inputs[n])) for n in eng.active),
-            tuple(tuple(map(id, eng._outgoing[n])) for n in eng.active),
-            tuple(tuple(eng._watch[n]) for n in eng.active),
+            tuple(tuple(map(id, eng.inputs_of(n))) for n in eng.active),
+            tuple(tuple(map(id, eng.outgoing_of(n))) for n in eng.active),
+            tuple(tuple(eng.watched_of(n)) for n in eng.active),
             tuple((link.mode, None if link.window is None else tuple(link.window.ports)) for link in eng.links),
             tuple(map(id, sim.hold.handbacks)))
-
-
-def _refuse(sim, choice, reason):
-    if choice == "compiled":
-        raise CompiledUnavailable(f"--engine compiled: cannot compile the thermo-mechanical interval: {reason}")
-    sim.engine_note = reason
-    return None

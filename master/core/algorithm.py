@@ -31,6 +31,7 @@ import numpy as np
 
 from rotorcosim.components.contract import Component, ContractError, StopRequested
 
+from rotorcosim.master.core import links
 from rotorcosim.master.core.system import Connection, System
 
 #: the component call in progress, ``[(name, t, time.monotonic() at its start)]``, while a step time limit is
@@ -116,12 +117,13 @@ class SimulationDiverged(RuntimeError):
 
 
 class _Link:
-    """Run-time state of one connection."""
+    """Run-time state of one connection: what its consumer sees of its producer's output (master/core/links.py:
+    the semantics and the layout of ``state`` and ``vectors``, shared with the compiled loop)."""
 
-    __slots__ = ("con", "src", "sport", "dst", "dport", "mode", "acc", "acc2", "weight", "prev", "prev_t",
-                 "cur_t", "frozen", "held", "window", "_last", "conv", "real", "ramp")
+    __slots__ = ("con", "src", "sport", "dst", "dport", "_mode", "take_kind", "produce_kind", "n", "state", "vectors",
+                 "frozen", "held", "window", "conv", "real", "ramp")
 
-    SAME, FAST_TO_SLOW, SLOW_TO_FAST = 0, 1, 2
+    SAME, FAST_TO_SLOW, SLOW_TO_FAST = links.SAME, links.FAST_TO_SLOW, links.SLOW_TO_FAST
 
     def __init__(self, con: Connection, src: Component, dst: Component, conv=None):
         self.con = con
@@ -129,22 +131,38 @@ class _Link:
         self.dst, self.dport = dst, con.dst_port
         #: the type/unit conversion of the connection (conversions.py), None for a plain copy
         self.conv = conv
+        var = src.variable(con.src_port)
         #: averaging, extrapolation and hold statistics apply to Real signals only; the others are held
-        self.real = src.variable(con.src_port).type == "Real"
-        self.mode = self.SAME
+        self.real = var.type == "Real"
+        #: values carried (the producer's port size)
+        self.n = var.size
+        #: the link's state row and vectors (links.py's layout; a hand-off window records into the same row). Lists
+        #: of floats: the generic loop runs links.py's functions in Python, where a list's item costs a third of an
+        #: array's (the compiled loop copies them into its tables and back)
+        self.state = [0.0] * links.NM
+        self.vectors = [0.0] * (links.NV * self.n)
         self.frozen = None      # an iteration's override (iterative coupling)
         self.held = None        # the thermal-only hold's value (master/manipulator/hold.py), or None
         self.window = None      # the thermal-only hold's recorder of this link's hand-off window, or None
         self.ramp = None        # the hold's restart offset of a hand-back after a thermal-only interval, or None
+        self.mode = self.SAME
         self.reset()
 
+    @property
+    def mode(self) -> int:
+        """The producer's rate against the consumer's (SAME, FAST_TO_SLOW, SLOW_TO_FAST); setting it sets what the
+        consumer takes and what each production records (links.kinds)."""
+        return self._mode
+
+    @mode.setter
+    def mode(self, mode: int) -> None:
+        self._mode = mode
+        self.take_kind, self.produce_kind = links.kinds(mode, self.con.average, self.con.extrapolation)
+
     def reset(self):
-        self.acc = None
-        self.acc2 = None
-        self.weight = 0.0
-        self.prev = None
-        self.prev_t = self.cur_t = None
-        self._last = None
+        """Forget averages and extrapolation history (a new interval); a hand-off window keeps its fields."""
+        self.state[:links.OWN] = [0.0] * links.OWN
+        self.vectors[:] = [0.0] * len(self.vectors)
 
     def value(self, t_mid: float, t_end: float | None = None) -> np.ndarray:
         """What the consumer sees, converted (type, unit) when the connection needs it (``conv``; one call,
@@ -157,45 +175,26 @@ class _Link:
         y = self.src.y[self.sport]
         if not self.real:
             return np.array(y) if conv is None else conv(np.array(y))
-        out = None
-        if self.mode == self.FAST_TO_SLOW and self.con.average != "last" and self.weight > 0.0:
-            if self.con.average == "mean":
-                out = self.acc / self.weight
-            else:
-                out = np.sqrt(self.acc2 / self.weight)
-            self.acc = self.acc2 = None
-            self.weight = 0.0
+        kind = self.take_kind
+        if t_end is None:
+            t_end = t_mid
+        if kind == links.TAKE_COPY:
+            out = np.array(y, dtype=float)
         else:
-            ex = self.con.extrapolation
-            if ex != "hold" and self.prev is not None and self.cur_t > self.prev_t:
-                if ex == "linear" and self.mode == self.SLOW_TO_FAST:
-                    out = y + (y - self.prev) * ((t_mid - self.cur_t) / (self.cur_t - self.prev_t))
-                elif ex == "linear-end" and self.mode != self.FAST_TO_SLOW:
-                    te = t_mid if t_end is None else t_end
-                    out = y + (y - self.prev) * ((te - self.cur_t) / (self.cur_t - self.prev_t))
-            if out is None:
-                out = np.array(y, dtype=float)
-        if self.ramp is not None:  # a hand-back just after a thermal-only interval (master/manipulator/hold.py, Restart)
-            out = out + self.ramp.offset(t_mid if t_end is None else t_end)
+            out = np.empty(self.n)
+            links.take(kind, out, 0, y, 0, self.vectors, 0, self.n, self.state, t_mid, t_end)
+        ramp = self.ramp
+        if ramp is not None:  # a hand-back just after a thermal-only interval (master/manipulator/hold.py, Restart)
+            links.add_restart(out, 0, ramp.delta, 0, self.n, t_end, ramp.t0, ramp.length)
         return out if conv is None else conv(out)
 
     def produced(self, h_src: float, t_end: float) -> None:
         """Called after the producer has stepped."""
-        y = self.src.y[self.sport]
         if not self.real:
             return
-        if self.mode == self.FAST_TO_SLOW:
-            how = self.con.average
-            if how == "mean":
-                self.acc = y * h_src if self.acc is None else self.acc + y * h_src
-            elif how == "rms":
-                self.acc2 = y * y * h_src if self.acc2 is None else self.acc2 + y * y * h_src
-            self.weight += h_src
-        elif self.mode == self.SLOW_TO_FAST or self.con.extrapolation == "linear-end":
-            self.prev = None if self.cur_t is None else self._last
-            self.prev_t = self.cur_t
-            self._last = np.array(y, dtype=float)
-            self.cur_t = t_end
+        y = self.src.y[self.sport]
+        if self.produce_kind != links.PROD_NONE:
+            links.produce(self.produce_kind, y, 0, self.vectors, 0, self.n, self.state, h_src, t_end)
         if self.window is not None:
             self.window.record(y, t_end)
 
@@ -294,6 +293,20 @@ class Engine:
             other = [link for link in self._inputs[n] if link not in plain]
             self._direct[n] = (same, other)
 
+    # -- what an interval's plan is made of (the compiled loop builds its tables from these) ---------------
+    def inputs_of(self, name: str) -> list[_Link]:
+        """The links into component ``name`` in this interval, in the order its inputs are gathered."""
+        return self._inputs[name]
+
+    def outgoing_of(self, name: str) -> list[_Link]:
+        """The links out of component ``name`` that hear about each of its productions (they average,
+        extrapolate or record a hand-off window), in the order they are told."""
+        return self._outgoing[name]
+
+    def watched_of(self, name: str) -> list[str]:
+        """The Real outputs of component ``name`` that other components read, checked finite after each step."""
+        return self._watch[name]
+
     # -- stepping ------------------------------------------------------------------------------------
     def _gather(self, name: str, t_mid: float, t_end: float | None = None) -> dict:
         return {link.dport: link.value(t_mid, t_end) for link in self._inputs[name]}
@@ -331,11 +344,12 @@ class Engine:
             for x in y[port].tolist():
                 total += x
         if not math.isfinite(total):
-            self._diverged(name, t, t_end)
+            self.diverged(name, t, t_end)
         for link in self._outgoing[name]:
             link.produced(hc, t_end)
 
-    def _diverged(self, name: str, t: float, t_end: float) -> None:
+    def diverged(self, name: str, t: float, t_end: float) -> None:
+        """Raise SimulationDiverged naming the first non-finite watched output of ``name`` after its step."""
         comp = self._comp[name]
         bad = [p for p in self._watch[name] if not np.all(np.isfinite(comp.y[p]))] or self._watch[name]
         raise SimulationDiverged(f"{name}.{bad[0]} is not finite at t = {t_end:.9g} s (after {name}'s step from "

@@ -52,8 +52,8 @@ libcosim would call it a manipulator: it changes what crosses some connections, 
   In the monolithic run they changed over seconds, so the mechanics followed them quasi-statically. The restart
   does the same on a short scale: each hand-back enters the next TM interval as its value at the end of the
   previous TM interval and goes over to its present (live) value along a half cosine over ``restart_cycles``
-  rotor cycles (:class:`Restart`; the link adds its offset, algorithm._Link.value, and the compiled loop the
-  same). A mode of frequency f then keeps about 1 / ((2 f T)^2 - 1) of the step's response (T the ramp length:
+  rotor cycles (:class:`Restart`; the link adds its offset with master/core/links.add_restart, in both
+  loops). A mode of frequency f then keeps about 1 / ((2 f T)^2 - 1) of the step's response (T the ramp length:
   0.02 for f = 480 Hz over 2 cycles). ``restart_cycles = 0``: the paper's step.
 """
 from __future__ import annotations
@@ -63,6 +63,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from rotorcosim.master.core import links
 from rotorcosim.master.core.system import HOLDS
 
 #: the default statistic: the mean keeps the energy of a power (the paper's RMS overstates a fluctuating one)
@@ -104,24 +105,54 @@ def feeds_mechanics(src, dst) -> bool:
 
 class Restart:
     """A hand-back's offset at a TM restart: ``delta`` (its value at the end of the previous TM interval minus its
-    value at the restart) at t0, fading along a half cosine to nothing at t0 + length. A class, not a closure:
-    checkpoints pickle the links. The compiled loop (master/compiled/runner.py) computes the same, operation for
-    operation."""
+    value at the restart) at t0, fading along a half cosine to nothing at t0 + length (links.add_restart, which
+    both loops add to the link's value). A class, not a closure: checkpoints pickle the links."""
 
     def __init__(self, delta: np.ndarray, t0: float, length: float):
         self.delta, self.t0, self.length = np.array(delta, dtype=float), float(t0), float(length)
 
-    def offset(self, t: float):
-        s = (t - self.t0) / self.length
-        if s >= 1.0:
-            return 0.0
-        if s <= 0.0:
-            return self.delta.copy()
-        return self.delta * (0.5 + 0.5 * math.cos(math.pi * s))
+    def offset(self, t: float) -> np.ndarray:
+        out = np.zeros_like(self.delta)
+        links.add_restart(out, 0, self.delta, 0, self.delta.shape[0], t, self.t0, self.length)
+        return out
+
+
+class _InState:
+    """A field of a hand-off window kept in its link's state row (master/core/links.py), where the compiled loop
+    records it too; ``flag``: the field is None while that field of the row is 0."""
+
+    def __init__(self, index: int, kind=float, flag: int | None = None):
+        self.index, self.kind, self.flag = index, kind, flag
+
+    def __get__(self, ho, owner=None):
+        if ho is None:
+            return self
+        m = ho.link.state
+        if self.flag is not None and not m[self.flag]:
+            return None
+        return self.kind(m[self.index])
+
+    def __set__(self, ho, value):
+        m = ho.link.state
+        if self.flag is not None:
+            m[self.flag] = value is not None
+            if value is None:
+                return
+        m[self.index] = value
 
 
 class HandOff:
     """One mechanical -> thermal connection: its window, its cycle means, its held value in TO."""
+
+    # the window's position and count, its last sample's time, the cycle being recorded (sum, count, last value)
+    # and its length: fields of the link's state (links.py), shared with the compiled loop
+    pos = _InState(links.RPOS, int)
+    count = _InState(links.RCOUNT, int)
+    t_last = _InState(links.RT, float, flag=links.HAS_RT)
+    csum = _InState(links.CSUM)
+    cn = _InState(links.CN, int)
+    _last = _InState(links.WLAST)
+    n_cycle = _InState(links.NCYC, int)
 
     def __init__(self, link, hold: str, thermal_ports: list[str]):
         self.link = link
@@ -148,26 +179,21 @@ class HandOff:
 
     def record(self, y: np.ndarray, t_end: float) -> None:
         """One sample of the producer's output (every step it takes in a TM interval)."""
-        if self.t_last == t_end:  # a repeated iteration of the same step replaces its sample
+        m = self.link.state
+        if m[links.HAS_RT] and m[links.RT] == t_end:  # a repeated iteration of the same step replaces its sample
             self.pos = (self.pos - 1) % len(self.ring)
             self.count -= 1
             if self.cn == 0 and self.cycles:
-                _, m = self.cycles.pop()
-                self.csum, self.cn = m * self.n_cycle, self.n_cycle
+                _, mean = self.cycles.pop()
+                self.csum, self.cn = mean * self.n_cycle, self.n_cycle
             self.csum -= self._last
             self.cn -= 1
-        self.t_last = t_end
-        self.ring[self.pos] = y
-        self.pos = (self.pos + 1) % len(self.ring)
-        self.count = min(self.count + 1, len(self.ring))
-        y0 = float(y[0])
-        self._last = y0
-        self.csum += y0
-        self.cn += 1
-        if self.cn == self.n_cycle:  # a whole rotor cycle: its mean, and the thermal inputs at its end (they
-            # change at the thermal step, far slower than the rotor)
-            self.cycles.append((self._thermal_inputs(), self.csum / self.cn))
-            self.csum, self.cn = 0.0, 0
+        # the sample and the cycle it belongs to (links.record: the compiled loop records with the same function)
+        ring = self.ring
+        if links.record(y, 0, ring.shape[1], m, ring.reshape(-1), 0, ring.shape[0], t_end):
+            # a whole rotor cycle: its mean, and the thermal inputs at its end (they change at the thermal step, far
+            # slower than the rotor)
+            self.cycles.append((self._thermal_inputs(), float(m[links.CMEAN])))
 
     def _thermal_inputs(self) -> np.ndarray:
         u = self.link.src.u

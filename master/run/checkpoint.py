@@ -35,6 +35,7 @@ import json
 import os
 import pickle
 import signal
+import struct
 import sys
 import threading
 import time
@@ -49,8 +50,9 @@ from rotorcosim.master.schedule.timeline import Timeline
 from rotorcosim.master.core.system import System
 
 CHECKPOINT = "checkpoint.pkl"
-#: 3: the hold keeps the restart ramps of its hand-backs (links carry `ramp`): a format-2 checkpoint lacks them
-FORMAT = 3
+#: the layout of what is pickled (the links' state in master/core/links.py's layout, the hold's restart ramps): a
+#: checkpoint of another format is refused by name
+FORMAT = 4
 #: wall time between two checkpoints inside a long interval
 EVERY_S = 180.0
 #: an interval end is checkpointed only when the last checkpoint (or the run's start) is at least this old [s of
@@ -365,7 +367,7 @@ def load(path: str | os.PathLike, key: str) -> ResumePoint:
         # checkpoints are pickles of protocol >= 2, which begin with the PROTO opcode (0x80)
         why = ("cannot be read" if raw is None else "empty" if not raw else
                "not a checkpoint" if raw[:1] != b"\x80" else
-               "truncated" if isinstance(exc, EOFError) or "exhausted" in str(exc) else "damaged")
+               "truncated" if _ended_early(exc) else "damaged")
         raise CheckpointError(f"--resume: {path} is not a readable checkpoint ({why}: {type(exc).__name__}: "
                               f"{exc}); run again without --resume, into a new folder or with --overwrite") from None
     if data.get("format") != FORMAT:
@@ -374,6 +376,15 @@ def load(path: str | os.PathLike, key: str) -> ResumePoint:
         raise CheckpointError(f"--resume: {path} was written by a run of another scenario or with other options "
                               "(unbalance, duration, schedule, outputs, --record): resume with the same command")
     return ResumePoint(raw, data)
+
+
+def _ended_early(exc: Exception) -> bool:
+    """Did the unpickler fail by reading past the end of the data? An opcode cut from its argument fails in the
+    read of that argument: an empty read (EOFError, a frame "exhausted"), a byte taken from nothing (IndexError
+    "index out of range": a one-byte integer or length) or a number unpacked from too few bytes (struct.error)."""
+    return (isinstance(exc, EOFError) or "exhausted" in str(exc)
+            or (isinstance(exc, IndexError) and str(exc) == "index out of range")
+            or (isinstance(exc, struct.error) and "requires a buffer" in str(exc)))
 
 
 def _peek(raw: bytes) -> dict:

@@ -1,4 +1,4 @@
-"""An inner function called by address from a kernel (components/kernels.by_address / address_of / call_at): the
+"""An inner function called by address from a kernel (components/numba_internals.by_address / address_of / call_at): the
 same result as the call by name, the declared types enforced, the callee's errors raised in the caller."""
 from __future__ import annotations
 

@@ -9,7 +9,7 @@ import pytest
 
 from rotorcosim.components.bearing.component import BallBearing
 from rotorcosim.master.cli.run import apply_unbalance, resolve
-from rotorcosim.master.compiled.runner import CompiledUnavailable
+from rotorcosim.master.compiled.choice import CompiledUnavailable
 from rotorcosim.master.observer.observers import Recorder
 from rotorcosim.cases.blade_loss.results import observers as result_observers
 from rotorcosim.master.scenario.build import build_simulation

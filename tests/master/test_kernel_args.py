@@ -10,6 +10,7 @@ import pytest
 from numba import njit, types
 from numba.core.errors import TypingError
 
+from rotorcosim.components import numba_internals
 from rotorcosim.master.compiled import kernel_args
 from rotorcosim.master.compiled import loop_ops
 
@@ -74,7 +75,7 @@ def test_a_partial_repack_writes_what_a_whole_one_does():
         assert packed.update(new)
         whole = kernel_args.Packed()
         assert whole.update(new)
-        size = kernel_args._layout(kernel_args.container_type(new))[0]
+        size = numba_internals.layout(kernel_args.container_type(new))[0]
         assert packed.buf.view(np.uint8)[:size].tobytes() == whole.buf.view(np.uint8)[:size].tobytes()
 
 

@@ -1,0 +1,77 @@
+"""The engine choice of a thermo-mechanical interval, decided without importing numba: the compiled loop
+(:mod:`.runner`, which needs numba) is imported only for an interval it can run, so that a system of FMUs or
+Python plug-ins never imports numba."""
+from __future__ import annotations
+
+import numpy as np
+
+from rotorcosim.components.contract import ContractError
+from rotorcosim.components.kernels import KernelComponent
+
+from rotorcosim.master.core.algorithm import GaussSeidel
+
+#: the engines of ``Simulation.engine_choice`` (``--engine``)
+ENGINES = ("auto", "python", "compiled")
+
+
+class CompiledUnavailable(ContractError):
+    """``--engine compiled`` asked for an interval the compiled path cannot run (the message says why)."""
+
+
+def why_not(sim, active, mult, stop) -> str | None:
+    """None when the interval can run compiled, else the reason it cannot."""
+    comps = sim.system.components
+    for n in active:
+        c = comps[n]
+        if not isinstance(c, KernelComponent) or c.STEP is None:
+            return f"component {n} ({type(c).__name__}) has no compiled kernel"
+        if not c.kernel_available():
+            return f"component {n} has no compiled kernel in this phase"
+        for port in c.kernel_ports()[3]:  # outputs become views of the loop's float array
+            if np.asarray(c.y[port]).dtype != np.float64:
+                return f"output {n}.{port} is not a float array"
+    eng = sim.engine
+    s = eng.settings
+    if type(eng.algorithm) is not GaussSeidel or s.iterations != 1:
+        return f"the {s.algorithm} algorithm with {s.iterations} iteration(s) (compiled: Gauss-Seidel, 1 iteration)"
+    for link in eng.links:
+        d, src = link.con.dst_component, link.con.src_component
+        if d not in mult:
+            continue
+        if src not in mult:
+            return f"{link.con.src} -> {link.con.dst}: its producer does not step in this interval"
+        if link.conv is not None or not link.real:
+            return f"{link.con.src} -> {link.con.dst}: a converted or non-Real connection"
+        if link.held is not None or link.frozen is not None:
+            return f"{link.con.src} -> {link.con.dst}: held by the master"
+    for link in eng.links:
+        if link.window is not None and link.con.src_component in mult:
+            src = comps[link.con.src_component]
+            if any(src.variable(p).type != "Real" for p in link.window.ports):
+                return f"{link.con.src}: its hand-off window records non-Real inputs"
+    for obs in sim.observers:
+        if obs.block_signals(sim) is None:
+            return f"observer {type(obs).__name__} has no step_block"
+    return None
+
+
+def runner(sim, phase, active, mult, step, stop, choice: str):
+    """A compiled runner for this interval (master/compiled/runner.Runner), or None for the generic loop (the
+    reason in sim.engine_note); with ``choice`` "compiled", CompiledUnavailable instead of None."""
+    if choice == "python" or phase != "TM":
+        return None
+    reason = why_not(sim, active, mult, stop)
+    if reason is not None:
+        return refuse(sim, choice, reason)
+    from rotorcosim.master.compiled import runner as compiled
+
+    r = compiled.runner(sim, active, mult, step, stop)
+    return refuse(sim, choice, r) if isinstance(r, str) else r
+
+
+def refuse(sim, choice, reason):
+    """No compiled runner: an error under ``--engine compiled``, else the reason noted for the summary."""
+    if choice == "compiled":
+        raise CompiledUnavailable(f"--engine compiled: cannot compile the thermo-mechanical interval: {reason}")
+    sim.engine_note = reason
+    return None
