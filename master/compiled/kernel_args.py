@@ -2,9 +2,9 @@
 
 The compiled loop (loop_ops.run_chunk) is one function for every system: it calls each component's kernel through
 a trampoline on that component's packed containers, all three given by address (int64 arrays), so its arguments
-are plain arrays and numbers. Before this, the loop took the 36 containers of the blade-loss system (~200 arrays)
-as arguments: one compiled version per system, whose CPython wrapper (unboxing them) and scalar replacement
-(SROA) over ~1 400 argument values took 13-16 s of CPU on a fresh machine's first run.
+are plain arrays and numbers. A loop that took the containers themselves as arguments (36 containers, ~200
+arrays for the shipped case's system) would be one compiled version per system, whose CPython wrapper (unboxing
+them) and scalar replacement (SROA) over ~1 400 argument values take 13-16 s of CPU on a fresh machine's first run.
 
 * :class:`Packed` writes the containers (s, p, u, y) into a buffer in numba's in-memory layout (read from its data
   model, :func:`_layout`), in Python: nothing to compile. Every array goes in as a *borrowed* view: its meminfo
@@ -209,8 +209,8 @@ class Packed:
     def update(self, kargs, ctype=None) -> bool:
         """Pack ``kargs`` (of type ``ctype``, typed here if None) unless they are the packed ones (the same objects,
         or tuples of the same objects); True when packed anew. Only the containers that are other objects are
-        written again (after a thermal-only interval the bearings' state and ports are new arrays, their constants
-        the same: ~0.2 ms a bearing saved), unless the type or the buffer changed. The packed arrays are borrowed:
+        written again (after a thermal-only interval a component's state and ports may be new arrays, its constants
+        the same: ~0.2 ms a component saved), unless the type or the buffer changed. The packed arrays are borrowed:
         ``self.kargs`` keeps them alive."""
         old = self.kargs
         fresh = [True] * len(kargs)

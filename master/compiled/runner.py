@@ -23,7 +23,7 @@ are plain arrays and numbers whatever the system. It runs in chunks: the signals
 into a buffer, one row per base step, which the observers then consume (Observer.step_block); between chunks the
 components' state and outputs are their own arrays (the kernels work on them in place; the port arrays are the
 flat array's views), so checkpoints and observers see what the generic path would show them. A kernel that needs
-Python for a step (the bearing's re-seating of its balls after a thermal-only interval) or fails returns its
+Python for a step (a component re-seating its contacts after a thermal-only interval) or fails returns its
 status; the step is finished or the error raised in Python, as the generic path would, and the loop resumes after
 that component.
 
@@ -498,7 +498,7 @@ class Runner:
 def _type_key(v):
     """What numba's type of ``v`` depends on, read without numba: a key at least as fine as ``numba.typeof``
     (an array's dtype, dimensions, layout flags, writeability and alignment; a tuple's class and items; any other
-    value through numba itself), ~10 times cheaper on the containers of the blade-loss system (numba.typeof
+    value through numba itself), ~10 times cheaper on the containers of the shipped case's system (numba.typeof
     costs ~0.3 ms per kernel and interval, ~10 ms of a 0.7 s staggered run)."""
     if isinstance(v, np.ndarray):
         f = v.flags
