@@ -40,6 +40,7 @@ from rotorcosim.master.observer.observers import Progress, Recorder, column_name
 from rotorcosim.master.run.outputs import write_json
 from rotorcosim.master.run.rundir import RunFolder
 from rotorcosim.master.scenario.build import Scenario, build_simulation, load_scenario as _load_file, schedule_of
+from rotorcosim.master.scenario.cycle import cycle_of
 from rotorcosim.master.schedule.timeline import Schedule
 from rotorcosim.master.observer.series import SeriesFile
 from rotorcosim.master.simulation import engine_summary
@@ -235,9 +236,10 @@ def _simulate(sc, duration, schedule, out, record, progress, figures, overwrite,
     fmt = o.get("format", "h5")
     if fmt not in ("h5", "csv"):
         raise ValueError(f"[outputs] format {fmt!r} not in ('h5', 'csv')")
-    speed = sc.schedule.get("speed_rpm")
-    if post is not None and not speed:
-        raise ValueError(f"scenario {sc.name!r}: [results] needs schedule.speed_rpm (steady windows in rotor cycles)")
+    cycle = cycle_of(sc.schedule)
+    if post is not None and cycle is None:
+        raise ValueError(f"scenario {sc.name!r}: [results] needs a cycle, [schedule] speed_rpm or cycle (steady "
+                         "windows in cycles)")
     with contextlib.ExitStack() as stack:
         point = saver = series = None
         if out is not None:
@@ -253,7 +255,7 @@ def _simulate(sc, duration, schedule, out, record, progress, figures, overwrite,
         # a file run keeps nothing in memory: the result and the figures read the HDF5 file (CSV is not read back)
         keep = series is None or fmt != "h5"
         recorder = Recorder(series, signals, float(o.get("record_step", 1e-4)), keep=keep)
-        post_obs = post.observers(sc, speed) if post is not None else []
+        post_obs = post.observers(sc, cycle) if post is not None else []
         observers = [recorder, *post_obs, Progress(sch.duration, disable=not progress, desc=sc.name)]
         if out is not None:
             # checkpoint_every=None: no checkpoints (a timing comparison is run again, not resumed)
