@@ -1,7 +1,8 @@
 """Runs a system through a schedule: intervals, phases, observers.
 
-The staggered scheme alternates thermo-mechanical (TM) and thermal-only (TO) intervals; what is frozen and held in a TO interval is the thermal-only hold's (master/manipulator/hold.py). The next TM
-interval resumes from the frozen state with the new temperatures.
+The staggered scheme alternates thermo-mechanical (TM) and thermal-only (TO) intervals; what is frozen and held
+in a TO interval is the thermal-only hold's (master/manipulator/hold.py). The next TM interval resumes from the
+frozen state with the new temperatures.
 """
 from __future__ import annotations
 

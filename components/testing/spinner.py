@@ -1,7 +1,7 @@
 """A toy shaft whose speed changes between thermo-mechanical intervals, to test cycle sources that follow a speed.
 
-``Spinner``: turns at ``Omega0`` until its own time (the time it has been stepped) reaches ``t_switch``, then at ``Omega1``
-[rad/s]; its angle integrates the speed of each step exactly. It outputs the speed it turns at over the next step
+``Spinner``: turns at ``Omega0`` until its own time (the time it has been stepped) reaches ``t_switch``, then at
+``Omega1`` [rad/s]; its angle integrates the speed of each step exactly. It outputs the speed it turns at over the next step
 ``Omega`` (rad/s), the angle ``theta`` (rad) and a power that fluctuates once a turn,
 ``P = P0 (1 + a cos(theta))`` [W], whose mean over whole turns is ``P0``. Mechanical: it takes part in
 thermo-mechanical intervals only, so a thermal-only interval freezes it (its time, angle and speed).

@@ -37,7 +37,8 @@ def cycle_of(schedule: Mapping[str, Any]) -> Cycle | None:
     if table is None:
         return None
     if not isinstance(table, Mapping):
-        raise ScenarioError(f"[schedule] cycle: a table, {{ period = S }} or {{ signal = \"comp.port\" }}, got {table!r}")
+        raise ScenarioError(f"[schedule] cycle: a table, {{ period = S }} or {{ signal = \"comp.port\" }}, "
+                            f"got {table!r}")
     if ("period" in table) == ("signal" in table):
         raise ScenarioError("[schedule] cycle: give exactly one of period (s) or signal (\"component.port\")")
     if "period" in table:

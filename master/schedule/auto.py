@@ -8,9 +8,9 @@ temperatures); TO intervals run until the thermal outputs that feed the mechanic
 Error control (``tolerance``, percent; ``--tolerance PCT``): every TO interval's error is estimated at the next
 restart by the thermal-only hold (master/manipulator/hold.py: the hand-off error of each held power, carried through
 the thermal components over the interval's length, relative to the temperatures above the hold's
-``temperature_zero``), and the next TO interval's length is scaled by tolerance / estimate (at most halved or doubled per interval; the
-estimate grows with the extrapolation over the interval). The first TO interval is ``to_min`` long. The run
-reports the largest estimate of its intervals (``estimated_error_pct``): an estimate of the largest error of a
+``temperature_zero``), and the next TO interval's length is scaled by tolerance / estimate (at most halved or
+doubled per interval; the estimate grows with the extrapolation over the interval). The first TO interval is
+``to_min`` long. The run reports the largest estimate of its intervals (``estimated_error_pct``): an estimate of the largest error of a
 reported temperature against the monolithic run, which bounds the others (the mechanical results follow the
 temperatures they are read at).
 """

@@ -150,7 +150,8 @@ def test_speed_rpm_is_a_constant_period_of_60_over_it(tmp_path):
 
 
 @pytest.mark.parametrize("cycle, message", [
-    ('cycle = { signal = "spin.Omega" }\n    speed_rpm = 3000.0', r"\[schedule\] cycle: give speed_rpm or cycle, not both"),
+    ('cycle = { signal = "spin.Omega" }\n    speed_rpm = 3000.0',
+     r"\[schedule\] cycle: give speed_rpm or cycle, not both"),
     ('cycle = { period = 0.02, signal = "spin.Omega" }', r"\[schedule.cycle\]: give exactly one of period"),
     ('cycle = { signal = "spun.Omega" }', r"\[schedule.cycle\] signal: .*spun"),
     ('cycle = { period = 0.02, unit = "s" }', r"\[schedule.cycle\] unit: is the unit of a signal"),
