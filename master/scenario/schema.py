@@ -483,7 +483,7 @@ def _schedule(c: _Checker, s: Mapping, comps: Mapping) -> None:
     if period and cycles and held:
         # the hold averages the last hold_cycles cycles of a TM interval (and sizes its buffers by them): a
         # window longer than every TM interval never fills; 1e12 cycles asked for terabytes (out of memory)
-        window, longest = cycles * period, max(d for _, d, _ in held)
+        window, longest = (cycles * 60.0 / speed if speed else cycles * period), max(d for _, d, _ in held)
         if window > longest * (1 + 1e-9):
             raise c.fail("schedule", "hold_cycles", f"{cycles:g} cycles {per} last {window:.4g} s, "
                          f"longer than the longest thermo-mechanical interval ({longest:.4g} s): the hold's window "
@@ -510,10 +510,10 @@ def _restart(c: _Checker, s: Mapping, raw, period: float | None, per: str) -> No
     longer than the shortest such run never ends: the hand-backs would stay a blend of held and live values for
     the whole run (1e12 cycles was accepted). Under the automatic schedule a TM interval after a TO one lasts at
     most tm_max."""
-    cycles = s.get("restart_cycles")
+    speed, cycles = s.get("speed_rpm"), s.get("restart_cycles")
     if not period or not cycles:
         return
-    ramp = cycles * period
+    ramp = cycles * 60.0 / speed if speed else cycles * period
     runs, run, after_to = [], 0.0, False
     if isinstance(raw, list) and s.get("kind", "timeline") != "auto":
         for iv in raw:
