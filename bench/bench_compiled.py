@@ -23,6 +23,7 @@ from rotorcosim.master.cli.run import apply_unbalance, resolve
 from rotorcosim.master.observer.observers import Recorder
 from rotorcosim.master.run.profiling import StepTimer
 from rotorcosim.cases.blade_loss.results import observers as result_observers
+from rotorcosim.master.scenario.cycle import cycle_of
 from rotorcosim.master.scenario.build import build_simulation
 from rotorcosim.master.schedule import Interval, Timeline
 
@@ -33,7 +34,7 @@ def build(unbalance: float, engine: str):
     o = sc.outputs
     # in memory: the timed intervals run after the warm-up's end, which closes a recorder's file
     obs = [Recorder(None, list(o["record"]), float(o["record_step"]))]
-    obs += result_observers(sc, float(sc.schedule["speed_rpm"]))
+    obs += result_observers(sc, cycle_of(sc.schedule))
     sim = build_simulation(sc, obs)
     sim.engine_choice = engine
     h = float(sc.schedule["step"])

@@ -40,22 +40,26 @@ from rotorcosim.master.observer.observers import Progress, Recorder, column_name
 from rotorcosim.master.run.outputs import write_json
 from rotorcosim.master.run.rundir import RunFolder
 from rotorcosim.master.scenario.build import Scenario, build_simulation, load_scenario as _load_file, schedule_of
+from rotorcosim.master.scenario.cycle import cycle_of
 from rotorcosim.master.schedule.timeline import Schedule
 from rotorcosim.master.observer.series import SeriesFile
 from rotorcosim.master.simulation import engine_summary
 from rotorcosim.master.core.threads import one_thread
 
-DEFAULT_SCENARIO = "blade_loss_2850"
+#: the scenario run when none is named (declared with the shipped scenarios, ``scenarios.DEFAULT``)
+DEFAULT_SCENARIO = scenarios.DEFAULT
 #: ``schedule=`` names: the scenario's own schedule (its timeline), automatic, one TM interval
-SCHEDULES = {"paper": None, "auto": "auto", "monolithic": "monolithic"}
+SCHEDULES = {"scenario": None, "auto": "auto", "monolithic": "monolithic"}
+#: other names accepted for those: "paper" is the scenario's own schedule (the shipped case's: the paper's timeline)
+SCHEDULE_ALIASES = {"paper": "scenario"}
 PHASE_NAMES = np.array(["TM", "TO"])
 
 
 def load_scenario(name_or_path: str | Path | None = None) -> Scenario:
     """A scenario: a shipped name (``"blade_loss_2850"``, see ``rotorcosim scenarios``), a TOML file, or an SSP
-    archive (``.ssp``). None gives the default, ``blade_loss_2850``."""
+    archive (``.ssp``). None gives the default, :data:`DEFAULT_SCENARIO`."""
     if name_or_path is None:
-        return _load_file(scenarios.path(DEFAULT_SCENARIO))
+        return _load_file(scenarios.path(scenarios.DEFAULT))
     if isinstance(name_or_path, str) and not name_or_path.strip():  # Path("") is the current folder
         raise ValueError("load_scenario: an empty name: give a shipped scenario's name or a file")
     p = Path(name_or_path)
@@ -99,6 +103,7 @@ def _schedule(sc: Scenario, schedule, duration: float | None):
         if duration is not None:
             raise ValueError("give duration or a schedule object, not both")
         return schedule, None
+    schedule = SCHEDULE_ALIASES.get(schedule, schedule) if isinstance(schedule, str) else schedule
     if schedule is not None and schedule not in SCHEDULES:
         raise ValueError(f"schedule {schedule!r}: use one of {sorted(SCHEDULES)} or a Timeline/AutoSchedule")
     kind = SCHEDULES.get(schedule) if schedule is not None else None
@@ -177,9 +182,9 @@ def simulate(sc: Scenario | str | Path, duration: float | None = None, schedule=
              checkpoint_every: float | None = checkpoint.EVERY_S, step_timeout: float = 0.0, engine: str = "auto") -> Result:
     """Run scenario ``sc`` (a :class:`Scenario`, or a name or path for :func:`load_scenario`).
 
-    ``duration`` [s] cuts the schedule; ``schedule`` is ``"paper"`` (the scenario's own), ``"auto"``,
-    ``"monolithic"`` or a :class:`~rotorcosim.master.schedule.timeline.Timeline` / ``AutoSchedule``; ``record`` the ports
-    to record (default: the scenario's ``[outputs] record``); ``progress`` shows a progress bar.
+    ``duration`` [s] cuts the schedule; ``schedule`` is ``"scenario"`` (the scenario's own; also ``"paper"``),
+    ``"auto"``, ``"monolithic"`` or a :class:`~rotorcosim.master.schedule.timeline.Timeline` / ``AutoSchedule``;
+    ``record`` the ports to record (default: the scenario's ``[outputs] record``); ``progress`` shows a progress bar.
 
     ``out``: a folder that receives what ``rotorcosim run`` writes (summary.json, the time series, the figures
     unless ``figures=False``). It must be empty, or hold a previous run's results and ``overwrite``, or an
@@ -235,9 +240,10 @@ def _simulate(sc, duration, schedule, out, record, progress, figures, overwrite,
     fmt = o.get("format", "h5")
     if fmt not in ("h5", "csv"):
         raise ValueError(f"[outputs] format {fmt!r} not in ('h5', 'csv')")
-    speed = sc.schedule.get("speed_rpm")
-    if post is not None and not speed:
-        raise ValueError(f"scenario {sc.name!r}: [results] needs schedule.speed_rpm (steady windows in rotor cycles)")
+    cycle = cycle_of(sc.schedule)
+    if post is not None and cycle is None:
+        raise ValueError(f"scenario {sc.name!r}: [results] needs a cycle, [schedule] speed_rpm or cycle (steady "
+                         "windows in cycles)")
     with contextlib.ExitStack() as stack:
         point = saver = series = None
         if out is not None:
@@ -253,7 +259,7 @@ def _simulate(sc, duration, schedule, out, record, progress, figures, overwrite,
         # a file run keeps nothing in memory: the result and the figures read the HDF5 file (CSV is not read back)
         keep = series is None or fmt != "h5"
         recorder = Recorder(series, signals, float(o.get("record_step", 1e-4)), keep=keep)
-        post_obs = post.observers(sc, speed) if post is not None else []
+        post_obs = post.observers(sc, cycle) if post is not None else []
         observers = [recorder, *post_obs, Progress(sch.duration, disable=not progress, desc=sc.name)]
         if out is not None:
             # checkpoint_every=None: no checkpoints (a timing comparison is run again, not resumed)

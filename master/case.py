@@ -9,11 +9,17 @@ A scenario names its case in ``[results] kind``. The name resolves, in this orde
 A case is a module or object with any of these attributes:
 
 - ``RESULTS``: the dotted name of the module that turns a run into the scenario's results, offering
-  ``observers(sc, speed)``, ``check(sc, sim)``, ``extract(sc, sim, observers, report) -> dict``,
-  ``figures(sc, series, out, pool=None) -> list[str]`` and optionally ``FIGURES_MODULE``;
-- ``LEVELS``: named sets of levels for ``rotorcosim sweep --unbalance NAME`` (e.g. ``{"paper": (712.0, ...)}``);
+  ``observers(sc, cycle)`` (``cycle``: the scenario's cycle source, master/core/cycle.py), ``check(sc, sim)``,
+  ``extract(sc, sim, observers, report) -> dict``, ``figures(sc, series, out, pool=None) -> list[str]`` and
+  optionally ``FIGURES_MODULE``;
+- ``LEVELS``: named sets of levels of the scenario's level parameter (``[results] unbalance_parameter``) for
+  ``rotorcosim sweep --unbalance NAME`` (e.g. ``{"paper": (712.0, ...)}``);
 - ``SWEEP_TABLES``: ``"module:function"``, ``function(out, by_level) -> score | None``, called after a sweep with
   one case per level (``by_level``: level -> summary) to write the case's own tables;
+- ``SWEEP_FILES``: the names (glob patterns) of the files ``SWEEP_TABLES`` writes, which ``sweep --overwrite``
+  may clear;
+- ``SWEEP_SCORE``: ``"module:function"``, ``function(score, out) -> str``, the line ``rotorcosim sweep`` prints
+  for a score of ``SWEEP_TABLES``;
 - ``COMMANDS``: ``{"command-name": ("dotted.module", "one line of help")}``, added to the ``rotorcosim`` program
   (each module offers ``add_arguments(parser)`` and ``run(args) -> int``, as the master's own commands).
 

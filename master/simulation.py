@@ -1,8 +1,8 @@
 """Runs a system through a schedule: intervals, phases, observers.
 
-The staggered scheme of the paper (section 3.2) alternates thermo-mechanical (TM) and thermal-only (TO)
-intervals; what is frozen and held in a TO interval is the thermal-only hold's (master/manipulator/hold.py). The next TM
-interval resumes from the frozen state with the new temperatures.
+The staggered scheme alternates thermo-mechanical (TM) and thermal-only (TO) intervals; what is frozen and held
+in a TO interval is the thermal-only hold's (master/manipulator/hold.py). The next TM interval resumes from the
+frozen state with the new temperatures.
 """
 from __future__ import annotations
 
@@ -18,6 +18,7 @@ from rotorcosim.components.contract import ContractError
 from rotorcosim.master.compiled import ahead
 from rotorcosim.master.compiled import choice as compiled
 from rotorcosim.master.core.algorithm import Engine, EngineSettings, SimulationDiverged
+from rotorcosim.master.core.cycle import Cycle, as_cycle
 from rotorcosim.master.manipulator.hold import DEFAULT_HOLD, HOLDS, RESTART_CYCLES, StaggeredHold
 from rotorcosim.master.schedule.timeline import RunReport, Schedule, ScheduleError, UsedInterval
 from rotorcosim.master.core.system import System
@@ -25,16 +26,15 @@ from rotorcosim.master.core.system import System
 class Simulation:
     def __init__(self, system: System, *, order: Sequence[str] | None = None,
                  settings: EngineSettings | None = None, steps: dict[str, float] | None = None,
-                 hold: str = DEFAULT_HOLD, hold_cycles: float = 5.0, speed_rpm: float | None = None,
-                 observers: Sequence = (), t0: float = 0.0, restart_cycles: float = RESTART_CYCLES):
+                 hold: str = DEFAULT_HOLD, hold_cycles: float = 5.0, cycle: Cycle | float | None = None,
+                 observers: Sequence = (), t0: float = 0.0, restart_cycles: float = RESTART_CYCLES,
+                 temperature_zero: float = 0.0):
         if hold not in HOLDS:
             raise ContractError(f"hold {hold!r} not in {HOLDS}")
         if not (hold_cycles > 0 and math.isfinite(hold_cycles)):
             raise ContractError(f"hold_cycles must be positive, got {hold_cycles}")
         if not (restart_cycles >= 0 and math.isfinite(restart_cycles)):
             raise ContractError(f"restart_cycles must be a number >= 0, got {restart_cycles}")
-        if speed_rpm is not None and not (speed_rpm > 0 and math.isfinite(speed_rpm)):
-            raise ContractError(f"speed_rpm must be positive, got {speed_rpm}")
         self.system = system
         self.settings = settings or EngineSettings()
         self.engine = Engine(system, list(order or system.components), self.settings)
@@ -43,8 +43,13 @@ class Simulation:
             system.component(name)
             if not (s > 0 and math.isfinite(s)):
                 raise ContractError(f"communication step of {name} must be positive, got {s}")
-        self.speed_rpm = speed_rpm
-        self.hold = StaggeredHold(system, self.engine.links, hold, hold_cycles, speed_rpm, restart_cycles)
+        #: where the cycle period of the hold's windows, the restart and the steadiness test comes from
+        #: (master/core/cycle.py; a number is a constant period in seconds), or None: no cycle
+        self.cycle_source = as_cycle(cycle)
+        if self.cycle_source is not None:
+            self.cycle_source.check(system)
+        self.hold = StaggeredHold(system, self.engine.links, hold, hold_cycles, self.cycle_source, restart_cycles,
+                                  temperature_zero)
         self.observers = list(observers)
         self.t = float(t0)
         self.t0 = float(t0)
@@ -71,7 +76,8 @@ class Simulation:
     # -- helpers ---------------------------------------------------------------------------------------
     @property
     def cycle(self) -> float | None:
-        return 60.0 / self.speed_rpm if self.speed_rpm else None
+        """The cycle period now [s] (None: the run has no cycle)."""
+        return self.cycle_source.period(self.system) if self.cycle_source is not None else None
 
     def value(self, ref: str) -> np.ndarray:
         comp, _, port = ref.partition(".")

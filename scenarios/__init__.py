@@ -2,6 +2,8 @@
 from pathlib import Path
 
 FOLDER = Path(__file__).parent
+#: the scenario ``rotorcosim run`` and ``load_scenario()`` run when none is named: the shipped case's main job
+DEFAULT = "blade_loss_2850"
 
 
 def path(name: str) -> Path:

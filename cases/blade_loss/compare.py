@@ -41,6 +41,7 @@ from rotorcosim.master.run.figure_pool import FigurePool
 from rotorcosim.master.run.outputs import write_json
 from rotorcosim.master.run.rundir import LOCK, check_folder, ensure_folder
 from rotorcosim.master.schedule import Interval, Timeline, from_spec
+from rotorcosim.master.scenario.cycle import constant_period, without_source
 
 from rotorcosim.master.cli.run import apply_unbalance, execute, resolve
 
@@ -119,11 +120,11 @@ def _plan(kind: str, scenario: str, unbalance: float, schedule: str, tolerance, 
     apply_unbalance(sc, unbalance)
     s = sc.schedule
     if kind == "staggered" and schedule == "auto":
-        spec = {k: v for k, v in s.items() if k != "intervals"}
+        spec = {k: v for k, v in without_source(s).items() if k != "intervals"}
         spec["kind"] = "auto"
         if tolerance is not None:
             spec["tolerance"] = tolerance
-        sch = from_spec(spec, duration)
+        sch = from_spec(spec, duration, cycle=constant_period(s))
     elif kind == "staggered":
         sch = staggered_timeline(duration, float(s.get("step", 1e-5)), float(s.get("thermal_step", 0.1)),
                                  float(s["speed_rpm"]), revolutions, _quantum(sc))

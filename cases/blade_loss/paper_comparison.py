@@ -161,6 +161,12 @@ def read_table5(path: Path) -> dict:
     return out
 
 
+def score_line(sc: dict, out) -> str:
+    """The line ``rotorcosim sweep`` prints for the score ``sc`` of the sweep in ``out``."""
+    return (f"against the paper's Table 5 ({out}/paper_comparison.csv, .png): {sc['within_30pct']}/"
+            f"{sc['cells']} cells within +-30 %, {sc['within_x2']}/{sc['cells']} within x2")
+
+
 def sweep_tables(out: Path, by_level: dict) -> dict | None:
     """A sweep with one case per unbalance level (``by_level``: F_u [N] -> summary): ``table5.csv`` /
     ``table5.md`` in ``out``, and the comparison with the paper for its levels; returns the score (or None)."""

@@ -31,6 +31,7 @@ from pathlib import Path
 import numpy as np
 
 from rotorcosim.master.observer.observers import Observer, SteadyWindows, sampled_rows
+from rotorcosim.master.scenario.cycle import cycle_of
 
 BEARINGS = (0, 5)
 #: columns of the bearing's [inner, outer] contact outputs (Q_max, sigma_max): the reported stress is the inner race's
@@ -97,9 +98,11 @@ class Peaks(Observer):
             p["whirl"] = max(p["whirl"], float(np.hypot(x[0], x[1])))
 
 
-def observers(sc, speed_rpm: float):
+def observers(sc, cycle):
+    """The run's observers for the results: the steady windows over the last ``[results] cycles`` cycles of
+    ``cycle`` (the scenario's cycle source, master/core/cycle.py) and the peaks."""
     cycles = float(sc.extra.get("results", {}).get("cycles", 5))
-    return [SteadyWindows(window_signals(sc), speed_rpm, cycles), Peaks()]
+    return [SteadyWindows(window_signals(sc), cycle, cycles), Peaks()]
 
 
 def check(sc, sim) -> None:
@@ -115,6 +118,11 @@ def check(sc, sim) -> None:
         raise ValueError(f"[results] speed_parameter {ref!r}: no such component parameter")
     rpm = float(c.p[param]) * 30.0 / math.pi
     speed = sc.schedule.get("speed_rpm")
+    if speed is None and sc.schedule.get("cycle") is not None:
+        period = cycle_of(sc.schedule).constant
+        if period is None:  # a speed signal: the windows follow it
+            return
+        speed = 60.0 / period
     if speed is None or not math.isclose(float(speed), rpm, rel_tol=1e-9):
         raise ValueError(f"scenario {sc.name!r}: [schedule] speed_rpm = {speed} rev/min but {ref} = "
                          f"{float(c.p[param]):.9g} rad/s ({rpm:.9g} rev/min), the speed the unbalance turns at: "

@@ -16,8 +16,9 @@ import traceback
 #: the master's own commands; each case adds its own (rotorcosim.master.case, ``COMMANDS``): see :func:`commands`
 COMMANDS: dict[str, tuple[str, str]] = {
     "scenarios": ("rotorcosim.master.cli.scenarios", "list the shipped scenarios, one line each"),
-    "run": ("rotorcosim.master.cli.run", "run a scenario (TOML or SSP), the 2850 N blade-loss case by default"),
-    "sweep": ("rotorcosim.master.cli.sweep", "run several unbalance levels in parallel on Dask, write table5.csv"),
+    "run": ("rotorcosim.master.cli.run", "run a scenario (TOML or SSP; by default the shipped case's main job)"),
+    "sweep": ("rotorcosim.master.cli.sweep", "run a scenario at several levels or parameter values in parallel on "
+                                             "Dask, with its case's tables"),
     "bearing-static": ("rotorcosim.components.bearing.cli", "static load distribution of bearing #0 or #5"),
     "damper-force": ("rotorcosim.components.damper.cli", "squeeze film damper force at a journal position and velocity"),
     "thermal-steady": ("rotorcosim.components.thermal.cli", "steady state of a bearing's thermal network"),

@@ -1,12 +1,11 @@
-"""``rotorcosim run [SCENARIO] [--unbalance N] [--duration S] [--schedule paper|auto|monolithic]
+"""``rotorcosim run [SCENARIO] [--unbalance N] [--duration S] [--schedule scenario|auto|monolithic]
 [--set COMP.PARAM=VALUE]... [--swap COMP=IMPL|FILE.fmu]... [--record COMP.PORT,...] --out DIR``.
 
 A thin layer over :func:`rotorcosim.simulate` (``master/api.py``).
 
 Runs a scenario (a TOML file, a shipped scenario name, or an SSP archive) and writes into DIR:
-``summary.json`` (the timeline used, the wall time, and the scenario's results: for the blade-loss scenarios
-the paper's Table 4 for bearings 0 and 5), the time series (``timeseries.h5``, HDF5 readable by any HDF5
-tool) and the figures. A diverging run stops with a clear error and keeps what it had recorded. A component
+``summary.json`` (the timeline used, the wall time, and the scenario's results, which its case extracts:
+master/case.py), the time series (``timeseries.h5``, HDF5 readable by any HDF5 tool) and the figures. A diverging run stops with a clear error and keeps what it had recorded. A component
 that asks to stop (an FMU's terminate request) ends the run at the time it asked for: ``status`` "stopped" in
 the summary, with the component and the time under ``stopped``, and the command exits 0 with a one-line notice.
 """
@@ -19,7 +18,7 @@ from rotorcosim.master.schedule import budget
 from rotorcosim.master.run import checkpoint
 from rotorcosim.master.run import watchdog
 from rotorcosim.master.core.algorithm import SimulationDiverged
-from rotorcosim.master.api import DEFAULT_SCENARIO, SCHEDULES, load_scenario, simulate
+from rotorcosim.master.api import DEFAULT_SCENARIO, SCHEDULE_ALIASES, SCHEDULES, load_scenario, simulate
 from rotorcosim.master.compiled.choice import ENGINES
 from rotorcosim.master.scenario.overrides import apply_set, apply_swap, parse_set, parse_swap
 from rotorcosim.master.scenario.build import Scenario
@@ -32,18 +31,21 @@ def add_arguments(p):
     p.add_argument("scenario", nargs="?", default=None,
                    help=f"scenario TOML file, shipped scenario name or .ssp archive (default: {DEFAULT_SCENARIO}; "
                         f"`rotorcosim scenarios` lists them)")
-    p.add_argument("--unbalance", type=float, default=None, help="blade-loss unbalance force F_u [N]")
+    p.add_argument("--unbalance", type=float, default=None, metavar="VALUE",
+                   help="the value of the scenario's level parameter, [results] unbalance_parameter (SI; e.g. "
+                        "an unbalance force in N)")
     p.add_argument("--duration", type=float, default=None, help="simulated duration [s] (cuts the timeline)")
-    p.add_argument("--schedule", choices=sorted(SCHEDULES), default="paper",
-                   help="paper: the scenario's timeline; auto: switch TM/TO automatically; monolithic: one TM interval")
+    p.add_argument("--schedule", choices=sorted([*SCHEDULES, *SCHEDULE_ALIASES]), default="scenario",
+                   help="scenario (or paper): the scenario's own schedule; auto: switch TM/TO automatically; "
+                        "monolithic: one TM interval")
     add_edit_arguments(p)
     p.add_argument("--record", default=None, metavar="COMP.PORT,...",
                    help="the ports to record, comma-separated (default: the scenario's [outputs] record; the "
                         "figures need the scenario's own)")
     p.add_argument("--tolerance", type=float, default=None, metavar="PCT",
-                   help="with --schedule auto: the largest error of a Table 4 result against the monolithic run "
-                        "that you accept, in percent; the thermal-only intervals follow it and summary.json reports "
-                        "the estimated error achieved (hold.estimated_error_pct)")
+                   help="with --schedule auto: the largest error of a reported temperature against the monolithic "
+                        "run that you accept, in percent; the thermal-only intervals follow it and summary.json "
+                        "reports the estimated error achieved (hold.estimated_error_pct)")
     p.add_argument("--out", required=True, help="output folder (empty, or see --overwrite / --resume)")
     p.add_argument("--overwrite", action="store_true", help="replace the results of a previous run in --out")
     p.add_argument("--resume", action="store_true",
@@ -95,10 +97,9 @@ def resolve(name: str | None) -> Scenario:
 
 
 def apply_unbalance(sc: Scenario, force: float, settings=()) -> None:
-    """Set the scenario's unbalance parameter to ``force``; ``settings`` are the ``comp.param`` names the same
-    command sets with ``--set``: naming the unbalance parameter there too is an error (one of the two values was
-    dropped without a word: ``run`` kept --unbalance, ``sweep`` the --set value while its table said the
-    other)."""
+    """Set the scenario's level parameter (``[results] unbalance_parameter``) to ``force``; ``settings`` are the
+    ``comp.param`` names the same command sets with ``--set``: naming the level parameter there too is an error
+    (one of the two values would be dropped without a word)."""
     if not (force >= 0.0) or force != force or force == float("inf"):
         raise ValueError(f"--unbalance must be a finite force >= 0 N, got {force}")
     ref = sc.extra.get("results", {}).get("unbalance_parameter")
@@ -113,7 +114,7 @@ def apply_unbalance(sc: Scenario, force: float, settings=()) -> None:
     old = sc.components[comp].parameters.get(param)
     sc.components[comp].parameters[param] = float(force)
     if old is None or float(old) != float(force):
-        # the run's name says what was run (the shipped level files are named blade_loss_<F_u>)
+        # the run's name says what was run (a scenario named NAME_<level> becomes NAME_<new level>)
         sc.name = f"{sc.name.rsplit('_', 1)[0] if sc.name.rsplit('_', 1)[-1].isdigit() else sc.name}_{force:g}"
 
 
@@ -129,7 +130,7 @@ def execute(sc: Scenario, out: Path, schedule_kind: str | None = None, duration:
     if duration is not None and not (duration > 0 and duration < float("inf")):
         raise ValueError(f"--duration must be a positive number of seconds, got {duration}")
     if schedule is None:
-        schedule = {None: "paper", "auto": "auto", "monolithic": "monolithic"}.get(schedule_kind, schedule_kind)
+        schedule = {None: "scenario"}.get(schedule_kind, schedule_kind)
     elif duration is not None:
         raise ValueError("give duration or a schedule object, not both")
     res = simulate(sc, duration=duration, schedule=schedule, out=out, figures=figures, progress=not quiet,

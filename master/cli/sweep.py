@@ -1,18 +1,17 @@
 """``rotorcosim sweep (--unbalance LIST | --set comp.param=v1,v2,...) --out DIR [--scheduler ADDRESS]``.
 
-A sweep is a grid of cases: the blade-loss levels of ``--unbalance`` (the unbalance parameter of the scenario's
-``[results]``) times every ``--set`` parameter's values. Each case runs the scenario in a folder of its own,
-``DIR/F_<N>`` for an unbalance level, ``DIR/<comp.param>=<value>[_...]`` for a parameter grid.
+A sweep is a grid of cases: the levels of ``--unbalance`` (values of the scenario's level parameter, its
+``[results] unbalance_parameter``) times every ``--set`` parameter's values. Each case runs the scenario in a
+folder of its own, ``DIR/F_<level>`` for a level, ``DIR/<comp.param>=<value>[_...]`` for a parameter grid.
 
 Cases run on Dask: a local cluster (one single-threaded worker process per core) or, with ``--scheduler``, a
 running cluster whose workers may be other machines. A worker runs its case in a temporary folder of its own and
 sends the files back; the client writes them under ``--out`` (write-then-rename, so a case folder is whole or
 absent). The sweep then writes ``DIR/sweep.json`` (cases, where they ran, wall times, errors), ``DIR/sweep.csv``
-(one row per case: its parameters and its Table 4 results) and, for a sweep of unbalance levels of a blade-loss
-scenario with at most one value of each ``--set`` parameter (one case a level: e.g. a modified model at the
-paper's levels), ``DIR/table5.csv`` / ``DIR/table5.md`` in the paper's Table 5 format and, for the levels that are the
-paper's, ``DIR/paper_comparison.csv`` (result, bearing, unbalance_N, paper, ours, ratio) and
-``DIR/paper_comparison.png`` (cases/blade_loss/paper_comparison.py), with the score in ``DIR/sweep.json`` (``paper_score``).
+(one row per case: its parameters and its results) and, for a sweep of levels with at most one value of each
+``--set`` parameter (one case a level), whatever tables the scenario's case writes for it (its ``SWEEP_TABLES``,
+master/case.py; the blade-loss case: ``table5.csv`` / ``table5.md`` and its comparison with the paper), with
+their score in ``DIR/sweep.json`` (``paper_score``).
 """
 from __future__ import annotations
 
@@ -30,7 +29,7 @@ from pathlib import Path
 from typing import Any
 
 from rotorcosim.master import case as cases_
-from rotorcosim.master.api import check_run
+from rotorcosim.master.api import SCHEDULE_ALIASES, SCHEDULES, check_run
 from rotorcosim.master.run.outputs import write_json
 from rotorcosim.master.scenario.overrides import apply_set, parse_set
 from rotorcosim.master.run.rundir import OutputFolderError, check_folder, ensure_folder, is_run_file
@@ -42,8 +41,9 @@ CONNECT_TIMEOUT_S = 20.0
 
 
 def add_arguments(p):
-    p.add_argument("--unbalance", default=None,
-                   help="comma-separated blade-loss forces [N], or 'paper' for the seven levels of Table 5")
+    p.add_argument("--unbalance", default=None, metavar="LIST|NAME",
+                   help="comma-separated values of the scenario's level parameter ([results] unbalance_parameter, "
+                        "SI), or the name of a set of levels its case declares (e.g. 'paper')")
     p.add_argument("--set", action="append", default=[], metavar="COMP.PARAM=V1,V2,...",
                    help="a parameter and its values (repeatable: the sweep is the grid of all of them)")
     p.add_argument("--out", required=True, help="output folder")
@@ -51,7 +51,9 @@ def add_arguments(p):
                    help="address of a running Dask scheduler, e.g. tcp://10.0.0.5:8786 (default: a local cluster)")
     p.add_argument("--scenario", default="blade_loss", help="the scenario every case runs (default blade_loss)")
     p.add_argument("--duration", type=float, default=None, help="simulated duration [s] (cuts the timeline)")
-    p.add_argument("--schedule", choices=["paper", "auto", "monolithic"], default="paper")
+    p.add_argument("--schedule", choices=sorted([*SCHEDULES, *SCHEDULE_ALIASES]), default="scenario",
+                   help="scenario (or paper): every case's own schedule; auto: switch TM/TO automatically; "
+                        "monolithic: one TM interval")
     p.add_argument("--workers", type=int, default=None,
                    help="local cluster size (default: number of cores; at most one per case)")
     p.add_argument("--serial", action="store_true", help="run the cases one after another, without Dask")
@@ -126,8 +128,8 @@ def _fmt(v: Any) -> str:
 
 
 def one_case_a_level(levels, grid: dict[str, list[Any]]) -> bool:
-    """Whether the sweep has unbalance levels and one case at each (one value of every ``--set`` parameter): the
-    sweeps that get the levels' Table 5 and the paper comparison."""
+    """Whether the sweep has levels and one case at each (one value of every ``--set`` parameter): the sweeps
+    whose case writes its tables of the levels (``SWEEP_TABLES``)."""
     return bool(levels) and all(len(v) == 1 for v in grid.values())
 
 
@@ -229,12 +231,12 @@ def _client(scheduler: str | None, workers: int | None, connect_timeout: float, 
     return Client(cluster), cluster, f"local cluster, {n} workers"
 
 
-#: what a sweep writes at the top of its folder (beside one folder of run files per case, rundir.RUN_FILES)
-SWEEP_FILES = ("sweep.csv", "sweep.json", "table5.csv", "table5.md", "paper_comparison.csv", "paper_comparison.png",
-               "*.part", "*.part.png", ".*.part")
+#: what a sweep writes at the top of its folder (beside one folder of run files per case, rundir.RUN_FILES, and
+#: the files of its case's tables, the case's SWEEP_FILES)
+SWEEP_FILES = ("sweep.csv", "sweep.json", "*.part", "*.part.png", ".*.part")
 
 
-def _previous_results(out: Path, overwrite: bool) -> None:
+def _previous_results(out: Path, overwrite: bool, case_files=()) -> None:
     """A sweep's folder holds this sweep's results only: a non-empty one is refused (a second sweep into it left
     the first one's cases beside its own, and a sweep.csv listing only the new ones), or with ``overwrite``
     cleared, if it holds nothing but a sweep's files and case folders of run files."""
@@ -251,7 +253,7 @@ def _previous_results(out: Path, overwrite: bool) -> None:
     def ours(p: Path) -> bool:
         if p.is_dir() and not p.is_symlink():
             return all(q.is_file() and is_run_file(q.name) for q in p.iterdir())
-        return p.is_file() and any(fnmatch.fnmatch(p.name, pat) for pat in SWEEP_FILES)
+        return p.is_file() and any(fnmatch.fnmatch(p.name, pat) for pat in (*SWEEP_FILES, *case_files))
 
     foreign = [n for n in old if not ours(out / n)]
     if foreign:
@@ -265,7 +267,8 @@ def _previous_results(out: Path, overwrite: bool) -> None:
 def sweep(levels=None, out: Path = Path("sweep"), scenario="blade_loss", scheduler=None, schedule=None,
           duration=None, workers=None, serial=False, grid: dict[str, list[Any]] | None = None,
           progress=None, connect_timeout: float = CONNECT_TIMEOUT_S, overwrite: bool = False) -> dict:
-    """Run the grid of ``levels`` (unbalance forces [N]) x ``grid`` (``{"comp.param": [values]}``).
+    """Run the grid of ``levels`` (values of the scenario's level parameter, SI) x ``grid``
+    (``{"comp.param": [values]}``).
 
     ``progress(done, total, case, result)`` is called as each case finishes. Returns the contents of
     ``sweep.json``."""
@@ -275,8 +278,9 @@ def sweep(levels=None, out: Path = Path("sweep"), scenario="blade_loss", schedul
     grid = dict(grid or {})
     cases = cases_of(list(levels) if levels else None, grid)
     for c in cases:  # fail early: a bad scenario, an unknown component, a duration or schedule no run takes
-        check_run(_apply(resolve(scenario), c), {None: "paper"}.get(schedule, schedule), duration)
-    _previous_results(check_folder(out), overwrite)
+        check_run(_apply(resolve(scenario), c), schedule, duration)
+    kind = case_kind(scenario)
+    _previous_results(check_folder(out), overwrite, cases_.attribute(kind, "SWEEP_FILES", ()))
     ensure_folder(out)
     t0 = time.perf_counter()
     results: dict[str, dict] = {}
@@ -312,7 +316,7 @@ def sweep(levels=None, out: Path = Path("sweep"), scenario="blade_loss", schedul
     wall = time.perf_counter() - t0
     summaries = {c.name: results[c.name]["summary"] for c in cases}
     score = None
-    tables = cases_.attribute(case_kind(scenario), "SWEEP_TABLES")
+    tables = cases_.attribute(kind, "SWEEP_TABLES")
     if tables is not None and one_case_a_level(levels, grid):
         score = tables(out, {c.unbalance_N: summaries[c.name] for c in cases})
     _write_csv(out / "sweep.csv", cases, summaries)
@@ -327,7 +331,8 @@ def sweep(levels=None, out: Path = Path("sweep"), scenario="blade_loss", schedul
 
 
 def _write_csv(path: Path, cases: list[Case], summaries: dict[str, dict]) -> None:
-    """One row per case: its parameters, then ``<result>_<bearing>`` for every Table 4 result it has."""
+    """One row per case: its parameters, then ``<result>_<group>`` for every numeric result of its summary's
+    ``bearings`` groups (a case's results by group)."""
     params = list(dict.fromkeys(["unbalance_N"] * any(c.unbalance_N is not None for c in cases)
                                 + [r for c in cases for r in c.settings]))
     results = list(dict.fromkeys(f"{key}_{brg}" for s in summaries.values()
@@ -350,7 +355,7 @@ def run(args) -> int:
     levels = parse_levels(args.unbalance, cases_.attribute(case_kind(args.scenario), "LEVELS", {})) \
         if args.unbalance else None
     grid = parse_grid(args.set)
-    kind = {"paper": None, "auto": "auto", "monolithic": "monolithic"}[args.schedule]
+    kind = SCHEDULES[SCHEDULE_ALIASES.get(args.schedule, args.schedule)]
 
     def progress(done, total, case, res):
         err = res["summary"].get("error")
@@ -360,13 +365,14 @@ def run(args) -> int:
 
     info = sweep(levels, Path(args.out), args.scenario, args.scheduler, kind, args.duration, args.workers,
                  args.serial, grid, None if args.quiet else progress, overwrite=args.overwrite)
-    tables = " table5.csv, table5.md," if one_case_a_level(levels, grid) else ""
+    # the files at the top of the folder are this sweep's (a previous sweep's were refused or cleared)
+    tables = sorted(p.name for p in Path(args.out).iterdir() if p.is_file() and p.name not in SWEEP_FILES[:2])
     print(f"{len(info['cases'])} cases in {info['wall_time_s']:.3g} s ({info['executed_on']});"
-          f"{tables} sweep.csv and sweep.json written in {args.out}")
-    sc = info["paper_score"]
-    if sc:
-        print(f"against the paper's Table 5 ({args.out}/paper_comparison.csv, .png): {sc['within_30pct']}/"
-              f"{sc['cells']} cells within +-30 %, {sc['within_x2']}/{sc['cells']} within x2")
+          f"{''.join(f' {t},' for t in tables)} sweep.csv and sweep.json written in {args.out}")
+    score = info["paper_score"]
+    line = cases_.attribute(case_kind(args.scenario), "SWEEP_SCORE")
+    if score and line is not None:
+        print(line(score, args.out))
     for name, e in info["errors"].items():
         print(f"  case {name} failed: {e}", file=sys.stderr)
     return 1 if info["errors"] else 0

@@ -2,7 +2,7 @@
 
 ``rotorcosim/__init__.py`` sets ``OPENBLAS_NUM_THREADS=1`` before numpy loads OpenBLAS, but a program that
 imported numpy first already has a pool of one thread per core. A multi-threaded BLAS sums in another order
-(the rotor's eigen-solves and reductions, components/rotor/mta.py): measured, a 2 ms blade-loss run after
+(the rotor's eigen-solves and reductions, components/rotor/mta.py): measured, a 2 ms run of the shipped case after
 ``import numpy`` on 2 cores differed from the CLI's by up to 1e-5 relative in the recorded signals (values
 near zero), so one scenario gave two answers. :func:`one_thread` limits every BLAS/OpenMP pool of the process
 to one thread while it is entered (threadpoolctl, which changes the libraries' own setting at run time) and puts

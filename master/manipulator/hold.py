@@ -1,16 +1,17 @@
-"""The staggered scheme's thermal-only hold (paper section 3.2): ONE master concept, in this module.
+"""The staggered scheme's thermal-only hold: ONE master concept, in this module.
 
 libcosim would call it a manipulator: it changes what crosses some connections, never a component's insides.
 
 * Which components freeze in a thermal-only (TO) interval: those that take no part in TO, and those that declare
-  ``holds_state_in_TO`` (stepped in TO only to update some outputs from their frozen state: the bearing's drag at
-  the new oil viscosity, the damper's film power at the new SFD oil viscosity). Both are *mechanical*.
+  ``holds_state_in_TO`` (stepped in TO only to update some outputs from their frozen state, e.g. a friction
+  loss at the new oil viscosity). Both are *mechanical*.
 * The hand-offs: the connections from a mechanical component to a thermal one (the power losses). Over each
-  thermo-mechanical (TM) interval the master records, per hand-off, the window of its last ``hold_cycles`` rotor
-  cycles (the rotor cycle from ``speed_rpm``, the one source of the rotor speed of a run) and the cycle means of
-  the signal and of the thermal inputs its producer received.
+  thermo-mechanical (TM) interval the master records, per hand-off, the window of its last ``hold_cycles``
+  cycles and the cycle means of the signal and of the thermal inputs its producer received. The cycle period
+  comes from the run's cycle source (master/core/cycle.py: a constant period, or a speed signal read at the
+  start of each TM interval).
 * The held value over a TO interval: the window's statistic, per connection (``hold`` of the connection, else the
-  schedule's): ``mean`` by default (it keeps the energy of a power), ``rms`` the paper's option, or ``last``.
+  schedule's): ``mean`` by default (it keeps the energy of a power), ``rms``, or ``last``.
 * The TO update of a producer that declares one: the held statistic S_w follows the producer's own TO output
   y_TO(t) (computed by the producer from its frozen state and its present thermal inputs) along the law
 
@@ -18,43 +19,40 @@ libcosim would call it a manipulator: it changes what crosses some connections, 
 
   where y_TO,w is the producer's TO output at the window's mean thermal inputs and ``e`` the *elasticity*
   measured by the master: the least-squares slope of ln(cycle mean of y) against ln(y_TO at that cycle's thermal
-  inputs) over the settled halves of the TM intervals so far. The frozen state gives the shape (the SFD power
-  at fixed kinematics scales with the oil viscosity); ``e`` measures how much of it survives once the mechanics
-  adapt (in the rubbing cases the journal orbit grows as the oil thins: e ~ 0.25-0.3 measured, see
-  docs/table6_levels.md). With too little temperature change to measure (``MIN_SPREAD``) the last measured ``e``
-  is kept, else e = 1 (the frozen law).
+  inputs) over the settled halves of the TM intervals so far. The frozen state gives the shape (a film power at
+  fixed kinematics scales with the oil viscosity); ``e`` measures how much of it survives once the mechanics
+  adapt (an orbit that grows as the oil thins gives e well below 1). With too little temperature change to
+  measure (``MIN_SPREAD``) the last measured ``e`` is kept, else e = 1 (the frozen law).
 * The group driver (:class:`_Driver`): a producer's cycle means can drift with a temperature that is none of its
-  own inputs (with the stiff rub ring the bearing's drag follows the SFD oil through the orbit and the loads:
-  2 055 -> 1 215 W while the SFD oil warms 47 -> 80 C at 8 551 N, the bearing's own oil barely moving). Among the
-  thermal inputs (unit K) of the producers whose hand-offs feed the same thermal component (the group: drag,
-  film power, rub power into one bearing's network), the one whose cycle values correlate best with ln(cycle
-  mean) over the settled halves of the recorded TM intervals, if it moved by ``DRIVER_MIN_SPREAD_K``, is the
-  driver; its least-squares slope b multiplies the law by exp(b (T(t) - T_w)), T(t) that input's present value
-  in TO, T_w its window mean; ``e`` is then fitted to what the driver leaves. The candidates are the OTHER
-  producers' temperatures, and a driver is kept only where it tracks the cycle means better than the producer's
-  own TO law (|correlation| with ln of its own TO output at the cycle's inputs): the own inputs are that physical
-  law's, and an exponential fitted on a few K of TM and stacked on it would extrapolate the same dependence again
-  over a long TO interval (the 2-minute run at 2 850 N: 1.41 % off the monolithic run with own temperatures as
-  drivers, 0.27 % with this rule). Only for producers with a TO update (the rub power stays held: it has none).
-  Measured in docs/table6_levels.md (5 700-14 252 N 3.4-4.7 % without a driver, 0.68-0.97 % with).
+  own inputs (a friction loss that follows another component's oil through the orbit and the loads). Among the
+  thermal inputs (unit K) of the producers whose hand-offs feed the same thermal component (the group), the one
+  whose cycle values correlate best with ln(cycle mean) over the settled halves of the recorded TM intervals, if
+  it moved by ``DRIVER_MIN_SPREAD_K``, is the driver; its least-squares slope b multiplies the law by
+  exp(b (T(t) - T_w)), T(t) that input's present value in TO, T_w its window mean; ``e`` is then fitted to what
+  the driver leaves. The candidates are the OTHER producers' temperatures, and a driver is kept only where it
+  tracks the cycle means better than the producer's own TO law (|correlation| with ln of its own TO output at the
+  cycle's inputs): the own inputs are that physical law's, and an exponential fitted on a few K of TM and stacked
+  on it would extrapolate the same dependence again over a long TO interval. Only for producers with a TO update
+  (a hand-off without one stays held). What both rules measured on a real system is in the docstring of the
+  shipped case's package (rotorcosim.cases).
 * Every TO interval's hand-off error is measured at the next TM restart: the held value at the end of the TO
   interval against the window the mechanics produce at the same temperatures. Its effect on the temperatures is
   estimated by the thermal components themselves (through get_state / do_step / set_state, so any component that
   can save its state): each one is stepped over the TO interval's length from its present state with and without
-  its hand-off powers in error by the measured amounts; the largest change of a scalar output in K, relative to that
-  output in degrees C (the convention of Table 4's relative errors), is the interval's error estimate
-  (:class:`HoldReport`; the automatic schedule controls it, master/schedule/auto.py).
+  its hand-off powers in error by the measured amounts; the largest change of a scalar output in K, relative to
+  that output above ``temperature_zero`` (a declared parameter: 0 K by default, the scenario's convention
+  otherwise), is the interval's error estimate (:class:`HoldReport`; the automatic schedule controls it,
+  master/schedule/auto.py).
 * The restart (TO -> TM): the hand-backs are the connections from a thermal component to a mechanical one (the
   thermal growths, the oil temperatures). Over a TO interval they moved while the mechanical state stayed frozen
   on the old ones; stepping them into the frozen mechanics at once is a sudden load (a growth of micrometres is an
-  axial force step on the preloaded bearings) that rings the lightly damped modes it meets (measured at 712 N:
-  the rotor's axial mode at ~480 Hz, +-3 um at bearing #0 and the ball loads +-10 %, decaying 4 % in 10 cycles).
-  In the monolithic run they changed over seconds, so the mechanics followed them quasi-statically. The restart
-  does the same on a short scale: each hand-back enters the next TM interval as its value at the end of the
-  previous TM interval and goes over to its present (live) value along a half cosine over ``restart_cycles``
-  rotor cycles (:class:`Restart`; the link adds its offset with master/core/links.add_restart, in both
-  loops). A mode of frequency f then keeps about 1 / ((2 f T)^2 - 1) of the step's response (T the ramp length:
-  0.02 for f = 480 Hz over 2 cycles). ``restart_cycles = 0``: the paper's step.
+  axial force step on a preloaded support) that rings the lightly damped modes it meets. In a monolithic run they
+  change over seconds, so the mechanics follow them quasi-statically. The restart does the same on a short
+  scale: each hand-back enters the next TM interval as its value at the end of the previous TM interval and goes
+  over to its present (live) value along a half cosine over ``restart_cycles`` cycles (:class:`Restart`; the
+  link adds its offset with master/core/links.add_restart, in both loops). A mode of frequency f then keeps
+  about 1 / ((2 f T)^2 - 1) of the step's response (T the ramp length: 0.02 for f = 480 Hz over 7.5 ms).
+  ``restart_cycles = 0``: a step.
 """
 from __future__ import annotations
 
@@ -64,9 +62,10 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from rotorcosim.master.core import links
+from rotorcosim.master.core.cycle import Cycle
 from rotorcosim.master.core.system import HOLDS
 
-#: the default statistic: the mean keeps the energy of a power (the paper's RMS overstates a fluctuating one)
+#: the default statistic: the mean keeps the energy of a power (the RMS overstates a fluctuating one)
 DEFAULT_HOLD = "mean"
 #: least spread of ln(y_TO) over the recorded cycles to measure an elasticity (5 %)
 MIN_SPREAD = 0.05
@@ -74,18 +73,15 @@ MIN_SPREAD = 0.05
 ELASTICITY_RANGE = (0.0, 2.0)
 #: TM intervals whose cycles enter the elasticity fit (the latest ones: the law is local)
 FIT_INTERVALS = 3
-#: rotor cycles over which the hand-backs go from their pre-TO to their present values at a TM restart (Restart):
-#: long against the mechanical modes they would ring (the rotor's axial mode, ~480 Hz, is 3.6 periods), short
-#: against the TM intervals whose last ``hold_cycles`` cycles give the results and the hand-off windows (10 cycles
-#: in ``rotorcosim compare``); measured in docs/table6_levels.md
+#: cycles over which the hand-backs go from their pre-TO to their present values at a TM restart (Restart):
+#: long against the mechanical modes they would ring, short against the TM intervals whose last ``hold_cycles``
+#: cycles give the results and the hand-off windows
 RESTART_CYCLES = 2.0
 #: least spread (K) of a group temperature over the recorded cycles to drive a hand-off's TO law (_Driver)
 DRIVER_MIN_SPREAD_K = 1.0
 #: the driver's factor exp(b dT) is bounded to exp(+-DRIVER_MAX_LOG) (a factor 3): a guard against extrapolating
-#: a slope far beyond its data; not reached in the seven Table 6 levels (largest |b dT| 0.81: the SFD oil, 14 252 N)
+#: a slope far beyond its data
 DRIVER_MAX_LOG = 1.1
-#: the zero of degrees C (K): Table 4 and ``rotorcosim compare`` give temperature errors relative to C values
-ZERO_CELSIUS_K = 273.15
 
 
 def mechanical(comp) -> bool:
@@ -297,7 +293,7 @@ class HandOff:
 
 
 class _Held:
-    """The window statistic, constant over the TO interval (the paper)."""
+    """The window statistic, constant over the TO interval."""
 
     def __init__(self, link, S):
         # a Real statistic as float; an Integer, Boolean or String value kept as it is (issue 15: held, not averaged)
@@ -331,11 +327,11 @@ class _HeldLaw(_Held):
 
 class _Driver:
     """The temperature of a hand-off's group that drives its cycle means (DRIVER_* constants, module docstring):
-    among the thermal inputs of the producers whose hand-offs feed the same thermal component (the bearing's oil,
-    the damper's SFD oil...), the scalar temperature (unit K, moved by DRIVER_MIN_SPREAD_K) whose values correlate
+    among the thermal inputs of the producers whose hand-offs feed the same thermal component (the oils of the
+    components that load it...), the scalar temperature (unit K, moved by DRIVER_MIN_SPREAD_K) whose values correlate
     best with ln(cycle mean) over the settled cycles of the recorded TM intervals; ``b`` the least-squares slope
     of ln(cycle mean) against it. The group's hand-offs are recorded cycle for cycle (same TM intervals, same
-    rotor cycle); one recorded otherwise is skipped."""
+    cycle); one recorded otherwise is skipped."""
 
     def __init__(self, owner: "HandOff", port: str, k: int, b: float, w: float, series: list[float], r: float = 1.0):
         self.owner, self.port, self.k = owner, port, k
@@ -383,7 +379,7 @@ class _Driver:
 class HoldReport:
     """What the hold measured: per hand-off, the elasticity of its last TO law and its last hand-off error
     (relative power, at the restart); per TO interval, the estimated error of the temperatures (percent of their
-    C values); the largest of those is the run's estimate."""
+    values above the hold's ``temperature_zero``); the largest of those is the run's estimate."""
 
     elasticity: dict[str, float] = field(default_factory=dict)
     errors: dict[str, float] = field(default_factory=dict)
@@ -409,7 +405,7 @@ class StaggeredHold:
     """The thermal-only hold of a system's run (see the module docstring)."""
 
     def __init__(self, system, links, hold: str = DEFAULT_HOLD, hold_cycles: float = 5.0,
-                 speed_rpm: float | None = None, restart_cycles: float = RESTART_CYCLES):
+                 cycle: Cycle | None = None, restart_cycles: float = RESTART_CYCLES, temperature_zero: float = 0.0):
         self.system = system
         self.restart_cycles = float(restart_cycles)
         self.handbacks: list = []
@@ -418,14 +414,19 @@ class StaggeredHold:
         self.links = links
         self.hold = hold
         self.hold_cycles = float(hold_cycles)
-        self.speed_rpm = speed_rpm
+        #: where the cycle period comes from (None: no cycle, no windows); read at the start of each TM interval
+        self.cycle_source = cycle
+        #: the period of the present TM interval's windows [s] (None before the first one)
+        self.period: float | None = None
+        #: the temperature (K) the error estimate's relative errors are taken above (0: absolute temperatures)
+        self.temperature_zero = float(temperature_zero)
         self.handoffs: list[HandOff] | None = None
         self.report = HoldReport()
         self._to_start = 0.0
         self._to_length: float | None = None
 
     def _find_handoffs(self) -> None:
-        """After set-up: a component may decide its phases from its parameters (the bearing's drag update)."""
+        """After set-up: a component may decide its phases from its parameters (whether it has a TO update)."""
         comps = self.system.components
         links = self.links
         self.handoffs = []
@@ -440,7 +441,8 @@ class StaggeredHold:
 
     @property
     def cycle(self) -> float | None:
-        return 60.0 / self.speed_rpm if self.speed_rpm else None
+        """The cycle period now [s], or None without a cycle source."""
+        return self.cycle_source.period(self.system) if self.cycle_source is not None else None
 
     # -- intervals ---------------------------------------------------------------------------------------
     def start(self, phase: str, active: list[str], mult: dict[str, int], step: float, t: float = 0.0,
@@ -454,7 +456,9 @@ class StaggeredHold:
             link.window = None
             link.ramp = None
         if phase == "TM":
-            length = self.restart_cycles * self.cycle if self.cycle else 0.0
+            # one period for the whole interval, read where it starts (a speed signal's value there)
+            cycle = self.period = self.cycle
+            length = self.restart_cycles * cycle if cycle else 0.0
             if self._last_phase == "TO" and length > 0.0:
                 for i, link in enumerate(self.handbacks):
                     if i in self._tm_end:
@@ -466,10 +470,10 @@ class StaggeredHold:
                         link.ramp = ramp
             for ho in self.handoffs:
                 ho.end_to()
-                if self.cycle:
+                if cycle:
                     hs = mult.get(ho.link.con.src_component, 1) * step
-                    n_cycle = int(math.ceil(self.cycle / hs - 1e-9))
-                    n = int(math.ceil(self.hold_cycles * self.cycle / hs - 1e-9))
+                    n_cycle = int(math.ceil(cycle / hs - 1e-9))
+                    n = int(math.ceil(self.hold_cycles * cycle / hs - 1e-9))
                     ho.start_tm(n, n_cycle, ho.link.src.variable(ho.link.sport).size)
                     ho.link.window = ho
             return
@@ -513,17 +517,17 @@ class StaggeredHold:
             self._to_length = None
 
     def _temperature_error(self, handoffs: list[HandOff], length: float) -> float:
-        """Largest relative change of a thermal output in K (relative to its C value) when each thermal component
-        runs ``length`` seconds from its present state with its hand-off powers in error by the measured
-        amounts, against the same run without."""
+        """Largest relative change of a thermal output in K (relative to its value above ``temperature_zero``)
+        when each thermal component runs ``length`` seconds from its present state with its hand-off powers in
+        error by the measured amounts, against the same run without."""
         by_dst: dict[str, list[HandOff]] = {}
         for ho in handoffs:
             by_dst.setdefault(ho.link.con.dst_component, []).append(ho)
         worst = 0.0
         for name, hos in by_dst.items():
             comp = self.system.components[name]
-            # its scalar temperatures (the thermal network's reported ones: Table 4's and the oil's); a vector of
-            # every node (recorded for figures) would let a barely warmed node's relative error rule the estimate
+            # its scalar temperatures (a thermal model's reported ones); a vector of every node (recorded for
+            # figures) would let a barely warmed node's relative error rule the estimate
             outs = [v.name for v in comp.variables if v.causality == "output" and v.unit == "K" and v.size == 1]
             if not outs:
                 continue
@@ -541,7 +545,7 @@ class StaggeredHold:
                     comp.set_state(snap)
             finally:
                 comp.set_state(snap)
-            worst = max(worst, float(np.max(change / np.maximum(np.abs(base - ZERO_CELSIUS_K), 1.0))))
+            worst = max(worst, float(np.max(change / np.maximum(np.abs(base - self.temperature_zero), 1.0))))
         return worst
 
 
@@ -571,7 +575,7 @@ class _Probe:
     def __init__(self, t: float, h: float):
         self.t, self.h = t, h
         # one snapshot per producer: every probe restores it, so the state each probe starts from is the same
-        # (a fresh get_state per probe cost a copy of the bearing's state ~100 times per staggered run)
+        # (a fresh get_state per probe cost a copy of a large component's state ~100 times per staggered run)
         self._snaps: dict[int, object] = {}
 
     def __call__(self, comp, ports, u, port) -> float | None:

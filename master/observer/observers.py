@@ -3,8 +3,8 @@
 * :class:`Recorder`: decimated time series streamed to disk while the run goes (HDF5 by h5py, or CSV), flushed
   in chunks, so a crash loses nothing already flushed; readable without this project.
 * :class:`Progress`: a tqdm bar over simulated time.
-* :class:`SteadyWindows`: the last ``cycles`` rotor cycles of chosen signals at the end of every TM interval,
-  kept in memory for result extraction (the paper's Table 4 is read from the steady state).
+* :class:`SteadyWindows`: the last ``cycles`` cycles of chosen signals at the end of every TM interval,
+  kept in memory for result extraction (a case's steady-state results are read from them).
 """
 from __future__ import annotations
 
@@ -16,6 +16,8 @@ from pathlib import Path
 from typing import Sequence
 
 import numpy as np
+
+from rotorcosim.master.core.cycle import Cycle, as_cycle
 
 PHASE_CODE = {"TM": 0, "TO": 1}
 #: empty HDF5 files of this process's recordings by layout (Recorder._open): bytes, the last few layouts
@@ -388,7 +390,7 @@ class Recorder(Observer):
 def _append(ds, r: int, data: np.ndarray) -> None:
     """Write ``data`` as rows r.. of the resizable dataset ``ds``. Float rows go through h5py's low-level write,
     the same bytes as ``ds[r:] = data`` without its selection machinery: at every flush of every dataset it
-    cost ~0.2 ms more (measured: a 2 048-row flush of the blade-loss recording 16 -> 8 ms of CPU)."""
+    cost ~0.2 ms more (measured: a 2 048-row flush of the shipped case's recording 16 -> 8 ms of CPU)."""
     ds.resize((r + len(data),) + ds.shape[1:])
     if data.dtype == np.float64 and ds.dtype == np.float64 and data.flags.c_contiguous and len(data):
         from h5py import h5s
@@ -421,7 +423,7 @@ def _csv_text(x) -> str:
 
 
 def column_names(signals: Sequence[str], variables: dict) -> list[str]:
-    """Flat column names with units, one per vector element: ``rotor.X_brg0[x] (m)``, ``bearing0.P_drag (W)``."""
+    """Flat column names with units, one per vector element: ``rotor.X_brg0[x] (m)``, ``node.T (K)``."""
     out = []
     for ref in signals:
         v = variables[ref]
@@ -535,19 +537,26 @@ def _hms(seconds: float) -> str:
 
 
 class SteadyWindows(Observer):
-    """Keeps the last ``cycles`` rotor cycles (at the given speed) of ``signals`` in each TM interval; at the
-    interval end, the window is stored in ``windows`` as a dict with ``t`` and one array per signal."""
+    """Keeps the last ``cycles`` cycles of ``signals`` in each TM interval; at the interval end, the window is
+    stored in ``windows`` as a dict with ``t`` and one array per signal. ``cycle``: the cycle period [s] or a
+    cycle source (master/core/cycle.py), read at the start of each TM interval."""
 
-    def __init__(self, signals: Sequence[str], speed_rpm: float, cycles: float = 5.0, sample_step: float | None = None):
+    def __init__(self, signals: Sequence[str], cycle: Cycle | float, cycles: float = 5.0,
+                 sample_step: float | None = None):
         self.signals = list(signals)
-        self.window = cycles * 60.0 / speed_rpm
+        self.cycle = as_cycle(cycle)
+        self.cycles = cycles
+        #: the window of the present TM interval [s]
+        self.window = cycles * self.cycle.constant if self.cycle.constant is not None else None
         self.sample_step = sample_step
         self.windows: list[dict] = []
 
     def interval_start(self, sim, phase, step):
         self.active = phase == "TM"
+        if self.active:
+            self.window = self.cycles * self.cycle.period(sim.system)
         self.stride = 1 if self.sample_step is None else max(1, int(round(self.sample_step / step)))
-        n = int(math.ceil(self.window / (self.stride * step))) + 1
+        n = int(math.ceil((self.window or 0.0) / (self.stride * step))) + 1
         self._n = n
         self._t = np.full(n, np.nan)
         self._data = {r: np.zeros((n, len(sim.value(r)))) for r in self.signals}

@@ -30,11 +30,15 @@
     kind = "monolithic"
     duration = 1.0
     step = 1e-3
-    speed_rpm = 16000                    # rotor cycle for the thermal-only holds and the automatic schedule
+    speed_rpm = 16000                    # the cycle of the thermal-only holds and the automatic schedule: a
+                                         # constant speed, or cycle = { period = S } | { signal = "comp.port" }
+                                         # (master/scenario/cycle.py)
     hold = "mean"                        # held statistic of the hand-offs (mean | rms | last), master/manipulator/hold.py
     hold_cycles = 5
     restart_cycles = 2                   # TM restart: rotor cycles over which the thermal inputs of the
                                          # mechanical components go from their pre-TO to their new values
+    temperature_zero = 273.15            # K: the hold's error estimate takes relative errors of temperatures
+                                         # above it (default 0 degrees C)
 
     [outputs]
     record = ["m1.x", "m2.x"]
@@ -64,6 +68,7 @@ from rotorcosim.components import registry
 from rotorcosim.components.contract import Component, ContractError
 
 from rotorcosim.master.scenario import schema
+from rotorcosim.master.scenario.cycle import constant_period, cycle_of, without_source
 from rotorcosim.master.core.algorithm import EngineSettings
 from rotorcosim.master.manipulator.hold import DEFAULT_HOLD, RESTART_CYCLES
 from rotorcosim.master.scenario.compose import Origins, ScenarioError, compose, real_path
@@ -71,6 +76,10 @@ from rotorcosim.master.scenario.overrides import resolve_file_parameters
 from rotorcosim.master.schedule.timeline import from_spec
 from rotorcosim.master.simulation import Simulation
 from rotorcosim.master.core.system import Connection, System, split_port
+
+#: the hold's error estimate takes temperatures' relative errors above 0 degrees C [K], as temperatures are
+#: reported; ``[schedule] temperature_zero`` declares another zero
+TEMPERATURE_ZERO_K = 273.15
 
 
 @dataclass
@@ -314,20 +323,30 @@ def engine_settings(sc: Scenario) -> EngineSettings:
 def build_simulation(sc: Scenario, observers=(), system: System | None = None) -> Simulation:
     system = system or build_system(sc)
     s = sc.schedule
+    cycle = cycle_of(s)
+    if cycle is not None:
+        try:
+            cycle.check(system)
+        except ContractError as exc:
+            raise ScenarioError(f"{sc.source or sc.name}: [schedule] cycle: {exc}") from None
     return Simulation(system, order=sc.algorithm.get("order"), settings=engine_settings(sc),
                       steps={n: c.step for n, c in sc.components.items() if c.step is not None},
                       hold=s.get("hold", DEFAULT_HOLD), hold_cycles=float(s.get("hold_cycles", 5)),
-                      speed_rpm=s.get("speed_rpm"), observers=observers,
-                      restart_cycles=float(s.get("restart_cycles", RESTART_CYCLES)))
+                      cycle=cycle, observers=observers,
+                      restart_cycles=float(s.get("restart_cycles", RESTART_CYCLES)),
+                      temperature_zero=float(s.get("temperature_zero", TEMPERATURE_ZERO_K)))
 
 
 def schedule_of(sc: Scenario, kind: str | None = None, duration: float | None = None):
-    spec = dict(sc.schedule)
+    """The scenario's schedule, or another ``kind`` of it (``"monolithic"``, ``"auto"``: over the same simulated
+    time unless ``duration`` says otherwise); ``duration`` [s] cuts or stretches it."""
+    own, period = without_source(sc.schedule), constant_period(sc.schedule)
+    spec = dict(own)
     if kind is not None:
         spec["kind"] = kind
         if kind in ("monolithic", "auto"):
             spec.pop("intervals", None)
             # the same simulated time as the scenario's own timeline, unless told otherwise
             if duration is None and "duration" not in spec and sc.schedule.get("intervals"):
-                duration = from_spec(sc.schedule).duration
-    return from_spec(spec, duration)
+                duration = from_spec(own, cycle=period).duration
+    return from_spec(spec, duration, cycle=period)

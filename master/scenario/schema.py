@@ -149,7 +149,8 @@ TABLES: dict[str, dict[str, Callable | None]] = {
     "inputs": {},       # "component.port" -> number(s)
     "algorithm": {"kind": one_of(*ALGORITHMS), "order": list_of(text), "iterations": count, "tolerance": positive},
     "schedule": {"kind": one_of(*SCHEDULE_KINDS), "duration": positive, "step": positive, "thermal_step": positive,
-                 "speed_rpm": positive, "hold": one_of(*HOLDS), "hold_cycles": whole_positive, "restart_cycles": not_negative,
+                 "speed_rpm": positive, "cycle": None, "temperature_zero": positive, "hold": one_of(*HOLDS),
+                 "hold_cycles": whole_positive, "restart_cycles": not_negative,
                  "intervals": None,
                  "steady_tolerance": positive, "steady_cycles": count, "drift_tolerance": positive,
                  "tm_min": positive, "tm_max": positive, "to_min": positive, "to_max": positive,
@@ -167,6 +168,8 @@ CONNECTION = {"from": port_ref, "to": port_ref, "average": one_of(*AVERAGES),
               # type conversion and the unit of a unit-less side (master/core/conversions.py checks the values)
               "convert": text, "unit": text}
 INTERVAL = {"phase": one_of(*PHASES), "duration": positive, "cycles": positive, "step": positive}
+#: ``[schedule] cycle``: a constant period [s], or a speed / frequency output and its unit (master/scenario/cycle.py)
+CYCLE = {"period": positive, "signal": port_ref, "unit": text}
 
 
 def _did_you_mean(word: Any, known) -> str:
@@ -416,14 +419,32 @@ def _algorithm(c: _Checker, a: Mapping, names) -> None:
                                                f"components: {', '.join(names)}")
 
 
+def _cycle(c: _Checker, s: Mapping, comps: Mapping) -> tuple[float | None, str]:
+    """The cycle source's constant period [s] (None: none, or a signal's) and how messages say it."""
+    speed, cyc = s.get("speed_rpm"), s.get("cycle")
+    if cyc is None:
+        return (60.0 / speed if speed else None), f"at {speed:g} rev/min" if speed else ""
+    if speed is not None:
+        raise c.fail("schedule", "cycle", "give speed_rpm or cycle, not both (both say the cycle's period)")
+    c.table("schedule.cycle", cyc, CYCLE)
+    if ("period" in cyc) == ("signal" in cyc):
+        raise c.fail("schedule.cycle", None, "give exactly one of period (s) or signal (\"component.port\")")
+    if "period" in cyc:
+        if "unit" in cyc:
+            raise c.fail("schedule.cycle", "unit", "is the unit of a signal; a period is in seconds")
+        return cyc["period"], f"of {cyc['period']:g} s"
+    _known_component(c, "schedule.cycle", "signal", cyc["signal"], list(comps))
+    return None, ""
+
+
 def _schedule(c: _Checker, s: Mapping, comps: Mapping) -> None:
     raw = s.get("intervals")
     tm_durations = []
     step = s.get("step", 1e-5)
+    period, per = _cycle(c, s, comps)
     if raw is not None:
         if not isinstance(raw, list) or not raw:
             raise c.fail("schedule", "intervals", "must be a non-empty list of {phase, duration} tables")
-        speed = s.get("speed_rpm")
         for i, iv in enumerate(raw):
             w = f"schedule.intervals #{i + 1}"
             c.table(w, iv, INTERVAL)
@@ -431,9 +452,10 @@ def _schedule(c: _Checker, s: Mapping, comps: Mapping) -> None:
                 raise c.fail(w, "phase", "missing: each interval needs phase = \"TM\" or \"TO\"")
             if ("duration" in iv) == ("cycles" in iv):
                 raise c.fail(w, "duration", "give exactly one of duration (s) or cycles (rotor revolutions)")
-            if "cycles" in iv and not speed:
-                raise c.fail(w, "cycles", "an interval in rotor cycles needs schedule.speed_rpm")
-            d = iv["duration"] if "duration" in iv else iv["cycles"] * 60.0 / speed
+            if "cycles" in iv and not period:
+                raise c.fail(w, "cycles", "an interval in rotor cycles needs schedule.speed_rpm (or a cycle "
+                                          "of constant period, schedule.cycle = { period = S })")
+            d = iv["duration"] if "duration" in iv else iv["cycles"] * period
             if iv["phase"] == "TM":
                 tm_durations.append((w, d, iv.get("step", step)))
     elif s.get("kind", "monolithic") == "monolithic" and "duration" in s:
@@ -441,29 +463,32 @@ def _schedule(c: _Checker, s: Mapping, comps: Mapping) -> None:
     if s.get("kind") == "auto" and "tm_min" in s:
         tm_durations.append(("schedule", s["tm_min"], step))
     speed, cycles = s.get("speed_rpm"), s.get("hold_cycles")
-    if speed:
-        # the hold's windows, the restart and the results are counted in rotor cycles sampled at the TM step: a
+    if period:
+        # the hold's windows, the restart and the results are counted in cycles sampled at the TM step: a
         # cycle must span two steps at least (Nyquist); 1e12 rev/min ran with windows of one sample
         h = max([step] + [hh for _, _, hh in tm_durations])
-        if 60.0 / speed < 2.0 * h:
-            raise c.fail("schedule", "speed_rpm", f"{speed:g} rev/min turns once in {60.0 / speed:.3g} s, less "
-                         f"than two thermo-mechanical steps ({h:g} s): no cycle can be sampled (speeds are in "
-                         "rev/min)")
+        if period < 2.0 * h:
+            if speed:
+                raise c.fail("schedule", "speed_rpm", f"{speed:g} rev/min turns once in {period:.3g} s, less "
+                             f"than two thermo-mechanical steps ({h:g} s): no cycle can be sampled (speeds are in "
+                             "rev/min)")
+            raise c.fail("schedule.cycle", "period", f"{period:g} s is less than two thermo-mechanical steps "
+                         f"({h:g} s): no cycle can be sampled")
     held = tm_durations
-    if speed and cycles and s.get("kind") == "auto":
+    if period and cycles and s.get("kind") == "auto":
         from rotorcosim.master.schedule.auto import AutoSchedule
 
         # the automatic schedule's TM intervals last at most tm_max (1e308 cycles overflowed the hold's buffers)
         held = [("schedule", s.get("tm_max", AutoSchedule.tm_max), step)]
-    if speed and cycles and held:
-        # the hold averages the last hold_cycles rotor cycles of a TM interval (and sizes its buffers by them): a
+    if period and cycles and held:
+        # the hold averages the last hold_cycles cycles of a TM interval (and sizes its buffers by them): a
         # window longer than every TM interval never fills; 1e12 cycles asked for terabytes (out of memory)
-        window, longest = cycles * 60.0 / speed, max(d for _, d, _ in held)
+        window, longest = (cycles * 60.0 / speed if speed else cycles * period), max(d for _, d, _ in held)
         if window > longest * (1 + 1e-9):
-            raise c.fail("schedule", "hold_cycles", f"{cycles:g} cycles at {speed:g} rev/min last {window:.4g} s, "
+            raise c.fail("schedule", "hold_cycles", f"{cycles:g} cycles {per} last {window:.4g} s, "
                          f"longer than the longest thermo-mechanical interval ({longest:.4g} s): the hold's window "
                          "could never fill")
-    _restart(c, s, raw)
+    _restart(c, s, raw, period, per)
     for name, spec in comps.items():
         cs = spec.get("step")
         if cs is None:
@@ -479,20 +504,20 @@ def _schedule(c: _Checker, s: Mapping, comps: Mapping) -> None:
                              f"{cs} s is not a whole multiple of the thermo-mechanical step {h} s")
 
 
-def _restart(c: _Checker, s: Mapping, raw) -> None:
+def _restart(c: _Checker, s: Mapping, raw, period: float | None, per: str) -> None:
     """restart_cycles against the thermo-mechanical time a restart's ramp has (master/manipulator/hold.py, Restart): it starts
     at a TO -> TM change and goes on through the TM intervals that follow, until the next TO interval. A ramp
     longer than the shortest such run never ends: the hand-backs would stay a blend of held and live values for
     the whole run (1e12 cycles was accepted). Under the automatic schedule a TM interval after a TO one lasts at
     most tm_max."""
     speed, cycles = s.get("speed_rpm"), s.get("restart_cycles")
-    if not speed or not cycles:
+    if not period or not cycles:
         return
-    ramp = cycles * 60.0 / speed
+    ramp = cycles * 60.0 / speed if speed else cycles * period
     runs, run, after_to = [], 0.0, False
     if isinstance(raw, list) and s.get("kind", "timeline") != "auto":
         for iv in raw:
-            d = iv["duration"] if "duration" in iv else iv["cycles"] * 60.0 / speed
+            d = iv["duration"] if "duration" in iv else iv["cycles"] * period
             if iv["phase"] == "TO":
                 if after_to and run > 0.0:
                     runs.append(run)
@@ -508,6 +533,6 @@ def _restart(c: _Checker, s: Mapping, raw) -> None:
         runs = [s.get("tm_max", AutoSchedule.tm_max)]
         what = "tm_max, the longest thermo-mechanical interval of the automatic schedule"
     if runs and ramp > min(runs) * (1 + 1e-9):
-        raise c.fail("schedule", "restart_cycles", f"{cycles:g} cycles at {speed:g} rev/min last {ramp:.4g} s, "
+        raise c.fail("schedule", "restart_cycles", f"{cycles:g} cycles {per} last {ramp:.4g} s, "
                      f"longer than {what} ({min(runs):.4g} s): the restart's ramp would never end (the default is "
                      f"{RESTART_CYCLES:g} cycles)")

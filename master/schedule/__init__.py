@@ -1,7 +1,7 @@
 """Schedules: which intervals a run is made of and in which phase each runs.
 
-- :mod:`.timeline`: :class:`Interval`, :class:`Timeline` (an explicit list of intervals, e.g. the paper's 6 TM +
-  5 TO), the schedule registry and :func:`from_spec` (a scenario's ``[schedule]`` table to a schedule);
+- :mod:`.timeline`: :class:`Interval`, :class:`Timeline` (an explicit list of intervals, e.g. 6 TM + 5 TO
+  intervals), the schedule registry and :func:`from_spec` (a scenario's ``[schedule]`` table to a schedule);
 - :mod:`.auto`: :class:`AutoSchedule`, thermal-only intervals once the mechanical response is steady;
 - :mod:`.budget`: the time a schedule will take, estimated before a run starts.
 

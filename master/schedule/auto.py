@@ -1,17 +1,17 @@
 """The automatic staggered schedule (``[schedule] kind = "auto"``, ``rotorcosim run --schedule auto``).
 
-TM intervals run until the mechanical outputs handed to the thermal side are steady cycle to cycle (the paper's
-assumption: "once the mechanical steady state is reached, there is no significant change in the dynamic
-response"); TO intervals run until the thermal outputs that feed the mechanical side have drifted by more than
+TM intervals run until the mechanical outputs handed to the thermal side are steady cycle to cycle (the
+staggered scheme's assumption: once the mechanics are steady, their response changes only with the slow
+temperatures); TO intervals run until the thermal outputs that feed the mechanical side have drifted by more than
 ``drift_tolerance``, within min/max durations. The last stretch is one TM interval, where results are read.
 
 Error control (``tolerance``, percent; ``--tolerance PCT``): every TO interval's error is estimated at the next
-restart by the thermal-only hold (master/manipulator/hold.py: the hand-off error of each held power, carried through the
-thermal components over the interval's length, relative to the temperatures in degrees C as Table 4 reports them),
-and the next TO interval's length is scaled by tolerance / estimate (at most halved or doubled per interval; the
-estimate grows with the extrapolation over the interval). The first TO interval is ``to_min`` long. The run
-reports the largest estimate of its intervals (``estimated_error_pct``): an estimate of the largest error of a
-Table 4 temperature against the monolithic run, which bounds the others (the mechanical results follow the
+restart by the thermal-only hold (master/manipulator/hold.py: the hand-off error of each held power, carried through
+the thermal components over the interval's length, relative to the temperatures above the hold's
+``temperature_zero``), and the next TO interval's length is scaled by tolerance / estimate (at most halved or
+doubled per interval; the estimate grows with the extrapolation over the interval). The first TO interval is
+``to_min`` long. The run reports the largest estimate of its intervals (``estimated_error_pct``): an estimate of the largest error of a
+reported temperature against the monolithic run, which bounds the others (the mechanical results follow the
 temperatures they are read at).
 """
 from __future__ import annotations
@@ -28,7 +28,7 @@ from rotorcosim.master.schedule.timeline import Schedule, ScheduleError, _positi
 DRIFT_FLOORS = {"K": 0.5, "m": 1e-7, "Pa.s": 1e-4, "W": 1.0, "N": 1.0}
 #: the TO length controller: never more than this factor up or down from one interval to the next, and a
 #: the largest ``tolerance`` [%]: an error of a result larger than the result itself accepts anything (1e308 was
-#: accepted); the paper's Table 6 differences are below 2 %
+#: accepted)
 TOLERANCE_MAX_PCT = 100.0
 #: safety factor on tolerance / estimate
 GROWTH_LIMITS = (0.5, 2.0)
@@ -73,7 +73,7 @@ class AutoSchedule(Schedule):
             raise ScheduleError("schedule: steady_cycles must be >= 1")
 
     @classmethod
-    def from_spec(cls, spec, duration, step, thermal_step, speed_rpm):
+    def from_spec(cls, spec, duration, step, thermal_step, cycle):
         total = _positive("duration", duration if duration is not None else spec.get("duration"))
         return cls(total, step, thermal_step, **{k: spec[k] for k in cls.keys if k in spec})
 
@@ -81,8 +81,9 @@ class AutoSchedule(Schedule):
         """Drive ``sim`` to the end. The loop's own state (which phase comes next, the TO length the error
         control reached) lives in ``sim.schedule_state``, so that a checkpoint taken at an interval end carries
         it and a resumed run makes the same decisions (master/run/checkpoint.py); ``first`` is not used."""
-        if not sim.speed_rpm:
-            raise ScheduleError("the automatic schedule needs speed_rpm (its steadiness test works cycle by cycle)")
+        if sim.cycle_source is None:
+            raise ScheduleError("the automatic schedule needs a cycle (its steadiness test works cycle by cycle: "
+                                "the scenario's [schedule] cycle)")
         end = sim.t0 + self.duration
         eps = 1e-9
         state = sim.schedule_state = sim.schedule_state or {"next": "TM", "to_len": self.to_min}
@@ -138,7 +139,7 @@ class _StopTest:
 
 
 class _SteadyTest(_StopTest):
-    """Steady when the RMS of the tracked outputs over a rotor cycle changes by less than the tolerance
+    """Steady when the RMS of the tracked outputs over a cycle changes by less than the tolerance
     (relative) for ``steady_cycles`` consecutive cycles, after ``tm_min``."""
 
     def __init__(self, sim, sch: AutoSchedule):

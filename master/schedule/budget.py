@@ -2,9 +2,9 @@
 
 The estimate counts the base steps of the schedule exactly and prices each from a declared step cost:
 ``MASTER_STEP_S`` for the master and observers plus ``COMPONENT_STEP_S`` per component. Both come from the
-blade-loss system's measured profile (``python bench/bench_blade_loss.py``: master and observers ~100 us, the
-nine components 3-35 us each per thermo-mechanical step; 150 000 TM steps of the 2-minute run took 41 s, i.e.
-~270 us per step, and the estimate gives 300 us). Components stepping at a multiple of the base step and
+measured profile of the shipped case's nine-component system (``bench/``: master and observers ~100 us, the
+components 3-35 us each per thermo-mechanical step; 150 000 TM steps took 41 s, i.e. ~270 us per step, and the
+estimate gives 300 us). Components stepping at a multiple of the base step and
 thermal-only intervals make the estimate an upper bound.
 
 A run estimated above ``LIMIT_S`` of wall time is refused unless forced; a schedule with a thermo-mechanical

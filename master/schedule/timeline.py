@@ -1,9 +1,9 @@
-"""Schedules: which phase runs when, at which step (the paper's staggered scheme, section 3.2).
+"""Schedules: which phase runs when, at which step (the staggered scheme).
 
 * ``TM`` (thermo-mechanical): every component steps at small steps;
 * ``TO`` (thermal-only): components that take no part in TO are frozen, the others step at a large step,
-  fed with the frozen components' outputs held at their RMS (or mean) over the last N rotor cycles of the
-  previous TM interval.
+  fed with the frozen components' outputs held at their mean (or RMS) over the last N cycles of the
+  previous TM interval (the cycle: master/core/cycle.py).
 
 A schedule is a class behind a registry (``kind`` of a scenario's ``[schedule]``): an explicit ``timeline``,
 ``monolithic`` (one TM interval) or ``auto`` (master/schedule/auto.py: decided while the run goes, optionally to an error
@@ -55,9 +55,10 @@ class Interval:
 
 #: the schedules by kind (a registry, like the components'): a new schedule is a new class, registered here
 SCHEDULES: dict[str, type["Schedule"]] = {}
-#: [schedule] keys every kind accepts (the Simulation's, and the step defaults)
-COMMON_KEYS = ("kind", "duration", "step", "thermal_step", "speed_rpm", "hold", "hold_cycles",
-               "restart_cycles")
+#: [schedule] keys every kind accepts (the step defaults, and the Simulation's: its cycle source and hold, which
+#: the scenario layer reads)
+COMMON_KEYS = ("kind", "duration", "step", "thermal_step", "cycle", "hold", "hold_cycles", "restart_cycles",
+               "temperature_zero")
 
 
 def register_schedule(kind: str):
@@ -73,7 +74,8 @@ def register_schedule(kind: str):
 
 class Schedule:
     """What runs when. ``from_spec`` builds one from a scenario's ``[schedule]`` table (its own keys in
-    ``keys``); ``run`` drives a Simulation through it."""
+    ``keys``; ``cycle`` the constant cycle period in seconds, or None); ``run`` drives a Simulation through
+    it."""
 
     kind = ""
     #: the [schedule] keys this kind reads beyond COMMON_KEYS
@@ -81,7 +83,7 @@ class Schedule:
 
     @classmethod
     def from_spec(cls, spec: Mapping[str, Any], duration: float | None, step: float, thermal_step: float,
-                  speed_rpm: float | None) -> "Schedule":
+                  cycle: float | None) -> "Schedule":
         raise NotImplementedError
 
     # every schedule has a ``duration`` (s): the simulated time it covers
@@ -91,13 +93,14 @@ class Schedule:
         raise NotImplementedError
 
 
-def _interval_duration(spec: Mapping[str, Any], speed_rpm: float | None) -> float:
+def _interval_duration(spec: Mapping[str, Any], cycle: float | None) -> float:
     if "duration" in spec and "cycles" in spec:
         raise ScheduleError(f"schedule: interval {dict(spec)} gives both duration and cycles")
     if "cycles" in spec:
-        if not speed_rpm:
-            raise ScheduleError("schedule: an interval in rotor cycles needs schedule.speed_rpm")
-        return _positive("interval cycles", spec["cycles"]) * 60.0 / _positive("speed_rpm", speed_rpm)
+        if not cycle:
+            raise ScheduleError("schedule: an interval in cycles needs a cycle of constant period (the "
+                                "scenario's [schedule] cycle)")
+        return _positive("interval cycles", spec["cycles"]) * _positive("cycle period", cycle)
     if "duration" not in spec:
         raise ScheduleError(f"schedule: interval {dict(spec)} needs a duration (s) or cycles")
     return _positive("interval duration", spec["duration"])
@@ -106,8 +109,8 @@ def _interval_duration(spec: Mapping[str, Any], speed_rpm: float | None) -> floa
 @register_schedule("timeline")
 @dataclass
 class Timeline(Schedule):
-    """An explicit list of intervals (the paper's Fig. 8): ``[[schedule.intervals]]`` with phase, duration or
-    cycles, and an optional step."""
+    """An explicit list of intervals: ``[[schedule.intervals]]`` with phase, duration or cycles, and an
+    optional step."""
 
     intervals: list[Interval]
     keys = ("intervals",)
@@ -117,14 +120,14 @@ class Timeline(Schedule):
         return sum(i.duration for i in self.intervals)
 
     @classmethod
-    def from_spec(cls, spec, duration, step, thermal_step, speed_rpm):
+    def from_spec(cls, spec, duration, step, thermal_step, cycle):
         raw = spec.get("intervals")
         if not raw:
             raise ScheduleError("schedule: kind 'timeline' needs [[schedule.intervals]]")
         intervals = []
         for item in raw:
             phase = item.get("phase")
-            d = _interval_duration(item, speed_rpm)
+            d = _interval_duration(item, cycle)
             h = item.get("step", step if phase == "TM" else thermal_step)
             intervals.append(Interval(phase, d, min(_positive("interval step", h), d)))
         tl = cls(intervals)
@@ -133,9 +136,9 @@ class Timeline(Schedule):
         return tl
 
     def run(self, sim, first: int = 0) -> None:
-        if any(iv.phase == "TO" for iv in self.intervals) and not sim.speed_rpm:
-            raise ScheduleError("a schedule with thermal-only intervals needs speed_rpm (the rotor cycle over which "
-                                "the held outputs are averaged)")
+        if any(iv.phase == "TO" for iv in self.intervals) and sim.cycle_source is None:
+            raise ScheduleError("a schedule with thermal-only intervals needs a cycle (the period over which the "
+                                "held outputs are averaged: the scenario's [schedule] cycle)")
         for i, iv in enumerate(self.intervals[first:], first):
             sim.interval_index = i
             sim.run_interval(iv.phase, iv.duration, iv.step)
@@ -150,15 +153,16 @@ class Monolithic(Timeline):
     keys = ()
 
     @classmethod
-    def from_spec(cls, spec, duration, step, thermal_step, speed_rpm):
+    def from_spec(cls, spec, duration, step, thermal_step, cycle):
         total = _positive("duration", duration if duration is not None else spec.get("duration"))
         return cls([Interval("TM", total, min(step, total))])
 
 
-def from_spec(spec: Mapping[str, Any], duration: float | None = None) -> Schedule:
+def from_spec(spec: Mapping[str, Any], duration: float | None = None, cycle: float | None = None) -> Schedule:
     """Build a schedule from a scenario's ``[schedule]`` table: ``kind`` names a registered :class:`Schedule`
     (default ``monolithic``), which reads its own keys. ``duration`` overrides the scenario's total duration
-    (a timeline is then cut or its last interval stretched)."""
+    (a timeline is then cut or its last interval stretched); ``cycle`` is the constant cycle period [s] that
+    intervals given in ``cycles`` count in (the scenario layer reads it from the table's cycle source)."""
     known = set(COMMON_KEYS).union(*(c.keys for c in SCHEDULES.values()))
     unknown = set(spec) - known
     if unknown:
@@ -169,7 +173,7 @@ def from_spec(spec: Mapping[str, Any], duration: float | None = None) -> Schedul
         raise ScheduleError(f"schedule: kind {kind!r} not in {tuple(SCHEDULES)}")
     step = _positive("step", spec.get("step", 1e-5))
     thermal_step = _positive("thermal_step", spec.get("thermal_step", 0.1))
-    return cls.from_spec(spec, duration, step, thermal_step, spec.get("speed_rpm"))
+    return cls.from_spec(spec, duration, step, thermal_step, cycle)
 
 
 def cut_timeline(tl: Timeline, duration: float) -> Timeline:

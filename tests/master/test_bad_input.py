@@ -92,17 +92,18 @@ def test_size_mismatch_names_both_ports():
 
 
 def test_timeline_errors():
-    with pytest.raises(ScheduleError, match="needs schedule.speed_rpm"):
+    with pytest.raises(ScheduleError, match="an interval in cycles needs a cycle of constant period"):
         from_spec({"kind": "timeline", "intervals": [{"phase": "TM", "cycles": 5}]})
+    assert from_spec({"kind": "timeline", "intervals": [{"phase": "TM", "cycles": 5}]}, cycle=0.01).duration == 0.05
     with pytest.raises(ScheduleError, match="phase 'XX'"):
         from_spec({"kind": "timeline", "intervals": [{"phase": "XX", "duration": 1}]})
     with pytest.raises(ScheduleError, match="longer than its duration"):
         Interval("TM", 0.1, 1.0)
 
 
-def test_thermal_only_needs_speed():
+def test_thermal_only_needs_a_cycle():
     s = System({"m1": create("testing.mass", "m1", {"x0": 0.1})}, [], {"m1.F": 0.0})
-    with pytest.raises(ScheduleError, match="needs speed_rpm"):
+    with pytest.raises(ScheduleError, match="thermal-only intervals needs a cycle"):
         Simulation(s).run(Timeline([Interval("TM", 0.1, 1e-3), Interval("TO", 1.0, 0.1)]))
 
 

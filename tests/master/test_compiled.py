@@ -12,6 +12,7 @@ from rotorcosim.master.cli.run import apply_unbalance, resolve
 from rotorcosim.master.compiled.choice import CompiledUnavailable
 from rotorcosim.master.observer.observers import Recorder
 from rotorcosim.cases.blade_loss.results import observers as result_observers
+from rotorcosim.master.scenario.cycle import cycle_of
 from rotorcosim.master.scenario.build import build_simulation
 from rotorcosim.master.schedule import Interval, Timeline
 
@@ -24,7 +25,8 @@ def _blade_loss(engine, folder, reseats, restart_cycles):
     sc.schedule["restart_cycles"] = restart_cycles
     signals = ["rotor.X_brg0", "bearing0.Q_max", "bearing5.sigma_max", "damper0.P_film", "rubring0.P_rub",
                "thermal0.T_nodes", "thermal5.eps"]
-    obs = [Recorder(folder / f"{engine}{restart_cycles}.csv", signals, 2e-5)] + result_observers(sc, 16000.0)
+    obs = [Recorder(folder / f"{engine}{restart_cycles}.csv", signals, 2e-5)] + result_observers(
+        sc, cycle_of(sc.schedule))
     sim = build_simulation(sc, obs)
     sim.engine_choice = engine
     h = float(sc.schedule["step"])
@@ -129,7 +131,7 @@ def test_automatic_schedule_runs_compiled_and_decides_as_the_generic_loop(tmp_pa
     for engine in ("compiled", "python"):
         sc = resolve("blade_loss")
         apply_unbalance(sc, 2850.0)
-        sim = build_simulation(sc, result_observers(sc, 16000.0))
+        sim = build_simulation(sc, result_observers(sc, cycle_of(sc.schedule)))
         sim.engine_choice = engine
         h = float(sc.schedule["step"])
         # the test is checked every 3000 base steps (4 rotor cycles, a whole number of thermal steps); a loose

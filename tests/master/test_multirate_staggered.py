@@ -9,7 +9,7 @@ from rotorcosim.master.schedule import Interval, Timeline, from_spec, AutoSchedu
 from rotorcosim.master.simulation import Simulation
 from rotorcosim.master.core.system import Connection, System
 
-SPEED_RPM = 45.0 * 60.0  # the oscillator's forcing frequency: one "rotor cycle" = one forcing period
+CYCLE = 1.0 / 45.0  # the cycle of the holds [s]: one forcing period of the oscillator
 
 
 def toy(average="mean", thermal=None):
@@ -71,9 +71,9 @@ def toy_timeline(duration, tm, to, step=1e-3, thermal_step=0.05):
 
 def staggered_vs_monolithic(duration=30.0, tm=0.3, to=4.7):
     mono = toy(thermal=THERMAL)
-    rep_m = Simulation(mono, order=["osc", "node"], speed_rpm=SPEED_RPM).run(Timeline([Interval("TM", duration, 1e-3)]))
+    rep_m = Simulation(mono, order=["osc", "node"], cycle=CYCLE).run(Timeline([Interval("TM", duration, 1e-3)]))
     stag = toy(thermal=THERMAL)
-    sim = Simulation(stag, order=["osc", "node"], speed_rpm=SPEED_RPM, hold="mean", hold_cycles=5)
+    sim = Simulation(stag, order=["osc", "node"], cycle=CYCLE, hold="mean", hold_cycles=5)
     rep_s = sim.run(toy_timeline(duration, tm, to))
     return mono, stag, rep_m, rep_s
 
@@ -95,7 +95,7 @@ def test_staggered_matches_monolithic_final_temperature():
 def test_frozen_component_keeps_its_state():
     """In a thermal-only interval the mechanical component is not stepped; its state resumes unchanged."""
     s = toy()
-    sim = Simulation(s, order=["osc", "node"], speed_rpm=SPEED_RPM)
+    sim = Simulation(s, order=["osc", "node"], cycle=CYCLE)
     sim.run_interval("TM", 0.1, 1e-3)
     z = s.components["osc"].state["z"].copy()
     n = sim.engine.steps_taken["osc"]
@@ -107,7 +107,7 @@ def test_frozen_component_keeps_its_state():
 
 def test_auto_schedule_switches_and_reports():
     s = toy(thermal=THERMAL)
-    sim = Simulation(s, order=["osc", "node"], speed_rpm=SPEED_RPM)
+    sim = Simulation(s, order=["osc", "node"], cycle=CYCLE)
     sch = AutoSchedule(duration=6.0, step=1e-3, thermal_step=0.05, steady_tolerance=0.02, tm_min=0.1,
                        tm_max=0.5, to_min=0.2, to_max=2.0, drift_tolerance=0.005)
     rep = sim.run(sch)
@@ -124,7 +124,7 @@ def test_thermal_only_interval_keeps_its_duration():
     """A thermal-only interval whose duration is not a whole number of thermal steps (23.85 s at 0.1 s) ends at
     exactly its duration, with the nearest smaller step (239 steps of 0.0998 s), and the report says so."""
     s = toy()
-    sim = Simulation(s, order=["osc", "node"], speed_rpm=SPEED_RPM)
+    sim = Simulation(s, order=["osc", "node"], cycle=CYCLE)
     sim.run_interval("TM", 0.1, 1e-3)
     used = sim.run_interval("TO", 23.85, 0.1)
     assert used.steps == 239
@@ -168,7 +168,7 @@ def test_restart_ramps_the_thermal_inputs_of_the_frozen_mechanics(restart_cycles
     TO interval to the node's present one along a half cosine over restart_cycles forcing periods; with 0 it
     jumps (the paper)."""
     s = toy(thermal=THERMAL)
-    sim = Simulation(s, order=["osc", "node"], speed_rpm=SPEED_RPM, restart_cycles=restart_cycles)
+    sim = Simulation(s, order=["osc", "node"], cycle=CYCLE, restart_cycles=restart_cycles)
     osc, node = s.components["osc"], s.components["node"]
     sim.run_interval("TM", 0.3, 1e-3)
     before = float(osc.u["T"][0])
@@ -179,7 +179,7 @@ def test_restart_ramps_the_thermal_inputs_of_the_frozen_mechanics(restart_cycles
     seen = float(osc.u["T"][0]) - before
     if restart_cycles:
         # 1 ms into a 44 ms ramp: (1 - cos(pi/44.4)) / 2 = 0.13 % of the jump (+- the node's own change in a step)
-        w = 0.5 * (1.0 - np.cos(np.pi * 1e-3 * SPEED_RPM / 60.0 / 2.0))
+        w = 0.5 * (1.0 - np.cos(np.pi * 1e-3 / CYCLE / 2.0))
         assert abs(seen - w * jump) < 2e-4 * jump
         sim.run_interval("TM", 0.021, 1e-3)   # mid-ramp (22 ms of 44.4 ms): about half the jump
         assert 0.4 * jump < float(osc.u["T"][0]) - before < 0.6 * jump

@@ -11,6 +11,7 @@ from rotorcosim.master.compiled import runner as compiled
 from rotorcosim.master.cli.run import apply_unbalance, resolve
 from rotorcosim.master.observer.observers import Recorder
 from rotorcosim.cases.blade_loss.results import observers as result_observers
+from rotorcosim.master.scenario.cycle import cycle_of
 from rotorcosim.master.scenario.build import build_simulation
 from rotorcosim.master.schedule import Interval, Timeline
 
@@ -23,7 +24,7 @@ def _run(restart_cycles):
     apply_unbalance(sc, 2850.0)
     sc.schedule["restart_cycles"] = restart_cycles
     rec = Recorder(None, SIGNALS, 1e-5)
-    obs = [rec] + result_observers(sc, 16000.0)
+    obs = [rec] + result_observers(sc, cycle_of(sc.schedule))
     sim = build_simulation(sc, obs)
     sim.engine_choice = "compiled"
     h = float(sc.schedule["step"])

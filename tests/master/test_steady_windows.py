@@ -31,7 +31,7 @@ def test_blocks_keep_the_generic_window(stride_step, steps_known, nsteps, cycles
     out = []
     for blocks in (False, True):
         sim = _sim(steps_known, nsteps)
-        obs = SteadyWindows(["a.x", "b.p"], speed_rpm=60.0, cycles=cycles, sample_step=stride_step)
+        obs = SteadyWindows(["a.x", "b.p"], cycle=1.0, cycles=cycles, sample_step=stride_step)
         for interval in range(2):  # a second interval: the ring starts anew
             obs.interval_start(sim, "TM", h)
             t0 = interval * 10.0

@@ -139,7 +139,7 @@ def test_thermal_only_hold_averages_reals_and_holds_the_rest():
 
     comps = {"c": Counter("c"), "s": ThermalSink("s")}
     sys_ = System(comps, [Connection("c.k", "s.k"), Connection("c.r", "s.r"), Connection("c.b", "s.b")])
-    sim = Simulation(sys_, order=["c", "s"], hold="mean", hold_cycles=5, speed_rpm=60_000.0)
+    sim = Simulation(sys_, order=["c", "s"], hold="mean", hold_cycles=5, cycle=1e-3)
     sim.run(Timeline([Interval("TM", 0.006, 1e-3), Interval("TO", 0.01, 5e-3)]))
     to = sys_.components["s"].log[6:]
     assert len(to) == 2
