@@ -1,4 +1,4 @@
-"""``rotorcosim compare [--duration 2] [--unbalance 2850] --out DIR``: the paper's Table 6 experiment.
+"""``rotorcosim compare [SCENARIO] [--duration 2] [--unbalance 2850] --out DIR``: the paper's Table 6 experiment.
 
 The same blade-loss system run twice over ``duration``: staggered (3 thermo-mechanical intervals of ``REVOLUTIONS``
 (32) rotor revolutions in all, alternating with 2 thermal-only intervals, as the paper's section 4.2) and monolithic
@@ -42,6 +42,7 @@ from rotorcosim.master.run.outputs import write_json
 from rotorcosim.master.run.rundir import LOCK, check_folder, ensure_folder
 from rotorcosim.master.schedule import Interval, Timeline, from_spec
 
+from rotorcosim.master.cli.options import add_out, add_scenario
 from rotorcosim.master.cli.run import apply_unbalance, execute, resolve
 
 #: Table 6's rows (no rub power: there is no rub at 2850 N)
@@ -73,8 +74,9 @@ REVOLUTIONS = 32.0
 def add_arguments(p):
     p.add_argument("--duration", type=float, default=2.0, help="simulated duration [s] (default 2, as the paper)")
     p.add_argument("--unbalance", type=float, default=2850.0, help="blade-loss force [N] (default 2850)")
-    p.add_argument("--out", required=True, help="output folder")
-    p.add_argument("--scenario", default="blade_loss", help="scenario (default blade_loss)")
+    add_scenario(p, "blade_loss", note="the levels' base file, F_u = 2850 N as in blade_loss_2850 that run uses; "
+                                       "the runs' results carry its name")
+    add_out(p, "output folder")
     p.add_argument("--revolutions", type=float, default=REVOLUTIONS,
                    help=f"rotor revolutions in all thermo-mechanical intervals of the staggered run (default "
                         f"{REVOLUTIONS:g}; the paper: 50)")

@@ -20,6 +20,7 @@ from rotorcosim.master.run import checkpoint
 from rotorcosim.master.run import watchdog
 from rotorcosim.master.core.algorithm import SimulationDiverged
 from rotorcosim.master.api import DEFAULT_SCENARIO, SCHEDULES, load_scenario, simulate
+from rotorcosim.master.cli.options import SCHEDULE_HELP, add_out, add_scenario
 from rotorcosim.master.compiled.runner import ENGINES
 from rotorcosim.master.scenario.overrides import apply_set, apply_swap, parse_set, parse_swap
 from rotorcosim.master.scenario.build import Scenario
@@ -29,13 +30,11 @@ CLI_ORIGIN = "the command line (--set/--swap)"
 
 
 def add_arguments(p):
-    p.add_argument("scenario", nargs="?", default=None,
-                   help=f"scenario TOML file, shipped scenario name or .ssp archive (default: {DEFAULT_SCENARIO}; "
-                        f"`rotorcosim scenarios` lists them)")
+    add_scenario(p, None, shown=DEFAULT_SCENARIO)
     p.add_argument("--unbalance", type=float, default=None, help="blade-loss unbalance force F_u [N]")
     p.add_argument("--duration", type=float, default=None, help="simulated duration [s] (cuts the timeline)")
     p.add_argument("--schedule", choices=sorted(SCHEDULES), default="paper",
-                   help="paper: the scenario's timeline; auto: switch TM/TO automatically; monolithic: one TM interval")
+                   help=SCHEDULE_HELP)
     add_edit_arguments(p)
     p.add_argument("--record", default=None, metavar="COMP.PORT,...",
                    help="the ports to record, comma-separated (default: the scenario's [outputs] record; the "
@@ -44,7 +43,7 @@ def add_arguments(p):
                    help="with --schedule auto: the largest error of a Table 4 result against the monolithic run "
                         "that you accept, in percent; the thermal-only intervals follow it and summary.json reports "
                         "the estimated error achieved (hold.estimated_error_pct)")
-    p.add_argument("--out", required=True, help="output folder (empty, or see --overwrite / --resume)")
+    add_out(p, "output folder (empty, or see --overwrite / --resume)")
     p.add_argument("--overwrite", action="store_true", help="replace the results of a previous run in --out")
     p.add_argument("--resume", action="store_true",
                    help="continue the interrupted run in --out from its last checkpoint (same command otherwise)")

@@ -1,4 +1,4 @@
-"""``rotorcosim sweep (--unbalance LIST | --set comp.param=v1,v2,...) --out DIR [--scheduler ADDRESS]``.
+"""``rotorcosim sweep [SCENARIO] (--unbalance LIST | --set comp.param=v1,v2,...) --out DIR [--scheduler ADDRESS]``.
 
 A sweep is a grid of cases: the blade-loss levels of ``--unbalance`` (the unbalance parameter of the scenario's
 ``[results]``) times every ``--set`` parameter's values. Each case runs the scenario in a folder of its own,
@@ -35,6 +35,7 @@ from rotorcosim.master.run.outputs import write_json
 from rotorcosim.master.scenario.overrides import apply_set, parse_set
 from rotorcosim.master.run.rundir import OutputFolderError, check_folder, ensure_folder, is_run_file
 
+from rotorcosim.master.cli.options import SCHEDULE_HELP, add_out, add_scenario
 from rotorcosim.master.cli.run import apply_unbalance, execute, resolve
 
 #: how long the client waits for a scheduler given by --scheduler before saying it cannot reach it [s]
@@ -46,12 +47,13 @@ def add_arguments(p):
                    help="comma-separated blade-loss forces [N], or 'paper' for the seven levels of Table 5")
     p.add_argument("--set", action="append", default=[], metavar="COMP.PARAM=V1,V2,...",
                    help="a parameter and its values (repeatable: the sweep is the grid of all of them)")
-    p.add_argument("--out", required=True, help="output folder")
+    add_out(p, "output folder")
     p.add_argument("--scheduler", default=None,
                    help="address of a running Dask scheduler, e.g. tcp://10.0.0.5:8786 (default: a local cluster)")
-    p.add_argument("--scenario", default="blade_loss", help="the scenario every case runs (default blade_loss)")
+    add_scenario(p, "blade_loss", note="the scenario every case runs; the levels' base file, F_u = 2850 N as in "
+                                       "blade_loss_2850 that run uses; the cases' results carry its name")
     p.add_argument("--duration", type=float, default=None, help="simulated duration [s] (cuts the timeline)")
-    p.add_argument("--schedule", choices=["paper", "auto", "monolithic"], default="paper")
+    p.add_argument("--schedule", choices=["paper", "auto", "monolithic"], default="paper", help=SCHEDULE_HELP)
     p.add_argument("--workers", type=int, default=None,
                    help="local cluster size (default: number of cores; at most one per case)")
     p.add_argument("--serial", action="store_true", help="run the cases one after another, without Dask")
