@@ -57,14 +57,14 @@ TIMING_RUNS = 6
 #: quarter in each of the other two). The paper's interval lengths are "decided on a trial and error basis"
 #: (section 3.2); its 50 revolutions cap the speed-up at 2 / 0.1875 s = 10.7 whatever the implementation. Chosen by
 #: the largest error of any Table 4 result against the monolithic run at the seven paper levels (2 s, `python
-#: bench/bench_table6_levels.py`; issue 12 accepts 2 %), measured per count (712 ... 14 252 N; main b0fa112, the
-#: thermal network's journal in shells):
+#: bench/bench_table6_levels.py`; 2 % is accepted), measured per count (712 ... 14 252 N; the thermal network
+#: with the journal in shells):
 #:   40: 0.29 0.29 0.30 0.96 0.71 0.80 0.93 %   (largest 0.96)
 #:   36: 0.31 0.30 0.33 1.06 0.80 1.06 1.27 %   (1.27)
 #:   32: 0.28 0.34 0.50 1.28 0.93 1.00 1.25 %   (1.28)
 #:   28: 0.42 0.61 0.67 1.60 1.20 1.03 1.18 %   (1.60)
 #:   24: 0.63 0.97 3.70 4.46 1.67 2.13 2.26 %   (4.46: fails)
-#: (with the single journal node before it, 2c20aac: 32 -> 1.27 % at most, 28 -> 1.60, 24 -> 4.69, 20 -> 20.5)
+#: (with a single journal node: 32 -> 1.27 % at most, 28 -> 1.60, 24 -> 4.69, 20 -> 20.5)
 #: 32 is one step of 4 above the fewest that pass at every level (28), on the plateau that 36 shares; the cap on
 #: the speed-up is then 400 000 / 24 000 TM steps = 16.7 (40: 13.4), which the run's fixed costs (~75 ms) and this
 #: machine's +-20 % drift otherwise kept from showing >= 12 in every comparison
@@ -72,6 +72,7 @@ REVOLUTIONS = 32.0
 
 
 def add_arguments(p):
+    """The options of ``rotorcosim compare`` on the parser ``p``."""
     p.add_argument("--duration", type=float, default=2.0, help="simulated duration [s] (default 2, as the paper)")
     p.add_argument("--unbalance", type=float, default=2850.0, help="blade-loss force [N] (default 2850)")
     add_scenario(p, "blade_loss", note="the levels' base file, F_u = 2850 N as in blade_loss_2850 that run uses; "
@@ -154,9 +155,17 @@ def _warm_up(scenario: str, out: Path, quantum: float) -> None:
 def compare(out: Path, duration=2.0, unbalance=2850.0, scenario="blade_loss", revolutions=REVOLUTIONS, bearing=0,
             quiet=True, figures=True, overwrite=False, schedule="paper", tolerance=None, monolithic=None,
             timing_runs=None) -> dict:
+    """Run the comparison into the folder ``out`` and return the table written to ``out/table6.json`` (see the
+    module's docstring).
+
+    ``duration`` [s] simulated; ``unbalance`` [N]; ``scenario`` (a name or file); ``revolutions``: rotor
+    revolutions [-] of the staggered run's TM intervals in all; ``bearing``: 0 or 5, the table's; ``quiet``: no
+    progress; ``figures``: draw each run's figures; ``overwrite``: replace a previous comparison in ``out``;
+    ``schedule``: "paper" or "auto" for the staggered run, ``tolerance`` [%] for "auto"; ``monolithic``: a
+    folder with a monolithic run to reuse; ``timing_runs``: how often the staggered run is timed (default 6)."""
     if not (duration > 0 and duration < float("inf")):
         raise ValueError(f"--duration must be a positive number of seconds, got {duration}")
-    if not (revolutions > 0 and revolutions < float("inf")):  # was "cannot convert float NaN to integer"
+    if not (revolutions > 0 and revolutions < float("inf")):
         raise ValueError(f"--revolutions must be a positive number of rotor revolutions, got {revolutions}")
     if timing_runs is not None and (isinstance(timing_runs, bool) or not isinstance(timing_runs, int)
                                     or timing_runs < 1):
@@ -187,7 +196,7 @@ def compare(out: Path, duration=2.0, unbalance=2850.0, scenario="blade_loss", re
     plans = {kind: _plan(kind, scenario, unbalance, schedule, tolerance, duration, revolutions)
              for kind in kinds if kind not in runs}
     # a run's own checks (duration, budget) for both, before anything runs; then the comparison's whole budget:
-    # the staggered run is timed --timing-runs times (10**400 timings were accepted and ran until stopped)
+    # the staggered run is timed --timing-runs times
     ests = {kind: check_run(sc_k, sch) for kind, (sc_k, sch) in plans.items()}
     n_timed = 1 if monolithic is not None or schedule != "paper" else timing_runs or TIMING_RUNS
     total = sum(e["wall_s"] * (n_timed if kind == "staggered" else 1) for kind, e in ests.items())
@@ -373,6 +382,7 @@ def _reuse(folder: Path, unbalance: float, duration: float, name: str | None = N
 
 
 def run(args) -> int:
+    """Run the command ``args`` (parsed); prints the speed-up and the largest error; returns 0."""
     t = compare(Path(args.out), args.duration, args.unbalance, args.scenario, args.revolutions, args.bearing,
                 quiet=args.quiet, figures=not args.no_figures, overwrite=args.overwrite, schedule=args.schedule,
                 tolerance=args.tolerance, monolithic=args.monolithic, timing_runs=args.timing_runs)

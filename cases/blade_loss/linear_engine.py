@@ -1,5 +1,5 @@
 """The co-simulated engine linearised: the one linear model behind ``rotorcosim critical-speeds`` and the
-calibration of the rotor data (issue 17; DESIGN, "Calibrate on the system that is simulated").
+calibration of the rotor data (calibrated on the system that is simulated).
 
 Each support of bearings #0 and #5 is taken from the components the blade-loss scenario simulates, with the
 scenario's parameters, at the preloaded rest state and the running speed:
@@ -92,6 +92,8 @@ def describe(sup: dict) -> dict:
 
 
 def critical_speeds(full: fem.FullModel, sup: dict, n: int = 6, max_rpm: float = 60000.0) -> dict:
+    """The ``n`` lowest forward and backward synchronous critical speeds [rev/min] up to ``max_rpm`` of the rotor
+    model ``full`` on the linear supports ``sup`` (:func:`supports`)."""
     return critical.synchronous_critical_speeds(full, sup, n=n, max_rpm=max_rpm)
 
 

@@ -8,7 +8,7 @@ state the paper tabulates; temperatures at the end of the run):
    amplitude F_u;
 3. ``max_contact_load_N``: the largest ball contact load (inner or outer race) over the window;
 4. ``max_contact_stress_MPa``: the largest ball contact stress (eq. 10) of the INNER race over the window, in
-   the summary and in Fig. 12 alike (issue 17 item 5). The paper's text says its Fig. 12 shows the outer-race
+   the summary and in Fig. 12 alike. The paper's text says its Fig. 12 shows the outer-race
    stress, but its Table 5 load/stress pairs follow the inner-race Hertz law (248 Q^(1/3) MPa at #0, 235 at #5,
    f_i = 0.53; tests/components/test_bearing_hertz.py), so the inner race is the contact its stresses describe,
    and the one whose stress reaches the 3200 MPa of its damage criterion under the blade-loss load. The outer
@@ -46,6 +46,8 @@ NODES = ("shaft", "inner_race", "lub_inner", "ball", "lub_outer", "outer_race", 
 
 
 def window_signals(sc=None) -> list[str]:
+    """The outputs the steady windows keep for each bearing: whirl, film force, contact load and stress, rub,
+    drag and film powers (``sc``: the scenario, unused: the blade-loss scenarios all have the same ports)."""
     out = []
     for k in BEARINGS:
         out += [f"rotor.X_brg{k}", f"damper{k}.F_journal", f"bearing{k}.Q_max", f"bearing{k}.sigma_max",
@@ -98,6 +100,8 @@ class Peaks(Observer):
 
 
 def observers(sc, speed_rpm: float):
+    """The observers a run of ``sc`` needs for its results: the steady windows (the last ``[results] cycles``
+    rotor cycles, default 5, at ``speed_rpm`` [rev/min]) and the peaks over the run."""
     cycles = float(sc.extra.get("results", {}).get("cycles", 5))
     return [SteadyWindows(window_signals(sc), speed_rpm, cycles), Peaks()]
 
@@ -122,12 +126,17 @@ def check(sc, sim) -> None:
 
 
 def unbalance_force(sc) -> float:
+    """The blade-loss force F_u [N] of ``sc``: the parameter its ``[results] unbalance_parameter`` names (NaN
+    when the component does not set it)."""
     ref = sc.extra.get("results", {}).get("unbalance_parameter", "rotor.F_unbalance")
     comp, _, param = ref.partition(".")
     return float(sc.components[comp].parameters.get(param, np.nan))
 
 
 def extract(sc, sim, obs, report) -> dict:
+    """The results of a finished run (summary.json's ``unbalance_N``, ``window`` and ``bearings``): for bearings
+    #0 and #5 the paper's Table 4 quantities over the last steady window (mm, N, MPa, W, degrees C) and the peaks
+    over the run. ``obs``: the :func:`observers` of the run; ``sim``, ``report``: the simulation and its report."""
     windows, peaks = obs
     if not windows.windows:
         return {"bearings": {}, "note": "no thermo-mechanical interval completed: no results"}

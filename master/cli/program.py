@@ -71,6 +71,8 @@ class _Parser(argparse.ArgumentParser):
 
 
 def build_parser() -> argparse.ArgumentParser:
+    """The program's parser: the top-level options and one sub-parser per command; only the command named first
+    on ``sys.argv`` gets its options (its module is imported then)."""
     from rotorcosim import __version__
 
     width = max(40, min(100, shutil.get_terminal_size().columns - 2))

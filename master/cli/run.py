@@ -30,6 +30,7 @@ CLI_ORIGIN = "the command line (--set/--swap)"
 
 
 def add_arguments(p):
+    """The options of ``rotorcosim run`` on the parser ``p``."""
     add_scenario(p, None, shown=DEFAULT_SCENARIO)
     p.add_argument("--unbalance", type=float, default=None, help="blade-loss unbalance force F_u [N]")
     p.add_argument("--duration", type=float, default=None, help="simulated duration [s] (cuts the timeline)")
@@ -138,6 +139,7 @@ def execute(sc: Scenario, out: Path, schedule_kind: str | None = None, duration:
 
 
 def parse_record(text: str | None) -> list[str] | None:
+    """``--record "a.x, b.y"`` -> ``["a.x", "b.y"]`` (None: not given)."""
     if text is None:
         return None
     refs = [r.strip() for r in text.split(",") if r.strip()]
@@ -147,6 +149,7 @@ def parse_record(text: str | None) -> list[str] | None:
 
 
 def run(args) -> int:
+    """Run the command ``args`` (parsed); returns the exit status."""
     if args.duration is not None and not (args.duration > 0 and args.duration < float("inf")):
         raise ValueError(f"--duration must be a positive number of seconds, got {args.duration}")
     sc = apply_edits(resolve(args.scenario), args)

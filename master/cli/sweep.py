@@ -43,6 +43,7 @@ CONNECT_TIMEOUT_S = 20.0
 
 
 def add_arguments(p):
+    """The options of ``rotorcosim sweep`` on the parser ``p``."""
     p.add_argument("--unbalance", default=None,
                    help="comma-separated blade-loss forces [N], or 'paper' for the seven levels of Table 5")
     p.add_argument("--set", action="append", default=[], metavar="COMP.PARAM=V1,V2,...",
@@ -349,6 +350,7 @@ def _write_csv(path: Path, cases: list[Case], summaries: dict[str, dict]) -> Non
 
 
 def run(args) -> int:
+    """Run the command ``args`` (parsed); returns the exit status (1 when a case failed)."""
     levels = parse_levels(args.unbalance, cases_.attribute(case_kind(args.scenario), "LEVELS", {})) \
         if args.unbalance else None
     grid = parse_grid(args.set)

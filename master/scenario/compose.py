@@ -54,9 +54,11 @@ class Origins:
     inputs: dict[str, str] = field(default_factory=dict)
 
     def component(self, name: str) -> str | None:
+        """The file that chose component ``name``'s implementation, or None."""
         return self.components.get(name)
 
     def parameter(self, comp: str, param: str) -> str | None:
+        """The file that set parameter ``param`` of ``comp`` (else the one that chose the component), or None."""
         return self.parameters.get((comp, param), self.components.get(comp))
 
 
