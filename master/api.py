@@ -303,8 +303,8 @@ def _simulate(sc, duration, schedule, out, record, progress, figures, overwrite,
             closed = None
             if series is not None:
                 # the rows still buffered (up to a flush's worth: all of a short run's) written and the file
-                # closed, marked incomplete, under its final name; before, they were lost and the file left as
-                # timeseries.h5.part. The run's thread is inside the hung component's step, not in the recorder.
+                # closed, marked incomplete, under its final name (not left as timeseries.h5.part). The run's thread
+                # is inside the hung component's step, not in the recorder.
                 try:
                     recorder.end(sim, TimeoutError(msg))
                     closed = series.name

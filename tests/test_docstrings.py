@@ -117,6 +117,19 @@ def test_the_main_classes_name_their_parameters_and_show_an_example(modname, nam
     assert not unnamed, f"{modname}.{name}: the docstring does not name the parameter(s) {unnamed}"
 
 
+@pytest.mark.parametrize("modname, name", _main_classes())
+def test_the_main_classes_examples_run(modname, name):
+    """The examples are run (those marked ``+SKIP`` aside: they need a long run or a context)."""
+    import doctest
+
+    cls = getattr(importlib.import_module(modname), name)
+    runner = doctest.DocTestRunner(optionflags=doctest.ELLIPSIS | doctest.NORMALIZE_WHITESPACE)
+    for test in doctest.DocTestFinder(recurse=False).find(cls, f"{modname}.{name}",
+                                                           globs=dict(vars(importlib.import_module(modname)))):
+        runner.run(test)
+    assert runner.summarize(verbose=False).failed == 0
+
+
 def test_this_check_finds_a_missing_docstring(monkeypatch):
     """The walk sees a public function without a docstring (it can fail)."""
     from rotorcosim.master.schedule import budget

@@ -105,8 +105,8 @@ def _load(path: Path) -> dict:
 
 def _table(value: Any) -> Mapping:
     """``value`` if it is a table, else an empty one: composition looks only into tables of the right kind and
-    leaves a value of the wrong kind where it is, for the schema to name with its file and line
-    (``parameters = 3`` was a TypeError here)."""
+    leaves a value of the wrong kind where it is (``parameters = 3``), for the schema to name with its file and
+    line."""
     return value if isinstance(value, Mapping) else {}
 
 

@@ -504,7 +504,7 @@ def _restart(c: _Checker, s: Mapping, raw) -> None:
     """restart_cycles against the thermo-mechanical time a restart's ramp has (master/manipulator/hold.py, Restart): it starts
     at a TO -> TM change and goes on through the TM intervals that follow, until the next TO interval. A ramp
     longer than the shortest such run never ends: the hand-backs would stay a blend of held and live values for
-    the whole run (1e12 cycles was accepted). Under the automatic schedule a TM interval after a TO one lasts at
+    the whole run. Under the automatic schedule a TM interval after a TO one lasts at
     most tm_max."""
     speed, cycles = s.get("speed_rpm"), s.get("restart_cycles")
     if not speed or not cycles:
