@@ -1,4 +1,4 @@
-"""The rotor component (issue 3): the flexible dual-rotor engine + casing, MTA-reduced, Newmark-beta.
+"""The rotor component: the flexible dual-rotor engine + casing, MTA-reduced, Newmark-beta.
 
 Modules: ``beam`` (Timoshenko shaft element, disk), ``hexa`` (8-node solid), ``model`` (the full FE model from
 ``data/engine.toml``), ``mta`` (eqs. 16-22), ``newmark`` (the integrator), ``kernel`` (the compiled step),

@@ -23,7 +23,7 @@ Conventions:
   (conservative: the whole residual at the blade-loss node). The paper gives neither the residual nor its
   phase. Default phase 90 deg (quadrature, the residual changes the amplitude by (87/712)^2 / 2 = 0.7 % at
   712 N): the paper's own 712 N and 1425 N cases have the same whirl per newton (0.0719 and 0.0734 mm/kN) and
-  transmissibility (1.03, 1.02), where a residual in phase (0 deg, the value before issue 17) would make the
+  transmissibility (1.03, 1.02), where a residual in phase (0 deg) would make the
   712 N case 6 % larger per newton than the 1425 N one (+12 % against +6 %), and in opposition 6 % smaller.
   Eq. (23) divides by the blade-loss force alone (``F_unbalance``, "the unbalance force induced by blade
   loss"), as cases/blade_loss/results.py does;

@@ -1,4 +1,4 @@
-"""Full model against its reductions: the blade-loss transient on linear supports (the MTA check of issue 3).
+"""Full model against its reductions: the blade-loss transient on linear supports (the MTA check).
 
 Bearings #0 and #5 are represented by massless linear springs (model.FullModel.linear_support with
 :data:`SUPPORTS`: any linear support serves this check of the reduction; the engine's own linearisation, with the
