@@ -9,13 +9,14 @@
 :func:`finish` turns the parsed spellings into ``args.scenario`` and ``args.out``; the ``rotorcosim`` program
 (:func:`rotorcosim.master.cli.program.main`) calls it before a command runs, so a command reads only those two.
 
-Example (the export command's older form and its current one give the same ``args``)::
+Example (the export command's older form and its current one give the same ``args``):
 
-    p = argparse.ArgumentParser()
-    add_scenario(p, "blade_loss", output_first=True)
-    add_out(p, "output folder", positional_alias="DIR")
-    finish(p.parse_args(["fmus_out"]))                              # out="fmus_out", scenario="blade_loss"
-    finish(p.parse_args(["blade_loss", "--out", "fmus_out"]))       # the same
+>>> p = argparse.ArgumentParser(prog="rotorcosim export-fmus")
+>>> add_scenario(p, "blade_loss", output_first=True)
+>>> add_out(p, "output folder", positional_alias="DIR")
+>>> old, new = (finish(p.parse_args(argv)) for argv in (["fmus_out"], ["blade_loss", "--out", "fmus_out"]))
+>>> (old.scenario, old.out) == (new.scenario, new.out) == ("blade_loss", "fmus_out")
+True
 """
 from __future__ import annotations
 
