@@ -31,7 +31,7 @@ from rotorcosim.master.scenario.export import export_scenario
 from rotorcosim.fmus.importer import load_fmu_component
 
 ROOT = Path(__file__).resolve().parents[1]
-sys.path.insert(0, str(ROOT / "tests" / "fmus"))
+sys.path.insert(0, str(ROOT))  # the tests' builders: tests.helpers.fmus
 
 #: inputs held at typical non-zero values (others at their declared start values)
 TYPICAL = {"damper.fast": {"X_journal": [1e-4, 0.0], "V_journal": [0.0, 0.05]},
@@ -86,7 +86,7 @@ def component_costs(names, steps: int, folder: Path):
 
 
 def toy_scenario(folder: Path):
-    from fmu_helpers import TOY, run_intervals
+    from tests.helpers.fmus import TOY, run_intervals
 
     from rotorcosim.master.scenario.build import load_scenario
 
@@ -118,7 +118,7 @@ def ecos_vs_master(folder: Path):
     except (ImportError, OSError) as exc:
         print(f"  Ecos: not available ({exc})")
         return
-    from fmu_helpers import TOY, run_intervals
+    from tests.helpers.fmus import TOY, run_intervals
 
     from rotorcosim.master.scenario.ssp import read_ssp, write_ssp
     from rotorcosim.master.scenario.build import load_scenario
@@ -139,7 +139,7 @@ def ecos_vs_master(folder: Path):
 
 def blade_loss(folder: Path, n: int = 200):
     """The paper's whole system: native vs every component an FMU (our master), and the SSP in Ecos."""
-    from fmu_helpers import max_rel_diff, run_intervals
+    from tests.helpers.fmus import max_rel_diff, run_intervals
 
     from rotorcosim import scenarios
     from rotorcosim.master.scenario.ssp import read_ssp, write_ssp

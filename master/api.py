@@ -114,7 +114,21 @@ class Result:
     """A run: ``time`` [s], ``phase`` ("TM" / "TO" per sample), ``res["comp.port"]`` (a 1-D array for a
     scalar port, (n, size) for a vector one; SI units, see :meth:`unit` / :meth:`columns`), ``summary`` (the dict
     written to summary.json), ``files`` (the files written, with ``out=``). The arrays are in memory, or read
-    from the run's time series file when first used (a run with ``out=`` and HDF5)."""
+    from the run's time series file when first used (a run with ``out=`` and HDF5).
+
+    Made by :func:`simulate`; its parameters: ``data`` (``"time"``, ``"phase"`` (0 TM, 1 TO) and one (n, size)
+    array per recorded ``"comp.port"``), ``variables`` (``"comp.port"`` -> the port's declaration: unit, element
+    labels), ``summary`` and ``files``.
+
+    >>> import rotorcosim
+    >>> res = rotorcosim.simulate("toy_thermomechanical", duration=0.05)
+    >>> res
+    <Result 'toy_thermomechanical': 51 samples to t = 0.05 s, 3 signals>
+    >>> res.signals, res.unit("node.T")
+    (['osc.x', 'osc.P', 'node.T'], 'K')
+    >>> float(res.time[-1]), str(res.phase[-1]), res["node.T"].shape      # [s], phase, one value per sample
+    (0.05, 'TM', (51,))
+    """
 
     def __init__(self, data: Mapping[str, np.ndarray], variables: dict, summary: dict, files: Sequence[Path] = ()):
         self._data = data
@@ -124,10 +138,12 @@ class Result:
 
     @property
     def time(self) -> np.ndarray:
+        """The sample times [s]."""
         return self._data["time"]
 
     @property
     def phase(self) -> np.ndarray:
+        """The phase of each sample: "TM" (thermo-mechanical) or "TO" (thermal-only)."""
         return PHASE_NAMES[self._data["phase"].astype(int)]
 
     @property
@@ -146,6 +162,7 @@ class Result:
         return x[:, 0] if x.shape[1] == 1 else x
 
     def unit(self, ref: str) -> str:
+        """The unit of the recorded port ``ref`` (``"comp.port"``), e.g. ``"m"``, ``"W"``, ``"K"``."""
         self[ref]
         return self._vars[ref].unit
 
@@ -292,8 +309,8 @@ def _simulate(sc, duration, schedule, out, record, progress, figures, overwrite,
             closed = None
             if series is not None:
                 # the rows still buffered (up to a flush's worth: all of a short run's) written and the file
-                # closed, marked incomplete, under its final name; before, they were lost and the file left as
-                # timeseries.h5.part. The run's thread is inside the hung component's step, not in the recorder.
+                # closed, marked incomplete, under its final name (not left as timeseries.h5.part). The run's thread
+                # is inside the hung component's step, not in the recorder.
                 try:
                     recorder.end(sim, TimeoutError(msg))
                     closed = series.name

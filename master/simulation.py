@@ -24,6 +24,36 @@ from rotorcosim.master.schedule.timeline import RunReport, Schedule, ScheduleErr
 from rotorcosim.master.core.system import System
 
 class Simulation:
+    """A system run through a schedule: its coupling engine, the thermal-only hold, the observers, the clock.
+
+    Parameters: ``system`` (:class:`~rotorcosim.master.core.system.System`); ``order``: the components' order
+    of a Gauss-Seidel pass (default: the system's); ``settings``: the coupling algorithm
+    (:class:`~rotorcosim.master.core.algorithm.EngineSettings`); ``steps``: component -> its own communication
+    step [s] in thermo-mechanical intervals (a whole multiple of the interval's step); ``hold``: the statistic a
+    thermal-only interval holds of a frozen output ("mean", "rms", "last"); ``hold_cycles``: over how many
+    cycles [-] it is taken; ``cycle``: the cycle source (:mod:`rotorcosim.master.core.cycle`: a constant period
+    [s] or a declared speed signal) that sets a cycle's length (needed by thermal-only intervals); ``observers``: what watches the run
+    (:class:`~rotorcosim.master.observer.observers.Observer`); ``t0``: the start time [s]; ``restart_cycles``:
+    cycles [-] over which the thermal inputs of the mechanical components go to their new values when a
+    thermo-mechanical interval restarts.
+
+    A scenario's simulation is built by :func:`rotorcosim.master.scenario.build.build_simulation`.
+
+    >>> from rotorcosim.components.registry import create
+    >>> from rotorcosim.master.core.system import Connection, System
+    >>> from rotorcosim.master.schedule import Interval, Timeline
+    >>> comps = {"m1": create("testing.mass", "m1", {"m": 1.0, "k": 40.0, "x0": 0.1}),
+    ...          "m2": create("testing.spring", "m2", {"m": 2.0, "k": 30.0, "kc": 100.0})}
+    >>> system = System(comps, [Connection("m1.x", "m2.x_in"), Connection("m1.v", "m2.v_in"),
+    ...                         Connection("m2.F", "m1.F")])
+    >>> sim = Simulation(system, order=["m1", "m2"])
+    >>> report = sim.run(Timeline([Interval("TM", duration=0.1, step=1e-3)]))
+    >>> report.status, report.component_steps
+    ('complete', {'m1': 100, 'm2': 100})
+    >>> round(float(sim.value("m1.x")[0]), 4)                  # m1's position [m] at t = 0.1 s
+    0.0412
+    """
+
     def __init__(self, system: System, *, order: Sequence[str] | None = None,
                  settings: EngineSettings | None = None, steps: dict[str, float] | None = None,
                  hold: str = DEFAULT_HOLD, hold_cycles: float = 5.0, cycle: Cycle | float | None = None,
@@ -80,13 +110,17 @@ class Simulation:
         return self.cycle_source.period(self.system) if self.cycle_source is not None else None
 
     def value(self, ref: str) -> np.ndarray:
+        """The current value of the output ``ref`` (``"component.port"``), in the port's unit."""
         comp, _, port = ref.partition(".")
         return self.system.components[comp].y[port]
 
     def components_in(self, phase: str) -> list[str]:
+        """The components that step in ``phase`` ("TM" or "TO"), in the engine's order."""
         return [n for n in self.engine.order if phase in self.system.components[n].phases]
 
     def initialise(self) -> None:
+        """Set the constant inputs and set up every component at the start time (once; :meth:`run` calls it).
+        A component that cannot start from its parameters raises a ContractError naming it."""
         if self._initialised:
             return
         by_comp: dict[str, dict] = {}

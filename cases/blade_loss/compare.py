@@ -1,4 +1,4 @@
-"""``rotorcosim compare [--duration 2] [--unbalance 2850] --out DIR``: the paper's Table 6 experiment.
+"""``rotorcosim compare [SCENARIO] [--duration 2] [--unbalance 2850] --out DIR``: the paper's Table 6 experiment.
 
 The same blade-loss system run twice over ``duration``: staggered (3 thermo-mechanical intervals of ``REVOLUTIONS``
 (32) rotor revolutions in all, alternating with 2 thermal-only intervals, as the paper's section 4.2) and monolithic
@@ -43,6 +43,7 @@ from rotorcosim.master.run.rundir import LOCK, check_folder, ensure_folder
 from rotorcosim.master.schedule import Interval, Timeline, from_spec
 from rotorcosim.master.scenario.cycle import constant_period, without_source
 
+from rotorcosim.master.cli.options import add_out, add_scenario
 from rotorcosim.master.cli.run import apply_unbalance, execute, resolve
 
 #: Table 6's rows (no rub power: there is no rub at 2850 N)
@@ -70,10 +71,12 @@ REVOLUTIONS = 32.0
 
 
 def add_arguments(p):
+    """The options of ``rotorcosim compare`` on the parser ``p``."""
     p.add_argument("--duration", type=float, default=2.0, help="simulated duration [s] (default 2, as the paper)")
     p.add_argument("--unbalance", type=float, default=2850.0, help="blade-loss force [N] (default 2850)")
-    p.add_argument("--out", required=True, help="output folder")
-    p.add_argument("--scenario", default="blade_loss", help="scenario (default blade_loss)")
+    add_scenario(p, "blade_loss", note="the levels' base file, F_u = 2850 N as in blade_loss_2850 that run uses; "
+                                       "the runs' results carry its name")
+    add_out(p, "output folder")
     p.add_argument("--revolutions", type=float, default=REVOLUTIONS,
                    help=f"rotor revolutions in all thermo-mechanical intervals of the staggered run (default "
                         f"{REVOLUTIONS:g}; the paper: 50)")
@@ -151,9 +154,17 @@ def _warm_up(scenario: str, out: Path, quantum: float) -> None:
 def compare(out: Path, duration=2.0, unbalance=2850.0, scenario="blade_loss", revolutions=REVOLUTIONS, bearing=0,
             quiet=True, figures=True, overwrite=False, schedule="paper", tolerance=None, monolithic=None,
             timing_runs=None) -> dict:
+    """Run the comparison into the folder ``out`` and return the table written to ``out/table6.json`` (see the
+    module's docstring).
+
+    ``duration`` [s] simulated; ``unbalance`` [N]; ``scenario`` (a name or file); ``revolutions``: rotor
+    revolutions [-] of the staggered run's TM intervals in all; ``bearing``: 0 or 5, the table's; ``quiet``: no
+    progress; ``figures``: draw each run's figures; ``overwrite``: replace a previous comparison in ``out``;
+    ``schedule``: "paper" or "auto" for the staggered run, ``tolerance`` [%] for "auto"; ``monolithic``: a
+    folder with a monolithic run to reuse; ``timing_runs``: how often the staggered run is timed (default 6)."""
     if not (duration > 0 and duration < float("inf")):
         raise ValueError(f"--duration must be a positive number of seconds, got {duration}")
-    if not (revolutions > 0 and revolutions < float("inf")):  # was "cannot convert float NaN to integer"
+    if not (revolutions > 0 and revolutions < float("inf")):
         raise ValueError(f"--revolutions must be a positive number of rotor revolutions, got {revolutions}")
     if timing_runs is not None and (isinstance(timing_runs, bool) or not isinstance(timing_runs, int)
                                     or timing_runs < 1):
@@ -184,7 +195,7 @@ def compare(out: Path, duration=2.0, unbalance=2850.0, scenario="blade_loss", re
     plans = {kind: _plan(kind, scenario, unbalance, schedule, tolerance, duration, revolutions)
              for kind in kinds if kind not in runs}
     # a run's own checks (duration, budget) for both, before anything runs; then the comparison's whole budget:
-    # the staggered run is timed --timing-runs times (10**400 timings were accepted and ran until stopped)
+    # the staggered run is timed --timing-runs times
     ests = {kind: check_run(sc_k, sch) for kind, (sc_k, sch) in plans.items()}
     n_timed = 1 if monolithic is not None or schedule != "paper" else timing_runs or TIMING_RUNS
     total = sum(e["wall_s"] * (n_timed if kind == "staggered" else 1) for kind, e in ests.items())
@@ -370,6 +381,7 @@ def _reuse(folder: Path, unbalance: float, duration: float, name: str | None = N
 
 
 def run(args) -> int:
+    """Run the command ``args`` (parsed); prints the speed-up and the largest error; returns 0."""
     t = compare(Path(args.out), args.duration, args.unbalance, args.scenario, args.revolutions, args.bearing,
                 quiet=args.quiet, figures=not args.no_figures, overwrite=args.overwrite, schedule=args.schedule,
                 tolerance=args.tolerance, monolithic=args.monolithic, timing_runs=args.timing_runs)

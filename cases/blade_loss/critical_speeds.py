@@ -20,6 +20,7 @@ from rotorcosim.cases.blade_loss import linear_engine
 
 
 def add_arguments(parser):
+    """The options of ``rotorcosim critical-speeds`` on ``parser``."""
     parser.add_argument("--model-file", default="", metavar="FILE",
                         help="model data file (TOML); default: the shipped data/engine.toml")
     parser.add_argument("--count", type=int, default=6, metavar="N", help="how many of each kind to list (default 6)")
@@ -38,6 +39,9 @@ def _supports(m, oil_temperature):
 
 def critical_speeds(model_file: str = "", count: int = 6, max_rpm: float = 30000.0,
                     oil_temperature: float | None = None) -> dict:
+    """The ``count`` lowest synchronous critical speeds [rev/min] of the power turbine up to ``max_rpm``, of the
+    rotor in ``model_file`` ("": the shipped one) on the linearised supports with the film at ``oil_temperature``
+    [degrees C] (None: the file's), with the speed ratio, the paper's targets and the support model."""
     if count < 1:
         raise ValueError(f"--count must be >= 1, got {count}")
     if not (np.isfinite(max_rpm) and max_rpm > 0):
@@ -54,6 +58,8 @@ def critical_speeds(model_file: str = "", count: int = 6, max_rpm: float = 30000
 
 def draw_campbell(path: str, model_file: str = "", max_rpm: float = 30000.0, crit: dict | None = None,
                   oil_temperature: float | None = None) -> None:
+    """Draw the Campbell diagram (whirl frequencies against power-turbine speed up to ``max_rpm`` [rev/min]) into
+    the PNG file ``path``; ``crit``: :func:`critical_speeds`' result, marked on it (None: none marked)."""
     import matplotlib
 
     matplotlib.use("Agg")
@@ -117,6 +123,7 @@ def _check_figure_path(path: str) -> None:
 
 
 def run(args) -> int:
+    """Run the command ``args`` (parsed); returns the exit status."""
     if args.campbell:
         _check_figure_path(args.campbell)
     out = critical_speeds(args.model_file, args.count, args.max_rpm, args.oil_temperature)

@@ -52,6 +52,8 @@ class Context:
 
 
 def context(sc, F_u: float, speed_rpm: float | None) -> Context:
+    """The :class:`Context` of a run of scenario ``sc`` with blade-loss force ``F_u`` [N] at the rotor speed
+    ``speed_rpm`` [rev/min] (None: not declared)."""
     return Context(sc.name, float(F_u), speed_rpm, is_paper_case(sc, F_u))
 
 

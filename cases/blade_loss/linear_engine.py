@@ -92,6 +92,8 @@ def describe(sup: dict) -> dict:
 
 
 def critical_speeds(full: fem.FullModel, sup: dict, n: int = 6, max_rpm: float = 60000.0) -> dict:
+    """The ``n`` lowest forward and backward synchronous critical speeds [rev/min] up to ``max_rpm`` of the rotor
+    model ``full`` on the linear supports ``sup`` (:func:`supports`)."""
     return critical.synchronous_critical_speeds(full, sup, n=n, max_rpm=max_rpm)
 
 

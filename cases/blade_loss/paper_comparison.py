@@ -76,6 +76,8 @@ def _fmt(x) -> str:
 
 
 def write_csv(path: Path, rows: list[dict]) -> None:
+    """Write the comparison ``rows`` (:func:`rows`) to the CSV file ``path`` (whole: through a ``.part`` file):
+    result, bearing, unbalance [N], the paper's value, ours and their ratio."""
     path = Path(path)
     tmp = path.with_name(path.name + ".part")
     with open(tmp, "w", newline="") as fh:

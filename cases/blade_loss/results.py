@@ -47,6 +47,8 @@ NODES = ("shaft", "inner_race", "lub_inner", "ball", "lub_outer", "outer_race", 
 
 
 def window_signals(sc=None) -> list[str]:
+    """The outputs the steady windows keep for each bearing: whirl, film force, contact load and stress, rub,
+    drag and film powers (``sc``: the scenario, unused: the blade-loss scenarios all have the same ports)."""
     out = []
     for k in BEARINGS:
         out += [f"rotor.X_brg{k}", f"damper{k}.F_journal", f"bearing{k}.Q_max", f"bearing{k}.sigma_max",
@@ -130,12 +132,17 @@ def check(sc, sim) -> None:
 
 
 def unbalance_force(sc) -> float:
+    """The blade-loss force F_u [N] of ``sc``: the parameter its ``[results] unbalance_parameter`` names (NaN
+    when the component does not set it)."""
     ref = sc.extra.get("results", {}).get("unbalance_parameter", "rotor.F_unbalance")
     comp, _, param = ref.partition(".")
     return float(sc.components[comp].parameters.get(param, np.nan))
 
 
 def extract(sc, sim, obs, report) -> dict:
+    """The results of a finished run (summary.json's ``unbalance_N``, ``window`` and ``bearings``): for bearings
+    #0 and #5 the paper's Table 4 quantities over the last steady window (mm, N, MPa, W, degrees C) and the peaks
+    over the run. ``obs``: the :func:`observers` of the run; ``sim``, ``report``: the simulation and its report."""
     windows, peaks = obs
     if not windows.windows:
         return {"bearings": {}, "note": "no thermo-mechanical interval completed: no results"}

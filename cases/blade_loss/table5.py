@@ -15,6 +15,7 @@ PAPER_TABLE5 = Path(__file__).resolve().with_name("reference_table5.csv")
 
 
 def paper_table5() -> dict[tuple[str, int], dict[float, float]]:
+    """The paper's Table 5 (reference_table5.csv): (result, bearing) -> {unbalance [N]: value}."""
     out = {}
     with open(PAPER_TABLE5) as f:
         rows = [r for r in csv.reader(line for line in f if not line.startswith("#"))]
@@ -30,6 +31,8 @@ def _fmt(x) -> str:
 
 
 def write_table5(out: Path, by_level: dict[float, dict]) -> None:
+    """Write ``table5.csv`` and ``table5.md`` (beside the paper's values) into the folder ``out``; ``by_level``:
+    unbalance [N] -> that run's summary."""
     levels = list(by_level)
     rows = [["result", "bearing"] + [f"{f:g}" for f in levels]]
     for key in RESULT_KEYS:

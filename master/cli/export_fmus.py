@@ -1,36 +1,38 @@
-"""``rotorcosim export-fmus DIR [--component NAME] [--scenario SCENARIO]``: components as FMI 2.0 CS FMUs.
+"""``rotorcosim export-fmus [SCENARIO] --out DIR [--component NAME]``: components as FMI 2.0 CS FMUs.
 
-Each component of the scenario (default: the blade-loss scenario) is written to ``DIR/<component>.fmu`` with the
+Each component of the scenario (default: `run`'s) is written to ``DIR/<component>.fmu`` with the
 scenario's parameters baked in as the parameters' start values (fmus/export.py). The FMUs pass
-``fmpy.validation.validate_fmu`` (checked after writing; a problem is an error, not a warning).
+``fmpy.validation.validate_fmu`` (checked after writing; a problem is an error, not a warning). The older form
+``rotorcosim export-fmus DIR [--scenario SCENARIO]`` keeps working.
 """
 from __future__ import annotations
 
 from pathlib import Path
 
-DEFAULT_SCENARIO = "blade_loss"
+from rotorcosim.master.api import DEFAULT_SCENARIO
+from rotorcosim.master.cli.options import add_out, add_scenario
 
 
 def add_arguments(parser):
-    parser.add_argument("dir", help="output folder (created if missing)")
+    """The command's options on ``parser``."""
+    # the default as `run`'s: the FMUs of blade_loss and of blade_loss_2850 are the same bytes (same parameters)
+    add_scenario(parser, None, shown=DEFAULT_SCENARIO, output_first=True)
+    add_out(parser, "output folder (created if missing)", positional_alias="DIR")
     parser.add_argument("--component", default=None, metavar="NAME",
                         help="export only this component of the scenario (default: all)")
-    parser.add_argument("--scenario", default=DEFAULT_SCENARIO,
-                        help=f"scenario TOML file, shipped scenario name or .ssp archive (default: {DEFAULT_SCENARIO})")
 
 
 def run(args) -> int:
+    """Export the FMUs of ``args.scenario`` into ``args.out``; prints one line per FMU; returns 0."""
     from fmpy.validation import validate_fmu
 
     from rotorcosim.master.cli.run import resolve
-
+    from rotorcosim.master.run.rundir import check_folder
     from rotorcosim.master.scenario.export import export_scenario
 
-    from rotorcosim.master.run.rundir import check_folder
-
-    check_folder(args.dir, "output folder")   # "" would become Path("."): the FMUs were written where it ran
+    check_folder(args.out, "output folder")   # "" would become Path("."): the FMUs were written where it ran
     sc = resolve(args.scenario)
-    written = export_scenario(sc, Path(args.dir), args.component)
+    written = export_scenario(sc, Path(args.out), args.component)
     for name, path in written.items():
         problems = validate_fmu(str(path))
         if problems:

@@ -10,7 +10,9 @@ import atexit
 import gc
 import importlib
 import re
+import shutil
 import sys
+import textwrap
 import traceback
 
 #: the master's own commands; each case adds its own (rotorcosim.master.case, ``COMMANDS``): see :func:`commands`
@@ -38,6 +40,19 @@ def commands() -> dict[str, tuple[str, str]]:
     return out
 
 
+#: the top-level ``--help``: what the program does (plain text, one paragraph)
+DESCRIPTION = ("Co-simulation of a dual-rotor gas turbine engine during and long after a blade-loss event: a rotor, "
+               "ball bearings, squeeze film dampers, rub rings and the bearings' thermal networks coupled by a "
+               "master that alternates thermo-mechanical and thermal-only intervals. Run a scenario (a shipped "
+               "name, a TOML file or an SSP archive) and get its results, time series and figures in an output "
+               "folder; sweep parameters in parallel; export components as FMUs or a whole system as SSP.")
+#: the top-level ``--help``'s closing paragraphs: where to read on, and the exit statuses
+EPILOG = ("A command's options: rotorcosim COMMAND --help. A command that takes a scenario takes it as its "
+          "positional SCENARIO (or --scenario SCENARIO) and writes into --out DIR (export-ssp: --out FILE.ssp). "
+          "Documentation: README.md and docs/ in the source repository.",
+          "Errors: one line and exit status 2 for a mistake in the input, 1 for a run that failed, 130 for an "
+          "interrupted run; --debug (anywhere on the line) shows the traceback.")
+
 #: what argparse takes for a negative number rather than an option: its own pattern knows only -5 and -.5, so
 #: ``--position -1e-5 0`` failed with "expected 2 arguments" and ``--duration -inf`` with "expected one argument"
 #: (no option of rotorcosim starts with a digit, "inf" or "nan")
@@ -57,12 +72,14 @@ class _Parser(argparse.ArgumentParser):
 
 
 def build_parser() -> argparse.ArgumentParser:
+    """The program's parser: the top-level options and one sub-parser per command; only the command named first
+    on ``sys.argv`` gets its options (its module is imported then)."""
     from rotorcosim import __version__
 
-    parser = _Parser(prog="rotorcosim", description=__doc__.splitlines()[0],
-                                     epilog="Errors: one line and exit status 2 for a mistake in the input, 1 for a "
-                                            "run that failed, 130 for an interrupted run; --debug (anywhere on the "
-                                            "line) shows the traceback.")
+    width = max(40, min(100, shutil.get_terminal_size().columns - 2))
+    parser = _Parser(prog="rotorcosim", description=textwrap.fill(DESCRIPTION, width),
+                     epilog="\n\n".join(textwrap.fill(par, width) for par in EPILOG),
+                     formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--debug", action="store_true", help="show the traceback of an error")
     parser.add_argument("--version", action="version", version=f"rotorcosim {__version__}")
     sub = parser.add_subparsers(dest="command", metavar="COMMAND")
@@ -126,6 +143,9 @@ def main(argv: list[str] | None = None) -> int:
         parser.print_help()
         return 2
     try:
+        from rotorcosim.master.cli.options import finish
+
+        finish(args)   # SCENARIO / --scenario and the output's spellings (cli/options.py)
         module = importlib.import_module(commands()[args.command][0])
         from rotorcosim.master.core.threads import one_thread
 

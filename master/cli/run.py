@@ -19,6 +19,7 @@ from rotorcosim.master.run import checkpoint
 from rotorcosim.master.run import watchdog
 from rotorcosim.master.core.algorithm import SimulationDiverged
 from rotorcosim.master.api import DEFAULT_SCENARIO, SCHEDULE_ALIASES, SCHEDULES, load_scenario, simulate
+from rotorcosim.master.cli.options import SCHEDULE_HELP, add_out, add_scenario
 from rotorcosim.master.compiled.choice import ENGINES
 from rotorcosim.master.scenario.overrides import apply_set, apply_swap, parse_set, parse_swap
 from rotorcosim.master.scenario.build import Scenario
@@ -28,16 +29,14 @@ CLI_ORIGIN = "the command line (--set/--swap)"
 
 
 def add_arguments(p):
-    p.add_argument("scenario", nargs="?", default=None,
-                   help=f"scenario TOML file, shipped scenario name or .ssp archive (default: {DEFAULT_SCENARIO}; "
-                        f"`rotorcosim scenarios` lists them)")
+    """The options of ``rotorcosim run`` on the parser ``p``."""
+    add_scenario(p, None, shown=DEFAULT_SCENARIO)
     p.add_argument("--unbalance", type=float, default=None, metavar="VALUE",
                    help="the value of the scenario's level parameter, [results] unbalance_parameter (SI; e.g. "
                         "an unbalance force in N)")
     p.add_argument("--duration", type=float, default=None, help="simulated duration [s] (cuts the timeline)")
     p.add_argument("--schedule", choices=sorted([*SCHEDULES, *SCHEDULE_ALIASES]), default="scenario",
-                   help="scenario (or paper): the scenario's own schedule; auto: switch TM/TO automatically; "
-                        "monolithic: one TM interval")
+                   help=SCHEDULE_HELP)
     add_edit_arguments(p)
     p.add_argument("--record", default=None, metavar="COMP.PORT,...",
                    help="the ports to record, comma-separated (default: the scenario's [outputs] record; the "
@@ -46,7 +45,7 @@ def add_arguments(p):
                    help="with --schedule auto: the largest error of a reported temperature against the monolithic "
                         "run that you accept, in percent; the thermal-only intervals follow it and summary.json "
                         "reports the estimated error achieved (hold.estimated_error_pct)")
-    p.add_argument("--out", required=True, help="output folder (empty, or see --overwrite / --resume)")
+    add_out(p, "output folder (empty, or see --overwrite / --resume)")
     p.add_argument("--overwrite", action="store_true", help="replace the results of a previous run in --out")
     p.add_argument("--resume", action="store_true",
                    help="continue the interrupted run in --out from its last checkpoint (same command otherwise)")
@@ -140,6 +139,7 @@ def execute(sc: Scenario, out: Path, schedule_kind: str | None = None, duration:
 
 
 def parse_record(text: str | None) -> list[str] | None:
+    """``--record "a.x, b.y"`` -> ``["a.x", "b.y"]`` (None: not given)."""
     if text is None:
         return None
     refs = [r.strip() for r in text.split(",") if r.strip()]
@@ -149,6 +149,7 @@ def parse_record(text: str | None) -> list[str] | None:
 
 
 def run(args) -> int:
+    """Run the command ``args`` (parsed); returns the exit status."""
     if args.duration is not None and not (args.duration > 0 and args.duration < float("inf")):
         raise ValueError(f"--duration must be a positive number of seconds, got {args.duration}")
     sc = apply_edits(resolve(args.scenario), args)

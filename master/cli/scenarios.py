@@ -7,19 +7,21 @@ from rotorcosim.master.scenario.build import load_scenario
 
 
 def add_arguments(p):
-    pass
+    """No options."""
 
 
 def listing() -> list[tuple[str, str]]:
-    """(name, description) of each shipped scenario, by name."""
+    """(name, description) of each shipped scenario, in natural order (blade_loss_1425 before
+    blade_loss_11401)."""
     out = []
-    for path in sorted(scenarios.FOLDER.glob("*.toml")):
-        sc = load_scenario(path)
-        out.append((path.stem, sc.description or "(no description)"))
+    for name in scenarios.names():
+        sc = load_scenario(scenarios.path(name))
+        out.append((name, sc.description or "(no description)"))
     return out
 
 
 def run(args) -> int:
+    """Print the listing; returns 0."""
     rows = listing()
     width = max(len(n) for n, _ in rows)
     for name, text in rows:

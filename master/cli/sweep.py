@@ -1,4 +1,4 @@
-"""``rotorcosim sweep (--unbalance LIST | --set comp.param=v1,v2,...) --out DIR [--scheduler ADDRESS]``.
+"""``rotorcosim sweep [SCENARIO] (--unbalance LIST | --set comp.param=v1,v2,...) --out DIR [--scheduler ADDRESS]``.
 
 A sweep is a grid of cases: the levels of ``--unbalance`` (values of the scenario's level parameter, its
 ``[results] unbalance_parameter``) times every ``--set`` parameter's values. Each case runs the scenario in a
@@ -34,6 +34,7 @@ from rotorcosim.master.run.outputs import write_json
 from rotorcosim.master.scenario.overrides import apply_set, parse_set
 from rotorcosim.master.run.rundir import OutputFolderError, check_folder, ensure_folder, is_run_file
 
+from rotorcosim.master.cli.options import SCHEDULE_HELP, add_out, add_scenario
 from rotorcosim.master.cli.run import apply_unbalance, execute, resolve
 
 #: how long the client waits for a scheduler given by --scheduler before saying it cannot reach it [s]
@@ -41,19 +42,20 @@ CONNECT_TIMEOUT_S = 20.0
 
 
 def add_arguments(p):
+    """The options of ``rotorcosim sweep`` on the parser ``p``."""
     p.add_argument("--unbalance", default=None, metavar="LIST|NAME",
                    help="comma-separated values of the scenario's level parameter ([results] unbalance_parameter, "
                         "SI), or the name of a set of levels its case declares (e.g. 'paper')")
     p.add_argument("--set", action="append", default=[], metavar="COMP.PARAM=V1,V2,...",
                    help="a parameter and its values (repeatable: the sweep is the grid of all of them)")
-    p.add_argument("--out", required=True, help="output folder")
+    add_out(p, "output folder")
     p.add_argument("--scheduler", default=None,
                    help="address of a running Dask scheduler, e.g. tcp://10.0.0.5:8786 (default: a local cluster)")
-    p.add_argument("--scenario", default="blade_loss", help="the scenario every case runs (default blade_loss)")
+    add_scenario(p, "blade_loss", note="the scenario every case runs; the levels' base file, F_u = 2850 N as in "
+                                       "blade_loss_2850 that run uses; the cases' results carry its name")
     p.add_argument("--duration", type=float, default=None, help="simulated duration [s] (cuts the timeline)")
     p.add_argument("--schedule", choices=sorted([*SCHEDULES, *SCHEDULE_ALIASES]), default="scenario",
-                   help="scenario (or paper): every case's own schedule; auto: switch TM/TO automatically; "
-                        "monolithic: one TM interval")
+                   help=SCHEDULE_HELP)
     p.add_argument("--workers", type=int, default=None,
                    help="local cluster size (default: number of cores; at most one per case)")
     p.add_argument("--serial", action="store_true", help="run the cases one after another, without Dask")
@@ -352,6 +354,7 @@ def _write_csv(path: Path, cases: list[Case], summaries: dict[str, dict]) -> Non
 
 
 def run(args) -> int:
+    """Run the command ``args`` (parsed); returns the exit status (1 when a case failed)."""
     levels = parse_levels(args.unbalance, cases_.attribute(case_kind(args.scenario), "LEVELS", {})) \
         if args.unbalance else None
     grid = parse_grid(args.set)

@@ -117,6 +117,7 @@ class Packed:
 
     @property
     def address(self) -> int:
+        """The packed buffer's address in memory (what a compiled kernel is given)."""
         return int(self.buf.ctypes.data)
 
     def update(self, kargs, ctype=None) -> bool:

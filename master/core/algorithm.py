@@ -61,6 +61,8 @@ class Algorithm:
     feedback_from_all = False
 
     def run_pass(self, engine: "Engine", firing: list[str], t_end: float) -> None:
+        """Step the components ``firing`` (names, in the engine's order) of ``engine`` over the base step that
+        ends at ``t_end`` [s], each fed its inputs as this algorithm couples them."""
         raise NotImplementedError
 
 
@@ -201,12 +203,16 @@ class _Link:
 
 #: most coupling passes per step (``[algorithm] iterations``): fixed-point coupling converges linearly, and a
 #: contraction of 0.98 per pass still gains 1e-9 in 1000 passes; a coupling not within its tolerance by then does
-#: not converge, and each pass is a step of every component with a rollback (1e12 was accepted: a hang)
+#: not converge, and each pass is a step of every component with a rollback (a much larger count can hang a run)
 MAX_ITERATIONS = 1000
 
 
 @dataclass
 class EngineSettings:
+    """The coupling algorithm (a scenario's ``[algorithm]``): ``algorithm`` ("gauss-seidel" or "jacobi"),
+    ``iterations`` (passes per base step: 1 is explicit coupling, more repeat the step from the components'
+    saved state until the outputs change by less than the relative ``tolerance``), ``check_every``: base steps
+    between two checks that every real output is finite."""
     algorithm: str = "gauss-seidel"
     iterations: int = 1
     tolerance: float = 1e-10
@@ -223,7 +229,28 @@ class EngineSettings:
 
 
 class Engine:
-    """Steps the active components of a system over base steps (one interval at a time)."""
+    """Steps the active components of a system over base steps (one interval at a time).
+
+    Parameters: ``system`` (:class:`~rotorcosim.master.core.system.System`); ``order``: the components' order
+    in a pass (those not named follow in the system's order); ``settings`` (:class:`EngineSettings`). A
+    :class:`~rotorcosim.master.simulation.Simulation` owns one and drives it: :meth:`prepare` at the start of
+    an interval, then :meth:`base_step` for each base step.
+
+    >>> from rotorcosim.components.registry import create
+    >>> from rotorcosim.master.core.system import Connection, System
+    >>> comps = {"m1": create("testing.mass", "m1", {"m": 1.0, "k": 40.0, "x0": 0.1}),
+    ...          "m2": create("testing.spring", "m2", {"m": 2.0, "k": 30.0, "kc": 100.0})}
+    >>> system = System(comps, [Connection("m1.x", "m2.x_in"), Connection("m1.v", "m2.v_in"),
+    ...                         Connection("m2.F", "m1.F")])
+    >>> engine = Engine(system, ["m1", "m2"], EngineSettings("gauss-seidel"))
+    >>> for comp in comps.values():
+    ...     comp.setup(0.0)                                 # (Simulation.initialise does this)
+    >>> engine.prepare(["m1", "m2"], {"m2": 2}, 1e-3)      # base step 1 ms; m2 communicates every 2 ms
+    >>> for k in range(100):
+    ...     engine.base_step(0.0, k)
+    >>> engine.steps_taken
+    {'m1': 100, 'm2': 50}
+    """
 
     def __init__(self, system: System, order: Sequence[str], settings: EngineSettings):
         unknown = [n for n in order if n not in system.components]
@@ -243,6 +270,8 @@ class Engine:
 
     # -- interval preparation ------------------------------------------------------------------------
     def prepare(self, active: Sequence[str], multiples: dict[str, int], h: float) -> None:
+        """Set up an interval: the components ``active`` in it step, each every ``multiples[name]`` base
+        steps (default 1) of ``h`` [s]; the links are reset and told how their two sides' rates relate."""
         self.h = h
         self.active = [n for n in self.order if n in set(active)]
         self.mult = {n: int(multiples.get(n, 1)) for n in self.active}
@@ -425,6 +454,8 @@ class Engine:
         self.iterations_used = it + 1
 
     def check_finite(self, t: float) -> None:
+        """Raise :class:`SimulationDiverged` naming the first active component's real output that is not finite
+        at time ``t`` [s]."""
         # all real outputs in one test (~0.1 ms; a test per port cost ~0.4 ms, at every interval end), then the
         # ports one by one only to name the first that is not finite
         arrays = [y for n in self.active for y in self._comp[n].y.values() if y.dtype.kind == "f"]

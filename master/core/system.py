@@ -64,22 +64,31 @@ class Connection:
 
     @property
     def src_component(self) -> str:
+        """The producing component's name (``src`` before the dot)."""
         return split_port(self.src)[0]
 
     @property
     def src_port(self) -> str:
+        """The output's name (``src`` after the dot)."""
         return split_port(self.src)[1]
 
     @property
     def dst_component(self) -> str:
+        """The consuming component's name (``dst`` before the dot)."""
         return split_port(self.dst)[0]
 
     @property
     def dst_port(self) -> str:
+        """The input's name (``dst`` after the dot)."""
         return split_port(self.dst)[1]
 
 
 def split_port(ref: str) -> tuple[str, str]:
+    """``"component.port"`` -> ``("component", "port")`` (the port may contain dots); an error otherwise.
+
+    >>> split_port("bearing0.F_journal")
+    ('bearing0', 'F_journal')
+    """
     comp, dot, port = str(ref).partition(".")
     if not dot or not comp or not port:
         raise SystemError_(f"port reference {ref!r} must be written 'component.port'")
@@ -88,6 +97,23 @@ def split_port(ref: str) -> tuple[str, str]:
 
 @dataclass
 class System:
+    """Components and the connections between them, checked when built (see the module's docstring).
+
+    Parameters: ``components`` (instance name -> :class:`~rotorcosim.components.contract.Component`);
+    ``connections`` (:class:`Connection`, each output -> input); ``inputs``: constant values of inputs no
+    connection drives (``"component.port"`` -> value in the input's unit, a scalar filling a vector input);
+    ``origins``: component name -> the scenario file that chose it, named in errors. A scenario builds its system
+    with :func:`rotorcosim.master.scenario.build.build_system`; :class:`rotorcosim.master.simulation.Simulation`
+    runs one.
+
+    >>> from rotorcosim.components.registry import create
+    >>> comps = {"m1": create("testing.mass", "m1", {"m": 1.0, "k": 40.0, "x0": 0.1}),
+    ...          "m2": create("testing.spring", "m2", {"m": 2.0, "k": 30.0, "kc": 100.0})}
+    >>> system = System(comps, [Connection("m1.x", "m2.x_in"), Connection("m1.v", "m2.v_in"),
+    ...                         Connection("m2.F", "m1.F")])
+    >>> [c.src for c in system.connections_into("m1")]
+    ['m2.F']
+    """
     components: dict[str, Component]
     connections: list[Connection]
     inputs: dict[str, np.ndarray] = field(default_factory=dict)
@@ -98,6 +124,7 @@ class System:
         self.check()
 
     def component(self, name: str) -> Component:
+        """The component ``name``; an error listing the components otherwise."""
         try:
             return self.components[name]
         except KeyError:
@@ -119,6 +146,8 @@ class System:
         return v
 
     def check(self) -> None:
+        """Check the connections and the constant inputs (run when the system is built); the first problem
+        raises :class:`SystemError_` naming the ports (and the scenario file that brought a connection)."""
         #: input reference -> the conversion its connection applies (only links that need one)
         self.converters: dict[str, object] = {}
         driven: dict[str, str] = {}
@@ -164,9 +193,11 @@ class System:
             raise SystemError_(f"{con.dst} is driven twice: by {driven[con.dst]} and by {con.src}")
 
     def connections_into(self, component: str) -> list[Connection]:
+        """The connections that drive inputs of ``component``."""
         return [c for c in self.connections if c.dst_component == component]
 
 
 def build(components: Mapping[str, Component], connections: Sequence[Connection],
           inputs: Mapping[str, Sequence[float]] | None = None) -> System:
+    """A checked :class:`System` of ``components``, ``connections`` and constant ``inputs`` (copied)."""
     return System(dict(components), list(connections), dict(inputs or {}))

@@ -108,6 +108,7 @@ class Restart:
         self.delta, self.t0, self.length = np.array(delta, dtype=float), float(t0), float(length)
 
     def offset(self, t: float) -> np.ndarray:
+        """The offset at time ``t`` [s] (in the hand-back's unit): ``delta`` before t0, 0 after t0 + length."""
         out = np.zeros_like(self.delta)
         links.add_restart(out, 0, self.delta, 0, self.delta.shape[0], t, self.t0, self.length)
         return out
@@ -164,6 +165,8 @@ class HandOff:
 
     # -- TM: record -------------------------------------------------------------------------------------
     def start_tm(self, n_window: int, n_cycle: int, size: int) -> None:
+        """A TM interval starts: record the producer's output in a window of ``n_window`` samples, in rotor
+        cycles of ``n_cycle`` samples, of a port of ``size`` elements."""
         self.ring = np.zeros((max(1, n_window), size))
         self.pos = self.count = 0
         self.t_last = None
@@ -227,6 +230,10 @@ class HandOff:
 
     # -- TO: hold -----------------------------------------------------------------------------------------
     def start_to(self, probe, fired, cycles: int, group: list["HandOff"] | None = None) -> None:
+        """A TO interval starts: hold the window's statistic, or a law that follows the producer's own TO
+        output and, where one tracks it better, another hand-off's temperature (``group``: the hand-offs of the
+        system). ``probe`` evaluates a producer's TO output at given inputs, ``fired`` tells whether a component
+        has stepped in this interval, ``cycles`` is the number of rotor cycles of the window."""
         S = self.statistic(self.hold)
         self.held = _Held(self.link, S)
         if not self.updates or self.link.src.y[self.link.sport].size != 1 or not float(S[0]) > 0.0:
@@ -287,6 +294,7 @@ class HandOff:
         return min(max(e, ELASTICITY_RANGE[0]), ELASTICITY_RANGE[1])
 
     def end_to(self) -> None:
+        """A TO interval ends: keep its last held value (the next TM restart measures the hand-off error)."""
         if self.held is not None:
             self._to_end = np.array(self.held.value(), dtype=float)
         self.held = None
@@ -296,7 +304,7 @@ class _Held:
     """The window statistic, constant over the TO interval."""
 
     def __init__(self, link, S):
-        # a Real statistic as float; an Integer, Boolean or String value kept as it is (issue 15: held, not averaged)
+        # a Real statistic as float; an Integer, Boolean or String value kept as it is (held, not averaged)
         self.link, self.S = link, (np.array(S, dtype=float) if link.real else np.array(S))
 
     def value(self) -> np.ndarray:
@@ -388,13 +396,16 @@ class HoldReport:
 
     @property
     def last_estimate_pct(self) -> float | None:
+        """The last TO interval's estimated error [%], or None before one."""
         return self.interval_estimates_pct[-1] if self.interval_estimates_pct else None
 
     @property
     def estimated_error_pct(self) -> float | None:
+        """The run's estimated error [%]: the largest of the TO intervals' (None without one)."""
         return max(self.interval_estimates_pct) if self.interval_estimates_pct else None
 
     def as_dict(self) -> dict:
+        """The report as summary.json's ``hold`` (hand-off errors in percent)."""
         return {"elasticity": dict(self.elasticity), "drivers": dict(self.drivers),
                 "handoff_error_pct": {k: 100.0 * v for k, v in self.errors.items()},
                 "interval_estimates_pct": list(self.interval_estimates_pct),

@@ -64,5 +64,7 @@ class EnergyResidual(Observer):
             self.exchanged[bond] += abs(p_a) * h
 
     def relative(self) -> dict:
+        """Per bond (``"force / velocity"``): the energy residual relative to the energy exchanged [-] (0 for a
+        bond that exchanged none)."""
         return {f"{a} / {b}": (self.residual[(a, b)] / self.exchanged[(a, b)] if self.exchanged[(a, b)] else 0.0)
                 for a, b in self.bonds}

@@ -289,6 +289,9 @@ class Checkpointer(Observer):
             self.save(sim, 0, next_interval=True)
 
     def save(self, sim, k: int, next_interval: bool = False) -> None:
+        """Write a checkpoint of ``sim`` at base step ``k`` of its current interval (``next_interval``: at the
+        start of the next one), replacing the previous checkpoint whole. A state that cannot be saved or a full
+        disk disables further checkpoints (:attr:`disabled` says why) and the run goes on."""
         if self.path is None or self.disabled:
             return
         index = sim.interval_index + (1 if next_interval else 0)
@@ -356,6 +359,8 @@ class ResumePoint:
 
 
 def load(path: str | os.PathLike, key: str) -> ResumePoint:
+    """The checkpoint file ``path`` as a point to resume from; ``key`` identifies the run (scenario and options):
+    a checkpoint of another run, version or a damaged file is a CheckpointError saying which."""
     path = Path(path)
     raw = None
     try:

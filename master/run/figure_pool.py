@@ -97,6 +97,7 @@ class FigurePool:
 
     @property
     def usable(self) -> bool:
+        """True when workers were started (at least two cores, not inside a worker)."""
         return bool(self._procs)
 
     def draw(self, module, jobs, series: Path, out: Path, ctx) -> list[str]:

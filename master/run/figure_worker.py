@@ -18,6 +18,7 @@ from pathlib import Path
 
 
 def main() -> int:
+    """The worker's life (see the module's docstring); returns the exit status."""
     import matplotlib
 
     matplotlib.use("Agg")

@@ -30,6 +30,8 @@ class StepTimer:
         return timed
 
     def table(self, total_wall: float) -> str:
+        """A text table: per component its calls, total and per-call time and share of ``total_wall`` [s] (the
+        run's wall time); the master's share is what is left."""
         lines = [f"{'component':<12} {'calls':>9} {'total s':>9} {'us/call':>9} {'share':>7}"]
         inside = 0.0
         for name, s in sorted(self.seconds.items(), key=lambda kv: -kv[1]):

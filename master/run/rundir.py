@@ -34,6 +34,7 @@ class OutputFolderError(ValueError):
 
 
 def is_run_file(name: str) -> bool:
+    """True for a file name a run writes into its folder (:data:`RUN_FILES`): one ``--overwrite`` may clear."""
     return any(fnmatch.fnmatch(name, pat) for pat in RUN_FILES)
 
 
@@ -151,6 +152,7 @@ class RunFolder:
                 and s.get("t_end_s") in (0, 0.0, None) and not s.get("checkpoint"))
 
     def release(self) -> None:
+        """Release the folder's lock (another run may then use the folder)."""
         if self._fd is not None:
             try:
                 fcntl.flock(self._fd, fcntl.LOCK_UN)

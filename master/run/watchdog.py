@@ -24,6 +24,15 @@ STEP_TIMEOUT_S = 600.0
 
 
 class Watchdog:
+    """A context manager watching the component step in progress (see the module's docstring).
+
+    ``limit_s``: the longest a step may take [s]; ``on_timeout(message)``: called before the process ends;
+    ``prog``: the program's name in the one-line message.
+
+    >>> with Watchdog(600.0, on_timeout=write_failure):          # doctest: +SKIP
+    ...     sim.run(schedule)
+    """
+
     def __init__(self, limit_s: float, on_timeout: Callable[[str], None] | None = None, prog: str = "rotorcosim"):
         if not (limit_s > 0):
             raise ValueError(f"step time limit must be positive, got {limit_s}")

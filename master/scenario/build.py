@@ -84,6 +84,10 @@ TEMPERATURE_ZERO_K = 273.15
 
 @dataclass
 class ComponentSpec:
+    """One ``[components.NAME]`` table: ``name``, its ``implementation`` (a registry name or ``"module:Class"``)
+    or its ``fmu`` file, its ``parameters`` (SI), its communication ``step`` [s] (None: the interval's), and for
+    FMUs the ``start`` values and ``options``; ``origin``, ``folder``, ``param_origins`` and ``fmu_label`` say
+    where each came from, for messages and plug-in imports."""
     name: str
     implementation: str | None = None
     fmu: str | None = None
@@ -103,6 +107,9 @@ class ComponentSpec:
 
 @dataclass
 class ConnectionSpec:
+    """One ``[[connections]]`` entry: from the output ``src`` to the input ``dst`` (``"component.port"``), with
+    how the input sees the output (``average``, ``extrapolation``, the thermal-only ``hold``, a type ``convert``,
+    the ``unit`` of a unit-less side) and the file that brought it (``origin``)."""
     src: str
     dst: str
     average: str = "mean"
@@ -115,6 +122,25 @@ class ConnectionSpec:
 
 @dataclass
 class Scenario:
+    """A scenario: what to simulate, as read from its TOML file (or an SSP archive), not yet built.
+
+    Parameters: ``name``; ``components`` (name -> :class:`ComponentSpec`); ``connections``
+    (:class:`ConnectionSpec`); ``inputs`` (``"component.port"`` -> constant value, SI); ``algorithm``,
+    ``schedule`` and ``outputs``: the ``[algorithm]``, ``[schedule]`` and ``[outputs]`` tables as dicts;
+    ``source``: the file it was read from (relative paths resolve against its folder); ``description``;
+    ``extra``: the other top-level tables (``[results]``, read by the scenario's case).
+
+    :meth:`set` and :meth:`swap` return changed copies; :func:`build_system` and :func:`build_simulation` make
+    it runnable; :func:`rotorcosim.simulate` runs it.
+
+    >>> import rotorcosim
+    >>> sc = rotorcosim.load_scenario("toy_thermomechanical")      # a shipped name, a TOML file or an .ssp
+    >>> sc.name, sorted(sc.components)
+    ('toy_thermomechanical', ['node', 'osc'])
+    >>> heavier = sc.set({"node.C": 20.0})                           # heat capacity [J/K]; sc is unchanged
+    >>> heavier.components["node"].parameters["C"], sc.components["node"].parameters["C"]
+    (20.0, 10.0)
+    """
     name: str
     components: dict[str, ComponentSpec]
     connections: list[ConnectionSpec]
@@ -127,6 +153,7 @@ class Scenario:
     extra: dict = field(default_factory=dict)
 
     def copy(self) -> "Scenario":
+        """A deep copy: changing it leaves this scenario as it is."""
         return copy.deepcopy(self)
 
     def set(self, values: Mapping[str, Any]) -> "Scenario":
@@ -286,6 +313,8 @@ def create_component(spec: ComponentSpec) -> Component:
 
 
 def build_system(sc: Scenario) -> System:
+    """The :class:`System` of ``sc``: its components created (FMUs loaded) and its connections checked. A
+    problem is a ScenarioError naming the file that brought it; the components made before it are terminated."""
     comps = {}
     try:
         for name, spec in sc.components.items():
@@ -313,6 +342,7 @@ def build_system(sc: Scenario) -> System:
 
 
 def engine_settings(sc: Scenario) -> EngineSettings:
+    """The coupling algorithm of ``sc``'s ``[algorithm]`` table (kind, iterations, tolerance)."""
     a = sc.algorithm
     bad = set(a) - {"kind", "order", "iterations", "tolerance"}
     if bad:
@@ -321,6 +351,10 @@ def engine_settings(sc: Scenario) -> EngineSettings:
 
 
 def build_simulation(sc: Scenario, observers=(), system: System | None = None) -> Simulation:
+    """A :class:`Simulation` of ``sc``, ready to run a schedule (:func:`schedule_of`).
+
+    ``observers``: what watches the run (recorders, progress ...); ``system``: an already built system of ``sc``
+    (default: :func:`build_system`)."""
     system = system or build_system(sc)
     s = sc.schedule
     cycle = cycle_of(s)
@@ -338,8 +372,9 @@ def build_simulation(sc: Scenario, observers=(), system: System | None = None) -
 
 
 def schedule_of(sc: Scenario, kind: str | None = None, duration: float | None = None):
-    """The scenario's schedule, or another ``kind`` of it (``"monolithic"``, ``"auto"``: over the same simulated
-    time unless ``duration`` says otherwise); ``duration`` [s] cuts or stretches it."""
+    """The schedule of ``sc`` (a Timeline, Monolithic or AutoSchedule). ``kind`` replaces its ``[schedule]
+    kind`` ("monolithic", "auto"; the same simulated time as the scenario's timeline unless ``duration`` [s]
+    says otherwise); ``duration`` cuts or sets the simulated time."""
     own, period = without_source(sc.schedule), constant_period(sc.schedule)
     spec = dict(own)
     if kind is not None:

@@ -54,9 +54,11 @@ class Origins:
     inputs: dict[str, str] = field(default_factory=dict)
 
     def component(self, name: str) -> str | None:
+        """The file that chose component ``name``'s implementation, or None."""
         return self.components.get(name)
 
     def parameter(self, comp: str, param: str) -> str | None:
+        """The file that set parameter ``param`` of ``comp`` (else the one that chose the component), or None."""
         return self.parameters.get((comp, param), self.components.get(comp))
 
 
@@ -103,8 +105,8 @@ def _load(path: Path) -> dict:
 
 def _table(value: Any) -> Mapping:
     """``value`` if it is a table, else an empty one: composition looks only into tables of the right kind and
-    leaves a value of the wrong kind where it is, for the schema to name with its file and line
-    (``parameters = 3`` was a TypeError here)."""
+    leaves a value of the wrong kind where it is (``parameters = 3``), for the schema to name with its file and
+    line."""
     return value if isinstance(value, Mapping) else {}
 
 

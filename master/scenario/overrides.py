@@ -42,7 +42,7 @@ def _literal(text: str, what: str) -> Any:
             raise ValueError(f"{what}: {text!r} is not a value (a number, true/false, a string or [a, list])") \
                 from None
         return text
-    if len(parsed) != 1:  # "10\nR = 5" read as TOML set a second key, which was dropped without a word
+    if len(parsed) != 1:  # "10\nR = 5" read as TOML sets a second key, which would be dropped without a word
         raise ValueError(f"{what}: {text!r} is not one value (a number, true/false, a string or [a, list])")
     value = parsed["v"]
     try:

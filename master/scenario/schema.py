@@ -50,6 +50,12 @@ def _kind(v: Any) -> str:
 
 
 def number(v: Any) -> str | None:
+    """A finite number (not a boolean). Each checker returns None for a good value ``v`` and otherwise the
+    error's text.
+
+    >>> number(2.5) is None, number("2.5")
+    (True, "must be a number, got a string ('2.5')")
+    """
     if not _is_number(v):
         return f"must be a number, got {_kind(v)} ({v!r})"
     if not math.isfinite(v):
@@ -58,6 +64,7 @@ def number(v: Any) -> str | None:
 
 
 def positive(v: Any) -> str | None:
+    """A finite number > 0 (a step [s], a tolerance ...)."""
     err = number(v)
     if err is None and v <= 0:
         return f"must be a positive number, got {v!r}"
@@ -65,6 +72,7 @@ def positive(v: Any) -> str | None:
 
 
 def not_negative(v: Any) -> str | None:
+    """A finite number >= 0."""
     err = number(v)
     if err is None and v < 0:
         return f"must be a number >= 0, got {v!r}"
@@ -81,20 +89,28 @@ def whole_positive(v: Any) -> str | None:
 
 
 def count(v: Any) -> str | None:
+    """An integer >= 1 (written as an integer: 3, not 3.0)."""
     if not isinstance(v, int) or isinstance(v, bool):
         return f"must be a whole number, got {_kind(v)} ({v!r})"
     return None if v >= 1 else f"must be >= 1, got {v!r}"
 
 
 def text(v: Any) -> str | None:
+    """A string."""
     return None if isinstance(v, str) else f"must be a string, got {_kind(v)} ({v!r})"
 
 
 def boolean(v: Any) -> str | None:
+    """true or false."""
     return None if isinstance(v, bool) else f"must be true or false, got {_kind(v)} ({v!r})"
 
 
 def one_of(*allowed: str) -> Callable[[Any], str | None]:
+    """A checker of a string among ``allowed`` (its error suggests the nearest one).
+
+    >>> one_of("jacobi", "gauss-seidel")("gauss_seidel")
+    "'gauss_seidel' is not one of 'jacobi', 'gauss-seidel' (did you mean 'gauss-seidel'?)"
+    """
     def check(v: Any) -> str | None:
         if not isinstance(v, str) or v not in allowed:
             return f"{v!r} is not one of {', '.join(repr(a) for a in allowed)}" + _did_you_mean(v, allowed)
@@ -103,6 +119,7 @@ def one_of(*allowed: str) -> Callable[[Any], str | None]:
 
 
 def port_ref(v: Any) -> str | None:
+    """A port reference written ``"component.port"``."""
     if not isinstance(v, str):
         return f"must be a string 'component.port', got {_kind(v)} ({v!r})"
     comp, dot, port = v.partition(".")
@@ -110,6 +127,7 @@ def port_ref(v: Any) -> str | None:
 
 
 def list_of(item: Callable[[Any], str | None]) -> Callable[[Any], str | None]:
+    """A checker of a list whose every element passes ``item`` (the error names the element, from 1)."""
     def check(v: Any) -> str | None:
         if not isinstance(v, list):
             return f"must be a list, got {_kind(v)} ({v!r})"
@@ -122,6 +140,7 @@ def list_of(item: Callable[[Any], str | None]) -> Callable[[Any], str | None]:
 
 
 def text_or_texts(v: Any) -> str | None:
+    """A string or a list of strings (``extends``: one base file or several)."""
     return None if isinstance(v, str) else list_of(text)(v)
 
 
@@ -133,6 +152,8 @@ def numbers(v: Any) -> str | None:
 
 
 def parameter_value(v: Any) -> str | None:
+    """A component parameter's value: a boolean, a string, a finite number or a non-empty list of numbers (its
+    unit is the parameter's own, SI)."""
     if isinstance(v, (bool, str)):
         return None
     if isinstance(v, list):
@@ -508,7 +529,7 @@ def _restart(c: _Checker, s: Mapping, raw, period: float | None, per: str) -> No
     """restart_cycles against the thermo-mechanical time a restart's ramp has (master/manipulator/hold.py, Restart): it starts
     at a TO -> TM change and goes on through the TM intervals that follow, until the next TO interval. A ramp
     longer than the shortest such run never ends: the hand-backs would stay a blend of held and live values for
-    the whole run (1e12 cycles was accepted). Under the automatic schedule a TM interval after a TO one lasts at
+    the whole run. Under the automatic schedule a TM interval after a TO one lasts at
     most tm_max."""
     speed, cycles = s.get("speed_rpm"), s.get("restart_cycles")
     if not period or not cycles:

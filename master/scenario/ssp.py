@@ -216,7 +216,7 @@ def _value(p: ET.Element, where: str):
     """The value of an ``ssv:Parameter`` and the unit it is written in (its ``unit`` attribute, or None)."""
     values = [c for c in p if c.tag.split("}")[-1] in ("Real", "Float64", "Float32", "Integer", "Int32",
                                                         "Enumeration", "Boolean", "String")]
-    if len(values) > 1:  # the first was taken, the others dropped without a word
+    if len(values) > 1:  # else the first would be taken, the others dropped without a word
         raise SSPError(f"{where}: parameter {p.get('name')!r} has {len(values)} values; give one")
     for child in values:
         tag = child.tag.split("}")[-1]
@@ -335,7 +335,7 @@ def _parameter_values(comp: ET.Element, folder: Path, where: str) -> dict[str, t
         names = set()
         for p in pset.findall("ssv:Parameters/ssv:Parameter", NS):
             # a later binding overrides an earlier one, but one parameter set giving a name twice says two
-            # things at once (the last one was taken without a word)
+            # things at once (else the last one would be taken without a word)
             if p.get("name") in names:
                 raise SSPError(f"{what}: parameter {p.get('name')!r} is given twice in one parameter set")
             names.add(p.get("name"))
@@ -432,7 +432,7 @@ def _scenario_of(path: Path, folder: Path) -> Scenario:
         raise SSPError(f"{where}: SystemStructure.ssd has no ssd:System")
     payload = {}
     ours = [a for a in root.findall("ssd:Annotations/ssc:Annotation", NS) if a.get("type") == ANNOTATION]
-    if len(ours) > 1:  # the last one was read, the others dropped without a word
+    if len(ours) > 1:  # else the last one would be read, the others dropped without a word
         raise SSPError(f"{where}: SystemStructure.ssd has {len(ours)} annotations {ANNOTATION}; give one")
     for ann in ours:
         if len(ann):

@@ -26,12 +26,11 @@ from rotorcosim.master.schedule.timeline import Schedule, ScheduleError, _positi
 
 #: floors of the relative drift test, by unit (a change smaller than this is no drift)
 DRIFT_FLOORS = {"K": 0.5, "m": 1e-7, "Pa.s": 1e-4, "W": 1.0, "N": 1.0}
-#: the TO length controller: never more than this factor up or down from one interval to the next, and a
-#: the largest ``tolerance`` [%]: an error of a result larger than the result itself accepts anything (1e308 was
-#: accepted)
+#: the largest ``tolerance`` [%]: an error of a result larger than the result itself accepts anything
 TOLERANCE_MAX_PCT = 100.0
-#: safety factor on tolerance / estimate
+#: the TO length controller: never more than these factors down or up from one interval to the next
 GROWTH_LIMITS = (0.5, 2.0)
+#: and a safety factor on tolerance / estimate
 SAFETY = 0.8
 
 

@@ -31,6 +31,11 @@ class BudgetError(ValueError):
 
 
 def hms(s: float) -> str:
+    """A duration ``s`` [s] in words, in the unit that reads best.
+
+    >>> hms(90), hms(5400), hms(36000)
+    ('90 s', '90 min', '10.0 h')
+    """
     if not math.isfinite(s):
         return "forever"
     if s < 120:

@@ -20,7 +20,7 @@ from rotorcosim.components.contract import ContractError, PHASES
 
 
 class ScheduleError(ContractError):
-    pass
+    """A schedule that cannot run: a bad ``[schedule]`` table or interval (the message names the key)."""
 
 
 def _positive(name: str, value: Any) -> float:
@@ -35,6 +35,17 @@ def _positive(name: str, value: Any) -> float:
 
 @dataclass(frozen=True)
 class Interval:
+    """One interval of a timeline: ``phase`` ("TM" thermo-mechanical or "TO" thermal-only), ``duration`` [s]
+    and base ``step`` [s] (at most the duration; the last step is shortened to end on the duration).
+
+    >>> iv = Interval("TM", duration=0.25, step=1e-5)
+    >>> iv.steps
+    25000
+    >>> Interval("TO", duration=1.0, step=2.0)
+    Traceback (most recent call last):
+    ...
+    rotorcosim.master.schedule.timeline.ScheduleError: schedule: TO interval step 2.0 s is longer than its duration 1.0 s
+    """
     phase: str
     duration: float
     step: float
@@ -84,6 +95,10 @@ class Schedule:
     @classmethod
     def from_spec(cls, spec: Mapping[str, Any], duration: float | None, step: float, thermal_step: float,
                   cycle: float | None) -> "Schedule":
+        """The schedule of a ``[schedule]`` table ``spec`` (its ``kind`` is this class's): ``duration`` [s]
+        overrides the table's (None: the table's own), ``step`` and ``thermal_step`` [s] are the default steps
+        of thermo-mechanical and thermal-only intervals, ``cycle`` [s] is the constant cycle period that converts
+        interval lengths given in cycles to seconds (None: none declared)."""
         raise NotImplementedError
 
     # every schedule has a ``duration`` (s): the simulated time it covers
@@ -109,14 +124,26 @@ def _interval_duration(spec: Mapping[str, Any], cycle: float | None) -> float:
 @register_schedule("timeline")
 @dataclass
 class Timeline(Schedule):
-    """An explicit list of intervals: ``[[schedule.intervals]]`` with phase, duration or cycles, and an
-    optional step."""
+    """An explicit list of intervals: ``[[schedule.intervals]]`` with phase, duration or
+    cycles, and an optional step.
+
+    Parameters: ``intervals``, the intervals (:class:`Interval`) in the order they run.
+
+    >>> tl = Timeline([Interval("TM", 0.25, 1e-5), Interval("TO", 119.5, 0.1), Interval("TM", 0.25, 1e-5)])
+    >>> tl.duration
+    120.0
+    >>> [iv.phase for iv in cut_timeline(tl, 1.0).intervals]
+    ['TM', 'TO']
+    >>> report = sim.run(tl)              # doctest: +SKIP
+    >>> # (sim: a rotorcosim.master.simulation.Simulation)
+    """
 
     intervals: list[Interval]
     keys = ("intervals",)
 
     @property
     def duration(self) -> float:
+        """The simulated time the timeline covers [s]."""
         return sum(i.duration for i in self.intervals)
 
     @classmethod
@@ -195,6 +222,8 @@ def cut_timeline(tl: Timeline, duration: float) -> Timeline:
 
 @dataclass
 class UsedInterval:
+    """An interval as it ran: ``phase``, ``t_start`` and ``t_end`` [s], ``step`` [s], the number of ``steps``
+    and the ``reason`` it ended (the automatic schedule's decision; empty for a timeline's interval)."""
     phase: str
     t_start: float
     t_end: float
@@ -203,12 +232,16 @@ class UsedInterval:
     reason: str = ""
 
     def as_dict(self) -> dict:
+        """The interval as summary.json writes it."""
         return {"phase": self.phase, "t_start": self.t_start, "t_end": self.t_end, "step": self.step,
                 "steps": self.steps, "reason": self.reason}
 
 
 @dataclass
 class RunReport:
+    """What a run did: the ``timeline`` it used (:class:`UsedInterval`), ``wall_time_s`` and ``cpu_time_s``
+    [s], the ``component_steps`` each component took, the time it reached ``t_end`` [s], its ``error`` (None:
+    none), ``status``, a component's stop request (``stopped``) and the thermal-only ``hold``'s report."""
     timeline: list[UsedInterval] = field(default_factory=list)
     wall_time_s: float = 0.0
     #: the process's CPU time over the run (with wall_time_s: the share the machine's other load took)
@@ -224,6 +257,7 @@ class RunReport:
     hold: object = None
 
     def as_dict(self) -> dict:
+        """The report as summary.json writes it."""
         return {"timeline": [u.as_dict() for u in self.timeline], "wall_time_s": self.wall_time_s,
                 "cpu_time_s": self.cpu_time_s, "component_steps": dict(self.component_steps), "t_end": self.t_end, "error": self.error,
                 "status": self.status, "stopped": self.stopped,

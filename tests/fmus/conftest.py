@@ -5,7 +5,8 @@ import sys
 from pathlib import Path
 
 import pytest
-from fmu_helpers import build_python_fmu, export_toy, model_description, set_attributes, with_model_description
+
+from tests.helpers.fmus import build_python_fmu, export_toy, model_description, set_attributes, with_model_description
 
 
 @pytest.fixture(scope="session")

@@ -7,12 +7,13 @@ import zipfile
 from pathlib import Path
 
 import pytest
-from fmu_helpers import TOY, rebuild
 
 from rotorcosim.fmus import safezip
 from rotorcosim.fmus.importer import FMUError, load_fmu_component
 from rotorcosim.master.scenario.ssp import SSPError, read_ssp, write_ssp
 from rotorcosim.master.scenario.build import load_scenario
+
+from tests.helpers.fmus import TOY, rebuild
 
 
 @pytest.fixture(scope="module")

@@ -12,11 +12,12 @@ import json
 import numpy as np
 import pytest
 
-from fmu_helpers import CaptureAll, model_description, with_model_description
 from rotorcosim.fmus.importer import FMUError, load_fmu_component
 from rotorcosim.master.scenario.build import build_simulation, build_system, parse
 from rotorcosim.master.schedule import Interval, Timeline
 from rotorcosim.master.core.system import SystemError_
+
+from tests.helpers.fmus import CaptureAll, model_description, with_model_description
 
 pytest.importorskip("pythonfmu3", reason="pythonfmu3 builds the FMI 3.0 test FMU")
 

@@ -8,10 +8,11 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from fmu_helpers import TOY, max_rel_diff, run_intervals
 
 from rotorcosim.master.scenario.ssp import SSPError, read_ssp, write_ssp
 from rotorcosim.master.scenario.build import load_scenario
+
+from tests.helpers.fmus import TOY, max_rel_diff, run_intervals
 
 TM = [("TM", 0.3, 1e-3)]           # the toy's thermo-mechanical interval
 

@@ -216,8 +216,14 @@ def test_parse_set_values():
 def test_scenarios_command_lists_each_shipped_scenario_on_one_line(capsys):
     assert main(["scenarios"]) == 0
     lines = capsys.readouterr().out.strip().splitlines()
-    names = sorted(p.stem for p in scenarios.FOLDER.glob("*.toml"))
-    assert [ln.split()[0] for ln in lines] == names
+    names = [ln.split()[0] for ln in lines]
+    assert sorted(names) == sorted(p.stem for p in scenarios.FOLDER.glob("*.toml"))
+    # natural order: the levels by value (1425 before 11401), as the error naming the shipped ones
+    levels = [f"blade_loss_{f}" for f in (712, 1425, 2850, 5700, 8551, 11401, 14252)]
+    assert [n for n in names if n.startswith("blade_loss_")] == levels
+    assert names == scenarios.names()
+    with pytest.raises(FileNotFoundError, match=", ".join(levels)):
+        scenarios.path("nope")
     assert any(ln.startswith("blade_loss_2850 ") and "2 850 N" in ln for ln in lines)
     assert all(len(ln.split(None, 1)) == 2 for ln in lines)  # every one has a description
 

@@ -106,7 +106,7 @@ def test_compiled_equals_generic_on_the_blade_loss_system(tmp_path, monkeypatch,
 def test_components_without_kernels_take_the_generic_loop(tmp_path):
     """The toy system of the multi-rate tests has no compiled kernels: auto runs the generic loop and says why;
     --engine compiled is a clear error."""
-    from helpers import two_masses  # noqa: WPS433 (tests/master/helpers.py)
+    from tests.helpers.systems import two_masses
 
     from rotorcosim.master.simulation import Simulation
 

@@ -5,11 +5,12 @@ import math
 
 import numpy as np
 import pytest
-from helpers import energy, exact, two_masses
 
 from rotorcosim.master.core.algorithm import EngineSettings
 from rotorcosim.master.schedule import Timeline, Interval
 from rotorcosim.master.simulation import Simulation
+
+from tests.helpers.systems import energy, exact, two_masses
 
 T_END = 1.0
 

@@ -1,9 +1,9 @@
 """The power-bond energy residual: zero for an exact coupling, O(h) for held inputs."""
-from helpers import two_masses
-
 from rotorcosim.master.observer.energy import EnergyResidual
 from rotorcosim.master.schedule import Interval, Timeline
 from rotorcosim.master.simulation import Simulation
+
+from tests.helpers.systems import two_masses
 
 
 def residual(h):

@@ -301,3 +301,125 @@ def test_negative_numbers_in_any_notation_are_values(capsys):
     assert rc == 2 and "--duration must be a positive number of seconds, got -inf" in one_line_error(err)
     rc, _, err = call(capsys, "run", "toy_thermomechanical", "--unbalance", "-1E3", "--out", "x")
     assert rc == 2 and "--unbalance must be a finite force >= 0 N, got -1000.0" in one_line_error(err)
+
+
+# -- one convention: SCENARIO positional (--scenario its alias), output --out (the export commands' older
+#    positional output kept) --------------------------------------------------------------------------------------
+
+def parsed(monkeypatch, *argv):
+    """The namespace the program gives the command ``argv`` (parsed and finished, not run)."""
+    import sys
+
+    from rotorcosim.master.cli import options, program
+
+    monkeypatch.setattr(sys, "argv", ["rotorcosim", *argv])
+    return options.finish(program.build_parser().parse_args(list(argv)))
+
+
+#: the scenario each command runs when none is given: compare, sweep and export-ssp keep blade_loss (their results
+#: carry its name), run and export-fmus the API's default (None here; the FMUs are the same bytes for both)
+DEFAULTS = {"run": None, "sweep": "blade_loss", "compare": "blade_loss", "export-fmus": None,
+            "export-ssp": "blade_loss"}
+OUT = {"run": ["--out", "o"], "sweep": ["--out", "o"], "compare": ["--out", "o"], "export-fmus": ["--out", "o"],
+       "export-ssp": ["--out", "o.ssp"]}
+
+
+@pytest.mark.parametrize("command", sorted(DEFAULTS))
+def test_every_command_takes_the_scenario_as_positional_or_option(monkeypatch, command):
+    toy = "toy_thermomechanical"
+    for argv in ([toy], ["--scenario", toy], [toy, "--scenario", toy]):
+        args = parsed(monkeypatch, command, *argv, *OUT[command])
+        assert args.scenario == toy, argv
+        assert args.out == OUT[command][1]
+    assert parsed(monkeypatch, command, *OUT[command]).scenario == DEFAULTS[command]
+
+
+@pytest.mark.parametrize("command", sorted(DEFAULTS))
+def test_two_different_scenarios_are_refused(tmp_path, capsys, command):
+    out = tmp_path / ("o.ssp" if command == "export-ssp" else "o")
+    rc, _, err = call(capsys, command, "toy_thermomechanical", "--scenario", "blade_loss", "--out", str(out))
+    assert rc == 2
+    assert "two scenarios, 'toy_thermomechanical' and --scenario 'blade_loss': give one" in one_line_error(err)
+    assert not out.exists()
+
+
+@pytest.mark.parametrize("command, out", [("export-fmus", "fmus_out"), ("export-ssp", "engine.ssp")])
+def test_the_export_commands_older_positional_output_still_works(monkeypatch, command, out):
+    args = parsed(monkeypatch, command, out)
+    assert (args.out, args.scenario) == (out, DEFAULTS[command])
+    args = parsed(monkeypatch, command, out, "toy_thermomechanical")
+    assert (args.out, args.scenario) == (out, "toy_thermomechanical")
+    args = parsed(monkeypatch, command, out, "--scenario", "toy_thermomechanical")
+    assert (args.out, args.scenario) == (out, "toy_thermomechanical")
+
+
+@pytest.mark.parametrize("command, argv, message", [
+    ("export-fmus", ["{dir}/a", "--out", "{dir}/b"], "the output is given twice"),
+    ("export-fmus", ["{dir}/a", "toy_thermomechanical", "--out", "{dir}/b"], "the output is given twice"),
+    ("export-ssp", ["{dir}/a.ssp", "toy_thermomechanical", "--out", "{dir}/b.ssp"], "the output is given twice"),
+    ("export-fmus", [], "give the output: --out DIR"),
+    ("export-ssp", ["--scenario", "toy_thermomechanical"], "give the output: --out FILE.ssp"),
+    # the current form without its --out: the scenario is not taken for the output's name
+    ("export-fmus", ["toy_thermomechanical"], "'toy_thermomechanical' is a scenario; give the output with --out DIR"),
+    ("export-ssp", ["blade_loss_2850"], "'blade_loss_2850' is a scenario; give the output with --out FILE.ssp"),
+])
+def test_the_export_commands_refuse_an_output_given_twice_or_not_at_all(tmp_path, capsys, command, argv, message):
+    argv = [a.replace("{dir}", str(tmp_path)) for a in argv]
+    rc, _, err = call(capsys, command, *argv)
+    assert rc == 2 and message in one_line_error(err)
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_export_ssp_writes_to_out_in_either_form(tmp_path, capsys):
+    assert call(capsys, "export-ssp", "toy_thermomechanical", "--out", str(tmp_path / "new.ssp"))[0] == 0
+    assert call(capsys, "export-ssp", str(tmp_path / "old.ssp"), "toy_thermomechanical")[0] == 0
+    assert (tmp_path / "new.ssp").read_bytes() == (tmp_path / "old.ssp").read_bytes()
+
+
+def test_run_takes_the_scenario_either_way(tmp_path, capsys):
+    import json
+
+    quick = ["--duration", "0.05", "--no-figures", "--quiet"]
+    assert call(capsys, "run", "toy_thermomechanical", *quick, "--out", str(tmp_path / "a"))[0] == 0
+    assert call(capsys, "run", "--scenario", "toy_thermomechanical", *quick, "--out", str(tmp_path / "b"))[0] == 0
+    a, b = (json.loads((tmp_path / d / "summary.json").read_text()) for d in "ab")
+    assert a["scenario"] == b["scenario"] == "toy_thermomechanical"
+    assert a["final_outputs"] == b["final_outputs"] and a["t_end_s"] == b["t_end_s"]
+
+
+def test_sweep_takes_the_scenario_as_positional(tmp_path, capsys):
+    rc, out, err = call(capsys, "sweep", "toy_thermomechanical", "--unbalance", "1", "--serial", "--quiet",
+                        "--duration", "0.01", "--out", str(tmp_path / "s"))
+    assert rc == 0, err
+    import json
+
+    summary = json.loads((tmp_path / "s" / "F_1" / "summary.json").read_text())
+    assert summary["scenario"] == "toy_thermomechanical_1"   # the toy at the level 1 N, not the default
+
+
+def _help(capsys, *argv) -> str:
+    with pytest.raises(SystemExit) as info:
+        main([*argv, "--help"])
+    assert info.value.code == 0
+    return " ".join(capsys.readouterr().out.split())
+
+
+def test_schedule_has_the_same_help_on_run_and_sweep(capsys):
+    from rotorcosim.master.cli.options import SCHEDULE_HELP
+
+    for command in ("run", "sweep"):
+        assert SCHEDULE_HELP in _help(capsys, command), command
+
+
+@pytest.mark.parametrize("command", sorted(DEFAULTS))
+def test_every_command_documents_scenario_and_out(capsys, command):
+    text = _help(capsys, command)
+    assert "[SCENARIO]" in text and "--scenario SCENARIO" in text and "--out" in text
+    assert "`" not in text
+
+
+def test_top_level_help_says_what_the_tool_does_in_plain_text(capsys):
+    text = _help(capsys)
+    assert "Co-simulation of a dual-rotor gas turbine engine" in text
+    assert "docs/" in text and "rotorcosim COMMAND --help" in text
+    assert "``" not in text and ":mod:" not in text

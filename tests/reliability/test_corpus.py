@@ -22,9 +22,10 @@ from pathlib import Path
 
 import pytest
 
-from fmu_helpers import rebuild  # tests/fmus (pytest's pythonpath)
 from rotorcosim import scenarios
 from rotorcosim.master.cli import main
+
+from tests.helpers.fmus import rebuild
 
 TOY = Path(scenarios.__file__).with_name("toy_thermomechanical.toml")
 TOY_TEXT = TOY.read_text()

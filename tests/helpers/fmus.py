@@ -64,7 +64,7 @@ def max_rel_diff(a: Capture, b: Capture, refs) -> float:
     return worst
 
 
-MODELS = Path(__file__).with_name("models")
+MODELS = Path(__file__).resolve().parents[1] / "fmus" / "models"
 
 
 def build_python_fmu(model: str, dest: Path, fmi3: bool) -> Path:
