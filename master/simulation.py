@@ -35,7 +35,8 @@ class Simulation:
     [s] or a declared speed signal) that sets a cycle's length (needed by thermal-only intervals); ``observers``: what watches the run
     (:class:`~rotorcosim.master.observer.observers.Observer`); ``t0``: the start time [s]; ``restart_cycles``:
     cycles [-] over which the thermal inputs of the mechanical components go to their new values when a
-    thermo-mechanical interval restarts.
+    thermo-mechanical interval restarts; ``temperature_zero`` [K]: the zero of the temperatures in the hold's
+    relative error estimate (0: absolute; a scenario reporting degrees C declares 273.15).
 
     A scenario's simulation is built by :func:`rotorcosim.master.scenario.build.build_simulation`.
 

@@ -207,6 +207,7 @@ class Runner:
 
     @property
     def sim(self):
+        """The simulation this runner serves (held weakly: a runner kept in the cache does not keep it alive)."""
         return self._sim()
 
     def _columns(self, rows):

@@ -36,6 +36,7 @@ class Cycle:
         """Before the run: the source exists in ``system`` (an error naming it otherwise)."""
 
     def period(self, system) -> float:
+        """The cycle's length now [s], read from ``system`` where the source is a signal."""
         raise NotImplementedError
 
 
@@ -52,6 +53,7 @@ class ConstantCycle(Cycle):
         self.constant = p
 
     def period(self, system=None) -> float:
+        """The constant period [s] (``system`` is not read)."""
         return self.constant
 
     def __repr__(self) -> str:
@@ -93,6 +95,7 @@ class SignalCycle(Cycle):
         self._scale = (d[1], kind == "angular speed")
 
     def period(self, system) -> float:
+        """2 pi / |omega| or 1 / |f| [s] from the signal's present value in ``system``."""
         if self._scale is None:
             self.check(system)
         comp, _, port = self.ref.partition(".")

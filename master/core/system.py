@@ -86,8 +86,8 @@ class Connection:
 def split_port(ref: str) -> tuple[str, str]:
     """``"component.port"`` -> ``("component", "port")`` (the port may contain dots); an error otherwise.
 
-    >>> split_port("bearing0.F_journal")
-    ('bearing0', 'F_journal')
+    >>> split_port("damper0.F_journal")
+    ('damper0', 'F_journal')
     """
     comp, dot, port = str(ref).partition(".")
     if not dot or not comp or not port:
