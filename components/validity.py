@@ -65,9 +65,12 @@ class Tracker:
                     out.append(f"{name}.{p}")
         return out
 
-    def update(self, times: np.ndarray, rows: Mapping[str, np.ndarray]) -> None:
-        """Rows at ``times`` (shape (n,)); ``rows["component.port"]`` of shape (n, size)."""
+    def update(self, times: np.ndarray, rows: Mapping[str, np.ndarray], only=None) -> None:
+        """Rows at ``times`` (shape (n,)); ``rows["component.port"]`` of shape (n, size); ``only``: the names of
+        the components to check (None: all)."""
         for i, (name, c) in enumerate(self.checks):
+            if only is not None and name not in only:
+                continue
             v = np.asarray(c.value({p: rows[f"{name}.{p}"] for p in c.ports}), dtype=float).reshape(-1)
             bad = np.flatnonzero(c.outside(v))
             if not len(bad):

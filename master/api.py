@@ -42,6 +42,7 @@ from rotorcosim.master.run.rundir import RunFolder
 from rotorcosim.master.scenario.build import Scenario, build_simulation, load_scenario as _load_file, schedule_of
 from rotorcosim.master.schedule.timeline import Schedule
 from rotorcosim.master.observer.series import SeriesFile
+from rotorcosim.master.observer.validity import Validity
 from rotorcosim.master.simulation import engine_summary
 from rotorcosim.master.core.threads import one_thread
 
@@ -254,7 +255,8 @@ def _simulate(sc, duration, schedule, out, record, progress, figures, overwrite,
         keep = series is None or fmt != "h5"
         recorder = Recorder(series, signals, float(o.get("record_step", 1e-4)), keep=keep)
         post_obs = post.observers(sc, speed) if post is not None else []
-        observers = [recorder, *post_obs, Progress(sch.duration, disable=not progress, desc=sc.name)]
+        validity = Validity(recorder.record_step, sc.name)   # where the components' models stop holding
+        observers = [recorder, *post_obs, validity, Progress(sch.duration, disable=not progress, desc=sc.name)]
         if out is not None:
             # checkpoint_every=None: no checkpoints (a timing comparison is run again, not resumed)
             saver = checkpoint.Checkpointer(out / checkpoint.CHECKPOINT if checkpoint_every is not None else None,
@@ -334,6 +336,8 @@ def _simulate(sc, duration, schedule, out, record, progress, figures, overwrite,
                            and saver.saved else None),
             "checkpoint_note": saver.disabled if saver is not None else None,
             "error": None if error is None else f"{type(error).__name__}: {error}",
+            # each check of a component's validity envelope the run left: worst value, first time, limit, source
+            "validity": validity.entries(),
         }
         if keep:
             # a resumed run holds in memory only what it computed itself (CSV is not read back)
