@@ -255,8 +255,9 @@ def _simulate(sc, duration, schedule, out, record, progress, figures, overwrite,
         keep = series is None or fmt != "h5"
         recorder = Recorder(series, signals, float(o.get("record_step", 1e-4)), keep=keep)
         post_obs = post.observers(sc, speed) if post is not None else []
-        validity = Validity(recorder.record_step, sc.name)   # where the components' models stop holding
-        observers = [recorder, *post_obs, validity, Progress(sch.duration, disable=not progress, desc=sc.name)]
+        # where the components' models stop holding: after the progress bar, so that its lines follow the bar's
+        validity = Validity(recorder.record_step, sc.name)
+        observers = [recorder, *post_obs, Progress(sch.duration, disable=not progress, desc=sc.name), validity]
         if out is not None:
             # checkpoint_every=None: no checkpoints (a timing comparison is run again, not resumed)
             saver = checkpoint.Checkpointer(out / checkpoint.CHECKPOINT if checkpoint_every is not None else None,
