@@ -34,7 +34,8 @@ class Validity(Observer):
             self.tracker.left = {int(k): dict(v) for k, v in self._restored.items()}
         self._inputs = {r for r in self.tracker.ports()
                         if comps[r.partition(".")[0]].variable(r.partition(".")[2]).causality == "input"}
-        self._sample(sim, sim.t, sim.system.components)
+        if sim.resume_point is None:   # a resumed run's start is a state the interrupted run checked already
+            self._sample(sim, sim.t, comps)
 
     def interval_start(self, sim, phase, step):
         self.stride = 1 if phase == "TO" else max(1, int(round(min(self.record_step / step, 2.0 ** 62))))
