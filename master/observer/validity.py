@@ -41,7 +41,8 @@ class Validity(Observer):
 
     def start(self, sim, schedule):
         comps = sim.system.components
-        self.tracker = Tracker({n: tuple(c.validity()) for n, c in comps.items()})
+        # a plug-in that is no Component subclass declares nothing either
+        self.tracker = Tracker({n: tuple(getattr(c, "validity", tuple)()) for n, c in comps.items()})
         if self._restored is not None:   # a resumed run: what the interrupted one found
             self.tracker.left = {int(k): dict(v) for k, v in self._restored.items()}
         self._inputs = {r for r in self.tracker.ports()
@@ -75,7 +76,7 @@ class Validity(Observer):
             self._flush()
 
     def block_signals(self, sim):
-        return [r for r in self.tracker.ports() if r not in self._inputs]
+        return [r for r, _, _, is_input in self._refs if not is_input]
 
     def step_block(self, sim, ks, ts, data):
         rows = sampled_rows(ks, self.stride)
