@@ -254,8 +254,12 @@ class _Damper(Memoryless, Component):
         reynolds_fe.EPS_FILM_MAX: beyond it the film is held at its value there and, from 1 on, the wall model of
         wall.py takes over); a laminar film (Reynolds number of the journal's velocity below LAMINAR_FILM_RE).
         The eccentricity is read from the spring's force F_spring = -k_spring d: without a spring it is not
-        checked. The film's inertia (squeeze-film Reynolds number rho omega c^2 / mu, ~30 in the paper's runs) is
-        neglected by the paper's model at every load: not a check of a result (see the damper-force command)."""
+        checked. Not checked: the film's inertia, which the paper's model (and this one) neglects. Its squeeze-film
+        Reynolds number rho omega c^2 / mu at the running speed is 4 (cold oil) to 7 at 2850 N and up to 50 at
+        14 252 N (damper #0's oil at 43-98 C), where lubrication theory is strictly valid only well below 1 (direct
+        force measurements, ASME Gas Turbine Conference 1984, GT1984-V005T13A003: up to twice the inertialess
+        theory's forces at 10): a limit of the model at every load of the paper, not of a result, and the damper
+        knows no whirl frequency to compute it from."""
         c, k = self.p["clearance"], self.p["k_spring"]
         _, _, rho300, drho = _oil()
 
