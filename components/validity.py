@@ -1,7 +1,7 @@
-"""Validity envelopes: where a component's model holds, declared as data and checked on its outputs.
+"""Validity envelopes: where a component's model holds, declared as data and checked on its ports.
 
 A component lists :class:`Check` objects (``Component.validity()``): a quantity computed from rows of its
-outputs (and its parameters), an upper or lower limit in SI units, the unit the limit is reported in and the
+outputs (or inputs) and its parameters, an upper or lower limit in SI units, the unit the limit is reported in and the
 source of the limit. A :class:`Tracker` evaluates them on rows of outputs as a run goes (or once, for the
 ``bearing-static`` / ``damper-force`` / ``thermal-steady`` commands) and keeps, for every check that was left,
 the first time it was left and the worst value: the ``validity`` list of summary.json and of the commands' JSON
@@ -24,8 +24,9 @@ BOUNDS = ("max", "min")
 class Check:
     """One bound of a component's envelope.
 
-    ``value(y)`` maps ``y`` (output port name -> array of rows, shape (n, size)) to the quantity per row, shape
-    (n,), SI units; ``ports`` names the outputs it reads. ``limit`` is SI; ``unit`` is the unit the value and
+    ``value(y)`` maps ``y`` (port name -> array of rows, shape (n, size)) to the quantity per row, shape (n,),
+    SI units; ``ports`` names the ports it reads: outputs, cheapest, or inputs (a run sees those at the end of
+    each compiled block only, master/observer/validity.py). ``limit`` is SI; ``unit`` is the unit the value and
     limit are reported in, ``scale`` the factor from SI to it (1e-6 for Pa -> MPa). ``bound`` "max": the model
     holds while value <= limit; "min": while value >= limit."""
 
@@ -48,8 +49,8 @@ class Check:
 
 
 class Tracker:
-    """The checks of some components, evaluated on rows of their outputs: for each check left, the first time
-    and the worst value."""
+    """The checks of some components, evaluated on rows of their ports: for each check left, the first time and
+    the worst value."""
 
     def __init__(self, checks: Mapping[str, tuple[Check, ...]]):
         #: (component name, check) in declaration order
@@ -57,7 +58,7 @@ class Tracker:
         self.left: dict[int, dict] = {}   # index into checks -> entry (first time, worst value)
 
     def ports(self) -> list[str]:
-        """The ``component.port`` outputs the checks read."""
+        """The ``component.port`` ports the checks read."""
         out: list[str] = []
         for name, c in self.checks:
             for p in c.ports:
