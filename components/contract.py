@@ -218,6 +218,12 @@ class Component:
         (``holds_state_in_TO``) override it."""
         self.phase = phase
 
+    def validity(self) -> tuple:
+        """Where the model holds: :class:`~rotorcosim.components.validity.Check` objects on the outputs, asked for
+        after :meth:`setup` (a limit may follow the parameters). None by default: a component that cannot say
+        (an imported FMU) declares nothing."""
+        return ()
+
     def __repr__(self) -> str:
         return f"<{type(self).__name__} {self.name!r}>"
 

@@ -13,6 +13,13 @@ import math
 
 #: the oil temperatures the viscosity fit accepts, kelvin: (low, high], the low end excluded
 T_MIN_K, T_MAX_K = 200.0, 600.0
+#: where the fit describes the oil (the thermal network's validity envelope, thermal/component.py): ASTM D341's
+#: viscosity-temperature relation holds while the oil is a homogeneous liquid, for an SAE 30 mineral engine oil
+#: from about its pour point (-20 to -25 C, ASTM D97) to its flash point (about 230 C, ASTM D92; both from oil
+#: makers' product data). Between these and the guard above a run goes on and says so.
+T_POUR_K, T_FLASH_K = 250.0, 500.0
+SOURCE = ("ASTM D341 viscosity fit, valid while the SAE 30 oil is liquid: pour point ~250 K (ASTM D97) to flash "
+          "point ~500 K (ASTM D92)")
 
 
 def check_oil_temperature(T_K) -> float:

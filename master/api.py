@@ -43,6 +43,7 @@ from rotorcosim.master.scenario.build import Scenario, build_simulation, load_sc
 from rotorcosim.master.scenario.cycle import cycle_of
 from rotorcosim.master.schedule.timeline import Schedule
 from rotorcosim.master.observer.series import SeriesFile
+from rotorcosim.master.observer.validity import Validity
 from rotorcosim.master.simulation import engine_summary
 from rotorcosim.master.core.threads import one_thread
 
@@ -277,7 +278,9 @@ def _simulate(sc, duration, schedule, out, record, progress, figures, overwrite,
         keep = series is None or fmt != "h5"
         recorder = Recorder(series, signals, float(o.get("record_step", 1e-4)), keep=keep)
         post_obs = post.observers(sc, cycle) if post is not None else []
-        observers = [recorder, *post_obs, Progress(sch.duration, disable=not progress, desc=sc.name)]
+        # where the components' models stop holding: after the progress bar, so that its lines follow the bar's
+        validity = Validity(recorder.record_step, sc.name)
+        observers = [recorder, *post_obs, Progress(sch.duration, disable=not progress, desc=sc.name), validity]
         if out is not None:
             # checkpoint_every=None: no checkpoints (a timing comparison is run again, not resumed)
             saver = checkpoint.Checkpointer(out / checkpoint.CHECKPOINT if checkpoint_every is not None else None,
@@ -357,6 +360,8 @@ def _simulate(sc, duration, schedule, out, record, progress, figures, overwrite,
                            and saver.saved else None),
             "checkpoint_note": saver.disabled if saver is not None else None,
             "error": None if error is None else f"{type(error).__name__}: {error}",
+            # each check of a component's validity envelope the run left: worst value, first time, limit, source
+            "validity": validity.entries(),
         }
         if keep:
             # a resumed run holds in memory only what it computed itself (CSV is not read back)

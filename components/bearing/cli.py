@@ -8,13 +8,13 @@ import sys
 
 import numpy as np
 
+from ..validity import once, warning_line
+from .component import CHECKS, ELASTIC_LIMIT_PA
 from .geometry import BEARINGS, build_geometry
 from .static import static_equilibrium, stiffness
 
 RPM = math.pi / 30.0
-#: contact stress above which Hertz's elastic theory no longer describes a ball contact: the ISO 76 static load
-#: rating of ball bearings is set at 4200 MPa, where permanent deformation (1e-4 of the ball diameter) begins
-ELASTIC_LIMIT_MPA = 4200.0
+ELASTIC_LIMIT_MPA = ELASTIC_LIMIT_PA * 1e-6
 
 
 def add_arguments(parser):
@@ -66,7 +66,9 @@ def evaluate(bearing: int, radial_load: float, axial_load: float | None = None, 
         "radial_stiffness_N_per_m": float(k_r),
         # Hertz contact theory is elastic: beyond ELASTIC_LIMIT_MPA the races deform permanently
         "elastic_limit_MPa": ELASTIC_LIMIT_MPA,
-        "within_elastic_range": bool(max(s_i.max(), s_e.max()) * 1e-6 <= ELASTIC_LIMIT_MPA),
+        "within_elastic_range": bool(max(s_i.max(), s_e.max()) <= ELASTIC_LIMIT_PA),
+        # the bearing component's envelope (BallBearing.validity) at this equilibrium
+        "validity": once(CHECKS, {"sigma_max_step": [s_i.max(), s_e.max()]}, f"bearing{bearing}"),
         "balls": [
             {"phi_deg": float(math.degrees(st.phi[j])), "Q_inner_N": float(st.Q_i[j]),
              "Q_outer_N": float(st.Q_e[j]), "alpha_inner_deg": float(math.degrees(st.alpha_i[j])),
@@ -79,10 +81,8 @@ def evaluate(bearing: int, radial_load: float, axial_load: float | None = None, 
 
 def run(args) -> int:
     out = evaluate(args.bearing, args.radial_load, args.axial_load, args.speed_rpm)
-    if not out["within_elastic_range"]:
-        print(f"rotorcosim bearing-static: warning: contact stress {out['max_contact_stress_MPa']:.0f} MPa is above "
-              f"{ELASTIC_LIMIT_MPA:.0f} MPa (ISO 76 static rating: permanent deformation): the elastic Hertz theory "
-              "used here is outside its range, the figures are not physical", file=sys.stderr)
+    for entry in out["validity"]:
+        print(warning_line("rotorcosim bearing-static", entry), file=sys.stderr)
     if args.json:
         print(json.dumps(out))
         return 0

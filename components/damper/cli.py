@@ -3,8 +3,10 @@ from __future__ import annotations
 
 import json
 import math
+import sys
 
 from .component import DAMPERS, LAMINAR_FILM_RE, FastDamper, FEDamper
+from ..validity import once, warning_line
 from .viscosity import _oil, sae30_viscosity
 
 
@@ -62,11 +64,15 @@ def evaluate(damper: int, position, velocity, temperature_C: float, model: str =
         "power_W": float(y["P_film"][0]),
         "viscosity_Pa_s": float(y["mu"][0]),
         "eccentricity_ratio": math.hypot(*position) / d.p["clearance"],
+        # the damper component's envelope (validity) at this position and velocity
+        "validity": once(d.validity(), {**d.u, **y}, f"damper{damper}"),
     }
 
 
 def run(args) -> int:
     out = evaluate(args.damper, args.position, args.velocity, args.temperature, args.model, not args.no_cavitation)
+    for entry in out["validity"]:
+        print(warning_line("rotorcosim damper-force", entry), file=sys.stderr)
     if args.json:
         print(json.dumps(out))
     else:

@@ -28,11 +28,12 @@ import numpy as np
 from ..contract import Component, ContractError, Memoryless, Variable
 from ..kernels import KernelComponent
 from ..oil_fit import T_MAX_K, T_MIN_K
+from ..validity import Check
 from . import wall
 from . import table_cache
 from .fast import (EPS_MAX, FAST_STEP_SIG, N_TABLE, DamperParams, fast_step, fast_step_address, film_table,
                    tm_step)
-from .reynolds_fe import build_mesh, fe_film_eval
+from .reynolds_fe import EPS_FILM_MAX, build_mesh, fe_film_eval
 from .viscosity import _oil, sae30_viscosity
 
 DATA = Path(__file__).with_name("data") / "dampers.toml"
@@ -247,6 +248,39 @@ class _Damper(Memoryless, Component):
             self._fail(status, t + h)
         self.y["P_film"] = out[16:17]
         self.time = t + h
+
+    def validity(self):
+        """The journal inside the part of its clearance the film model resolves (eccentricity ratio up to
+        reynolds_fe.EPS_FILM_MAX: beyond it the film is held at its value there and, from 1 on, the wall model of
+        wall.py takes over); a laminar film (Reynolds number of the journal's velocity below LAMINAR_FILM_RE).
+        The eccentricity is read from the spring's force F_spring = -k_spring d: without a spring it is not
+        checked. Not checked: the film's inertia, which the paper's model (and this one) neglects. Its squeeze-film
+        Reynolds number rho omega c^2 / mu at the running speed is 4 (cold oil) to 7 at 2850 N and up to 50 at
+        14 252 N (damper #0's oil at 43-98 C), where lubrication theory is strictly valid only well below 1 (direct
+        force measurements, ASME Gas Turbine Conference 1984, GT1984-V005T13A003: up to twice the inertialess
+        theory's forces at 10): a limit of the model at every load of the paper, not of a result, and the damper
+        knows no whirl frequency to compute it from."""
+        c, k = self.p["clearance"], self.p["k_spring"]
+        _, _, rho300, drho = _oil()
+
+        def eccentricity(y):
+            f = y["F_spring"]
+            return np.hypot(f[:, 0], f[:, 1]) / (k * c)
+
+        def reynolds(y):
+            w = y["V_journal"] - y["V_housing"]
+            rho = rho300 + drho * (y["T_oil"][:, 0] - 300.0)
+            return rho * np.hypot(w[:, 0], w[:, 1]) * c / y["mu"][:, 0]
+
+        checks = [Check("film Reynolds number", ("V_journal", "V_housing", "T_oil", "mu"), reynolds, LAMINAR_FILM_RE,
+                        "1", "laminar lubrication theory (Reynolds equation): films turn turbulent from ~1000 "
+                        "(Hamrock, Schmid & Jacobson, Fundamentals of Fluid Film Lubrication, ch. 4)")]
+        if k > 0.0:
+            checks.insert(0, Check("journal eccentricity ratio", ("F_spring",), eccentricity, EPS_FILM_MAX, "1",
+                                   f"the film is evaluated up to {EPS_FILM_MAX:g} (closer to the wall the FE mesh no "
+                                   "longer resolves the minimum film); beyond, it is held there, and the wall "
+                                   "model acts from 1"))
+        return tuple(checks)
 
     def film_force(self, dx, dy, dvx, dvy, mu):
         """(Fx, Fy) of the film alone at relative position/velocity (journal minus housing)."""

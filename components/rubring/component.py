@@ -24,6 +24,7 @@ import numpy as np
 from ..contract import ContractError, Memoryless, Variable
 from ..kernels import KernelComponent
 from ..speeds import PT_OMEGA
+from ..validity import Check
 from .contact import RubParams, rub_force, tm_step
 
 DATA = Path(__file__).with_name("data") / "rubrings.toml"
@@ -33,6 +34,14 @@ RINGS = {int(k): v for k, v in _DATA["ring"].items()}
 CONTACT = _DATA["contact"]
 #: parameters that follow the ``bearing`` selection unless set explicitly
 GEOMETRY = {"clearance": "clearance_mm", "radius": "radius_mm"}
+#: the largest normal force the shipped contact stiffness describes: data/rubrings.toml [contact] estimates it from
+#: Johnson's conformal line contact (Contact Mechanics, sec. 5.6) as 2.7-3.3e8 N/m over 5-50 kN, so a constant
+#: 3e8 N/m is within 10 % of that law up to 50 kN; beyond it the law (stiffening with load) is not the one used
+LINEAR_CONTACT_N = 50e3
+
+
+def _normal(y):
+    return y["F_normal"][:, 0]
 
 
 class RubRing(Memoryless, KernelComponent):
@@ -94,6 +103,15 @@ class RubRing(Memoryless, KernelComponent):
                       p["slip_regularisation"])
         self.state = {}
         self._evaluate(t0)
+
+    def validity(self):
+        """The normal force within the range of the shipped stiffness's contact law (LINEAR_CONTACT_N); a
+        stiffness set by the scenario is its own law, with no range known here: nothing declared then."""
+        if self.p["stiffness"] != CONTACT["stiffness"]:
+            return ()
+        return (Check("rub contact force", ("F_normal",), _normal, LINEAR_CONTACT_N, "N",
+                      "contact stiffness 3e8 N/m: Johnson's steel line contact, within 10 % for 5-50 kN "
+                      "(data/rubrings.toml)"),)
 
     # -- the compiled kernel (components/kernels.py): set-up and every step evaluate through it -------------
     STEP = staticmethod(tm_step)

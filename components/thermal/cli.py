@@ -3,9 +3,11 @@ from __future__ import annotations
 
 import json
 import math
+import sys
 
 from ..oil_fit import check_oil_temperature
-from .component import ThermalNetwork
+from ..validity import once, warning_line
+from .component import CHECKS, ThermalNetwork
 from .geometry import BEARINGS, LE, LI, NODES, SFD
 
 KELVIN = 273.15
@@ -59,11 +61,15 @@ def steady(bearing: int, drag_power: float, sfd_power: float, rub_power: float =
         "temperatures_C": {name: float(T[i] - KELVIN) for i, name in enumerate(NODES)},
         "bearing_oil_C": float(0.5 * (T[2] + T[4]) - KELVIN),
         "growths_m": {"inner": float(eps[0]), "outer": float(eps[1]), "ball": float(eps[2])},
+        # the thermal network's envelope (validity) in this steady state
+        "validity": once(CHECKS, {"T_oil": [0.5 * (T[LI] + T[LE])], "T_sfd_oil": [T[SFD]]}, f"thermal{bearing}"),
     }
 
 
 def run(args) -> int:
     out = steady(args.bearing, args.drag_power, args.sfd_power, args.rub_power, args.ambient)
+    for entry in out["validity"]:
+        print(warning_line("rotorcosim thermal-steady", entry), file=sys.stderr)
     if args.json:
         print(json.dumps(out))
         return 0

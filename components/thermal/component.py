@@ -35,8 +35,9 @@ import numpy as np
 
 from ..contract import ContractError, Variable
 from ..kernels import KernelComponent
-from ..oil_fit import check_oil_temperature
+from ..oil_fit import SOURCE, T_FLASH_K, T_POUR_K, check_oil_temperature
 from ..speeds import PT_OMEGA
+from ..validity import Check
 from .geometry import (BEARINGS, BALL, IR, JOURNAL, LE, LI, NODES, OR, SFD, SHAFT, _DATA, build_network,
                        default_sources, radii)
 from .growth import growths
@@ -46,6 +47,17 @@ from .network import METHODS
 _SRC = default_sources()
 _LMIN = 1e-3 / 60.0
 
+
+
+def _port(name):
+    return lambda y: y[name][:, 0]
+
+
+#: the envelope (ThermalNetwork.validity): both oils inside the viscosity fit's range (components/oil_fit.py), which
+#: the bearing's drag and the damper's film take these temperatures through
+CHECKS = tuple(Check(f"{what} temperature", (port,), _port(port), limit, "K", SOURCE, bound=bound)
+               for port, what in (("T_oil", "bearing oil"), ("T_sfd_oil", "squeeze-film oil"))
+               for limit, bound in ((T_FLASH_K, "max"), (T_POUR_K, "min")))
 
 class ThermalNetwork(KernelComponent):
     """Bearing thermal network of bearing #0 or #5 (nine nodes, eqs. 12-15)."""
@@ -140,6 +152,9 @@ class ThermalNetwork(KernelComponent):
         y["T_inner_race"] = buf[14:15]
         y["T_ball"] = buf[15:16]
         y["T_outer_race"] = buf[16:17]
+
+    def validity(self):
+        return CHECKS
 
     def powers(self) -> np.ndarray:
         u = self.u
