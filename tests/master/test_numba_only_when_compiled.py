@@ -7,13 +7,13 @@ import subprocess
 import sys
 from pathlib import Path
 
-HERE = Path(__file__).resolve().parent
+ROOT = Path(__file__).resolve().parents[2]
 
 RUN = """
 import sys
-sys.path.insert(0, {here!r})
+sys.path.insert(0, {root!r})
 import rotorcosim.master.api  # noqa: F401  (the engine choice's names come without numba)
-from helpers import two_masses
+from tests.helpers.systems import two_masses
 from rotorcosim.master.schedule import Interval, Timeline
 from rotorcosim.master.simulation import Simulation
 
@@ -25,7 +25,7 @@ print(sorted(m for m in sys.modules if m == "numba" or m.startswith(("numba.", "
 
 
 def test_a_system_without_kernels_runs_without_importing_numba():
-    out = subprocess.run([sys.executable, "-c", RUN.format(here=str(HERE))], capture_output=True, text=True,
+    out = subprocess.run([sys.executable, "-c", RUN.format(root=str(ROOT))], capture_output=True, text=True,
                          timeout=300)
     assert out.returncode == 0, out.stderr[-3000:]
     assert out.stdout.strip() == "[]", f"numba imported by a run without compiled kernels: {out.stdout.strip()}"
