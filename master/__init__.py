@@ -1,11 +1,13 @@
 """The co-simulation master: it steps a system of components through a schedule and records what happens.
 
-Sub-packages, lowest layer first; a module imports only from its own layer or the layers below it (checked by
+Sub-packages, lowest layer first (``manipulator``, ``observer`` and ``compiled`` are one layer of independent
+siblings, as are ``run`` and ``case``); a module imports only from its own layer or the layers below it (checked by
 the import-linter contract in ``pyproject.toml``, run by ``tests/test_architecture.py``):
 
 ============================  ===========================================================================
 ``core``                      a system of components and connections (checked when built), the links that
-                              carry values between them, the stepping algorithms (Gauss-Seidel, Jacobi)
+                              carry values between them (one semantics for both loops), the stepping
+                              algorithms (Gauss-Seidel, Jacobi), the cycle a run counts its windows in
 ``manipulator``               the staggered scheme's thermal-only hold (freeze, held values, TM restart)
 ``observer``                  recorder (``timeseries.h5``), progress, steady windows, energy; they never
                               change a run
