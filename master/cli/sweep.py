@@ -76,7 +76,9 @@ def parse_levels(text: str, named: dict | None = None) -> list[float]:
         try:
             f = float(item)
         except ValueError:
-            raise ValueError(f"--unbalance: {item!r} is not a number") from None
+            names = f"one of the scenario's named sets ({', '.join(sorted(named))})" if named else \
+                "a named set (the scenario's case declares none)"
+            raise ValueError(f"--unbalance: {item!r} is neither a number nor {names}") from None
         if not (f >= 0 and f < float("inf")):
             raise ValueError(f"--unbalance: {item!r} must be a finite force >= 0 N")
         out.append(f)

@@ -44,7 +44,9 @@ def test_run_csv_output(tmp_path):
     (["run", "no_such_scenario", "--out", "X"], "no shipped scenario"),
     (["run", "toy_thermomechanical", "--duration", "-1", "--out", "X"], "--duration must be a positive"),
     (["run", "toy_thermomechanical", "--unbalance", "nan", "--out", "X"], "--unbalance must be a finite"),
-    (["sweep", "--unbalance", "1,abc", "--out", "X"], "'abc' is not a number"),
+    (["sweep", "toy_thermomechanical", "--unbalance", "paper", "--out", "X"],
+     "'paper' is neither a number nor a named set (the scenario's case declares none)"),
+    (["sweep", "--unbalance", "1,abc", "--out", "X"], "'abc' is neither a number nor one of the scenario's named sets (paper)"),
 ])
 def test_cli_errors_are_one_line(tmp_path, argv, message):
     argv = [a if a != "X" else str(tmp_path / "x") for a in argv]
