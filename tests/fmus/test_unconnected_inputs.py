@@ -9,8 +9,10 @@ conftest.py. The Reference FMUs themselves are run by test_reference_fmus.py whe
 """
 from __future__ import annotations
 
+import dataclasses
 import re
 import sys
+import zipfile
 
 import numpy as np
 import pytest
@@ -209,3 +211,31 @@ def test_our_exported_fmus_keep_the_native_rule(mass_fmu, tmp_path):
         assert c.variable("F").has_default
     finally:
         c.terminate()
+
+
+def test_in_a_process_of_its_own_and_through_an_ssp_archive(reference3_fmus, tmp_path):
+    """The FMU behind ``process = true`` keeps its start values the same way; an SSP archive carries the strict
+    option (and leaves it out when it is the default)."""
+    from rotorcosim.master.scenario.ssp import read_ssp, write_ssp
+
+    fmu = reference3_fmus["statespace3"]
+    sc = parse({"components": {"f": {"fmu": str(fmu), "process": True}}})
+    cap = CaptureAll()
+    sim = build_simulation(sc, [cap])
+    try:
+        assert sim.system.defaulted.keys() == {"f.u"}
+        sim.run(Timeline([Interval("TM", DURATION, H)]))
+    finally:
+        for c in sim.system.components.values():
+            c.terminate()
+    assert_same_as_fmpy(cap, fmpy_alone(fmu), 1)
+    strict = parse({"scenario": {"name": "strict", "unconnected_inputs": "error"},
+                    "components": {"f": {"fmu": str(fmu)}}})
+    back = read_ssp(write_ssp(strict, tmp_path / "strict.ssp"))
+    assert back.unconnected_inputs == "error"
+    with pytest.raises(ContractError, match=r'unconnected_inputs = "error".*f\.u'):
+        build_system(back)
+    lenient = write_ssp(dataclasses.replace(strict, unconnected_inputs="start"), tmp_path / "lenient.ssp")
+    assert read_ssp(lenient).unconnected_inputs == "start"
+    with zipfile.ZipFile(lenient) as zf:
+        assert b"unconnected_inputs" not in zf.read("SystemStructure.ssd")
