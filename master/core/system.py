@@ -110,9 +110,9 @@ class System:
     connection drives (``"component.port"`` -> value in the input's unit, a scalar filling a vector input);
     ``origins``: component name -> the scenario file that chose it, named in errors; ``unconnected_inputs``
     (UNCONNECTED_INPUTS): ``"start"`` lets an input that declares a default stay unconnected at its start value
-    (listed in :attr:`defaulted` after the check), ``"error"`` refuses every unconnected input. A scenario builds its system
-    with :func:`rotorcosim.master.scenario.build.build_system`; :class:`rotorcosim.master.simulation.Simulation`
-    runs one.
+    (listed in :attr:`defaulted` after the check), ``"error"`` refuses every unconnected input. A scenario
+    builds its system with :func:`rotorcosim.master.scenario.build.build_system`;
+    :class:`rotorcosim.master.simulation.Simulation` runs one.
 
     >>> from rotorcosim.components.registry import create
     >>> comps = {"m1": create("testing.mass", "m1", {"m": 1.0, "k": 40.0, "x0": 0.1}),
@@ -198,7 +198,8 @@ class System:
             if self.unconnected_inputs == "error":
                 why = 'unconnected_inputs = "error": connect them or give a constant under [inputs]'
             else:
-                why = "connect them or give a constant under [inputs]; they declare no start value to keep"
+                why = ("connect them or give a constant under [inputs]; they declare no default to keep (an FMU "
+                       "input's is its start value)")
             raise SystemError_(f"inputs left unconnected ({why}): "
                                + ", ".join(missing) + (f" (components from {', '.join(where)})" if where else ""))
 

@@ -156,8 +156,8 @@ def test_an_input_without_start_value_is_named(reference3_fmus, tmp_path):
         assert not c.variable("Int8_input").has_default and c.variable("Int16_input").has_default
     finally:
         c.terminate()
-    with pytest.raises(ContractError, match=r"inputs left unconnected \(.*they declare no start value to keep\): "
-                                            r"f\.Int8_input$"):
+    with pytest.raises(ContractError, match=r"inputs left unconnected \(.*they declare no default to keep \(an FMU "
+                                            r"input's is its start value\)\): f\.Int8_input$"):
         run_alone(fmu)
     sc = parse({"components": {"f": {"fmu": str(fmu)}}, "inputs": {"f.Int8_input": 7}})
     system = build_system(sc)
