@@ -239,3 +239,30 @@ def test_in_a_process_of_its_own_and_through_an_ssp_archive(reference3_fmus, tmp
     assert read_ssp(lenient).unconnected_inputs == "start"
     with zipfile.ZipFile(lenient) as zf:
         assert b"unconnected_inputs" not in zf.read("SystemStructure.ssd")
+
+
+def test_a_regrouped_fmi2_input_keeps_its_start_only_when_every_element_declares_one():
+    """``X[1]``, ``X[2]`` form one port: it may stay unconnected only when both declare a start value."""
+    import io
+
+    from fmpy import read_model_description
+
+    from rotorcosim.fmus.importer import _zip_of, ports_of
+
+    def port(second: str):
+        xml = f'''<?xml version="1.0" encoding="UTF-8"?>
+<fmiModelDescription fmiVersion="2.0" modelName="m" guid="{{0}}">
+  <CoSimulation modelIdentifier="m"/>
+  <ModelVariables>
+    <ScalarVariable name="X[1]" valueReference="1" causality="input" variability="continuous"><Real start="1"/></ScalarVariable>
+    <ScalarVariable name="X[2]" valueReference="2" causality="input" variability="continuous"><Real {second}/></ScalarVariable>
+  </ModelVariables>
+  <ModelStructure/>
+</fmiModelDescription>'''
+        md = read_model_description(io.BytesIO(_zip_of({"modelDescription.xml": xml.encode()})), validate=False)
+        (x,), _ = ports_of(md, "m.fmu")
+        return x
+
+    both = port('start="2"')
+    assert both.name == "X" and both.size == 2 and both.has_default and list(both.start_array()) == [1.0, 2.0]
+    assert not port("").has_default
