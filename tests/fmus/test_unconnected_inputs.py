@@ -266,3 +266,24 @@ def test_a_regrouped_fmi2_input_keeps_its_start_only_when_every_element_declares
     both = port('start="2"')
     assert both.name == "X" and both.size == 2 and both.has_default and list(both.start_array()) == [1.0, 2.0]
     assert not port("").has_default
+
+
+def test_an_exported_native_component_keeps_its_defaults(tmp_path):
+    """Exported (components/testing/gauge.py), ``bias`` (declared with a default) is named in the vendor annotation and may stay
+    unconnected; ``F`` stays required although FMI gives it a start value too."""
+    from rotorcosim.fmus.export import export_component
+
+    fmu = export_component("rotorcosim.components.testing.gauge:Gauge", tmp_path / "gauge.fmu", instance_name="g")
+    assert 'defaultInputs="bias"' in model_description(fmu)
+    with pytest.raises(ContractError, match=r"inputs left unconnected .*: g\.F( |$)"):
+        build_system(parse({"components": {"g": {"fmu": str(fmu)}}}))
+    sc = parse({"components": {"g": {"fmu": str(fmu)}}, "inputs": {"g.F": 1.0}})
+    cap = CaptureAll()
+    sim = build_simulation(sc, [cap])
+    try:
+        assert sim.system.defaulted.keys() == {"g.bias"}
+        sim.run(Timeline([Interval("TM", H, H)]))
+    finally:
+        for c in sim.system.components.values():
+            c.terminate()
+    assert cap.rows[-1]["g.y"][0] == 3.0
