@@ -169,20 +169,12 @@ def test_an_input_without_start_value_is_named(reference3_fmus, tmp_path):
 
 
 def test_native_inputs_stay_required_unless_they_declare_a_default(tmp_path, capsys):
-    """A plug-in component with one input that declares a default (``bias``) and one that does not (``F``)."""
-    (tmp_path / "gauge_plugin.py").write_text(
-        "from rotorcosim.components.contract import Component, Variable\n\n\n"
-        "class Gauge(Component):\n"
-        "    variables = (Variable('bias', 'input', start=2.0, has_default=True), Variable('F', 'input'),\n"
-        "                 Variable('y', 'output'))\n\n"
-        "    def do_step(self, t, h):\n"
-        "        self.y['y'] = self.u['F'] + self.u['bias']\n"
-        "        self.time = t + h\n")
-    (tmp_path / "s.toml").write_text('[components.g]\nimplementation = "gauge_plugin:Gauge"\n')
+    """components/testing/gauge.py, as a plug-in: ``bias`` declares a default, ``F`` does not."""
+    impl = "rotorcosim.components.testing.gauge:Gauge"
+    (tmp_path / "s.toml").write_text(f'[components.g]\nimplementation = "{impl}"\n')
     with pytest.raises(ContractError, match=r"inputs left unconnected .*: g\.F \("):
         build_system(load_scenario(tmp_path / "s.toml"))
-    (tmp_path / "s.toml").write_text('[components.g]\nimplementation = "gauge_plugin:Gauge"\n[inputs]\n"g.F" = 1.0\n'
-                                     '[schedule]\nkind = "monolithic"\nduration = 0.01\nstep = 0.01\n')
+    (tmp_path / "s.toml").write_text(f'[components.g]\nimplementation = "{impl}"\n[inputs]\n"g.F" = 1.0\n')
     cap = CaptureAll()
     sim = build_simulation(load_scenario(tmp_path / "s.toml"), [cap])
     sim.run(Timeline([Interval("TM", 0.01, 0.01)]))
