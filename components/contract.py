@@ -41,7 +41,9 @@ class Variable:
     ``fmi_type`` is the FMI type it came from (``"Float32"``, ``"Int8"``, ``"Enumeration"``...; ``""`` for native
     variables), ``min``/``max`` its declared range, ``choices`` an enumeration's item values, ``unit_definition``
     its unit as ``(base-unit exponents, factor, offset)`` when the FMU defines it (else the unit string is parsed,
-    fmus/units.py)."""
+    fmus/units.py). ``has_default``: an input that may stay unconnected, keeping its ``start`` value (an imported
+    FMU's input with a declared start; a native input only when its component declares it so: the others must be
+    connected or given a constant)."""
 
     name: str
     causality: str
@@ -58,6 +60,7 @@ class Variable:
     #: names of a vector's elements (``("inner", "outer")``); by default x, y(, z) for a 2- or 3-vector of a
     #: displacement, velocity or force, else 1..size (see :meth:`column_labels`)
     labels: tuple[str, ...] = ()
+    has_default: bool = False
 
     def __post_init__(self):
         if self.causality not in CAUSALITIES:

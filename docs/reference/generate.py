@@ -152,6 +152,9 @@ def _table(title: str, keys: dict, notes: dict, table: str = "") -> str:
 #: what a key means, where its name does not say it (the schema knows types, not meanings)
 NOTES = {
     "extends": "base scenario(s): a file path or a shipped name",
+    "unconnected_inputs": "an input no connection or `[inputs]` constant drives: `start` keeps the start value it "
+    "declares (every FMU input with a start value; a native input only where its component declares a default; "
+    "one stderr line lists them), `error` refuses it (default `start`)",
     "algorithm.kind": "coupling algorithm", "schedule.kind": "schedule (`timeline`: the `intervals` below)",
     "results.kind": "results plug-in that extracts the summary (`blade_loss`)",
     "intervals.step": "s (this interval's step)",
@@ -200,7 +203,9 @@ def scenario_page() -> str:
             out.append("\n## [[connections]]\n\nA list of links from an output to an input.\n")
             out.append(_table("", schema.CONNECTION, NOTES, "connection").split("\n", 2)[2])
         elif table == "inputs":
-            out.append('\n## [inputs]\n\n`"component.port" = number or list of numbers`: a constant input.\n')
+            out.append('\n## [inputs]\n\n`"component.port" = number or list of numbers`: a constant input. An '
+                       "input left out keeps its declared start value where it has one (`[scenario] "
+                       "unconnected_inputs`).\n")
         else:
             out.append(_table(f"[{table}]", keys, NOTES, table))
     out.append(_table("[[schedule.intervals]]", schema.INTERVAL, NOTES, "intervals"))

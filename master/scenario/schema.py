@@ -31,7 +31,7 @@ from rotorcosim.master.core.algorithm import ALGORITHMS
 from rotorcosim.master.core.phases import ROLES, Phases
 from rotorcosim.master.manipulator.hold import RESTART_CYCLES
 from rotorcosim.master.schedule.timeline import SCHEDULES
-from rotorcosim.master.core.system import AVERAGES, EXTRAPOLATIONS, HOLDS
+from rotorcosim.master.core.system import AVERAGES, EXTRAPOLATIONS, HOLDS, UNCONNECTED_INPUTS
 
 SCHEDULE_KINDS = tuple(SCHEDULES)   # the schedule registry (master/schedule/timeline.py)
 OUTPUT_FORMATS = ("h5", "csv")
@@ -165,7 +165,10 @@ def parameter_value(v: Any) -> str | None:
 # -- the tables -------------------------------------------------------------------------------------
 #: table -> key -> checker. ``None`` as a checker means "a sub-table checked on its own".
 TABLES: dict[str, dict[str, Callable | None]] = {
-    "scenario": {"name": text, "description": text, "extends": text_or_texts},
+    # unconnected_inputs: a policy of the whole system's wiring (every component, every file it extends), so
+    # it sits with the scenario's name rather than in one component's table
+    "scenario": {"name": text, "description": text, "extends": text_or_texts,
+                 "unconnected_inputs": one_of(*UNCONNECTED_INPUTS)},
     "components": {},   # one sub-table per component: COMPONENT
     "connections": {},  # a list of CONNECTION tables
     "inputs": {},       # "component.port" -> number(s)
