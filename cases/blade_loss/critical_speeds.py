@@ -21,19 +21,28 @@ from rotorcosim.cases.blade_loss import linear_engine
 
 def add_arguments(parser):
     """The options of ``rotorcosim critical-speeds`` on ``parser``."""
-    parser.add_argument("--model-file", default="", metavar="FILE",
-                        help="model data file (TOML); default: the shipped data/engine.toml")
+    parser.add_argument("--model", "--model-file", dest="model_file", default="", metavar="FILE",
+                        help="engine file (TOML, docs/reference/engine-format.md); default: the paper's engine")
     parser.add_argument("--count", type=int, default=6, metavar="N", help="how many of each kind to list (default 6)")
     parser.add_argument("--json", action="store_true", help="print a JSON object")
     parser.add_argument("--campbell", metavar="FILE.png", help="also draw the Campbell diagram into this file")
     parser.add_argument("--max-rpm", type=float, default=30000.0, metavar="RPM",
                         help="highest power-turbine speed of the Campbell diagram and the list (default 30000)")
     parser.add_argument("--oil-temperature", type=float, default=None, metavar="C",
-                        help="oil temperature of the linearised film (default: the model file's "
-                             "[linear_support] oil_temperature_C); the undamped critical speeds do not depend on it")
+                        help="oil temperature of the linearised film (default: the engine file's "
+                             "[attach] oil_temperature_C); the undamped critical speeds do not depend on it")
 
 
 def _supports(m, oil_temperature):
+    """The co-simulated bearings linearised where the engine attaches them ([attach] bearing0 and bearing5), or
+    None for an engine that attaches none (its [[support]] entries are all its supports, e.g. a ROSS rotor)."""
+    attach = m.data.get("attach", {})
+    there = [k for k in ("bearing0", "bearing5") if k in attach]
+    if not there:
+        return None
+    if len(there) == 1:
+        raise ValueError(f"engine file: [attach] has {there[0]} but not the other of bearing0, bearing5 (the "
+                         "linearised engine takes both or none)")
     return linear_engine.supports(oil_temperature_C=oil_temperature, data=m.data)
 
 
@@ -52,7 +61,8 @@ def critical_speeds(model_file: str = "", count: int = 6, max_rpm: float = 30000
     out["speed_ratio_gg_pt"] = critical.speed_ratio(m)
     out["target_rpm"] = list(m.data.get("calibration", {}).get("target_rpm", []))
     out["model_file"] = str(model_file or fem.DEFAULT_FILE)
-    out["support_model"] = linear_engine.describe(sup)
+    out["support_model"] = linear_engine.describe(sup) if sup is not None else {
+        "kind": "linear", "description": "the engine file's linear supports only (no co-simulated bearing attached)"}
     return out
 
 
@@ -67,7 +77,8 @@ def draw_campbell(path: str, model_file: str = "", max_rpm: float = 30000.0, cri
 
     m = fem.load(model_file or None)
     rpm = np.linspace(0.0, max_rpm, 61)
-    f, kind = critical.campbell(m, rpm, _supports(m, oil_temperature))
+    f, kind = critical.campbell(m, rpm, _supports(m, oil_temperature), n_modes=min(80, m.n))
+    ratio = critical.speed_ratio(m)
     fig, ax = plt.subplots(figsize=(10, 5))
     styles = ((1, "tab:blue", "forward whirl"), (-1, "tab:orange", "backward whirl"),
               (0, "0.75", "no rotor whirl (axial, torsion, casing)"))
@@ -76,7 +87,8 @@ def draw_campbell(path: str, model_file: str = "", max_rpm: float = 30000.0, cri
         ax.scatter(np.broadcast_to(rpm[:, None], f.shape)[sel], f[sel], s=5, c=colour, label=label)
     ax.plot(rpm, rpm / 60.0, "k--", lw=1, label="1x power-turbine speed")
     ratio = critical.speed_ratio(m)
-    ax.plot(rpm, ratio * rpm / 60.0, ":", color="0.35", lw=1, label=f"1x gas-generator speed ({ratio:.4g} x PT)")
+    if ratio != 1.0:
+        ax.plot(rpm, ratio * rpm / 60.0, ":", color="0.35", lw=1, label=f"1x second spool speed ({ratio:.4g} x)")
     if crit:
         r = np.asarray(crit["forward_synchronous_rpm"], dtype=float)
         r = r[r <= max_rpm]
@@ -90,12 +102,13 @@ def draw_campbell(path: str, model_file: str = "", max_rpm: float = 30000.0, cri
     gg = m.omega_gg * 30.0 / np.pi
     ax.axvline(pt, color="tab:green", lw=1.2,
                label=f"operating speed: PT {pt:,.0f} / GG {gg:,.0f} rev/min".replace(",", " "))
-    ax.set_xlabel("power-turbine speed [rev/min] (gas generator at 15/16)")
+    ax.set_xlabel(f"first spool speed [rev/min] (second spool at {ratio:.4g} x)" if ratio != 1.0
+                  else "spool speed [rev/min]")
     ax.set_ylabel("whirl frequency [Hz]")
     ax.set_xlim(0, max_rpm)
     ax.set_ylim(0, 1.2 * max_rpm / 60.0)
     ax.legend(loc="upper left", bbox_to_anchor=(1.02, 1.0), fontsize=8, framealpha=0.9)
-    ax.set_title("Campbell diagram (engine with #0/#5 linearised: contacts, journal body, O-ring; undamped)",
+    ax.set_title("Campbell diagram (undamped; co-simulated bearings linearised: contacts, journal body, O-ring)",
                  fontsize=9)
     fig.tight_layout()
     fig.savefig(path, dpi=120)
@@ -140,8 +153,11 @@ def run(args) -> int:
         if out["target_rpm"]:
             print("  paper (lowest two forward):", ", ".join(f"{v:.0f}" for v in out["target_rpm"]))
         sm = out["support_model"]
-        print(f"  supports #0/#5: {sm['description']}; film at {sm['oil_temperature_C']:g} C")
-        for b, v in sm["bearings"].items():
+        if sm["kind"] != "coupled":
+            print(f"  supports: {sm['description']}")
+        else:
+            print(f"  supports #0/#5: {sm['description']}; film at {sm['oil_temperature_C']:g} C")
+        for b, v in sm.get("bearings", {}).items():
             print(f"    #{b}: contact {v['k_contact']:.3g} N/m, journal {v['m_journal']:.3g} kg, O-ring "
                   f"{v['k_spring']:.4g} N/m, film {v['c_film']:.4g} N s/m")
         if args.campbell:
