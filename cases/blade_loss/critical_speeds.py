@@ -33,7 +33,7 @@ def add_arguments(parser):
                              "[attach] oil_temperature_C); the undamped critical speeds do not depend on it")
 
 
-def _supports(m, oil_temperature):
+def _supports(m, oil_temperature, scenario=None):
     """The co-simulated bearings linearised where the engine attaches them ([attach] bearing0 and bearing5), or
     None for an engine that attaches none (its [[support]] entries are all its supports, e.g. a ROSS rotor)."""
     attach = m.data.get("attach", {})
@@ -43,22 +43,28 @@ def _supports(m, oil_temperature):
     if len(there) == 1:
         raise ValueError(f"engine file: [attach] has {there[0]} but not the other of bearing0, bearing5 (the "
                          "linearised engine takes both or none)")
-    return linear_engine.supports(oil_temperature_C=oil_temperature, data=m.data)
+    return linear_engine.supports(scenario, oil_temperature_C=oil_temperature, data=m.data)
 
 
 def critical_speeds(model_file: str = "", count: int = 6, max_rpm: float = 30000.0,
-                    oil_temperature: float | None = None) -> dict:
-    """The ``count`` lowest synchronous critical speeds [rev/min] of the power turbine up to ``max_rpm``, of the
-    rotor in ``model_file`` ("": the shipped one) on the linearised supports with the film at ``oil_temperature``
-    [degrees C] (None: the file's), with the speed ratio, the paper's targets and the support model."""
+                    oil_temperature: float | None = None, scenario=None) -> dict:
+    """The ``count`` lowest synchronous critical speeds [rev/min] of the first spool up to ``max_rpm``, of the
+    engine in ``model_file`` ("": the paper's) on the linearised supports with the film at ``oil_temperature``
+    [degrees C] (None: the file's), with the speed ratio, the paper's targets and the support model. The
+    co-simulated bearings the file attaches are linearised from the components of ``scenario`` (a
+    :class:`~rotorcosim.master.api.Scenario`; None: the shipped blade-loss scenario's); an engine that attaches
+    none stands on its [[support]] entries alone.
+
+    Example: ``critical_speeds("engine.toml", count=3)["forward_synchronous_rpm"]``."""
     if count < 1:
         raise ValueError(f"--count must be >= 1, got {count}")
     if not (np.isfinite(max_rpm) and max_rpm > 0):
         raise ValueError(f"--max-rpm must be > 0, got {max_rpm}")
     m = fem.load(model_file or None)
-    sup = _supports(m, oil_temperature)
+    sup = _supports(m, oil_temperature, scenario)
     out = critical.synchronous_critical_speeds(m, sup, n=count, max_rpm=max_rpm)
     out["speed_ratio_gg_pt"] = critical.speed_ratio(m)
+    out["spools"] = list(m.info["spools"])
     out["target_rpm"] = list(m.data.get("calibration", {}).get("target_rpm", []))
     out["model_file"] = str(model_file or fem.DEFAULT_FILE)
     out["support_model"] = linear_engine.describe(sup) if sup is not None else {
@@ -67,7 +73,7 @@ def critical_speeds(model_file: str = "", count: int = 6, max_rpm: float = 30000
 
 
 def draw_campbell(path: str, model_file: str = "", max_rpm: float = 30000.0, crit: dict | None = None,
-                  oil_temperature: float | None = None) -> None:
+                  oil_temperature: float | None = None, scenario=None) -> None:
     """Draw the Campbell diagram (whirl frequencies against power-turbine speed up to ``max_rpm`` [rev/min]) into
     the PNG file ``path``; ``crit``: :func:`critical_speeds`' result, marked on it (None: none marked)."""
     import matplotlib
@@ -77,7 +83,7 @@ def draw_campbell(path: str, model_file: str = "", max_rpm: float = 30000.0, cri
 
     m = fem.load(model_file or None)
     rpm = np.linspace(0.0, max_rpm, 61)
-    f, kind = critical.campbell(m, rpm, _supports(m, oil_temperature), n_modes=min(80, m.n))
+    f, kind = critical.campbell(m, rpm, _supports(m, oil_temperature, scenario), n_modes=min(80, m.n))
     ratio = critical.speed_ratio(m)
     fig, ax = plt.subplots(figsize=(10, 5))
     styles = ((1, "tab:blue", "forward whirl"), (-1, "tab:orange", "backward whirl"),
@@ -85,8 +91,7 @@ def draw_campbell(path: str, model_file: str = "", max_rpm: float = 30000.0, cri
     for code, colour, label in styles:
         sel = kind == code
         ax.scatter(np.broadcast_to(rpm[:, None], f.shape)[sel], f[sel], s=5, c=colour, label=label)
-    ax.plot(rpm, rpm / 60.0, "k--", lw=1, label="1x power-turbine speed")
-    ratio = critical.speed_ratio(m)
+    ax.plot(rpm, rpm / 60.0, "k--", lw=1, label="1x first spool speed" if ratio != 1.0 else "1x spool speed")
     if ratio != 1.0:
         ax.plot(rpm, ratio * rpm / 60.0, ":", color="0.35", lw=1, label=f"1x second spool speed ({ratio:.4g} x)")
     if crit:
@@ -100,8 +105,8 @@ def draw_campbell(path: str, model_file: str = "", max_rpm: float = 30000.0, cri
     # the operating point: the power turbine at its spin speed, the gas generator at its own (model data)
     pt = m.omega_pt * 30.0 / np.pi
     gg = m.omega_gg * 30.0 / np.pi
-    ax.axvline(pt, color="tab:green", lw=1.2,
-               label=f"operating speed: PT {pt:,.0f} / GG {gg:,.0f} rev/min".replace(",", " "))
+    op = f"{pt:,.0f} / {gg:,.0f}" if ratio != 1.0 else f"{pt:,.0f}"
+    ax.axvline(pt, color="tab:green", lw=1.2, label=f"operating speed: {op} rev/min".replace(",", " "))
     ax.set_xlabel(f"first spool speed [rev/min] (second spool at {ratio:.4g} x)" if ratio != 1.0
                   else "spool speed [rev/min]")
     ax.set_ylabel("whirl frequency [Hz]")
@@ -146,8 +151,12 @@ def run(args) -> int:
     if args.json:
         print(json.dumps(out))
     else:
-        print("synchronous critical speeds of the power turbine (gas generator at "
-              f"{out['speed_ratio_gg_pt']:.4f} x), rev/min:")
+        spools = out["spools"]
+        if len(spools) > 1:
+            print(f"synchronous critical speeds of spool {spools[0]!r} (the other at "
+                  f"{out['speed_ratio_gg_pt']:.4f} x), rev/min:")
+        else:
+            print("synchronous critical speeds, rev/min:")
         print("  forward :", ", ".join(f"{v:.0f}" for v in out["forward_synchronous_rpm"]))
         print("  backward:", ", ".join(f"{v:.0f}" for v in out["backward_synchronous_rpm"]))
         if out["target_rpm"]:
