@@ -393,18 +393,20 @@ def _assemble(data: dict, digest: str, omega_pt: float | None, omega_gg: float |
                 sd = [base_sh + 3 * shell_node(int(hit[0]), c, 0) + d for d in range(3)]
                 idx = np.array(hd + sd)
                 K[np.ix_(idx, idx)] += np.block([[k3, -k3], [-k3, k3]])
-    # pedestals: hubs on springs to ground (no casing needed)
+    # pedestals: hubs on springs to ground (no casing needed); a massless one (a ROSS support node) is allowed
     for h, pv in peds.items():
-        mh = _positive(f"pedestal.{h}.mass", pv["mass"])
-        k = _positive(f"pedestal.{h}.k", _knob(data, pv["k"]))
-        c = _nonneg(f"pedestal.{h}.c", pv.get("c", 0.0))
-        ka = _positive(f"pedestal.{h}.k_axial", _knob(data, pv.get("k_axial", pv["k"])))
-        for d, kd in ((0, k), (1, k), (2, ka)):
+        mh = _nonneg(f"pedestal.{h}.mass", pv["mass"])
+        kxy = [_positive(f"pedestal.{h}.{k if k in pv else 'k'}", _knob(data, pv[k] if k in pv else pv["k"]))
+               for k in ("kxx", "kyy")]
+        cxy = [_nonneg(f"pedestal.{h}.{k if k in pv else 'c'}", pv[k] if k in pv else pv.get("c", 0.0))
+               for k in ("cxx", "cyy")]
+        ka = _positive(f"pedestal.{h}.k_axial", _knob(data, pv.get("k_axial", kxy[0])))
+        for d, kd in ((0, kxy[0]), (1, kxy[1]), (2, ka)):
             i = gdof("hub", h, d)
             M[i, i] += mh
             _couple(K, i, None, kd)
             if d < 2:
-                _couple(C, i, None, c)
+                _couple(C, i, None, cxy[d])
 
     # mounts to ground
     for m_i, mt in enumerate(cas["mounts"] if cas is not None else ()):
