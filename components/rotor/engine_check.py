@@ -122,7 +122,7 @@ def problems(data: dict) -> list[str]:
                 p.value(f"{w}.{key}[{e}]", v, positive=pos, allow_knob=True)
         if isinstance(d_out, list) and isinstance(d_in, list) and len(d_out) == len(d_in) == ne:
             for e, (a, b) in enumerate(zip(d_out, d_in)):
-                if _num(a) and _num(b) and math.isfinite(a) and math.isfinite(b) and not b < a:
+                if _num(a) and _num(b) and math.isfinite(a) and math.isfinite(b) and a > 0 and not b < a:
                     p.add(f"{w} element {e}", f"inner diameter {b} mm is not smaller than the outer {a} mm")
         for key in ("drive_node", "axial_node"):
             if key in r and not _node_ok(r[key], len(z)):
