@@ -23,6 +23,9 @@ def add_arguments(parser):
     """The options of ``rotorcosim critical-speeds`` on ``parser``."""
     parser.add_argument("--model", "--model-file", dest="model_file", default="", metavar="FILE",
                         help="engine file (TOML, docs/reference/engine-format.md); default: the paper's engine")
+    parser.add_argument("--scenario", default=None, metavar="SCENARIO",
+                        help="the scenario whose bearing and damper components linearise the attached bearings "
+                             "(default: the shipped blade-loss scenario)")
     parser.add_argument("--count", type=int, default=6, metavar="N", help="how many of each kind to list (default 6)")
     parser.add_argument("--json", action="store_true", help="print a JSON object")
     parser.add_argument("--campbell", metavar="FILE.png", help="also draw the Campbell diagram into this file")
@@ -144,9 +147,14 @@ def run(args) -> int:
     """Run the command ``args`` (parsed); returns the exit status."""
     if args.campbell:
         _check_figure_path(args.campbell)
-    out = critical_speeds(args.model_file, args.count, args.max_rpm, args.oil_temperature)
+    sc = None
+    if args.scenario:
+        from rotorcosim.master.scenario.build import load_scenario
+
+        sc = load_scenario(args.scenario)
+    out = critical_speeds(args.model_file, args.count, args.max_rpm, args.oil_temperature, sc)
     if args.campbell:
-        draw_campbell(args.campbell, args.model_file, args.max_rpm, out, args.oil_temperature)
+        draw_campbell(args.campbell, args.model_file, args.max_rpm, out, args.oil_temperature, sc)
         out["campbell"] = args.campbell
     if args.json:
         print(json.dumps(out))

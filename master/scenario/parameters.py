@@ -41,8 +41,6 @@ def implementation_parameters(implementation: str, folder: str | None = None) ->
 
 def scenario_parameters(sc, component: str | None = None) -> list[dict]:
     """The parameters of the scenario's components (or of ``component`` alone), with the values a run uses."""
-    from rotorcosim.master.scenario.build import create_component
-
     names = list(sc.components)
     if component is not None:
         if component not in sc.components:
@@ -56,11 +54,11 @@ def scenario_parameters(sc, component: str | None = None) -> list[dict]:
                 rows.append({"component": name, "name": p, "unit": "", "default": None, "value": _plain(v),
                              "source": spec.param_origins.get(p, spec.origin or ""), "description": "FMU parameter"})
             continue
-        comp = create_component(spec)
         try:
+            comp = registry.create(spec.implementation, spec.name, spec.parameters, folder=spec.folder)
             comp.setup(0.0)
         except ContractError as exc:
-            raise ScenarioError(f"[components.{name}]: {exc}") from None
+            raise ScenarioError(f"{spec.origin + ': ' if spec.origin else ''}[components.{name}]: {exc}") from None
         for v in type(comp).variables:
             if v.causality != "parameter":
                 continue
