@@ -67,6 +67,7 @@ def run(args) -> int:
                          attach=args.attach, unbalance_node=args.unbalance_node, hub_mass_kg=args.hub_mass)
     spools = ", ".join(f"{k} ({len(v['z_mm'])} nodes, {len(v['disks'])} disks)" for k, v in engine["spool"].items())
     print(f"spools: {spools}; supports: {len(engine.get('support', []))}; pedestals: "
-          f"{len(engine.get('pedestal', {}))}; attached: {', '.join(engine.get('attach', {})) or 'nothing'}")
+          f"{len(engine.get('pedestal', {}))}; attached: "
+          f"{', '.join(k for k in engine.get('attach', {}) if k != 'oil_temperature_C') or 'nothing'}")
     print(f"written: {args.out}")
     return 0
