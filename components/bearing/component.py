@@ -166,8 +166,10 @@ class BallBearing(KernelComponent):
         p = self.p
         explicit = self.explicit
         if p["bearing"] not in BEARINGS:
-            raise ContractError(f"{self.name}.bearing: unknown bearing number {p['bearing']!r}; "
-                                f"Table 3 has {sorted(BEARINGS)}")
+            raise ContractError(f"{self.name}.bearing: unknown bearing number {p['bearing']!r}; Table 3 has "
+                                f"{sorted(BEARINGS)} (the record of defaults: pick one and set the geometry "
+                                "parameters balls, ball_diameter, bore, outside_diameter, width, contact_angle, "
+                                "preload for another bearing)")
         if "preload" not in explicit:
             p["preload"] = float(BEARINGS[p["bearing"]]["preload_N"])
         for key, lo in (("omega", 0.0), ("preload", 0.0), ("contact_damping", 0.0), ("ball_damping", 0.0),

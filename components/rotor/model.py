@@ -1,7 +1,9 @@
 """The full (unreduced) finite-element model of the engine: two spinning rotors, supports, casing.
 
 Paper section 2.1 (Fig. 2, Table 2) and eq. (16): M q'' + (C + Omega_pt G_pt + Omega_gg G_gg) q + K q = F.
-Built from a TOML data file (data/engine.toml by default). Timoshenko shaft elements and disks (beam), 8-node
+Built from an engine file of the engine format (docs/reference/engine-format.md; data/engine.toml, the paper's
+engine, by default): one or two spools, supports, pedestals, an optional casing, and where the co-simulated parts
+attach ([attach] -> :attr:`FullModel.ports`). Timoshenko shaft elements and disks (beam), 8-node
 solids for the casing shell (hexa), spring elements for the struts, mounts and bearings.
 
 Bearings #0 and #5 are not in K: their forces, and the damper and rub-ring reactions on the housings, enter as
@@ -200,7 +202,7 @@ def disk_inertia(data: dict, dk: dict) -> tuple[float, float, float]:
 
 def build(data: dict, digest: str = "", omega_pt: float | None = None, omega_gg: float | None = None,
           source: str | Path | None = None) -> FullModel:
-    """Assemble the full model from the data (see data/engine.toml for the meaning of each entry); a missing
+    """Assemble the full model from the data (docs/reference/engine-format.md for the meaning of each entry); a missing
     table or key, or a value of the wrong kind, is a ValueError naming the file (``source``) and the key."""
     where = f"rotor model file {source or DEFAULT_FILE}"
     try:
