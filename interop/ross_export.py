@@ -8,8 +8,9 @@ table's Rayleigh coefficients on every element when ``damped``), disks as ``Disk
 body -> O-ring + film at the stated oil temperature -> housing, :mod:`rotorcosim.cases.blade_loss.linear_engine`):
 contact bearing from the shaft node to a journal node (``PointMass``), O-ring + film from it to the housing's node.
 
-Not carried (an error naming it): a casing shell (ROSS has no solid elements), a second spool (ROSS's
-CoAxialRotor numbering is not written yet), an intermediate bearing between spools. The Rayleigh damping of
+Two spools become a ``ross.CoAxialRotor`` (nodes numbered shaft after shaft; ROSS turns both at one speed, so an
+engine whose spools turn at different speeds gets ROSS's gyroscopic terms at the first spool's). Not carried (an
+error naming it): a casing shell (ROSS has no solid elements). The Rayleigh damping of
 disks and hub masses (rotorcosim damps M as a whole) is left out: ROSS's coefficients act per shaft element.
 
 Example::
@@ -62,26 +63,35 @@ def to_ross(engine, *, scenario=None, damped: bool = True):
         raise ValueError(f"{where}: a casing shell (8-node solids) has no ROSS element; to_ross carries rotors, "
                          "supports and pedestals")
     spools = data["spool"]
-    if len(spools) != 1:
-        raise ValueError(f"{where}: {len(spools)} spools; to_ross writes single-spool rotors only (yet)")
-    (sname, sp), = spools.items()
-    mat = data["material"][sp.get("material", "rotor")]
-    G = mat["G"] if "G" in mat else mat["E"] / (2.0 * (1.0 + mat["nu"]))
-    material = rs.Material(name=sp.get("material", "rotor"), rho=mat["rho"], E=mat["E"], G_s=G)
     alpha = beta = 0.0
     if damped:
         d = data["damping"]
         w1, w2 = 2 * math.pi * d["f1_Hz"], 2 * math.pi * d["f2_Hz"]
         alpha, beta = 2 * d["zeta"] * w1 * w2 / (w1 + w2), 2 * d["zeta"] / (w1 + w2)
-    d_out, d_in = fem.rotor_diameters(data, sname)
-    z = [v * 1e-3 for v in sp["z_mm"]]
-    shaft = [rs.ShaftElement(L=z[e + 1] - z[e], idl=d_in[e], odl=d_out[e], material=material, n=e,
-                             alpha=alpha, beta=beta, tag=f"section {e}") for e in range(len(z) - 1)]
+    first: dict[str, int] = {}             # spool -> its first node's number in ROSS (spools numbered on)
+    shafts = []
+    n_next = 0
+    for sname, sp in spools.items():
+        mat = data["material"][sp.get("material", "rotor")]
+        G = mat["G"] if "G" in mat else mat["E"] / (2.0 * (1.0 + mat["nu"]))
+        material = rs.Material(name=sp.get("material", "rotor"), rho=mat["rho"], E=mat["E"], G_s=G)
+        d_out, d_in = fem.rotor_diameters(data, sname)
+        z = [v * 1e-3 for v in sp["z_mm"]]
+        first[sname] = n_next
+        shafts.append([rs.ShaftElement(L=z[e + 1] - z[e], idl=d_in[e], odl=d_out[e], material=material,
+                                       alpha=alpha, beta=beta, tag=f"{sname} section {e}")
+                       for e in range(len(z) - 1)])
+        n_next += len(z)
+
+    def gnode(ref) -> int:
+        return first[ref[0]] + int(ref[1])
+
     disks = []
-    for dk in sp.get("disks", []):
-        m, Ip, Id = fem.disk_inertia(data, dk)
-        disks.append(rs.DiskElement(n=int(dk["node"]), m=m, Id=Id, Ip=Ip, tag=str(dk.get("name", "disk"))))
-    n_next = len(z)
+    for sname, sp in spools.items():
+        for dk in sp.get("disks", []):
+            m, Ip, Id = fem.disk_inertia(data, dk)
+            disks.append(rs.DiskElement(n=gnode([sname, dk["node"]]), m=m, Id=Id, Ip=Ip,
+                                        tag=str(dk.get("name", "disk"))))
     bearings, masses = [], []
     hub_node: dict[str, int] = {}
 
@@ -110,8 +120,8 @@ def to_ross(engine, *, scenario=None, damped: bool = True):
         elif b[0] == "hub":
             link = hub(b[1])
         else:
-            raise ValueError(f"{where}: support {s.get('name')!r} joins two spools; to_ross writes one spool")
-        bearings.append(rs.BearingElement(n=int(a[1]), n_link=link, kxx=kx, kyy=ky, cxx=c(cx), cyy=c(cy),
+            link = gnode(b)
+        bearings.append(rs.BearingElement(n=gnode(a), n_link=link, kxx=kx, kyy=ky, cxx=c(cx), cyy=c(cy),
                                           kzz=s.get("k_axial", 0.0), tag=str(s.get("name", "support"))))
     sup = linear_supports(data, scenario)
     for key, v in (sup or {}).items():
@@ -120,9 +130,14 @@ def to_ross(engine, *, scenario=None, damped: bool = True):
         n_next += 1
         h = hub(v["hub"])
         masses.append(rs.PointMass(n=j, m=v["m_journal"], tag=f"journal {key}"))
-        bearings.append(rs.BearingElement(n=int(node[1]), n_link=j, kxx=v["k_contact"], cxx=0.0,
+        bearings.append(rs.BearingElement(n=gnode(node), n_link=j, kxx=v["k_contact"], cxx=0.0,
                                           tag=f"ball contacts {key}"))
         bearings.append(rs.BearingElement(n=j, n_link=h, kxx=v["k_spring"], cxx=c(v["c_film"]),
                                           tag=f"O-ring + film {key}"))
-    return rs.Rotor(shaft, disk_elements=disks, bearing_elements=bearings, point_mass_elements=masses or None,
-                    tag=data.get("engine", {}).get("name", "rotorcosim engine"))
+    tag = data.get("engine", {}).get("name", "rotorcosim engine")
+    if len(shafts) == 2:
+        # ROSS numbers a coaxial rotor's nodes shaft after shaft, as above; both shafts turn at one speed there
+        return rs.CoAxialRotor(shafts, disk_elements=disks, bearing_elements=bearings,
+                               point_mass_elements=masses or None, tag=tag)
+    return rs.Rotor(shafts[0], disk_elements=disks, bearing_elements=bearings, point_mass_elements=masses or None,
+                    tag=tag)

@@ -47,6 +47,16 @@ def test_ross_example_round_trip(tmp_path, example):
             assert abs(abs(X[m.info["dof"](spool, k, d)]) / abs(R[nd * rotor.number_dof + d]) - 1) < 5e-3
 
 
+@pytest.mark.parametrize("example", ["rotor_example", "coaxrotor_example"])
+def test_ross_to_rotorcosim_and_back_to_ross(example):
+    """The way back: to_ross of the imported engine (a Rotor, or a CoAxialRotor for two spools) has ROSS's own
+    forward critical speeds of the original rotor, by ROSS's computation on both."""
+    rotor = getattr(rs, example)()
+    back = to_ross(from_ross(rotor))
+    assert type(back) is type(rotor)
+    assert np.allclose(_ross_forward_rpm(back), _ross_forward_rpm(rotor), rtol=1e-6)
+
+
 def test_compressor_example_is_refused_by_name():
     """Its seals and bearings are speed-dependent and cross-coupled, and it has layered shaft sections: the
     engine format carries none of them (format 1), so the import says which element stops it."""
