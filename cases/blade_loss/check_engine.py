@@ -77,7 +77,8 @@ def run(args) -> int:
         print(f"  spool {s} ({v['name']}): {v['nodes']} nodes over {v['length_mm']:.0f} mm, {v['mass_kg']:.2f} kg "
               f"(shaft {v['shaft_mass_kg']:.2f}, disks {v['disk_mass_kg']:.2f}), polar inertia "
               f"{v['polar_inertia_kgm2']:.4g} kg m^2, {v['speed_rpm']:.0f} rev/min")
-    print(f"  hubs: {', '.join(out['hubs']) or 'none'} ({out['hub_mass_kg']:.2f} kg)")
+    print(f"  hubs: {', '.join(out['hubs']) or 'none'} ({out['hub_mass_kg']:.2f} kg)"
+          + (f"; casing shell {out['casing_mass_kg']:.2f} kg" if out["casing_mass_kg"] else ""))
     at = {k: v for k, v in out["attach"].items() if k != "oil_temperature_C"}
     print("  attached: " + (", ".join(f"{k} at {v['node']}" + (f" (housing {v['housing']})" if "housing" in v
                                                                else "") for k, v in at.items()) or "nothing"))

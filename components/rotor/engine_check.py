@@ -255,6 +255,7 @@ def report(full: fem.FullModel) -> dict:
     for pv in data.get("pedestal", {}).values():
         hub_m += float(pv["mass"])
     out["hub_mass_kg"] = hub_m
+    out["casing_mass_kg"] = float(full.info.get("casing_mass_kg", 0.0))
     out["rotor_mass_kg"] = total
     out["dof"] = full.n
     out["attach"] = {k: v for k, v in data.get("attach", {}).items()}

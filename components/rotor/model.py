@@ -476,7 +476,9 @@ def _assemble(data: dict, digest: str, omega_pt: float | None, omega_gg: float |
             # a value so large that the element matrices overflow (casing.radius_mm = 1e300)
             raise ValueError(f"rotor model: the assembled {name} matrix is not finite: a length, modulus or mass "
                              "of the file is too large (lengths are in mm)")
+    xs = base_sh + 3 * np.arange(n_shell_nodes)          # the shell's x DOFs: its translational mass
     info = {"dof": dof, "rayleigh": (alpha, beta), "n_shell_dof": 3 * n_shell_nodes, "n_hub_dof": 3 * len(hubs),
+            "casing_mass_kg": float(M[np.ix_(xs, xs)].sum()) if n_shell_nodes else 0.0,
             "spools": {s: len(z[s]) for s in names}, "hubs": hubs,
             "pt_lateral": np.array([dof(names[0], n, d) for n in range(len(z[names[0]])) for d in range(2)])}
     G_gg = G[names[1]][sub] if len(names) > 1 else np.zeros((free.size, free.size))
