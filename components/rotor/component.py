@@ -78,6 +78,7 @@ def full_model(model_file: str = "", omega_pt=None, omega_gg=None) -> fem.FullMo
 def reduced_model(model_file: str, n_modes: int, omega_pt: float, omega_gg: float) -> dict:
     """MTA-reduced matrices (eqs. 20-22) and the port rows of the basis; cached per process."""
     full = full_model(model_file, omega_pt, omega_gg)
+    fem.require_ports(full, LOAD_GROUPS)
     key = (full.digest, int(n_modes), float(omega_pt), float(omega_gg))
     red = _REDUCED.get(key)
     if red is None:

@@ -180,6 +180,15 @@ class Scenario:
 
         return apply_swap(self, component, implementation, parameters)
 
+    def parameters(self, component: str | None = None) -> list[dict]:
+        """Every parameter of the components (or of ``component``): dicts with ``component``, ``name``,
+        ``unit``, ``default``, ``value`` (what a run uses, after the component's set-up), ``source`` (the file
+        that set it, "default" or "set-up") and ``description``. Example:
+        ``rotorcosim.load_scenario("blade_loss_2850").parameters("bearing0")``."""
+        from rotorcosim.master.scenario.parameters import scenario_parameters
+
+        return scenario_parameters(self, component)
+
 
 _TOP_KEYS = {"scenario", "components", "connections", "inputs", "algorithm", "schedule", "outputs", "results"}
 _COMPONENT_KEYS = {"implementation", "fmu", "parameters", "step", "start", "process", "step_timeout"}
