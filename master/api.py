@@ -37,7 +37,7 @@ from rotorcosim.master.core.algorithm import SimulationDiverged
 from rotorcosim.master.compiled.choice import ENGINES
 from rotorcosim.master.run.figure_pool import FigurePool
 from rotorcosim.master.observer.observers import Progress, Recorder, column_names
-from rotorcosim.master.run.outputs import write_json
+from rotorcosim.master.run.outputs import check_dpi, write_json
 from rotorcosim.master.run.rundir import RunFolder
 from rotorcosim.master.scenario.build import Scenario, build_simulation, load_scenario as _load_file, schedule_of
 from rotorcosim.master.scenario.cycle import cycle_of
@@ -197,7 +197,8 @@ class Result:
 def simulate(sc: Scenario | str | Path, duration: float | None = None, schedule=None, out: str | Path | None = None,
              record: Sequence[str] | None = None, figures: bool = True, progress: bool = False, *,
              overwrite: bool = False, resume: bool = False, force: bool = False,
-             checkpoint_every: float | None = checkpoint.EVERY_S, step_timeout: float = 0.0, engine: str = "auto") -> Result:
+             checkpoint_every: float | None = checkpoint.EVERY_S, step_timeout: float = 0.0, engine: str = "auto",
+             dpi: float | None = None) -> Result:
     """Run scenario ``sc`` (a :class:`Scenario`, or a name or path for :func:`load_scenario`).
 
     ``duration`` [s] cuts the schedule; ``schedule`` is ``"scenario"`` (the scenario's own; also ``"paper"``),
@@ -213,7 +214,8 @@ def simulate(sc: Scenario | str | Path, duration: float | None = None, schedule=
     step hangs (watchdog.py), writing a failed summary first. ``engine``: ``"auto"`` runs each thermo-mechanical
     interval through the compiled loop when every component offers a compiled kernel (master/compiled/runner.py),
     ``"python"`` through the generic loop, ``"compiled"`` through the compiled loop or not at all (an error); the
-    summary's ``engine`` says which ran (``engine_note`` why the generic loop did under auto).
+    summary's ``engine`` says which ran (``engine_note`` why the generic loop did under auto). ``dpi``: the
+    resolution of the figures (None: :data:`~rotorcosim.master.run.outputs.FIGURE_DPI`).
 
     The summary's ``status`` says how the run ended: ``complete``, ``stopped`` (a component asked to stop),
     ``interrupted`` (SIGINT/SIGTERM) or ``failed``; on ``interrupted`` and ``failed`` the error is raised after
@@ -225,11 +227,11 @@ def simulate(sc: Scenario | str | Path, duration: float | None = None, schedule=
 
     with one_thread():
         return _simulate(sc, duration, schedule, out, record, progress, figures, overwrite, resume, force,
-                         checkpoint_every, step_timeout, engine)
+                         checkpoint_every, step_timeout, engine, dpi)
 
 
 def _simulate(sc, duration, schedule, out, record, progress, figures, overwrite, resume, force, checkpoint_every,
-              step_timeout, engine) -> Result:
+              step_timeout, engine, dpi) -> Result:
     if not isinstance(sc, (Scenario, str, os.PathLike)):
         raise TypeError(f"simulate: give a Scenario, a shipped scenario's name or a file, got {type(sc).__name__}")
     if not isinstance(sc, Scenario):
@@ -238,6 +240,7 @@ def _simulate(sc, duration, schedule, out, record, progress, figures, overwrite,
         raise TypeError(f"record: give a list of 'component.port' names, e.g. record=[{record!r}]")
     if engine not in ENGINES:
         raise ValueError(f"engine {engine!r} not in {ENGINES}")
+    dpi = check_dpi(dpi)
     if not (isinstance(step_timeout, numbers.Real) and 0 <= step_timeout < float("inf")):
         raise ValueError(f"step_timeout must be a number of seconds >= 0 (0: no limit), got {step_timeout!r}")
     if checkpoint_every is not None and not (isinstance(checkpoint_every, numbers.Real) and checkpoint_every > 0):
@@ -373,7 +376,7 @@ def _simulate(sc, duration, schedule, out, record, progress, figures, overwrite,
             if post is not None:
                 summary.update(post.extract(sc, sim, post_obs, report))
                 if figures and out is not None and status in ("complete", "stopped"):
-                    names = post.figures(sc, data, out, pool=pool)
+                    names = post.figures(sc, data, out, pool=pool, dpi=dpi)
                     summary["figures"] = names
                     files += [out / n for n in names]
             else:
@@ -401,11 +404,13 @@ def _simulate(sc, duration, schedule, out, record, progress, figures, overwrite,
     return result
 
 
-def draw_figures(sc: Scenario | str | Path, out: str | Path, pool: FigurePool | None = None) -> list[str]:
+def draw_figures(sc: Scenario | str | Path, out: str | Path, pool: FigurePool | None = None,
+                 dpi: float | None = None) -> list[str]:
     """Draw the figures of the finished run in folder ``out`` (a run of ``sc`` with ``out=`` and the HDF5 format,
     e.g. one run with ``figures=False``) from its ``timeseries.h5``, with the same drawing code as a run; adds
     their names to its summary.json (``figures``) and returns them. ``pool``: a
-    :class:`~rotorcosim.master.run.figure_pool.FigurePool` to draw them in, or None (drawn in this process).
+    :class:`~rotorcosim.master.run.figure_pool.FigurePool` to draw them in, or None (drawn in this process);
+    ``dpi``: their resolution (None: :data:`~rotorcosim.master.run.outputs.FIGURE_DPI`).
 
     ``rotorcosim compare`` uses it to draw its two runs' figures after both timed runs, so that no figure worker
     competes with a timed simulation."""
@@ -427,7 +432,7 @@ def draw_figures(sc: Scenario | str | Path, out: str | Path, pool: FigurePool | 
     if not name or not name.endswith(".h5") or not (out / name).exists():
         raise ValueError(f"{f}: the run has no HDF5 time series in {out} (timeseries: {name!r}): the figures "
                          "are drawn from timeseries.h5 ([outputs] format = \"h5\")")
-    names = post.figures(sc, SeriesFile(out / name), out, pool=pool)
+    names = post.figures(sc, SeriesFile(out / name), out, pool=pool, dpi=check_dpi(dpi))
     write_json(f, {**summary, "figures": names})
     return names
 
