@@ -38,6 +38,7 @@ from rotorcosim.master.compiled.choice import ENGINES
 from rotorcosim.master.run.figure_pool import FigurePool
 from rotorcosim.master.observer.observers import Progress, Recorder, column_names
 from rotorcosim.master.run.outputs import check_dpi, write_json
+from rotorcosim.master.run.provenance import h5_attributes, provenance
 from rotorcosim.master.run.rundir import RunFolder
 from rotorcosim.master.scenario.build import Scenario, build_simulation, load_scenario as _load_file, schedule_of
 from rotorcosim.master.scenario.cycle import cycle_of
@@ -279,7 +280,9 @@ def _simulate(sc, duration, schedule, out, record, progress, figures, overwrite,
             series = out / f"timeseries.{fmt}" if signals else None
         # a file run keeps nothing in memory: the result and the figures read the HDF5 file (CSV is not read back)
         keep = series is None or fmt != "h5"
-        recorder = Recorder(series, signals, float(o.get("record_step", 1e-4)), keep=keep)
+        made = {"by": provenance(sc)}  # completed with the components' resolved parameters once they are built
+        recorder = Recorder(series, signals, float(o.get("record_step", 1e-4)), keep=keep,
+                            attributes=lambda: h5_attributes(made["by"]))
         post_obs = post.observers(sc, cycle) if post is not None else []
         # where the components' models stop holding: after the progress bar, so that its lines follow the bar's
         validity = Validity(recorder.record_step, sc.name)
@@ -290,6 +293,7 @@ def _simulate(sc, duration, schedule, out, record, progress, figures, overwrite,
                                             stop, checkpoint_every or checkpoint.EVERY_S, key)
             observers.append(saver)  # last: it sees every other observer done with the step
         sim = build_simulation(sc, observers)
+        made["by"] = provenance(sc, sim.system)
         if post is not None and hasattr(post, "check"):
             post.check(sc, sim)  # the scenario's own consistency checks before anything runs
         sim.engine_choice = engine
@@ -301,7 +305,10 @@ def _simulate(sc, duration, schedule, out, record, progress, figures, overwrite,
             stack.callback(pool.close)
         head = {"scenario": sc.name, "source": str(sc.source) if sc.source else None,
                 "schedule": kind or sc.schedule.get("kind", "monolithic"), "duration_s": sch.duration,
-                "estimate": estimate}
+                "estimate": estimate,
+                # what made the run: the code's version, the scenario file and name as loaded, every --set /
+                # --swap / --unbalance, the parameters each component ran with (master/run/provenance.py)
+                "provenance": made["by"]}
         if out is not None:
             write_json(out / "summary.json", {**head, "status": "running", "pid": os.getpid(),
                                               "resumed_from_t_s": point.t if point else None})
@@ -338,6 +345,14 @@ def _simulate(sc, duration, schedule, out, record, progress, figures, overwrite,
             error, status = exc, "interrupted"
         except BaseException as exc:  # diverged, disk full, a component's failure: summary first, then raise
             error, status = exc, ("interrupted" if isinstance(exc, KeyboardInterrupt) else "failed")
+        if status == "failed" and out is not None and point is None and not sim.initialised:
+            # refused at set-up (a bad --set value, a missing model file): nothing was computed, so the folder is
+            # left as it was found (rundir.py takes back the lock and the folders it made) and the error raised
+            for f in (out / "summary.json", series, series and series.with_name(series.name + ".part")):
+                if f is not None:
+                    f.unlink(missing_ok=True)
+            folder.started = False
+            raise error
         report = sim.report
         summary: dict[str, Any] = {
             **head,

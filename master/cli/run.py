@@ -113,6 +113,7 @@ def apply_unbalance(sc: Scenario, force: float, settings=()) -> None:
         raise ValueError(f"[results] unbalance_parameter {ref!r}: no component {comp!r}")
     old = sc.components[comp].parameters.get(param)
     sc.components[comp].parameters[param] = float(force)
+    sc.edits.append({"unbalance": float(force), "parameter": ref, "origin": "--unbalance"})
     if old is None or float(old) != float(force):
         # the run's name says what was run (a scenario named NAME_<level> becomes NAME_<new level>)
         sc.name = f"{sc.name.rsplit('_', 1)[0] if sc.name.rsplit('_', 1)[-1].isdigit() else sc.name}_{force:g}"

@@ -115,11 +115,14 @@ class Recorder(Observer):
 
     Each HDF5 dataset carries its ``unit``, ``description``, ``columns`` (the names of its vector elements) and
     ``sampling_interval_s`` (the interval in thermo-mechanical intervals; thermal-only intervals are sampled at
-    every thermal step: the ``time`` dataset gives each sample's time)."""
+    every thermal step: the ``time`` dataset gives each sample's time). ``attributes``: root attributes of the
+    HDF5 file (name -> str or number), or a function returning them, written when the file is completed (what
+    made the run: master/run/provenance.py)."""
 
     def __init__(self, path: str | os.PathLike | None, signals: Sequence[str], record_step: float = 1e-4,
-                 chunk: int = 2048, keep: bool = False):
+                 chunk: int = 2048, keep: bool = False, attributes=None):
         self.path = None if path is None else Path(path)
+        self.attributes = attributes
         self.signals = list(signals)
         if not (record_step > 0 and math.isfinite(record_step)):
             raise ValueError(f"record_step must be positive, got {record_step}")
@@ -358,6 +361,9 @@ class Recorder(Observer):
                 error = error or exc
                 self._clear_buffer()
             if self._kind == "hdf5":
+                extra = self.attributes() if callable(self.attributes) else (self.attributes or {})
+                for key, value in extra.items():
+                    self._file.attrs[key] = value
                 self._file.attrs["complete"] = error is None
                 if error is not None:
                     self._file.attrs["error"] = f"{type(error).__name__}: {error}"
