@@ -39,6 +39,7 @@ from rotorcosim.master.run.figure_pool import FigurePool
 from rotorcosim.master.observer.observers import Progress, Recorder, column_names
 from rotorcosim.master.run.outputs import check_dpi, write_json
 from rotorcosim.master.run.provenance import h5_attributes, provenance
+from rotorcosim.components import plausibility
 from rotorcosim.master.run.rundir import RunFolder
 from rotorcosim.master.scenario.build import Scenario, build_simulation, load_scenario as _load_file, schedule_of
 from rotorcosim.master.scenario.cycle import cycle_of
@@ -89,11 +90,17 @@ def _postprocessor(sc: Scenario):
         raise ValueError(f"[results] kind {kind!r}: no such result extraction ({exc})") from None
 
 
-def check_run(sc: Scenario, schedule=None, duration: float | None = None, force: bool = False) -> dict:
+def check_run(sc: Scenario, schedule=None, duration: float | None = None, force: bool = False,
+              engine: str = "auto") -> dict:
     """The checks :func:`simulate` makes before it starts (the schedule, the duration, the budget), without
-    running: a sweep makes them for every case before the first one runs. Returns the estimate (budget.py)."""
+    running: a sweep makes them for every case before the first one runs. Returns the estimate (budget.py).
+
+    >>> est = check_run(load_scenario("toy_thermomechanical"), duration=1.0)
+    >>> est["steps"], est["engine"]
+    (1000, 'python')
+    """
     sch, _ = _schedule(sc, schedule, duration)
-    return budget.check(sc, sch, force)
+    return budget.check(sc, sch, force, engine)
 
 
 def _schedule(sc: Scenario, schedule, duration: float | None):
@@ -248,9 +255,11 @@ def _simulate(sc, duration, schedule, out, record, progress, figures, overwrite,
         raise ValueError(f"checkpoint_every must be a positive number of seconds (or None: no checkpoints), got "
                          f"{checkpoint_every!r}")
     sch, kind = _schedule(sc, schedule, duration)
-    estimate = budget.check(sc, sch, force)
-    if progress and estimate["wall_s"] > 60:
-        print(f"{sc.name}: {estimate['steps']:,} steps, estimated {estimate['wall']} of wall time", file=sys.stderr)
+    estimate = budget.check(sc, sch, force, engine)
+    if estimate["wall_s"] > budget.WARN_S:
+        # from Python as from the command line: a long run does not start silently
+        print(f"{sc.name}: {estimate['steps']:,} steps, estimated {estimate['wall']} of wall time "
+              f"({estimate['engine']} engine)", file=sys.stderr)
     post = _postprocessor(sc)
     o = sc.outputs
     signals = list(o.get("record", []) if record is None else record)
@@ -286,7 +295,9 @@ def _simulate(sc, duration, schedule, out, record, progress, figures, overwrite,
         post_obs = post.observers(sc, cycle) if post is not None else []
         # where the components' models stop holding: after the progress bar, so that its lines follow the bar's
         validity = Validity(recorder.record_step, sc.name)
-        observers = [recorder, *post_obs, Progress(sch.duration, disable=not progress, desc=sc.name), validity]
+        prior = {ph: 1e-6 * us for ph, us in estimate["step_cost_us"].items()}
+        observers = [recorder, *post_obs, Progress(sch.duration, disable=not progress, desc=sc.name, prior=prior),
+                     validity]
         if out is not None:
             # checkpoint_every=None: no checkpoints (a timing comparison is run again, not resumed)
             saver = checkpoint.Checkpointer(out / checkpoint.CHECKPOINT if checkpoint_every is not None else None,
@@ -294,6 +305,9 @@ def _simulate(sc, duration, schedule, out, record, progress, figures, overwrite,
             observers.append(saver)  # last: it sees every other observer done with the step
         sim = build_simulation(sc, observers)
         made["by"] = provenance(sc, sim.system)
+        for comp in sim.system.components.values():  # a value off by a unit factor, where a component can tell
+            for line in plausibility.warnings_of(comp):
+                print(f"{sc.name}: warning: {line}", file=sys.stderr)
         if post is not None and hasattr(post, "check"):
             post.check(sc, sim)  # the scenario's own consistency checks before anything runs
         sim.engine_choice = engine

@@ -477,15 +477,22 @@ class Progress(Observer):
     """A progress bar over simulated time whose time-left estimate comes from the measured wall time per step
     of each phase and the steps the schedule still has: a thermo-mechanical step costs hundreds of times a
     thermal-only one, so a rate in simulated seconds per second (tqdm's own estimate) is wrong by hours early in
-    a staggered run. A phase not yet measured is assumed to cost what the measured one does (an upper bound for
-    thermal-only steps). Without a known plan (the automatic schedule) no estimate is shown."""
+    a staggered run. A phase not yet measured costs its ``prior`` price (``{"TM": s, "TO": s}`` per step, the
+    up-front estimate's: master/schedule/budget.py), or else what the measured one does (an upper bound for
+    thermal-only steps). The measurement starts once the run's first compilations are over
+    (``sim.first_compiled``): on a fresh machine the first steps wait for numba, and a rate measured over them
+    put the first time left at 6 minutes for a 20-second run. Without a known plan (the automatic schedule) no
+    estimate is shown."""
 
     stride = 64
+    #: the wall time [s] a phase must have been measured over before its measured price replaces the prior
+    SETTLE_S = 0.5
 
-    def __init__(self, total: float, disable: bool = False, desc: str = "simulating"):
+    def __init__(self, total: float, disable: bool = False, desc: str = "simulating", prior: dict | None = None):
         self.total = total
         self.disable = disable
         self.desc = desc
+        self.prior = dict(prior or {})
         self.bar = None
 
     def start(self, sim, schedule):
@@ -506,25 +513,43 @@ class Progress(Observer):
         self.t0 = sim.t
         self.shown = 0.0
         self._shown_at = -1e9
+        # the run's first compilations (None: over, or none): until they are, nothing is measured
+        first = getattr(sim, "first_compiled", None)
+        self._compiling = first if first is not None and not first.is_set() else None
 
     def interval_start(self, sim, phase, step):
         self.stride = 1 if phase == "TO" else 256
         self.index += 1
         self.phase, self.h = phase, step
         self.t_iv, self.w_iv = sim.t, self._clock()
+        # where this interval's measurement starts (moved to the end of the first compilations)
+        self.t_meas, self.w_meas = self.t_iv, self.w_iv
+
+    def _settle(self, t: float) -> None:
+        """The first compilations just ended: measure this interval from here."""
+        if self._compiling is not None and self._compiling.is_set():
+            self._compiling = None
+            self.t_meas, self.w_meas = t, self._clock()
 
     def _cost(self, phase: str, steps_now: int, wall_now: float) -> float | None:
         w = self.cost_wall.get(phase, 0.0) + (wall_now if phase == self.phase else 0.0)
         n = self.cost_steps.get(phase, 0) + (steps_now if phase == self.phase else 0)
+        if self.prior.get(phase) is not None and (w < self.SETTLE_S or not n):
+            return self.prior[phase]  # too little measured yet (or nothing: still compiling)
         return w / n if n else None
 
     def remaining(self, t: float) -> float | None:
-        """Estimated wall seconds left, from the measured cost per step of each phase."""
+        """Estimated wall seconds left, from the measured cost per step of each phase (the prior until enough
+        is measured)."""
         if self.plan is None or self.index >= len(self.plan):
             return None
         done = max(0, int(round((t - self.t_iv) / self.h)))
-        wall = self._clock() - self.w_iv
-        costs = {ph: self._cost(ph, done, wall) for ph in ("TM", "TO")}
+        if self._compiling is not None:
+            measured, wall = 0, 0.0
+        else:
+            measured = max(0, int(round((t - self.t_meas) / self.h)))
+            wall = self._clock() - self.w_meas
+        costs = {ph: self._cost(ph, measured, wall) for ph in ("TM", "TO")}
         known = [c for c in costs.values() if c is not None]
         if not known:
             return None
@@ -536,6 +561,8 @@ class Progress(Observer):
     def step(self, sim, t):
         if self.bar is None:
             return
+        if self._compiling is not None:
+            self._settle(t)
         done = min(self.total, t - self.t0)
         now = self._clock()
         if now - self._shown_at >= 1.0 and not self.disable:
@@ -547,9 +574,12 @@ class Progress(Observer):
         self.shown = done
 
     def interval_end(self, sim, used):
-        if self.plan is not None:
-            self.cost_wall[used.phase] = self.cost_wall.get(used.phase, 0.0) + self._clock() - self.w_iv
-            self.cost_steps[used.phase] = self.cost_steps.get(used.phase, 0) + used.steps
+        if self._compiling is not None:
+            self._settle(sim.t)
+        if self.plan is not None and self._compiling is None:
+            self.cost_wall[used.phase] = self.cost_wall.get(used.phase, 0.0) + self._clock() - self.w_meas
+            self.cost_steps[used.phase] = self.cost_steps.get(used.phase, 0) + max(
+                0, int(round((sim.t - self.t_meas) / self.h)))
 
     def block_signals(self, sim):
         return []
