@@ -39,7 +39,7 @@ from rotorcosim.master.run.figure_pool import FigurePool
 from rotorcosim.master.observer.observers import Progress, Recorder, column_names
 from rotorcosim.master.run.outputs import check_dpi, write_json
 from rotorcosim.master.run.provenance import h5_attributes, provenance
-from rotorcosim.components import plausibility
+from rotorcosim.master.observer.plausible import Plausibility
 from rotorcosim.master.run.rundir import RunFolder
 from rotorcosim.master.scenario.build import Scenario, build_simulation, load_scenario as _load_file, schedule_of
 from rotorcosim.master.scenario.cycle import cycle_of
@@ -296,8 +296,9 @@ def _simulate(sc, duration, schedule, out, record, progress, figures, overwrite,
         # where the components' models stop holding: after the progress bar, so that its lines follow the bar's
         validity = Validity(recorder.record_step, sc.name)
         prior = {ph: 1e-6 * us for ph, us in estimate["step_cost_us"].items()}
+        # a parameter off by a unit factor: warned once the components are set up (after their own checks)
         observers = [recorder, *post_obs, Progress(sch.duration, disable=not progress, desc=sc.name, prior=prior),
-                     validity]
+                     validity, Plausibility(sc.name)]
         if out is not None:
             # checkpoint_every=None: no checkpoints (a timing comparison is run again, not resumed)
             saver = checkpoint.Checkpointer(out / checkpoint.CHECKPOINT if checkpoint_every is not None else None,
@@ -305,9 +306,6 @@ def _simulate(sc, duration, schedule, out, record, progress, figures, overwrite,
             observers.append(saver)  # last: it sees every other observer done with the step
         sim = build_simulation(sc, observers)
         made["by"] = provenance(sc, sim.system)
-        for comp in sim.system.components.values():  # a value off by a unit factor, where a component can tell
-            for line in plausibility.warnings_of(comp):
-                print(f"{sc.name}: warning: {line}", file=sys.stderr)
         if post is not None and hasattr(post, "check"):
             post.check(sc, sim)  # the scenario's own consistency checks before anything runs
         sim.engine_choice = engine

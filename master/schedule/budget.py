@@ -92,8 +92,9 @@ def _fmu_inner(path: str):
 
 
 def component_costs(sc, engine: str = "auto") -> dict:
-    """What each step of scenario ``sc`` costs [s]: ``{"compiled": bool, "TM": {name: (cost, phases, step)},
-    "setup_s": ...}`` (``phases``: the phases the component steps in; ``step``: its communication step or None)."""
+    """What each step of scenario ``sc`` costs [s]: ``{"compiled": bool, "components": {name: (TM cost, TO cost,
+    phases, step)}, "setup_s": ...}`` (``phases``: the phases the component steps in, TO for a thermal-only update
+    too; ``step``: its communication step or None). Thermal-only steps run in Python."""
     from rotorcosim.components import registry
 
     classes, fmus = {}, {}
@@ -113,15 +114,16 @@ def component_costs(sc, engine: str = "auto") -> dict:
         cls = classes[name]
         params = spec.parameters
         if cls is None:
-            cost, phases = UNKNOWN_STEP_S, frozenset({"TM", "TO"})
+            tm, to, phases = UNKNOWN_STEP_S, UNKNOWN_STEP_S, frozenset({"TM", "TO"})
         else:
-            cost, phases = cls.step_cost(params, compiled), cls.phases
+            tm, to = cls.step_cost(params, compiled), cls.step_cost(params, False)
+            phases = cls.phases | ({"TO"} if cls.holds_state_in_TO else set())
             setup += cls.setup_cost_s
         if name in fmus:
-            cost += FMU_STEP_S + (FMU_PROCESS_STEP_S if spec.options.get("process") or spec.options.get("step_timeout") else 0.0)
-        if not compiled:
-            cost += LINK_STEP_S
-        costs[name] = (cost, phases, spec.step)
+            extra = FMU_STEP_S + (FMU_PROCESS_STEP_S if spec.options.get("process") or spec.options.get("step_timeout")
+                                  else 0.0)
+            tm, to = tm + extra, to + extra
+        costs[name] = (tm + (0.0 if compiled else LINK_STEP_S), to + LINK_STEP_S, phases, spec.step)
     return {"compiled": compiled, "components": costs, "setup_s": setup}
 
 
@@ -146,9 +148,9 @@ def estimate(sc, schedule, engine: str = "auto") -> dict:
         if phase == "TM":
             own = COMPILED_STEP_S if c["compiled"] else MASTER_STEP_S
             # a component with a longer communication step steps once in every step/h base steps
-            cost = own + sum(k / max(1.0, (s or h) / h) for k, ph, s in c["components"].values() if "TM" in ph)
-        else:  # TO: the thermal components, in Python, at the interval's step
-            cost = TO_STEP_S + sum(k for k, ph, _ in c["components"].values() if "TO" in ph)
+            cost = own + sum(k / max(1.0, (s or h) / h) for k, _, ph, s in c["components"].values() if "TM" in ph)
+        else:  # TO: the thermal components and the thermal-only updates, in Python, at the interval's step
+            cost = TO_STEP_S + sum(k for _, k, ph, _ in c["components"].values() if "TO" in ph)
         per.setdefault(phase, cost)
         wall += INTERVAL_S + n * cost
     return {"steps": steps, "wall_s": wall, "wall": hms(wall), "engine": "compiled" if c["compiled"] else "python",
