@@ -40,6 +40,9 @@ ORBIT_CYCLES = 5
 #: the narrowest a shaded interval is drawn, as a fraction of the axis's width (~3.7 pixels of a 5-inch axis at
 #: 150 dpi): every interval of the timeline shows, however short
 MIN_SPAN_FRACTION = 0.005
+#: the clearance circle is drawn when the orbit's radius is at least 1/CIRCLE_RANGE of it (a smaller orbit would
+#: shrink to a dot beside it; the legend states the clearance instead)
+CIRCLE_RANGE = 4.0
 #: room below the panels for the figure's legend [in]
 LEGEND_ROOM_IN = 0.45
 #: zlib level of the PNG files (lossless at any level): 1 instead of Pillow's 6 encodes the six figures in 0.23 s
@@ -285,7 +288,7 @@ class _Figures:
         half = max(float(np.ptp(xy[:, 0])), float(np.ptp(xy[:, 1])), 1e-9) * 0.5 * 1.25
         if relative:
             r = float(np.max(np.hypot(*xy.T)))
-            if RUB_CLEARANCE_MM <= 2.0 * r:  # in range of the orbit: draw it, and scale to show it
+            if RUB_CLEARANCE_MM <= CIRCLE_RANGE * r:  # in range of the orbit: draw it, and scale to show it
                 th = np.linspace(0, 2 * np.pi, 200)
                 a.plot(RUB_CLEARANCE_MM * np.cos(th), RUB_CLEARANCE_MM * np.sin(th), "k:", lw=1,
                        label=f"rub-ring clearance {RUB_CLEARANCE_MM} mm")
