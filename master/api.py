@@ -95,7 +95,7 @@ def check_run(sc: Scenario, schedule=None, duration: float | None = None, force:
     """The checks :func:`simulate` makes before it starts (the schedule, the duration, the budget), without
     running: a sweep makes them for every case before the first one runs. Returns the estimate (budget.py).
 
-    >>> est = check_run(load_scenario("toy_thermomechanical"), duration=1.0)
+    >>> est = check_run(load_scenario("toy_thermomechanical"), "monolithic", duration=1.0)
     >>> est["steps"], est["engine"]
     (1000, 'python')
     """
