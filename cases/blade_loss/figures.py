@@ -6,12 +6,13 @@ Conventions, so that each figure reads at a glance:
   119.90 ... 120.00 s);
 * "(a) transient" is the first thermo-mechanical (TM) interval, "(b) steady state" the last one; a run with a
   single TM interval gets one panel, not the same data twice;
-* whole-run plots shade every interval of the timeline: thermal-only (TO) grey, thermo-mechanical (TM) orange, each
-  at least :data:`MIN_SPAN_FRACTION` of the axis wide (a 0.1 s TM interval of a 2-minute run is a fraction of a
-  pixel, drawn or not by the rasteriser's whim);
-* the orbit (c) is the rotor's motion relative to the housing (what the damper and the rub ring see), over the last
-  5 rotor cycles: at the bearing, and at the rub ring against its clearance circle (the circle is drawn where it is
-  in range of the orbit, and stated in the legend otherwise);
+* whole-run plots shade every interval of the timeline: thermal-only (TO) grey, thermo-mechanical (TM) purple,
+  each at least :data:`MIN_SPAN_FRACTION` of the axis wide (a 0.1 s TM interval of a 2-minute run is a fraction
+  of a pixel, drawn or not by the rasteriser's whim);
+* the orbit (c) is the rotor's motion at the rub ring relative to the housing (what the ring's clearance is
+  about), over the last 5 rotor cycles, against the clearance circle (drawn where it is in range of the orbit,
+  :data:`CIRCLE_RANGE`, and stated in the legend otherwise); without a recorded ring and housing, the bearing's
+  absolute orbit, so labelled;
 * a ratio (the transmissibility) is drawn from zero, so that a 1 % restart transient looks like one;
 * legends sit below the panels (one per figure), never over the data; a figure's resolution is ``dpi``
   (``rotorcosim run --dpi``, default :data:`~rotorcosim.master.run.outputs.FIGURE_DPI`);

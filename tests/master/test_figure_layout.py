@@ -152,3 +152,12 @@ def test_orbit_is_relative_to_the_housing_against_the_ring(run):
     np.testing.assert_allclose(rel.get_ydata(), expect[:, 1])
     circle = lines["rub-ring clearance 0.508 mm"]
     assert np.hypot(circle.get_xdata(), circle.get_ydata()) == pytest.approx(0.508)
+
+
+@pytest.mark.parametrize("dpi", ["5", "1e9", "nan"])
+def test_a_dpi_no_figure_can_be_written_at_is_refused_before_the_run(tmp_path, capsys, dpi):
+    out = tmp_path / "run"
+    assert main(["run", "toy_thermomechanical", "--dpi", dpi, "--duration", "0.01", "--out", str(out)]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "--dpi must be a number of dots per inch from 50 to 1200" in err[0]
+    assert not out.exists()
