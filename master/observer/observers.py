@@ -481,7 +481,7 @@ class Progress(Observer):
     up-front estimate's: master/schedule/budget.py), or else what the measured one does (an upper bound for
     thermal-only steps). The measurement starts once the run's first compilations are over
     (``sim.first_compiled``): on a fresh machine the first steps wait for numba, and a rate measured over them
-    put the first time left at 6 minutes for a 20-second run. Without a known plan (the automatic schedule) no
+    overstates the time left tenfold or more. Without a known plan (the automatic schedule) no
     estimate is shown."""
 
     stride = 64
