@@ -61,6 +61,10 @@ class Variable:
     #: displacement, velocity or force, else 1..size (see :meth:`column_labels`)
     labels: tuple[str, ...] = ()
     has_default: bool = False
+    #: a parameter's plausible values (SI), ``(low, high)``: a value outside is legal but likely a unit slip (an
+    #: O-ring given in N/mm where N/m is meant), which a run warns about (components/plausibility.py); unlike
+    #: ``min``/``max``, which are hard limits
+    plausible: tuple[float, float] | None = None
 
     def __post_init__(self):
         if self.causality not in CAUSALITIES:
@@ -131,6 +135,14 @@ class Component:
     file_parameters: tuple[str, ...] = ()
     #: short description shown by ``rotorcosim`` and written to exported FMUs
     description: str = ""
+    #: what the component costs, for the estimate of a run's wall time before it starts
+    #: (master/schedule/budget.py), in CPU seconds of one core of a 2-core x86 machine of 2025 (measured with
+    #: ``python bench/bench_estimate.py``): one ``do_step`` in the generic Python loop, one step of its kernel in
+    #: the compiled loop (components with a kernel), and its set-up in a fresh process (model reduction, kernels
+    #: and tables loaded from the disk caches)
+    step_cost_s: float = 30e-6
+    kernel_step_cost_s: float = 5e-6
+    setup_cost_s: float = 0.0
 
     def __init__(self, name: str = "component", parameters: Mapping[str, Any] | None = None):
         self.name = name
@@ -153,6 +165,13 @@ class Component:
         self.time = 0.0
 
     # -- declarations -------------------------------------------------------------------------------
+    @classmethod
+    def step_cost(cls, parameters: Mapping[str, Any], compiled: bool) -> float:
+        """CPU seconds of one step with ``parameters`` (those a scenario gives; the rest at their defaults), in
+        the compiled loop or the Python one: :attr:`kernel_step_cost_s` or :attr:`step_cost_s`, unless a
+        component's cost follows its parameters (the FE damper's mesh)."""
+        return cls.kernel_step_cost_s if compiled else cls.step_cost_s
+
     @classmethod
     def declared(cls, causality: str) -> list[Variable]:
         return [v for v in cls.variables if v.causality == causality]

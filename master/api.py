@@ -37,7 +37,9 @@ from rotorcosim.master.core.algorithm import SimulationDiverged
 from rotorcosim.master.compiled.choice import ENGINES
 from rotorcosim.master.run.figure_pool import FigurePool
 from rotorcosim.master.observer.observers import Progress, Recorder, column_names
-from rotorcosim.master.run.outputs import write_json
+from rotorcosim.master.run.outputs import check_dpi, write_json
+from rotorcosim.master.run.provenance import h5_attributes, provenance
+from rotorcosim.master.observer.plausible import Plausibility
 from rotorcosim.master.run.rundir import RunFolder
 from rotorcosim.master.scenario.build import Scenario, build_simulation, load_scenario as _load_file, schedule_of
 from rotorcosim.master.scenario.cycle import cycle_of
@@ -88,11 +90,17 @@ def _postprocessor(sc: Scenario):
         raise ValueError(f"[results] kind {kind!r}: no such result extraction ({exc})") from None
 
 
-def check_run(sc: Scenario, schedule=None, duration: float | None = None, force: bool = False) -> dict:
+def check_run(sc: Scenario, schedule=None, duration: float | None = None, force: bool = False,
+              engine: str = "auto") -> dict:
     """The checks :func:`simulate` makes before it starts (the schedule, the duration, the budget), without
-    running: a sweep makes them for every case before the first one runs. Returns the estimate (budget.py)."""
+    running: a sweep makes them for every case before the first one runs. Returns the estimate (budget.py).
+
+    >>> est = check_run(load_scenario("toy_thermomechanical"), "monolithic", duration=1.0)
+    >>> est["steps"], est["engine"]
+    (1000, 'python')
+    """
     sch, _ = _schedule(sc, schedule, duration)
-    return budget.check(sc, sch, force)
+    return budget.check(sc, sch, force, engine)
 
 
 def _schedule(sc: Scenario, schedule, duration: float | None):
@@ -202,7 +210,8 @@ class Result:
 def simulate(sc: Scenario | str | Path, duration: float | None = None, schedule=None, out: str | Path | None = None,
              record: Sequence[str] | None = None, figures: bool = True, progress: bool = False, *,
              overwrite: bool = False, resume: bool = False, force: bool = False,
-             checkpoint_every: float | None = checkpoint.EVERY_S, step_timeout: float = 0.0, engine: str = "auto") -> Result:
+             checkpoint_every: float | None = checkpoint.EVERY_S, step_timeout: float = 0.0, engine: str = "auto",
+             dpi: float | None = None) -> Result:
     """Run scenario ``sc`` (a :class:`Scenario`, or a name or path for :func:`load_scenario`).
 
     ``duration`` [s] cuts the schedule; ``schedule`` is ``"scenario"`` (the scenario's own; also ``"paper"``),
@@ -218,7 +227,8 @@ def simulate(sc: Scenario | str | Path, duration: float | None = None, schedule=
     step hangs (watchdog.py), writing a failed summary first. ``engine``: ``"auto"`` runs each thermo-mechanical
     interval through the compiled loop when every component offers a compiled kernel (master/compiled/runner.py),
     ``"python"`` through the generic loop, ``"compiled"`` through the compiled loop or not at all (an error); the
-    summary's ``engine`` says which ran (``engine_note`` why the generic loop did under auto).
+    summary's ``engine`` says which ran (``engine_note`` why the generic loop did under auto). ``dpi``: the
+    resolution of the figures (None: :data:`~rotorcosim.master.run.outputs.FIGURE_DPI`).
 
     The summary's ``status`` says how the run ended: ``complete``, ``stopped`` (a component asked to stop),
     ``interrupted`` (SIGINT/SIGTERM) or ``failed``; on ``interrupted`` and ``failed`` the error is raised after
@@ -230,11 +240,11 @@ def simulate(sc: Scenario | str | Path, duration: float | None = None, schedule=
 
     with one_thread():
         return _simulate(sc, duration, schedule, out, record, progress, figures, overwrite, resume, force,
-                         checkpoint_every, step_timeout, engine)
+                         checkpoint_every, step_timeout, engine, dpi)
 
 
 def _simulate(sc, duration, schedule, out, record, progress, figures, overwrite, resume, force, checkpoint_every,
-              step_timeout, engine) -> Result:
+              step_timeout, engine, dpi) -> Result:
     if not isinstance(sc, (Scenario, str, os.PathLike)):
         raise TypeError(f"simulate: give a Scenario, a shipped scenario's name or a file, got {type(sc).__name__}")
     if not isinstance(sc, Scenario):
@@ -243,15 +253,18 @@ def _simulate(sc, duration, schedule, out, record, progress, figures, overwrite,
         raise TypeError(f"record: give a list of 'component.port' names, e.g. record=[{record!r}]")
     if engine not in ENGINES:
         raise ValueError(f"engine {engine!r} not in {ENGINES}")
+    dpi = check_dpi(dpi)
     if not (isinstance(step_timeout, numbers.Real) and 0 <= step_timeout < float("inf")):
         raise ValueError(f"step_timeout must be a number of seconds >= 0 (0: no limit), got {step_timeout!r}")
     if checkpoint_every is not None and not (isinstance(checkpoint_every, numbers.Real) and checkpoint_every > 0):
         raise ValueError(f"checkpoint_every must be a positive number of seconds (or None: no checkpoints), got "
                          f"{checkpoint_every!r}")
     sch, kind = _schedule(sc, schedule, duration)
-    estimate = budget.check(sc, sch, force)
-    if progress and estimate["wall_s"] > 60:
-        print(f"{sc.name}: {estimate['steps']:,} steps, estimated {estimate['wall']} of wall time", file=sys.stderr)
+    estimate = budget.check(sc, sch, force, engine)
+    if estimate["wall_s"] > budget.WARN_S:
+        # from Python as from the command line: a long run does not start silently
+        print(f"{sc.name}: {estimate['steps']:,} steps, estimated {estimate['wall']} of wall time "
+              f"({estimate['engine']} engine)", file=sys.stderr)
     post = _postprocessor(sc)
     o = sc.outputs
     signals = list(o.get("record", []) if record is None else record)
@@ -281,17 +294,23 @@ def _simulate(sc, duration, schedule, out, record, progress, figures, overwrite,
             series = out / f"timeseries.{fmt}" if signals else None
         # a file run keeps nothing in memory: the result and the figures read the HDF5 file (CSV is not read back)
         keep = series is None or fmt != "h5"
-        recorder = Recorder(series, signals, float(o.get("record_step", 1e-4)), keep=keep)
+        made = {"by": provenance(sc)}  # completed with the components' resolved parameters once they are built
+        recorder = Recorder(series, signals, float(o.get("record_step", 1e-4)), keep=keep,
+                            attributes=lambda: h5_attributes(made["by"]))
         post_obs = post.observers(sc, cycle) if post is not None else []
         # where the components' models stop holding: after the progress bar, so that its lines follow the bar's
         validity = Validity(recorder.record_step, sc.name)
-        observers = [recorder, *post_obs, Progress(sch.duration, disable=not progress, desc=sc.name), validity]
+        prior = {ph: 1e-6 * us for ph, us in estimate["step_cost_us"].items()}
+        # a parameter off by a unit factor: warned once the components are set up (after their own checks)
+        observers = [recorder, *post_obs, Progress(sch.duration, disable=not progress, desc=sc.name, prior=prior),
+                     validity, Plausibility(sc.name)]
         if out is not None:
             # checkpoint_every=None: no checkpoints (a timing comparison is run again, not resumed)
             saver = checkpoint.Checkpointer(out / checkpoint.CHECKPOINT if checkpoint_every is not None else None,
                                             stop, checkpoint_every or checkpoint.EVERY_S, key)
             observers.append(saver)  # last: it sees every other observer done with the step
         sim = build_simulation(sc, observers)
+        made["by"] = provenance(sc, sim.system)
         if post is not None and hasattr(post, "check"):
             post.check(sc, sim)  # the scenario's own consistency checks before anything runs
         sim.engine_choice = engine
@@ -303,7 +322,10 @@ def _simulate(sc, duration, schedule, out, record, progress, figures, overwrite,
             stack.callback(pool.close)
         head = {"scenario": sc.name, "source": str(sc.source) if sc.source else None,
                 "schedule": kind or sc.schedule.get("kind", "monolithic"), "duration_s": sch.duration,
-                "estimate": estimate}
+                "estimate": estimate,
+                # what made the run: the code's version, the scenario file and name as loaded, every --set /
+                # --swap / --unbalance, the parameters each component ran with (master/run/provenance.py)
+                "provenance": made["by"]}
         if out is not None:
             write_json(out / "summary.json", {**head, "status": "running", "pid": os.getpid(),
                                               "resumed_from_t_s": point.t if point else None})
@@ -340,6 +362,14 @@ def _simulate(sc, duration, schedule, out, record, progress, figures, overwrite,
             error, status = exc, "interrupted"
         except BaseException as exc:  # diverged, disk full, a component's failure: summary first, then raise
             error, status = exc, ("interrupted" if isinstance(exc, KeyboardInterrupt) else "failed")
+        if status == "failed" and out is not None and point is None and not sim.initialised:
+            # refused at set-up (a bad --set value, a missing model file): nothing was computed, so the folder is
+            # left as it was found (rundir.py takes back the lock and the folders it made) and the error raised
+            for f in (out / "summary.json", series, series and series.with_name(series.name + ".part")):
+                if f is not None:
+                    f.unlink(missing_ok=True)
+            folder.started = False
+            raise error
         report = sim.report
         summary: dict[str, Any] = {
             **head,
@@ -378,7 +408,7 @@ def _simulate(sc, duration, schedule, out, record, progress, figures, overwrite,
             if post is not None:
                 summary.update(post.extract(sc, sim, post_obs, report))
                 if figures and out is not None and status in ("complete", "stopped"):
-                    names = post.figures(sc, data, out, pool=pool)
+                    names = post.figures(sc, data, out, pool=pool, dpi=dpi)
                     summary["figures"] = names
                     files += [out / n for n in names]
             else:
@@ -406,11 +436,13 @@ def _simulate(sc, duration, schedule, out, record, progress, figures, overwrite,
     return result
 
 
-def draw_figures(sc: Scenario | str | Path, out: str | Path, pool: FigurePool | None = None) -> list[str]:
+def draw_figures(sc: Scenario | str | Path, out: str | Path, pool: FigurePool | None = None,
+                 dpi: float | None = None) -> list[str]:
     """Draw the figures of the finished run in folder ``out`` (a run of ``sc`` with ``out=`` and the HDF5 format,
     e.g. one run with ``figures=False``) from its ``timeseries.h5``, with the same drawing code as a run; adds
     their names to its summary.json (``figures``) and returns them. ``pool``: a
-    :class:`~rotorcosim.master.run.figure_pool.FigurePool` to draw them in, or None (drawn in this process).
+    :class:`~rotorcosim.master.run.figure_pool.FigurePool` to draw them in, or None (drawn in this process);
+    ``dpi``: their resolution (None: :data:`~rotorcosim.master.run.outputs.FIGURE_DPI`).
 
     ``rotorcosim compare`` uses it to draw its two runs' figures after both timed runs, so that no figure worker
     competes with a timed simulation."""
@@ -432,7 +464,7 @@ def draw_figures(sc: Scenario | str | Path, out: str | Path, pool: FigurePool | 
     if not name or not name.endswith(".h5") or not (out / name).exists():
         raise ValueError(f"{f}: the run has no HDF5 time series in {out} (timeseries: {name!r}): the figures "
                          "are drawn from timeseries.h5 ([outputs] format = \"h5\")")
-    names = post.figures(sc, SeriesFile(out / name), out, pool=pool)
+    names = post.figures(sc, SeriesFile(out / name), out, pool=pool, dpi=check_dpi(dpi))
     write_json(f, {**summary, "figures": names})
     return names
 

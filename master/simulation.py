@@ -158,6 +158,12 @@ class Simulation:
             self.compiled_done()
         self._initialised = True
 
+    @property
+    def initialised(self) -> bool:
+        """True once every component is set up (:meth:`initialise` returned): a run that failed before is one
+        refused at set-up (a parameter no component starts from), with nothing computed."""
+        return self._initialised
+
     def compiled_done(self) -> None:
         """The first compilations are over (the compiled runner's first kernels loaded, or the run ended): stop the
         helper process of a fresh machine (ahead.py) and set :attr:`first_compiled`."""

@@ -38,12 +38,12 @@ from pathlib import Path
 from rotorcosim.master.schedule import budget
 from rotorcosim.master.api import check_run, draw_figures
 from rotorcosim.master.run.figure_pool import FigurePool
-from rotorcosim.master.run.outputs import write_json
+from rotorcosim.master.run.outputs import check_dpi, write_json
 from rotorcosim.master.run.rundir import LOCK, check_folder, ensure_folder
 from rotorcosim.master.schedule import Interval, Timeline, from_spec
 from rotorcosim.master.scenario.cycle import constant_period, without_source
 
-from rotorcosim.master.cli.options import add_out, add_scenario
+from rotorcosim.master.cli.options import add_dpi, add_out, add_scenario
 from rotorcosim.master.cli.run import apply_unbalance, execute, resolve
 
 #: Table 6's rows (no rub power: there is no rub at 2850 N)
@@ -83,6 +83,7 @@ def add_arguments(p):
     p.add_argument("--bearing", type=int, choices=(0, 5), default=0, help="bearing of the table (default 0)")
     p.add_argument("--no-figures", action="store_true",
                    help="skip the PNG figures of the two runs (they are drawn after both timed runs, untimed)")
+    add_dpi(p)
     p.add_argument("--quiet", action="store_true", help="no line and progress bar per case")
     p.add_argument("--overwrite", action="store_true", help="replace the results of a previous comparison in --out")
     p.add_argument("--schedule", choices=("paper", "auto"), default="paper",
@@ -153,7 +154,7 @@ def _warm_up(scenario: str, out: Path, quantum: float) -> None:
 
 def compare(out: Path, duration=2.0, unbalance=2850.0, scenario="blade_loss", revolutions=REVOLUTIONS, bearing=0,
             quiet=True, figures=True, overwrite=False, schedule="paper", tolerance=None, monolithic=None,
-            timing_runs=None) -> dict:
+            timing_runs=None, dpi=None) -> dict:
     """Run the comparison into the folder ``out`` and return the table written to ``out/table6.json`` (see the
     module's docstring).
 
@@ -161,7 +162,9 @@ def compare(out: Path, duration=2.0, unbalance=2850.0, scenario="blade_loss", re
     revolutions [-] of the staggered run's TM intervals in all; ``bearing``: 0 or 5, the table's; ``quiet``: no
     progress; ``figures``: draw each run's figures; ``overwrite``: replace a previous comparison in ``out``;
     ``schedule``: "paper" or "auto" for the staggered run, ``tolerance`` [%] for "auto"; ``monolithic``: a
-    folder with a monolithic run to reuse; ``timing_runs``: how often the staggered run is timed (default 6)."""
+    folder with a monolithic run to reuse; ``timing_runs``: how often the staggered run is timed (default 6);
+    ``dpi``: the figures' resolution (None: the default)."""
+    dpi = check_dpi(dpi)
     if not (duration > 0 and duration < float("inf")):
         raise ValueError(f"--duration must be a positive number of seconds, got {duration}")
     if not (revolutions > 0 and revolutions < float("inf")):
@@ -233,7 +236,7 @@ def compare(out: Path, duration=2.0, unbalance=2850.0, scenario="blade_loss", re
         # (and so no figure workers) during a timed run: drawn below, after both
         load = _load()
         runs[kind] = execute(sc, out / kind, figures=figures and not later, quiet=quiet, schedule=sch,
-                             overwrite=overwrite, checkpoint_every=None)
+                             overwrite=overwrite, checkpoint_every=None, dpi=dpi)
         loads[kind] = [load, _load()]
         if not quiet:
             print(f"[{i}/{len(kinds)}] {kind}: done in {runs[kind]['wall_time_s']:.3g} s", file=sys.stderr, flush=True)
@@ -246,7 +249,7 @@ def compare(out: Path, duration=2.0, unbalance=2850.0, scenario="blade_loss", re
         timings += _time_again(out, *again, repeats - before, len(timings), repeats, quiet)
         repeat = _timings(timings, before)
     if scenarios:
-        _draw(out, scenarios, quiet)
+        _draw(out, scenarios, quiet, dpi)
     results = {}
     for key in KEYS:
         a = runs["staggered"]["bearings"][str(bearing)][key]
@@ -324,13 +327,13 @@ def _timings(timings: list, before: int) -> dict:
             "identical_results": same}
 
 
-def _draw(out: Path, scenarios: dict, quiet: bool) -> None:
+def _draw(out: Path, scenarios: dict, quiet: bool, dpi: int | None = None) -> None:
     """The figures of the runs made here (not of a reused monolithic run), after the timing: a figure pool per
     run, all started at once so that the second run's workers import matplotlib while the first run's draw."""
     pools = {kind: FigurePool() for kind in scenarios}
     try:
         for kind, sc in scenarios.items():
-            names = draw_figures(sc, out / kind, pool=pools[kind])
+            names = draw_figures(sc, out / kind, pool=pools[kind], dpi=dpi)
             if not quiet:
                 print(f"{kind}: {len(names)} figures drawn", file=sys.stderr, flush=True)
     finally:
@@ -384,7 +387,7 @@ def run(args) -> int:
     """Run the command ``args`` (parsed); prints the speed-up and the largest error; returns 0."""
     t = compare(Path(args.out), args.duration, args.unbalance, args.scenario, args.revolutions, args.bearing,
                 quiet=args.quiet, figures=not args.no_figures, overwrite=args.overwrite, schedule=args.schedule,
-                tolerance=args.tolerance, monolithic=args.monolithic, timing_runs=args.timing_runs)
+                tolerance=args.tolerance, monolithic=args.monolithic, timing_runs=args.timing_runs, dpi=args.dpi)
     est = (t.get("hold") or {}).get("estimated_error_pct")
     cpu = f" (CPU time {t['speedup_cpu']:.1f})" if t.get("speedup_cpu") else ""
     print(f"Table 6 (bearing #{t['bearing']}, {t['duration_s']} s, {t['schedule']} schedule): speed-up "

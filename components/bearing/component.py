@@ -88,6 +88,7 @@ class BallBearing(KernelComponent):
                    "body, thermal growths and Palmgren drag torque (paper eqs. 1-10, Table 3)")
     preferred_step = 1e-5
     phases = frozenset({"TM"})
+    step_cost_s, kernel_step_cost_s, setup_cost_s = 13e-6, 2.5e-6, 0.1  # bench/bench_estimate.py
     required_parameters = ("bearing",)  # which of Table 3's gives the data: never a silent default
     variables = (
         Variable("bearing", "parameter", start=0, type="Integer",

@@ -141,6 +141,7 @@ class Rotor(KernelComponent):
     )
     preferred_step = 1e-5
     phases = frozenset({"TM"})
+    step_cost_s, kernel_step_cost_s, setup_cost_s = 16e-6, 5e-6, 0.2  # bench/bench_estimate.py
 
     # -- parameters ------------------------------------------------------------------------------------
     def _check_parameters(self):

@@ -138,6 +138,7 @@ class ThermalNetwork(KernelComponent):
     )
     preferred_step = 1e-3
     phases = frozenset({"TM", "TO"})
+    step_cost_s, kernel_step_cost_s = 45e-6, 5e-6  # bench/bench_estimate.py
 
     def setup(self, t0=0.0):
         super().setup(t0)

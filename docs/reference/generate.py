@@ -95,7 +95,8 @@ def components_page() -> str:
     out = [HEADER, "# Component reference\n\n",
            "Every built-in implementation a scenario can name (`implementation = \"NAME\"`), with its declared "
            "variables (`components/contract.py`, `Variable`): causality, number of values, SI unit, default of a "
-           "parameter and description. Parameters are set under `[components.NAME] parameters`, inputs are driven "
+           "parameter and description (with its plausible range where the component declares one: a run warns "
+           "about a value outside it, `components/plausibility.py`). Parameters are set under `[components.NAME] parameters`, inputs are driven "
            "by `[[connections]]` or fixed under `[inputs]`, outputs can be recorded (`[outputs] record`, "
            "`--record`). Plug-ins and FMUs declare their own (see [plug-ins](../how-to/plugins.md)).\n"]
     for name in registry.BUILTIN:
@@ -112,8 +113,10 @@ def components_page() -> str:
                    "|---|---|---|---|---|---|---|\n")
         order = {"parameter": 0, "input": 1, "output": 2}
         for v in sorted(cls.variables, key=lambda v: order[v.causality]):
+            text = v.description + (f" (plausible {v.plausible[0]:.3g} to {v.plausible[1]:.3g})"
+                                    if v.plausible else "")
             out.append(f"| `{v.name}` | {v.causality} | {v.size} | {_cell(v.unit)} | {v.type} | {_default(v)} | "
-                       f"{_cell(v.description)} |\n")
+                       f"{_cell(text)} |\n")
     return "".join(out)
 
 

@@ -19,7 +19,7 @@ from rotorcosim.master.run import checkpoint
 from rotorcosim.master.run import watchdog
 from rotorcosim.master.core.algorithm import SimulationDiverged
 from rotorcosim.master.api import DEFAULT_SCENARIO, SCHEDULE_ALIASES, SCHEDULES, load_scenario, simulate
-from rotorcosim.master.cli.options import SCHEDULE_HELP, add_out, add_scenario
+from rotorcosim.master.cli.options import SCHEDULE_HELP, add_dpi, add_out, add_scenario
 from rotorcosim.master.compiled.choice import ENGINES
 from rotorcosim.master.scenario.overrides import apply_set, apply_swap, parse_set, parse_swap
 from rotorcosim.master.scenario.build import Scenario
@@ -64,6 +64,7 @@ def add_arguments(p):
                    help="thermo-mechanical intervals: auto (compiled when every component offers a kernel), python "
                         "(the generic loop) or compiled (an error when it cannot); the summary says which ran")
     p.add_argument("--no-figures", action="store_true", help="skip the PNG figures")
+    add_dpi(p)
     p.add_argument("--quiet", action="store_true", help="no progress bar")
 
 
@@ -112,6 +113,7 @@ def apply_unbalance(sc: Scenario, force: float, settings=()) -> None:
         raise ValueError(f"[results] unbalance_parameter {ref!r}: no component {comp!r}")
     old = sc.components[comp].parameters.get(param)
     sc.components[comp].parameters[param] = float(force)
+    sc.edits.append({"unbalance": float(force), "parameter": ref, "origin": "--unbalance"})
     if old is None or float(old) != float(force):
         # the run's name says what was run (a scenario named NAME_<level> becomes NAME_<new level>)
         sc.name = f"{sc.name.rsplit('_', 1)[0] if sc.name.rsplit('_', 1)[-1].isdigit() else sc.name}_{force:g}"
@@ -120,7 +122,7 @@ def apply_unbalance(sc: Scenario, force: float, settings=()) -> None:
 def execute(sc: Scenario, out: Path, schedule_kind: str | None = None, duration: float | None = None,
             figures: bool = True, quiet: bool = True, schedule=None, *, record=None, overwrite: bool = False,
             resume: bool = False, force: bool = False, checkpoint_every: float | None = checkpoint.EVERY_S,
-            step_timeout: float = 0.0, engine: str = "auto") -> dict:
+            step_timeout: float = 0.0, engine: str = "auto", dpi: float | None = None) -> dict:
     """Run ``sc`` into ``out``; returns the summary (also written to out/summary.json). A thin layer over
     :func:`rotorcosim.simulate` (its docstring says the rest) kept for the other commands.
 
@@ -134,7 +136,7 @@ def execute(sc: Scenario, out: Path, schedule_kind: str | None = None, duration:
         raise ValueError("give duration or a schedule object, not both")
     res = simulate(sc, duration=duration, schedule=schedule, out=out, figures=figures, progress=not quiet,
                    record=record, overwrite=overwrite, resume=resume, force=force, checkpoint_every=checkpoint_every,
-                   step_timeout=step_timeout, engine=engine)
+                   step_timeout=step_timeout, engine=engine, dpi=dpi)
     return res.summary
 
 
@@ -176,7 +178,7 @@ def run(args) -> int:
                        record=parse_record(args.record), figures=not args.no_figures, progress=not args.quiet,
                        overwrite=args.overwrite, resume=args.resume, force=args.force,
                        checkpoint_every=args.checkpoint_every, step_timeout=args.step_timeout,
-                       engine=args.engine)
+                       engine=args.engine, dpi=args.dpi)
     except SimulationDiverged as exc:
         print(f"rotorcosim run: the simulation diverged: {exc}; what was recorded is in {out} "
               "(summary.json has the error)", file=sys.stderr)

@@ -30,11 +30,11 @@ from typing import Any
 
 from rotorcosim.master import case as cases_
 from rotorcosim.master.api import SCHEDULE_ALIASES, SCHEDULES, check_run
-from rotorcosim.master.run.outputs import write_json
+from rotorcosim.master.run.outputs import check_dpi, write_json
 from rotorcosim.master.scenario.overrides import apply_set, parse_set
 from rotorcosim.master.run.rundir import OutputFolderError, check_folder, ensure_folder, is_run_file
 
-from rotorcosim.master.cli.options import SCHEDULE_HELP, add_out, add_scenario
+from rotorcosim.master.cli.options import SCHEDULE_HELP, add_dpi, add_out, add_scenario
 from rotorcosim.master.cli.run import apply_unbalance, execute, resolve
 
 #: how long the client waits for a scheduler given by --scheduler before saying it cannot reach it [s]
@@ -60,6 +60,7 @@ def add_arguments(p):
                    help="local cluster size (default: number of cores; at most one per case)")
     p.add_argument("--serial", action="store_true", help="run the cases one after another, without Dask")
     p.add_argument("--quiet", action="store_true", help="no line per finished case")
+    add_dpi(p)
     p.add_argument("--overwrite", action="store_true",
                    help="replace the results of a previous sweep in --out (which must otherwise be empty)")
 
@@ -174,8 +175,9 @@ def _apply(sc, case: Case):
     return sc
 
 
-def run_case(scenario: str, case: Case, schedule: str | None, duration: float | None) -> dict:
-    """One case, run where it is called (a Dask worker or this process), in a temporary folder of its own.
+def run_case(scenario: str, case: Case, schedule: str | None, duration: float | None, dpi: float | None = None) -> dict:
+    """One case, run where it is called (a Dask worker or this process), in a temporary folder of its own, its
+    figures at ``dpi`` (None: the default).
 
     Returns ``{"summary": ..., "files": {relative path: bytes}, "host": ...}``: the caller writes the files
     where it wants them, so a worker needs no access to the client's folders."""
@@ -185,7 +187,7 @@ def run_case(scenario: str, case: Case, schedule: str | None, duration: float | 
     try:
         try:
             sc = _apply(resolve(scenario), case)
-            summary = execute(sc, work, schedule, duration, figures=True, quiet=True)
+            summary = execute(sc, work, schedule, duration, figures=True, quiet=True, dpi=dpi)
         except Exception as exc:  # one failing case must not lose the others
             summary = {"scenario": case.name, "error": f"{type(exc).__name__}: {exc}", "bearings": {}}
             written = work / "summary.json"
@@ -270,15 +272,17 @@ def _previous_results(out: Path, overwrite: bool, case_files=()) -> None:
 
 def sweep(levels=None, out: Path = Path("sweep"), scenario="blade_loss", scheduler=None, schedule=None,
           duration=None, workers=None, serial=False, grid: dict[str, list[Any]] | None = None,
-          progress=None, connect_timeout: float = CONNECT_TIMEOUT_S, overwrite: bool = False) -> dict:
+          progress=None, connect_timeout: float = CONNECT_TIMEOUT_S, overwrite: bool = False,
+          dpi: float | None = None) -> dict:
     """Run the grid of ``levels`` (values of the scenario's level parameter, SI) x ``grid``
-    (``{"comp.param": [values]}``).
+    (``{"comp.param": [values]}``), the cases' figures at ``dpi`` (None: the default).
 
     ``progress(done, total, case, result)`` is called as each case finishes. Returns the contents of
     ``sweep.json``."""
     if workers is not None and workers < 1:
         raise ValueError(f"--workers must be at least 1, got {workers}")
     out = Path(out)
+    dpi = check_dpi(dpi)
     grid = dict(grid or {})
     cases = cases_of(list(levels) if levels else None, grid)
     for c in cases:  # fail early: a bad scenario, an unknown component, a duration or schedule no run takes
@@ -298,13 +302,13 @@ def sweep(levels=None, out: Path = Path("sweep"), scenario="blade_loss", schedul
     if serial:
         where = "serial"
         for c in cases:
-            finished(c, run_case(scenario, c, schedule, duration))
+            finished(c, run_case(scenario, c, schedule, duration, dpi))
     else:
         from dask.distributed import as_completed
 
         client, cluster, where = _client(scheduler, workers, connect_timeout, len(cases))
         try:
-            futures = {client.submit(run_case, scenario, c, schedule, duration, pure=False): c for c in cases}
+            futures = {client.submit(run_case, scenario, c, schedule, duration, dpi, pure=False): c for c in cases}
             for fut in as_completed(futures):
                 c = futures[fut]
                 try:
@@ -369,7 +373,7 @@ def run(args) -> int:
         print(f"[{done}/{total}] {case.name}: {state}", file=sys.stderr, flush=True)
 
     info = sweep(levels, Path(args.out), args.scenario, args.scheduler, kind, args.duration, args.workers,
-                 args.serial, grid, None if args.quiet else progress, overwrite=args.overwrite)
+                 args.serial, grid, None if args.quiet else progress, overwrite=args.overwrite, dpi=args.dpi)
     # the files at the top of the folder are this sweep's (a previous sweep's were refused or cleared)
     tables = sorted(p.name for p in Path(args.out).iterdir() if p.is_file() and p.name not in SWEEP_FILES[:2])
     print(f"{len(info['cases'])} cases in {info['wall_time_s']:.3g} s ({info['executed_on']});"

@@ -117,11 +117,14 @@ class Recorder(Observer):
 
     Each HDF5 dataset carries its ``unit``, ``description``, ``columns`` (the names of its vector elements) and
     ``sampling_interval_s`` (the interval in thermo-mechanical intervals; thermal-only intervals are sampled at
-    every thermal step: the ``time`` dataset gives each sample's time)."""
+    every thermal step: the ``time`` dataset gives each sample's time). ``attributes``: root attributes of the
+    HDF5 file (name -> str or number), or a function returning them, written when the file is completed (what
+    made the run: master/run/provenance.py)."""
 
     def __init__(self, path: str | os.PathLike | None, signals: Sequence[str], record_step: float = 1e-4,
-                 chunk: int = 2048, keep: bool = False):
+                 chunk: int = 2048, keep: bool = False, attributes=None):
         self.path = None if path is None else Path(path)
+        self.attributes = attributes
         self.signals = list(signals)
         if not (record_step > 0 and math.isfinite(record_step)):
             raise ValueError(f"record_step must be positive, got {record_step}")
@@ -361,6 +364,9 @@ class Recorder(Observer):
                 error = error or exc
                 self._clear_buffer()
             if self._kind == "hdf5":
+                extra = self.attributes() if callable(self.attributes) else (self.attributes or {})
+                for key, value in extra.items():
+                    self._file.attrs[key] = value
                 self._file.attrs["complete"] = error is None
                 if error is not None:
                     self._file.attrs["error"] = f"{type(error).__name__}: {error}"
@@ -474,15 +480,22 @@ class Progress(Observer):
     """A progress bar over simulated time whose time-left estimate comes from the measured wall time per step
     of each phase and the steps the schedule still has: a thermo-mechanical step costs hundreds of times a
     thermal-only one, so a rate in simulated seconds per second (tqdm's own estimate) is wrong by hours early in
-    a staggered run. A phase not yet measured is assumed to cost what the measured one does (an upper bound for
-    thermal-only steps). Without a known plan (the automatic schedule) no estimate is shown."""
+    a staggered run. A phase not yet measured costs its ``prior`` price (``{COUPLED: s, HELD: s}`` per step, the
+    up-front estimate's: master/schedule/budget.py), or else what the measured one does (an upper bound for
+    thermal-only steps). The measurement starts once the run's first compilations are over
+    (``sim.first_compiled``): on a fresh machine the first steps wait for numba, and a rate measured over them
+    overstates the time left tenfold or more. Without a known plan (the automatic schedule) no
+    estimate is shown."""
 
     stride = 64
+    #: the wall time [s] a phase must have been measured over before its measured price replaces the prior
+    SETTLE_S = 0.5
 
-    def __init__(self, total: float, disable: bool = False, desc: str = "simulating"):
+    def __init__(self, total: float, disable: bool = False, desc: str = "simulating", prior: dict | None = None):
         self.total = total
         self.disable = disable
         self.desc = desc
+        self.prior = dict(prior or {})
         self.bar = None
 
     def start(self, sim, schedule):
@@ -503,25 +516,43 @@ class Progress(Observer):
         self.t0 = sim.t
         self.shown = 0.0
         self._shown_at = -1e9
+        # the run's first compilations (None: over, or none): until they are, nothing is measured
+        first = getattr(sim, "first_compiled", None)
+        self._compiling = first if first is not None and not first.is_set() else None
 
     def interval_start(self, sim, phase, step):
         self.stride = 1 if phase == HELD else 256
         self.index += 1
         self.phase, self.h, self.name = phase, step, sim.phase_name
         self.t_iv, self.w_iv = sim.t, self._clock()
+        # where this interval's measurement starts (moved to the end of the first compilations)
+        self.t_meas, self.w_meas = self.t_iv, self.w_iv
+
+    def _settle(self, t: float) -> None:
+        """The first compilations just ended: measure this interval from here."""
+        if self._compiling is not None and self._compiling.is_set():
+            self._compiling = None
+            self.t_meas, self.w_meas = t, self._clock()
 
     def _cost(self, phase: str, steps_now: int, wall_now: float) -> float | None:
         w = self.cost_wall.get(phase, 0.0) + (wall_now if phase == self.phase else 0.0)
         n = self.cost_steps.get(phase, 0) + (steps_now if phase == self.phase else 0)
+        if self.prior.get(phase) is not None and (w < self.SETTLE_S or not n):
+            return self.prior[phase]  # too little measured yet (or nothing: still compiling)
         return w / n if n else None
 
     def remaining(self, t: float) -> float | None:
-        """Estimated wall seconds left, from the measured cost per step of each phase."""
+        """Estimated wall seconds left, from the measured cost per step of each phase (the prior until enough
+        is measured)."""
         if self.plan is None or self.index >= len(self.plan):
             return None
         done = max(0, int(round((t - self.t_iv) / self.h)))
-        wall = self._clock() - self.w_iv
-        costs = {ph: self._cost(ph, done, wall) for ph in (COUPLED, HELD)}
+        if self._compiling is not None:
+            measured, wall = 0, 0.0
+        else:
+            measured = max(0, int(round((t - self.t_meas) / self.h)))
+            wall = self._clock() - self.w_meas
+        costs = {ph: self._cost(ph, measured, wall) for ph in (COUPLED, HELD)}
         known = [c for c in costs.values() if c is not None]
         if not known:
             return None
@@ -533,6 +564,8 @@ class Progress(Observer):
     def step(self, sim, t):
         if self.bar is None:
             return
+        if self._compiling is not None:
+            self._settle(t)
         done = min(self.total, t - self.t0)
         now = self._clock()
         if now - self._shown_at >= 1.0 and not self.disable:
@@ -544,10 +577,13 @@ class Progress(Observer):
         self.shown = done
 
     def interval_end(self, sim, used):
-        if self.plan is not None:
+        if self._compiling is not None:
+            self._settle(sim.t)
+        if self.plan is not None and self._compiling is None:
             role = sim.phase
-            self.cost_wall[role] = self.cost_wall.get(role, 0.0) + self._clock() - self.w_iv
-            self.cost_steps[role] = self.cost_steps.get(role, 0) + used.steps
+            self.cost_wall[role] = self.cost_wall.get(role, 0.0) + self._clock() - self.w_meas
+            self.cost_steps[role] = self.cost_steps.get(role, 0) + max(
+                0, int(round((sim.t - self.t_meas) / self.h)))
 
     def block_signals(self, sim):
         return []

@@ -131,7 +131,11 @@ class Scenario:
     (:class:`ConnectionSpec`); ``inputs`` (``"component.port"`` -> constant value, SI); ``algorithm``,
     ``schedule`` and ``outputs``: the ``[algorithm]``, ``[schedule]`` and ``[outputs]`` tables as dicts;
     ``source``: the file it was read from (relative paths resolve against its folder); ``description``;
-    ``extra``: the other top-level tables (``[results]``, read by the scenario's case); ``unconnected_inputs``:
+    ``extra``: the other top-level tables (``[results]``, read by the scenario's case); ``loaded_name``: the
+    name it was loaded under (``name`` may change: ``run --unbalance`` renames a run); ``edits``: each change
+    made since it was loaded, in order (``{"set": "comp.param", "value": ...}``, ``{"swap": "comp",
+    "implementation": ...}``, ``{"unbalance": value, "parameter": "comp.param"}``, each with its ``origin``),
+    which a run records in its summary (master/run/provenance.py); ``unconnected_inputs``:
     ``"start"`` (an input nothing drives keeps the start value it declares) or ``"error"`` (refused).
 
     :meth:`set` and :meth:`swap` return changed copies; :func:`build_system` and :func:`build_simulation` make
@@ -156,6 +160,12 @@ class Scenario:
     description: str = ""
     extra: dict = field(default_factory=dict)
     unconnected_inputs: str = "start"
+    loaded_name: str | None = None
+    edits: list[dict] = field(default_factory=list)
+
+    def __post_init__(self):
+        if self.loaded_name is None:
+            self.loaded_name = self.name
 
     def copy(self) -> "Scenario":
         """A deep copy: changing it leaves this scenario as it is."""

@@ -175,6 +175,7 @@ def apply_set(sc, values: Mapping[str, Any], origin: str = API_ORIGIN):
                 raise ScenarioError(str(exc)) from None
         spec.parameters[param] = _plain(value)
         spec.param_origins[param] = origin
+        out.edits.append({"set": f"{comp}.{param}", "value": spec.parameters[param], "origin": origin})
         if spec.implementation is not None:
             resolve_file_parameters(spec.implementation, spec.parameters, lambda p: Path.cwd(), spec.folder, (param,))
     return out
@@ -206,4 +207,6 @@ def apply_swap(sc, component: str, implementation: str, parameters: Mapping[str,
             _check_value(f"{component}.{k}", v)
         spec.parameters = {k: _plain(v) for k, v in parameters.items()}
         spec.param_origins = {k: origin for k in parameters}
+    out.edits.append({"swap": component, "implementation": spec.fmu or spec.implementation, "origin": origin,
+                      **({"parameters": dict(spec.parameters)} if parameters is not None else {})})
     return out
