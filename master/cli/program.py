@@ -21,6 +21,10 @@ COMMANDS: dict[str, tuple[str, str]] = {
     "run": ("rotorcosim.master.cli.run", "run a scenario (TOML or SSP; by default the shipped case's main job)"),
     "sweep": ("rotorcosim.master.cli.sweep", "run a scenario at several levels or parameter values in parallel on "
                                              "Dask, with its case's tables"),
+    "calibrate": ("rotorcosim.master.cli.calibrate", "fit a few parameters to measured results (bounded least "
+                                                     "squares, runs on Dask, resumable)"),
+    "uq": ("rotorcosim.master.cli.uq", "uncertainty of the results over parameter distributions (Monte Carlo, "
+                                       "Latin hypercube, Sobol' indices; runs on Dask, resumable)"),
     "bearing-static": ("rotorcosim.components.bearing.cli", "static load distribution of bearing #0 or #5"),
     "damper-force": ("rotorcosim.components.damper.cli", "squeeze film damper force at a journal position and velocity"),
     "thermal-steady": ("rotorcosim.components.thermal.cli", "steady state of a bearing's thermal network"),

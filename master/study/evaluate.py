@@ -1,0 +1,187 @@
+"""Runs of one scenario with overrides, many at a time: on a Dask cluster (local by default) or in this process.
+
+A job is ``(name, overrides)``: the scenario with ``{"comp.param": value}`` applied, run for the study's duration
+with nothing recorded but its summary (:func:`run_job`). :class:`Evaluator` runs lists of jobs and returns their
+summaries (summary.json's dict; a job that failed has ``status`` "failed" and ``error``), calling ``done`` as
+each one finishes so that the caller stores it at once.
+
+A worker that dies while running a job (a crash, killed for memory) has its job run once more on another worker;
+if that dies too, the job is reported failed (``error`` names it), never dropped.
+
+>>> with Evaluator("toy_thermomechanical", duration=0.05, serial=True) as ev:
+...     [s["status"] for s in ev.map([("a", {"node.C": 20.0}), ("b", {"node.C": 40.0})])]
+['complete', 'complete']
+"""
+from __future__ import annotations
+
+import logging
+import os
+import sys
+import time
+from typing import Any, Callable, Sequence
+
+#: how long the client waits for a scheduler given by ``scheduler=`` [s]
+CONNECT_TIMEOUT_S = 20.0
+#: how many times a job is run again after its worker died (Dask's ``allowed-failures``)
+RETRIES = 1
+
+Job = tuple[str, dict[str, Any]]
+
+
+def failed(summary: dict) -> bool:
+    """Whether a job's summary is a failure (its run did not complete or stop as asked)."""
+    return bool(summary.get("error")) or summary.get("status") not in ("complete", "stopped")
+
+
+def run_job(scenario: str, overrides: dict[str, Any], duration: float | None) -> dict:
+    """Run ``scenario`` (a shipped name or a file) with ``overrides`` for ``duration`` [s] (None: the
+    scenario's), recording nothing, without figures; returns its summary. A run that fails (diverges, a value its
+    component refuses) returns what it had with ``status`` "failed" and ``error`` rather than raising."""
+    from rotorcosim.master.api import load_scenario, simulate
+
+    t0 = time.perf_counter()
+    try:
+        sc = load_scenario(scenario)
+        if overrides:
+            sc = sc.set(overrides)
+        summary = dict(simulate(sc, duration=duration, record=[], figures=False).summary)
+    except Exception as exc:  # one failing job must not lose the others
+        partial = getattr(exc, "result", None)
+        summary = dict(partial.summary) if partial is not None else {}
+        summary.update(status="failed", error=f"{type(exc).__name__}: {' '.join(str(exc).split())}")
+    summary.setdefault("wall_time_s", time.perf_counter() - t0)
+    return summary
+
+
+class Evaluator:
+    """Runs jobs of ``scenario`` (a shipped name or a file path) for ``duration`` [s].
+
+    ``scheduler``: the address of a running Dask scheduler; default a local cluster of ``workers`` processes
+    (default: the number of cores), started at the first :meth:`map` and kept until :meth:`close`; ``serial``:
+    in this process, one after the other. ``task``: the function a job runs, ``task(scenario, overrides,
+    duration) -> summary`` (default :func:`run_job`; importable by the workers)."""
+
+    def __init__(self, scenario: str, duration: float | None = None, *, scheduler: str | None = None,
+                 workers: int | None = None, serial: bool = False, task: Callable = run_job,
+                 connect_timeout: float = CONNECT_TIMEOUT_S):
+        if workers is not None and (isinstance(workers, bool) or not isinstance(workers, int) or workers < 1):
+            raise ValueError(f"workers must be an integer >= 1, got {workers!r}")
+        if serial and scheduler:
+            raise ValueError("give a scheduler or serial, not both")
+        self.scenario, self.duration, self.task = scenario, duration, task
+        self.scheduler, self.workers, self.serial = scheduler, workers, serial
+        self.connect_timeout = connect_timeout
+        self._client = self._cluster = None
+        self.where = "serial" if serial else None
+
+    def __enter__(self) -> "Evaluator":
+        return self
+
+    def __exit__(self, *exc) -> None:
+        self.close()
+
+    def close(self) -> None:
+        """Stop the local cluster (a running cluster given by address is left running)."""
+        if self._client is not None:
+            self._client.close()
+        if self._cluster is not None:
+            self._cluster.close()
+        self._client = self._cluster = None
+
+    @property
+    def concurrency(self) -> int:
+        """How many jobs run at once."""
+        if self.serial:
+            return 1
+        if self._client is not None:
+            return max(1, len(self._client.scheduler_info().get("workers", {})))
+        return self.workers or os.cpu_count() or 1
+
+    def _connect(self, n_jobs: int):
+        if self._client is not None:
+            return self._client
+        import dask
+        from dask.distributed import Client, LocalCluster
+
+        if self.scheduler:
+            try:
+                self._client = Client(self.scheduler, timeout=self.connect_timeout)
+            except (OSError, TimeoutError) as exc:
+                raise ValueError(f"scheduler {self.scheduler}: cannot reach the Dask scheduler ({exc})") from None
+            except ValueError as exc:  # not an address (dask: "unknown address scheme ...")
+                raise ValueError(f"scheduler {self.scheduler}: not a Dask scheduler's address ({exc})") from None
+            n = len(self._client.scheduler_info().get("workers", {}))
+            self.where = f"{self.scheduler}, {n} workers"
+            return self._client
+        n = min(self.workers or os.cpu_count() or 1, max(1, n_jobs))
+        # a job whose worker died is run RETRIES more times, then reported failed (KilledWorker)
+        with dask.config.set({"distributed.scheduler.allowed-failures": RETRIES}):
+            self._cluster = LocalCluster(n_workers=n, threads_per_worker=1, processes=True,
+                                         dashboard_address=None, silence_logs=logging.ERROR)
+        self._client = Client(self._cluster)
+        self.where = f"local cluster, {n} workers"
+        return self._client
+
+    def map(self, jobs: Sequence[Job], done: Callable[[int, Job, dict], None] | None = None) -> list[dict]:
+        """Run ``jobs`` and return their summaries in the same order; ``done(index, job, summary)`` is called as
+        each one finishes (in the order they finish)."""
+        jobs = list(jobs)
+        out: list[dict | None] = [None] * len(jobs)
+        if not jobs:
+            return []
+
+        def finish(i: int, summary: dict) -> None:
+            out[i] = summary
+            if done is not None:
+                done(i, jobs[i], summary)
+
+        if self.serial:
+            for i, (_, over) in enumerate(jobs):
+                finish(i, self.task(self.scenario, over, self.duration))
+            return out  # type: ignore[return-value]
+        from dask.distributed import as_completed
+
+        client = self._connect(len(jobs))
+        futures = {client.submit(self.task, self.scenario, over, self.duration, pure=False): i
+                   for i, (_, over) in enumerate(jobs)}
+        try:
+            for fut in as_completed(futures):
+                i = futures[fut]
+                try:
+                    summary = fut.result()
+                except Exception as exc:  # KilledWorker: its worker died twice; or the task could not start
+                    summary = {"status": "failed",
+                               "error": f"{type(exc).__name__}: {' '.join(str(exc).split())} (the job's worker "
+                                        f"died or could not run it; tried {RETRIES + 1} times)"}
+                finish(i, summary)
+        except BaseException:
+            for fut in futures:
+                fut.cancel()
+            raise
+        return out  # type: ignore[return-value]
+
+
+class Progress:
+    """A line per finished job on ``stream``: how many are done of how many, the elapsed time and the time left
+    (from the mean time per job so far and the jobs still to run). ``quiet``: no lines."""
+
+    def __init__(self, total: int, what: str = "runs", stream=sys.stderr, quiet: bool = False):
+        self.total, self.what, self.stream, self.quiet = total, what, stream, quiet
+        self.done = 0
+        self.t0 = time.perf_counter()
+
+    def __call__(self, name: str, summary: dict) -> None:
+        """Count one finished job ``name`` (its summary says whether it failed)."""
+        self.done += 1
+        if self.quiet:
+            return
+        elapsed = time.perf_counter() - self.t0
+        left = elapsed / self.done * max(0, self.total - self.done)
+        state = f"failed: {summary.get('error')}" if failed(summary) else "ok"
+        print(f"[{self.done}/{self.total} {self.what}] {name}: {state}; {_hms(elapsed)} elapsed, "
+              f"~{_hms(left)} left", file=self.stream, flush=True)
+
+
+def _hms(s: float) -> str:
+    s = int(round(s))
+    return f"{s // 3600}:{s % 3600 // 60:02d}:{s % 60:02d}" if s >= 3600 else f"{s // 60}:{s % 60:02d}"
