@@ -117,7 +117,7 @@ class Evaluator:
         # a job whose worker died is run RETRIES more times, then reported failed (KilledWorker)
         with dask.config.set({"distributed.scheduler.allowed-failures": RETRIES}):
             self._cluster = LocalCluster(n_workers=n, threads_per_worker=1, processes=True,
-                                         dashboard_address=None, silence_logs=logging.ERROR)
+                                         dashboard_address=":0", silence_logs=logging.ERROR)
         self._client = Client(self._cluster)
         self.where = f"local cluster, {n} workers"
         return self._client
@@ -142,17 +142,30 @@ class Evaluator:
         from dask.distributed import as_completed
 
         client = self._connect(len(jobs))
-        futures = {client.submit(self.task, self.scenario, over, self.duration, pure=False): i
-                   for i, (_, over) in enumerate(jobs)}
+        # no more jobs in flight than the cluster runs at once: Dask would otherwise queue several on a worker, and
+        # a worker's death counts against every job it holds (a waiting job was reported failed, measured), so
+        # a job is retried for its own worker's death only
+        slots = max(1, sum(w.get("nthreads", 1) for w in client.scheduler_info().get("workers", {}).values()))
+        waiting = list(range(len(jobs)))
+        futures: dict = {}
+
+        def submit():
+            i = waiting.pop(0)
+            futures[client.submit(self.task, self.scenario, jobs[i][1], self.duration, pure=False)] = i
+            return list(futures)[-1]
+
+        running = as_completed([submit() for _ in range(min(slots, len(waiting)))])
         try:
-            for fut in as_completed(futures):
-                i = futures[fut]
+            for fut in running:
+                i = futures.pop(fut)
                 try:
                     summary = fut.result()
                 except Exception as exc:  # KilledWorker: its worker died twice; or the task could not start
                     summary = {"status": "failed",
                                "error": f"{type(exc).__name__}: {' '.join(str(exc).split())} (the job's worker "
                                         f"died or could not run it; tried {RETRIES + 1} times)"}
+                if waiting:
+                    running.add(submit())
                 finish(i, summary)
         except BaseException:
             for fut in futures:

@@ -347,12 +347,12 @@ def read_uq(path: str | Path) -> UQSpec:
         kind = p.get("distribution")
         if kind not in DISTRIBUTIONS:
             raise SpecError(f"{pw}: distribution {kind!r} not in {tuple(DISTRIBUTIONS)}")
-        _unknown_keys(pw, p, ("name", "distribution", *DISTRIBUTIONS[kind]))
         vals = {}
         for key in DISTRIBUTIONS[kind]:
             if key not in p:
                 raise SpecError(f"{pw}: a {kind} distribution needs {', '.join(DISTRIBUTIONS[kind])}; {key} is missing")
             vals[key] = _number(f"{pw} {key}", p[key])
+        _unknown_keys(pw, p, ("name", "distribution", *DISTRIBUTIONS[kind]))
         if "std" in vals and vals["std"] <= 0:
             raise SpecError(f"{pw}: std must be > 0, got {vals['std']:g}")
         if "lower" in vals and not vals["lower"] < vals["upper"]:
