@@ -36,8 +36,7 @@ A UQ SPEC::
 Every mistake is a :class:`SpecError` (a ValueError) of one line naming the file and the key.
 
 >>> import tempfile, pathlib
->>> d = pathlib.Path(tempfile.mkdtemp()); (d / "t.csv").write_text("case,result,value\\n,final_outputs.node.T,310\\n")
-43
+>>> d = pathlib.Path(tempfile.mkdtemp()); _ = (d / "t.csv").write_text("case,result,value\\n,final_outputs.node.T,310\\n")
 >>> _ = (d / "s.toml").write_text('''[calibrate]
 ... scenario = "toy_thermomechanical"
 ... targets = "t.csv"
