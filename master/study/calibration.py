@@ -196,7 +196,8 @@ def calibrate(spec: str | Path | CalibrationSpec, out: str | Path, *, scheduler:
                 return r
 
             res = least_squares(fun, fit.u0, jac=fit.jacobian, bounds=(0.0, 1.0), method="trf", x_scale=1.0,
-                                max_nfev=spec.max_evaluations)
+                                max_nfev=spec.max_evaluations, ftol=spec.tolerance, xtol=spec.tolerance,
+                                gtol=spec.tolerance)
             u = np.clip(res.x, 0.0, 1.0)
             fit.run([u], fit.all_cases)
             status = "converged" if res.status > 0 else ("max_evaluations" if res.status == 0 else "failed")

@@ -36,12 +36,14 @@ def _save(fig, path: Path) -> None:
 
 def calibration_figure(path: Path, report: dict) -> None:
     """Ours / target for every target, before (open) and after (filled) the update; fit targets left, holdout
-    targets right of the dashed line; the +-30 % band shaded, the x2 lines dotted."""
+    targets right of the dashed line, each group in the order of the targets file; the +-30 % band shaded, the
+    x2 lines dotted."""
     plt = _plt()
     rows = report.get("targets", [])
-    rows = sorted(rows, key=lambda r: (r["holdout"], r["case"], r["result"]))
+    rows = sorted(rows, key=lambda r: r["holdout"])     # fit targets first, each group in the targets file's order
     n = max(1, len(rows))
-    fig, ax = plt.subplots(figsize=(max(6.0, 0.22 * n + 2), 5.0))
+    # one column of markers per target, labelled below: wide enough to read, at most ~22 in (150 targets)
+    fig, ax = plt.subplots(figsize=(min(22.0, max(6.0, 0.14 * n + 2)), 6.5))
 
     def ratio(v, t):
         return v / t if v is not None and t not in (0, None) and v / t > 0 else math.nan
@@ -62,14 +64,14 @@ def calibration_figure(path: Path, report: dict) -> None:
     nfit = sum(not r["holdout"] for r in rows)
     if 0 < nfit < len(rows):
         ax.axvline(nfit - 0.5, color="0.3", ls="--", lw=0.8)
-        ax.text(nfit - 0.5, 1.0, "fit | holdout", ha="center", va="bottom", fontsize=8,
+        ax.text(nfit - 0.5, 0.98, "fit | holdout", ha="center", va="top", fontsize=8, backgroundcolor="white",
                 transform=ax.get_xaxis_transform())
     vals = [v for v in before + after if math.isfinite(v)]
     if vals and max(vals) / min(vals) > 5:
         ax.set_yscale("log")
     ax.set_xticks(x)
     ax.set_xticklabels([f"{r['result']} @ {r['case']}" if r["case"] else r["result"] for r in rows],
-                       rotation=90, fontsize=6)
+                       rotation=90, fontsize=5 if n > 60 else 6)
     ax.set_ylabel("ours / target")
     fs = report.get("fit_score") or {}
     hs = report.get("holdout_score") or {}

@@ -9,6 +9,7 @@ A calibration SPEC (paths relative to the SPEC's folder)::
     residual = "log"                      # optional: "log" (log of ours / target) or "linear" ((ours - target) * weight)
     max_evaluations = 40                  # optional: points of the least-squares search (each: every fit case)
     diff_step = 0.02                      # optional: finite-difference step, a fraction of each parameter's range
+    tolerance = 1e-4                      # optional: stop when the cost changes by less than this fraction
     [calibrate.cases.low]                 # optional named cases: --set style overrides; case "" = the scenario as is
     "rotor.F_unbalance" = 712.0
     [[calibrate.parameter]]
@@ -78,6 +79,9 @@ DISTRIBUTIONS = {"uniform": ("lower", "upper"), "normal": ("mean", "std"), "logn
 #: defaults of the optional calibration keys: least-squares points, finite-difference step (fraction of a range)
 MAX_EVALUATIONS = 40
 DIFF_STEP = 0.02
+#: default relative change of the cost (and of the parameters, in their unit scale) at which the search stops: the
+#: runs' own numerical scatter (a nonlinear transient) makes smaller changes meaningless
+TOLERANCE = 1e-4
 
 
 class SpecError(ValueError):
@@ -132,6 +136,7 @@ class CalibrationSpec:
     residual: str = "log"
     max_evaluations: int = MAX_EVALUATIONS
     diff_step: float = DIFF_STEP
+    tolerance: float = TOLERANCE
 
     def fingerprint(self) -> str:
         """What an evaluation depends on (the scenario, duration, cases and parameter names): evaluations stored
@@ -243,7 +248,7 @@ def read_calibration(path: str | Path) -> CalibrationSpec:
     t = _read(path, "calibrate")
     w = f"SPEC {path} [calibrate]"
     _unknown_keys(w, t, ("scenario", "duration", "targets", "cases", "parameter", "residual", "max_evaluations",
-                         "diff_step"))
+                         "diff_step", "tolerance"))
     scenario = resolve_scenario(t.get("scenario", ""), path.parent, w)
     sc = load_scenario(scenario)
     if "targets" not in t or not isinstance(t["targets"], str):
@@ -298,8 +303,11 @@ def read_calibration(path: str | Path) -> CalibrationSpec:
     step = _number(f"{w} diff_step", t.get("diff_step", DIFF_STEP), positive=True)
     if step >= 0.5:
         raise SpecError(f"{w}: diff_step {step:g} must be below 0.5 (a fraction of each parameter's range)")
+    tol = _number(f"{w} tolerance", t.get("tolerance", TOLERANCE), positive=True)
+    if tol >= 1:
+        raise SpecError(f"{w}: tolerance {tol:g} must be below 1 (a relative change)")
     return CalibrationSpec(path, scenario, _duration(w, t), targets, out, {str(k): v for k, v in cases.items()},
-                           residual, nmax, step)
+                           residual, nmax, step, tol)
 
 
 def read_uq(path: str | Path) -> UQSpec:
