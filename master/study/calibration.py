@@ -174,8 +174,8 @@ def calibrate(spec: str | Path | CalibrationSpec, out: str | Path, *, scheduler:
     results = list(dict.fromkeys(t.result for t in targets))
     table = store.RowStore(out / TABLE, ["case", *(p.name for p in spec.parameters), *results, "status",
                                          "wall_time_s", "error"])
-    with evaluate.Evaluator(spec.scenario, spec.duration, scheduler=scheduler, workers=workers, serial=serial,
-                            task=task) as ev:
+    with evaluate.terminate_as_interrupt(), evaluate.Evaluator(spec.scenario, spec.duration, scheduler=scheduler,
+                                                               workers=workers, serial=serial, task=task) as ev:
         fit = Fit(spec, targets, ev, table, say, quiet)
         if resumed:
             say(f"resuming: {len(fit.known)} runs read from {out / TABLE}")

@@ -14,9 +14,12 @@ if that dies too, the job is reported failed (``error`` names it), never dropped
 """
 from __future__ import annotations
 
+import contextlib
 import logging
 import os
+import signal
 import sys
+import threading
 import time
 from typing import Any, Callable, Sequence
 
@@ -172,6 +175,25 @@ class Evaluator:
                 fut.cancel()
             raise
         return out  # type: ignore[return-value]
+
+
+@contextlib.contextmanager
+def terminate_as_interrupt():
+    """Inside: SIGTERM (a batch system's stop, ``kill``) raises KeyboardInterrupt as Ctrl-C does, so that a study
+    stopped either way writes its report (status "interrupted") before it ends. Only in the main thread (signal
+    handlers can be set there only); elsewhere it does nothing."""
+    if threading.current_thread() is not threading.main_thread():
+        yield
+        return
+
+    def stop(signum, frame):
+        raise KeyboardInterrupt(f"signal {signum}")
+
+    old = signal.signal(signal.SIGTERM, stop)
+    try:
+        yield
+    finally:
+        signal.signal(signal.SIGTERM, old)
 
 
 class Progress:

@@ -134,8 +134,8 @@ def uq(spec: str | Path | UQSpec, out: str | Path, *, scheduler: str | None = No
     jobs = [(f"sample {i}", {**spec.overrides, **{n: float(x[i, j]) for j, n in enumerate(names)}}) for i in todo]
     where = None
     try:
-        with evaluate.Evaluator(spec.scenario, spec.duration, scheduler=scheduler, workers=workers, serial=serial,
-                                task=task) as ev:
+        with evaluate.terminate_as_interrupt(), evaluate.Evaluator(spec.scenario, spec.duration, scheduler=scheduler,
+                                                                   workers=workers, serial=serial, task=task) as ev:
             ev.map(jobs, done)
             where = ev.where
     except BaseException as exc:

@@ -36,3 +36,11 @@ def dies_once(scenario, overrides, duration) -> dict:
 def always_dies(scenario, overrides, duration) -> dict:
     """Kills its worker process every time: the job must end reported failed, not lost or retried forever."""
     os._exit(1)
+
+
+def slow(scenario, overrides, duration) -> dict:
+    """Returns the first value as ``y`` after 0.2 s: a study long enough to be stopped half-way."""
+    import time
+
+    time.sleep(0.2)
+    return {"status": "complete", "y": list(overrides.values())[0]}

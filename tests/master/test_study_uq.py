@@ -136,3 +136,42 @@ upper = 1.0
     rep = rotorcosim.uq(spec, tmp_path / "always", workers=1, quiet=True, task=always_dies)
     assert rep["failed"]["count"] == 2
     assert all("tried 2 times" in s["error"] for s in rep["failed"]["samples"])
+
+
+def test_a_study_stopped_by_sigterm_says_so_and_resumes(tmp_path):
+    """A UQ process stopped by SIGTERM half-way writes uq.json with status "interrupted" and keeps the finished
+    samples; the same call again runs only the others and ends complete with every sample."""
+    import os
+    import signal
+    import subprocess
+    import sys
+    import time
+
+    spec = write_spec(tmp_path, '''samples = 30
+sampler = "lhs"
+results = ["y"]
+[[uq.parameter]]
+name = "m1.x0"
+distribution = "uniform"
+lower = 0.0
+upper = 1.0
+''')
+    code = ("import rotorcosim; from tests.helpers.study_tasks import slow; "
+            f"rotorcosim.uq({str(spec)!r}, {str(tmp_path / 'out')!r}, serial=True, quiet=True, task=slow)")
+    env = {**os.environ, "PYTHONPATH": f"{ROOT}:{os.environ.get('PYTHONPATH', '')}"}
+    proc = subprocess.Popen([sys.executable, "-c", code], env=env, cwd=ROOT, stderr=subprocess.PIPE)
+    table = tmp_path / "out" / "samples.csv"
+    deadline = time.time() + 60
+    while time.time() < deadline and (not table.exists() or len(table.read_text().splitlines()) < 6):
+        time.sleep(0.05)
+    proc.send_signal(signal.SIGTERM)
+    proc.wait(timeout=60)
+    report = json.loads((tmp_path / "out" / "uq.json").read_text())
+    assert report["status"] == "interrupted", report
+    done = len(table.read_text().splitlines()) - 1
+    assert 5 <= done < 30
+    from tests.helpers.study_tasks import slow
+
+    rep = rotorcosim.uq(spec, tmp_path / "out", serial=True, quiet=True, task=slow)
+    assert rep["status"] == "complete" and rep["samples_this_session"] == 30 - done
+    assert rep["results"]["y"]["n"] == 30
