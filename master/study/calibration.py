@@ -22,15 +22,17 @@ It writes into ``out``:
 The standard errors come from the Jacobian at the optimum (:func:`.statistics.fit_errors`); they are local
 (linearised) and assume the residuals' scatter is the targets' (with the residual variance estimated).
 
-Example (a toy oscillator's stiffness fitted to its own final temperature; see tests/master/test_study_calibrate.py)::
+Example (two masses' spring stiffnesses fitted to their final positions and velocities, as in
+tests/master/test_study_calibrate.py)::
 
     import rotorcosim
-    report = rotorcosim.calibrate("spec.toml", "out_dir")
-    report["parameters"]["node.R"]["value"], report["fit_score"]
+    report = rotorcosim.calibrate("spec.toml", "out_dir")      # rotorcosim calibrate spec.toml --out out_dir
+    report["parameters"]["m1.k"]["value"], report["parameters"]["m1.k"]["std_error"], report["fit_score"]
 """
 from __future__ import annotations
 
 import math
+import sys
 import time
 from pathlib import Path
 from typing import Callable
@@ -156,8 +158,6 @@ def calibrate(spec: str | Path | CalibrationSpec, out: str | Path, *, scheduler:
     function of one line, default: print to stderr) for the search's steps); ``task``: what a run is (default
     :func:`.evaluate.run_job`). The folder must be new, empty, or hold this SPEC's interrupted calibration (then
     it resumes, rerunning no stored run)."""
-    import sys
-
     from scipy.optimize import least_squares
 
     t_wall = time.perf_counter()

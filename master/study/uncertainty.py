@@ -23,8 +23,8 @@ sampler its block of the design is then left out of the Sobol' indices.
 Example (see tests/master/test_study_uq.py)::
 
     import rotorcosim
-    report = rotorcosim.uq("uq.toml", "out_dir")
-    report["results"]["final_outputs.node.T"]["mean"], report["failed"]["count"]
+    report = rotorcosim.uq("uq.toml", "out_dir")                # rotorcosim uq uq.toml --out out_dir
+    report["results"]["final_outputs.m1.x"]["mean"], report["failed"]["count"]
 """
 from __future__ import annotations
 

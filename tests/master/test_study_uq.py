@@ -10,10 +10,7 @@ import math
 import shutil
 from pathlib import Path
 
-import pytest
-
 import rotorcosim
-from rotorcosim.master.cli.program import main
 
 TOY = Path(__file__).resolve().parents[1] / "helpers" / "two_masses.toml"
 ROOT = Path(__file__).resolve().parents[2]
