@@ -108,7 +108,7 @@ def histograms(path: Path, results: list[str], columns: dict[str, list[float]], 
     for ax in list(axes.flat)[len(results):]:
         ax.axis("off")
     fig.suptitle("UQ: distribution of each result (line: mean; dotted: 5th / 95th percentiles)", fontsize=9)
-    fig.tight_layout()
+    fig.tight_layout(rect=(0, 0, 1, 0.96))
     _save(fig, path)
 
 
@@ -142,5 +142,5 @@ def tornado(path: Path, results: list[str], names: list[str], bars: dict[str, li
         ax.axis("off")
     fig.suptitle("UQ tornado: each parameter at its 5th (blue) / 95th (orange) percentile, others at their means "
                  "(linear regression on the samples)", fontsize=8)
-    fig.tight_layout()
+    fig.tight_layout(rect=(0, 0, 1, 0.97))
     _save(fig, path)
