@@ -172,3 +172,26 @@ upper = 1.0
     rep = rotorcosim.uq(spec, tmp_path / "out", serial=True, quiet=True, task=slow)
     assert rep["status"] == "complete" and rep["samples_this_session"] == 30 - done
     assert rep["results"]["y"]["n"] == 30
+
+
+def test_on_a_running_scheduler_by_its_address(tmp_path, monkeypatch):
+    """scheduler=ADDRESS (``--scheduler``): the samples run on that cluster's workers, which stay up after."""
+    import os
+
+    from dask.distributed import LocalCluster
+
+    monkeypatch.setenv("PYTHONPATH", f"{ROOT}:{os.environ.get('PYTHONPATH', '')}")
+    spec = write_spec(tmp_path, '''samples = 4
+sampler = "mc"
+results = ["final_outputs.m1.x"]
+[[uq.parameter]]
+name = "m1.x0"
+distribution = "uniform"
+lower = 0.05
+upper = 0.15
+''')
+    with LocalCluster(n_workers=1, threads_per_worker=1, processes=True, dashboard_address=":0") as cluster:
+        rep = rotorcosim.uq(spec, tmp_path / "out", scheduler=cluster.scheduler_address, quiet=True)
+        assert rep["executed_on"] == f"{cluster.scheduler_address}, 1 workers"
+        assert rep["failed"]["count"] == 0 and rep["results"]["final_outputs.m1.x"]["n"] == 4
+        assert len(cluster.scheduler_info["workers"]) == 1
