@@ -18,6 +18,8 @@ CONFIDENCE = 0.95
 BOOTSTRAP = 2000
 #: a parameter whose standard error (in its scale) exceeds this fraction of its range is "not identifiable"
 UNIDENTIFIABLE = 0.5
+#: harmonics of RBD-FAST's spectrum (SALib's default); it needs more than twice as many samples
+RBD_FAST_HARMONICS = 10
 #: a parameter this close to a bound (fraction of its range in its scale) "ends at the bound"
 AT_BOUND = 1e-3
 
@@ -129,11 +131,11 @@ def sobol_indices(names: list[str], y: np.ndarray, seed: int) -> dict:
 
 def first_order_indices(names: list[str], u: np.ndarray, y: np.ndarray, seed: int) -> dict:
     """First-order indices from any sample (random or Latin hypercube) by SALib's RBD-FAST (Plischke 2010):
-    no total indices from such a sample."""
+    no total indices from such a sample. It needs more than 2 x :data:`RBD_FAST_HARMONICS` samples."""
     from SALib.analyze import rbd_fast
 
     res = rbd_fast.analyze(problem(names), np.asarray(u, dtype=float), np.asarray(y, dtype=float),
-                           conf_level=CONFIDENCE, seed=seed)
+                           M=RBD_FAST_HARMONICS, conf_level=CONFIDENCE, seed=seed)
     return {n: {"S1": float(res["S1"][i]), "S1_conf": float(res["S1_conf"][i])} for i, n in enumerate(names)}
 
 

@@ -188,7 +188,7 @@ def analyse(spec: UQSpec, u: np.ndarray, rows: list[dict]) -> dict:
                 yb = y_all.reshape(-1, d + 2)[blocks_ok].ravel()
                 entry["sobol"] = {"method": "saltelli", "blocks": int(blocks_ok.sum()),
                                   "indices": statistics.sobol_indices(names, yb, spec.seed)}
-        elif len(yo) >= 2 * d and np.ptp(yo) > 0:
+        elif len(yo) > 2 * statistics.RBD_FAST_HARMONICS and np.ptp(yo) > 0:
             entry["sobol"] = {"method": "rbd_fast", "indices": statistics.first_order_indices(names, uo, yo, spec.seed)}
         out[res] = entry
     return {"results": out, "failed": failed}
