@@ -38,7 +38,8 @@ def efficiency(jobs: int, workers: int, duration: float | None) -> None:
         t_par = time.perf_counter() - t0
         where = ev.where
     bad = [s.get("error") for s in ser + par if s.get("error")]
-    print(f"{jobs} runs of {SCENARIO} ({f'{duration:g} s' if duration else 'full duration'}): serial {t_ser / jobs:.2f} s per evaluation, Dask "
+    length = f"{duration:g} s" if duration else "full duration"
+    print(f"{jobs} runs of {SCENARIO} ({length}): serial {t_ser / jobs:.2f} s per evaluation, Dask "
           f"({where}) {t_par / jobs:.2f} s per evaluation; parallel efficiency {t_ser / (workers * t_par):.2f}"
           + (f"; {len(bad)} failed: {bad[0]}" if bad else ""))
 

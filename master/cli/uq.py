@@ -29,8 +29,9 @@ def run(args) -> int:
         if "mean" not in r:
             print(f"  {name}: no successful sample")
             continue
-        line = f"  {name}: mean {r['mean']:.5g} (95 % {r['mean_ci'][0]:.5g}..{r['mean_ci'][1]:.5g}), std {r['std']:.3g}, " \
-               f"p5 {r['p5']:.5g}, p95 {r['p95']:.5g}"
+        lo, hi = r["mean_ci"]
+        line = f"  {name}: mean {r['mean']:.5g} (95 % {lo:.5g}..{hi:.5g}), std {r['std']:.3g}, p5 {r['p5']:.5g}, " \
+               f"p95 {r['p95']:.5g}"
         idx = (r.get("sobol") or {}).get("indices")
         if idx:
             key = "ST" if "ST" in next(iter(idx.values())) else "S1"

@@ -6,7 +6,7 @@ A calibration SPEC (paths relative to the SPEC's folder)::
     scenario = "blade_loss_2850"          # a shipped name or a path
     duration = 2.0                        # optional: the runs' duration in s (default: the scenario's)
     targets = "targets.csv"               # columns: case, result, value[, weight][, uncertainty][, holdout]
-    residual = "log"                      # optional: "log" (log of ours / target) or "linear" ((ours - target) * weight)
+    residual = "log"                      # optional: "log" (log of ours / target) or "linear" ((ours - target) w)
     max_evaluations = 40                  # optional: points of the least-squares search (each: every fit case)
     diff_step = 0.02                      # optional: finite-difference step, a fraction of each parameter's range
     tolerance = 1e-4                      # optional: stop when the cost changes by less than this fraction
@@ -37,7 +37,8 @@ A UQ SPEC::
 Every mistake is a :class:`SpecError` (a ValueError) of one line naming the file and the key.
 
 >>> import tempfile, pathlib
->>> d = pathlib.Path(tempfile.mkdtemp()); _ = (d / "t.csv").write_text("case,result,value\\n,final_outputs.node.T,310\\n")
+>>> d = pathlib.Path(tempfile.mkdtemp())
+>>> _ = (d / "t.csv").write_text("case,result,value\\n,final_outputs.node.T,310\\n")
 >>> _ = (d / "s.toml").write_text('''[calibrate]
 ... scenario = "toy_thermomechanical"
 ... targets = "t.csv"
