@@ -151,10 +151,12 @@ def main(argv: list[str] | None = None) -> int:
 
         with one_thread():  # the same numbers whatever the calling program imported first (threads.py)
             return int(module.run(args) or 0)
-    except KeyboardInterrupt:
+    except KeyboardInterrupt as exc:
         if debug:
             traceback.print_exc()
-        print(f"rotorcosim {args.command}: interrupted", file=sys.stderr)
+        # a command that says what its interruption kept (a sweep: its cases) raises its own subclass
+        said = str(exc) if type(exc).__name__ == "SweepInterrupted" else ""
+        print(f"rotorcosim {args.command}: {said or 'interrupted'}", file=sys.stderr)
         return 130
     except Exception as exc:
         status, text = describe_error(exc)

@@ -16,9 +16,9 @@
     done.summaries["soft"], done.errors
 """
 from rotorcosim.master.sweep.case import Case, run_case
-from rotorcosim.master.sweep.engine import (CONNECT_TIMEOUT_S, RETRIES, SchedulerLost, SweepError, SweepRun,
-                                            WorkerDied, run_cases)
+from rotorcosim.master.sweep.engine import (CONNECT_TIMEOUT_S, RETRIES, SchedulerLost, SweepError, SweepInterrupted,
+                                            SweepRun, WorkerDied, run_cases)
 from rotorcosim.master.sweep.folder import SWEEP_FILES, DiskFullError, SweepFolder
 
-__all__ = ["Case", "run_case", "run_cases", "SweepRun", "SweepError", "SchedulerLost", "WorkerDied",
+__all__ = ["Case", "run_case", "run_cases", "SweepRun", "SweepError", "SweepInterrupted", "SchedulerLost", "WorkerDied",
            "DiskFullError", "SweepFolder", "SWEEP_FILES", "CONNECT_TIMEOUT_S", "RETRIES"]

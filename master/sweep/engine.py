@@ -29,11 +29,14 @@ results equal an uninterrupted sweep's, bit for bit).
 from __future__ import annotations
 
 import csv
+import json
+import logging
 import os
 import signal
 import threading
 import time
 import uuid
+import warnings
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any, Callable, Sequence
@@ -45,7 +48,7 @@ from rotorcosim.master.sweep.folder import STATE, SweepFolder
 CONNECT_TIMEOUT_S = 20.0
 #: how often a case whose worker died is run again before it is reported failed
 RETRIES = 1
-#: the Dask metadata key under which a case's attempts are counted (on the scheduler, per sweep and case)
+#: the Dask metadata key under which a case's attempts are counted (on the scheduler, under it per sweep and case)
 ATTEMPTS = "rotorcosim-sweep-attempts"
 
 
@@ -59,6 +62,10 @@ class SchedulerLost(SweepError):
 
 class WorkerDied(SweepError):
     """A case whose worker died on every attempt."""
+
+
+class SweepInterrupted(KeyboardInterrupt):
+    """Ctrl-C or SIGTERM stopped the sweep; ``str()`` says what was kept (the command line's one line)."""
 
 
 @dataclass
@@ -139,11 +146,10 @@ class _Sweep:
 
     def finished(self, case: Case, res: dict) -> None:
         """A case came back: its files stored, its summary (as stored) kept, sweep.json updated."""
-        self.folder.store(case.name, res["files"])
         summary = res["summary"]
-        if not summary.get("error") and "summary.json" in res["files"]:
-            import json
-
+        files = res["files"] or {"summary.json": (json.dumps(summary, indent=2) + "\n").encode()}  # why it failed
+        self.folder.store(case.name, files)
+        if not summary.get("error") and "summary.json" in files:
             summary = json.loads(res["files"]["summary.json"])   # as a resumed sweep reads it: the same bits
         self.summaries[case.name] = summary
         self.hosts[case.name] = res.get("host")
@@ -167,19 +173,22 @@ class _Sweep:
         todo = [c for c in self.cases if self.status[c.name] != "complete"]
         with _sigterm_as_interrupt():
             try:
-                if serial:
+                if not todo:
+                    self.where = "nothing to run (every case complete)"
+                elif serial:
                     self.where = "serial"
                     self.save()
                     for c in todo:
                         self.status[c.name] = "running"
                         self.finished(c, run_case(c))
-                elif todo:
-                    self._on_dask(todo, scheduler, workers, client, connect_timeout)
                 else:
-                    self.where = "nothing to run (every case complete)"
+                    self._on_dask(todo, scheduler, workers, client, connect_timeout)
             except KeyboardInterrupt:
                 self.stopped("interrupted")
-                raise
+                kept = sum(st == "complete" for st in self.status.values())
+                raise SweepInterrupted(f"interrupted: {kept} of {len(self.cases)} cases complete and kept in "
+                                       f"{self.folder.path} (sweep.json: case_status); continue with --resume") \
+                    from None
             except BaseException:
                 self.stopped("failed")
                 raise
@@ -202,9 +211,15 @@ class _Sweep:
         else:
             self.where = f"{client.scheduler.address}, {len(client.scheduler_info().get('workers', {}))} workers"
         address = scheduler or client.scheduler.address
-        token = uuid.uuid4().hex
+        self.token = uuid.uuid4().hex
+        futures: dict = {}
+        lost = False
         try:
-            futures = {client.submit(_attempt, c, f"{token}-{c.name}", pure=False): c for c in todo}
+            try:
+                futures = {client.submit(_attempt, c, [ATTEMPTS, self.token, c.name], pure=False): c for c in todo}
+            except (OSError, TimeoutError):
+                lost = True
+                raise SchedulerLost(self._lost(address)) from None
             for c in todo:
                 self.status[c.name] = "running"
             self.save()
@@ -214,18 +229,29 @@ class _Sweep:
                     res = fut.result()
                 except Exception as exc:
                     if _scheduler_gone(client, exc):
+                        lost = True
                         raise SchedulerLost(self._lost(address)) from None
                     res = {"summary": failed_summary(c, _task_error(exc)), "files": {}, "host": None}
                 self.finished(c, res)
-        except (OSError, TimeoutError) as exc:
-            if not _scheduler_gone(client, exc):
-                raise
-            raise SchedulerLost(self._lost(address)) from None
+        except KeyboardInterrupt:
+            self._not_started(client, futures)
+            raise
         finally:
-            for fut in futures if "futures" in locals() else ():
+            for fut in futures:
                 fut.cancel()
             if own:
-                _close(client, cluster)
+                _close(client, cluster, quiet=lost)
+
+    def _not_started(self, client, futures: dict) -> None:
+        """At an interrupt: the cases sent but not yet taken by a worker back to ``pending`` (only those a worker
+        runs are ``interrupted``); when the scheduler cannot say, all stay ``running``."""
+        try:
+            started = client.get_metadata([ATTEMPTS, self.token], {})
+        except Exception:
+            return
+        for c in futures.values():
+            if self.status[c.name] == "running" and not started.get(c.name):
+                self.status[c.name] = "pending"
 
     def _lost(self, address: str) -> str:
         kept = sum(s == "complete" for s in self.status.values())
@@ -233,16 +259,19 @@ class _Sweep:
                 f"cases complete and kept in {self.folder.path}; start a scheduler and continue with --resume")
 
 
-def _attempt(case: Case, key: str) -> dict:
+def _attempt(case: Case, key: list) -> dict:
     """The task a worker runs: count the attempt on the scheduler (a worker that dies while running the case
-    makes the scheduler run it again on another), refuse a third, run the case."""
+    makes the scheduler run it again on another), fail it on a third, else run the case."""
     from dask.distributed import get_client
 
     client = get_client()
-    n = client.get_metadata([ATTEMPTS, key], 0)
-    client.set_metadata([ATTEMPTS, key], n + 1)
-    if n > RETRIES:
-        raise WorkerDied(f"its worker died while running it, {n} times (retried {RETRIES} time(s))")
+    n = client.get_metadata(key, 0)
+    client.set_metadata(key, n + 1)
+    if n > RETRIES:   # returned, not raised: the workers would log a raised one as an error with its traceback
+        import socket
+
+        error = f"{WorkerDied.__name__}: its worker died while running it, {n} times (retried {RETRIES} time(s))"
+        return {"summary": failed_summary(case, error), "files": {}, "host": socket.gethostname()}
     return run_case(case)
 
 
@@ -281,16 +310,59 @@ def _client(scheduler: str | None, workers: int | None, connect_timeout: float, 
     # one process per worker, each running one case at a time: workers beyond the cases would only start and
     # idle (--workers 100000 spent minutes starting processes, then failed inside Dask)
     n = min(workers or os.cpu_count() or 1, n_cases)
-    cluster = LocalCluster(n_workers=n, threads_per_worker=1, processes=True, dashboard_address=None)
-    return Client(cluster), cluster, f"local cluster, {n} workers"
+    # Ctrl-C in a terminal reaches every process of its group, the local workers too: they ignore it (each
+    # printed a KeyboardInterrupt traceback) and this process ends the sweep and closes them. Ignored while
+    # they start (a disposition a started process keeps) and by a plugin in every worker (a restarted one too)
+    main = threading.current_thread() is threading.main_thread()
+    old = signal.signal(signal.SIGINT, signal.SIG_IGN) if main else None
+    try:
+        with warnings.catch_warnings():  # "Port 8787 is already in use" (another cluster's): it takes another one
+            warnings.filterwarnings("ignore", message="Port .* is already in use")
+            cluster = LocalCluster(n_workers=n, threads_per_worker=1, processes=True, dashboard_address=None,
+                                   worker_dashboard_address=None, silence_logs=logging.ERROR)
+    finally:
+        if main:
+            signal.signal(signal.SIGINT, old)
+    client = Client(cluster)
+    client.register_plugin(_IgnoreInterrupt(), name="rotorcosim-ignore-sigint")
+    return client, cluster, f"local cluster, {n} workers"
 
 
-def _close(client, cluster) -> None:
-    """Close the client and the local cluster, quietly when the scheduler is gone."""
+def _ignore_interrupt() -> None:
+    if threading.current_thread() is threading.main_thread():
+        signal.signal(signal.SIGINT, signal.SIG_IGN)
+
+
+try:
+    from distributed.diagnostics.plugin import WorkerPlugin as _WorkerPlugin
+except ImportError:  # pragma: no cover  (Dask is needed only off --serial)
+    _WorkerPlugin = object
+
+
+class _IgnoreInterrupt(_WorkerPlugin):
+    """A local worker ignores SIGINT: the sweep's own process ends it (see :func:`_client`)."""
+
+    def setup(self, worker):
+        _ignore_interrupt()
+
+
+def _close(client, cluster, quiet: bool = False) -> None:
+    """Close the client and the local cluster, quietly when the scheduler is gone (Dask logs its failed
+    reconnection with tracebacks: the sweep's own one-line error says it)."""
+    import logging
+
+    loggers = [logging.getLogger(n) for n in ("distributed.client", "distributed.core", "distributed.comm")]
+    levels = [lg.level for lg in loggers]
+    if quiet:
+        for lg in loggers:
+            lg.setLevel(logging.CRITICAL)
     try:
         client.close(timeout=5)
     except Exception:   # the scheduler already gone: nothing to close cleanly
         pass
+    finally:
+        for lg, lv in zip(loggers, levels):
+            lg.setLevel(lv)
     if cluster is not None:
         try:
             cluster.close(timeout=10)
