@@ -18,7 +18,7 @@
 from rotorcosim.master.sweep.case import Case, run_case
 from rotorcosim.master.sweep.engine import (CONNECT_TIMEOUT_S, RETRIES, SchedulerLost, SweepError, SweepInterrupted,
                                             SweepRun, WorkerDied, run_cases)
-from rotorcosim.master.sweep.folder import SWEEP_FILES, DiskFullError, SweepFolder
+from rotorcosim.master.sweep.folder import SWEEP_FILES, DiskFullError, SweepFolder, named_os_error
 
 __all__ = ["Case", "run_case", "run_cases", "SweepRun", "SweepError", "SweepInterrupted", "SchedulerLost", "WorkerDied",
-           "DiskFullError", "SweepFolder", "SWEEP_FILES", "CONNECT_TIMEOUT_S", "RETRIES"]
+           "DiskFullError", "SweepFolder", "named_os_error", "SWEEP_FILES", "CONNECT_TIMEOUT_S", "RETRIES"]

@@ -42,7 +42,7 @@ from pathlib import Path
 from typing import Any, Callable, Sequence
 
 from rotorcosim.master.sweep.case import Case, failed_summary, run_case
-from rotorcosim.master.sweep.folder import STATE, SweepFolder
+from rotorcosim.master.sweep.folder import STATE, SweepFolder, named_os_error
 
 #: how long the client waits for a scheduler given by ``scheduler=`` before saying it cannot reach it [s]
 CONNECT_TIMEOUT_S = 20.0
@@ -192,8 +192,12 @@ class _Sweep:
             except BaseException:
                 self.stopped("failed")
                 raise
-        extra = finish(self.folder.path, self.ordered()) if finish is not None else {}
-        _write_csv(self.folder.path / "sweep.csv", self.cases, self.ordered())
+        try:
+            extra = finish(self.folder.path, self.ordered()) if finish is not None else {}
+            _write_csv(self.folder.path / "sweep.csv", self.cases, self.ordered())
+        except OSError as exc:   # every case is stored: a --resume writes the tables
+            self.save("failed")
+            raise named_os_error(exc, self.folder.path, "writing the sweep's tables") from None
         state = self.state("complete", extra)
         self.folder.write_state(state)
         return SweepRun(self.ordered(), dict(self.hosts), dict(self.status), self.where, state["wall_time_s"], state)

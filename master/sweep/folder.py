@@ -1,10 +1,8 @@
 """A sweep's folder: one sweep at a time (a lock), its previous results (refused, replaced or continued), each
 case's folder written whole (write-then-rename) and ``sweep.json`` kept current while the cases run.
 
-* The lock is ``.rotorcosim.lock`` at the top of the folder, an advisory ``flock`` held for the whole sweep with
-  the owner's process id in it: a second sweep into the folder at once is refused with that id. The kernel drops
-  the lock when the process ends however it ends; a sweep that ends (complete, failed or interrupted) removes the
-  file.
+* The lock is ``.rotorcosim.lock`` at the top of the folder (lock.py): a second sweep into the folder at once is
+  refused naming the first one's process; a sweep that ends (complete, failed or interrupted) removes the file.
 * A folder that already holds results is refused, unless ``overwrite`` (which removes a previous sweep's files
   and case folders, and nothing else) or ``resume`` (which keeps the cases its ``sweep.json`` says are complete
   and reruns the others).
@@ -20,7 +18,6 @@ case's folder written whole (write-then-rename) and ``sweep.json`` kept current 
 from __future__ import annotations
 
 import errno
-import fcntl
 import fnmatch
 import json
 import os
@@ -28,6 +25,7 @@ import shutil
 from pathlib import Path
 
 from rotorcosim.master.run.rundir import LOCK, OutputFolderError, check_folder, ensure_folder, is_run_file
+from rotorcosim.master.sweep.lock import FolderLock
 
 #: what a sweep writes at the top of its folder (beside one folder of run files per case, rundir.RUN_FILES, and
 #: the files of its case's tables, the case's SWEEP_FILES)
@@ -56,7 +54,7 @@ class SweepFolder:
         self.path = check_folder(out)
         self.overwrite, self.resume = overwrite, resume
         self.extra_files = tuple(extra_files)
-        self._fd: int | None = None
+        self._lock: FolderLock | None = None
         self._made: list[Path] = []
 
     # -- the lock ---------------------------------------------------------------------------------------------
@@ -69,23 +67,14 @@ class SweepFolder:
             self._made.append(missing)
             missing = missing.parent
         ensure_folder(p)
+        self._lock = FolderLock(p, "sweep")
         try:
-            self._fd = os.open(p / LOCK, os.O_RDWR | os.O_CREAT, 0o644)
-        except OSError as exc:
+            self._lock.__enter__()
+        except BaseException:
+            self._lock = None
             self._take_back()
-            raise OutputFolderError(f"--out {p}: cannot create the lock file ({exc.strerror or exc})") from None
+            raise
         try:
-            fcntl.flock(self._fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
-        except OSError:
-            owner = _read_owner(self._fd)
-            os.close(self._fd)
-            self._fd = None
-            raise OutputFolderError(f"--out {p}: another sweep is writing into this folder"
-                                    f"{f' (process {owner})' if owner else ''}; wait for it to end or choose "
-                                    "another folder") from None
-        try:
-            os.ftruncate(self._fd, 0)
-            os.pwrite(self._fd, f"{os.getpid()}\n".encode(), 0)
             self._previous_results()
         except BaseException:
             self.close(remove_folder=True)
@@ -96,18 +85,11 @@ class SweepFolder:
         self.close()
 
     def close(self, remove_folder: bool = False) -> None:
-        """Remove the lock file and release the lock (``remove_folder``: and the folders entering made, when
-        they are empty: a sweep refused before it starts leaves nothing)."""
-        if self._fd is not None:
-            try:
-                (self.path / LOCK).unlink()   # while it is held: no other sweep can hold the file removed
-            except OSError:
-                pass
-            try:
-                fcntl.flock(self._fd, fcntl.LOCK_UN)
-            finally:
-                os.close(self._fd)
-                self._fd = None
+        """Release the lock and remove its file (``remove_folder``: and the folders entering made, when they
+        are empty: a sweep refused before it starts leaves nothing)."""
+        if self._lock is not None:
+            self._lock.release()
+            self._lock = None
         if remove_folder:
             self._take_back()
 
@@ -203,7 +185,7 @@ class SweepFolder:
             os.replace(part, final)
         except OSError as exc:
             shutil.rmtree(part, ignore_errors=True)
-            raise _named(exc, self.path, f"storing case {name}") from None
+            raise named_os_error(exc, self.path, f"storing case {name}") from None
 
     def write_state(self, state: dict) -> None:
         """``sweep.json`` (written whole: write-then-rename)."""
@@ -212,20 +194,14 @@ class SweepFolder:
         try:
             write_json(self.path / STATE, state)
         except OSError as exc:
-            raise _named(exc, self.path, f"writing {STATE}") from None
+            raise named_os_error(exc, self.path, f"writing {STATE}") from None
 
 
-def _named(exc: OSError, folder: Path, doing: str) -> OSError:
-    """A full disk as :class:`DiskFullError` naming ``folder``; any other error kept, with what was being done."""
+def named_os_error(exc: OSError, folder: Path, doing: str) -> OSError:
+    """A full disk as :class:`DiskFullError` naming ``folder`` and what was being done (``doing``, e.g. "writing
+    table6.json"), telling to continue with --resume; any other error as an OSError saying ``doing`` too."""
     if exc.errno in (errno.ENOSPC, errno.EDQUOT):
         return DiskFullError(exc.errno, f"the disk holding {folder} is full ({doing}); free space and continue "
                                         "with --resume")
     return OSError(exc.errno, f"{exc.strerror or exc} ({doing})", exc.filename)
-
-
-def _read_owner(fd: int) -> str:
-    try:
-        return os.pread(fd, 32, 0).decode().strip()
-    except OSError:
-        return ""
 
