@@ -17,7 +17,7 @@ from pathlib import Path
 from rotorcosim.master.schedule import budget
 from rotorcosim.master.run import checkpoint
 from rotorcosim.master.run import watchdog
-from rotorcosim.master.core.algorithm import SimulationDiverged
+from rotorcosim.master.core.algorithm import SimulationFailed
 from rotorcosim.master.api import DEFAULT_SCENARIO, SCHEDULE_ALIASES, SCHEDULES, load_scenario, simulate
 from rotorcosim.master.cli.options import SCHEDULE_HELP, add_out, add_scenario
 from rotorcosim.master.compiled.choice import ENGINES
@@ -155,9 +155,9 @@ def run(args) -> int:
                        overwrite=args.overwrite, resume=args.resume, force=args.force,
                        checkpoint_every=args.checkpoint_every, step_timeout=args.step_timeout,
                        engine=args.engine)
-    except SimulationDiverged as exc:
-        print(f"rotorcosim run: the simulation diverged: {exc}; what was recorded is in {out} "
-              "(summary.json has the error)", file=sys.stderr)
+    except SimulationFailed as exc:   # diverged, a component failed, a step timed out, a process crashed
+        print(f"rotorcosim run: {exc.what}: {exc}; what was recorded is in {out} (summary.json has the error)",
+              file=sys.stderr)
         return 1
     except KeyboardInterrupt as exc:
         print(f"rotorcosim run: interrupted ({exc or 'SIGINT'}); the time series and summary.json in {out} "
