@@ -207,3 +207,25 @@ def apply_swap(sc, component: str, implementation: str, parameters: Mapping[str,
         spec.parameters = {k: _plain(v) for k, v in parameters.items()}
         spec.param_origins = {k: origin for k in parameters}
     return out
+
+
+def apply_unbalance(sc: Scenario, force: float, settings=()) -> None:
+    """Set the scenario's level parameter (``[results] unbalance_parameter``) to ``force``; ``settings`` are the
+    ``comp.param`` names the same command sets with ``--set``: naming the level parameter there too is an error
+    (one of the two values would be dropped without a word)."""
+    if not (force >= 0.0) or force != force or force == float("inf"):
+        raise ValueError(f"--unbalance must be a finite force >= 0 N, got {force}")
+    ref = sc.extra.get("results", {}).get("unbalance_parameter")
+    if not ref:
+        raise ValueError(f"scenario {sc.name!r} has no [results] unbalance_parameter: --unbalance does not apply")
+    if ref in settings:
+        raise ValueError(f"--unbalance and --set {ref}=... both give the unbalance force ({ref}, the scenario's "
+                         "[results] unbalance_parameter): give one of them")
+    comp, _, param = ref.partition(".")
+    if comp not in sc.components:
+        raise ValueError(f"[results] unbalance_parameter {ref!r}: no component {comp!r}")
+    old = sc.components[comp].parameters.get(param)
+    sc.components[comp].parameters[param] = float(force)
+    if old is None or float(old) != float(force):
+        # the run's name says what was run (a scenario named NAME_<level> becomes NAME_<new level>)
+        sc.name = f"{sc.name.rsplit('_', 1)[0] if sc.name.rsplit('_', 1)[-1].isdigit() else sc.name}_{force:g}"

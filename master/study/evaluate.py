@@ -8,25 +8,28 @@ each one finishes so that the caller stores it at once.
 A worker that dies while running a job (a crash, killed for memory) has its job run once more on another worker;
 if that dies too, the job is reported failed (``error`` names it), never dropped.
 
+The Dask side is the sweep engine's (:mod:`rotorcosim.master.sweep.engine`): the same client for a scheduler
+address or a local cluster (whose workers leave Ctrl-C to this process), the same retry count, connection
+timeout, SIGTERM handling and closing. What differs is what a job returns: a study needs each run's summary only,
+in memory, thousands of times (no case folder, time series or figures, which ``run_cases`` writes for a sweep),
+and a study can run a stand-in task (its tests do).
+
 >>> with Evaluator("toy_thermomechanical", duration=0.05, serial=True) as ev:
 ...     [s["status"] for s in ev.map([("a", {"node.C": 20.0}), ("b", {"node.C": 40.0})])]
 ['complete', 'complete']
 """
 from __future__ import annotations
 
-import contextlib
-import logging
 import os
-import signal
 import sys
-import threading
 import time
 from typing import Any, Callable, Sequence
 
-#: how long the client waits for a scheduler given by ``scheduler=`` [s]
-CONNECT_TIMEOUT_S = 20.0
-#: how many times a job is run again after its worker died (Dask's ``allowed-failures``)
-RETRIES = 1
+# one place for these: the sweep engine's connection timeout [s], retries of a job whose worker died, its Dask
+# client (local cluster or scheduler address), its closing and its SIGTERM-as-Ctrl-C (module-private there)
+from rotorcosim.master.sweep.engine import CONNECT_TIMEOUT_S, RETRIES
+from rotorcosim.master.sweep.engine import _client as sweep_client, _close as close_client
+from rotorcosim.master.sweep.engine import _sigterm_as_interrupt as terminate_as_interrupt
 
 Job = tuple[str, dict[str, Any]]
 
@@ -86,9 +89,7 @@ class Evaluator:
     def close(self) -> None:
         """Stop the local cluster (a running cluster given by address is left running)."""
         if self._client is not None:
-            self._client.close()
-        if self._cluster is not None:
-            self._cluster.close()
+            close_client(self._client, self._cluster)
         self._client = self._cluster = None
 
     @property
@@ -100,29 +101,17 @@ class Evaluator:
             return max(1, len(self._client.scheduler_info().get("workers", {})))
         return self.workers or os.cpu_count() or 1
 
-    def _connect(self, n_jobs: int):
+    def _connect(self):
         if self._client is not None:
             return self._client
         import dask
-        from dask.distributed import Client, LocalCluster
 
-        if self.scheduler:
-            try:
-                self._client = Client(self.scheduler, timeout=self.connect_timeout)
-            except (OSError, TimeoutError) as exc:
-                raise ValueError(f"scheduler {self.scheduler}: cannot reach the Dask scheduler ({exc})") from None
-            except ValueError as exc:  # not an address (dask: "unknown address scheme ...")
-                raise ValueError(f"scheduler {self.scheduler}: not a Dask scheduler's address ({exc})") from None
-            n = len(self._client.scheduler_info().get("workers", {}))
-            self.where = f"{self.scheduler}, {n} workers"
-            return self._client
-        n = min(self.workers or os.cpu_count() or 1, max(1, n_jobs))
-        # a job whose worker died is run RETRIES more times, then reported failed (KilledWorker)
+        # a job whose worker died is run RETRIES more times by the scheduler, then reported failed (KilledWorker;
+        # a scheduler given by address keeps its own setting); the local cluster is sized for the workers asked
+        # for, not the first batch (a calibration's first batch may be one run)
         with dask.config.set({"distributed.scheduler.allowed-failures": RETRIES}):
-            self._cluster = LocalCluster(n_workers=n, threads_per_worker=1, processes=True,
-                                         dashboard_address=":0", silence_logs=logging.ERROR)
-        self._client = Client(self._cluster)
-        self.where = f"local cluster, {n} workers"
+            self._client, self._cluster, self.where = sweep_client(self.scheduler, self.workers, self.connect_timeout,
+                                                                   self.workers or os.cpu_count() or 1)
         return self._client
 
     def map(self, jobs: Sequence[Job], done: Callable[[int, Job, dict], None] | None = None) -> list[dict]:
@@ -144,7 +133,7 @@ class Evaluator:
             return out  # type: ignore[return-value]
         from dask.distributed import as_completed
 
-        client = self._connect(len(jobs))
+        client = self._connect()
         # no more jobs in flight than the cluster runs at once: Dask would otherwise queue several on a worker, and
         # a worker's death counts against every job it holds (a waiting job was reported failed, measured), so
         # a job is retried for its own worker's death only
@@ -175,25 +164,6 @@ class Evaluator:
                 fut.cancel()
             raise
         return out  # type: ignore[return-value]
-
-
-@contextlib.contextmanager
-def terminate_as_interrupt():
-    """Inside: SIGTERM (a batch system's stop, ``kill``) raises KeyboardInterrupt as Ctrl-C does, so that a study
-    stopped either way writes its report (status "interrupted") before it ends. Only in the main thread (signal
-    handlers can be set there only); elsewhere it does nothing."""
-    if threading.current_thread() is not threading.main_thread():
-        yield
-        return
-
-    def stop(signum, frame):
-        raise KeyboardInterrupt(f"signal {signum}")
-
-    old = signal.signal(signal.SIGTERM, stop)
-    try:
-        yield
-    finally:
-        signal.signal(signal.SIGTERM, old)
 
 
 class Progress:
