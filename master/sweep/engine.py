@@ -178,9 +178,12 @@ class _Sweep:
                 elif serial:
                     self.where = "serial"
                     self.save()
-                    for c in todo:
-                        self.status[c.name] = "running"
-                        self.finished(c, run_case(c))
+                    with _SignalsSeen() as seen:
+                        for c in todo:
+                            self.status[c.name] = "running"
+                            self.finished(c, run_case(c))
+                            if seen.interrupt():   # the case ran to its end: it is kept; the sweep stops
+                                raise KeyboardInterrupt(seen.interrupt())
                 else:
                     self._on_dask(todo, scheduler, workers, client, connect_timeout)
             except KeyboardInterrupt:
@@ -386,6 +389,40 @@ class _sigterm_as_interrupt:
     def __exit__(self, *exc):
         if self._old is not None:
             signal.signal(signal.SIGTERM, self._old)
+
+
+class _SignalsSeen:
+    """Whether SIGINT or SIGTERM arrived while a case ran in this process (serial). A run takes both signals
+    over (checkpoint.StopRequest: the first one stops it at its next checkpoint), and one arriving after its
+    last checkpoint lets it complete without a word: the signal would be lost to the sweep, which went on. Every
+    signal also writes its number to the interpreter's wake-up file descriptor, whichever handler takes it: a
+    pipe here, read after each case."""
+
+    def __enter__(self):
+        self._old = None
+        if threading.current_thread() is threading.main_thread():
+            self._r, self._w = os.pipe()
+            os.set_blocking(self._r, False)
+            os.set_blocking(self._w, False)
+            self._old = signal.set_wakeup_fd(self._w, warn_on_full_buffer=False)
+        return self
+
+    def interrupt(self) -> str | None:
+        """The name of an interrupting signal received since the last call, or None."""
+        if self._old is None:
+            return None
+        try:
+            got = os.read(self._r, 512)
+        except BlockingIOError:
+            return None
+        hits = [n for n in got if n in (signal.SIGINT, signal.SIGTERM)]
+        return signal.Signals(hits[0]).name if hits else None
+
+    def __exit__(self, *exc):
+        if self._old is not None:
+            signal.set_wakeup_fd(self._old)
+            os.close(self._r)
+            os.close(self._w)
 
 
 def _raise_interrupt(signum, frame):

@@ -253,3 +253,23 @@ def test_a_second_sweep_at_once_from_another_process(tmp_path):
 def _dir(root: Path, name: str) -> Path:
     (root / name).mkdir()
     return root / name
+
+
+@pytest.mark.parametrize("sig", [signal.SIGINT, signal.SIGTERM])
+def test_a_serial_sweep_stops_at_a_signal_during_a_case(tmp_path, sig):
+    """``--serial``: the case running takes the signal over (a run stops at its next checkpoint, or completes when
+    none comes, as these 0.05 s cases do); the sweep still stops after it, exit status 130, the cases not started
+    ``pending`` (it went on to the next case before)."""
+    sc = faulty.scenario(tmp_path, sleep=0.02)
+    out = tmp_path / "out"
+    p = start("sweep", sc, "--unbalance", "1,2,3", "--duration", "0.05", "--serial", "--quiet", "--out", out)
+    wait_for(lambda: (out / "F_1").is_dir(), what="the first case")
+    time.sleep(0.3)   # the second case under way (each takes ~1 s)
+    os.killpg(p.pid, sig)
+    _, err = p.communicate(timeout=120)
+    assert p.returncode == 130, err
+    assert err.splitlines()[0].startswith("rotorcosim sweep: interrupted: "), err
+    s = state(out)
+    assert s["status"] == "interrupted" and s["case_status"]["F_3"] == "pending", s["case_status"]
+    assert s["case_status"]["F_2"] in ("complete", "interrupted")
+    assert_kept(out, [n for n, st in s["case_status"].items() if st == "complete"])
