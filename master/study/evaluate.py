@@ -92,15 +92,6 @@ class Evaluator:
             close_client(self._client, self._cluster)
         self._client = self._cluster = None
 
-    @property
-    def concurrency(self) -> int:
-        """How many jobs run at once."""
-        if self.serial:
-            return 1
-        if self._client is not None:
-            return max(1, len(self._client.scheduler_info().get("workers", {})))
-        return self.workers or os.cpu_count() or 1
-
     def _connect(self):
         if self._client is not None:
             return self._client
@@ -143,8 +134,9 @@ class Evaluator:
 
         def submit():
             i = waiting.pop(0)
-            futures[client.submit(self.task, self.scenario, jobs[i][1], self.duration, pure=False)] = i
-            return list(futures)[-1]
+            fut = client.submit(self.task, self.scenario, jobs[i][1], self.duration, pure=False)
+            futures[fut] = i
+            return fut
 
         running = as_completed([submit() for _ in range(min(slots, len(waiting)))])
         try:
