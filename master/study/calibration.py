@@ -170,6 +170,7 @@ def calibrate(spec: str | Path | CalibrationSpec, out: str | Path, *, scheduler:
     out = Path(out)
     head = {"spec": str(spec.source), "scenario": spec.scenario, "duration_s": spec.duration,
             "residual": spec.residual}
+    evaluate.check_scheduler(scheduler)   # before the folder is touched
     resumed = store.open_folder(out, REPORT, TABLE, spec.fingerprint(), head)
     results = list(dict.fromkeys(t.result for t in targets))
     table = store.RowStore(out / TABLE, ["case", *(p.name for p in spec.parameters), *results, "status",

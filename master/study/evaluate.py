@@ -59,6 +59,14 @@ def run_job(scenario: str, overrides: dict[str, Any], duration: float | None) ->
     return summary
 
 
+def check_scheduler(scheduler: str | None, connect_timeout: float = CONNECT_TIMEOUT_S) -> None:
+    """A scheduler address that cannot be reached is an error (ValueError, one line) now, before a study writes
+    anything; None (a local cluster or serial) passes."""
+    if scheduler:
+        client, cluster, _ = sweep_client(scheduler, None, connect_timeout, 1)
+        close_client(client, cluster)
+
+
 class Evaluator:
     """Runs jobs of ``scenario`` (a shipped name or a file path) for ``duration`` [s].
 

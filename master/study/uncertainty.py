@@ -107,6 +107,7 @@ def uq(spec: str | Path | UQSpec, out: str | Path, *, scheduler: str | None = No
     head = {"spec": str(spec.source), "scenario": spec.scenario, "duration_s": spec.duration,
             "sampler": spec.sampler, "seed": spec.seed, "samples": len(x),
             "parameters": {p.name: {"distribution": p.distribution, **p.values} for p in spec.parameters}}
+    evaluate.check_scheduler(scheduler)   # before the folder is touched
     resumed = store.open_folder(out, REPORT, TABLE, spec.fingerprint(), head)
     table = store.RowStore(out / TABLE, ["sample", *names, *spec.results, "status", "wall_time_s", "error"])
     rows = {int(r["sample"]): r for r in table.read()}

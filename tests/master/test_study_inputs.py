@@ -108,3 +108,18 @@ def test_a_folder_of_another_study_is_refused(tmp_path, capsys):
     (tmp_path / "other" / "notes.txt").write_text("mine")
     status = main(["uq", str(tmp_path / "spec.toml"), "--out", str(tmp_path / "other"), "--serial", "--quiet"])
     assert status == 2 and "is not empty" in capsys.readouterr().err
+
+
+def test_an_unreachable_scheduler_is_one_line_and_writes_nothing(tmp_path, capsys, monkeypatch):
+    """--scheduler ADDRESS that nothing listens at: one line naming it, exit status 2, no output folder."""
+    from rotorcosim.master.study import evaluate
+
+    monkeypatch.setattr(evaluate, "CONNECT_TIMEOUT_S", 2.0)
+    monkeypatch.setattr(evaluate.check_scheduler, "__defaults__", (2.0,))
+    shutil.copy(TOY, tmp_path / "toy.toml")
+    spec = tmp_path / "spec.toml"
+    spec.write_text(UQ)
+    status = main(["uq", str(spec), "--out", str(tmp_path / "out"), "--scheduler", "tcp://127.0.0.1:9", "--quiet"])
+    err = capsys.readouterr().err.strip()
+    assert status == 2 and "tcp://127.0.0.1:9" in err and "cannot reach" in err and len(err.splitlines()) == 1, err
+    assert not (tmp_path / "out").exists()
