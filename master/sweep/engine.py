@@ -326,8 +326,10 @@ def _client(scheduler: str | None, workers: int | None, connect_timeout: float, 
     try:
         with warnings.catch_warnings():  # "Port 8787 is already in use" (another cluster's): it takes another one
             warnings.filterwarnings("ignore", message="Port .* is already in use")
+            # Dask's own log off: a worker's death, the task run again and a failed case are the sweep's to say,
+            # once each (its scheduler logged "Couldn't gather keys" at ERROR while a dead worker's task was rerun)
             cluster = LocalCluster(n_workers=n, threads_per_worker=1, processes=True, dashboard_address=None,
-                                   worker_dashboard_address=None, silence_logs=logging.ERROR)
+                                   worker_dashboard_address=None, silence_logs=logging.CRITICAL)
     finally:
         if main:
             signal.signal(signal.SIGINT, old)
