@@ -263,9 +263,9 @@ def _compare(out, duration, unbalance, scenario, revolutions, bearing, quiet, fi
             what = f"{len(sch.intervals)} interval(s)" if hasattr(sch, "intervals") else "automatic schedule"
             print(f"[{i}/{len(kinds)}] {kind}: {sch.duration:g} s simulated, {what}",
                   file=sys.stderr, flush=True)
-        # not checkpointed: a comparison is run again, not resumed, and a save of the whole state at every interval
-        # end (0.2 s each, measured) is no part of the integration schemes' cost the table compares; no figures
-        # (and so no figure workers) during a timed run: drawn below, after both
+        # not checkpointed: an interrupted run is run again whole (--resume keeps complete runs only), and a save of
+        # the whole state at every interval end (0.2 s each, measured) is no part of the integration schemes' cost
+        # the table compares; no figures (and so no figure workers) during a timed run: drawn below, after both
         load = _load()
         if kind in kept:  # --resume: a complete run of this comparison, kept
             runs[kind], loads[kind] = kept[kind], [None, None]

@@ -14,7 +14,8 @@ absent). The sweep then writes ``DIR/sweep.json`` (cases, where they ran, wall t
 (one row per case: its parameters and its results) and, for a sweep of levels with at most one value of each
 ``--set`` parameter (one case a level), whatever tables the scenario's case writes for it (its ``SWEEP_TABLES``,
 master/case.py; the blade-loss case: ``table5.csv`` / ``table5.md`` and its comparison with the paper), with
-their score in ``DIR/sweep.json`` (``paper_score``).
+their score in ``DIR/sweep.json`` (``paper_score``). What a sweep does under faults (a worker that dies, the
+scheduler gone, Ctrl-C, a full disk, a second sweep into the folder) and ``--resume``: master/sweep/engine.py.
 """
 from __future__ import annotations
 

@@ -12,8 +12,9 @@ unlocked):
 * the worker running a case dies (killed, out of memory, a crash in native code): the case is run once more
   (:data:`RETRIES`), then reported failed by name ("its worker died ..."), the others go on;
 * the scheduler goes away: the sweep ends with :class:`SchedulerLost` naming it and how many cases are kept;
-* Ctrl-C or SIGTERM: the sweep stops at once, the cases still running marked ``interrupted`` in sweep.json,
-  and KeyboardInterrupt is raised;
+* Ctrl-C or SIGTERM: the sweep stops (on Dask at once; ``serial`` once the case running, which takes the
+  signal over, has stopped or ended), the cases still running marked ``interrupted`` in sweep.json, the others
+  ``pending``, and :class:`SweepInterrupted` (a KeyboardInterrupt) says what was kept;
 * a full disk: the sweep ends with :class:`~rotorcosim.master.sweep.folder.DiskFullError` naming the folder.
 
 ``resume=True`` reruns only the cases that sweep.json does not list as complete (a case is deterministic: the
@@ -150,7 +151,7 @@ class _Sweep:
         files = res["files"] or {"summary.json": (json.dumps(summary, indent=2) + "\n").encode()}  # why it failed
         self.folder.store(case.name, files)
         if not summary.get("error") and "summary.json" in files:
-            summary = json.loads(res["files"]["summary.json"])   # as a resumed sweep reads it: the same bits
+            summary = json.loads(files["summary.json"])   # as a resumed sweep reads it: the same bits
         self.summaries[case.name] = summary
         self.hosts[case.name] = res.get("host")
         self.status[case.name] = "failed" if summary.get("error") else "complete"
@@ -325,19 +326,16 @@ def _client(scheduler: str | None, workers: int | None, connect_timeout: float, 
     try:
         with warnings.catch_warnings():  # "Port 8787 is already in use" (another cluster's): it takes another one
             warnings.filterwarnings("ignore", message="Port .* is already in use")
+            # Dask's own log off: a worker's death, the task run again and a failed case are the sweep's to say,
+            # once each (its scheduler logged "Couldn't gather keys" at ERROR while a dead worker's task was rerun)
             cluster = LocalCluster(n_workers=n, threads_per_worker=1, processes=True, dashboard_address=None,
-                                   worker_dashboard_address=None, silence_logs=logging.ERROR)
+                                   worker_dashboard_address=None, silence_logs=logging.CRITICAL)
     finally:
         if main:
             signal.signal(signal.SIGINT, old)
     client = Client(cluster)
     client.register_plugin(_IgnoreInterrupt(), name="rotorcosim-ignore-sigint")
     return client, cluster, f"local cluster, {n} workers"
-
-
-def _ignore_interrupt() -> None:
-    if threading.current_thread() is threading.main_thread():
-        signal.signal(signal.SIGINT, signal.SIG_IGN)
 
 
 try:
@@ -350,14 +348,13 @@ class _IgnoreInterrupt(_WorkerPlugin):
     """A local worker ignores SIGINT: the sweep's own process ends it (see :func:`_client`)."""
 
     def setup(self, worker):
-        _ignore_interrupt()
+        if threading.current_thread() is threading.main_thread():
+            signal.signal(signal.SIGINT, signal.SIG_IGN)
 
 
 def _close(client, cluster, quiet: bool = False) -> None:
     """Close the client and the local cluster, quietly when the scheduler is gone (Dask logs its failed
     reconnection with tracebacks: the sweep's own one-line error says it)."""
-    import logging
-
     loggers = [logging.getLogger(n) for n in ("distributed.client", "distributed.core", "distributed.comm")]
     levels = [lg.level for lg in loggers]
     if quiet:

@@ -159,7 +159,7 @@ class SweepFolder:
                     done[name] = json.loads(summary.read_text())
                 except (OSError, ValueError):
                     continue    # a damaged case is run again
-        # what an interrupted sweep left half-written, and the folders of the cases run again
+        # the folders an interrupted sweep left half-written (.<case>.part): the cases run again rewrite theirs
         for p in self.path.iterdir():
             if p.is_dir() and p.name.startswith(".") and p.name.endswith(".part"):
                 shutil.rmtree(p, ignore_errors=True)

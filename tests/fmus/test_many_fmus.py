@@ -83,7 +83,8 @@ def test_no_use_after_free_at_exit(mass_fmu, tmp_path):
     script = tmp_path / "host.py"
     script.write_text(_FMPY_HOST)
     out = subprocess.run(["valgrind", "--error-limit=no", python, str(script), str(mass_fmu), "1"],
-                         capture_output=True, text=True, timeout=900, env={"PYTHONMALLOC": "malloc", "PATH": "/usr/bin:/bin"})
+                         capture_output=True, text=True, timeout=900,
+                         env={"PYTHONMALLOC": "malloc", "PATH": "/usr/bin:/bin"})   # malloc: valgrind sees every block
     assert out.returncode == 0, out.stderr[-3000:]
     assert out.stdout.split() == ["1", "1"]
     bad = [b for b in out.stderr.split("\n\n") if "Invalid" in b and "binaries/linux64" in b]
