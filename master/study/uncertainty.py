@@ -29,6 +29,7 @@ Example (see tests/master/test_study_uq.py)::
 from __future__ import annotations
 
 import math
+import sys
 import time
 from pathlib import Path
 from typing import Callable
@@ -115,8 +116,6 @@ def uq(spec: str | Path | UQSpec, out: str | Path, *, scheduler: str | None = No
     report = {**head, "fingerprint": spec.fingerprint(), "status": "running"}
     progress = evaluate.Progress(len(todo), "samples", quiet=quiet)
     if resumed and not quiet:
-        import sys
-
         print(f"resuming: {len(rows)} samples read from {out / TABLE}, {len(todo)} to run", file=sys.stderr)
 
     def done(k, job, summary):
