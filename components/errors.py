@@ -5,6 +5,21 @@ class ContractError(ValueError):
     """A component or its use breaks the contract (unknown variable, wrong size, bad value)."""
 
 
+class Diverged(RuntimeError):
+    """Raised by ``do_step`` when the component's own state left the domain of its equations (a journal into the
+    damper wall): the master reports a divergence, as for a non-finite output."""
+
+
+class StepTimeout(Exception):
+    """Raised by ``do_step`` when the step did not return within the component's time limit (an FMU run in a
+    process of its own, stopped by the master's side): the master reports a timed-out step, not a divergence."""
+
+
+class ProcessDied(Exception):
+    """Raised by ``do_step`` when the process computing the component's step died (an FMU run in a process of its
+    own that crashed or was killed): the master reports a crash, not a divergence."""
+
+
 class StopRequested(Exception):
     """Raised by ``do_step`` when the component asks to end the simulation (FMI 2: ``fmi2Discard`` with the
     ``fmi2Terminated`` status; FMI 3: ``terminateSimulation`` / early return from ``fmi3DoStep``).

@@ -25,7 +25,16 @@ from typing import Any, Mapping
 
 from rotorcosim.components.contract import Component, StopRequested
 
+from rotorcosim.components.errors import ProcessDied, StepTimeout
 from rotorcosim.fmus.importer import FMUError
+
+
+class FMUStepTimeout(FMUError, StepTimeout):
+    """A call into the FMU's process did not return within the step time limit (the process was stopped)."""
+
+
+class FMUProcessDied(FMUError, ProcessDied):
+    """The FMU's process died during a call (a crash in the FMU's binary, a kill)."""
 
 #: the default FMU step time limit (s): generous, a doStep of our FMUs takes microseconds to milliseconds
 STEP_TIMEOUT_S = 600.0
@@ -157,7 +166,7 @@ class ProcessFMU(Component):
             ready = self._conn.poll(timeout)
             if not ready:
                 self._kill()
-                raise FMUError(f"{self._where}: {what} did not return within {timeout:g} s (the FMU step "
+                raise FMUStepTimeout(f"{self._where}: {what} did not return within {timeout:g} s (the FMU step "
                                "time limit): the FMU was stopped")
             status, value = self._conn.recv()
         except (EOFError, BrokenPipeError, ConnectionResetError, OSError):
@@ -167,7 +176,7 @@ class ProcessFMU(Component):
                 code = None
             how = (f"killed by {signal.Signals(-code).name}" if code is not None and code < 0
                    else f"exit status {code}")
-            raise FMUError(f"{self._where}: the FMU's process died in {what} ({how})") from None
+            raise FMUProcessDied(f"{self._where}: the FMU's process died in {what} ({how})") from None
         if status == "error":
             if self._label:   # the child names the temporary file it loaded
                 value = str(value).replace(f"FMU {self.path}", f"FMU {self._label}")

@@ -25,11 +25,15 @@ Mapping of the contract onto FMI 2.0:
   (bit 1: TM, bit 2: TO, bit 4: ``holds_state_in_TO``), since a component may decide them from its
   parameters. Other tools leave the input at 0: the component then always runs thermo-mechanically.
 """
+import atexit
 import contextlib
 import copy
+import ctypes
+import glob
 import importlib
 import json
 import os
+import sys
 
 import numpy as np
 from pythonfmu import Boolean, Fmi2Causality, Fmi2Slave, Fmi2Variability, Integer, Real, String
@@ -39,6 +43,40 @@ try:  # one BLAS thread, as in rotorcosim's own runs (master/core/threads.py): t
     from threadpoolctl import ThreadpoolController
 except ImportError:  # a host Python without it: the component runs with the host's BLAS threads
     ThreadpoolController = None
+
+#: the pythonfmu binaries (one per FMU extracted in this process) whose interpreter state is released at exit
+_RELEASED = set()
+
+
+def _release_at_exit(resources):
+    """Have the interpreter release pythonfmu's global interpreter state of this FMU's binary at exit, while the
+    binary is still whole.
+
+    Why: pythonfmu 0.7's binary keeps that state in a global ``std::shared_ptr`` and releases it twice when the
+    process ends with the binary still loaded, which it always is (its C++ template statics are
+    ``STB_GNU_UNIQUE`` symbols, so glibc never unloads it, whatever the host's dlclose): first the C++ static
+    destructor (an ``atexit`` entry), then its ``__attribute__((destructor))``, which assigns nullptr to the
+    destroyed pointer and so releases its freed control block again (valgrind: "Invalid read ... in
+    finalizePythonInterpreter ... inside a block free'd by __run_exit_handlers"). When the freed block happens
+    to read as a count of 1, the block is freed twice: "corrupted double-linked list" or a segfault at exit,
+    likelier with each FMU loaded (each extraction is its own copy of the binary). Calling the binary's own
+    ``finalizePythonInterpreter`` once before that (a Python ``atexit`` runs before the C library's) empties
+    the pointer cleanly; both later releases then find nothing to release. Instances still alive keep their own
+    reference, so the call is harmless whenever it runs. Linux only: elsewhere the binary unloads in order."""
+    if not sys.platform.startswith("linux"):
+        return
+    folder = os.path.join(os.path.dirname(os.path.abspath(resources)), "binaries", "linux64")
+    for lib in glob.glob(os.path.join(folder, "*.so")):
+        if lib in _RELEASED:
+            continue
+        try:   # the copy the host loaded (RTLD_NOLOAD: never a second one)
+            release = ctypes.CDLL(lib, mode=os.RTLD_NOLOAD | os.RTLD_NOW).finalizePythonInterpreter
+        except (OSError, AttributeError):   # not loaded under this name, or another wrapper: nothing to do
+            continue
+        release.argtypes, release.restype = [], None
+        _RELEASED.add(lib)
+        atexit.register(release)
+
 
 _TYPES = {"Real": Real, "Integer": Integer, "Boolean": Boolean, "String": String}
 _CONVERT = {"Real": float, "Integer": int, "Boolean": bool, "String": str}
@@ -53,6 +91,7 @@ class RotorcosimSlave(Fmi2Slave):
 
     def __init__(self, **kwargs):
         super().__init__(**kwargs)
+        _release_at_exit(self.resources)
         with open(os.path.join(self.resources, __name__ + ".json"), encoding="utf-8") as f:
             cfg = json.load(f)
         self._cfg = cfg

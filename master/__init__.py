@@ -21,6 +21,8 @@ the import-linter contract in ``pyproject.toml``, run by ``tests/test_architectu
 ``run``                       run folders, checkpoints and resume, watchdog, figure workers
 ``case`` (module)             how a case (results, figures, commands of a study) plugs in
 ``api`` (module)              the Python API: :func:`load_scenario`, :func:`simulate`, :class:`Result`
+``sweep``                     many cases on Dask into one folder (:func:`~rotorcosim.master.sweep.run_cases`):
+                              the lock, each case's folder whole, resume, what it does under faults
 ``cli``                       the ``rotorcosim`` program, a thin layer over the API
 ============================  ===========================================================================
 
@@ -43,6 +45,8 @@ _PUBLIC = {
     "Simulation": "rotorcosim.master.simulation",
     "System": "rotorcosim.master.core.system",
     "Observer": "rotorcosim.master.observer.observers",
+    "Case": "rotorcosim.master.sweep",
+    "run_cases": "rotorcosim.master.sweep",
 }
 
 __all__ = sorted(_PUBLIC)

@@ -58,6 +58,19 @@ SCHEDULES = {"scenario": None, "auto": "auto", "monolithic": "monolithic"}
 SCHEDULE_ALIASES = {"paper": "scenario"}
 
 
+def peak_memory_mb() -> float | None:
+    """This process's peak resident memory so far [MB] (``getrusage``'s high-water mark), None where unknown.
+
+    >>> peak_memory_mb() > 0    # doctest: +SKIP
+    True"""
+    try:
+        import resource
+    except ImportError:  # not on this system (Windows)
+        return None
+    peak = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss
+    return peak / (1 << 20) if sys.platform == "darwin" else peak / 1024   # bytes on macOS, KiB on Linux
+
+
 def load_scenario(name_or_path: str | Path | None = None) -> Scenario:
     """A scenario: a shipped name (``"blade_loss_2850"``, see ``rotorcosim scenarios``), a TOML file, or an SSP
     archive (``.ssp``). None gives the default, :data:`DEFAULT_SCENARIO`."""
@@ -380,6 +393,9 @@ def _simulate(sc, duration, schedule, out, record, progress, figures, overwrite,
             "wall_time_s": time.perf_counter() - t_wall,
             # the process's CPU time over the run (Simulation.run): beside the wall time on a loaded machine
             "cpu_time_s": report.cpu_time_s,
+            # the process's peak resident memory so far (its high-water mark: this run's peak in a process of its
+            # own, e.g. one command or one sweep worker's cases); None where the system does not say
+            "peak_memory_MB": peak_memory_mb(),
             "resumed_from_t_s": point.t if point else None,
             # wall time per base step of this run, beside the estimate's (budget.py): how far the declared
             # step cost is from this machine and scenario

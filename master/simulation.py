@@ -19,7 +19,7 @@ from rotorcosim.components.contract import COUPLED, HELD, ContractError
 
 from rotorcosim.master.compiled import ahead
 from rotorcosim.master.compiled import choice as compiled
-from rotorcosim.master.core.algorithm import Engine, EngineSettings, SimulationDiverged
+from rotorcosim.master.core.algorithm import Engine, EngineSettings, SimulationFailed
 from rotorcosim.master.core.cycle import Cycle, as_cycle
 from rotorcosim.master.core.phases import Phases
 from rotorcosim.master.manipulator.hold import DEFAULT_HOLD, HOLDS, RESTART_CYCLES, StaggeredHold
@@ -146,7 +146,7 @@ class Simulation:
                 comp.set_inputs(by_comp[name])
             try:
                 comp.setup(self.t)
-            except (ContractError, SimulationDiverged, KeyboardInterrupt, MemoryError, OSError):
+            except (ContractError, SimulationFailed, KeyboardInterrupt, MemoryError, OSError):
                 raise
             except (RuntimeError, ArithmeticError, FloatingPointError) as exc:
                 # a set-up that cannot start from the component's parameters (e.g. the balls' static equilibrium

@@ -9,6 +9,8 @@ The Python API (``master/api.py``)::
     res = rotorcosim.simulate(sc, duration=0.05)               # schedule=..., out=DIR writes the CLI's files
     res.time, res.phase, res["bearing0.P_drag"], res.summary   # numpy arrays; summary as in summary.json
     df = res.to_dataframe()                                    # labelled columns with units (needs pandas)
+    rotorcosim.calibrate("spec.toml", "out")                   # model updating (master/study/calibrate.py)
+    rotorcosim.uq("uq.toml", "out")                            # uncertainty quantification (master/study/uq.py)
 
 The code lives in the top-level folders fixed by the design card and is installed as sub-packages:
 ``rotorcosim.components`` (components/), ``rotorcosim.master`` (master/), ``rotorcosim.fmus`` (fmus/).
@@ -30,6 +32,8 @@ if _os.path.isfile(_os.path.join(_checkout, "components", "contract.py")):
 
 #: the API, imported on first use so that ``rotorcosim --help`` and the light commands start fast
 _API = ("load_scenario", "simulate", "Result", "Scenario", "SimulationDiverged")
+#: the studies over many runs (master/study/), imported on first use too
+_STUDIES = ("calibrate", "uq")
 
 
 def __getattr__(name):
@@ -37,8 +41,12 @@ def __getattr__(name):
         from rotorcosim.master import api
 
         return getattr(api, name)
+    if name in _STUDIES:
+        from rotorcosim.master import study
+
+        return getattr(study, name)
     raise AttributeError(f"module 'rotorcosim' has no attribute {name!r}")
 
 
 def __dir__():
-    return sorted(list(globals()) + list(_API))
+    return sorted(list(globals()) + list(_API) + list(_STUDIES))

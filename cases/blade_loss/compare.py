@@ -43,6 +43,10 @@ from rotorcosim.master.run.rundir import LOCK, check_folder, ensure_folder
 from rotorcosim.master.schedule import Interval, Timeline, from_spec
 from rotorcosim.master.scenario.cycle import constant_period, without_source
 
+from rotorcosim.master.sweep import SweepInterrupted
+from rotorcosim.master.sweep.folder import named_os_error
+from rotorcosim.master.sweep.lock import FolderLock
+
 from rotorcosim.master.cli.options import add_dpi, add_out, add_scenario
 from rotorcosim.master.cli.run import apply_unbalance, execute, resolve
 
@@ -86,6 +90,9 @@ def add_arguments(p):
     add_dpi(p)
     p.add_argument("--quiet", action="store_true", help="no line and progress bar per case")
     p.add_argument("--overwrite", action="store_true", help="replace the results of a previous comparison in --out")
+    p.add_argument("--resume", action="store_true",
+                   help="continue the interrupted comparison in --out: its complete runs are kept, the others run "
+                        "again (same command otherwise)")
     p.add_argument("--schedule", choices=("paper", "auto"), default="paper",
                    help="staggered run: paper (3 TM + 2 TO intervals, Table 6) or auto (the scenario's automatic "
                         "schedule over --duration)")
@@ -154,7 +161,7 @@ def _warm_up(scenario: str, out: Path, quantum: float) -> None:
 
 def compare(out: Path, duration=2.0, unbalance=2850.0, scenario="blade_loss", revolutions=REVOLUTIONS, bearing=0,
             quiet=True, figures=True, overwrite=False, schedule="paper", tolerance=None, monolithic=None,
-            timing_runs=None, dpi=None) -> dict:
+            timing_runs=None, dpi=None, resume=False) -> dict:
     """Run the comparison into the folder ``out`` and return the table written to ``out/table6.json`` (see the
     module's docstring).
 
@@ -163,7 +170,13 @@ def compare(out: Path, duration=2.0, unbalance=2850.0, scenario="blade_loss", re
     progress; ``figures``: draw each run's figures; ``overwrite``: replace a previous comparison in ``out``;
     ``schedule``: "paper" or "auto" for the staggered run, ``tolerance`` [%] for "auto"; ``monolithic``: a
     folder with a monolithic run to reuse; ``timing_runs``: how often the staggered run is timed (default 6);
-    ``dpi``: the figures' resolution (None: the default)."""
+    ``dpi``: the figures' resolution (None: the default); ``resume``: continue the comparison in ``out``: its
+    runs that are complete are kept (checked to be this comparison's), the others run again.
+
+    Under faults: one comparison at a time writes into ``out`` (a lock, ``.rotorcosim.lock``, removed at the
+    end); Ctrl-C or SIGTERM stops the run going on (its folder says ``interrupted``), keeps the complete ones and
+    raises :class:`~rotorcosim.master.sweep.SweepInterrupted` saying which; a full disk stops it with the run's
+    own error."""
     dpi = check_dpi(dpi)
     if not (duration > 0 and duration < float("inf")):
         raise ValueError(f"--duration must be a positive number of seconds, got {duration}")
@@ -172,6 +185,8 @@ def compare(out: Path, duration=2.0, unbalance=2850.0, scenario="blade_loss", re
     if timing_runs is not None and (isinstance(timing_runs, bool) or not isinstance(timing_runs, int)
                                     or timing_runs < 1):
         raise ValueError(f"--timing-runs must be a whole number of timings >= 1, got {timing_runs!r}")
+    if resume and (overwrite or monolithic is not None):
+        raise ValueError("--resume continues the comparison in --out: it excludes --overwrite and --monolithic")
     if timing_runs is not None and (schedule != "paper" or monolithic is not None):
         raise ValueError("--timing-runs applies to the paper schedule with the monolithic run made here (the "
                          "staggered timings bracket it); the other comparisons time the staggered run once")
@@ -187,9 +202,11 @@ def compare(out: Path, duration=2.0, unbalance=2850.0, scenario="blade_loss", re
                          "\"blade_loss\" in the blade-loss scenarios)")
     kinds_run = [k for k in ("staggered", "monolithic") if not (k == "monolithic" and monolithic is not None)]
     held = [k for k in kinds_run if (out / k).is_dir() and any(p.name != LOCK for p in (out / k).iterdir())]
-    if held and not overwrite:  # before the warm-up; compare has no --resume (a comparison is run again)
+    if held and not overwrite and not resume:  # before the warm-up
         raise ValueError(f"--out {out} already holds a comparison ({', '.join(held)}): results are never mixed; "
-                         "give --overwrite to replace it, or another folder")
+                         "give --overwrite to replace it, --resume to continue it, or another folder")
+    if resume and not held:
+        raise ValueError(f"--resume: {out} holds no comparison to continue")
     if monolithic is not None:
         mono = resolve(scenario)
         apply_unbalance(mono, unbalance)
@@ -200,7 +217,10 @@ def compare(out: Path, duration=2.0, unbalance=2850.0, scenario="blade_loss", re
     # a run's own checks (duration, budget) for both, before anything runs; then the comparison's whole budget:
     # the staggered run is timed --timing-runs times
     ests = {kind: check_run(sc_k, sch) for kind, (sc_k, sch) in plans.items()}
-    n_timed = 1 if monolithic is not None or schedule != "paper" else timing_runs or TIMING_RUNS
+    kept = {kind: _kept(out / kind, plans[kind][0].name, unbalance, duration) for kind in held} if resume else {}
+    kept = {k: v for k, v in kept.items() if v is not None}
+    # a kept monolithic run cannot be bracketed by the staggered timings: timed once, as with --monolithic
+    n_timed = 1 if monolithic is not None or "monolithic" in kept or schedule != "paper" else timing_runs or TIMING_RUNS
     total = sum(e["wall_s"] * (n_timed if kind == "staggered" else 1) for kind, e in ests.items())
     if total > budget.LIMIT_S:
         raise budget.BudgetError(f"this comparison would take about {budget.hms(total)} of wall time ("
@@ -209,17 +229,31 @@ def compare(out: Path, duration=2.0, unbalance=2850.0, scenario="blade_loss", re
                                  f"{budget.hms(budget.LIMIT_S)} limit: give fewer --timing-runs or a shorter "
                                  "--duration")
     ensure_folder(out)  # every input checked: only now is a folder made (the runs' messages, rundir.py)
+    with FolderLock(out, "comparison"):
+        try:
+            return _compare(out, duration, unbalance, scenario, revolutions, bearing, quiet, figures, overwrite,
+                            schedule, tolerance, monolithic, timing_runs, resume, sc, runs, kept, plans, dpi)
+        except KeyboardInterrupt:
+            said = [f"{k} complete (kept in {out / k})" if _kept(out / k, None, None, None) is not None
+                    else f"{k} not complete" for k in ("staggered", "monolithic")]
+            raise SweepInterrupted(f"interrupted: {', '.join(said)}; continue with --resume") from None
+
+
+def _compare(out, duration, unbalance, scenario, revolutions, bearing, quiet, figures, overwrite, schedule,
+             tolerance, monolithic, timing_runs, resume, sc, runs, kept, plans, dpi=None) -> dict:
+    """The comparison's runs and table, in its locked folder (:func:`compare` has checked every input)."""
+    kinds = ("staggered", "monolithic")
     # --overwrite replaces the runs: the previous table goes now, so that an interrupted comparison never leaves
     # it beside runs it does not describe
     (out / "table6.json").unlink(missing_ok=True)
     _warm_up(scenario, out, _quantum(sc))
     scenarios, loads = {}, {}
     # the staggered run's timings (its own, then the repeats): half of them before the monolithic run
-    repeats = 1 if monolithic is not None or schedule != "paper" else timing_runs or TIMING_RUNS
+    repeats = 1 if monolithic is not None or "monolithic" in kept or schedule != "paper" else timing_runs or TIMING_RUNS
     before = (repeats + 1) // 2
     timings = []
     for i, kind in enumerate(kinds, 1):
-        if kind in runs:
+        if kind in runs and kind not in kept:
             continue
         sc, sch = plans[kind]
         # figures drawn from the time series file after both timed runs; a run recorded otherwise (CSV, nothing
@@ -227,18 +261,23 @@ def compare(out: Path, duration=2.0, unbalance=2850.0, scenario="blade_loss", re
         later = figures and sc.outputs.get("format", "h5") == "h5" and bool(sc.outputs.get("record"))
         if later:
             scenarios[kind] = sc
-        if not quiet:  # a line per case, and the case's own progress bar (time left from its measured step cost)
+        if not quiet and kind not in kept:  # a line per case, and its own progress bar (time left from its step cost)
             what = f"{len(sch.intervals)} interval(s)" if hasattr(sch, "intervals") else "automatic schedule"
             print(f"[{i}/{len(kinds)}] {kind}: {sch.duration:g} s simulated, {what}",
                   file=sys.stderr, flush=True)
-        # not checkpointed: a comparison is run again, not resumed, and a save of the whole state at every interval
-        # end (0.2 s each, measured) is no part of the integration schemes' cost the table compares; no figures
-        # (and so no figure workers) during a timed run: drawn below, after both
+        # not checkpointed: an interrupted run is run again whole (--resume keeps complete runs only), and a save of
+        # the whole state at every interval end (0.2 s each, measured) is no part of the integration schemes' cost
+        # the table compares; no figures (and so no figure workers) during a timed run: drawn below, after both
         load = _load()
-        runs[kind] = execute(sc, out / kind, figures=figures and not later, quiet=quiet, schedule=sch,
-                             overwrite=overwrite, checkpoint_every=None, dpi=dpi)
-        loads[kind] = [load, _load()]
-        if not quiet:
+        if kind in kept:  # --resume: a complete run of this comparison, kept
+            runs[kind], loads[kind] = kept[kind], [None, None]
+            if not quiet:
+                print(f"[{i}/{len(kinds)}] {kind}: complete in {out / kind}, kept", file=sys.stderr, flush=True)
+        else:
+            runs[kind] = execute(sc, out / kind, figures=figures and not later, quiet=quiet, schedule=sch,
+                                 overwrite=overwrite or resume, checkpoint_every=None, dpi=dpi)
+            loads[kind] = [load, _load()]
+        if not quiet and kind not in kept:
             print(f"[{i}/{len(kinds)}] {kind}: done in {runs[kind]['wall_time_s']:.3g} s", file=sys.stderr, flush=True)
         if kind == "staggered":
             again = (sc, sch)
@@ -277,7 +316,11 @@ def compare(out: Path, duration=2.0, unbalance=2850.0, scenario="blade_loss", re
              "schedule": schedule, "tolerance_pct": tolerance, "hold": runs["staggered"].get("hold"),
              "monolithic_reused_from": str(monolithic) if monolithic is not None else None,
              "timeline_staggered": runs["staggered"]["timeline"]}
-    write_json(out / "table6.json", table)
+    try:
+        write_json(out / "table6.json", table)
+    except OSError as exc:  # the runs are complete and kept: a --resume writes the table
+        (out / "table6.json.part").unlink(missing_ok=True)
+        raise named_os_error(exc, out, "writing table6.json") from None
     return table
 
 
@@ -353,6 +396,28 @@ def _quantum(sc) -> float:
     return max([c.step for c in sc.components.values() if c.step] + [float(sc.schedule.get("step", 1e-5))])
 
 
+def _kept(folder: Path, name: str | None, unbalance: float | None, duration: float | None) -> dict | None:
+    """The summary of a complete run in ``folder``, else None (absent, damaged, interrupted, failed); with
+    ``name``, a complete run of another scenario, unbalance or duration is an error (--resume continues the same
+    comparison)."""
+    try:
+        summary = json.loads((folder / "summary.json").read_text())
+    except (OSError, ValueError):
+        return None
+    if not isinstance(summary, dict) or summary.get("status") != "complete":
+        return None
+    if name is not None:
+        ran = (summary.get("scenario"), summary.get("unbalance_N"), summary.get("t_end_s"))
+        if ran[0] != name or not _close(ran[1], unbalance) or not _close(ran[2], duration):
+            raise ValueError(f"--resume: {folder} holds a run of {ran[0]!r} at {ran[1]} N over {ran[2]} s, not "
+                             f"{name!r} at {unbalance} N over {duration} s: give the same command, or another folder")
+    return summary
+
+
+def _close(a, b) -> bool:
+    return isinstance(a, (int, float)) and abs(float(a) - b) <= 1e-9 * max(1.0, abs(b))
+
+
 def _reuse(folder: Path, unbalance: float, duration: float, name: str | None = None, bearing: int = 0) -> dict:
     """A previous monolithic run's summary, checked to be the one this comparison needs (``name``: the
     monolithic run's scenario name this comparison would give it)."""
@@ -387,7 +452,8 @@ def run(args) -> int:
     """Run the command ``args`` (parsed); prints the speed-up and the largest error; returns 0."""
     t = compare(Path(args.out), args.duration, args.unbalance, args.scenario, args.revolutions, args.bearing,
                 quiet=args.quiet, figures=not args.no_figures, overwrite=args.overwrite, schedule=args.schedule,
-                tolerance=args.tolerance, monolithic=args.monolithic, timing_runs=args.timing_runs, dpi=args.dpi)
+                tolerance=args.tolerance, monolithic=args.monolithic, timing_runs=args.timing_runs,
+                resume=args.resume, dpi=args.dpi)
     est = (t.get("hold") or {}).get("estimated_error_pct")
     cpu = f" (CPU time {t['speedup_cpu']:.1f})" if t.get("speedup_cpu") else ""
     print(f"Table 6 (bearing #{t['bearing']}, {t['duration_s']} s, {t['schedule']} schedule): speed-up "

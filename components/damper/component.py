@@ -26,6 +26,7 @@ from pathlib import Path
 import numpy as np
 
 from ..contract import Component, ContractError, Memoryless, Variable
+from ..errors import Diverged
 from ..kernels import KernelComponent
 from ..oil_fit import T_MAX_K, T_MIN_K
 from ..validity import Check
@@ -60,7 +61,7 @@ LAMINAR_FILM_RE = 1000.0
 MAX_MESH_NODES = 16 * 128 * 64
 
 
-class WallContactError(RuntimeError):
+class WallContactError(Diverged):
     """The journal reached the damper wall (eccentricity ratio >= 1): the film model no longer applies."""
 
 

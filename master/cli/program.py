@@ -21,6 +21,10 @@ COMMANDS: dict[str, tuple[str, str]] = {
     "run": ("rotorcosim.master.cli.run", "run a scenario (TOML or SSP; by default the shipped case's main job)"),
     "sweep": ("rotorcosim.master.cli.sweep", "run a scenario at several levels or parameter values in parallel on "
                                              "Dask, with its case's tables"),
+    "calibrate": ("rotorcosim.master.cli.calibrate", "fit a few parameters to measured results (bounded least "
+                                                     "squares, runs on Dask, resumable)"),
+    "uq": ("rotorcosim.master.cli.uq", "uncertainty of the results over parameter distributions (Monte Carlo, "
+                                       "Latin hypercube, Sobol' indices; runs on Dask, resumable)"),
     "bearing-static": ("rotorcosim.components.bearing.cli", "static load distribution of bearing #0 or #5"),
     "damper-force": ("rotorcosim.components.damper.cli", "squeeze film damper force at a journal position and velocity"),
     "thermal-steady": ("rotorcosim.components.thermal.cli", "steady state of a bearing's thermal network"),
@@ -127,7 +131,9 @@ def describe_error(exc: BaseException) -> tuple[int, str]:
     if isinstance(exc, MemoryError):
         return 1, "out of memory"
     if isinstance(exc, RuntimeError) and type(exc).__module__.startswith("rotorcosim"):
-        return 1, str(exc)
+        # a run's failure says first what happened (algorithm.SimulationFailed.what: diverged, timed out...)
+        what = getattr(type(exc), "what", None)
+        return 1, f"{what}: {exc}" if what else str(exc)
     return 1, f"unexpected {type(exc).__name__}: {exc} (rerun with --debug for the traceback; it may be a bug)"
 
 
@@ -154,10 +160,12 @@ def main(argv: list[str] | None = None) -> int:
 
         with one_thread():  # the same numbers whatever the calling program imported first (threads.py)
             return int(module.run(args) or 0)
-    except KeyboardInterrupt:
+    except KeyboardInterrupt as exc:
         if debug:
             traceback.print_exc()
-        print(f"rotorcosim {args.command}: interrupted", file=sys.stderr)
+        # a command that says what its interruption kept (a sweep: its cases) raises its own subclass
+        said = str(exc) if type(exc).__name__ == "SweepInterrupted" else ""
+        print(f"rotorcosim {args.command}: {said or 'interrupted'}", file=sys.stderr)
         return 130
     except Exception as exc:
         status, text = describe_error(exc)

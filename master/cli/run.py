@@ -17,11 +17,11 @@ from pathlib import Path
 from rotorcosim.master.schedule import budget
 from rotorcosim.master.run import checkpoint
 from rotorcosim.master.run import watchdog
-from rotorcosim.master.core.algorithm import SimulationDiverged
+from rotorcosim.master.core.algorithm import SimulationFailed
 from rotorcosim.master.api import DEFAULT_SCENARIO, SCHEDULE_ALIASES, SCHEDULES, load_scenario, simulate
 from rotorcosim.master.cli.options import SCHEDULE_HELP, add_dpi, add_out, add_scenario
 from rotorcosim.master.compiled.choice import ENGINES
-from rotorcosim.master.scenario.overrides import apply_set, apply_swap, parse_set, parse_swap
+from rotorcosim.master.scenario.overrides import apply_set, apply_swap, apply_unbalance, parse_set, parse_swap  # noqa: F401  (apply_unbalance: the commands' import)
 from rotorcosim.master.scenario.build import Scenario
 
 #: where a command-line change is said to come from, in error messages
@@ -96,29 +96,6 @@ def resolve(name: str | None) -> Scenario:
     return load_scenario(name)
 
 
-def apply_unbalance(sc: Scenario, force: float, settings=()) -> None:
-    """Set the scenario's level parameter (``[results] unbalance_parameter``) to ``force``; ``settings`` are the
-    ``comp.param`` names the same command sets with ``--set``: naming the level parameter there too is an error
-    (one of the two values would be dropped without a word)."""
-    if not (force >= 0.0) or force != force or force == float("inf"):
-        raise ValueError(f"--unbalance must be a finite force >= 0 N, got {force}")
-    ref = sc.extra.get("results", {}).get("unbalance_parameter")
-    if not ref:
-        raise ValueError(f"scenario {sc.name!r} has no [results] unbalance_parameter: --unbalance does not apply")
-    if ref in settings:
-        raise ValueError(f"--unbalance and --set {ref}=... both give the unbalance force ({ref}, the scenario's "
-                         "[results] unbalance_parameter): give one of them")
-    comp, _, param = ref.partition(".")
-    if comp not in sc.components:
-        raise ValueError(f"[results] unbalance_parameter {ref!r}: no component {comp!r}")
-    old = sc.components[comp].parameters.get(param)
-    sc.components[comp].parameters[param] = float(force)
-    sc.edits.append({"unbalance": float(force), "parameter": ref, "origin": "--unbalance"})
-    if old is None or float(old) != float(force):
-        # the run's name says what was run (a scenario named NAME_<level> becomes NAME_<new level>)
-        sc.name = f"{sc.name.rsplit('_', 1)[0] if sc.name.rsplit('_', 1)[-1].isdigit() else sc.name}_{force:g}"
-
-
 def execute(sc: Scenario, out: Path, schedule_kind: str | None = None, duration: float | None = None,
             figures: bool = True, quiet: bool = True, schedule=None, *, record=None, overwrite: bool = False,
             resume: bool = False, force: bool = False, checkpoint_every: float | None = checkpoint.EVERY_S,
@@ -179,9 +156,9 @@ def run(args) -> int:
                        overwrite=args.overwrite, resume=args.resume, force=args.force,
                        checkpoint_every=args.checkpoint_every, step_timeout=args.step_timeout,
                        engine=args.engine, dpi=args.dpi)
-    except SimulationDiverged as exc:
-        print(f"rotorcosim run: the simulation diverged: {exc}; what was recorded is in {out} "
-              "(summary.json has the error)", file=sys.stderr)
+    except SimulationFailed as exc:   # diverged, a component failed, a step timed out, a process crashed
+        print(f"rotorcosim run: {exc.what}: {exc}; what was recorded is in {out} (summary.json has the error)",
+              file=sys.stderr)
         return 1
     except KeyboardInterrupt as exc:
         print(f"rotorcosim run: interrupted ({exc or 'SIGINT'}); the time series and summary.json in {out} "

@@ -68,7 +68,8 @@ class Ahead:
             f = fn.py_func if dispatcher else fn
             spec.append((key, f.__module__, f.__qualname__, dispatcher, args, None))
         payload = pickle.dumps((self.folder, spec))
-        self.proc = subprocess.Popen([sys.executable, "-m", __name__], stdin=subprocess.PIPE,
+        # this process's id on the helper's command line: the helper ends when its parent is no longer this one
+        self.proc = subprocess.Popen([sys.executable, "-m", __name__, str(os.getpid())], stdin=subprocess.PIPE,
                                      stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
         try:  # stdin stays open for share()
             self.proc.stdin.write(payload)
@@ -186,12 +187,13 @@ def _is_dispatcher(fn) -> bool:
     return hasattr(fn, "py_func") and hasattr(fn, "overloads")
 
 
-def _end_with_parent() -> None:
+def _end_with_parent(parent: int) -> None:
     """End this helper when the process that started it is gone: a run killed with SIGKILL (or a sweep's worker)
     left it building on, orphaned (a film table of a huge mesh: 10.8 GB after 56 minutes). A thread polls the
     parent's id (not PR_SET_PDEATHSIG: it fires when the starting *thread* ends, and a sweep case starts the
-    helper from a worker thread)."""
-    parent = os.getppid()
+    helper from a worker thread). ``parent``: the starter's id, given on the command line: read here with
+    getppid() it was already the orphan's new parent when the starter died while this helper was still importing
+    (under load, over a second: the helper then built on)."""
 
     def watch() -> None:
         while True:
@@ -208,7 +210,7 @@ def _helper() -> None:
     from rotorcosim.master.compiled import kernel_args
     from rotorcosim.master.core import threads
 
-    _end_with_parent()
+    _end_with_parent(int(sys.argv[1]) if len(sys.argv) > 1 else os.getppid())
     stream = sys.stdin.buffer
     folder, jobs = pickle.load(stream)
     with threads.one_thread():

@@ -45,7 +45,7 @@ from rotorcosim.components.numba_internals import TypingError, compile_for, nati
 from rotorcosim.master.compiled import kernel_args
 from rotorcosim.master.compiled import loop_ops as op
 from rotorcosim.master.core import links
-from rotorcosim.master.core.algorithm import SimulationDiverged
+from rotorcosim.master.core.algorithm import ComponentFailed, SimulationDiverged, SimulationFailed, step_failure
 
 #: base steps per compiled chunk (rows of the observers' buffer): ~1 ms of wall time between observer calls
 CHUNK = 2048
@@ -349,12 +349,12 @@ class Runner:
             comp = comps[i]
             try:
                 comp.kernel_status(code, t, hc)
-            except SimulationDiverged:
+            except SimulationFailed:
                 raise
             except Exception as exc:
-                raise SimulationDiverged(f"{name} failed in do_step at t = {t:.9g} s: {exc}") from exc
+                raise step_failure(name, t, exc) from exc
             if code != PYTHON:
-                raise SimulationDiverged(f"{name} failed in do_step at t = {t:.9g} s (kernel status {code})")
+                raise ComponentFailed(f"{name} failed in do_step at t = {t:.9g} s (kernel status {code})")
             comp.time = t + hc
             r0 = i  # resume after the component's step: its bookkeeping, then the next components
         sim.t = t_start + k * h

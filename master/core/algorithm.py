@@ -30,6 +30,7 @@ from typing import Sequence
 import numpy as np
 
 from rotorcosim.components.contract import Component, ContractError, StopRequested
+from rotorcosim.components.errors import Diverged, ProcessDied, StepTimeout
 
 from rotorcosim.master.core import links
 from rotorcosim.master.core.system import Connection, System
@@ -114,8 +115,38 @@ class Jacobi(Algorithm):
 ALGORITHMS = tuple(ALGORITHM_CLASSES)
 
 
-class SimulationDiverged(RuntimeError):
-    """A component produced a non-finite value or raised during a step; what was recorded is kept."""
+class SimulationFailed(RuntimeError):
+    """A run stopped by one of its components' steps; what was recorded is kept. ``what`` is the first words
+    the command line says (each kind below has its own)."""
+    what = "the simulation failed"
+
+
+class SimulationDiverged(SimulationFailed):
+    """A component produced a non-finite value (NaN or inf) in an output another component reads."""
+    what = "the simulation diverged"
+
+
+class ComponentFailed(SimulationFailed):
+    """A component's step raised an exception of its own (its message follows the component and the time)."""
+    what = "a component failed"
+
+
+class StepTimedOut(ComponentFailed):
+    """A component's step did not return within its time limit (an FMU in a process of its own, stopped)."""
+    what = "a component's step timed out"
+
+
+class ComponentCrashed(ComponentFailed):
+    """The process computing a component's step died (an FMU in a process of its own that crashed)."""
+    what = "a component's process crashed"
+
+
+def step_failure(name: str, t: float, exc: BaseException) -> SimulationFailed:
+    """The run's error for component ``name``'s step from ``t`` that raised ``exc``: diverged (the component says
+    its state left its equations' domain, components.errors.Diverged), timed out, crashed, or failed."""
+    kind = (SimulationDiverged if isinstance(exc, Diverged) else StepTimedOut if isinstance(exc, StepTimeout)
+            else ComponentCrashed if isinstance(exc, ProcessDied) else ComponentFailed)
+    return kind(f"{name} failed in do_step at t = {t:.9g} s: {exc}")
 
 
 class _Link:
@@ -349,7 +380,7 @@ class Engine:
             if values:
                 comp.set_inputs(values)
             comp.do_step(t, hc)
-        except SimulationDiverged:
+        except SimulationFailed:
             raise
         except StopRequested as req:
             # the component advanced to req.t_stop and asks to end there: keep its step, remember the request
@@ -357,8 +388,8 @@ class Engine:
             if self.stop is None or req.t_stop < self.stop.t_stop:
                 self.stop = req
             hc = req.t_stop - t
-        except Exception as exc:  # a component's own failure: stop with its name and the time
-            raise SimulationDiverged(f"{name} failed in do_step at t = {t:.9g} s: {exc}") from exc
+        except Exception as exc:  # a component's own failure: stop with its name, the time and what happened
+            raise step_failure(name, t, exc) from exc
         finally:
             if call is not None:
                 call[0] = None

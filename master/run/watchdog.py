@@ -63,9 +63,10 @@ class Watchdog:
             msg = (f"{name} did not return from its step at t = {t:.9g} s within {self.limit:g} s (the step time "
                    "limit); the process is ended, as a call inside a component's binary cannot be interrupted "
                    "(--fmu-process runs FMUs where such a run fails cleanly)")
+            timed_out = algorithm.StepTimedOut
             try:
-                if self.on_timeout is not None:
-                    self.on_timeout(msg)
+                if self.on_timeout is not None:   # the summary's error, as a run's other failures: "Kind: message"
+                    self.on_timeout(f"{timed_out.__name__}: {msg}")
             finally:
-                print(f"{self.prog}: error: {msg}", file=sys.stderr, flush=True)
+                print(f"{self.prog}: error: {timed_out.what}: {msg}", file=sys.stderr, flush=True)
                 os._exit(1)

@@ -210,3 +210,26 @@ def apply_swap(sc, component: str, implementation: str, parameters: Mapping[str,
     out.edits.append({"swap": component, "implementation": spec.fmu or spec.implementation, "origin": origin,
                       **({"parameters": dict(spec.parameters)} if parameters is not None else {})})
     return out
+
+
+def apply_unbalance(sc: Scenario, force: float, settings=()) -> None:
+    """Set the scenario's level parameter (``[results] unbalance_parameter``) to ``force``; ``settings`` are the
+    ``comp.param`` names the same command sets with ``--set``: naming the level parameter there too is an error
+    (one of the two values would be dropped without a word)."""
+    if not (force >= 0.0) or force != force or force == float("inf"):
+        raise ValueError(f"--unbalance must be a finite force >= 0 N, got {force}")
+    ref = sc.extra.get("results", {}).get("unbalance_parameter")
+    if not ref:
+        raise ValueError(f"scenario {sc.name!r} has no [results] unbalance_parameter: --unbalance does not apply")
+    if ref in settings:
+        raise ValueError(f"--unbalance and --set {ref}=... both give the unbalance force ({ref}, the scenario's "
+                         "[results] unbalance_parameter): give one of them")
+    comp, _, param = ref.partition(".")
+    if comp not in sc.components:
+        raise ValueError(f"[results] unbalance_parameter {ref!r}: no component {comp!r}")
+    old = sc.components[comp].parameters.get(param)
+    sc.components[comp].parameters[param] = float(force)
+    sc.edits.append({"unbalance": float(force), "parameter": ref, "origin": "--unbalance"})
+    if old is None or float(old) != float(force):
+        # the run's name says what was run (a scenario named NAME_<level> becomes NAME_<new level>)
+        sc.name = f"{sc.name.rsplit('_', 1)[0] if sc.name.rsplit('_', 1)[-1].isdigit() else sc.name}_{force:g}"

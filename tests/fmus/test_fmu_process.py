@@ -12,7 +12,7 @@ from rotorcosim.components.contract import Component, Variable
 from rotorcosim.components.registry import create
 from rotorcosim.fmus.importer import FMUError, load_fmu_component
 from rotorcosim.fmus.process import ProcessFMU
-from rotorcosim.master.core.algorithm import SimulationDiverged
+from rotorcosim.master.core.algorithm import ComponentCrashed, SimulationDiverged, StepTimedOut
 from rotorcosim.master.schedule import Interval, Timeline
 from rotorcosim.master.simulation import Simulation
 from rotorcosim.master.core.system import Connection, System
@@ -58,16 +58,19 @@ def test_same_results_in_and_out_of_process(mass_fmu):
 
 def test_crashing_fmu_fails_the_run_cleanly():
     comp = ProcessFMU("faulty", "c", {"mode": "crash"}, timeout=60, factory=faulty)
-    with pytest.raises(SimulationDiverged, match=r"c failed in do_step at t = 0.005 s: .*process died in "
-                                                 r"DoStep\(t = 0.005 s.*killed by SIGSEGV"):
+    with pytest.raises(ComponentCrashed, match=r"c failed in do_step at t = 0.005 s: .*process died in "
+                                                 r"DoStep\(t = 0.005 s.*killed by SIGSEGV") as err:
         run_alone(comp)
+    assert not isinstance(err.value, SimulationDiverged) and err.value.what == "a component's process crashed"
 
 
 def test_hanging_fmu_is_stopped_at_the_time_limit():
     comp = ProcessFMU("faulty", "c", {"mode": "hang"}, timeout=1.0, factory=faulty)
     t0 = time.perf_counter()
-    with pytest.raises(SimulationDiverged, match=r"did not return within 1 s \(the FMU step time limit\)"):
+    with pytest.raises(StepTimedOut, match=r"did not return within 1 s \(the FMU step time limit\)") as err:
         run_alone(comp)
+    assert not isinstance(err.value, SimulationDiverged)   # it did not diverge: its own first words
+    assert err.value.what == "a component's step timed out"
     assert time.perf_counter() - t0 < 30
     assert comp._proc.poll() is not None
 

@@ -107,7 +107,7 @@ def test_parse_grid_and_cases():
     assert grid == {"damper0.c": [0.1, 0.2], "bearing0.mode": ["fast", "exact"], "rotor.on": [True, False]}
     cases = cases_of([712.0], {"damper0.c": [0.1, 0.2]})
     assert [c.name for c in cases] == ["F_712_damper0.c=0.1", "F_712_damper0.c=0.2"]
-    assert cases[1].settings == {"damper0.c": 0.2} and cases[1].unbalance_N == 712.0
+    assert cases[1].settings == {"damper0.c": 0.2} and cases[1].level == 712.0
     for bad, msg in [(["damper0.c"], "COMP.PARAM="), (["c=1"], "COMP.PARAM="), (["a.b=1,1"], "repeated"),
                      (["a.b=1", "a.b=2"], "twice"), (["a.b=1,,2"], "empty value"), (["a.b=nan"], "finite")]:
         with pytest.raises(ValueError, match=msg):

@@ -58,15 +58,15 @@ def test_a_scenario_without_bearing_results(tmp_path, capsys):
 
 
 def test_an_out_folder_holding_a_comparison_is_refused_before_any_run(tmp_path, capsys):
-    """compare has no --resume: a folder with a previous comparison's runs is refused at once (the message names
-    --overwrite and not the run command's --resume), and the previous results stay as they were."""
+    """A folder with a previous comparison's runs is refused at once (the message names --overwrite and
+    --resume), and the previous results stay as they were."""
     out = tmp_path / "cmp"
     (out / "staggered").mkdir(parents=True)
     (out / "staggered" / "summary.json").write_text("{}")
     assert main(["compare", "--duration", "2", "--unbalance", "712", "--out", str(out), "--quiet"]) == 2
     err = capsys.readouterr().err.strip().splitlines()
     assert len(err) == 1 and "already holds a comparison (staggered)" in err[0] and "--overwrite" in err[0]
-    assert "--resume" not in err[0]
+    assert "--resume to continue it" in err[0]
     assert (out / "staggered" / "summary.json").read_text() == "{}" and not (out / "monolithic").exists()
 
 

@@ -34,9 +34,10 @@ def test_hung_step_ends_the_process_with_a_clear_error(tmp_path):
     assert res.returncode == 1
     lines = [l for l in res.stderr.splitlines() if l.strip()]
     assert len(lines) == 1 and "Traceback" not in res.stderr
-    assert "c did not return from its step at t = 0.005 s within 1 s (the step time limit)" in lines[0]
+    assert lines[0].startswith("rotorcosim run: error: a component's step timed out: c did not return from its step at "
+                               "t = 0.005 s within 1 s (the step time limit)"), lines[0]
     s = json.loads((tmp_path / "o" / "summary.json").read_text())
-    assert s["status"] == "failed" and "did not return" in s["error"]
+    assert s["status"] == "failed" and s["error"].startswith("StepTimedOut: c did not return")
     # what was recorded is kept: the buffered rows written, the file closed under its name, marked incomplete
     # (before: timeseries.h5.part holding the rows of earlier flushes only, none in a run this short)
     import h5py

@@ -1,0 +1,375 @@
+"""The SPEC files of ``rotorcosim calibrate`` and ``rotorcosim uq`` (TOML), read and checked before anything runs.
+
+A calibration SPEC (paths relative to the SPEC's folder)::
+
+    [calibrate]
+    scenario = "blade_loss_2850"          # a shipped name or a path
+    duration = 2.0                        # optional: the runs' duration in s (default: the scenario's)
+    targets = "targets.csv"               # columns: case, result, value[, weight][, uncertainty][, holdout]
+    residual = "log"                      # optional: "log" (log of ours / target) or "linear" ((ours - target) w)
+    max_evaluations = 40                  # optional: points of the least-squares search (each: every fit case)
+    diff_step = 0.02                      # optional: finite-difference step, a fraction of each parameter's range
+    tolerance = 1e-4                      # optional: stop when the cost changes by less than this fraction
+    [calibrate.cases.low]                 # optional named cases: --set style overrides; case "" = the scenario as is
+    "rotor.F_unbalance" = 712.0
+    [[calibrate.parameter]]
+    name = "damper0.k_spring"             # comp.param, as --set takes it
+    lower = 3.0e6
+    upper = 1.0e7
+    start = 5.254e6                       # optional: default the scenario's value
+    scale = "log"                         # or "linear"
+
+A UQ SPEC::
+
+    [uq]
+    scenario = "blade_loss_2850"
+    duration = 2.0
+    samples = 64
+    sampler = "lhs"                       # "mc", "lhs" or "sobol" (Saltelli's scheme: samples x (2 D + 2) runs)
+    seed = 1
+    results = ["bearings.0.whirl_amplitude_mm"]
+    [[uq.parameter]]
+    name = "damper0.k_spring"
+    distribution = "normal"               # "uniform" (lower, upper), "normal" / "lognormal" (mean, std),
+    mean = 5.254e6                        # "truncnormal" (mean, std, lower, upper)
+    std = 2.6e5
+
+Every mistake is a :class:`SpecError` (a ValueError) of one line naming the file and the key.
+
+>>> import tempfile, pathlib
+>>> d = pathlib.Path(tempfile.mkdtemp())
+>>> _ = (d / "t.csv").write_text("case,result,value\\n,final_outputs.node.T,310\\n")
+>>> _ = (d / "s.toml").write_text('''[calibrate]
+... scenario = "toy_thermomechanical"
+... targets = "t.csv"
+... [[calibrate.parameter]]
+... name = "node.R"
+... lower = 0.5
+... upper = 2.0
+... ''')
+>>> spec = read_calibration(d / "s.toml")
+>>> spec.parameters[0].name, spec.parameters[0].start, spec.parameters[0].scale
+('node.R', 1.0, 'linear')
+"""
+from __future__ import annotations
+
+import hashlib
+import json
+import math
+import numbers
+import sys
+from dataclasses import asdict, dataclass, field
+from pathlib import Path
+from typing import Any
+
+if sys.version_info >= (3, 11):
+    import tomllib
+else:  # pragma: no cover
+    import tomli as tomllib
+
+from rotorcosim import scenarios
+from rotorcosim.master.api import load_scenario
+from rotorcosim.master.scenario.build import Scenario
+
+SCALES = ("linear", "log")
+RESIDUALS = ("log", "linear")
+SAMPLERS = ("mc", "lhs", "sobol")
+#: each distribution's keys (all required)
+DISTRIBUTIONS = {"uniform": ("lower", "upper"), "normal": ("mean", "std"), "lognormal": ("mean", "std"),
+                 "truncnormal": ("mean", "std", "lower", "upper")}
+#: defaults of the optional calibration keys: least-squares points, finite-difference step (fraction of a range)
+MAX_EVALUATIONS = 40
+DIFF_STEP = 0.02
+#: default relative change of the cost (and of the parameters, in their unit scale) at which the search stops: the
+#: runs' own numerical scatter (a nonlinear transient) makes smaller changes meaningless
+TOLERANCE = 1e-4
+
+
+class SpecError(ValueError):
+    """A mistake in a SPEC file: one line naming the file and the key."""
+
+
+@dataclass
+class Parameter:
+    """A parameter to update: ``name`` (``comp.param``), bounds, start and scale (``"linear"`` or ``"log"``)."""
+    name: str
+    lower: float
+    upper: float
+    start: float
+    scale: str = "linear"
+
+    def to_unit(self, value: float) -> float:
+        """``value`` as a fraction of the range in the parameter's scale (0 at ``lower``, 1 at ``upper``)."""
+        if self.scale == "log":
+            return math.log(value / self.lower) / math.log(self.upper / self.lower)
+        return (value - self.lower) / (self.upper - self.lower)
+
+    def from_unit(self, u: float) -> float:
+        """The inverse of :meth:`to_unit`."""
+        if self.scale == "log":
+            return self.lower * (self.upper / self.lower) ** u
+        return self.lower + u * (self.upper - self.lower)
+
+    def d_value_d_unit(self, value: float) -> float:
+        """d value / d u at ``value`` (a standard error in u times this is one in the parameter's unit)."""
+        if self.scale == "log":
+            return value * math.log(self.upper / self.lower)
+        return self.upper - self.lower
+
+
+@dataclass
+class Distribution:
+    """An uncertain parameter: ``name`` (``comp.param``), ``distribution`` and its values (:data:`DISTRIBUTIONS`)."""
+    name: str
+    distribution: str
+    values: dict[str, float] = field(default_factory=dict)
+
+
+@dataclass
+class CalibrationSpec:
+    """A read calibration SPEC (see the module's docstring); ``source`` the SPEC file."""
+    source: Path
+    scenario: str
+    duration: float | None
+    targets: Path
+    parameters: list[Parameter]
+    cases: dict[str, dict[str, Any]]
+    residual: str = "log"
+    max_evaluations: int = MAX_EVALUATIONS
+    diff_step: float = DIFF_STEP
+    tolerance: float = TOLERANCE
+
+    def fingerprint(self) -> str:
+        """What an evaluation depends on (the scenario, duration, cases and parameter names): evaluations stored
+        under another fingerprint are not reused."""
+        return _digest({"scenario": self.scenario, "duration": self.duration, "cases": self.cases,
+                        "parameters": [p.name for p in self.parameters]})
+
+
+@dataclass
+class UQSpec:
+    """A read UQ SPEC (see the module's docstring); ``source`` the SPEC file."""
+    source: Path
+    scenario: str
+    duration: float | None
+    samples: int
+    sampler: str
+    seed: int
+    results: list[str]
+    parameters: list[Distribution]
+    overrides: dict[str, Any] = field(default_factory=dict)
+
+    def fingerprint(self) -> str:
+        """What the samples depend on: samples stored under another fingerprint are not reused."""
+        return _digest({"scenario": self.scenario, "duration": self.duration, "samples": self.samples,
+                        "sampler": self.sampler, "seed": self.seed, "overrides": self.overrides,
+                        "parameters": [asdict(p) for p in self.parameters]})
+
+
+def _digest(obj) -> str:
+    return hashlib.sha256(json.dumps(obj, sort_keys=True, default=str).encode()).hexdigest()[:16]
+
+
+def _read(path: Path, table: str) -> dict:
+    path = Path(path)
+    if not path.is_file():
+        raise FileNotFoundError(f"SPEC {path}: no such file")
+    try:
+        data = tomllib.loads(path.read_text())
+    except (tomllib.TOMLDecodeError, UnicodeDecodeError) as exc:
+        raise SpecError(f"SPEC {path}: not valid TOML: {exc}") from None
+    if table not in data or not isinstance(data[table], dict):
+        raise SpecError(f"SPEC {path}: no [{table}] table")
+    return data[table]
+
+
+def _number(where: str, value, *, positive: bool = False) -> float:
+    if isinstance(value, bool) or not isinstance(value, numbers.Real) or not math.isfinite(value):
+        raise SpecError(f"{where}: {value!r} is not a finite number")
+    if positive and value <= 0:
+        raise SpecError(f"{where}: {value!r} must be > 0")
+    return float(value)
+
+
+def _unknown_keys(where: str, table: dict, known) -> None:
+    extra = sorted(set(table) - set(known))
+    if extra:
+        raise SpecError(f"{where}: unknown key(s) {', '.join(extra)} (known: {', '.join(sorted(known))})")
+
+
+def resolve_scenario(name: str, folder: Path, where: str) -> str:
+    """The scenario ``name`` of a SPEC in ``folder``: a file relative to the SPEC's folder if there is one,
+    else a shipped name; returned as a string a worker can load (an absolute path or the shipped name)."""
+    if not isinstance(name, str) or not name.strip():
+        raise SpecError(f"{where}: scenario must be a shipped name or a file")
+    p = Path(name).expanduser()
+    p = p if p.is_absolute() else folder / p
+    if p.is_file():
+        return str(p.resolve())
+    if name in scenarios.names():
+        return name
+    raise SpecError(f"{where}: scenario {name!r} is neither a file beside the SPEC nor a shipped scenario "
+                    f"({', '.join(scenarios.names())})")
+
+
+def _duration(where: str, table: dict) -> float | None:
+    if table.get("duration") is None:
+        return None
+    return _number(f"{where} duration", table["duration"], positive=True)
+
+
+def _default_value(sc: Scenario, ref: str, where: str):
+    """The scenario's value of ``comp.param`` (or its implementation's declared default)."""
+    from rotorcosim.master.scenario.overrides import _declared_parameters
+
+    comp, _, param = ref.partition(".")
+    spec = sc.components[comp]
+    if param in spec.parameters:
+        return spec.parameters[param]
+    declared = _declared_parameters(spec) or {}
+    if param in declared:
+        return declared[param].start
+    raise SpecError(f"{where}: no start given and {ref} has no value in the scenario (give start)")
+
+
+def check_parameters(sc: Scenario, values: dict[str, Any], where: str) -> None:
+    """``values`` (``comp.param`` -> value) applied to ``sc``: an unknown component or parameter, or a value
+    the parameter does not take, is an error naming it."""
+    try:
+        sc.set(values)
+    except (ValueError, TypeError) as exc:
+        raise SpecError(f"{where}: {' '.join(str(exc).split())}") from None
+
+
+def read_calibration(path: str | Path) -> CalibrationSpec:
+    """Read and check the calibration SPEC ``path`` (see the module's docstring): the scenario loads, every
+    parameter exists with bounds lower < start < upper (log: all > 0), every case's overrides apply. The targets
+    file is read by :func:`rotorcosim.master.study.targets.read_targets`."""
+    path = Path(path)
+    t = _read(path, "calibrate")
+    w = f"SPEC {path} [calibrate]"
+    _unknown_keys(w, t, ("scenario", "duration", "targets", "cases", "parameter", "residual", "max_evaluations",
+                         "diff_step", "tolerance"))
+    scenario = resolve_scenario(t.get("scenario", ""), path.parent, w)
+    sc = load_scenario(scenario)
+    if "targets" not in t or not isinstance(t["targets"], str):
+        raise SpecError(f"{w}: targets must name a CSV file (case, result, value[, weight][, holdout])")
+    targets = (path.parent / t["targets"]).resolve()
+    cases = t.get("cases", {})
+    if not isinstance(cases, dict) or not all(isinstance(v, dict) for v in cases.values()):
+        raise SpecError(f"{w}: cases must be tables of overrides, [calibrate.cases.NAME] \"comp.param\" = value")
+    for name, over in cases.items():
+        check_parameters(sc, over, f"{w} cases.{name}")
+    params = t.get("parameter", [])
+    if not isinstance(params, list) or not params:
+        raise SpecError(f"{w}: no [[calibrate.parameter]] given")
+    out = []
+    for i, p in enumerate(params):
+        pw = f"{w} parameter {i + 1}"
+        if not isinstance(p, dict):
+            raise SpecError(f"{pw}: must be a table")
+        _unknown_keys(pw, p, ("name", "lower", "upper", "start", "scale"))
+        name = p.get("name")
+        if not isinstance(name, str) or "." not in name:
+            raise SpecError(f"{pw}: name must be written 'component.parameter'")
+        pw = f"{w} parameter {name}"
+        if name in [q.name for q in out]:
+            raise SpecError(f"{pw}: given twice")
+        for c, over in cases.items():
+            if name in over:
+                raise SpecError(f"{pw}: case {c!r} sets it too (a parameter to update cannot be a case's setting)")
+        scale = p.get("scale", "linear")
+        if scale not in SCALES:
+            raise SpecError(f"{pw}: scale {scale!r} not in {SCALES}")
+        for key in ("lower", "upper"):
+            if key not in p:
+                raise SpecError(f"{pw}: {key} is missing")
+        lower, upper = _number(f"{pw} lower", p["lower"]), _number(f"{pw} upper", p["upper"])
+        if not lower < upper:
+            raise SpecError(f"{pw}: lower {lower:g} must be below upper {upper:g}")
+        if scale == "log" and lower <= 0:
+            raise SpecError(f"{pw}: a log scale needs lower > 0, got {lower:g}")
+        check_parameters(sc, {name: (lower + upper) / 2}, pw)
+        start = p["start"] if "start" in p else _default_value(sc, name, pw)
+        start = _number(f"{pw} start", start)
+        if not lower <= start <= upper:
+            raise SpecError(f"{pw}: start {start:g} is outside the bounds [{lower:g}, {upper:g}]")
+        out.append(Parameter(name, lower, upper, start, scale))
+    residual = t.get("residual", "log")
+    if residual not in RESIDUALS:
+        raise SpecError(f"{w}: residual {residual!r} not in {RESIDUALS}")
+    nmax = t.get("max_evaluations", MAX_EVALUATIONS)
+    if isinstance(nmax, bool) or not isinstance(nmax, int) or nmax < 1:
+        raise SpecError(f"{w}: max_evaluations must be an integer >= 1, got {nmax!r}")
+    step = _number(f"{w} diff_step", t.get("diff_step", DIFF_STEP), positive=True)
+    if step >= 0.5:
+        raise SpecError(f"{w}: diff_step {step:g} must be below 0.5 (a fraction of each parameter's range)")
+    tol = _number(f"{w} tolerance", t.get("tolerance", TOLERANCE), positive=True)
+    if tol >= 1:
+        raise SpecError(f"{w}: tolerance {tol:g} must be below 1 (a relative change)")
+    return CalibrationSpec(path, scenario, _duration(w, t), targets, out, {str(k): v for k, v in cases.items()},
+                           residual, nmax, step, tol)
+
+
+def read_uq(path: str | Path) -> UQSpec:
+    """Read and check the UQ SPEC ``path`` (see the module's docstring): the scenario loads, every parameter
+    exists, every distribution has its keys with std > 0 and lower < upper, samples >= 1."""
+    path = Path(path)
+    t = _read(path, "uq")
+    w = f"SPEC {path} [uq]"
+    _unknown_keys(w, t, ("scenario", "duration", "samples", "sampler", "seed", "results", "parameter", "set"))
+    scenario = resolve_scenario(t.get("scenario", ""), path.parent, w)
+    sc = load_scenario(scenario)
+    n = t.get("samples")
+    if isinstance(n, bool) or not isinstance(n, int) or n < 1:
+        raise SpecError(f"{w}: samples must be an integer >= 1, got {n!r}")
+    sampler = t.get("sampler", "lhs")
+    if sampler not in SAMPLERS:
+        raise SpecError(f"{w}: sampler {sampler!r} not in {SAMPLERS}")
+    seed = t.get("seed", 0)
+    if isinstance(seed, bool) or not isinstance(seed, int) or seed < 0:
+        raise SpecError(f"{w}: seed must be an integer >= 0, got {seed!r}")
+    results = t.get("results")
+    if not isinstance(results, list) or not results or not all(isinstance(r, str) and r for r in results):
+        raise SpecError(f"{w}: results must be a list of dotted paths into summary.json")
+    if len(set(results)) != len(results):
+        raise SpecError(f"{w}: a result is listed twice")
+    overrides = t.get("set", {})
+    if not isinstance(overrides, dict):
+        raise SpecError(f"{w}: set must be a table of \"comp.param\" = value")
+    check_parameters(sc, overrides, f"{w} set")
+    params = t.get("parameter", [])
+    if not isinstance(params, list) or not params:
+        raise SpecError(f"{w}: no [[uq.parameter]] given")
+    out = []
+    for i, p in enumerate(params):
+        pw = f"{w} parameter {i + 1}"
+        if not isinstance(p, dict):
+            raise SpecError(f"{pw}: must be a table")
+        name = p.get("name")
+        if not isinstance(name, str) or "." not in name:
+            raise SpecError(f"{pw}: name must be written 'component.parameter'")
+        pw = f"{w} parameter {name}"
+        if name in [q.name for q in out] or name in overrides:
+            raise SpecError(f"{pw}: given twice")
+        kind = p.get("distribution")
+        if kind not in DISTRIBUTIONS:
+            raise SpecError(f"{pw}: distribution {kind!r} not in {tuple(DISTRIBUTIONS)}")
+        vals = {}
+        for key in DISTRIBUTIONS[kind]:
+            if key not in p:
+                raise SpecError(f"{pw}: a {kind} distribution needs {', '.join(DISTRIBUTIONS[kind])}; {key} is missing")
+            vals[key] = _number(f"{pw} {key}", p[key])
+        _unknown_keys(pw, p, ("name", "distribution", *DISTRIBUTIONS[kind]))
+        if "std" in vals and vals["std"] <= 0:
+            raise SpecError(f"{pw}: std must be > 0, got {vals['std']:g}")
+        if "lower" in vals and not vals["lower"] < vals["upper"]:
+            raise SpecError(f"{pw}: lower {vals['lower']:g} must be below upper {vals['upper']:g}")
+        if kind == "lognormal" and vals["mean"] <= 0:
+            raise SpecError(f"{pw}: a lognormal distribution needs mean > 0, got {vals['mean']:g}")
+        probe = vals.get("mean", (vals.get("lower", 0.0) + vals.get("upper", 0.0)) / 2)
+        check_parameters(sc, {name: probe}, pw)
+        out.append(Distribution(name, kind, vals))
+    if sampler == "sobol" and len(out) < 2:
+        raise SpecError(f"{w}: the sobol sampler (Sobol' indices) needs at least 2 parameters")
+    return UQSpec(path, scenario, _duration(w, t), n, sampler, seed, list(results), out, dict(overrides))
