@@ -121,7 +121,7 @@ def ring_force_study(data: dict) -> None:
 
     c, R = 1e-3 * RINGS[0]["clearance_mm"], 1e-3 * RINGS[0]["radius_mm"]
     k_r, mu = CONTACT["stiffness"], CONTACT["friction"]
-    node = int(data["power_turbine"]["rub0_node"])
+    node = int(data["attach"]["rubring0"]["node"][1])
     sup85 = le.supports(oil_temperature_C=85.0)
     full = fem.build(data)
     Hu, Hg = ring_receptances(full, sup85, node)
@@ -153,7 +153,7 @@ def main() -> None:
     data, _ = fem.load_data(None)
     full = fem.build(data)
     sup = le.supports()
-    node0 = int(data["power_turbine"]["rub0_node"])
+    node0 = int(data["attach"]["rubring0"]["node"][1])
     print(f"rub ring #0 at PT node {node0}; film linearised at {sup['h0']['oil_temperature_C']:.0f} C")
     for node in sorted({2, 3, node0}):
         H = receptance(full, sup, node)

@@ -80,7 +80,7 @@ def variant(data: dict, m_stage=None, overhang=None, span=None, neck=None, stub=
     """A copy of the rotor data with the power-turbine levers applied (node 3 is bearing #0, node 5 the forward
     intermediate bearing; a new span moves the gas generator, the casing rings and hubs aft of #0 with it)."""
     d = copy.deepcopy(data)
-    p, g, cas = d["power_turbine"], d["gas_generator"], d["casing"]
+    p, g, cas = d["spool"]["pt"], d["spool"]["gg"], d["casing"]
     z = list(p["z_mm"])
     if span is not None:
         D = span - (z[5] - z[3])
@@ -118,8 +118,8 @@ def figures(d: dict, oring: float) -> dict:
     above = [m for m in modes if m[0] > RUN_RPM and m[1] >= 0.05]
     below = [m for m in modes if m[0] <= RUN_RPM and m[1] >= 0.05]
     r = calibration.coupled_response(f, s30, 712.0)
-    _, hg30 = brm.ring_receptances(f, s30, int(d["power_turbine"]["rub0_node"]))
-    hu, hg = brm.ring_receptances(f, s85, int(d["power_turbine"]["rub0_node"]))
+    _, hg30 = brm.ring_receptances(f, s30, int(d["attach"]["rubring0"]["node"][1]))
+    hu, hg = brm.ring_receptances(f, s85, int(d["attach"]["rubring0"]["node"][1]))
     return {"modes": modes, "first_above": above[0] if above else None, "below": below, "r": r,
             "phase30": math.degrees(np.angle(hg30)), "phase85": math.degrees(np.angle(hg)),
             "N8551": brm.ring_force(hu, hg, 8551.0, 0.508e-3, 3e8, 0.2)}
@@ -159,7 +159,7 @@ def _mount_planes(d, s):
 
 
 def _gg_mass(d, s):
-    for dk in d["gas_generator"]["disks"]:
+    for dk in d["spool"]["gg"]["disks"]:
         for k in ("mass", "Ip", "Id"):
             dk[k] *= s
 
@@ -191,7 +191,7 @@ def _gg_overhung(d, node):
     generator turbine, as in engines whose compressor turbine sits outboard of its bearings)."""
     if node == 1:
         return
-    g, cas = d["gas_generator"], d["casing"]
+    g, cas = d["spool"]["gg"], d["casing"]
     zb4 = g["z_mm"][int(node)]
     for s in d["support"]:
         if s["name"] == "GG bearing 4":
@@ -203,7 +203,7 @@ def _gg_overhung(d, node):
 def _stretch_aft(d, s):
     """Everything aft of the forward intermediate bearing (gas generator, PT tube, casing, aft overhang) stretched
     by s: a longer gas generator (more or wider compressor stages)."""
-    p, g, cas = d["power_turbine"], d["gas_generator"], d["casing"]
+    p, g, cas = d["spool"]["pt"], d["spool"]["gg"], d["casing"]
     z5 = p["z_mm"][5]
 
     def f(z):
@@ -216,7 +216,7 @@ def _stretch_aft(d, s):
 
 
 def _pt_tube(d, d_out):
-    p = d["power_turbine"]
+    p = d["spool"]["pt"]
     for e in range(5, 16):
         p["d_out_mm"][e], p["d_in_mm"][e] = d_out, d_out - 12.0     # a 6 mm wall
 
@@ -297,7 +297,7 @@ def _fmt(v) -> str:
 def _aft_overhang(d, L_mm):
     """Bearing #5 at L_mm behind the aft intermediate bearing (PT node 16; shipped 150 mm), its casing ring and hub
     with it: the power turbine's output end reaching further forward through the gas generator's inlet."""
-    p, cas = d["power_turbine"], d["casing"]
+    p, cas = d["spool"]["pt"], d["casing"]
     z16 = p["z_mm"][16]
     p["z_mm"] = p["z_mm"][:17] + [z16 + L_mm * k / 5.0 for k in range(1, 6)]
     cas["ring_z_mm"][-1] = z16 + L_mm
@@ -312,7 +312,7 @@ def _coupling(d, m_kg):
     """The output coupling at the #5 end (PT node 21) as a rigid disk of m_kg (Ip = m r^2, Id = Ip / 2)."""
     if m_kg > 0:
         Ip = m_kg * COUPLING_R ** 2
-        d["power_turbine"]["disks"].append({"node": 21, "name": "output coupling", "mass": m_kg, "Ip": Ip,
+        d["spool"]["pt"]["disks"].append({"node": 21, "name": "output coupling", "mass": m_kg, "Ip": Ip,
                                             "Id": Ip / 2.0})
 
 
@@ -409,7 +409,7 @@ def write_candidate(path: str, kind: str = "span120", oring: float = 2.0) -> Non
             line = f"{key} = {{ z_mm = {_fmt(float(h['z_mm']))}, mass = {_fmt(float(h['mass']))} }}"
         out.append(line)
         if section == "power_turbine" and line.lstrip().startswith('{ node = 1, name = "PT stage 1"'):
-            for dk in d["power_turbine"]["disks"][2:]:
+            for dk in d["spool"]["pt"]["disks"][2:]:
                 out.append(f'  {{ node = {dk["node"]}, name = "{dk["name"]}", mass = {dk["mass"]:.6g}, '
                            f'Ip = {dk["Ip"]:.6g}, Id = {dk["Id"]:.6g} }},')
     header = (f"# STUDY FILE written by bench/bench_support_above_running.py --write-candidate {kind}: {what},\n"
@@ -418,7 +418,7 @@ def write_candidate(path: str, kind: str = "span120", oring: float = 2.0) -> Non
     back, _ = fem.load_data(path)
     for sec, key in lists:
         assert np.allclose(back[sec][key], d[sec][key]), (sec, key)
-    assert len(back["power_turbine"]["disks"]) == len(d["power_turbine"]["disks"])
+    assert len(back["spool"]["pt"]["disks"]) == len(d["spool"]["pt"]["disks"])
     print(f"wrote {path}: forward critical speeds {[round(x) for x in f]} rev/min")
 
 

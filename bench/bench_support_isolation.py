@@ -137,7 +137,7 @@ def main() -> None:
             f = fem.build(d)
             modes = " ".join(f"{rpm:.0f} ({s0:.2f})" for rpm, s0, _ in strain_shares(f, sup2)[:3])
             r = calibration.coupled_response(f, sup2, 712.0)["0"]
-            hu, hg = brm.ring_receptances(f, sup85, int(d["power_turbine"]["rub0_node"]))
+            hu, hg = brm.ring_receptances(f, sup85, int(d["attach"]["rubring0"]["node"][1]))
             N = brm.ring_force(hu, hg, 8551.0, 0.508e-3, 3e8, 0.2)
             print(f"   stages {m:.1f} kg, mounts {mk:.0e} N/m: modes (O-ring #0 share) {modes}; 712 N whirl "
                   f"{r['whirl_mm']:.4f} mm, T {r['transmissibility']:.2f}; ring point {np.degrees(np.angle(hg)):.0f} deg, "

@@ -7,8 +7,10 @@ Modelled on FMI 2.0 co-simulation (and on fmpy's flat model description):
 * ``setup(t0)`` (enter/exit initialisation), ``set_inputs``, ``do_step(t, h)``, ``get_outputs``, ``terminate``;
 * ``get_state`` / ``set_state``: a full snapshot (FMI getFMUstate / setFMUstate), used for rollback and by
   the staggered schedule;
-* a preferred communication step and the phases it takes part in (``"TM"`` thermo-mechanical,
-  ``"TO"`` thermal-only).
+* a preferred communication step and the phases it takes part in, named by their role: ``COUPLED``
+  (``"TM"``: every component steps, the thermo-mechanical phase of a staggered scheme) and ``HELD`` (``"TO"``:
+  only the components that declare it step, the master holds the others' outputs: thermal-only). A scenario may
+  call its phases otherwise (master/core/phases.py); a component speaks of them by these roles.
 
 A component owns its internal integration and never reaches into another component.
 """
@@ -26,7 +28,9 @@ from .value_types import KINDS, UNCARRIED, check_value, dtype_of
 
 CAUSALITIES = ("parameter", "input", "output")
 TYPES = KINDS
-PHASES = ("TM", "TO")
+#: the roles of the two phases a component can take part in (see the module docstring)
+COUPLED, HELD = "TM", "TO"
+PHASES = (COUPLED, HELD)
 
 
 @dataclass(frozen=True)
@@ -37,7 +41,9 @@ class Variable:
     ``fmi_type`` is the FMI type it came from (``"Float32"``, ``"Int8"``, ``"Enumeration"``...; ``""`` for native
     variables), ``min``/``max`` its declared range, ``choices`` an enumeration's item values, ``unit_definition``
     its unit as ``(base-unit exponents, factor, offset)`` when the FMU defines it (else the unit string is parsed,
-    fmus/units.py)."""
+    fmus/units.py). ``has_default``: an input that may stay unconnected, keeping its ``start`` value (an imported
+    FMU's input with a declared start; a native input only when its component declares it so: the others must be
+    connected or given a constant)."""
 
     name: str
     causality: str
@@ -54,6 +60,11 @@ class Variable:
     #: names of a vector's elements (``("inner", "outer")``); by default x, y(, z) for a 2- or 3-vector of a
     #: displacement, velocity or force, else 1..size (see :meth:`column_labels`)
     labels: tuple[str, ...] = ()
+    has_default: bool = False
+    #: a parameter's plausible values (SI), ``(low, high)``: a value outside is legal but likely a unit slip (an
+    #: O-ring given in N/mm where N/m is meant), which a run warns about (components/plausibility.py); unlike
+    #: ``min``/``max``, which are hard limits
+    plausible: tuple[float, float] | None = None
 
     def __post_init__(self):
         if self.causality not in CAUSALITIES:
@@ -124,6 +135,14 @@ class Component:
     file_parameters: tuple[str, ...] = ()
     #: short description shown by ``rotorcosim`` and written to exported FMUs
     description: str = ""
+    #: what the component costs, for the estimate of a run's wall time before it starts
+    #: (master/schedule/budget.py), in CPU seconds of one core of a 2-core x86 machine of 2025 (measured with
+    #: ``python bench/bench_estimate.py``): one ``do_step`` in the generic Python loop, one step of its kernel in
+    #: the compiled loop (components with a kernel), and its set-up in a fresh process (model reduction, kernels
+    #: and tables loaded from the disk caches)
+    step_cost_s: float = 30e-6
+    kernel_step_cost_s: float = 5e-6
+    setup_cost_s: float = 0.0
 
     def __init__(self, name: str = "component", parameters: Mapping[str, Any] | None = None):
         self.name = name
@@ -146,6 +165,13 @@ class Component:
         self.time = 0.0
 
     # -- declarations -------------------------------------------------------------------------------
+    @classmethod
+    def step_cost(cls, parameters: Mapping[str, Any], compiled: bool) -> float:
+        """CPU seconds of one step with ``parameters`` (those a scenario gives; the rest at their defaults), in
+        the compiled loop or the Python one: :attr:`kernel_step_cost_s` or :attr:`step_cost_s`, unless a
+        component's cost follows its parameters (the FE damper's mesh)."""
+        return cls.kernel_step_cost_s if compiled else cls.step_cost_s
+
     @classmethod
     def declared(cls, causality: str) -> list[Variable]:
         return [v for v in cls.variables if v.causality == causality]
@@ -213,7 +239,7 @@ class Component:
         self.time, self.state, self.u, self.y = _copy_snapshot(snapshot)
 
     def enter_phase(self, phase: str) -> None:
-        """Called by the master at the start of every interval with its phase (``"TM"`` or ``"TO"``), for
+        """Called by the master at the start of every interval with its phase's role (``COUPLED`` or ``HELD``), for
         every component, stepped or frozen. Components that behave differently in thermal-only intervals
         (``holds_state_in_TO``) override it."""
         self.phase = phase
@@ -274,6 +300,8 @@ __all__ = [
     "StopRequested",
     "Variable",
     "CAUSALITIES",
+    "COUPLED",
+    "HELD",
     "PHASES",
     "TYPES",
     "as_phases",

@@ -64,8 +64,11 @@ def variables_config(comp: Component) -> list[dict]:
         if v.type == "Real" or v.causality != "parameter":
             start = np.broadcast_to(np.asarray(start, dtype=float), (v.size,)).tolist()
             start = start[0] if v.size == 1 else start
-        out.append({"name": v.name, "causality": v.causality, "size": int(v.size), "unit": v.unit,
-                    "description": v.description, "start": _jsonable(start), "type": v.type})
+        entry = {"name": v.name, "causality": v.causality, "size": int(v.size), "unit": v.unit,
+                 "description": v.description, "start": _jsonable(start), "type": v.type}
+        if v.has_default:   # (only then: the bundle's config, hence its content hash, stays as it was otherwise)
+            entry["has_default"] = True
+        out.append(entry)
     return out
 
 
@@ -184,7 +187,7 @@ def export_component(implementation: str, dest: str | Path, *, instance_name: st
     entries["modelDescription.xml"] = model_description.finish(
         entries["modelDescription.xml"], variables + phase_vars, implementation=implementation,
         phases=config["phases"], phase_input=PHASE_INPUT, phases_output=PHASES_OUTPUT,
-        error_variable=ERROR_VARIABLE,
+        error_variable=ERROR_VARIABLE, default_inputs=tuple(v["name"] for v in variables if v.get("has_default")),
         preferred_step=config["preferred_step"], package=package, slave_module=slave_module,
         content_hash=content_hash)
     return write_deterministic_zip(entries, dest)

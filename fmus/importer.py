@@ -235,13 +235,17 @@ def _declared(e, attr: str):
     return value
 
 
-def ports_of(md, where: str, hidden=frozenset()) -> tuple[list[Variable], dict[str, list]]:
+def ports_of(md, where: str, hidden=frozenset(), defaults=None) -> tuple[list[Variable], dict[str, list]]:
     """Contract variables from the FMU's variables, and ``{port: [fmpy variables by index]}``.
 
     FMI 2.0 scalars ``X[1]..X[n]`` are regrouped into a port ``X`` of size n; an FMI 3.0 array variable is one
     port of size prod(shape) (row-major, as FMI serialises arrays). Every type of FMI 2.0 / 3.0 co-simulation
     is a port (value_types.py); Binary and Clock ports are declared but carry no value. All the problems found
-    are reported at once. ``hidden``: variables that are not ports (our FMUs' schedule phase variables)."""
+    are reported at once. ``hidden``: variables that are not ports (our FMUs' schedule phase variables).
+
+    An input may stay unconnected (``has_default``, keeping its start value, as fmpy, Ecos and OMSimulator do)
+    when every element declares a start value; ``defaults``, for an FMU exported by rotorcosim, names the inputs
+    whose native component declared a default instead (the others stay required, as they are natively)."""
     by_name = {v.name: v for v in md.modelVariables
                if v.causality in ("parameter", "input", "output") and v.name not in hidden}
     units = _unit_definitions(md)
@@ -298,7 +302,13 @@ def ports_of(md, where: str, hidden=frozenset()) -> tuple[list[Variable], dict[s
                                              type=kind, fmi_type=first.type, choices=choices), e.start)
                       for e in elems]
             start = starts[0] if len(starts) == 1 else starts
-            variables.append(replace(shell, start=start))
+            if first.causality != "input":
+                optional = False
+            elif defaults is not None:
+                optional = port in defaults
+            else:
+                optional = all(e.start is not None for e in elems)
+            variables.append(replace(shell, start=start, has_default=optional))
         except (ContractError, ValueError) as exc:
             problems.append(f"{port!r}: {exc}")
             continue
@@ -409,7 +419,8 @@ class FMUComponent(Component):
         xml, md = describe(self.path)
         self.model_description = md
         ann = mdx.read_annotation(xml, where)
-        variables, self._scalars = ports_of(md, where, ann.hidden)
+        variables, self._scalars = ports_of(md, where, ann.hidden,
+                                            ann.default_inputs if ann.implementation is not None else None)
         refs = {v.name: v.valueReference for v in md.modelVariables}
         self._phase_in = refs.get(ann.phase_input) if ann.phase_input else None
         self._phases_out = refs.get(ann.phases_output) if ann.phases_output else None

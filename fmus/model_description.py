@@ -11,7 +11,9 @@ InitialUnknowns (fmpy's validation rejects it: outputs with ``initial="calculate
 * ``<VendorAnnotations><Tool name="rotorcosim"><Component .../>``: the implementation name, the phases
   (``"TM"``, ``"TO"``, comma-separated; as declared before set-up), the preferred step, the private code
   package and slave module of the bundle (the importer uses these to tidy ``sys.modules`` when the FMU is
-  freed), and the names of the phase input / phases output / last-error variables (slave_template.py);
+  freed), the names of the phase input / phases output / last-error variables (slave_template.py), and the
+  inputs that may stay unconnected (``defaultInputs``: those the native component declares ``has_default``;
+  other tools' FMUs may leave every input with a start value unconnected, ours keep the native rule);
 * ``<ModelStructure>``: Outputs and InitialUnknowns, both listing every output;
 * a GUID that is a hash of the FMU's content (same content, same GUID), no generation date.
 """
@@ -50,7 +52,7 @@ def _unit_element(name: str) -> ET.Element:
 
 def finish(xml: bytes, variables: list[dict], *, implementation: str, phases: list[str], preferred_step: float,
            package: str, slave_module: str, content_hash: str, phase_input: str = "",
-           phases_output: str = "", error_variable: str = "") -> bytes:
+           phases_output: str = "", error_variable: str = "", default_inputs: tuple[str, ...] = ()) -> bytes:
     """The finished modelDescription.xml (bytes) for pythonfmu's ``xml`` and our ``variables`` (config dicts)."""
     root = ET.fromstring(xml)
     by_name = {}
@@ -91,10 +93,12 @@ def finish(xml: bytes, variables: list[dict], *, implementation: str, phases: li
     new["DefaultExperiment"] = ET.Element("DefaultExperiment", {"startTime": "0.0", "stepSize": _fmt(preferred_step)})
     va = ET.Element("VendorAnnotations")
     tool = ET.SubElement(va, "Tool", {"name": TOOL})
-    ET.SubElement(tool, "Component", {"implementation": implementation, "phases": ",".join(sorted(phases)),
-                                      "preferredStep": _fmt(preferred_step), "package": package,
-                                      "slaveModule": slave_module, "phaseInput": phase_input,
-                                      "phasesOutput": phases_output, "errorVariable": error_variable})
+    own = {"implementation": implementation, "phases": ",".join(sorted(phases)),
+           "preferredStep": _fmt(preferred_step), "package": package, "slaveModule": slave_module,
+           "phaseInput": phase_input, "phasesOutput": phases_output, "errorVariable": error_variable}
+    if default_inputs:   # (written only when there are some: the other components' FMUs stay as they were)
+        own["defaultInputs"] = ",".join(default_inputs)
+    ET.SubElement(tool, "Component", own)
     new["VendorAnnotations"] = va
     ms = ET.Element("ModelStructure")
     if outputs:
@@ -130,6 +134,8 @@ class Annotation:
     phase_input: str | None = None
     phases_output: str | None = None
     error_variable: str | None = None
+    #: the inputs that may stay unconnected (keeping their start values)
+    default_inputs: frozenset[str] = frozenset()
 
     @property
     def hidden(self) -> set[str]:
@@ -180,5 +186,6 @@ def read_annotation(xml: bytes, where: str = "modelDescription.xml") -> Annotati
                                       f"({pattern.pattern})")
         return Annotation(comp.get("implementation"), chosen, preferred, comp.get("package"),
                           comp.get("slaveModule"), comp.get("phaseInput") or None, comp.get("phasesOutput") or None,
-                          comp.get("errorVariable") or None)
+                          comp.get("errorVariable") or None,
+                          frozenset(n.strip() for n in (comp.get("defaultInputs") or "").split(",") if n.strip()))
     return Annotation()

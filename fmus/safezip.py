@@ -10,7 +10,9 @@ Caps (a zip bomb must not fill the disk): at most ``MAX_ENTRIES`` entries, ``MAX
 and no entry larger than ``RATIO_FLOOR_BYTES`` compressed more than ``MAX_RATIO`` times; sizes are checked from
 the directory before anything is written and counted again while writing (a directory can lie). Malformed
 archives (a bad CRC, a truncated entry, an unsupported compression, an entry both a file and a folder, a name
-twice) raise :class:`ArchiveError` naming the entry.
+twice with different contents) raise :class:`ArchiveError` naming the entry. A name twice with identical bytes is
+accepted and extracted once: FMU build tools write such archives (the Modelica Reference FMUs' FMI 3.0
+``Roberts.fmu`` holds its ``extra/.../fmi-ls-manifest.xml`` twice), and fmpy, Ecos and OMSimulator run them.
 """
 from __future__ import annotations
 
@@ -62,7 +64,8 @@ def check_entries(zf: zipfile.ZipFile, source: str) -> None:
     if len(infos) > MAX_ENTRIES:
         raise ArchiveError(f"{source}: {len(infos)} entries, more than the {MAX_ENTRIES} an archive may hold here")
     total = 0
-    files, folders = set(), set()
+    files: dict[str, zipfile.ZipInfo] = {}
+    folders: set[str] = set()
     for info in infos:
         name = info.filename.rstrip("/")
         total += info.file_size
@@ -77,10 +80,11 @@ def check_entries(zf: zipfile.ZipFile, source: str) -> None:
             folders.add(name)
         else:
             if name in files:
-                raise ArchiveError(f"{source}: entry {info.filename!r} appears twice: which one is meant is unclear")
-            files.add(name)
+                _check_duplicate(zf, files[name], info, source)
+            else:
+                files[name] = info
         folders.update("/".join(parts[:i]) for i in range(1, len(parts)))
-    clash = sorted(files & folders)
+    clash = sorted(set(files) & folders)
     if clash:
         raise ArchiveError(f"{source}: {clash[0]!r} is both a file and a folder in the archive")
     for info in infos:
@@ -99,6 +103,20 @@ def check_entries(zf: zipfile.ZipFile, source: str) -> None:
                                      "(it could write outside the extraction folder)")
 
 
+def _check_duplicate(zf: zipfile.ZipFile, first: zipfile.ZipInfo, again: zipfile.ZipInfo, source: str) -> None:
+    """A name written twice is one entry when both copies hold the same bytes; otherwise which one is meant is
+    unclear (an extractor keeps one, fmpy's reader the other) and the archive is refused."""
+    same = first.file_size == again.file_size and first.CRC == again.CRC
+    if same:
+        try:
+            same = zf.read(first) == zf.read(again)
+        except (zipfile.BadZipFile, zlib.error, EOFError, NotImplementedError, RuntimeError) as exc:
+            raise ArchiveError(f"{source}: entry {again.filename!r} is damaged ({exc})") from None
+    if not same:
+        raise ArchiveError(f"{source}: entry {again.filename!r} appears twice with different contents: which one "
+                           "is meant is unclear")
+
+
 def safe_extract(path: str | Path, what: str = "FMU", prefix: str = "rcs_", parent: Path | None = None) -> Path:
     """Extract ``path`` into a fresh temporary folder (returned), in ``parent`` or the system's temporary
     folder; the caller removes it when done."""
@@ -106,9 +124,13 @@ def safe_extract(path: str | Path, what: str = "FMU", prefix: str = "rcs_", pare
         check_entries(zf, str(path))
         folder = Path(tempfile.mkdtemp(prefix=prefix, dir=parent))
         written = 0
+        done: set[str] = set()
         try:
             root = folder.resolve()
             for info in zf.infolist():
+                if info.filename in done:   # a duplicate with the same bytes (check_entries): written once
+                    continue
+                done.add(info.filename)
                 target = (root / info.filename).resolve()
                 if os.path.commonpath([root, target]) != str(root):
                     raise UnsafeArchiveError(f"{path}: archive entry {info.filename!r} resolves outside the "

@@ -37,7 +37,9 @@ from rotorcosim.master.core.algorithm import SimulationDiverged
 from rotorcosim.master.compiled.choice import ENGINES
 from rotorcosim.master.run.figure_pool import FigurePool
 from rotorcosim.master.observer.observers import Progress, Recorder, column_names
-from rotorcosim.master.run.outputs import write_json
+from rotorcosim.master.run.outputs import check_dpi, write_json
+from rotorcosim.master.run.provenance import h5_attributes, provenance
+from rotorcosim.master.observer.plausible import Plausibility
 from rotorcosim.master.run.rundir import RunFolder
 from rotorcosim.master.scenario.build import Scenario, build_simulation, load_scenario as _load_file, schedule_of
 from rotorcosim.master.scenario.cycle import cycle_of
@@ -45,6 +47,7 @@ from rotorcosim.master.schedule.timeline import Schedule
 from rotorcosim.master.observer.series import SeriesFile
 from rotorcosim.master.observer.validity import Validity
 from rotorcosim.master.simulation import engine_summary
+from rotorcosim.master.core.phases import Phases
 from rotorcosim.master.core.threads import one_thread
 
 #: the scenario run when none is named (declared with the shipped scenarios, ``scenarios.DEFAULT``)
@@ -53,7 +56,6 @@ DEFAULT_SCENARIO = scenarios.DEFAULT
 SCHEDULES = {"scenario": None, "auto": "auto", "monolithic": "monolithic"}
 #: other names accepted for those: "paper" is the scenario's own schedule (the shipped case's: the paper's timeline)
 SCHEDULE_ALIASES = {"paper": "scenario"}
-PHASE_NAMES = np.array(["TM", "TO"])
 
 
 def peak_memory_mb() -> float | None:
@@ -101,11 +103,17 @@ def _postprocessor(sc: Scenario):
         raise ValueError(f"[results] kind {kind!r}: no such result extraction ({exc})") from None
 
 
-def check_run(sc: Scenario, schedule=None, duration: float | None = None, force: bool = False) -> dict:
+def check_run(sc: Scenario, schedule=None, duration: float | None = None, force: bool = False,
+              engine: str = "auto") -> dict:
     """The checks :func:`simulate` makes before it starts (the schedule, the duration, the budget), without
-    running: a sweep makes them for every case before the first one runs. Returns the estimate (budget.py)."""
+    running: a sweep makes them for every case before the first one runs. Returns the estimate (budget.py).
+
+    >>> est = check_run(load_scenario("toy_thermomechanical"), "monolithic", duration=1.0)
+    >>> est["steps"], est["engine"]
+    (1000, 'python')
+    """
     sch, _ = _schedule(sc, schedule, duration)
-    return budget.check(sc, sch, force)
+    return budget.check(sc, sch, force, engine)
 
 
 def _schedule(sc: Scenario, schedule, duration: float | None):
@@ -125,14 +133,16 @@ def _schedule(sc: Scenario, schedule, duration: float | None):
 
 
 class Result:
-    """A run: ``time`` [s], ``phase`` ("TM" / "TO" per sample), ``res["comp.port"]`` (a 1-D array for a
+    """A run: ``time`` [s], ``phase`` (per sample, the name of its phase: "TM" / "TO" unless the scenario names
+    them otherwise), ``res["comp.port"]`` (a 1-D array for a
     scalar port, (n, size) for a vector one; SI units, see :meth:`unit` / :meth:`columns`), ``summary`` (the dict
     written to summary.json), ``files`` (the files written, with ``out=``). The arrays are in memory, or read
     from the run's time series file when first used (a run with ``out=`` and HDF5).
 
-    Made by :func:`simulate`; its parameters: ``data`` (``"time"``, ``"phase"`` (0 TM, 1 TO) and one (n, size)
-    array per recorded ``"comp.port"``), ``variables`` (``"comp.port"`` -> the port's declaration: unit, element
-    labels), ``summary`` and ``files``.
+    Made by :func:`simulate`; its parameters: ``data`` (``"time"``, ``"phase"`` (0 coupled, 1 held) and one
+    (n, size) array per recorded ``"comp.port"``), ``variables`` (``"comp.port"`` -> the port's declaration: unit,
+    element labels), ``summary``, ``files`` and ``phases`` (the scenario's phase names,
+    :class:`~rotorcosim.master.core.phases.Phases`; default "TM" / "TO").
 
     >>> import rotorcosim
     >>> res = rotorcosim.simulate("toy_thermomechanical", duration=0.05)
@@ -144,8 +154,10 @@ class Result:
     (0.05, 'TM', (51,))
     """
 
-    def __init__(self, data: Mapping[str, np.ndarray], variables: dict, summary: dict, files: Sequence[Path] = ()):
+    def __init__(self, data: Mapping[str, np.ndarray], variables: dict, summary: dict, files: Sequence[Path] = (),
+                 phases: Phases | None = None):
         self._data = data
+        self._phase_names = np.array((phases or Phases()).names)
         self._vars = variables
         self.summary = summary
         self.files = [Path(f) for f in files]
@@ -157,8 +169,9 @@ class Result:
 
     @property
     def phase(self) -> np.ndarray:
-        """The phase of each sample: "TM" (thermo-mechanical) or "TO" (thermal-only)."""
-        return PHASE_NAMES[self._data["phase"].astype(int)]
+        """The phase of each sample, by the scenario's names ("TM" thermo-mechanical / "TO" thermal-only by
+        default)."""
+        return self._phase_names[self._data["phase"].astype(int)]
 
     @property
     def signals(self) -> list[str]:
@@ -210,7 +223,8 @@ class Result:
 def simulate(sc: Scenario | str | Path, duration: float | None = None, schedule=None, out: str | Path | None = None,
              record: Sequence[str] | None = None, figures: bool = True, progress: bool = False, *,
              overwrite: bool = False, resume: bool = False, force: bool = False,
-             checkpoint_every: float | None = checkpoint.EVERY_S, step_timeout: float = 0.0, engine: str = "auto") -> Result:
+             checkpoint_every: float | None = checkpoint.EVERY_S, step_timeout: float = 0.0, engine: str = "auto",
+             dpi: float | None = None) -> Result:
     """Run scenario ``sc`` (a :class:`Scenario`, or a name or path for :func:`load_scenario`).
 
     ``duration`` [s] cuts the schedule; ``schedule`` is ``"scenario"`` (the scenario's own; also ``"paper"``),
@@ -226,7 +240,8 @@ def simulate(sc: Scenario | str | Path, duration: float | None = None, schedule=
     step hangs (watchdog.py), writing a failed summary first. ``engine``: ``"auto"`` runs each thermo-mechanical
     interval through the compiled loop when every component offers a compiled kernel (master/compiled/runner.py),
     ``"python"`` through the generic loop, ``"compiled"`` through the compiled loop or not at all (an error); the
-    summary's ``engine`` says which ran (``engine_note`` why the generic loop did under auto).
+    summary's ``engine`` says which ran (``engine_note`` why the generic loop did under auto). ``dpi``: the
+    resolution of the figures (None: :data:`~rotorcosim.master.run.outputs.FIGURE_DPI`).
 
     The summary's ``status`` says how the run ended: ``complete``, ``stopped`` (a component asked to stop),
     ``interrupted`` (SIGINT/SIGTERM) or ``failed``; on ``interrupted`` and ``failed`` the error is raised after
@@ -238,11 +253,11 @@ def simulate(sc: Scenario | str | Path, duration: float | None = None, schedule=
 
     with one_thread():
         return _simulate(sc, duration, schedule, out, record, progress, figures, overwrite, resume, force,
-                         checkpoint_every, step_timeout, engine)
+                         checkpoint_every, step_timeout, engine, dpi)
 
 
 def _simulate(sc, duration, schedule, out, record, progress, figures, overwrite, resume, force, checkpoint_every,
-              step_timeout, engine) -> Result:
+              step_timeout, engine, dpi) -> Result:
     if not isinstance(sc, (Scenario, str, os.PathLike)):
         raise TypeError(f"simulate: give a Scenario, a shipped scenario's name or a file, got {type(sc).__name__}")
     if not isinstance(sc, Scenario):
@@ -251,15 +266,18 @@ def _simulate(sc, duration, schedule, out, record, progress, figures, overwrite,
         raise TypeError(f"record: give a list of 'component.port' names, e.g. record=[{record!r}]")
     if engine not in ENGINES:
         raise ValueError(f"engine {engine!r} not in {ENGINES}")
+    dpi = check_dpi(dpi)
     if not (isinstance(step_timeout, numbers.Real) and 0 <= step_timeout < float("inf")):
         raise ValueError(f"step_timeout must be a number of seconds >= 0 (0: no limit), got {step_timeout!r}")
     if checkpoint_every is not None and not (isinstance(checkpoint_every, numbers.Real) and checkpoint_every > 0):
         raise ValueError(f"checkpoint_every must be a positive number of seconds (or None: no checkpoints), got "
                          f"{checkpoint_every!r}")
     sch, kind = _schedule(sc, schedule, duration)
-    estimate = budget.check(sc, sch, force)
-    if progress and estimate["wall_s"] > 60:
-        print(f"{sc.name}: {estimate['steps']:,} steps, estimated {estimate['wall']} of wall time", file=sys.stderr)
+    estimate = budget.check(sc, sch, force, engine)
+    if estimate["wall_s"] > budget.WARN_S:
+        # from Python as from the command line: a long run does not start silently
+        print(f"{sc.name}: {estimate['steps']:,} steps, estimated {estimate['wall']} of wall time "
+              f"({estimate['engine']} engine)", file=sys.stderr)
     post = _postprocessor(sc)
     o = sc.outputs
     signals = list(o.get("record", []) if record is None else record)
@@ -289,17 +307,23 @@ def _simulate(sc, duration, schedule, out, record, progress, figures, overwrite,
             series = out / f"timeseries.{fmt}" if signals else None
         # a file run keeps nothing in memory: the result and the figures read the HDF5 file (CSV is not read back)
         keep = series is None or fmt != "h5"
-        recorder = Recorder(series, signals, float(o.get("record_step", 1e-4)), keep=keep)
+        made = {"by": provenance(sc)}  # completed with the components' resolved parameters once they are built
+        recorder = Recorder(series, signals, float(o.get("record_step", 1e-4)), keep=keep,
+                            attributes=lambda: h5_attributes(made["by"]))
         post_obs = post.observers(sc, cycle) if post is not None else []
         # where the components' models stop holding: after the progress bar, so that its lines follow the bar's
         validity = Validity(recorder.record_step, sc.name)
-        observers = [recorder, *post_obs, Progress(sch.duration, disable=not progress, desc=sc.name), validity]
+        prior = {ph: 1e-6 * us for ph, us in estimate["step_cost_us"].items()}
+        # a parameter off by a unit factor: warned once the components are set up (after their own checks)
+        observers = [recorder, *post_obs, Progress(sch.duration, disable=not progress, desc=sc.name, prior=prior),
+                     validity, Plausibility(sc.name)]
         if out is not None:
             # checkpoint_every=None: no checkpoints (a timing comparison is run again, not resumed)
             saver = checkpoint.Checkpointer(out / checkpoint.CHECKPOINT if checkpoint_every is not None else None,
                                             stop, checkpoint_every or checkpoint.EVERY_S, key)
             observers.append(saver)  # last: it sees every other observer done with the step
         sim = build_simulation(sc, observers)
+        made["by"] = provenance(sc, sim.system)
         if post is not None and hasattr(post, "check"):
             post.check(sc, sim)  # the scenario's own consistency checks before anything runs
         sim.engine_choice = engine
@@ -311,7 +335,10 @@ def _simulate(sc, duration, schedule, out, record, progress, figures, overwrite,
             stack.callback(pool.close)
         head = {"scenario": sc.name, "source": str(sc.source) if sc.source else None,
                 "schedule": kind or sc.schedule.get("kind", "monolithic"), "duration_s": sch.duration,
-                "estimate": estimate}
+                "estimate": estimate,
+                # what made the run: the code's version, the scenario file and name as loaded, every --set /
+                # --swap / --unbalance, the parameters each component ran with (master/run/provenance.py)
+                "provenance": made["by"]}
         if out is not None:
             write_json(out / "summary.json", {**head, "status": "running", "pid": os.getpid(),
                                               "resumed_from_t_s": point.t if point else None})
@@ -348,6 +375,14 @@ def _simulate(sc, duration, schedule, out, record, progress, figures, overwrite,
             error, status = exc, "interrupted"
         except BaseException as exc:  # diverged, disk full, a component's failure: summary first, then raise
             error, status = exc, ("interrupted" if isinstance(exc, KeyboardInterrupt) else "failed")
+        if status == "failed" and out is not None and point is None and not sim.initialised:
+            # refused at set-up (a bad --set value, a missing model file): nothing was computed, so the folder is
+            # left as it was found (rundir.py takes back the lock and the folders it made) and the error raised
+            for f in (out / "summary.json", series, series and series.with_name(series.name + ".part")):
+                if f is not None:
+                    f.unlink(missing_ok=True)
+            folder.started = False
+            raise error
         report = sim.report
         summary: dict[str, Any] = {
             **head,
@@ -389,7 +424,7 @@ def _simulate(sc, duration, schedule, out, record, progress, figures, overwrite,
             if post is not None:
                 summary.update(post.extract(sc, sim, post_obs, report))
                 if figures and out is not None and status in ("complete", "stopped"):
-                    names = post.figures(sc, data, out, pool=pool)
+                    names = post.figures(sc, data, out, pool=pool, dpi=dpi)
                     summary["figures"] = names
                     files += [out / n for n in names]
             else:
@@ -407,7 +442,7 @@ def _simulate(sc, duration, schedule, out, record, progress, figures, overwrite,
                     raise
             if status in ("complete", "stopped"):
                 (out / checkpoint.CHECKPOINT).unlink(missing_ok=True)
-        result = Result(data, dict(recorder.variables), _roundtrip(summary), files)
+        result = Result(data, dict(recorder.variables), _roundtrip(summary), files, sim.phases)
         if error is not None:
             try:
                 error.result = result
@@ -417,11 +452,13 @@ def _simulate(sc, duration, schedule, out, record, progress, figures, overwrite,
     return result
 
 
-def draw_figures(sc: Scenario | str | Path, out: str | Path, pool: FigurePool | None = None) -> list[str]:
+def draw_figures(sc: Scenario | str | Path, out: str | Path, pool: FigurePool | None = None,
+                 dpi: float | None = None) -> list[str]:
     """Draw the figures of the finished run in folder ``out`` (a run of ``sc`` with ``out=`` and the HDF5 format,
     e.g. one run with ``figures=False``) from its ``timeseries.h5``, with the same drawing code as a run; adds
     their names to its summary.json (``figures``) and returns them. ``pool``: a
-    :class:`~rotorcosim.master.run.figure_pool.FigurePool` to draw them in, or None (drawn in this process).
+    :class:`~rotorcosim.master.run.figure_pool.FigurePool` to draw them in, or None (drawn in this process);
+    ``dpi``: their resolution (None: :data:`~rotorcosim.master.run.outputs.FIGURE_DPI`).
 
     ``rotorcosim compare`` uses it to draw its two runs' figures after both timed runs, so that no figure worker
     competes with a timed simulation."""
@@ -443,7 +480,7 @@ def draw_figures(sc: Scenario | str | Path, out: str | Path, pool: FigurePool | 
     if not name or not name.endswith(".h5") or not (out / name).exists():
         raise ValueError(f"{f}: the run has no HDF5 time series in {out} (timeseries: {name!r}): the figures "
                          "are drawn from timeseries.h5 ([outputs] format = \"h5\")")
-    names = post.figures(sc, SeriesFile(out / name), out, pool=pool)
+    names = post.figures(sc, SeriesFile(out / name), out, pool=pool, dpi=check_dpi(dpi))
     write_json(f, {**summary, "figures": names})
     return names
 

@@ -10,7 +10,8 @@ A case is a module or object with any of these attributes:
 
 - ``RESULTS``: the dotted name of the module that turns a run into the scenario's results, offering
   ``observers(sc, cycle)`` (``cycle``: the scenario's cycle source, master/core/cycle.py), ``check(sc, sim)``,
-  ``extract(sc, sim, observers, report) -> dict``, ``figures(sc, series, out, pool=None) -> list[str]`` and
+  ``extract(sc, sim, observers, report) -> dict``, ``figures(sc, series, out, pool=None, dpi=None) -> list[str]``
+  (``dpi``: the figures' resolution, dots per inch; None: the default) and
   optionally ``FIGURES_MODULE``;
 - ``LEVELS``: named sets of levels of the scenario's level parameter (``[results] unbalance_parameter``) for
   ``rotorcosim sweep --unbalance NAME`` (e.g. ``{"paper": (712.0, ...)}``);

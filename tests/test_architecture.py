@@ -17,7 +17,7 @@ import pytest
 ROOT = Path(__file__).resolve().parents[1]
 #: folder in the checkout -> folder in the installed package (pyproject's package-dir)
 PARTS = {"rotorcosim": "", "components": "components", "master": "master", "fmus": "fmus", "cases": "cases",
-         "scenarios": "scenarios"}
+         "interop": "interop", "scenarios": "scenarios"}
 
 pytest.importorskip("importlinter", reason="import-linter is in the test extra: pip install '.[test]'")
 

@@ -38,7 +38,7 @@ from pathlib import Path
 from rotorcosim.master.schedule import budget
 from rotorcosim.master.api import check_run, draw_figures
 from rotorcosim.master.run.figure_pool import FigurePool
-from rotorcosim.master.run.outputs import write_json
+from rotorcosim.master.run.outputs import check_dpi, write_json
 from rotorcosim.master.run.rundir import LOCK, check_folder, ensure_folder
 from rotorcosim.master.schedule import Interval, Timeline, from_spec
 from rotorcosim.master.scenario.cycle import constant_period, without_source
@@ -47,7 +47,7 @@ from rotorcosim.master.sweep import SweepInterrupted
 from rotorcosim.master.sweep.folder import named_os_error
 from rotorcosim.master.sweep.lock import FolderLock
 
-from rotorcosim.master.cli.options import add_out, add_scenario
+from rotorcosim.master.cli.options import add_dpi, add_out, add_scenario
 from rotorcosim.master.cli.run import apply_unbalance, execute, resolve
 
 #: Table 6's rows (no rub power: there is no rub at 2850 N)
@@ -87,6 +87,7 @@ def add_arguments(p):
     p.add_argument("--bearing", type=int, choices=(0, 5), default=0, help="bearing of the table (default 0)")
     p.add_argument("--no-figures", action="store_true",
                    help="skip the PNG figures of the two runs (they are drawn after both timed runs, untimed)")
+    add_dpi(p)
     p.add_argument("--quiet", action="store_true", help="no line and progress bar per case")
     p.add_argument("--overwrite", action="store_true", help="replace the results of a previous comparison in --out")
     p.add_argument("--resume", action="store_true",
@@ -160,7 +161,7 @@ def _warm_up(scenario: str, out: Path, quantum: float) -> None:
 
 def compare(out: Path, duration=2.0, unbalance=2850.0, scenario="blade_loss", revolutions=REVOLUTIONS, bearing=0,
             quiet=True, figures=True, overwrite=False, schedule="paper", tolerance=None, monolithic=None,
-            timing_runs=None, resume=False) -> dict:
+            timing_runs=None, resume=False, dpi=None) -> dict:
     """Run the comparison into the folder ``out`` and return the table written to ``out/table6.json`` (see the
     module's docstring).
 
@@ -170,12 +171,13 @@ def compare(out: Path, duration=2.0, unbalance=2850.0, scenario="blade_loss", re
     ``schedule``: "paper" or "auto" for the staggered run, ``tolerance`` [%] for "auto"; ``monolithic``: a
     folder with a monolithic run to reuse; ``timing_runs``: how often the staggered run is timed (default 6);
     ``resume``: continue the comparison in ``out``: its runs that are complete are kept (checked to be this
-    comparison's), the others run again.
+    comparison's), the others run again; ``dpi``: the figures' resolution (None: the default).
 
     Under faults: one comparison at a time writes into ``out`` (a lock, ``.rotorcosim.lock``, removed at the
     end); Ctrl-C or SIGTERM stops the run going on (its folder says ``interrupted``), keeps the complete ones and
     raises :class:`~rotorcosim.master.sweep.SweepInterrupted` saying which; a full disk stops it with the run's
     own error."""
+    dpi = check_dpi(dpi)
     if not (duration > 0 and duration < float("inf")):
         raise ValueError(f"--duration must be a positive number of seconds, got {duration}")
     if not (revolutions > 0 and revolutions < float("inf")):
@@ -230,7 +232,7 @@ def compare(out: Path, duration=2.0, unbalance=2850.0, scenario="blade_loss", re
     with FolderLock(out, "comparison"):
         try:
             return _compare(out, duration, unbalance, scenario, revolutions, bearing, quiet, figures, overwrite,
-                            schedule, tolerance, monolithic, timing_runs, resume, sc, runs, kept, plans)
+                            schedule, tolerance, monolithic, timing_runs, resume, sc, runs, kept, plans, dpi)
         except KeyboardInterrupt:
             said = [f"{k} complete (kept in {out / k})" if _kept(out / k, None, None, None) is not None
                     else f"{k} not complete" for k in ("staggered", "monolithic")]
@@ -238,7 +240,7 @@ def compare(out: Path, duration=2.0, unbalance=2850.0, scenario="blade_loss", re
 
 
 def _compare(out, duration, unbalance, scenario, revolutions, bearing, quiet, figures, overwrite, schedule,
-             tolerance, monolithic, timing_runs, resume, sc, runs, kept, plans) -> dict:
+             tolerance, monolithic, timing_runs, resume, sc, runs, kept, plans, dpi) -> dict:
     """The comparison's runs and table, in its locked folder (:func:`compare` has checked every input)."""
     kinds = ("staggered", "monolithic")
     # --overwrite replaces the runs: the previous table goes now, so that an interrupted comparison never leaves
@@ -273,7 +275,7 @@ def _compare(out, duration, unbalance, scenario, revolutions, bearing, quiet, fi
                 print(f"[{i}/{len(kinds)}] {kind}: complete in {out / kind}, kept", file=sys.stderr, flush=True)
         else:
             runs[kind] = execute(sc, out / kind, figures=figures and not later, quiet=quiet, schedule=sch,
-                                 overwrite=overwrite or resume, checkpoint_every=None)
+                                 overwrite=overwrite or resume, checkpoint_every=None, dpi=dpi)
             loads[kind] = [load, _load()]
         if not quiet and kind not in kept:
             print(f"[{i}/{len(kinds)}] {kind}: done in {runs[kind]['wall_time_s']:.3g} s", file=sys.stderr, flush=True)
@@ -286,7 +288,7 @@ def _compare(out, duration, unbalance, scenario, revolutions, bearing, quiet, fi
         timings += _time_again(out, *again, repeats - before, len(timings), repeats, quiet)
         repeat = _timings(timings, before)
     if scenarios:
-        _draw(out, scenarios, quiet)
+        _draw(out, scenarios, quiet, dpi)
     results = {}
     for key in KEYS:
         a = runs["staggered"]["bearings"][str(bearing)][key]
@@ -368,13 +370,13 @@ def _timings(timings: list, before: int) -> dict:
             "identical_results": same}
 
 
-def _draw(out: Path, scenarios: dict, quiet: bool) -> None:
+def _draw(out: Path, scenarios: dict, quiet: bool, dpi: int | None = None) -> None:
     """The figures of the runs made here (not of a reused monolithic run), after the timing: a figure pool per
     run, all started at once so that the second run's workers import matplotlib while the first run's draw."""
     pools = {kind: FigurePool() for kind in scenarios}
     try:
         for kind, sc in scenarios.items():
-            names = draw_figures(sc, out / kind, pool=pools[kind])
+            names = draw_figures(sc, out / kind, pool=pools[kind], dpi=dpi)
             if not quiet:
                 print(f"{kind}: {len(names)} figures drawn", file=sys.stderr, flush=True)
     finally:
@@ -451,7 +453,7 @@ def run(args) -> int:
     t = compare(Path(args.out), args.duration, args.unbalance, args.scenario, args.revolutions, args.bearing,
                 quiet=args.quiet, figures=not args.no_figures, overwrite=args.overwrite, schedule=args.schedule,
                 tolerance=args.tolerance, monolithic=args.monolithic, timing_runs=args.timing_runs,
-                resume=args.resume)
+                resume=args.resume, dpi=args.dpi)
     est = (t.get("hold") or {}).get("estimated_error_pct")
     cpu = f" (CPU time {t['speedup_cpu']:.1f})" if t.get("speedup_cpu") else ""
     print(f"Table 6 (bearing #{t['bearing']}, {t['duration_s']} s, {t['schedule']} schedule): speed-up "

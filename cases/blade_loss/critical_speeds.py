@@ -21,43 +21,62 @@ from rotorcosim.cases.blade_loss import linear_engine
 
 def add_arguments(parser):
     """The options of ``rotorcosim critical-speeds`` on ``parser``."""
-    parser.add_argument("--model-file", default="", metavar="FILE",
-                        help="model data file (TOML); default: the shipped data/engine.toml")
+    parser.add_argument("--model", "--model-file", dest="model_file", default="", metavar="FILE",
+                        help="engine file (TOML, docs/reference/engine-format.md); default: the paper's engine")
+    parser.add_argument("--scenario", default=None, metavar="SCENARIO",
+                        help="the scenario whose bearing and damper components linearise the attached bearings "
+                             "(default: the shipped blade-loss scenario)")
     parser.add_argument("--count", type=int, default=6, metavar="N", help="how many of each kind to list (default 6)")
     parser.add_argument("--json", action="store_true", help="print a JSON object")
     parser.add_argument("--campbell", metavar="FILE.png", help="also draw the Campbell diagram into this file")
     parser.add_argument("--max-rpm", type=float, default=30000.0, metavar="RPM",
                         help="highest power-turbine speed of the Campbell diagram and the list (default 30000)")
     parser.add_argument("--oil-temperature", type=float, default=None, metavar="C",
-                        help="oil temperature of the linearised film (default: the model file's "
-                             "[linear_support] oil_temperature_C); the undamped critical speeds do not depend on it")
+                        help="oil temperature of the linearised film (default: the engine file's "
+                             "[attach] oil_temperature_C); the undamped critical speeds do not depend on it")
 
 
-def _supports(m, oil_temperature):
-    return linear_engine.supports(oil_temperature_C=oil_temperature, data=m.data)
+def _supports(m, oil_temperature, scenario=None):
+    """The co-simulated bearings linearised where the engine attaches them ([attach] bearing0 and bearing5), or
+    None for an engine that attaches none (its [[support]] entries are all its supports, e.g. a ROSS rotor)."""
+    attach = m.data.get("attach", {})
+    there = [k for k in ("bearing0", "bearing5") if k in attach]
+    if not there:
+        return None
+    if len(there) == 1:
+        raise ValueError(f"engine file: [attach] has {there[0]} but not the other of bearing0, bearing5 (the "
+                         "linearised engine takes both or none)")
+    return linear_engine.supports(scenario, oil_temperature_C=oil_temperature, data=m.data)
 
 
 def critical_speeds(model_file: str = "", count: int = 6, max_rpm: float = 30000.0,
-                    oil_temperature: float | None = None) -> dict:
-    """The ``count`` lowest synchronous critical speeds [rev/min] of the power turbine up to ``max_rpm``, of the
-    rotor in ``model_file`` ("": the shipped one) on the linearised supports with the film at ``oil_temperature``
-    [degrees C] (None: the file's), with the speed ratio, the paper's targets and the support model."""
+                    oil_temperature: float | None = None, scenario=None) -> dict:
+    """The ``count`` lowest synchronous critical speeds [rev/min] of the first spool up to ``max_rpm``, of the
+    engine in ``model_file`` ("": the paper's) on the linearised supports with the film at ``oil_temperature``
+    [degrees C] (None: the file's), with the speed ratio, the paper's targets and the support model. The
+    co-simulated bearings the file attaches are linearised from the components of ``scenario`` (a
+    :class:`~rotorcosim.master.api.Scenario`; None: the shipped blade-loss scenario's); an engine that attaches
+    none stands on its [[support]] entries alone.
+
+    Example: ``critical_speeds("engine.toml", count=3)["forward_synchronous_rpm"]``."""
     if count < 1:
         raise ValueError(f"--count must be >= 1, got {count}")
     if not (np.isfinite(max_rpm) and max_rpm > 0):
         raise ValueError(f"--max-rpm must be > 0, got {max_rpm}")
     m = fem.load(model_file or None)
-    sup = _supports(m, oil_temperature)
+    sup = _supports(m, oil_temperature, scenario)
     out = critical.synchronous_critical_speeds(m, sup, n=count, max_rpm=max_rpm)
     out["speed_ratio_gg_pt"] = critical.speed_ratio(m)
+    out["spools"] = list(m.info["spools"])
     out["target_rpm"] = list(m.data.get("calibration", {}).get("target_rpm", []))
     out["model_file"] = str(model_file or fem.DEFAULT_FILE)
-    out["support_model"] = linear_engine.describe(sup)
+    out["support_model"] = linear_engine.describe(sup) if sup is not None else {
+        "kind": "linear", "description": "the engine file's linear supports only (no co-simulated bearing attached)"}
     return out
 
 
 def draw_campbell(path: str, model_file: str = "", max_rpm: float = 30000.0, crit: dict | None = None,
-                  oil_temperature: float | None = None) -> None:
+                  oil_temperature: float | None = None, scenario=None) -> None:
     """Draw the Campbell diagram (whirl frequencies against power-turbine speed up to ``max_rpm`` [rev/min]) into
     the PNG file ``path``; ``crit``: :func:`critical_speeds`' result, marked on it (None: none marked)."""
     import matplotlib
@@ -67,16 +86,17 @@ def draw_campbell(path: str, model_file: str = "", max_rpm: float = 30000.0, cri
 
     m = fem.load(model_file or None)
     rpm = np.linspace(0.0, max_rpm, 61)
-    f, kind = critical.campbell(m, rpm, _supports(m, oil_temperature))
+    f, kind = critical.campbell(m, rpm, _supports(m, oil_temperature, scenario), n_modes=min(80, m.n))
+    ratio = critical.speed_ratio(m)
     fig, ax = plt.subplots(figsize=(10, 5))
     styles = ((1, "tab:blue", "forward whirl"), (-1, "tab:orange", "backward whirl"),
               (0, "0.75", "no rotor whirl (axial, torsion, casing)"))
     for code, colour, label in styles:
         sel = kind == code
         ax.scatter(np.broadcast_to(rpm[:, None], f.shape)[sel], f[sel], s=5, c=colour, label=label)
-    ax.plot(rpm, rpm / 60.0, "k--", lw=1, label="1x power-turbine speed")
-    ratio = critical.speed_ratio(m)
-    ax.plot(rpm, ratio * rpm / 60.0, ":", color="0.35", lw=1, label=f"1x gas-generator speed ({ratio:.4g} x PT)")
+    ax.plot(rpm, rpm / 60.0, "k--", lw=1, label="1x first spool speed" if ratio != 1.0 else "1x spool speed")
+    if ratio != 1.0:
+        ax.plot(rpm, ratio * rpm / 60.0, ":", color="0.35", lw=1, label=f"1x second spool speed ({ratio:.4g} x)")
     if crit:
         r = np.asarray(crit["forward_synchronous_rpm"], dtype=float)
         r = r[r <= max_rpm]
@@ -88,14 +108,15 @@ def draw_campbell(path: str, model_file: str = "", max_rpm: float = 30000.0, cri
     # the operating point: the power turbine at its spin speed, the gas generator at its own (model data)
     pt = m.omega_pt * 30.0 / np.pi
     gg = m.omega_gg * 30.0 / np.pi
-    ax.axvline(pt, color="tab:green", lw=1.2,
-               label=f"operating speed: PT {pt:,.0f} / GG {gg:,.0f} rev/min".replace(",", " "))
-    ax.set_xlabel("power-turbine speed [rev/min] (gas generator at 15/16)")
+    op = f"{pt:,.0f} / {gg:,.0f}" if ratio != 1.0 else f"{pt:,.0f}"
+    ax.axvline(pt, color="tab:green", lw=1.2, label=f"operating speed: {op} rev/min".replace(",", " "))
+    ax.set_xlabel(f"first spool speed [rev/min] (second spool at {ratio:.4g} x)" if ratio != 1.0
+                  else "spool speed [rev/min]")
     ax.set_ylabel("whirl frequency [Hz]")
     ax.set_xlim(0, max_rpm)
     ax.set_ylim(0, 1.2 * max_rpm / 60.0)
     ax.legend(loc="upper left", bbox_to_anchor=(1.02, 1.0), fontsize=8, framealpha=0.9)
-    ax.set_title("Campbell diagram (engine with #0/#5 linearised: contacts, journal body, O-ring; undamped)",
+    ax.set_title("Campbell diagram (undamped; co-simulated bearings linearised: contacts, journal body, O-ring)",
                  fontsize=9)
     fig.tight_layout()
     fig.savefig(path, dpi=120)
@@ -126,22 +147,34 @@ def run(args) -> int:
     """Run the command ``args`` (parsed); returns the exit status."""
     if args.campbell:
         _check_figure_path(args.campbell)
-    out = critical_speeds(args.model_file, args.count, args.max_rpm, args.oil_temperature)
+    sc = None
+    if args.scenario:
+        from rotorcosim.master.scenario.build import load_scenario
+
+        sc = load_scenario(args.scenario)
+    out = critical_speeds(args.model_file, args.count, args.max_rpm, args.oil_temperature, sc)
     if args.campbell:
-        draw_campbell(args.campbell, args.model_file, args.max_rpm, out, args.oil_temperature)
+        draw_campbell(args.campbell, args.model_file, args.max_rpm, out, args.oil_temperature, sc)
         out["campbell"] = args.campbell
     if args.json:
         print(json.dumps(out))
     else:
-        print("synchronous critical speeds of the power turbine (gas generator at "
-              f"{out['speed_ratio_gg_pt']:.4f} x), rev/min:")
+        spools = out["spools"]
+        if len(spools) > 1:
+            print(f"synchronous critical speeds of spool {spools[0]!r} (the other at "
+                  f"{out['speed_ratio_gg_pt']:.4f} x), rev/min:")
+        else:
+            print("synchronous critical speeds, rev/min:")
         print("  forward :", ", ".join(f"{v:.0f}" for v in out["forward_synchronous_rpm"]))
         print("  backward:", ", ".join(f"{v:.0f}" for v in out["backward_synchronous_rpm"]))
         if out["target_rpm"]:
             print("  paper (lowest two forward):", ", ".join(f"{v:.0f}" for v in out["target_rpm"]))
         sm = out["support_model"]
-        print(f"  supports #0/#5: {sm['description']}; film at {sm['oil_temperature_C']:g} C")
-        for b, v in sm["bearings"].items():
+        if sm["kind"] != "coupled":
+            print(f"  supports: {sm['description']}")
+        else:
+            print(f"  supports #0/#5: {sm['description']}; film at {sm['oil_temperature_C']:g} C")
+        for b, v in sm.get("bearings", {}).items():
             print(f"    #{b}: contact {v['k_contact']:.3g} N/m, journal {v['m_journal']:.3g} kg, O-ring "
                   f"{v['k_spring']:.4g} N/m, film {v['c_film']:.4g} N s/m")
         if args.campbell:

@@ -6,9 +6,16 @@ Conventions, so that each figure reads at a glance:
   119.90 ... 120.00 s);
 * "(a) transient" is the first thermo-mechanical (TM) interval, "(b) steady state" the last one; a run with a
   single TM interval gets one panel, not the same data twice;
-* whole-run plots shade the thermal-only (TO) intervals;
-* each orbit is scaled to itself (the last 5 rotor cycles); the rub-ring clearance circle is drawn where it is in
-  range of the orbit, and stated otherwise, with the largest rotor-to-housing radius at the ring;
+* whole-run plots shade every interval of the timeline: thermal-only (TO) grey, thermo-mechanical (TM) purple,
+  each at least :data:`MIN_SPAN_FRACTION` of the axis wide (a 0.1 s TM interval of a 2-minute run is a fraction
+  of a pixel, drawn or not by the rasteriser's whim);
+* the orbit (c) is the rotor's motion at the rub ring relative to the housing (what the ring's clearance is
+  about), over the last 5 rotor cycles, against the clearance circle (drawn where it is in range of the orbit,
+  :data:`CIRCLE_RANGE`, and stated in the legend otherwise); without a recorded ring and housing, the bearing's
+  absolute orbit, so labelled;
+* a ratio (the transmissibility) is drawn from zero, so that a 1 % restart transient looks like one;
+* legends sit below the panels (one per figure), never over the data; a figure's resolution is ``dpi``
+  (``rotorcosim run --dpi``, default :data:`~rotorcosim.master.run.outputs.FIGURE_DPI`);
 * Fig. 12 plots the inner-race stress (solid), the summary's ``max_contact_stress_MPa`` (the contact the paper's
   Table 5 load/stress pairs describe: they follow the inner-race Hertz law, ~248 Q^(1/3) MPa at #0, although its
   text says outer race), with the outer race's (dashed, ``max_contact_stress_outer_MPa``; at light loads the
@@ -26,11 +33,19 @@ import numpy as np
 
 from rotorcosim.cases.blade_loss.table5 import PAPER_LEVELS
 from rotorcosim.cases.blade_loss.results import BEARINGS, KELVIN, NODES
+from rotorcosim.master.run.outputs import FIGURE_DPI
 
 RUB_CLEARANCE_MM = 0.508  # Table 3 (both rings)
 PLASTIC_FLOW_MPA = 3200.0  # the paper's incipient plastic flow limit of the ball/race contact [13]
 ORBIT_CYCLES = 5
-DPI = 110
+#: the narrowest a shaded interval is drawn, as a fraction of the axis's width (~3.7 pixels of a 5-inch axis at
+#: 150 dpi): every interval of the timeline shows, however short
+MIN_SPAN_FRACTION = 0.005
+#: the clearance circle is drawn when the orbit's radius is at least 1/CIRCLE_RANGE of it (a smaller orbit would
+#: shrink to a dot beside it; the legend states the clearance instead)
+CIRCLE_RANGE = 4.0
+#: room below the panels for the figure's legend [in]
+LEGEND_ROOM_IN = 0.45
 #: zlib level of the PNG files (lossless at any level): 1 instead of Pillow's 6 encodes the six figures in 0.23 s
 #: of CPU instead of 0.42 s, for files ~9 % larger (1.09 MB instead of 1.0 MB in all, 2850 N main job)
 PNG_COMPRESS_LEVEL = 1
@@ -49,12 +64,13 @@ class Context:
     F_u: float  # blade-loss force [N]
     speed_rpm: float | None  # rotor speed, for the orbit window in rotor cycles
     paper: bool  # one of the paper's own cases: titled "(paper Fig. N)"
+    dpi: int = FIGURE_DPI  # resolution of the PNG files [dots per inch]
 
 
-def context(sc, F_u: float, speed_rpm: float | None) -> Context:
+def context(sc, F_u: float, speed_rpm: float | None, dpi: int | None = None) -> Context:
     """The :class:`Context` of a run of scenario ``sc`` with blade-loss force ``F_u`` [N] at the rotor speed
-    ``speed_rpm`` [rev/min] (None: not declared)."""
-    return Context(sc.name, float(F_u), speed_rpm, is_paper_case(sc, F_u))
+    ``speed_rpm`` [rev/min] (None: not declared), drawn at ``dpi`` (None: :data:`FIGURE_DPI`)."""
+    return Context(sc.name, float(F_u), speed_rpm, is_paper_case(sc, F_u), int(dpi or FIGURE_DPI))
 
 
 def envelope(t: np.ndarray, y: np.ndarray, points: int = PLOT_POINTS) -> tuple[np.ndarray, np.ndarray]:
@@ -108,17 +124,42 @@ def to_spans(t: np.ndarray, phase: np.ndarray) -> list[tuple[float, float]]:
     return [(float(t[max(a - 1, 0)]), float(t[b - 1])) for a, b in zip(edges[::2], edges[1::2])]
 
 
+def timeline_spans(t: np.ndarray, phase: np.ndarray) -> list[tuple[str, float, float]]:
+    """Every interval of the run's timeline as recorded, in time order: ``(phase, t_start, t_end)`` with phase
+    "TM" or "TO" (a TM stretch from its first to its last sample, a TO one as :func:`to_spans`)."""
+    spans = [("TM", float(t[a]), float(t[b - 1])) for a, b in tm_blocks(phase)]
+    spans += [("TO", a, b) for a, b in to_spans(t, phase)]
+    return sorted(spans, key=lambda s: (s[1], s[2]))
+
+
 def _absolute_time(ax) -> None:
-    from matplotlib.ticker import ScalarFormatter
+    from matplotlib.ticker import MaxNLocator, ScalarFormatter
 
     fmt = ScalarFormatter(useOffset=False)
     fmt.set_scientific(False)
     ax.xaxis.set_major_formatter(fmt)
+    # at most 6 labels: "119.90 ... 120.00" are six characters each
+    ax.xaxis.set_major_locator(MaxNLocator(nbins=6, steps=[1, 2, 2.5, 5, 10]))
 
 
-def _shade_to(ax, spans) -> None:
-    for i, (a, b) in enumerate(spans):
-        ax.axvspan(a, b, color="0.88", lw=0, zorder=0, label="thermal-only intervals" if i == 0 else None)
+#: the colours of the shaded intervals, by phase
+SPAN_STYLE = {"TO": dict(color="0.88", label="thermal-only intervals"),
+              "TM": dict(color="#d4bfe6", label="thermo-mechanical intervals")}
+
+
+def _shade_timeline(ax, spans, t_end: float) -> None:
+    """Shade every interval of ``spans`` (:func:`timeline_spans`), each at least :data:`MIN_SPAN_FRACTION` of
+    the run wide (centred on its middle), one legend entry per phase."""
+    least = MIN_SPAN_FRACTION * max(t_end - (spans[0][1] if spans else 0.0), 1e-30)
+    seen = set()
+    for phase, a, b in spans:
+        if b - a < least:
+            mid = 0.5 * (a + b)
+            a, b = mid - 0.5 * least, mid + 0.5 * least
+        style = SPAN_STYLE[phase]
+        ax.axvspan(a, b, color=style["color"], lw=0, zorder=0, gid=f"span-{phase}",
+                   label=style["label"] if phase not in seen else None)
+        seen.add(phase)
 
 
 def _panels(blocks):
@@ -130,15 +171,31 @@ def _panels(blocks):
             (blocks[-1], "(b) steady state: last thermo-mechanical interval")]
 
 
-def _margins(fig, left=0.8, right=0.25, bottom=0.55, top=0.8, wgap=0.85, hgap=0.85) -> None:
-    """Fixed margins in inches (room for tick labels, axis labels, panel titles and the figure title): the same
-    look as ``tight_layout`` for these figures at a third of the drawing cost (it draws every text twice)."""
+def _margins(fig, left=0.85, right=0.25, bottom=0.55, top=0.8, wgap=0.95, hgap=0.85) -> None:
+    """Fixed margins in inches (room for tick labels, axis labels, panel titles, the figure title and, when
+    the figure has one, its legend below the panels): the same look as ``tight_layout`` for these figures at a
+    third of the drawing cost (it draws every text twice)."""
+    if fig.legends:
+        bottom += LEGEND_ROOM_IN
     w, h = fig.get_size_inches()
     rows, cols = fig.axes[0].get_subplotspec().get_gridspec().get_geometry()
     aw = (w - left - right - (cols - 1) * wgap) / cols  # mean axes width and height
     ah = (h - top - bottom - (rows - 1) * hgap) / rows
     fig.subplots_adjust(left=left / w, right=1 - right / w, bottom=bottom / h, top=1 - top / h,
                         wspace=wgap / aw if cols > 1 else 0.2, hspace=hgap / ah if rows > 1 else 0.2)
+
+
+def _legend_below(fig, axes) -> None:
+    """One legend for the figure, below its panels: the entries of ``axes`` (each label once, in order)."""
+    handles, labels = [], []
+    for a in axes:
+        for h, lab in zip(*a.get_legend_handles_labels()):
+            if lab not in labels:
+                handles.append(h)
+                labels.append(lab)
+    if handles:
+        fig.legend(handles, labels, loc="lower center", bbox_to_anchor=(0.5, 0.01), ncol=len(labels) if len(labels) <= 5 else 3,
+                   fontsize=8, frameon=False)
 
 
 def _plot(a, t, y, *args, **kw):
@@ -158,9 +215,11 @@ class _Figures:
         self.phase = np.asarray(data["phase"])
         self.blocks = tm_blocks(self.phase)
         self.panels = _panels(self.blocks) if self.blocks else []
-        self.spans = to_spans(self.t, self.phase)
+        self.spans = timeline_spans(self.t, self.phase) if len(self.t) else []
         self.cycle = 60.0 / ctx.speed_rpm if ctx.speed_rpm else None
         self.names: list[str] = []
+        #: the figures drawn, kept open instead of closed when set (a test reads their text extents)
+        self.keep: list | None = None
 
     def get(self, ref):
         return self.d.get(ref)
@@ -173,8 +232,11 @@ class _Figures:
         _margins(fig)
         # written whole or not at all, like every result file
         tmp = self.out / (name + ".part")
-        fig.savefig(tmp, dpi=DPI, format="png", pil_kwargs={"compress_level": PNG_COMPRESS_LEVEL})
-        self.plt.close(fig)
+        fig.savefig(tmp, dpi=self.ctx.dpi, format="png", pil_kwargs={"compress_level": PNG_COMPRESS_LEVEL})
+        if self.keep is None:
+            self.plt.close(fig)
+        else:
+            self.keep.append(fig)
         os.replace(tmp, self.out / name)
         self.names.append(name)
 
@@ -200,52 +262,56 @@ class _Figures:
             a.set_xlabel("time [s]")
             a.set_ylabel("displacement [mm]")
             a.set_title(title, fontsize=10)
-            a.legend(loc="upper right", fontsize=8)
             _absolute_time(a)
         self.orbit(ax[n], k, X)
+        _legend_below(fig, ax)
         fig.suptitle(self.title(f"Power turbine at bearing #{k}", fig_no))
         self.save(fig, f"fig{fig_no:02d}_response_bearing{k}.png")
 
     def orbit(self, a, k: int, X) -> None:
+        """The orbit over the last rotor cycles: the rotor's motion at the rub ring relative to the housing,
+        against the ring's clearance circle (the clearance is about that motion; the absolute orbit at the bearing
+        drawn over the circle made the rotor seem to pass through the ring). Without a recorded ring and housing,
+        the bearing's absolute orbit, so labelled, and no circle."""
+        from matplotlib.ticker import MaxNLocator
+
         w0, w1 = self.window()
-        x, y = 1e3 * X[w0:w1, 0], 1e3 * X[w0:w1, 1]
-        a.plot(x, y, lw=0.9, label=f"orbit, last {ORBIT_CYCLES} rotor cycles")
-        cx, cy = 0.5 * (x.max() + x.min()), 0.5 * (y.max() + y.min())
-        half = max(x.max() - x.min(), y.max() - y.min(), 1e-9) * 0.5 * 1.25
-        r_max = float(np.max(np.hypot(x, y)))
-        # the largest rotor-to-housing radius at the ring (what the clearance is about), when recorded
-        Xr, Xh = self.get(f"rotor.X_rub{k}"), self.get(f"rotor.X_housing{k}")
-        ring = None
-        if Xr is not None and Xh is not None:
-            ring = 1e3 * float(np.max(np.hypot(*(Xr[w0:w1] - Xh[w0:w1]).T)))
-        notes = []
-        if RUB_CLEARANCE_MM <= 2.0 * r_max:  # in range of the orbit: draw it, and scale to show it
-            th = np.linspace(0, 2 * np.pi, 200)
-            a.plot(RUB_CLEARANCE_MM * np.cos(th), RUB_CLEARANCE_MM * np.sin(th), "k:", lw=1,
-                   label=f"rub-ring clearance {RUB_CLEARANCE_MM} mm")
-            half = max(half, 1.1 * RUB_CLEARANCE_MM)
-            cx = cy = 0.0
+        Xh, Xr = self.get(f"rotor.X_housing{k}"), self.get(f"rotor.X_rub{k}")
+        relative = Xh is not None and Xr is not None
+        if relative:
+            xy = 1e3 * (np.asarray(Xr[w0:w1, :2]) - np.asarray(Xh[w0:w1, :2]))
+            label, where = "rotor at the rub ring, relative to the housing", "at the rub ring, relative to the housing"
         else:
-            notes.append(f"rub-ring clearance {RUB_CLEARANCE_MM} mm: off this scale")
-        if ring is not None:
-            # the orbit is the rotor's absolute motion at the bearing; the clearance applies at the ring, to the
-            # rotor's motion relative to the housing there
-            notes.append(f"at the ring, rotor - housing: largest radius {ring:.3g} mm")
-        if notes:
-            a.text(0.03, 0.03, "\n".join(notes), transform=a.transAxes, fontsize=7.5, va="bottom",
-                   bbox=dict(boxstyle="round", fc="white", ec="0.7"))
+            xy = 1e3 * np.asarray(X[w0:w1, :2])
+            label, where = "rotor at the bearing (absolute)", "at the bearing"
+        a.plot(xy[:, 0], xy[:, 1], lw=0.9, color="C2", label=label)
+        cx, cy = 0.5 * (xy.max(axis=0) + xy.min(axis=0))
+        half = max(float(np.ptp(xy[:, 0])), float(np.ptp(xy[:, 1])), 1e-9) * 0.5 * 1.25
+        if relative:
+            r = float(np.max(np.hypot(*xy.T)))
+            if RUB_CLEARANCE_MM <= CIRCLE_RANGE * r:  # in range of the orbit: draw it, and scale to show it
+                th = np.linspace(0, 2 * np.pi, 200)
+                a.plot(RUB_CLEARANCE_MM * np.cos(th), RUB_CLEARANCE_MM * np.sin(th), "k:", lw=1,
+                       label=f"rub-ring clearance {RUB_CLEARANCE_MM} mm")
+                half = max(half, 1.1 * RUB_CLEARANCE_MM)
+                cx = cy = 0.0
+            else:  # a legend entry without a line: the circle would shrink the orbit to a dot
+                a.plot([], [], " ", label=f"rub-ring clearance {RUB_CLEARANCE_MM} mm: off this scale "
+                                          f"(orbit radius {r:.2g} mm)")
         a.set_xlim(cx - half, cx + half)
         a.set_ylim(cy - half, cy + half)
         a.set_aspect("equal")
+        for axis in (a.xaxis, a.yaxis):  # a narrow square panel: 5 labels like "-0.015" fit, 7 overlap
+            axis.set_major_locator(MaxNLocator(nbins=4))
         a.set_xlabel("x [mm]")
         a.set_ylabel("y [mm]")
-        a.set_title(("(c) " if len(self.panels) > 1 else "") + "orbit", fontsize=10)
-        a.legend(loc="upper right", fontsize=7)
+        a.set_title(("(c) " if len(self.panels) > 1 else "") + f"orbit {where}", fontsize=10)
 
     # -- Figs. 11 and 12: bearings in rows, time panels in columns ---------------------------------------
     def per_bearing(self, series: dict, ylabel: str, name: str, text: str, fig_no: int, line=None,
-                    styles=None) -> None:
-        """One row per bearing; ``series[k]`` is (n,) or (n, m) with ``styles`` ((linestyle, label) per column)."""
+                    styles=None, ratio: bool = False) -> None:
+        """One row per bearing; ``series[k]`` is (n,) or (n, m) with ``styles`` ((linestyle, label) per column).
+        ``ratio``: the quantity is a ratio, drawn from zero."""
         rows = [k for k in BEARINGS if series.get(k) is not None]
         if not rows or not self.panels:
             return
@@ -262,43 +328,50 @@ class _Figures:
                 if line is not None:
                     value, label = line
                     a.axhline(value, color="r", ls=":", lw=0.9, label=label)
-                if line is not None or styles:
-                    a.legend(loc="best", fontsize=7)
+                if ratio:
+                    top = float(np.nanmax(cols[i0:i1])) if i1 > i0 else 1.0
+                    a.set_ylim(0.0, 1.1 * top if top > 0 else 1.0)
+                a.yaxis.get_major_locator().set_params(nbins=6)
                 a.set_title(f"bearing #{k}: {title}", fontsize=10)
                 a.set_xlabel("time [s]")
                 a.set_ylabel(ylabel)
                 _absolute_time(a)
+        _legend_below(fig, ax.ravel())
         fig.suptitle(self.title(text, fig_no))
         self.save(fig, name)
 
-    # -- Figs. 13 and 14: the whole run, TO intervals shaded ---------------------------------------------
+    # -- Figs. 13 and 14: the whole run, every interval of the timeline shaded ---------------------------
     def temperatures(self, fig_no: int, pair) -> None:
         fig, ax = self.plt.subplots(1, 2, figsize=(12, 4.2))
         drawn = False
         for a, (node, title) in zip(ax, pair):
-            _shade_to(a, self.spans)
             for k, style in ((0, "-"), (5, ":")):
                 T = self.get(f"thermal{k}.T_nodes")
                 if T is not None:
                     _plot(a, self.t, T[:, NODES.index(node)] - KELVIN, style, label=f"bearing #{k}")
                     drawn = True
+            _shade_timeline(a, self.spans, float(self.t[-1]))
+            pad = 0.01 * (float(self.t[-1]) - float(self.t[0]))  # the first and last intervals clear the spines
+            a.set_xlim(float(self.t[0]) - pad, float(self.t[-1]) + pad)
             a.set_xlabel("time [s]")
             a.set_ylabel("temperature [°C]")
             a.set_title(title, fontsize=10)
-            a.legend(fontsize=8)
             _absolute_time(a)
         if not drawn:
             self.plt.close(fig)
             return
+        _legend_below(fig, ax)
         fig.suptitle(self.title("Temperatures", fig_no))
         self.save(fig, f"fig{fig_no}_temperatures.png")
 
 
-def draw(job: str, data, out: Path, ctx: Context) -> list[str]:
+def draw(job: str, data, out: Path, ctx: Context, keep: list | None = None) -> list[str]:
     """Draw the figure ``job`` (one of :data:`JOBS`) into ``out``; returns the file names written (none when
     the run did not record what it shows). ``data``: ``time``, ``phase`` and one array per recorded port, a dict
-    or a :class:`~rotorcosim.master.observer.series.SeriesFile`."""
+    or a :class:`~rotorcosim.master.observer.series.SeriesFile`. ``keep``: a list that receives the matplotlib
+    figures, left open (to inspect them; the caller closes them), instead of closing them."""
     f = _Figures(ctx, data, out)
+    f.keep = keep
     if not f.blocks:
         return []
     if job in ("fig09", "fig10"):
@@ -311,7 +384,7 @@ def draw(job: str, data, out: Path, ctx: Context) -> list[str]:
             if F is not None and f.F_u > 0:
                 trans[k] = np.hypot(F[:, 0], F[:, 1]) / f.F_u
         f.per_bearing(trans, "transmissibility, eq. (23)", "fig11_transmissibility.png",
-                      "Transmissibility |F_sfd + F_cs| / F_u", 11)
+                      "Transmissibility |F_sfd + F_cs| / F_u", 11, ratio=True)
     elif job == "fig12":
         stress = {k: 1e-6 * S for k in BEARINGS if (S := f.get(f"bearing{k}.sigma_max")) is not None}
         f.per_bearing(stress, "max contact stress [MPa]", "fig12_contact_stress.png",
@@ -327,9 +400,10 @@ def draw(job: str, data, out: Path, ctx: Context) -> list[str]:
     return f.names
 
 
-def figures(sc, data, out: Path, F_u: float, speed_rpm: float | None = None) -> list[str]:
-    """Draw every figure into ``out``, in this process; returns their file names."""
+def figures(sc, data, out: Path, F_u: float, speed_rpm: float | None = None, dpi: int | None = None) -> list[str]:
+    """Draw every figure into ``out``, in this process, at ``dpi`` (None: :data:`FIGURE_DPI`); returns their
+    file names."""
     if data is None or "time" not in data or not len(data["time"]):
         return []
-    ctx = context(sc, F_u, speed_rpm)
+    ctx = context(sc, F_u, speed_rpm, dpi)
     return [name for job in JOBS for name in draw(job, data, out, ctx)]

@@ -10,7 +10,7 @@ scenario's parameters, at the preloaded rest state and the running speed:
 * O-ring: the damper's centering spring ``k_spring``;
 * film: the damper's own film model linearised about the centred journal, ``c_film = -F_t / v_t`` for a
   vanishing circular orbit (the full, uncavitated film: the 0.2 MPa supply keeps a small orbit's film whole), at
-  a STATED oil temperature (data/engine.toml [linear_support] ``oil_temperature_C``, or the caller's).
+  a STATED oil temperature (the rotor data's [attach] ``oil_temperature_C``, or the caller's).
 
 The undamped critical speeds do not depend on the film; the forced response does (``response``).
 """
@@ -35,25 +35,26 @@ def _scenario(sc):
 
 
 def supports(sc=None, oil_temperature_C: float | None = None, data: dict | None = None) -> dict:
-    """{"h0": {...}, "h5": {...}}: pt_node, hub (rotor data [linear_support]) and k_contact, m_journal,
+    """{"h0": {...}, "h5": {...}}: node, hub (the rotor data's [attach] bearing{k}) and k_contact, m_journal,
     k_spring, c_film, oil_temperature_C taken from the scenario's bearing{k} and damper{k} components."""
     sc = _scenario(sc)
     if data is None:
         data, _ = fem.load_data(sc.components["rotor"].parameters.get("model_file") or None)
-    ls = data.get("linear_support", {})
+    ls = data.get("attach", {})
     T_C = float(ls.get("oil_temperature_C", 30.0) if oil_temperature_C is None else oil_temperature_C)
     if not (math.isfinite(T_C) and -20.0 < T_C < 300.0):
         raise ValueError(f"oil temperature for the linearised film must be a temperature in C, got {T_C!r}")
     out = {}
     for k in BEARINGS:
         key = f"h{k}"
-        if key not in ls:
-            raise ValueError(f"rotor model data: [linear_support] has no entry {key!r} (pt_node, hub)")
+        if f"bearing{k}" not in ls:
+            raise ValueError(f"rotor model data: [attach] has no entry 'bearing{k}' (node, housing)")
         brg = create_component(sc.components[f"bearing{k}"])
         brg.setup(0.0)
         dmp = create_component(sc.components[f"damper{k}"])
         dmp.setup(0.0)
-        out[key] = {"pt_node": int(ls[key]["pt_node"]), "hub": ls[key]["hub"],
+        at = ls[f"bearing{k}"]
+        out[key] = {"node": tuple(at["node"]), "hub": at["housing"],
                     "k_contact": contact_stiffness(brg), "m_journal": float(brg.p["m_journal"]),
                     "k_spring": float(dmp.p["k_spring"]), "c_film": film_damping(dmp, T_C),
                     "oil_temperature_C": T_C}
@@ -87,7 +88,7 @@ def describe(sup: dict) -> dict:
             "rest -> outer race + journal body (eq. 5) -> O-ring spring + film (linearised at the oil temperature, "
             "centred journal) -> casing hub",
             "oil_temperature_C": next(iter(sup.values()))["oil_temperature_C"],
-            "bearings": {k[1:]: {n: v for n, v in s.items() if n not in ("pt_node", "hub", "oil_temperature_C")}
+            "bearings": {k[1:]: {n: v for n, v in s.items() if n not in ("node", "pt_node", "hub", "oil_temperature_C")}
                          for k, s in sup.items()}}
 
 

@@ -30,6 +30,7 @@ from pathlib import Path
 
 import numpy as np
 
+from rotorcosim.components.contract import COUPLED
 from rotorcosim.master.observer.observers import Observer, SteadyWindows, sampled_rows
 from rotorcosim.master.scenario.cycle import cycle_of
 
@@ -63,7 +64,7 @@ class Peaks(Observer):
         self.peak = {k: {"Q": 0.0, "sigma": 0.0, "whirl": 0.0} for k in BEARINGS}
 
     def interval_start(self, sim, phase, step):
-        self.active = phase == "TM"
+        self.active = phase == COUPLED
         comps = sim.system.components
         self._taps = []
         for k in BEARINGS:
@@ -176,17 +177,18 @@ def extract(sc, sim, obs, report) -> dict:
 
 
 # -- figures ------------------------------------------------------------------------------------------
-def figures(sc, data, out: Path, pool=None) -> list[str]:
+def figures(sc, data, out: Path, pool=None, dpi: int | None = None) -> list[str]:
     """PNG figures like the paper's Figs. 9-14 from the recorded time series (``data``: ``time``, ``phase`` and
     one array per recorded port, as :meth:`Recorder.data` gives them, or the run's
     :class:`~rotorcosim.master.observer.series.SeriesFile`); returns their file names. The drawing is in
     :mod:`rotorcosim.cases.blade_loss.figures`; with a usable :class:`~rotorcosim.master.run.figure_pool.FigurePool`
-    and a file, the figures are drawn in its worker processes."""
+    and a file, the figures are drawn in its worker processes. ``dpi``: their resolution (None: the default,
+    :data:`~rotorcosim.master.run.outputs.FIGURE_DPI`)."""
     from rotorcosim.master.observer.series import SeriesFile
 
     fb = importlib.import_module(FIGURES_MODULE)
 
     F_u, speed = unbalance_force(sc), sc.schedule.get("speed_rpm")
     if pool is not None and pool.usable and isinstance(data, SeriesFile) and len(data["time"]):
-        return pool.draw(fb, fb.JOBS, data.path, out, fb.context(sc, F_u, speed))
-    return fb.figures(sc, data, out, F_u, speed)
+        return pool.draw(fb, fb.JOBS, data.path, out, fb.context(sc, F_u, speed, dpi))
+    return fb.figures(sc, data, out, F_u, speed, dpi)

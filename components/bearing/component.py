@@ -59,6 +59,10 @@ from .static import preload_offset, solve_balls
 RPM = math.pi / 30.0
 _DESIGN, _DRAG, _NUM = DATA["design"], DATA["drag"], DATA["numerics"]
 INNER_MOTION = ("step_end", "step_start")
+#: the geometry parameters: (parameter, Table 3 key, SI per table unit)
+GEOMETRY = (("balls", "balls", 1), ("ball_diameter", "ball_diameter_mm", 1e-3), ("bore", "bore_mm", 1e-3),
+            ("outside_diameter", "outside_diameter_mm", 1e-3), ("width", "width_mm", 1e-3),
+            ("contact_angle", "contact_angle_deg", math.pi / 180.0))
 #: contact stress above which Hertz's elastic theory no longer describes a ball contact: ISO 76 sets the static
 #: load rating of ball bearings at 4200 MPa at the centre of the most loaded contact, where the permanent
 #: deformation of ball and race reaches 1e-4 of the ball diameter (data/bearings.toml [drag], the same value
@@ -84,6 +88,7 @@ class BallBearing(KernelComponent):
                    "body, thermal growths and Palmgren drag torque (paper eqs. 1-10, Table 3)")
     preferred_step = 1e-5
     phases = frozenset({"TM"})
+    step_cost_s, kernel_step_cost_s, setup_cost_s = 13e-6, 2.5e-6, 0.1  # bench/bench_estimate.py
     required_parameters = ("bearing",)  # which of Table 3's gives the data: never a silent default
     variables = (
         Variable("bearing", "parameter", start=0, type="Integer",
@@ -105,6 +110,19 @@ class BallBearing(KernelComponent):
                  description="outer race + journal mass of eq. (5); 0 (default): solid steel rings from Table 3"),
         Variable("preload", "parameter", unit="N", start=BEARINGS[0]["preload_N"],
                  description="axial preload (default Table 3: 800 N for #0, 1100 N for #5)"),
+        # the geometry: by default the Table 3 record of ``bearing``; each one set replaces that record's value
+        Variable("balls", "parameter", unit="1", start=BEARINGS[0]["balls"], type="Integer",
+                 description="number of balls (default: Table 3 of `bearing`)"),
+        Variable("ball_diameter", "parameter", unit="m", start=BEARINGS[0]["ball_diameter_mm"] * 1e-3,
+                 description="ball diameter (default: Table 3 of `bearing`)"),
+        Variable("bore", "parameter", unit="m", start=BEARINGS[0]["bore_mm"] * 1e-3,
+                 description="inner race bore (default: Table 3 of `bearing`)"),
+        Variable("outside_diameter", "parameter", unit="m", start=BEARINGS[0]["outside_diameter_mm"] * 1e-3,
+                 description="outer race outside diameter (default: Table 3 of `bearing`)"),
+        Variable("width", "parameter", unit="m", start=BEARINGS[0]["width_mm"] * 1e-3,
+                 description="bearing width (outer race mass; default: Table 3 of `bearing`)"),
+        Variable("contact_angle", "parameter", unit="rad", start=math.radians(BEARINGS[0]["contact_angle_deg"]),
+                 description="initial (unloaded) contact angle (default: Table 3 of `bearing`)"),
         Variable("f0", "parameter", start=_DRAG["f0"], description="Palmgren lubrication factor of the drag torque"),
         Variable("inner_motion", "parameter", start="step_end", type="String",
                  description="X_inner/V_inner are the rotor state at the 'step_end' (Gauss-Seidel, rotor first) "
@@ -149,8 +167,10 @@ class BallBearing(KernelComponent):
         p = self.p
         explicit = self.explicit
         if p["bearing"] not in BEARINGS:
-            raise ContractError(f"{self.name}.bearing: unknown bearing number {p['bearing']!r}; "
-                                f"Table 3 has {sorted(BEARINGS)}")
+            raise ContractError(f"{self.name}.bearing: unknown bearing number {p['bearing']!r}; Table 3 has "
+                                f"{sorted(BEARINGS)} (the record of defaults: pick one and set the geometry "
+                                "parameters balls, ball_diameter, bore, outside_diameter, width, contact_angle, "
+                                "preload for another bearing)")
         if "preload" not in explicit:
             p["preload"] = float(BEARINGS[p["bearing"]]["preload_N"])
         for key, lo in (("omega", 0.0), ("preload", 0.0), ("contact_damping", 0.0), ("ball_damping", 0.0),
@@ -164,9 +184,19 @@ class BallBearing(KernelComponent):
         if p["substeps"] < 0 or not p["cfl"] > 0.0 or p["cfl"] >= 2.0:
             raise ContractError(f"{self.name}: substeps must be >= 0 (0 = automatic) and 0 < cfl < 2, "
                                 f"got substeps={p['substeps']}, cfl={p['cfl']}")
+        raw = BEARINGS[p["bearing"]]
+        for name, key, scale in GEOMETRY:
+            if name in explicit:
+                v = p[name]
+                if not (isinstance(v, (int, float)) and math.isfinite(v) and (v > 0 or name == "contact_angle")):
+                    raise ContractError(f"{self.name}.{name} must be a finite number > 0, got {v!r}")
+            else:
+                p[name] = raw[key] * scale if name != "balls" else int(raw[key])
+        table = {key: (p[name] / scale if name != "balls" else int(p[name]))
+                 for name, key, scale in GEOMETRY if name in explicit}
         try:
             g = build_geometry(p["bearing"], f_i=p["groove_curvature_inner"], f_o=p["groove_curvature_outer"],
-                               preload=p["preload"])
+                               preload=p["preload"], table=table)
         except ValueError as exc:
             raise ContractError(f"{self.name}: {exc}") from None
         if "m_journal" not in explicit or p["m_journal"] == 0.0:

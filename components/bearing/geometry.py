@@ -75,9 +75,23 @@ def ring_mass(d_outer: float, d_inner: float, length: float, density: float) -> 
 
 def build_geometry(bearing: int | None = None, *, Z: int | None = None, D: float | None = None,
                    d_m: float | None = None, alpha0_deg: float | None = None, f_i: float | None = None,
-                   f_o: float | None = None, preload: float | None = None) -> BearingGeometry:
-    """Geometry of Table 3 bearing ``bearing`` with optional overrides (any bearing if all are given)."""
+                   f_o: float | None = None, preload: float | None = None,
+                   table: dict | None = None) -> BearingGeometry:
+    """Geometry of Table 3 bearing ``bearing`` with optional overrides (any bearing if all are given); ``table``
+    replaces entries of the bearing's Table 3 record (its keys and units: ``bore_mm``, ``outside_diameter_mm``,
+    ``width_mm``, ``balls``, ``ball_diameter_mm``, ``contact_angle_deg``, ``preload_N``...)."""
     raw = table3(bearing) if bearing is not None else {}
+    if table:
+        raw.update(table)
+    if raw and "bore_mm" in raw and "ball_diameter_mm" in raw:
+        room = 0.5 * (raw["outside_diameter_mm"] - raw["bore_mm"])
+        if not (math.isfinite(room) and room > 0):
+            raise ValueError(f"the outside diameter {raw['outside_diameter_mm']:g} mm must exceed the bore "
+                             f"{raw['bore_mm']:g} mm")
+        D_mm = raw["ball_diameter_mm"] if D is None else D * 1e3
+        if not D_mm < room:
+            raise ValueError(f"a ball of {D_mm:g} mm does not fit between the races: the radial room (outside "
+                             f"diameter - bore) / 2 is {room:g} mm")
     design, mat = DATA["design"], DATA["material"]
 
     def pick(value, key, scale=1.0):

@@ -79,17 +79,24 @@ class _Damper(Memoryless, Component):
     variables = (
         Variable("damper", "parameter", unit="1", start=0, type="Integer",
                  description="which damper of Table 3 (0 or 5) gives the geometry not set explicitly"),
-        Variable("radius", "parameter", unit="m", start=DAMPERS[0]["radius"], description="journal radius"),
-        Variable("length", "parameter", unit="m", start=DAMPERS[0]["length"], description="journal (film) length"),
-        Variable("clearance", "parameter", unit="m", start=DAMPERS[0]["clearance"], description="radial clearance"),
+        # plausible ranges (a wider band around aircraft-engine practice: San Andres, "Squeeze film dampers:
+        # operation, models and technical issues", Texas A&M Turbomachinery Laboratory notes, 2010: radial
+        # clearances 0.1-0.5 mm, journal diameters 50-300 mm, L/D 0.1-0.5, centering springs 1-50 MN/m,
+        # supply pressures up to a few bar); Table 3's values sit inside each
+        Variable("radius", "parameter", unit="m", start=DAMPERS[0]["radius"], description="journal radius",
+                 plausible=(0.01, 0.5)),
+        Variable("length", "parameter", unit="m", start=DAMPERS[0]["length"], description="journal (film) length",
+                 plausible=(0.003, 0.2)),
+        Variable("clearance", "parameter", unit="m", start=DAMPERS[0]["clearance"], description="radial clearance",
+                 plausible=(2e-5, 2e-3)),
         Variable("supply_pressure", "parameter", unit="Pa", start=DAMPERS[0]["supply_pressure"],
-                 description="oil supply pressure at the journal ends (gauge)"),
+                 description="oil supply pressure at the journal ends (gauge)", plausible=(0.0, 2e6)),
         Variable("cavitation_pressure", "parameter", unit="Pa", start=FILM["cavitation_pressure"],
                  description="film rupture pressure (gauge), Guembel clipping"),
         Variable("cavitation", "parameter", unit="1", start=FILM["cavitation"], type="Boolean",
                  description="Guembel cavitation on (false: full film)"),
         Variable("k_spring", "parameter", unit="N/m", start=DAMPERS[0]["k_spring"],
-                 description="O-ring centering spring stiffness"),
+                 description="O-ring centering spring stiffness", plausible=(1e5, 1e8)),
         Variable("n_theta", "parameter", unit="1", start=FILM["n_theta"], type="Integer",
                  description="FE elements around the circumference"),
         Variable("n_z", "parameter", unit="1", start=FILM["n_z"], type="Integer",
@@ -120,6 +127,7 @@ class _Damper(Memoryless, Component):
     )
     preferred_step = 1e-5
     phases = frozenset({"TM"})
+    step_cost_s, kernel_step_cost_s, setup_cost_s = 10e-6, 1e-6, 0.05  # the fast damper's; bench/bench_estimate.py
 
     #: layout of the evaluation vector: name -> slice (F_housing and mu are added separately)
     OUT = {"F_film": slice(0, 2), "K_film": slice(2, 6), "C_film": slice(6, 10), "F_spring": slice(10, 12),
@@ -293,6 +301,15 @@ class FEDamper(_Damper):
     """Squeeze film damper, direct finite-element Reynolds solve at every call (the paper's model)."""
 
     description = "Squeeze film damper: direct FE Reynolds solution (Guembel cavitation) + O-ring centering spring"
+    #: CPU seconds of one step per (mesh nodes)^1.5, the sparse solve's growth: 21 ms at the paper's 128 x 64
+    #: mesh (bench/bench_estimate.py)
+    STEP_COST_PER_NODE_1_5 = 3.0e-8
+
+    @classmethod
+    def step_cost(cls, parameters, compiled):
+        start = {v.name: v.start for v in cls.variables}
+        nodes = int(parameters.get("n_theta", start["n_theta"])) * int(parameters.get("n_z", start["n_z"]))
+        return cls.STEP_COST_PER_NODE_1_5 * nodes ** 1.5
 
     def _prepare(self):
         p = self.p

@@ -110,15 +110,15 @@ def linear_response(data: dict, rpm: float = 16000.0, F_u: float = 2850.0, sup: 
 
 def response_study(data: dict, sup: dict) -> list[dict]:
     """The 2850 N response study behind the shipped layout (module docstring, ``--response-study``)."""
-    pt = data["power_turbine"]
-    i0, i5 = int(pt["bearing0_node"]), 5                   # bearing #0 node, forward intermediate bearing node
+    pt = data["spool"]["pt"]
+    i0, i5 = int(data["attach"]["bearing0"]["node"][1]), 5                   # bearing #0 node, forward intermediate bearing node
     z0 = float(pt["z_mm"][i0])
     span0 = float(pt["z_mm"][i5]) - z0
 
     def variant(span, tube, neck):
         d = copy.deepcopy(data)
         D = span - span0
-        p, g, cas = d["power_turbine"], d["gas_generator"], d["casing"]
+        p, g, cas = d["spool"]["pt"], d["spool"]["gg"], d["casing"]
         p["z_mm"] = [z for z in p["z_mm"][:i0 + 1]] + [z0 + span / 2, z0 + span] + [z + D for z in p["z_mm"][i5 + 1:]]
         g["z_mm"] = [z + D for z in g["z_mm"]]
         cas["ring_z_mm"] = [z if z <= z0 else z + D for z in cas["ring_z_mm"]]
@@ -163,7 +163,7 @@ def layout_search(data: dict, sup: dict) -> list[dict]:
         rings = sorted({mt["ring"] for mt in data["casing"]["mounts"]})
         for mt in d["casing"]["mounts"]:
             mt["ring"] = mounts[0] if mt["ring"] == rings[0] else mounts[1]
-        p = d["power_turbine"]
+        p = d["spool"]["pt"]
         for e in range(5, 16):
             p["d_out_mm"][e], p["d_in_mm"][e] = tube
         try:

@@ -78,6 +78,7 @@ def full_model(model_file: str = "", omega_pt=None, omega_gg=None) -> fem.FullMo
 def reduced_model(model_file: str, n_modes: int, omega_pt: float, omega_gg: float) -> dict:
     """MTA-reduced matrices (eqs. 20-22) and the port rows of the basis; cached per process."""
     full = full_model(model_file, omega_pt, omega_gg)
+    fem.require_ports(full, LOAD_GROUPS)
     key = (full.digest, int(n_modes), float(omega_pt), float(omega_gg))
     red = _REDUCED.get(key)
     if red is None:
@@ -140,6 +141,7 @@ class Rotor(KernelComponent):
     )
     preferred_step = 1e-5
     phases = frozenset({"TM"})
+    step_cost_s, kernel_step_cost_s, setup_cost_s = 16e-6, 5e-6, 0.2  # bench/bench_estimate.py
 
     # -- parameters ------------------------------------------------------------------------------------
     def _check_parameters(self):

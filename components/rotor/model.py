@@ -1,7 +1,9 @@
 """The full (unreduced) finite-element model of the engine: two spinning rotors, supports, casing.
 
 Paper section 2.1 (Fig. 2, Table 2) and eq. (16): M q'' + (C + Omega_pt G_pt + Omega_gg G_gg) q + K q = F.
-Built from a TOML data file (data/engine.toml by default). Timoshenko shaft elements and disks (beam), 8-node
+Built from an engine file of the engine format (docs/reference/engine-format.md; data/engine.toml, the paper's
+engine, by default): one or two spools, supports, pedestals, an optional casing, and where the co-simulated parts
+attach ([attach] -> :attr:`FullModel.ports`). Timoshenko shaft elements and disks (beam), 8-node
 solids for the casing shell (hexa), spring elements for the struts, mounts and bearings.
 
 Bearings #0 and #5 are not in K: their forces, and the damper and rub-ring reactions on the housings, enter as
@@ -24,6 +26,8 @@ from .beam import disk, shaft_element
 from .hexa import hex8
 
 DEFAULT_FILE = Path(__file__).with_name("data") / "engine.toml"
+#: the engine format this module reads ([engine] format)
+FORMAT = 1
 RPM = 2.0 * math.pi / 60.0
 
 
@@ -102,7 +106,7 @@ class FullModel:
             jx = n0 + 2 * s_i
             journal[key] = np.array([jx, jx + 1])
             for d in range(2):
-                i = self.info["dof"]("pt", s["pt_node"], d)
+                i = self.info["dof"](*_node(s), d)
                 h = self.info["dof"]("hub", s["hub"], d)
                 j = jx + d
                 M[j, j] += _positive(f"support {key} m_journal", s["m_journal"])
@@ -122,11 +126,18 @@ class FullModel:
         for key, s in supports.items():
             k = 1.0 / (1.0 / s["k_contact"] + 1.0 / s["k_spring"])
             for d in range(2):
-                i = self.info["dof"]("pt", s["pt_node"], d)
+                i = self.info["dof"](*_node(s), d)
                 j = self.info["dof"]("hub", s["hub"], d)
                 _couple(K, i, j, k)
                 _couple(C, i, j, s["c_film"])
         return K, C
+
+
+def _node(support: dict) -> tuple:
+    """(spool, node) of a linearised support: ``node`` = [spool, node], or ``pt_node`` on spool "pt"."""
+    if "node" in support:
+        return tuple(support["node"])
+    return ("pt", support["pt_node"])
 
 
 def _couple(A, i, j, k):
@@ -160,9 +171,9 @@ def _nonneg(name, value):
 
 def rotor_diameters(data: dict, rotor: str) -> tuple[list[float], list[float]]:
     """Element outer/inner diameters (m)."""
-    r = data[rotor]
-    d_out = [_positive(f"{rotor}.d_out_mm[{k}]", _knob(data, v)) * 1e-3 for k, v in enumerate(r["d_out_mm"])]
-    d_in = [_nonneg(f"{rotor}.d_in_mm[{k}]", _knob(data, v)) * 1e-3 for k, v in enumerate(r["d_in_mm"])]
+    r = data["spool"][rotor]
+    d_out = [_positive(f"spool.{rotor}.d_out_mm[{k}]", _knob(data, v)) * 1e-3 for k, v in enumerate(r["d_out_mm"])]
+    d_in = [_nonneg(f"spool.{rotor}.d_in_mm[{k}]", _knob(data, v)) * 1e-3 for k, v in enumerate(r["d_in_mm"])]
     return d_out, d_in
 
 
@@ -191,17 +202,17 @@ def disk_inertia(data: dict, dk: dict) -> tuple[float, float, float]:
 
 def build(data: dict, digest: str = "", omega_pt: float | None = None, omega_gg: float | None = None,
           source: str | Path | None = None) -> FullModel:
-    """Assemble the full model from the data (see data/engine.toml for the meaning of each entry); a missing
+    """Assemble the full model from the data (docs/reference/engine-format.md for the meaning of each entry); a missing
     table or key, or a value of the wrong kind, is a ValueError naming the file (``source``) and the key."""
     where = f"rotor model file {source or DEFAULT_FILE}"
     try:
         with np.errstate(over="ignore", invalid="ignore", divide="ignore"):  # non-finite matrices refused below
             return _assemble(data, digest, omega_pt, omega_gg)
     except KeyError as exc:
-        raise ValueError(f"{where}: missing table or key {exc.args[0]!r} (see data/engine.toml)") from None
+        raise ValueError(f"{where}: missing table or key {exc.args[0]!r} (see docs/reference/engine-format.md)") from None
     except (TypeError, IndexError, AttributeError) as exc:
         raise ValueError(f"{where}: a value of the wrong kind or size ({type(exc).__name__}: {exc}; see "
-                         "data/engine.toml)") from None
+                         "docs/reference/engine-format.md)") from None
     except ValueError as exc:
         msg = str(exc)
         if msg.startswith("rotor model file"):
@@ -209,32 +220,75 @@ def build(data: dict, digest: str = "", omega_pt: float | None = None, omega_gg:
         raise ValueError(f"{where}: {msg.removeprefix('rotor model: ')}") from None
 
 
-def _assemble(data: dict, digest: str, omega_pt: float | None, omega_gg: float | None) -> FullModel:
-    pt, gg, cas = data["power_turbine"], data["gas_generator"], data["casing"]
-    zpt = np.asarray(pt["z_mm"], float) * 1e-3
-    zgg = np.asarray(gg["z_mm"], float) * 1e-3
-    if len(zpt) != 22 or len(zgg) != 16:
-        raise ValueError(f"rotor model: the power turbine has 22 nodes and the gas generator 16 (paper), got "
-                         f"{len(zpt)} and {len(zgg)}")
-    for name, z in (("power_turbine", zpt), ("gas_generator", zgg)):
-        if not np.all(np.diff(z) > 0):
-            raise ValueError(f"rotor model: {name}.z_mm must increase strictly")
-    mat_r, mat_c = data["material"]["rotor"], data["material"]["casing"]
-    E, rho = (_positive(f"material.rotor.{k}", mat_r[k]) for k in ("E", "rho"))
-    nu = _poisson("material.rotor.nu", mat_r["nu"])
-    Gmod = E / (2 * (1 + nu))
-    Ec, rhoc = (_positive(f"material.casing.{k}", mat_c[k]) for k in ("E", "rho"))
-    nuc = _poisson("material.casing.nu", mat_c["nu"])
+def _material(data: dict, name: str, where: str) -> tuple[float, float, float, float]:
+    """(E, G, rho, nu) of ``[material.NAME]``: E, rho and either nu (G = E / 2(1 + nu)) or G (ROSS's G_s; nu =
+    E / 2G - 1)."""
+    mats = data.get("material", {})
+    if name not in mats:
+        raise ValueError(f"rotor model: {where} names material {name!r}, which [material] does not define "
+                         f"(defined: {', '.join(mats) or 'none'})")
+    m = mats[name]
+    E, rho = (_positive(f"material.{name}.{k}", m[k]) for k in ("E", "rho"))
+    if "G" in m:
+        G = _positive(f"material.{name}.G", m["G"])
+        return E, G, rho, _poisson(f"material.{name} (nu = E / 2G - 1)", E / (2.0 * G) - 1.0)
+    nu = _poisson(f"material.{name}.nu", m["nu"])
+    return E, E / (2 * (1 + nu)), rho, nu
 
-    # global numbering before constraints: PT nodes, GG nodes (6 DOF), shell nodes, hubs (3 DOF)
-    nc = int(cas["n_circ"])
-    rings = np.asarray(cas["ring_z_mm"], float) * 1e-3
-    if nc < 4 or len(rings) < 2 or not np.all(np.diff(rings) > 0):
-        raise ValueError("rotor model: casing needs n_circ >= 4 and >= 2 strictly increasing ring_z_mm")
-    hubs = list(cas["hubs"].keys())
-    base_pt, base_gg = 0, 6 * 22
-    base_sh = base_gg + 6 * 16
-    n_shell_nodes = 2 * nc * len(rings)
+
+def _spools(data: dict) -> dict:
+    sp = data["spool"]
+    if not isinstance(sp, dict) or not sp:
+        raise ValueError("rotor model: [spool.NAME] tables needed (one per shaft), none found")
+    if len(sp) > 2:
+        raise ValueError(f"rotor model: {len(sp)} spools; the rotor component carries one or two "
+                         f"({', '.join(sp)})")
+    for reserved in ("hub", "ground"):
+        if reserved in sp:
+            raise ValueError(f"rotor model: a spool may not be named {reserved!r} (a reserved word of node references)")
+    return sp
+
+
+def _assemble(data: dict, digest: str, omega_pt: float | None, omega_gg: float | None) -> FullModel:
+    fmt = data.get("engine", {}).get("format", FORMAT)
+    if fmt != FORMAT:
+        raise ValueError(f"rotor model: [engine] format = {fmt!r}; this version reads format {FORMAT}")
+    spools = _spools(data)
+    names = list(spools)
+    z = {}
+    for s in names:
+        z[s] = np.asarray(spools[s]["z_mm"], float) * 1e-3
+        if len(z[s]) < 2:
+            raise ValueError(f"rotor model: spool.{s}.z_mm needs at least 2 stations, got {len(z[s])}")
+        if not np.all(np.isfinite(z[s])):
+            raise ValueError(f"rotor model: spool.{s}.z_mm has a value that is not a finite number")
+        if not np.all(np.diff(z[s]) > 0):
+            k = int(np.nonzero(np.diff(z[s]) <= 0)[0][0])
+            raise ValueError(f"rotor model: spool.{s}.z_mm must increase strictly (stations overlap: node {k + 1} "
+                             f"at {spools[s]['z_mm'][k + 1]} mm is not after node {k} at {spools[s]['z_mm'][k]} mm)")
+    cas = data.get("casing")
+    peds = data.get("pedestal", {})
+
+    # global numbering before constraints: spool nodes (6 DOF), shell nodes, hubs (3 DOF: casing hubs, pedestals)
+    base = {}
+    nxt = 0
+    for s in names:
+        base[s] = nxt
+        nxt += 6 * len(z[s])
+    base_sh = nxt
+    if cas is not None:
+        nc = int(cas["n_circ"])
+        rings = np.asarray(cas["ring_z_mm"], float) * 1e-3
+        if nc < 4 or len(rings) < 2 or not np.all(np.diff(rings) > 0):
+            raise ValueError("rotor model: casing needs n_circ >= 4 and >= 2 strictly increasing ring_z_mm")
+        n_shell_nodes = 2 * nc * len(rings)
+        hubs = list(cas["hubs"].keys())
+    else:
+        nc, rings, n_shell_nodes, hubs = 0, np.zeros(0), 0, []
+    for p in peds:
+        if p in hubs:
+            raise ValueError(f"rotor model: hub {p!r} is both a casing hub and a pedestal")
+    hubs = hubs + list(peds)
     base_hub = base_sh + 3 * n_shell_nodes
     ntot = base_hub + 3 * len(hubs)
 
@@ -242,96 +296,122 @@ def _assemble(data: dict, digest: str, omega_pt: float | None, omega_gg: float |
         return (ring * nc + circ % nc) * 2 + layer
 
     def gdof(body, node, d):
-        if body == "pt":
-            if not 0 <= int(node) < 22:
-                raise ValueError(f"rotor model: power-turbine node {node} out of range 0-21")
-            return base_pt + 6 * int(node) + d
-        if body == "gg":
-            if not 0 <= int(node) < 16:
-                raise ValueError(f"rotor model: gas-generator node {node} out of range 0-15")
-            return base_gg + 6 * int(node) + d
         if body == "hub":
-            if node not in cas["hubs"]:
-                raise ValueError(f"rotor model: unknown casing hub {node!r} (known: {', '.join(hubs)})")
+            if node not in hubs:
+                raise ValueError(f"rotor model: unknown hub {node!r} (known: {', '.join(hubs) or 'none'})")
             if d > 2:
                 raise ValueError("rotor model: hubs have 3 DOF")
             return base_hub + 3 * hubs.index(node) + d
-        raise ValueError(f"rotor model: unknown body {body!r}")
+        if body in z:
+            nn = len(z[body])
+            if isinstance(node, bool) or not isinstance(node, (int, np.integer)) or not 0 <= int(node) < nn:
+                raise ValueError(f"rotor model: {spools[body].get('name', body)} ({body}) node {node!r} out of "
+                                 f"range 0-{nn - 1}")
+            return base[body] + 6 * int(node) + d
+        raise ValueError(f"rotor model: unknown body {body!r} (spools: {', '.join(names)}; or 'hub')")
 
     M = np.zeros((ntot, ntot))
     K = np.zeros((ntot, ntot))
-    Gp = np.zeros((ntot, ntot))
-    Gg = np.zeros((ntot, ntot))
+    G = {s: np.zeros((ntot, ntot)) for s in names}
 
-    # rotors
-    for key, z, base, Gm in (("power_turbine", zpt, base_pt, Gp), ("gas_generator", zgg, base_gg, Gg)):
-        d_out, d_in = rotor_diameters(data, key)
-        if len(d_out) != len(z) - 1 or len(d_in) != len(z) - 1:
-            raise ValueError(f"rotor model: {key} needs {len(z) - 1} element diameters")
-        for e in range(len(z) - 1):
-            ke, me, ge = shaft_element(z[e + 1] - z[e], E, Gmod, rho, d_out[e], d_in[e])
-            idx = np.arange(base + 6 * e, base + 6 * e + 12)
+    # spools: Timoshenko shaft elements and disks
+    for s in names:
+        r = spools[s]
+        E, Gmod, rho, _ = _material(data, r.get("material", "rotor"), f"spool.{s}")
+        d_out, d_in = rotor_diameters(data, s)
+        if len(d_out) != len(z[s]) - 1 or len(d_in) != len(z[s]) - 1:
+            raise ValueError(f"rotor model: spool.{s} needs {len(z[s]) - 1} section diameters (one per element "
+                             f"between its {len(z[s])} stations), got {len(d_out)} outer and {len(d_in)} inner")
+        for e in range(len(z[s]) - 1):
+            if not d_in[e] < d_out[e]:
+                raise ValueError(f"rotor model: spool.{s} section {e}: inner diameter {d_in[e] * 1e3:g} mm is not "
+                                 f"smaller than the outer {d_out[e] * 1e3:g} mm")
+            ke, me, ge = shaft_element(z[s][e + 1] - z[s][e], E, Gmod, rho, d_out[e], d_in[e])
+            idx = np.arange(base[s] + 6 * e, base[s] + 6 * e + 12)
             K[np.ix_(idx, idx)] += ke
             M[np.ix_(idx, idx)] += me
-            Gm[np.ix_(idx, idx)] += ge
-        for dk in data[key].get("disks", []):
-            md, gd = disk(*disk_inertia(data, dk))
-            n = int(dk["node"])
-            if not 0 <= n < len(z):
-                raise ValueError(f"rotor model: {key} disk node {n} out of range")
-            idx = np.arange(base + 6 * n, base + 6 * n + 6)
+            G[s][np.ix_(idx, idx)] += ge
+        for dk in r.get("disks", []):
+            m_d, Ip, Id = disk_inertia(data, dk)
+            for k, v in (("mass", m_d), ("Ip", Ip), ("Id", Id)):
+                if not (math.isfinite(v) and v >= 0):
+                    raise ValueError(f"rotor model: spool.{s} disk {dk.get('name', '')!r} {k} must be a finite "
+                                     f"number >= 0, got {v!r}")
+            md, gd = disk(m_d, Ip, Id)
+            n = dk["node"]
+            if isinstance(n, bool) or not isinstance(n, int) or not 0 <= n < len(z[s]):
+                raise ValueError(f"rotor model: spool.{s} disk {dk.get('name', '')!r} node {n!r} out of range "
+                                 f"0-{len(z[s]) - 1}")
+            idx = np.arange(base[s] + 6 * n, base[s] + 6 * n + 6)
             M[np.ix_(idx, idx)] += md
-            Gm[np.ix_(idx, idx)] += gd
+            G[s][np.ix_(idx, idx)] += gd
 
     # casing shell: 8-node solids, one through the thickness
-    R = _positive("casing.radius_mm", cas["radius_mm"]) * 1e-3
-    t = _positive("casing.thickness_mm", cas["thickness_mm"]) * 1e-3
-    ang = 2 * math.pi * np.arange(nc) / nc
-    xyz_shell = np.zeros((n_shell_nodes, 3))
-    for r_i, zr in enumerate(rings):
-        for c in range(nc):
-            for layer, rad in ((0, R - t / 2), (1, R + t / 2)):
-                xyz_shell[shell_node(r_i, c, layer)] = (rad * math.cos(ang[c]), rad * math.sin(ang[c]), zr)
-    for r_i in range(len(rings) - 1):
-        for c in range(nc):
-            nodes = [shell_node(r_i, c, 0), shell_node(r_i, c + 1, 0), shell_node(r_i, c + 1, 1),
-                     shell_node(r_i, c, 1)]
-            nodes += [shell_node(r_i + 1, c, 0), shell_node(r_i + 1, c + 1, 0), shell_node(r_i + 1, c + 1, 1),
-                      shell_node(r_i + 1, c, 1)]
-            ke, me = hex8(xyz_shell[nodes], Ec, nuc, rhoc)
-            idx = (base_sh + 3 * np.asarray(nodes)[:, None] + np.arange(3)).reshape(-1)
-            K[np.ix_(idx, idx)] += ke
-            M[np.ix_(idx, idx)] += me
+    if cas is not None:
+        Ec, _, rhoc, nuc = _material(data, cas.get("material", "casing"), "casing")
+        R = _positive("casing.radius_mm", cas["radius_mm"]) * 1e-3
+        t = _positive("casing.thickness_mm", cas["thickness_mm"]) * 1e-3
+        ang = 2 * math.pi * np.arange(nc) / nc
+        xyz_shell = np.zeros((n_shell_nodes, 3))
+        for r_i, zr in enumerate(rings):
+            for c in range(nc):
+                for layer, rad in ((0, R - t / 2), (1, R + t / 2)):
+                    xyz_shell[shell_node(r_i, c, layer)] = (rad * math.cos(ang[c]), rad * math.sin(ang[c]), zr)
+        for r_i in range(len(rings) - 1):
+            for c in range(nc):
+                nodes = [shell_node(r_i, c, 0), shell_node(r_i, c + 1, 0), shell_node(r_i, c + 1, 1),
+                         shell_node(r_i, c, 1)]
+                nodes += [shell_node(r_i + 1, c, 0), shell_node(r_i + 1, c + 1, 0), shell_node(r_i + 1, c + 1, 1),
+                          shell_node(r_i + 1, c, 1)]
+                ke, me = hex8(xyz_shell[nodes], Ec, nuc, rhoc)
+                idx = (base_sh + 3 * np.asarray(nodes)[:, None] + np.arange(3)).reshape(-1)
+                K[np.ix_(idx, idx)] += ke
+                M[np.ix_(idx, idx)] += me
 
     K_struct = K.copy()   # Rayleigh damping acts on the elastic elements only (the supports have their own)
     C = np.zeros((ntot, ntot))
 
-    # hubs and struts (spring elements in the local radial / tangential / axial frame)
-    st = cas["struts"]
-    for h, hv in cas["hubs"].items():
-        # a hub may have its own bearing frame (``struts = {k_r, k_t, k_a}``), else the casing's common one
-        sth = hv.get("struts", st)
-        kr, kt, ka = (_positive(f"casing.hubs.{h}.struts.{k}" if "struts" in hv else f"casing.struts.{k}", sth[k])
-                      for k in ("k_r", "k_t", "k_a"))
-        zh = float(hv["z_mm"]) * 1e-3
-        hit = np.nonzero(np.abs(rings - zh) < 1e-9)[0]
-        if hit.size != 1:
-            raise ValueError(f"rotor model: hub {h!r} at z = {hv['z_mm']} mm is not on a casing ring")
-        mh = _positive(f"casing.hubs.{h}.mass", hv["mass"])
-        hd = [gdof("hub", h, d) for d in range(3)]
-        for d in hd:
-            M[d, d] += mh
-        for c in range(nc):
-            er = np.array([math.cos(ang[c]), math.sin(ang[c]), 0.0])
-            et = np.array([-math.sin(ang[c]), math.cos(ang[c]), 0.0])
-            ez = np.array([0.0, 0.0, 1.0])
-            k3 = kr * np.outer(er, er) + kt * np.outer(et, et) + ka * np.outer(ez, ez)
-            sd = [base_sh + 3 * shell_node(int(hit[0]), c, 0) + d for d in range(3)]
-            idx = np.array(hd + sd)
-            K[np.ix_(idx, idx)] += np.block([[k3, -k3], [-k3, k3]])
+    # casing hubs and struts (spring elements in the local radial / tangential / axial frame)
+    if cas is not None:
+        st = cas["struts"]
+        for h, hv in cas["hubs"].items():
+            # a hub may have its own bearing frame (``struts = {k_r, k_t, k_a}``), else the casing's common one
+            sth = hv.get("struts", st)
+            kr, kt, ka = (_positive(f"casing.hubs.{h}.struts.{k}" if "struts" in hv else f"casing.struts.{k}",
+                                    sth[k]) for k in ("k_r", "k_t", "k_a"))
+            zh = float(hv["z_mm"]) * 1e-3
+            hit = np.nonzero(np.abs(rings - zh) < 1e-9)[0]
+            if hit.size != 1:
+                raise ValueError(f"rotor model: hub {h!r} at z = {hv['z_mm']} mm is not on a casing ring")
+            mh = _positive(f"casing.hubs.{h}.mass", hv["mass"])
+            hd = [gdof("hub", h, d) for d in range(3)]
+            for d in hd:
+                M[d, d] += mh
+            for c in range(nc):
+                er = np.array([math.cos(ang[c]), math.sin(ang[c]), 0.0])
+                et = np.array([-math.sin(ang[c]), math.cos(ang[c]), 0.0])
+                ez = np.array([0.0, 0.0, 1.0])
+                k3 = kr * np.outer(er, er) + kt * np.outer(et, et) + ka * np.outer(ez, ez)
+                sd = [base_sh + 3 * shell_node(int(hit[0]), c, 0) + d for d in range(3)]
+                idx = np.array(hd + sd)
+                K[np.ix_(idx, idx)] += np.block([[k3, -k3], [-k3, k3]])
+    # pedestals: hubs on springs to ground (no casing needed); a massless one (a ROSS support node) is allowed
+    for h, pv in peds.items():
+        mh = _nonneg(f"pedestal.{h}.mass", pv["mass"])
+        kxy = [_positive(f"pedestal.{h}.{k if k in pv else 'k'}", _knob(data, pv[k] if k in pv else pv["k"]))
+               for k in ("kxx", "kyy")]
+        cxy = [_nonneg(f"pedestal.{h}.{k if k in pv else 'c'}", pv[k] if k in pv else pv.get("c", 0.0))
+               for k in ("cxx", "cyy")]
+        ka = _positive(f"pedestal.{h}.k_axial", _knob(data, pv.get("k_axial", kxy[0])))
+        for d, kd in ((0, kxy[0]), (1, kxy[1]), (2, ka)):
+            i = gdof("hub", h, d)
+            M[i, i] += mh
+            _couple(K, i, None, kd)
+            if d < 2:
+                _couple(C, i, None, cxy[d])
 
     # mounts to ground
-    for m_i, mt in enumerate(cas["mounts"]):
+    for m_i, mt in enumerate(cas["mounts"] if cas is not None else ()):
         ring, node, d = int(mt["ring"]), int(mt["node"]), int(mt["dir"])
         if not (0 <= ring < len(rings) and 0 <= node < nc and 0 <= d < 3):
             raise ValueError(f"rotor model: casing mount {m_i} ({mt}) out of range")
@@ -339,17 +419,20 @@ def _assemble(data: dict, digest: str, omega_pt: float | None, omega_gg: float |
         _couple(K, i, None, _positive(f"casing.mounts[{m_i}].k", _knob(data, mt["k"])))
         _couple(C, i, None, _nonneg(f"casing.mounts[{m_i}].c", mt["c"]))
 
-    # linear supports of Table 2
-    for s in data["support"]:
+    # linear supports and intermediate bearings (Table 2 for the paper's engine)
+    for s in data.get("support", []):
         a, b = s["a"], s["b"]
-        k = _positive(f"support {s['name']!r} k", s["k"])
-        c = _nonneg(f"support {s['name']!r} c", s["c"])
+        label = f"support {s.get('name', '')!r}"
+        kxy = [_positive(f"{label} {k}", s[k] if k in s else s["k"]) for k in ("kxx", "kyy")]
+        cxy = [_nonneg(f"{label} {k}", s[k] if k in s else s.get("c", 0.0)) for k in ("cxx", "cyy")]
         for d in range(2):
-            i, j = gdof(a[0], a[1], d), gdof(b[0], b[1], d)
-            _couple(K, i, j, k)
-            _couple(C, i, j, c)
+            i = gdof(a[0], a[1], d)
+            j = None if b == "ground" else gdof(b[0], b[1], d)
+            _couple(K, i, j, kxy[d])
+            _couple(C, i, j, cxy[d])
         if "k_axial" in s:
-            _couple(K, gdof(a[0], a[1], 2), gdof(b[0], b[1], 2), _positive("k_axial", s["k_axial"]))
+            j = None if b == "ground" else gdof(b[0], b[1], 2)
+            _couple(K, gdof(a[0], a[1], 2), j, _positive("k_axial", s["k_axial"]))
 
     # Rayleigh damping of the structure: zeta at f1 and f2
     dmp = data["damping"]
@@ -359,8 +442,13 @@ def _assemble(data: dict, digest: str, omega_pt: float | None, omega_gg: float |
     beta = 2 * zeta / (w1 + w2)
     C += alpha * M + beta * K_struct
 
-    # constant speed: the spin angle of each rotor is prescribed at its drive node
-    fixed = [gdof("pt", pt["drive_node"], 5), gdof("gg", gg["drive_node"], 5)]
+    # constant speed: the spin angle of each spool is prescribed at its drive node (torsion DOF held); an
+    # ``axial_node`` holds the spool's axial DOF there too (a spool with no axial support, e.g. from ROSS)
+    fixed = []
+    for s in names:
+        fixed.append(gdof(s, spools[s]["drive_node"], 5))
+        if "axial_node" in spools[s]:
+            fixed.append(gdof(s, spools[s]["axial_node"], 2))
     free = np.setdiff1d(np.arange(ntot), fixed)
     newidx = -np.ones(ntot, dtype=int)
     newidx[free] = np.arange(free.size)
@@ -372,34 +460,68 @@ def _assemble(data: dict, digest: str, omega_pt: float | None, omega_gg: float |
         return int(i)
 
     sub = np.ix_(free, free)
-    ports = {
-        "brg0": [dof("pt", pt["bearing0_node"], d) for d in range(3)],
-        "brg5": [dof("pt", pt["bearing5_node"], d) for d in range(3)],
-        "housing0": [dof("hub", "h0", d) for d in range(2)],
-        "housing5": [dof("hub", "h5", d) for d in range(2)],
-        "rub0": [dof("pt", pt["rub0_node"], d) for d in range(2)],
-        "rub5": [dof("pt", pt["rub5_node"], d) for d in range(2)],
-        "unbalance": [dof("pt", pt["unbalance_node"], d) for d in range(2)],
-    }
-    lateral = [dof(b, n, d) for b, nn in (("pt", 22), ("gg", 16)) for n in range(nn) for d in range(2)]
-    for name, r in (("power_turbine", pt), ("gas_generator", gg)):
-        # the speed ratio gas generator / power turbine divides by the first (0 was a ZeroDivisionError); a
+    ports = _ports(data.get("attach", {}), dof)
+    lateral = [dof(s, n, d) for s in names for n in range(len(z[s])) for d in range(2)]
+    for s in names:
+        # the speed ratio of the second spool to the first divides by the first (0 was a ZeroDivisionError); a
         # negative speed is a spool turning the other way, kept
-        v = r["spin_rpm"]
+        v = spools[s]["speed_rpm"]
         if not (isinstance(v, (int, float)) and math.isfinite(v) and v != 0):
-            raise ValueError(f"rotor model: {name}.spin_rpm must be a finite, non-zero speed in rev/min, got {v!r}")
-    w_pt = pt["spin_rpm"] * RPM if omega_pt is None else float(omega_pt)
-    w_gg = gg["spin_rpm"] * RPM if omega_gg is None else float(omega_gg)
+            raise ValueError(f"rotor model: spool.{s}.speed_rpm must be a finite, non-zero speed in rev/min, "
+                             f"got {v!r}")
+    w_pt = spools[names[0]]["speed_rpm"] * RPM if omega_pt is None else float(omega_pt)
+    w_gg = (spools[names[1]]["speed_rpm"] * RPM if len(names) > 1 else w_pt) if omega_gg is None else float(omega_gg)
     for name, A in (("mass", M), ("stiffness", K), ("damping", C)):
         if not np.all(np.isfinite(A)):
             # a value so large that the element matrices overflow (casing.radius_mm = 1e300)
             raise ValueError(f"rotor model: the assembled {name} matrix is not finite: a length, modulus or mass "
                              "of the file is too large (lengths are in mm)")
+    xs = base_sh + 3 * np.arange(n_shell_nodes)          # the shell's x DOFs: its translational mass
     info = {"dof": dof, "rayleigh": (alpha, beta), "n_shell_dof": 3 * n_shell_nodes, "n_hub_dof": 3 * len(hubs),
-            "pt_lateral": np.array([dof("pt", n, d) for n in range(22) for d in range(2)])}
-    return FullModel(M=M[sub], K=K[sub], C=C[sub], G_pt=Gp[sub], G_gg=Gg[sub],
-                     ports={k: np.asarray(v) for k, v in ports.items()}, rotor_lateral=np.asarray(lateral),
+            "casing_mass_kg": float(M[np.ix_(xs, xs)].sum()) if n_shell_nodes else 0.0,
+            "spools": {s: len(z[s]) for s in names}, "hubs": hubs,
+            "pt_lateral": np.array([dof(names[0], n, d) for n in range(len(z[names[0]])) for d in range(2)])}
+    G_gg = G[names[1]][sub] if len(names) > 1 else np.zeros((free.size, free.size))
+    return FullModel(M=M[sub], K=K[sub], C=C[sub], G_pt=G[names[0]][sub], G_gg=G_gg,
+                     ports=ports, rotor_lateral=np.asarray(lateral),
                      omega_pt=w_pt, omega_gg=w_gg, data=data, digest=digest, info=info)
+
+
+#: the rotor component's port groups and the [attach] entry each comes from: (entry, what)
+ATTACH = {"brg0": ("bearing0", "node"), "brg5": ("bearing5", "node"), "housing0": ("bearing0", "housing"),
+          "housing5": ("bearing5", "housing"), "rub0": ("rubring0", "node"), "rub5": ("rubring5", "node"),
+          "unbalance": ("unbalance", "node")}
+
+
+def _ports(attach: dict, dof) -> dict:
+    """The port groups of the [attach] entries the file gives (the rotor component asks for all of them)."""
+    known = {e for e, _ in ATTACH.values()} | {"oil_temperature_C"}
+    for key in attach:
+        if key not in known:
+            raise ValueError(f"rotor model: [attach] {key!r} is not an attachment point (known: "
+                             f"{', '.join(sorted(known))})")
+    ports = {}
+    for group, (entry, what) in ATTACH.items():
+        if entry not in attach:
+            continue
+        a = attach[entry]
+        if what == "housing":
+            ports[group] = np.asarray([dof("hub", a["housing"], d) for d in range(2)])
+        else:
+            node = a["node"]
+            if not (isinstance(node, list) and len(node) == 2):
+                raise ValueError(f"rotor model: [attach] {entry}.node must be [spool, node], got {node!r}")
+            n = 3 if group.startswith("brg") else 2
+            ports[group] = np.asarray([dof(node[0], node[1], d) for d in range(n)])
+    return ports
+
+
+def require_ports(full: FullModel, groups) -> None:
+    """A ValueError naming the [attach] entries the model lacks for the port groups ``groups``."""
+    missing = sorted({ATTACH[g][0] for g in groups if g not in full.ports})
+    if missing:
+        raise ValueError(f"rotor model: [attach] has no {', '.join(missing)} (the blade-loss rotor component "
+                         "needs bearing0, bearing5, rubring0, rubring5 and unbalance; docs/reference/engine-format.md)")
 
 
 def load(path: str | Path | None = None, **kw) -> FullModel:

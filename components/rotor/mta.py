@@ -50,7 +50,16 @@ def augmentation_vectors(K, M, Phi, F_o, rtol: float = 1e-10) -> np.ndarray:
     Load vectors whose truncation part is (numerically) dependent on the others are dropped (rtol on the
     eigenvalues of X^T M X)."""
     F_t = F_o - M @ (Phi @ (Phi.T @ F_o))                      # eq. (18)
-    X = sla.cho_solve(sla.cho_factor(K), F_t)                  # K X = F_t
+    try:
+        factor = sla.cho_factor(K)                             # K X = F_t
+    except sla.LinAlgError:
+        # K singular: a spool held only by the co-simulated bearings has rigid-body modes without them. Their
+        # static response is then taken on the shifted K + sigma M ((K + sigma M)^-1 M Phi = Phi / (w^2 + sigma),
+        # so X stays M-orthogonal to the retained modes, which include the rigid ones); sigma = 1e-3 of the
+        # highest retained eigenvalue keeps the shifted problem well conditioned
+        sigma = 1e-3 * float(np.max(np.diag(Phi.T @ K @ Phi)))
+        factor = sla.cho_factor(K + sigma * M)
+    X = sla.cho_solve(factor, F_t)
     # orthonormalise X in the M inner product first so dependent load vectors cannot make eq. (19) singular
     Mb = X.T @ M @ X
     s, U = sla.eigh(Mb)

@@ -53,7 +53,8 @@ class RubRing(Memoryless, KernelComponent):
         Variable("bearing", "parameter", unit="1", start=0, type="Integer",
                  description="which ring (at bearing 0 or 5) gives the clearance and radius not set explicitly"),
         Variable("clearance", "parameter", unit="m", start=RINGS[0]["clearance_mm"] * 1e-3,
-                 description="radial clearance between the rotor and the ring"),
+                 description="radial clearance between the rotor and the ring",
+                 plausible=(1e-5, 5e-3)),  # seal and rub-ring clearances: tens of um to a few mm
         Variable("stiffness", "parameter", unit="N/m", start=CONTACT["stiffness"], description="contact stiffness"),
         Variable("damping", "parameter", unit="N.s/m", start=CONTACT["damping"],
                  description="contact damping on the penetration rate"),
@@ -78,6 +79,7 @@ class RubRing(Memoryless, KernelComponent):
     )
     preferred_step = 1e-5
     phases = frozenset({"TM"})
+    step_cost_s, kernel_step_cost_s = 6.5e-6, 0.5e-6  # bench/bench_estimate.py
 
     def setup(self, t0=0.0):
         super().setup(t0)

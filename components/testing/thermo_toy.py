@@ -25,6 +25,7 @@ def _positive(comp, keys):
 
 class DampedOscillator(Component):
     description = "Forced damped oscillator whose damping depends on temperature"
+    step_cost_s = 55e-6  # it sub-steps (bench/bench_estimate.py)
     variables = (
         Variable("m", "parameter", unit="kg", start=1.0),
         Variable("k", "parameter", unit="N/m", start=(2 * math.pi * 50.0) ** 2),
@@ -91,6 +92,7 @@ class ThermalNode(Component):
     )
     preferred_step = 0.05
     phases = frozenset({"TM", "TO"})
+    step_cost_s = 2e-6
 
     def setup(self, t0=0.0):
         super().setup(t0)

@@ -59,6 +59,14 @@ CHECKS = tuple(Check(f"{what} temperature", (port,), _port(port), limit, "K", SO
                for port, what in (("T_oil", "bearing oil"), ("T_sfd_oil", "squeeze-film oil"))
                for limit, bound in ((T_FLASH_K, "max"), (T_POUR_K, "min")))
 
+#: the geometry parameters: (parameter, data-file key, SI per file unit)
+GEOMETRY = (("bore", "bore_diameter_mm", 1e-3), ("outside_diameter", "outside_diameter_mm", 1e-3),
+            ("width", "width_mm", 1e-3), ("balls", "n_balls", 1), ("ball_diameter", "ball_diameter_mm", 1e-3),
+            ("damper_radius", "damper_radius_mm", 1e-3), ("damper_length", "damper_length_mm", 1e-3),
+            ("damper_clearance", "damper_clearance_mm", 1e-3), ("shaft_length", "shaft_length_mm", 1e-3),
+            ("housing_wall", "housing_wall_mm", 1e-3), ("housing_length", "housing_length_mm", 1e-3))
+
+
 class ThermalNetwork(KernelComponent):
     """Bearing thermal network of bearing #0 or #5 (nine nodes, eqs. 12-15)."""
 
@@ -89,6 +97,30 @@ class ThermalNetwork(KernelComponent):
                              " < 0: the data-file value of the bearing (2 L/min at #0, 3 L/min at #5)"),
         Variable("sfd_oil_flow", "parameter", unit="m3/s", start=_DATA["oil_flow"]["sfd_L_per_min"] * _LMIN,
                  description="squeeze-film damper oil flow (renewal of the SFD oil node)"),
+        # the geometry of Table 1's network: by default the record of ``bearing`` (data/thermal.toml); each one
+        # set replaces that record's value (SI here; the record is in mm)
+        Variable("bore", "parameter", unit="m", start=BEARINGS[0]["bore_diameter_mm"] * 1e-3,
+                 description="bearing bore (shaft radius r_s = bore / 2) (default: the record of `bearing`)"),
+        Variable("outside_diameter", "parameter", unit="m", start=BEARINGS[0]["outside_diameter_mm"] * 1e-3,
+                 description="bearing outside diameter (default: the record of `bearing`)"),
+        Variable("width", "parameter", unit="m", start=BEARINGS[0]["width_mm"] * 1e-3,
+                 description="bearing width (default: the record of `bearing`)"),
+        Variable("balls", "parameter", unit="1", start=BEARINGS[0]["n_balls"], type="Integer",
+                 description="number of balls (default: the record of `bearing`)"),
+        Variable("ball_diameter", "parameter", unit="m", start=BEARINGS[0]["ball_diameter_mm"] * 1e-3,
+                 description="ball diameter (default: the record of `bearing`)"),
+        Variable("damper_radius", "parameter", unit="m", start=BEARINGS[0]["damper_radius_mm"] * 1e-3,
+                 description="squeeze film damper journal radius r_j (default: the record of `bearing`)"),
+        Variable("damper_length", "parameter", unit="m", start=BEARINGS[0]["damper_length_mm"] * 1e-3,
+                 description="squeeze film damper length L_j (default: the record of `bearing`)"),
+        Variable("damper_clearance", "parameter", unit="m", start=BEARINGS[0]["damper_clearance_mm"] * 1e-3,
+                 description="squeeze film damper clearance c_sf (default: the record of `bearing`)"),
+        Variable("shaft_length", "parameter", unit="m", start=BEARINGS[0]["shaft_length_mm"] * 1e-3,
+                 description="shaft conduction length L_s to its sink (default: the record of `bearing`)"),
+        Variable("housing_wall", "parameter", unit="m", start=BEARINGS[0]["housing_wall_mm"] * 1e-3,
+                 description="housing wall outside the damper film (default: the record of `bearing`)"),
+        Variable("housing_length", "parameter", unit="m", start=BEARINGS[0]["housing_length_mm"] * 1e-3,
+                 description="housing length L_h (default: the record of `bearing`)"),
         Variable("method", "parameter", unit="1", start="exact", type="String",
                  description="integration: 'exact' (held-input exact solution) or 'backward-euler'"),
         Variable("P_drag", "input", 1, "W", "bearing drag-torque power (mean over the step)"),
@@ -106,6 +138,7 @@ class ThermalNetwork(KernelComponent):
     )
     preferred_step = 1e-3
     phases = frozenset({"TM", "TO"})
+    step_cost_s, kernel_step_cost_s = 45e-6, 5e-6  # bench/bench_estimate.py
 
     def setup(self, t0=0.0):
         super().setup(t0)
@@ -124,14 +157,25 @@ class ThermalNetwork(KernelComponent):
                 check_oil_temperature(p[key])
             except ValueError as exc:
                 raise ContractError(f"{self.name}.{key}: {exc}; temperatures are in kelvin") from None
+        rec = BEARINGS[p["bearing"]]
+        for name, key, scale in GEOMETRY:
+            if name in self.explicit:
+                if not (isinstance(p[name], (int, float)) and math.isfinite(p[name]) and p[name] > 0):
+                    raise ContractError(f"{self.name}.{name} must be a finite number > 0, got {p[name]!r}")
+            else:
+                p[name] = rec[key] * scale if name != "balls" else int(rec[key])
+        # the record the network is built from: the data file's number (unchanged) or the record with the set values
+        over = {key: (p[name] / scale if name != "balls" else int(p[name]))
+                for name, key, scale in GEOMETRY if name in self.explicit}
+        bearing = {**rec, **over} if over else p["bearing"]
         try:
             self.network = build_network(
-                p["bearing"], p["omega"], p["T_ambient"], p["T_supply"], p["drag_inner_fraction"],
+                bearing, p["omega"], p["T_ambient"], p["T_supply"], p["drag_inner_fraction"],
                 p["contact_race_fraction"], p["rub_shaft_fraction"], p["bearing_oil_flow"], p["sfd_oil_flow"],
                 p["rub_ring_housing_fraction"])
         except ValueError as exc:
             raise ContractError(f"{self.name}: {exc}") from None
-        g = radii(p["bearing"])
+        g = radii(bearing)
         st = _DATA["steel"]
         self._growth_args = (p["T_initial"], st["expansion"], st["poisson"], g["r_i"], g["r_e"], g["r_j"], g["r_b"])
         self._method = p["method"]

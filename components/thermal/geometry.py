@@ -83,7 +83,11 @@ SHAFT, IR, LI, BALL, LE, OR, JOURNAL, SFD, HOUSING = range(9)
 INPUTS = ("P_drag", "P_sfd", "P_rub")
 
 
-def bearing_data(bearing: int) -> dict:
+def bearing_data(bearing: int | dict) -> dict:
+    """The geometry record of bearing 0 or 5 (data file [bearing.N]), or ``bearing`` itself when it is a record
+    of the same keys (a bearing described by its parameters, :class:`~.component.ThermalNetwork`)."""
+    if isinstance(bearing, dict):
+        return dict(bearing)
     if bearing not in BEARINGS:
         raise ValueError(f"bearing must be one of {sorted(BEARINGS)}, got {bearing!r}")
     return dict(BEARINGS[bearing])

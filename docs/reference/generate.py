@@ -95,7 +95,8 @@ def components_page() -> str:
     out = [HEADER, "# Component reference\n\n",
            "Every built-in implementation a scenario can name (`implementation = \"NAME\"`), with its declared "
            "variables (`components/contract.py`, `Variable`): causality, number of values, SI unit, default of a "
-           "parameter and description. Parameters are set under `[components.NAME] parameters`, inputs are driven "
+           "parameter and description (with its plausible range where the component declares one: a run warns "
+           "about a value outside it, `components/plausibility.py`). Parameters are set under `[components.NAME] parameters`, inputs are driven "
            "by `[[connections]]` or fixed under `[inputs]`, outputs can be recorded (`[outputs] record`, "
            "`--record`). Plug-ins and FMUs declare their own (see [plug-ins](../how-to/plugins.md)).\n"]
     for name in registry.BUILTIN:
@@ -112,8 +113,10 @@ def components_page() -> str:
                    "|---|---|---|---|---|---|---|\n")
         order = {"parameter": 0, "input": 1, "output": 2}
         for v in sorted(cls.variables, key=lambda v: order[v.causality]):
+            text = v.description + (f" (plausible {v.plausible[0]:.3g} to {v.plausible[1]:.3g})"
+                                    if v.plausible else "")
             out.append(f"| `{v.name}` | {v.causality} | {v.size} | {_cell(v.unit)} | {v.type} | {_default(v)} | "
-                       f"{_cell(v.description)} |\n")
+                       f"{_cell(text)} |\n")
     return "".join(out)
 
 
@@ -152,6 +155,9 @@ def _table(title: str, keys: dict, notes: dict, table: str = "") -> str:
 #: what a key means, where its name does not say it (the schema knows types, not meanings)
 NOTES = {
     "extends": "base scenario(s): a file path or a shipped name",
+    "unconnected_inputs": "an input no connection or `[inputs]` constant drives: `start` keeps the start value it "
+    "declares (every FMU input with a start value; a native input only where its component declares a default; "
+    "one stderr line lists them), `error` refuses it (default `start`)",
     "algorithm.kind": "coupling algorithm", "schedule.kind": "schedule (`timeline`: the `intervals` below)",
     "results.kind": "results plug-in that extracts the summary (`blade_loss`)",
     "intervals.step": "s (this interval's step)",
@@ -177,7 +183,11 @@ NOTES = {
     "process": "FMU in a process of its own", "step_timeout": "s, limit of one FMU step",
     "from": "output port", "to": "input port", "average": "fast-to-slow: mean or RMS over the slow step",
     "extrapolation": "slow-to-fast: hold or linear", "convert": "type conversion on the link",
-    "unit": "unit of a unit-less side", "connection.hold": "what the link hands on during thermal-only intervals", "phase": "`TM` thermo-mechanical or `TO` thermal-only",
+    "unit": "unit of a unit-less side", "connection.hold": "what the link hands on during thermal-only intervals",
+    "phase": "a name of `[schedule.phases]`: `TM` thermo-mechanical or `TO` thermal-only by default",
+    "phases": "the scenario's names of its two phases (see below)",
+    "coupled": "name of the phase in which every component steps (default `TM`)",
+    "held": "name of the phase in which only the components that declare it step, the others held (default `TO`)",
     "name": "", "description": "",
 }
 
@@ -196,10 +206,13 @@ def scenario_page() -> str:
             out.append("\n## [[connections]]\n\nA list of links from an output to an input.\n")
             out.append(_table("", schema.CONNECTION, NOTES, "connection").split("\n", 2)[2])
         elif table == "inputs":
-            out.append('\n## [inputs]\n\n`"component.port" = number or list of numbers`: a constant input.\n')
+            out.append('\n## [inputs]\n\n`"component.port" = number or list of numbers`: a constant input. An '
+                       "input left out keeps its declared start value where it has one (`[scenario] "
+                       "unconnected_inputs`).\n")
         else:
             out.append(_table(f"[{table}]", keys, NOTES, table))
     out.append(_table("[[schedule.intervals]]", schema.INTERVAL, NOTES, "intervals"))
+    out.append(_table("[schedule.phases]", {role: schema.text for role in schema.ROLES}, NOTES, "phases"))
     return "".join(out)
 
 

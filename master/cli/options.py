@@ -100,3 +100,12 @@ def finish(args: argparse.Namespace) -> argparse.Namespace:
         raise ValueError(f"two scenarios, {first!r} and --scenario {option!r}: give one")
     args.scenario = first if first is not None else option if option is not None else args.scenario_default
     return args
+
+
+def add_dpi(p: argparse.ArgumentParser) -> None:
+    """``--dpi``: the resolution of the PNG figures a command writes."""
+    from rotorcosim.master.run.outputs import DPI_RANGE, FIGURE_DPI
+
+    p.add_argument("--dpi", type=float, default=None, metavar="N",
+                   help=f"resolution of the PNG figures in dots per inch (default {FIGURE_DPI}; "
+                        f"{DPI_RANGE[0]}-{DPI_RANGE[1]})")

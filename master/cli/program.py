@@ -26,6 +26,9 @@ COMMANDS: dict[str, tuple[str, str]] = {
     "thermal-steady": ("rotorcosim.components.thermal.cli", "steady state of a bearing's thermal network"),
     "export-fmus": ("rotorcosim.master.cli.export_fmus", "export components as FMI 2.0 co-simulation FMUs"),
     "export-ssp": ("rotorcosim.master.cli.export_ssp", "export a scenario's system as an SSP 1.0 archive"),
+    "import-ross": ("rotorcosim.interop.cli", "a rotor saved by ROSS (Rotor.save TOML) as an engine file"),
+    "parameters": ("rotorcosim.master.cli.parameters", "every parameter of a scenario's components (or of one "
+                                                       "component or implementation): unit, default, value, source"),
 }
 
 

@@ -19,7 +19,7 @@ from rotorcosim.master.run import checkpoint
 from rotorcosim.master.run import watchdog
 from rotorcosim.master.core.algorithm import SimulationFailed
 from rotorcosim.master.api import DEFAULT_SCENARIO, SCHEDULE_ALIASES, SCHEDULES, load_scenario, simulate
-from rotorcosim.master.cli.options import SCHEDULE_HELP, add_out, add_scenario
+from rotorcosim.master.cli.options import SCHEDULE_HELP, add_dpi, add_out, add_scenario
 from rotorcosim.master.compiled.choice import ENGINES
 from rotorcosim.master.scenario.overrides import apply_set, apply_swap, parse_set, parse_swap
 # the level parameter's setter lives with --set (the sweep engine needs it below the command line); imported here
@@ -67,6 +67,7 @@ def add_arguments(p):
                    help="thermo-mechanical intervals: auto (compiled when every component offers a kernel), python "
                         "(the generic loop) or compiled (an error when it cannot); the summary says which ran")
     p.add_argument("--no-figures", action="store_true", help="skip the PNG figures")
+    add_dpi(p)
     p.add_argument("--quiet", action="store_true", help="no progress bar")
 
 
@@ -101,7 +102,7 @@ def resolve(name: str | None) -> Scenario:
 def execute(sc: Scenario, out: Path, schedule_kind: str | None = None, duration: float | None = None,
             figures: bool = True, quiet: bool = True, schedule=None, *, record=None, overwrite: bool = False,
             resume: bool = False, force: bool = False, checkpoint_every: float | None = checkpoint.EVERY_S,
-            step_timeout: float = 0.0, engine: str = "auto") -> dict:
+            step_timeout: float = 0.0, engine: str = "auto", dpi: float | None = None) -> dict:
     """Run ``sc`` into ``out``; returns the summary (also written to out/summary.json). A thin layer over
     :func:`rotorcosim.simulate` (its docstring says the rest) kept for the other commands.
 
@@ -115,7 +116,7 @@ def execute(sc: Scenario, out: Path, schedule_kind: str | None = None, duration:
         raise ValueError("give duration or a schedule object, not both")
     res = simulate(sc, duration=duration, schedule=schedule, out=out, figures=figures, progress=not quiet,
                    record=record, overwrite=overwrite, resume=resume, force=force, checkpoint_every=checkpoint_every,
-                   step_timeout=step_timeout, engine=engine)
+                   step_timeout=step_timeout, engine=engine, dpi=dpi)
     return res.summary
 
 
@@ -157,7 +158,7 @@ def run(args) -> int:
                        record=parse_record(args.record), figures=not args.no_figures, progress=not args.quiet,
                        overwrite=args.overwrite, resume=args.resume, force=args.force,
                        checkpoint_every=args.checkpoint_every, step_timeout=args.step_timeout,
-                       engine=args.engine)
+                       engine=args.engine, dpi=args.dpi)
     except SimulationFailed as exc:   # diverged, a component failed, a step timed out, a process crashed
         print(f"rotorcosim run: {exc.what}: {exc}; what was recorded is in {out} (summary.json has the error)",
               file=sys.stderr)

@@ -27,10 +27,11 @@ from typing import Any
 
 from rotorcosim.master import case as cases_
 from rotorcosim.master.api import SCHEDULE_ALIASES, SCHEDULES
+from rotorcosim.master.run.outputs import check_dpi
 from rotorcosim.master.scenario.overrides import parse_set
 from rotorcosim.master.sweep import CONNECT_TIMEOUT_S, SWEEP_FILES, Case, run_cases
 
-from rotorcosim.master.cli.options import SCHEDULE_HELP, add_out, add_scenario
+from rotorcosim.master.cli.options import SCHEDULE_HELP, add_dpi, add_out, add_scenario
 from rotorcosim.master.cli.run import resolve
 
 
@@ -53,6 +54,7 @@ def add_arguments(p):
                    help="local cluster size (default: number of cores; at most one per case)")
     p.add_argument("--serial", action="store_true", help="run the cases one after another, without Dask")
     p.add_argument("--quiet", action="store_true", help="no line per finished case")
+    add_dpi(p)
     p.add_argument("--overwrite", action="store_true",
                    help="replace the results of a previous sweep in --out (which must otherwise be empty)")
     p.add_argument("--resume", action="store_true",
@@ -126,8 +128,9 @@ def one_case_a_level(levels, grid: dict[str, list[Any]]) -> bool:
 
 
 def cases_of(levels: list[float] | None, grid: dict[str, list[Any]], scenario="blade_loss", duration=None,
-             schedule=None) -> list[Case]:
-    """The grid of cases of ``scenario``: unbalance levels (outer) times the ``--set`` parameters' values. Each
+             schedule=None, dpi: float | None = None) -> list[Case]:
+    """The grid of cases of ``scenario`` (figures at ``dpi``): unbalance levels (outer) times the ``--set``
+    parameters' values. Each
     case's folder name says its values (:func:`_fmt`); two cases whose names would be the same (two files of one
     name in different folders) are an error naming both values."""
     if not levels and not grid:
@@ -148,22 +151,23 @@ def cases_of(levels: list[float] | None, grid: dict[str, list[Any]], scenario="b
                 raise ValueError(f"two cases would share the folder {name!r}: {seen[name]} and {settings} (give "
                                  f"the files different names)")
             seen[name] = settings
-            out.append(Case(name, scenario, settings, f, duration, schedule))
+            out.append(Case(name, scenario, settings, f, duration, schedule, dpi))
     return out
 
 
 def sweep(levels=None, out: Path = Path("sweep"), scenario="blade_loss", scheduler=None, schedule=None,
           duration=None, workers=None, serial=False, grid: dict[str, list[Any]] | None = None,
           progress=None, connect_timeout: float = CONNECT_TIMEOUT_S, overwrite: bool = False,
-          resume: bool = False) -> dict:
+          resume: bool = False, dpi: float | None = None) -> dict:
     """Run the grid of ``levels`` (values of the scenario's level parameter, SI) x ``grid``
     (``{"comp.param": [values]}``) into ``out`` (:func:`rotorcosim.master.sweep.run_cases`, which says what
-    happens under faults; ``resume`` reruns only the cases a previous sweep into ``out`` did not complete).
+    happens under faults; ``resume`` reruns only the cases a previous sweep into ``out`` did not complete), the
+    cases' figures at ``dpi`` (None: the default).
 
     ``progress(done, total, case, result)`` is called as each case finishes. Returns the contents of
     ``sweep.json``."""
     grid = dict(grid or {})
-    cases = cases_of(list(levels) if levels else None, grid, scenario, duration, schedule)
+    cases = cases_of(list(levels) if levels else None, grid, scenario, duration, schedule, check_dpi(dpi))
     kind = case_kind(scenario)
     tables = cases_.attribute(kind, "SWEEP_TABLES")
 
@@ -194,7 +198,8 @@ def run(args) -> int:
         print(f"[{done}/{total}] {case.name}: {state}", file=sys.stderr, flush=True)
 
     info = sweep(levels, Path(args.out), args.scenario, args.scheduler, kind, args.duration, args.workers,
-                 args.serial, grid, None if args.quiet else progress, overwrite=args.overwrite, resume=args.resume)
+                 args.serial, grid, None if args.quiet else progress, overwrite=args.overwrite, resume=args.resume,
+                 dpi=args.dpi)
     # the files at the top of the folder are this sweep's (a previous sweep's were refused or cleared)
     tables = sorted(p.name for p in Path(args.out).iterdir() if p.is_file() and p.name not in SWEEP_FILES[:2])
     print(f"{len(info['cases'])} cases in {info['wall_time_s']:.3g} s ({info['executed_on']});"

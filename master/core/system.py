@@ -5,6 +5,10 @@ size, value type and unit (conversions.py: what converts implicitly, what needs 
 ``unit``, what is refused), an input driven twice, an input left unconnected (unless the scenario gives it a
 constant value, checked against the input's type and range; Binary and Clock inputs, which carry no value, may
 stay unconnected). An output driving nothing is fine.
+
+An input that declares a default (``Variable.has_default``: an imported FMU's input with a start value, as fmpy,
+Ecos and OMSimulator treat it; a native input only when its component says so) may stay unconnected and keeps
+its start value; ``unconnected_inputs = "error"`` refuses those too. :attr:`System.defaulted` lists them.
 """
 from __future__ import annotations
 
@@ -24,6 +28,8 @@ from rotorcosim.master.core.conversions import ConversionError, link_conversion
 STATISTICS = ("mean", "rms", "last")
 AVERAGES = HOLDS = STATISTICS
 EXTRAPOLATIONS = ("hold", "linear", "linear-end")
+#: what an unconnected input that declares a default does: keep its start value, or stop the build
+UNCONNECTED_INPUTS = ("start", "error")
 
 
 class SystemError_(ContractError):
@@ -102,9 +108,11 @@ class System:
     Parameters: ``components`` (instance name -> :class:`~rotorcosim.components.contract.Component`);
     ``connections`` (:class:`Connection`, each output -> input); ``inputs``: constant values of inputs no
     connection drives (``"component.port"`` -> value in the input's unit, a scalar filling a vector input);
-    ``origins``: component name -> the scenario file that chose it, named in errors. A scenario builds its system
-    with :func:`rotorcosim.master.scenario.build.build_system`; :class:`rotorcosim.master.simulation.Simulation`
-    runs one.
+    ``origins``: component name -> the scenario file that chose it, named in errors; ``unconnected_inputs``
+    (UNCONNECTED_INPUTS): ``"start"`` lets an input that declares a default stay unconnected at its start value
+    (listed in :attr:`defaulted` after the check), ``"error"`` refuses every unconnected input. A scenario
+    builds its system with :func:`rotorcosim.master.scenario.build.build_system`;
+    :class:`rotorcosim.master.simulation.Simulation` runs one.
 
     >>> from rotorcosim.components.registry import create
     >>> comps = {"m1": create("testing.mass", "m1", {"m": 1.0, "k": 40.0, "x0": 0.1}),
@@ -119,8 +127,11 @@ class System:
     inputs: dict[str, np.ndarray] = field(default_factory=dict)
     #: component name -> the scenario file that chose its implementation (named in errors)
     origins: dict[str, str] = field(default_factory=dict)
+    unconnected_inputs: str = "start"
 
     def __post_init__(self):
+        if self.unconnected_inputs not in UNCONNECTED_INPUTS:
+            raise SystemError_(f"unconnected_inputs {self.unconnected_inputs!r} not in {UNCONNECTED_INPUTS}")
         self.check()
 
     def component(self, name: str) -> Component:
@@ -170,12 +181,26 @@ class System:
                 self.inputs[ref] = check_value(inp, items, f"constant input {ref}")
             except ContractError as exc:
                 raise SystemError_(str(exc)) from None
-        missing = [f"{name}.{v.name}" for name, c in self.components.items() for v in c.variables
-                   if v.causality == "input" and v.carried and f"{name}.{v.name}" not in driven
-                   and f"{name}.{v.name}" not in self.inputs]
+        #: unconnected inputs that keep their declared start values: reference -> value
+        self.defaulted: dict[str, np.ndarray] = {}
+        missing = []
+        for name, c in self.components.items():
+            for v in c.variables:
+                ref = f"{name}.{v.name}"
+                if v.causality != "input" or not v.carried or ref in driven or ref in self.inputs:
+                    continue
+                if v.has_default and self.unconnected_inputs == "start":
+                    self.defaulted[ref] = v.start_array()
+                else:
+                    missing.append(ref)
         if missing:
             where = sorted({self.origins[m.partition(".")[0]] for m in missing if m.partition(".")[0] in self.origins})
-            raise SystemError_("inputs left unconnected (connect them or give a constant under [inputs]): "
+            if self.unconnected_inputs == "error":
+                why = 'unconnected_inputs = "error": connect them or give a constant under [inputs]'
+            else:
+                why = ("connect them or give a constant under [inputs]; they declare no default to keep (an FMU "
+                       "input's is its start value)")
+            raise SystemError_(f"inputs left unconnected ({why}): "
                                + ", ".join(missing) + (f" (components from {', '.join(where)})" if where else ""))
 
     def _check_connection(self, con: Connection, driven: dict[str, str]) -> None:
@@ -198,6 +223,19 @@ class System:
 
 
 def build(components: Mapping[str, Component], connections: Sequence[Connection],
-          inputs: Mapping[str, Sequence[float]] | None = None) -> System:
+          inputs: Mapping[str, Sequence[float]] | None = None, unconnected_inputs: str = "start") -> System:
     """A checked :class:`System` of ``components``, ``connections`` and constant ``inputs`` (copied)."""
-    return System(dict(components), list(connections), dict(inputs or {}))
+    return System(dict(components), list(connections), dict(inputs or {}), unconnected_inputs=unconnected_inputs)
+
+
+def defaulted_line(defaulted: Mapping[str, np.ndarray]) -> str:
+    """One line listing the unconnected inputs that keep their start values (what a run prints on stderr).
+
+    >>> defaulted_line({"f.u": np.array([0.5]), "f.s": np.array(["on"], dtype=object)})
+    "inputs left unconnected keep their start values: f.u = 0.5, f.s = 'on'"
+    """
+    def text(value: np.ndarray) -> str:
+        items = [x.item() if isinstance(x, np.generic) else x for x in value]
+        return repr(items[0]) if len(items) == 1 else "[" + ", ".join(repr(x) for x in items) + "]"
+    return "inputs left unconnected keep their start values: " + ", ".join(
+        f"{ref} = {text(v)}" for ref, v in defaulted.items())

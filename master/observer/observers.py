@@ -17,9 +17,10 @@ from typing import Sequence
 
 import numpy as np
 
+from rotorcosim.components.contract import COUPLED, HELD
 from rotorcosim.master.core.cycle import Cycle, as_cycle
+from rotorcosim.master.core.phases import Phases
 
-PHASE_CODE = {"TM": 0, "TO": 1}
 #: empty HDF5 files of this process's recordings by layout (Recorder._open): bytes, the last few layouts
 _H5_TEMPLATES: dict[tuple, bytes] = {}
 #: free space a recorder keeps on its disk, so that a file refused a write can still be closed whole
@@ -65,7 +66,8 @@ class Observer:
         pass
 
     def interval_start(self, sim, phase: str, step: float) -> None:
-        """An interval of ``phase`` ("TM" or "TO") starts at ``sim.t`` with base step ``step`` [s]."""
+        """An interval starts at ``sim.t`` with base step ``step`` [s]; ``phase`` is its role (``COUPLED`` or
+        ``HELD`` of the component contract; its name is ``sim.phase_name``)."""
         pass
 
     def step(self, sim, t: float) -> None:
@@ -115,11 +117,14 @@ class Recorder(Observer):
 
     Each HDF5 dataset carries its ``unit``, ``description``, ``columns`` (the names of its vector elements) and
     ``sampling_interval_s`` (the interval in thermo-mechanical intervals; thermal-only intervals are sampled at
-    every thermal step: the ``time`` dataset gives each sample's time)."""
+    every thermal step: the ``time`` dataset gives each sample's time). ``attributes``: root attributes of the
+    HDF5 file (name -> str or number), or a function returning them, written when the file is completed (what
+    made the run: master/run/provenance.py)."""
 
     def __init__(self, path: str | os.PathLike | None, signals: Sequence[str], record_step: float = 1e-4,
-                 chunk: int = 2048, keep: bool = False):
+                 chunk: int = 2048, keep: bool = False, attributes=None):
         self.path = None if path is None else Path(path)
+        self.attributes = attributes
         self.signals = list(signals)
         if not (record_step > 0 and math.isfinite(record_step)):
             raise ValueError(f"record_step must be positive, got {record_step}")
@@ -156,6 +161,7 @@ class Recorder(Observer):
                 raise ValueError(f"recorder: {ref} is a {v.fmi_type or v.type} output: it holds no value to record")
             self.variables[ref] = v
         self.sizes = {r: v.size for r, v in self.variables.items()}
+        self._phases = sim.phases
         self.units = {r: v.unit for r, v in self.variables.items()}
         # each signal is stored with its own type: floats as f8, integers as i8 (UInt64 as u8), Booleans as
         # bool, strings as UTF-8 strings; so an integer beyond 2^53 is kept exactly
@@ -181,7 +187,7 @@ class Recorder(Observer):
 
             # the empty file (attributes and datasets, no rows) is made once per process and layout and copied:
             # its ~110 attributes and ~30 datasets cost ~16 ms per run through h5py, the copy and open ~5 ms
-            key = (self.record_step, self.chunk, tuple(
+            key = (self.record_step, self.chunk, self._phases, tuple(
                 (ref, sizes[ref], self.variables[ref].type, self.variables[ref].fmi_type, units[ref],
                  self.variables[ref].description, tuple(self.variables[ref].column_labels())) for ref in self.signals))
             blob = _H5_TEMPLATES.get(key)
@@ -212,7 +218,7 @@ class Recorder(Observer):
     def _skeleton(self, f) -> None:
         """The attributes and empty datasets of a new HDF5 file ``f``."""
         sizes, units = self.sizes, self.units
-        f.attrs["description"] = "rotorcosim time series: SI units; phase 0 = thermo-mechanical, 1 = thermal-only"
+        f.attrs["description"] = f"rotorcosim time series: SI units; phase {self._phases.description(tags=False)}"
         f.attrs["sampling_interval_s"] = self.record_step
         f.attrs["sampling"] = (f"every {self.record_step:g} s in thermo-mechanical intervals, every thermal step in "
                                f"thermal-only intervals (the time dataset has each sample's time)")
@@ -220,7 +226,7 @@ class Recorder(Observer):
         f["time"].attrs["unit"] = "s"
         f["time"].attrs["description"] = "simulated time of each sample"
         f.create_dataset("phase", shape=(0,), maxshape=(None,), dtype="i1", chunks=(self.chunk,))
-        f["phase"].attrs["description"] = "0 = thermo-mechanical (TM), 1 = thermal-only (TO)"
+        f["phase"].attrs["description"] = self._phases.description()
         for ref in self.signals:
             v = self.variables[ref]
             ds = f.create_dataset(ref, shape=(0, sizes[ref]), maxshape=(None, sizes[ref]), dtype=self._dtypes[ref],
@@ -232,7 +238,7 @@ class Recorder(Observer):
 
     def interval_start(self, sim, phase, step):
         # capped: a record_step longer than any interval (1e308 overflowed) records each interval's first sample
-        self.stride = 1 if phase == "TO" else max(1, int(round(min(self.record_step / step, 2.0 ** 62))))
+        self.stride = 1 if phase == HELD else max(1, int(round(min(self.record_step / step, 2.0 ** 62))))
 
     def step(self, sim, t):
         self._sample(sim, t)
@@ -242,7 +248,7 @@ class Recorder(Observer):
 
     def step_block(self, sim, ks, ts, data):
         stride = self.stride
-        phase = PHASE_CODE.get(sim.phase, 0)
+        phase = Phases.code(sim.phase)
         rows = sampled_rows(ks, stride)
         if not len(rows):
             return
@@ -261,7 +267,7 @@ class Recorder(Observer):
 
     def _sample(self, sim, t):
         self._buf_t.append(np.array([t], dtype=float))
-        self._buf_phase.append(np.array([PHASE_CODE.get(sim.phase, 0)], dtype=np.int8))
+        self._buf_phase.append(np.array([Phases.code(sim.phase)], dtype=np.int8))
         for ref in self.signals:
             self._buf[ref].append(np.array(sim.value(ref))[None])
         self._buffered += 1
@@ -362,6 +368,9 @@ class Recorder(Observer):
                 error = error or exc
                 self._clear_buffer()
             if self._kind == "hdf5":
+                extra = self.attributes() if callable(self.attributes) else (self.attributes or {})
+                for key, value in extra.items():
+                    self._file.attrs[key] = value
                 self._file.attrs["complete"] = error is None
                 if error is not None:
                     self._file.attrs["error"] = f"{type(error).__name__}: {error}"
@@ -475,15 +484,22 @@ class Progress(Observer):
     """A progress bar over simulated time whose time-left estimate comes from the measured wall time per step
     of each phase and the steps the schedule still has: a thermo-mechanical step costs hundreds of times a
     thermal-only one, so a rate in simulated seconds per second (tqdm's own estimate) is wrong by hours early in
-    a staggered run. A phase not yet measured is assumed to cost what the measured one does (an upper bound for
-    thermal-only steps). Without a known plan (the automatic schedule) no estimate is shown."""
+    a staggered run. A phase not yet measured costs its ``prior`` price (``{COUPLED: s, HELD: s}`` per step, the
+    up-front estimate's: master/schedule/budget.py), or else what the measured one does (an upper bound for
+    thermal-only steps). The measurement starts once the run's first compilations are over
+    (``sim.first_compiled``): on a fresh machine the first steps wait for numba, and a rate measured over them
+    overstates the time left tenfold or more. Without a known plan (the automatic schedule) no
+    estimate is shown."""
 
     stride = 64
+    #: the wall time [s] a phase must have been measured over before its measured price replaces the prior
+    SETTLE_S = 0.5
 
-    def __init__(self, total: float, disable: bool = False, desc: str = "simulating"):
+    def __init__(self, total: float, disable: bool = False, desc: str = "simulating", prior: dict | None = None):
         self.total = total
         self.disable = disable
         self.desc = desc
+        self.prior = dict(prior or {})
         self.bar = None
 
     def start(self, sim, schedule):
@@ -495,7 +511,7 @@ class Progress(Observer):
         intervals = getattr(schedule, "intervals", None)
         # steps of each planned interval, in order (None: not known in advance)
         self.plan = None if intervals is None else [
-            (iv.phase, max(1, int(math.ceil(iv.duration / iv.step - 1e-9)))) for iv in intervals]
+            (sim.phases.role(iv.phase), max(1, int(math.ceil(iv.duration / iv.step - 1e-9)))) for iv in intervals]
         self.index = -1
         self.cost_wall = {}   # phase -> wall seconds spent in finished intervals
         self.cost_steps = {}  # phase -> steps taken in finished intervals
@@ -504,25 +520,43 @@ class Progress(Observer):
         self.t0 = sim.t
         self.shown = 0.0
         self._shown_at = -1e9
+        # the run's first compilations (None: over, or none): until they are, nothing is measured
+        first = getattr(sim, "first_compiled", None)
+        self._compiling = first if first is not None and not first.is_set() else None
 
     def interval_start(self, sim, phase, step):
-        self.stride = 1 if phase == "TO" else 256
+        self.stride = 1 if phase == HELD else 256
         self.index += 1
-        self.phase, self.h = phase, step
+        self.phase, self.h, self.name = phase, step, sim.phase_name
         self.t_iv, self.w_iv = sim.t, self._clock()
+        # where this interval's measurement starts (moved to the end of the first compilations)
+        self.t_meas, self.w_meas = self.t_iv, self.w_iv
+
+    def _settle(self, t: float) -> None:
+        """The first compilations just ended: measure this interval from here."""
+        if self._compiling is not None and self._compiling.is_set():
+            self._compiling = None
+            self.t_meas, self.w_meas = t, self._clock()
 
     def _cost(self, phase: str, steps_now: int, wall_now: float) -> float | None:
         w = self.cost_wall.get(phase, 0.0) + (wall_now if phase == self.phase else 0.0)
         n = self.cost_steps.get(phase, 0) + (steps_now if phase == self.phase else 0)
+        if self.prior.get(phase) is not None and (w < self.SETTLE_S or not n):
+            return self.prior[phase]  # too little measured yet (or nothing: still compiling)
         return w / n if n else None
 
     def remaining(self, t: float) -> float | None:
-        """Estimated wall seconds left, from the measured cost per step of each phase."""
+        """Estimated wall seconds left, from the measured cost per step of each phase (the prior until enough
+        is measured)."""
         if self.plan is None or self.index >= len(self.plan):
             return None
         done = max(0, int(round((t - self.t_iv) / self.h)))
-        wall = self._clock() - self.w_iv
-        costs = {ph: self._cost(ph, done, wall) for ph in ("TM", "TO")}
+        if self._compiling is not None:
+            measured, wall = 0, 0.0
+        else:
+            measured = max(0, int(round((t - self.t_meas) / self.h)))
+            wall = self._clock() - self.w_meas
+        costs = {ph: self._cost(ph, measured, wall) for ph in (COUPLED, HELD)}
         known = [c for c in costs.values() if c is not None]
         if not known:
             return None
@@ -534,20 +568,26 @@ class Progress(Observer):
     def step(self, sim, t):
         if self.bar is None:
             return
+        if self._compiling is not None:
+            self._settle(t)
         done = min(self.total, t - self.t0)
         now = self._clock()
         if now - self._shown_at >= 1.0 and not self.disable:
             left = self.remaining(t)
-            self.bar.set_postfix_str(f"{self.phase}, ~{_hms(left)} left" if left is not None else self.phase,
+            self.bar.set_postfix_str(f"{self.name}, ~{_hms(left)} left" if left is not None else self.name,
                                      refresh=False)
             self._shown_at = now
         self.bar.update(done - self.shown)  # tqdm redraws at most once per mininterval
         self.shown = done
 
     def interval_end(self, sim, used):
-        if self.plan is not None:
-            self.cost_wall[used.phase] = self.cost_wall.get(used.phase, 0.0) + self._clock() - self.w_iv
-            self.cost_steps[used.phase] = self.cost_steps.get(used.phase, 0) + used.steps
+        if self._compiling is not None:
+            self._settle(sim.t)
+        if self.plan is not None and self._compiling is None:
+            role = sim.phase
+            self.cost_wall[role] = self.cost_wall.get(role, 0.0) + self._clock() - self.w_meas
+            self.cost_steps[role] = self.cost_steps.get(role, 0) + max(
+                0, int(round((sim.t - self.t_meas) / self.h)))
 
     def block_signals(self, sim):
         return []
@@ -591,7 +631,7 @@ class SteadyWindows(Observer):
         self.windows: list[dict] = []
 
     def interval_start(self, sim, phase, step):
-        self.active = phase == "TM"
+        self.active = phase == COUPLED
         if self.active:
             self.window = self.cycles * self.cycle.period(sim.system)
         self.stride = 1 if self.sample_step is None else max(1, int(round(self.sample_step / step)))

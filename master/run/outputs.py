@@ -9,6 +9,27 @@ from typing import Any
 
 import numpy as np
 
+#: resolution of the PNG figures a run writes [dots per inch] (``rotorcosim run --dpi``): print quality for a
+#: report at the figures' 10-16 inch width
+FIGURE_DPI = 150
+#: the range ``--dpi`` accepts: below, text is unreadable; above, a figure is tens of megabytes
+DPI_RANGE = (50, 1200)
+
+
+def check_dpi(dpi) -> int:
+    """``dpi`` as an int if it is a resolution a figure can be written at (:data:`DPI_RANGE`), else a ValueError
+    naming it. None gives :data:`FIGURE_DPI`.
+
+    >>> check_dpi(None), check_dpi(300)
+    (150, 300)
+    """
+    if dpi is None:
+        return FIGURE_DPI
+    lo, hi = DPI_RANGE
+    if isinstance(dpi, bool) or not isinstance(dpi, (int, float, np.integer, np.floating)) or not lo <= dpi <= hi:
+        raise ValueError(f"--dpi must be a number of dots per inch from {lo} to {hi}, got {dpi!r}")
+    return int(round(dpi))
+
 
 def _plain(obj: Any) -> Any:
     if isinstance(obj, dict):

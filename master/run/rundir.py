@@ -6,13 +6,14 @@
   continues the run whose checkpoint is there);
 * a lock file (``.rotorcosim.lock``, an advisory ``flock`` held for the whole run, with the owner's process id
   in it) stops a second run on the same folder while the first is alive; the kernel releases it when the
-  process ends however it ends, so a killed run never leaves a stale lock;
+  process ends however it ends, so a killed run never leaves a stale lock, and a run that ends removes the file
+  (a finished run's folder holds its results only);
 * ``summary.json`` is written with ``status = "running"`` when the run starts, and with its final status
   (``complete``, ``interrupted``, ``failed``) when it ends: after a SIGKILL the folder says "running" with a
   process id that is gone, never an older run's results as if current;
-* a folder holding only the summary of a run that failed before its first step (no results: a bad parameter
-  found when the components were set up) is taken by the next run without --overwrite, so that correcting the
-  input and running again into the same --out just works.
+* a run refused at set-up (a bad parameter found when the components are set up) leaves the folder as it found
+  it (api.simulate removes its summary, this takes back the lock and the folders it made); a folder holding only
+  the failed summary of such a run (as earlier versions left it) is taken by the next run without --overwrite.
 """
 from __future__ import annotations
 
@@ -94,25 +95,39 @@ class RunFolder:
             missing = missing.parent
         p = ensure_folder(self.path)
         self._lock_made = not (p / LOCK).exists()
-        try:
-            self._fd = os.open(p / LOCK, os.O_RDWR | os.O_CREAT, 0o644)
-        except OSError as exc:
-            raise OutputFolderError(f"--out {p}: cannot create the lock file ({exc.strerror or exc})") from None
-        try:
-            fcntl.flock(self._fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
-        except OSError:
-            owner = _read_owner(self._fd)
-            os.close(self._fd)
-            self._fd = None
-            raise OutputFolderError(f"--out {p}: another run is writing into this folder"
-                                    f"{f' (process {owner})' if owner else ''}; wait for it or choose another "
-                                    "folder") from None
+        self._lock(p)
         try:
             self._claim()
         except BaseException:
             self.__exit__(*sys.exc_info())
             raise
         return self
+
+    def _lock(self, p: Path) -> None:
+        """Hold the folder's lock file, or raise naming the run that holds it."""
+        while True:
+            try:
+                self._fd = os.open(p / LOCK, os.O_RDWR | os.O_CREAT, 0o644)
+            except OSError as exc:
+                raise OutputFolderError(f"--out {p}: cannot create the lock file ({exc.strerror or exc})") from None
+            try:
+                fcntl.flock(self._fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
+            except OSError:
+                owner = _read_owner(self._fd)
+                os.close(self._fd)
+                self._fd = None
+                raise OutputFolderError(f"--out {p}: another run is writing into this folder"
+                                        f"{f' (process {owner})' if owner else ''}; wait for it or choose another "
+                                        "folder") from None
+            # a run that ended between our open and our flock removed the file we hold: a lock on it would
+            # exclude no one (the next run creates a new file); take the one the folder has now
+            try:
+                if os.stat(p / LOCK).st_ino == os.fstat(self._fd).st_ino:
+                    return
+            except FileNotFoundError:
+                pass
+            os.close(self._fd)
+            self._fd = None
 
     def _claim(self) -> None:
         p = self.path
@@ -152,9 +167,15 @@ class RunFolder:
                 and s.get("t_end_s") in (0, 0.0, None) and not s.get("checkpoint"))
 
     def release(self) -> None:
-        """Release the folder's lock (another run may then use the folder)."""
+        """Release the folder's lock (another run may then use the folder) and remove its file: removed while
+        still held, so that no run can hold a lock on a file that is gone (``_lock`` checks it holds the file
+        the folder has)."""
         if self._fd is not None:
             try:
+                try:
+                    os.unlink(self.path / LOCK)
+                except OSError:  # already gone, or a read-only folder now: the lock is released all the same
+                    pass
                 fcntl.flock(self._fd, fcntl.LOCK_UN)
             finally:
                 os.close(self._fd)

@@ -4,6 +4,8 @@
 
     [scenario]
     name = "two masses"
+    unconnected_inputs = "start"         # an input nothing drives keeps the start value it declares (an FMU's
+                                         # inputs; a native one only if it declares a default); "error": refused
 
     [components.m1]
     implementation = "testing.mass"      # a registry name, or: fmu = "path/to/model.fmu"
@@ -60,6 +62,7 @@ from __future__ import annotations
 
 import copy
 import math
+import sys
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any, Mapping
@@ -73,9 +76,9 @@ from rotorcosim.master.core.algorithm import EngineSettings
 from rotorcosim.master.manipulator.hold import DEFAULT_HOLD, RESTART_CYCLES
 from rotorcosim.master.scenario.compose import Origins, ScenarioError, compose, real_path
 from rotorcosim.master.scenario.overrides import resolve_file_parameters
-from rotorcosim.master.schedule.timeline import from_spec
+from rotorcosim.master.schedule.timeline import from_spec, phases_of
 from rotorcosim.master.simulation import Simulation
-from rotorcosim.master.core.system import Connection, System, split_port
+from rotorcosim.master.core.system import Connection, System, defaulted_line, split_port
 
 #: the hold's error estimate takes temperatures' relative errors above 0 degrees C [K], as temperatures are
 #: reported; ``[schedule] temperature_zero`` declares another zero
@@ -128,7 +131,12 @@ class Scenario:
     (:class:`ConnectionSpec`); ``inputs`` (``"component.port"`` -> constant value, SI); ``algorithm``,
     ``schedule`` and ``outputs``: the ``[algorithm]``, ``[schedule]`` and ``[outputs]`` tables as dicts;
     ``source``: the file it was read from (relative paths resolve against its folder); ``description``;
-    ``extra``: the other top-level tables (``[results]``, read by the scenario's case).
+    ``extra``: the other top-level tables (``[results]``, read by the scenario's case); ``loaded_name``: the
+    name it was loaded under (``name`` may change: ``run --unbalance`` renames a run); ``edits``: each change
+    made since it was loaded, in order (``{"set": "comp.param", "value": ...}``, ``{"swap": "comp",
+    "implementation": ...}``, ``{"unbalance": value, "parameter": "comp.param"}``, each with its ``origin``),
+    which a run records in its summary (master/run/provenance.py); ``unconnected_inputs``:
+    ``"start"`` (an input nothing drives keeps the start value it declares) or ``"error"`` (refused).
 
     :meth:`set` and :meth:`swap` return changed copies; :func:`build_system` and :func:`build_simulation` make
     it runnable; :func:`rotorcosim.simulate` runs it.
@@ -151,6 +159,13 @@ class Scenario:
     source: Path | None = None
     description: str = ""
     extra: dict = field(default_factory=dict)
+    unconnected_inputs: str = "start"
+    loaded_name: str | None = None
+    edits: list[dict] = field(default_factory=list)
+
+    def __post_init__(self):
+        if self.loaded_name is None:
+            self.loaded_name = self.name
 
     def copy(self) -> "Scenario":
         """A deep copy: changing it leaves this scenario as it is."""
@@ -174,6 +189,15 @@ class Scenario:
         from rotorcosim.master.scenario.overrides import apply_swap
 
         return apply_swap(self, component, implementation, parameters)
+
+    def parameters(self, component: str | None = None) -> list[dict]:
+        """Every parameter of the components (or of ``component``): dicts with ``component``, ``name``,
+        ``unit``, ``default``, ``value`` (what a run uses, after the component's set-up), ``source`` (the file
+        that set it, "default" or "set-up") and ``description``. Example:
+        ``rotorcosim.load_scenario("blade_loss_2850").parameters("bearing0")``."""
+        from rotorcosim.master.scenario.parameters import scenario_parameters
+
+        return scenario_parameters(self, component)
 
 
 _TOP_KEYS = {"scenario", "components", "connections", "inputs", "algorithm", "schedule", "outputs", "results"}
@@ -279,7 +303,8 @@ def parse(data: Mapping[str, Any], source: Path | None = None, origins: Origins 
                     connections=connections, inputs=inputs, algorithm=dict(data.get("algorithm", {})),
                     schedule=dict(data.get("schedule", {})), outputs=dict(data.get("outputs", {})),
                     source=source, description=head.get("description", ""),
-                    extra={"results": dict(data.get("results", {}))})
+                    extra={"results": dict(data.get("results", {}))},
+                    unconnected_inputs=head.get("unconnected_inputs", "start"))
 
 
 def load_scenario(path: str | Path) -> Scenario:
@@ -314,15 +339,18 @@ def create_component(spec: ComponentSpec) -> Component:
 
 def build_system(sc: Scenario) -> System:
     """The :class:`System` of ``sc``: its components created (FMUs loaded) and its connections checked. A
-    problem is a ScenarioError naming the file that brought it; the components made before it are terminated."""
+    problem is a ScenarioError naming the file that brought it; the components made before it are terminated.
+    Inputs left unconnected that keep their start values (``[scenario] unconnected_inputs = "start"``) are
+    listed in one line on stderr."""
     comps = {}
     try:
         for name, spec in sc.components.items():
             comps[name] = create_component(spec)
         cons = [Connection(c.src, c.dst, c.average, c.extrapolation, c.hold, c.convert, c.unit, c.origin)
                 for c in sc.connections]
-        return System(comps, cons, {k: v for k, v in sc.inputs.items()},
-                      origins={n: c.origin for n, c in sc.components.items() if c.origin})
+        system = System(comps, cons, {k: v for k, v in sc.inputs.items()},
+                        origins={n: c.origin for n, c in sc.components.items() if c.origin},
+                        unconnected_inputs=sc.unconnected_inputs)
     except BaseException as exc:
         # the components made so far are let go now: an FMU's process or extraction folder is not left to the
         # garbage collector (a system refused for its units kept an FMU's child process running until then)
@@ -339,6 +367,11 @@ def build_system(sc: Scenario) -> System:
         if sc.source and not any(f and f in str(exc) for f in named):
             raise ScenarioError(f"{sc.source}: {exc}") from None
         raise
+    if system.defaulted:
+        # the other tools run such an FMU silently; a forgotten connection must still be seen
+        print(f"{sc.name}: {defaulted_line(system.defaulted)} ([scenario] unconnected_inputs = \"error\" refuses "
+              "them)", file=sys.stderr)
+    return system
 
 
 def engine_settings(sc: Scenario) -> EngineSettings:
@@ -368,7 +401,8 @@ def build_simulation(sc: Scenario, observers=(), system: System | None = None) -
                       hold=s.get("hold", DEFAULT_HOLD), hold_cycles=float(s.get("hold_cycles", 5)),
                       cycle=cycle, observers=observers,
                       restart_cycles=float(s.get("restart_cycles", RESTART_CYCLES)),
-                      temperature_zero=float(s.get("temperature_zero", TEMPERATURE_ZERO_K)))
+                      temperature_zero=float(s.get("temperature_zero", TEMPERATURE_ZERO_K)),
+                      phases=phases_of(s))
 
 
 def schedule_of(sc: Scenario, kind: str | None = None, duration: float | None = None):

@@ -175,6 +175,7 @@ def apply_set(sc, values: Mapping[str, Any], origin: str = API_ORIGIN):
                 raise ScenarioError(str(exc)) from None
         spec.parameters[param] = _plain(value)
         spec.param_origins[param] = origin
+        out.edits.append({"set": f"{comp}.{param}", "value": spec.parameters[param], "origin": origin})
         if spec.implementation is not None:
             resolve_file_parameters(spec.implementation, spec.parameters, lambda p: Path.cwd(), spec.folder, (param,))
     return out
@@ -206,6 +207,8 @@ def apply_swap(sc, component: str, implementation: str, parameters: Mapping[str,
             _check_value(f"{component}.{k}", v)
         spec.parameters = {k: _plain(v) for k, v in parameters.items()}
         spec.param_origins = {k: origin for k in parameters}
+    out.edits.append({"swap": component, "implementation": spec.fmu or spec.implementation, "origin": origin,
+                      **({"parameters": dict(spec.parameters)} if parameters is not None else {})})
     return out
 
 
@@ -226,6 +229,7 @@ def apply_unbalance(sc: Scenario, force: float, settings=()) -> None:
         raise ValueError(f"[results] unbalance_parameter {ref!r}: no component {comp!r}")
     old = sc.components[comp].parameters.get(param)
     sc.components[comp].parameters[param] = float(force)
+    sc.edits.append({"unbalance": float(force), "parameter": ref, "origin": "--unbalance"})
     if old is None or float(old) != float(force):
         # the run's name says what was run (a scenario named NAME_<level> becomes NAME_<new level>)
         sc.name = f"{sc.name.rsplit('_', 1)[0] if sc.name.rsplit('_', 1)[-1].isdigit() else sc.name}_{force:g}"

@@ -176,6 +176,8 @@ def system_description(sc: Scenario, fmus: dict[str, Path]) -> bytes:
                          "hold": c.hold, "convert": c.convert, "unit": c.unit} for c in sc.connections],
         "inputs": sc.inputs,
     }
+    if sc.unconnected_inputs != "start":   # (the default is left out: archives written before stay byte-identical)
+        payload["unconnected_inputs"] = sc.unconnected_inputs
     ET.SubElement(ann, "{urn:rotorcosim:ssp:1}Scenario").text = json.dumps(payload, sort_keys=True)
     ET.indent(root, space="  ")
     return ET.tostring(root, encoding="UTF-8", xml_declaration=True) + b"\n"
@@ -345,7 +347,8 @@ def _parameter_values(comp: ET.Element, folder: Path, where: str) -> dict[str, t
 
 #: the annotation's keys (what write_ssp puts there) -> the container each must be
 _PAYLOAD = {"name": str, "description": str, "algorithm": dict, "schedule": (dict, type(None)), "outputs": dict,
-            "results": dict, "steps": dict, "implementations": dict, "connections": list, "inputs": dict}
+            "results": dict, "steps": dict, "implementations": dict, "connections": list, "inputs": dict,
+            "unconnected_inputs": str}
 
 
 _JSON = {dict: "object", list: "array", str: "string", int: "number", float: "number", bool: "boolean",
@@ -378,7 +381,7 @@ def _check_payload(payload: dict, where: str, components: dict) -> None:
 
     data = {"components": {n: {"fmu": c.fmu, **({"step": c.step} if c.step is not None else {})}
                            for n, c in components.items()},
-            "scenario": {k: payload[k] for k in ("name", "description") if k in payload},
+            "scenario": {k: payload[k] for k in ("name", "description", "unconnected_inputs") if k in payload},
             "connections": [{k: v for k, v in c.items() if v is not None} for c in payload.get("connections", [])],
             "inputs": payload.get("inputs", {})}
     data.update({k: payload[k] for k in ("algorithm", "schedule", "outputs", "results") if payload.get(k)})
@@ -538,4 +541,5 @@ def _scenario_of(path: Path, folder: Path) -> Scenario:
     return Scenario(name=payload.get("name", system.get("name", path.stem)), components=components,
                     connections=connections, inputs=inputs, algorithm=algorithm, schedule=schedule,
                     outputs=payload.get("outputs", {}), source=path, description=payload.get("description", ""),
-                    extra={"results": payload.get("results", {})})
+                    extra={"results": payload.get("results", {})},
+                    unconnected_inputs=payload.get("unconnected_inputs", "start"))

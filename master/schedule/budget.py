@@ -1,11 +1,24 @@
 """What a run will cost before it starts, and the schedules that cannot mean anything.
 
-The estimate counts the base steps of the schedule exactly and prices each from a declared step cost:
-``MASTER_STEP_S`` for the master and observers plus ``COMPONENT_STEP_S`` per component. Both come from the
-measured profile of the shipped case's nine-component system (``bench/``: master and observers ~100 us, the
-components 3-35 us each per thermo-mechanical step; 150 000 TM steps took 41 s, i.e. ~270 us per step, and the
-estimate gives 300 us). Components stepping at a multiple of the base step and
-thermal-only intervals make the estimate an upper bound.
+The estimate counts the steps of the schedule exactly and prices each from what the scenario's components declare
+(``step_cost_s`` / ``kernel_step_cost_s`` / ``setup_cost_s``, or ``step_cost(parameters, compiled)`` where the cost
+follows a parameter, as the FE damper's mesh does; components/contract.py) plus the master's own costs below:
+
+* a thermo-mechanical (TM) base step runs in the compiled loop when every component offers a kernel (and the
+  engine is not ``python``), else in the generic Python loop, which adds ``LINK_STEP_S`` per component step;
+  a component with a longer communication step costs its share (one step in ``m`` base steps);
+* an FMU costs ``FMU_STEP_S`` per step on top of what it runs (the native component's cost when rotorcosim
+  exported it, read from its model description; ``FMU_PROCESS_STEP_S`` more out of process); an SSP archive is
+  its FMUs;
+* a thermal-only (TO) step steps the components that take part in TO intervals, in Python, plus ``TO_STEP_S``
+  of the hold;
+* each interval costs ``INTERVAL_S`` (the hand-offs, the compiled loop's entry), a run ``RUN_SETUP_S`` plus its
+  components' set-up.
+
+The prices are CPU seconds of one core of a 2-core x86 machine of 2025, measured by ``bench/bench_estimate.py``
+and held within a factor 2 of measured runs by ``tests/master/test_estimate.py`` (the FE damper, FMUs, an SSP
+archive, the monolithic and the staggered schedule, both loops). A loaded machine takes longer; the automatic
+schedule is priced as all TM (an upper bound).
 
 A run estimated above ``LIMIT_S`` of wall time is refused unless forced; a schedule with a thermo-mechanical
 interval shorter than one communication step of a component, or than one base step, is refused always (the
@@ -14,18 +27,37 @@ interval would be silently stretched to a step: a 1e-13 s "run" would report res
 from __future__ import annotations
 
 import math
+import zipfile
 
+from rotorcosim.components.contract import COUPLED, HELD
 from rotorcosim.master.schedule.auto import AutoSchedule
-from rotorcosim.master.schedule.timeline import Timeline
+from rotorcosim.master.schedule.timeline import Timeline, phases_of
 
-MASTER_STEP_S = 30e-6
-COMPONENT_STEP_S = 30e-6
+#: the generic loop's own cost per base step [s]
+MASTER_STEP_S = 10e-6
+#: the generic loop's cost per component step besides the component's own: its inputs and outputs moved and
+#: checked [s]
+LINK_STEP_S = 7e-6
+#: the compiled loop's own cost per base step (recording included) [s]
+COMPILED_STEP_S = 1.5e-6
+#: an FMU's cost per step on top of the model it runs (fmpy's calls, the variables set and got) [s]
+FMU_STEP_S = 30e-6
+#: more per step for an FMU in a process of its own (one round trip) [s]
+FMU_PROCESS_STEP_S = 60e-6
+#: the hold's cost per thermal-only step besides the thermal components' steps [s]
+TO_STEP_S = 20e-6
+#: per interval: the hand-off between phases, the compiled loop's entry [s]
+INTERVAL_S = 0.005
+#: per run: building the system and the first steps' imports [s]
+RUN_SETUP_S = 0.05
+#: the price of a component whose implementation cannot be looked up before it is built [s per step]
+UNKNOWN_STEP_S = 30e-6
+#: estimated wall time above which a run says so on stderr before it starts [s]
+WARN_S = 60.0
 #: wall time above which a run needs ``--force``
 LIMIT_S = 24 * 3600.0
 #: most base steps of any run, even forced: 2^53, beyond which float64 step times and counts are no longer exact
 MAX_STEPS = 2.0 ** 53
-
-
 class BudgetError(ValueError):
     """A run refused before it starts: too long without --force, or too short to mean anything."""
 
@@ -47,31 +79,96 @@ def hms(s: float) -> str:
     return f"{s / 86400:.3g} days"
 
 
-def estimate(sc, schedule) -> dict:
-    """``{"steps": base steps, "wall_s": estimated wall time}`` of ``schedule`` on scenario ``sc``."""
-    n_comp = max(1, len(sc.components))
-    per_step = MASTER_STEP_S + COMPONENT_STEP_S * n_comp
+def _fmu_inner(path: str):
+    """The component class a rotorcosim-exported FMU runs (its vendor annotation), or None."""
+    from rotorcosim.components import registry
+    from rotorcosim.fmus.model_description import read_annotation
+
+    try:
+        with zipfile.ZipFile(path) as z:
+            impl = read_annotation(z.read("modelDescription.xml")).implementation
+        return registry.lookup(impl) if impl else None
+    except Exception:  # noqa: BLE001 - any FMU the estimate cannot read is priced as an unknown one
+        return None
+
+
+def component_costs(sc, engine: str = "auto") -> dict:
+    """What each step of scenario ``sc`` costs [s]: ``{"compiled": bool, "components": {name: (TM cost, TO cost,
+    phases, step)}, "setup_s": ...}`` (``phases``: the phases the component steps in, TO for a thermal-only update
+    too; ``step``: its communication step or None). Thermal-only steps run in Python."""
+    from rotorcosim.components import registry
+
+    classes, fmus = {}, {}
+    for name, spec in sc.components.items():
+        if spec.fmu is not None:
+            fmus[name] = spec
+            classes[name] = _fmu_inner(spec.fmu)
+        else:
+            try:
+                classes[name] = registry.lookup(spec.implementation, spec.folder)
+            except Exception:  # noqa: BLE001 - the build names the problem; the estimate prices it as unknown
+                classes[name] = None
+    compiled = engine != "python" and not fmus and all(
+        c is not None and getattr(c, "STEP", None) is not None for c in classes.values())
+    costs, setup = {}, RUN_SETUP_S
+    for name, spec in sc.components.items():
+        cls = classes[name]
+        params = spec.parameters
+        if cls is None:
+            tm, to, phases = UNKNOWN_STEP_S, UNKNOWN_STEP_S, frozenset({COUPLED, HELD})
+        else:
+            tm, to = cls.step_cost(params, compiled), cls.step_cost(params, False)
+            phases = cls.phases | ({HELD} if cls.holds_state_in_TO else set())
+            setup += cls.setup_cost_s
+        if name in fmus:
+            extra = FMU_STEP_S + (FMU_PROCESS_STEP_S if spec.options.get("process") or spec.options.get("step_timeout")
+                                  else 0.0)
+            tm, to = tm + extra, to + extra
+        costs[name] = (tm + (0.0 if compiled else LINK_STEP_S), to + LINK_STEP_S, phases, spec.step)
+    return {"compiled": compiled, "components": costs, "setup_s": setup}
+
+
+def estimate(sc, schedule, engine: str = "auto") -> dict:
+    """``{"steps": base steps, "wall_s": estimated wall time [s], "wall": the same in words, "engine": the loop
+    TM intervals will take ("compiled" / "python"), "step_cost_us": {COUPLED, HELD}: the price of a base step of
+    each phase's role [us]}`` of ``schedule`` on scenario ``sc`` (see the module's docstring)."""
     if isinstance(schedule, Timeline):
-        counts = [iv.duration / iv.step for iv in schedule.intervals]
+        phases = phases_of(sc.schedule)
+        spans = [(phases.role(iv.phase), iv.duration, iv.step) for iv in schedule.intervals]
     else:  # automatic: at most every step thermo-mechanical
-        counts = [schedule.duration / schedule.step]
+        spans = [(COUPLED, schedule.duration, schedule.step)]
+    counts = [d / h for _, d, h in spans]
     if not all(n <= MAX_STEPS for n in counts) or sum(counts) > MAX_STEPS:
         # not a long run but no run: the time t0 + k h of a step k beyond 2^53 is not even representable
         raise BudgetError(f"the schedule asks for {sum(counts):.3g} steps, beyond the {MAX_STEPS:.3g} a step "
                           "counter holds exactly (a --duration in other units than seconds?)")
-    steps = sum(math.ceil(n - 1e-9) for n in counts)
-    return {"steps": steps, "wall_s": steps * per_step, "wall": hms(steps * per_step)}
+    c = component_costs(sc, engine)
+    wall, steps, per = c["setup_s"], 0, {}
+    for (phase, d, h), n in zip(spans, counts):
+        n = math.ceil(n - 1e-9)
+        steps += n
+        if phase == COUPLED:
+            own = COMPILED_STEP_S if c["compiled"] else MASTER_STEP_S
+            # a component with a longer communication step steps once in every step/h base steps
+            cost = own + sum(k / max(1.0, (s or h) / h) for k, _, ph, s in c["components"].values() if COUPLED in ph)
+        else:  # TO: the thermal components and the thermal-only updates, in Python, at the interval's step
+            cost = TO_STEP_S + sum(k for _, k, ph, _ in c["components"].values() if HELD in ph)
+        per.setdefault(phase, cost)
+        wall += INTERVAL_S + n * cost
+    return {"steps": steps, "wall_s": wall, "wall": hms(wall), "engine": "compiled" if c["compiled"] else "python",
+            "step_cost_us": {ph: 1e6 * v for ph, v in per.items()}}
 
 
-def check(sc, schedule, force: bool = False) -> dict:
+def check(sc, schedule, force: bool = False, engine: str = "auto") -> dict:
     """Raise :class:`BudgetError` for a schedule too short to hold a step, or estimated beyond ``LIMIT_S``
     (unless ``force``); returns the estimate."""
     steps = {n: c.step for n, c in sc.components.items() if c.step}
     if isinstance(schedule, Timeline):
         if not schedule.intervals:
             raise BudgetError("the schedule is empty (a --duration too short for one step?)")
+        coupled = phases_of(sc.schedule).coupled
         for i, iv in enumerate(schedule.intervals):
-            if iv.phase != "TM":
+            if iv.phase != coupled:
                 continue
             base = sc.schedule.get("step")
             if base and iv.step == iv.duration and iv.duration < base * (1 - 1e-9):
@@ -85,10 +182,10 @@ def check(sc, schedule, force: bool = False) -> dict:
         longest = max(steps.values(), default=schedule.step)
         if schedule.duration < max(longest, schedule.step):
             raise BudgetError(f"duration {schedule.duration:.6g} s is shorter than one step ({max(longest, schedule.step):g} s)")
-    est = estimate(sc, schedule)
+    est = estimate(sc, schedule, engine)
     if est["wall_s"] > LIMIT_S and not force:
+        cost = max(est["step_cost_us"].values())
         raise BudgetError(f"this run would take {est['steps']:.3g} steps, about {est['wall']} of wall time "
-                          f"(estimated at {(MASTER_STEP_S + COMPONENT_STEP_S * max(1, len(sc.components))) * 1e6:.0f} us "
-                          f"per step), above the {hms(LIMIT_S)} limit: give --force to run it anyway, or a shorter "
-                          "--duration")
+                          f"(estimated at {cost:.0f} us per step), above the {hms(LIMIT_S)} limit: give --force "
+                          "to run it anyway, or a shorter --duration")
     return est

@@ -36,13 +36,15 @@ class Case:
     name, a TOML/SSP file, or a Scenario; ``level``: the value of the scenario's level parameter (SI; None: the
     scenario's own); ``settings``: ``{"comp.param": value}`` overrides (a case with any is named
     ``<scenario>_<case name>`` in its results); ``duration`` [s] cuts the schedule (None: the scenario's);
-    ``schedule``: ``"scenario"``/None, ``"auto"``, ``"monolithic"`` or a Timeline / AutoSchedule."""
+    ``schedule``: ``"scenario"``/None, ``"auto"``, ``"monolithic"`` or a Timeline / AutoSchedule; ``dpi``: its
+    figures' resolution (None: the default; no part of its results, so not of its definition)."""
     name: str
     scenario: Any = "blade_loss"
     settings: dict[str, Any] = field(default_factory=dict)
     level: float | None = None
     duration: float | None = None
     schedule: Any = None
+    dpi: float | None = None
 
     def scenario_of(self) -> Scenario:
         """The scenario this case runs: its level, then its overrides, applied (each checked, as on the command
@@ -97,7 +99,7 @@ def run_case(case: Case) -> dict:
     try:
         try:
             summary = simulate(case.scenario_of(), duration=case.duration, schedule=case.schedule, out=work,
-                               figures=True).summary
+                               figures=True, dpi=case.dpi).summary
         except Exception as exc:
             summary = failed_summary(case, f"{type(exc).__name__}: {exc}")
             written = work / "summary.json"

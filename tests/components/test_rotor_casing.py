@@ -67,12 +67,13 @@ def test_assembled_model_is_symmetric_definite_and_mass_is_conserved():
     np.linalg.cholesky(m.K)
     d = m.data
     total = 0.0
-    for key in ("power_turbine", "gas_generator"):
-        z = np.asarray(d[key]["z_mm"], float) * 1e-3
-        do = np.asarray(d[key]["d_out_mm"], float) * 1e-3
-        di = np.asarray(d[key]["d_in_mm"], float) * 1e-3
+    for key in ("pt", "gg"):
+        sp = d["spool"][key]
+        z = np.asarray(sp["z_mm"], float) * 1e-3
+        do = np.asarray(sp["d_out_mm"], float) * 1e-3
+        di = np.asarray(sp["d_in_mm"], float) * 1e-3
         total += np.sum(d["material"]["rotor"]["rho"] * np.pi * (do ** 2 - di ** 2) / 4 * np.diff(z))
-        for dk in d[key]["disks"]:
+        for dk in sp["disks"]:
             mass = dk["mass"]
             total += d["calibration"][mass] if isinstance(mass, str) else mass
     cas = d["casing"]

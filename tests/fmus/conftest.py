@@ -102,3 +102,41 @@ def widths3_fmu(fmu_dir) -> Path:
         zf.write(src / "modelDescription.xml", "modelDescription.xml")
         zf.write(binary, "binaries/x86_64-linux/widths3.so")
     return fmu
+
+
+#: the FMI 3.0 test models after the Modelica Reference FMUs (models/reference3): name -> the entries an archive
+#: carries besides modelDescription.xml and the binary; roberts3's manifest is written twice with the same bytes,
+#: as the Reference FMUs' own build writes Roberts.fmu
+REFERENCE3 = {"feedthrough3": [], "statespace3": [],
+              "roberts3": [("extra/org.modelica.fmi-ls-dae/fmi-ls-manifest.xml", "fmi-ls-manifest.xml")] * 2}
+
+
+@pytest.fixture(scope="session")
+def reference3_fmus(fmu_dir) -> dict[str, Path]:
+    """The models of models/reference3 (after the Reference FMUs' Feedthrough, StateSpace and Roberts) as FMI 3.0
+    co-simulation FMUs, compiled here with the system's C compiler."""
+    import shutil
+    import subprocess
+    import warnings
+    import zipfile
+
+    cc = shutil.which("cc") or shutil.which("gcc")
+    if cc is None or not sys.platform.startswith("linux"):
+        pytest.skip("no C compiler (or not Linux): the FMI 3.0 test FMUs in C cannot be built")
+    src = Path(__file__).with_name("models") / "reference3"
+    out = {}
+    for name, extra in REFERENCE3.items():
+        binary = fmu_dir / name / "binaries" / "x86_64-linux" / f"{name}.so"
+        binary.parent.mkdir(parents=True, exist_ok=True)
+        built = subprocess.run([cc, "-shared", "-fPIC", "-O2", "-o", str(binary), str(src / f"{name}.c"),
+                                str(src / "fmi3_stubs.c")], capture_output=True, text=True, timeout=120)
+        assert built.returncode == 0, built.stderr[-2000:]
+        fmu = fmu_dir / f"{name}.fmu"
+        with warnings.catch_warnings(), zipfile.ZipFile(fmu, "w", zipfile.ZIP_DEFLATED) as zf:
+            warnings.simplefilter("ignore", UserWarning)   # zipfile's "Duplicate name": meant here
+            zf.write(src / f"{name}.xml", "modelDescription.xml")
+            zf.write(binary, f"binaries/x86_64-linux/{name}.so")
+            for entry, file in extra:
+                zf.write(src / file, entry)
+        out[name] = fmu
+    return out

@@ -85,8 +85,43 @@ def test_file_and_folder_of_one_name(mass_fmu, tmp_path, private_tmp):
     with pytest.raises(FMUError, match="'resources' is both a file and a folder"):
         load_fmu_component(bad, "c")
     twice = rebuild(mass_fmu, tmp_path / "twice.fmu", extra=[("documentation/x.txt", b"1"), ("documentation/x.txt", b"2")])
-    with pytest.raises(FMUError, match="appears twice"):
+    with pytest.raises(FMUError, match="'documentation/x.txt' appears twice with different contents"):
         load_fmu_component(twice, "c")
+    # the same size is not enough: the bytes must be the same
+    same_size = rebuild(mass_fmu, tmp_path / "size.fmu", extra=[("documentation/y.txt", b"ab"),
+                                                               ("documentation/y.txt", b"ba")])
+    with pytest.raises(FMUError, match="appears twice with different contents"):
+        load_fmu_component(same_size, "c")
+
+
+def test_an_entry_twice_with_the_same_bytes_is_one_entry(mass_fmu, tmp_path, private_tmp):
+    """As the Modelica Reference FMUs' build writes Roberts.fmu (its layered standard's manifest twice), and as
+    fmpy runs it: here the model description and a resource are each written twice, identically."""
+    with zipfile.ZipFile(mass_fmu) as zf:
+        xml = zf.read("modelDescription.xml")
+    manifest = b"<fmiLayeredStandardManifest/>"
+    twice = rebuild(mass_fmu, tmp_path / "twice.fmu", extra=[("modelDescription.xml", xml),
+                                                             ("extra/org.example/manifest.xml", manifest),
+                                                             ("extra/org.example/manifest.xml", manifest)])
+    with zipfile.ZipFile(twice) as zf:
+        names = [i.filename for i in zf.infolist()]
+    assert names.count("modelDescription.xml") == 2 and names.count("extra/org.example/manifest.xml") == 2
+    c = load_fmu_component(twice, "c")
+    try:
+        c.setup(0.0)
+        c.set_inputs({"F": [0.0]})
+        c.do_step(0.0, 1e-3)
+        assert c.time == 1e-3
+    finally:
+        c.terminate()
+    assert list(private_tmp.iterdir()) == []
+    folder = safezip.safe_extract(twice)
+    try:
+        assert (folder / "extra/org.example/manifest.xml").read_bytes() == manifest
+    finally:
+        import shutil
+
+        shutil.rmtree(folder)
 
 
 def test_fmi_1_0(mass_fmu, tmp_path):

@@ -6,6 +6,7 @@ import pytest
 
 import rotorcosim
 from rotorcosim.cases.blade_loss.figures import _absolute_time, _panels, figures, is_paper_case, tm_blocks, to_spans
+from rotorcosim.master.run.outputs import FIGURE_DPI
 
 W = 16000 * 2 * np.pi / 60  # rad/s
 
@@ -67,7 +68,7 @@ def test_figures_are_written_with_one_or_two_time_panels(tmp_path, two_tm, width
     assert names == ["fig09_response_bearing0.png", "fig10_response_bearing5.png", "fig11_transmissibility.png",
                      "fig12_contact_stress.png", "fig13_temperatures.png", "fig14_temperatures.png"]
     img = plt.imread(tmp_path / names[0])
-    assert img.shape[1] == pytest.approx(width * 110, abs=2)  # Fig. 9: time panels + the orbit, 110 dpi
+    assert img.shape[1] == pytest.approx(width * FIGURE_DPI, abs=2)  # Fig. 9: time panels + the orbit
 
 
 def test_paper_figure_numbers_only_on_the_papers_cases(tmp_path):

@@ -182,9 +182,9 @@ def test_compare_makes_no_folder_before_its_input_is_checked(tmp_path, capsys, a
 
 
 @pytest.mark.parametrize("text, message", [
-    ("", "missing table or key 'power_turbine'"),
-    ('[power_turbine]\nz_mm = "abc"\n[gas_generator]\nz_mm = [1]\n[casing]\n', "could not convert string to float"),
-    ("[power_turbine]\nz_mm = [1, 2]\n", "missing table or key 'gas_generator'"),
+    ("", "missing table or key 'spool'"),
+    ('[spool.pt]\nz_mm = "abc"\n[spool.gg]\nz_mm = [1]\n[casing]\n', "could not convert string to float"),
+    ("[spool.pt]\nz_mm = [1, 2]\n", "spool.pt names material 'rotor', which [material] does not define"),
 ])
 def test_rotor_model_file_missing_or_wrong_keys(tmp_path, capsys, text, message):
     """A model file (critical-speeds --model-file, rotor.model_file) lacking a table or holding a wrong value:
@@ -274,8 +274,8 @@ def _engine(old: str, new: str) -> str:
     # each was a traceback-free but wrong outcome: warnings and "array must not contain infs or NaNs" (no key),
     # or "unexpected ZeroDivisionError"
     ("nu = 0.3\n", "nu = 1e300\n", "material.rotor.nu must be a Poisson's ratio within (-1, 0.5), got 1e+300"),
-    ("spin_rpm = 16000.0", "spin_rpm = 0", "power_turbine.spin_rpm must be a finite, non-zero speed in rev/min"),
-    ("spin_rpm = 16000.0", "spin_rpm = nan", "power_turbine.spin_rpm must be a finite, non-zero speed"),
+    ("speed_rpm = 16000.0", "speed_rpm = 0", "spool.pt.speed_rpm must be a finite, non-zero speed in rev/min"),
+    ("speed_rpm = 16000.0", "speed_rpm = nan", "spool.pt.speed_rpm must be a finite, non-zero speed"),
     ("radius_mm = 300.0", "radius_mm = 1e300", "the assembled mass matrix is not finite"),
     ("E = 208e9", "E = 0", "material.rotor.E must be a finite number > 0, got 0"),
 ])

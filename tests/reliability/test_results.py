@@ -55,8 +55,8 @@ def test_lock_stops_a_second_concurrent_run(tmp_path):
     with RunFolder(out):
         with pytest.raises(OutputFolderError, match=r"another run is writing into this folder \(process \d+\)"):
             execute(toy(), out, duration=0.5, figures=False)
-    # released: the folder holds only the lock file, which does not count as results
-    assert [p.name for p in out.iterdir()] == [LOCK]
+    # released: the lock file goes with the lock, and the refused run wrote nothing
+    assert [p.name for p in out.iterdir()] == []
     assert execute(toy(), out, duration=0.5, figures=False)["status"] == "complete"
 
 
@@ -184,16 +184,14 @@ def test_disk_nearly_full_is_refused_before_hdf5_breaks(tmp_path, monkeypatch):
 
 
 def test_a_run_that_failed_before_its_first_step_does_not_block_its_folder(tmp_path):
-    """A bad parameter found when the components are set up leaves a failed summary (no results); the corrected
-    run takes the same --out without --overwrite, while a folder with results is still refused."""
+    """A bad parameter found when the components are set up leaves no folder (nothing was computed); the
+    corrected run takes the same --out, while a folder with results is still refused."""
     out = tmp_path / "o"
     sc = toy()
     sc.components["node"].parameters["C"] = -10.0
     with pytest.raises(Exception, match="C"):
         execute(sc, out, duration=0.01, figures=False)
-    s = summary(out)
-    assert s["status"] == "failed" and s["t_end_s"] == 0.0 and sorted(p.name for p in out.iterdir()
-                                                                       if p.name != LOCK) == ["summary.json"]
+    assert not out.exists()
     execute(toy(), out, duration=0.01, figures=False)
     assert summary(out)["status"] == "complete"
     with pytest.raises(OutputFolderError, match="not empty"):

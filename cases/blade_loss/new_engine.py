@@ -1,0 +1,49 @@
+"""``rotorcosim new-engine DIR``: a small, valid, commented engine of your own and a blade-loss scenario of it.
+
+Writes ``DIR/engine.toml`` (a textbook single-spool rotor on two ball bearings with squeeze film dampers on
+pedestals, a turbine disk overhung outboard of bearing 0 with the rub ring and the lost blade there, a
+compressor disk between the bearings; docs/reference/engine-format.md) and ``DIR/blade_loss.toml`` (the shipped
+blade-loss system with that rotor), which runs as it is::
+
+    rotorcosim new-engine my_engine
+    rotorcosim check-engine my_engine/engine.toml
+    rotorcosim run my_engine/blade_loss.toml --duration 2 --out out
+"""
+from __future__ import annotations
+
+from pathlib import Path
+
+#: the templates, package data of this case
+TEMPLATES = {"engine.toml": Path(__file__).with_name("data") / "textbook_engine.toml",
+             "blade_loss.toml": Path(__file__).with_name("data") / "textbook_blade_loss.toml"}
+
+
+def new_engine(folder: str | Path) -> list[Path]:
+    """Write the template engine and scenario into ``folder`` (created; it must not hold either file yet);
+    returns the files written."""
+    d = Path(folder)
+    if d.exists() and not d.is_dir():
+        raise NotADirectoryError(f"new-engine {folder}: exists and is not a folder")
+    there = [name for name in TEMPLATES if (d / name).exists()]
+    if there:
+        raise FileExistsError(f"new-engine {folder}: {', '.join(there)} already there; choose an empty folder")
+    d.mkdir(parents=True, exist_ok=True)
+    out = []
+    for name, src in TEMPLATES.items():
+        (d / name).write_text(src.read_text())
+        out.append(d / name)
+    return out
+
+
+def add_arguments(parser):
+    """The options of ``rotorcosim new-engine`` on ``parser``."""
+    parser.add_argument("folder", metavar="DIR", help="folder to write engine.toml and blade_loss.toml into "
+                                                      "(created if absent)")
+
+
+def run(args) -> int:
+    """Run the command ``args`` (parsed); returns the exit status."""
+    files = new_engine(args.folder)
+    print("written: " + ", ".join(str(f) for f in files))
+    print(f"next: rotorcosim check-engine {files[0]} && rotorcosim run {files[1]} --duration 2 --out out")
+    return 0

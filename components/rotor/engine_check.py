@@ -1,0 +1,262 @@
+"""Every problem of an engine file, by name, before anything is assembled; and the engine's figures of merit.
+
+:func:`problems` walks the whole file (docs/reference/engine-format.md) and returns one line per problem found
+(a node out of range, stations that overlap, a support or attachment on a node or hub that does not exist, a
+negative, zero or NaN dimension, a missing key...), so a user fixes them all in one pass instead of one per
+run. :func:`report` gives what ``rotorcosim check-engine`` prints of a valid file: nodes per spool, masses,
+spool polar inertias.
+
+Example::
+
+    from rotorcosim.components.rotor import engine_check, model
+    data, _ = model.load_data("engine.toml")
+    for line in engine_check.problems(data):
+        print(line)
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from . import model as fem
+
+RESERVED = ("hub", "ground")
+
+
+def _num(value) -> bool:
+    return isinstance(value, (int, float)) and not isinstance(value, bool)
+
+
+class _Problems:
+    def __init__(self, data: dict):
+        self.data = data
+        self.out: list[str] = []
+
+    def add(self, where: str, what: str) -> None:
+        self.out.append(f"{where}: {what}")
+
+    def value(self, where: str, value, *, positive=True, allow_knob=False):
+        """A finite number > 0 (>= 0 with positive=False), or a [calibration] knob's name; None if not."""
+        if allow_knob and isinstance(value, str):
+            cal = self.data.get("calibration", {})
+            if value not in cal:
+                self.add(where, f"names {value!r}, which [calibration] does not define")
+                return None
+            value = cal[value]
+        if not _num(value) or not math.isfinite(value) or (value <= 0 if positive else value < 0):
+            self.add(where, f"must be a finite number {'> 0' if positive else '>= 0'}, got {value!r}")
+            return None
+        return float(value)
+
+
+def problems(data: dict) -> list[str]:
+    """One line per problem of the engine description ``data`` (empty: none found)."""
+    p = _Problems(data)
+    fmt = data.get("engine", {}).get("format")
+    if fmt is None:
+        p.add("[engine]", f"format missing (this version reads format = {fem.FORMAT})")
+    elif fmt != fem.FORMAT:
+        p.add("[engine] format", f"{fmt!r}: this version reads format {fem.FORMAT}")
+    mats = data.get("material", {})
+    for name, m in mats.items():
+        if not isinstance(m, dict):
+            p.add(f"material.{name}", "must be a table (E, rho, nu or G)")
+            continue
+        for k in ("E", "rho"):
+            if k not in m:
+                p.add(f"material.{name}", f"{k} missing")
+            else:
+                p.value(f"material.{name}.{k}", m[k])
+        if "G" in m:
+            p.value(f"material.{name}.G", m["G"])
+        elif "nu" not in m:
+            p.add(f"material.{name}", "nu (or G) missing")
+        elif not (_num(m["nu"]) and -1.0 < m["nu"] < 0.5):
+            p.add(f"material.{name}.nu", f"must be a Poisson's ratio within (-1, 0.5), got {m['nu']!r}")
+    dmp = data.get("damping")
+    if not isinstance(dmp, dict):
+        p.add("[damping]", "missing (zeta, f1_Hz, f2_Hz; zeta = 0 for none)")
+    else:
+        for k, pos in (("zeta", False), ("f1_Hz", True), ("f2_Hz", True)):
+            p.value(f"damping.{k}", dmp.get(k), positive=pos)
+
+    spools = data.get("spool")
+    nodes: dict[str, int] = {}
+    if not isinstance(spools, dict) or not spools:
+        p.add("[spool.NAME]", "no spool (one table per shaft)")
+        spools = {}
+    elif len(spools) > 2:
+        p.add("[spool]", f"{len(spools)} spools; the rotor component carries one or two")
+    for s, r in spools.items():
+        w = f"spool.{s}"
+        if s in RESERVED:
+            p.add(w, f"{s!r} is a reserved word of node references; name the spool otherwise")
+        if not isinstance(r, dict):
+            p.add(w, "must be a table")
+            continue
+        if r.get("material", "rotor") not in mats:
+            p.add(f"{w}.material", f"{r.get('material', 'rotor')!r} is not a [material] table")
+        p.value(f"{w}.speed_rpm", r.get("speed_rpm"))
+        z = r.get("z_mm")
+        if not isinstance(z, list) or len(z) < 2:
+            p.add(f"{w}.z_mm", "needs a list of at least 2 stations (mm)")
+            continue
+        bad = [i for i, v in enumerate(z) if not (_num(v) and math.isfinite(v))]
+        if bad:
+            p.add(f"{w}.z_mm[{bad[0]}]", f"must be a finite number, got {z[bad[0]]!r}")
+            continue
+        nodes[s] = len(z)
+        for i in range(len(z) - 1):
+            if not z[i + 1] > z[i]:
+                p.add(f"{w}.z_mm", f"stations overlap: node {i + 1} at {z[i + 1]} mm is not after node {i} at "
+                                   f"{z[i]} mm")
+        ne = len(z) - 1
+        d_out, d_in = r.get("d_out_mm"), r.get("d_in_mm")
+        for key, d, pos in (("d_out_mm", d_out, True), ("d_in_mm", d_in, False)):
+            if not isinstance(d, list) or len(d) != ne:
+                p.add(f"{w}.{key}", f"needs {ne} values (one per element between the {len(z)} stations), got "
+                                    f"{len(d) if isinstance(d, list) else d!r}")
+                continue
+            for e, v in enumerate(d):
+                p.value(f"{w}.{key}[{e}]", v, positive=pos, allow_knob=True)
+        if isinstance(d_out, list) and isinstance(d_in, list) and len(d_out) == len(d_in) == ne:
+            for e, (a, b) in enumerate(zip(d_out, d_in)):
+                if _num(a) and _num(b) and math.isfinite(a) and math.isfinite(b) and a > 0 and not b < a:
+                    p.add(f"{w} element {e}", f"inner diameter {b} mm is not smaller than the outer {a} mm")
+        for key in ("drive_node", "axial_node"):
+            if key in r and not _node_ok(r[key], len(z)):
+                p.add(f"{w}.{key}", f"node {r[key]!r} out of range 0-{len(z) - 1}")
+        if "drive_node" not in r:
+            p.add(w, "drive_node missing (the node whose torsion is held: the spool turns at constant speed)")
+        for i, dk in enumerate(r.get("disks", [])):
+            dw = f"{w}.disks[{i}] ({dk.get('name', '')!r})" if isinstance(dk, dict) else f"{w}.disks[{i}]"
+            if not isinstance(dk, dict):
+                p.add(dw, "must be a table {node, mass, Ip, Id}")
+                continue
+            if not _node_ok(dk.get("node"), len(z)):
+                p.add(dw, f"node {dk.get('node')!r} out of range 0-{len(z) - 1}")
+            p.value(f"{dw}.mass", dk.get("mass"), positive=False, allow_knob=True)
+            if isinstance(dk.get("mass"), str):
+                p.value(f"{dw}.r_gyration_mm", dk.get("r_gyration_mm"))
+            else:
+                for k in ("Ip", "Id"):
+                    p.value(f"{dw}.{k}", dk.get(k), positive=False)
+
+    cas = data.get("casing")
+    hubs: list[str] = []
+    if cas is not None:
+        if not isinstance(cas, dict):
+            p.add("[casing]", "must be a table")
+        else:
+            rings = cas.get("ring_z_mm", [])
+            for k in ("radius_mm", "thickness_mm"):
+                p.value(f"casing.{k}", cas.get(k))
+            if cas.get("material", "casing") not in mats:
+                p.add("casing.material", f"{cas.get('material', 'casing')!r} is not a [material] table")
+            if not (isinstance(rings, list) and len(rings) >= 2 and all(_num(v) for v in rings)
+                    and all(b > a for a, b in zip(rings, rings[1:]))):
+                p.add("casing.ring_z_mm", "needs >= 2 strictly increasing positions (mm)")
+                rings = []
+            nc = cas.get("n_circ")
+            if not (isinstance(nc, int) and nc >= 4):
+                p.add("casing.n_circ", f"must be an integer >= 4, got {nc!r}")
+                nc = 0
+            for h, hv in cas.get("hubs", {}).items():
+                hubs.append(h)
+                if rings and not any(abs(float(hv.get("z_mm", math.nan)) - r) < 1e-9 for r in rings):
+                    p.add(f"casing.hubs.{h}", f"z = {hv.get('z_mm')!r} mm is not on a casing ring")
+                p.value(f"casing.hubs.{h}.mass", hv.get("mass"))
+            for i, mt in enumerate(cas.get("mounts", [])):
+                ok = (isinstance(mt.get("ring"), int) and 0 <= mt["ring"] < len(rings)
+                      and isinstance(mt.get("node"), int) and 0 <= mt["node"] < (nc or 1)
+                      and mt.get("dir") in (0, 1, 2))
+                if not ok:
+                    p.add(f"casing.mounts[{i}]", f"ring/node/dir out of range: {mt}")
+                p.value(f"casing.mounts[{i}].k", mt.get("k"), allow_knob=True)
+    for h, pv in data.get("pedestal", {}).items():
+        if h in hubs:
+            p.add(f"pedestal.{h}", "is also a casing hub")
+        hubs.append(h)
+        p.value(f"pedestal.{h}.mass", pv.get("mass"), positive=False)
+        for k in ("kxx", "kyy"):
+            p.value(f"pedestal.{h}.{k if k in pv else 'k'}", pv.get(k, pv.get("k")), allow_knob=True)
+
+    def ref(where, r, *, hub_ok=True, ground_ok=False):
+        if ground_ok and r == "ground":
+            return
+        if not (isinstance(r, list) and len(r) == 2):
+            forms = "[spool, node]" + (', ["hub", name]' if hub_ok else "") + (' or "ground"' if ground_ok else "")
+            p.add(where, f"must be {forms}, got {r!r}")
+            return
+        body, n = r
+        if body == "hub" and hub_ok:
+            if n not in hubs:
+                p.add(where, f"hub {n!r} does not exist (hubs: {', '.join(hubs) or 'none'})")
+        elif body not in nodes:
+            p.add(where, f"spool {body!r} does not exist (spools: {', '.join(spools) or 'none'})")
+        elif not _node_ok(n, nodes[body]):
+            p.add(where, f"node {n!r} does not exist on spool {body!r} (nodes 0-{nodes[body] - 1})")
+
+    for i, s in enumerate(data.get("support", [])):
+        w = f"support[{i}] ({s.get('name', '')!r})"
+        ref(f"{w}.a", s.get("a"), hub_ok=False)
+        ref(f"{w}.b", s.get("b"), ground_ok=True)
+        for k in ("kxx", "kyy"):
+            p.value(f"{w}.{k if k in s else 'k'}", s.get(k, s.get("k")))
+        for k in ("cxx", "cyy"):
+            p.value(f"{w}.{k if k in s else 'c'}", s.get(k, s.get("c", 0.0)), positive=False)
+        for k in ("kxy", "kyx", "cxy", "cyx"):
+            if s.get(k, 0.0) != 0.0:
+                p.add(f"{w}.{k}", "cross-coupled coefficients are not carried (format 1)")
+    attach = data.get("attach", {})
+    known = {e for e, _ in fem.ATTACH.values()} | {"oil_temperature_C"}
+    for key, a in attach.items():
+        if key not in known:
+            p.add(f"attach.{key}", f"not an attachment point (known: {', '.join(sorted(known))})")
+            continue
+        if key == "oil_temperature_C":
+            continue
+        ref(f"attach.{key}.node", a.get("node") if isinstance(a, dict) else a, hub_ok=False)
+        if key.startswith("bearing"):
+            h = a.get("housing") if isinstance(a, dict) else None
+            if h not in hubs:
+                p.add(f"attach.{key}.housing", f"hub {h!r} does not exist (hubs: {', '.join(hubs) or 'none'})")
+    return p.out
+
+
+def _node_ok(n, count: int) -> bool:
+    return isinstance(n, int) and not isinstance(n, bool) and 0 <= n < count
+
+
+def report(full: fem.FullModel) -> dict:
+    """Nodes, masses [kg] and polar inertias [kg m^2] of an assembled engine (``check-engine``)."""
+    data = full.data
+    out = {"spools": {}, "hubs": list(full.info.get("hubs", []))}
+    total = 0.0
+    for s, r in data["spool"].items():
+        z = np.asarray(r["z_mm"], float) * 1e-3
+        d_out, d_in = fem.rotor_diameters(data, s)
+        rho = float(data["material"][r.get("material", "rotor")]["rho"])
+        L = np.diff(z)
+        do, di = np.asarray(d_out), np.asarray(d_in)
+        shaft_m = float(np.sum(rho * math.pi / 4 * (do ** 2 - di ** 2) * L))
+        shaft_ip = float(np.sum(rho * math.pi / 32 * (do ** 4 - di ** 4) * L))
+        disks = [fem.disk_inertia(data, dk) for dk in r.get("disks", [])]
+        m = shaft_m + sum(d[0] for d in disks)
+        total += m
+        out["spools"][s] = {
+            "name": r.get("name", s), "nodes": len(z), "length_mm": float((z[-1] - z[0]) * 1e3),
+            "speed_rpm": float(r["speed_rpm"]), "mass_kg": m, "shaft_mass_kg": shaft_m,
+            "disk_mass_kg": sum(d[0] for d in disks), "polar_inertia_kgm2": shaft_ip + sum(d[1] for d in disks)}
+    hub_m = 0.0
+    for hv in data.get("casing", {}).get("hubs", {}).values() if data.get("casing") else ():
+        hub_m += float(hv["mass"])
+    for pv in data.get("pedestal", {}).values():
+        hub_m += float(pv["mass"])
+    out["hub_mass_kg"] = hub_m
+    out["casing_mass_kg"] = float(full.info.get("casing_mass_kg", 0.0))
+    out["rotor_mass_kg"] = total
+    out["dof"] = full.n
+    out["attach"] = {k: v for k, v in data.get("attach", {}).items()}
+    return out

@@ -1,0 +1,73 @@
+"""``rotorcosim import-ross ROTOR.toml --out ENGINE.toml``: a rotor saved by ROSS (``Rotor.save``) as an engine
+file of rotorcosim's format (docs/reference/engine-format.md); no ROSS needed.
+
+``--attach 0=NODE,5=NODE`` makes the ROSS bearings at those nodes the co-simulated ball bearings #0 and #5
+(their linear coefficients become the housings' pedestals), so that ``blade_loss.toml`` scenarios can run the
+rotor; without it the file has the ROSS bearings as linear supports (critical speeds, check-engine, to_ross).
+"""
+from __future__ import annotations
+
+from pathlib import Path
+
+from .engine_toml import write
+from .ross_import import DEFAULT_HUB_MASS_KG, DEFAULT_SPEED_RPM, from_ross
+
+
+def _attach(text: str | None) -> dict:
+    if not text:
+        return {}
+    out = {}
+    for item in text.split(","):
+        key, _, node = item.partition("=")
+        key = key.strip()
+        if key not in ("0", "5") or not node.strip().lstrip("-").isdigit():
+            raise ValueError(f"--attach {text!r}: expected 0=NODE,5=NODE (ROSS node numbers of two bearings)")
+        out[f"bearing{key}"] = int(node)
+    return out
+
+
+def import_ross(rotor_file: str, out: str, *, speed_rpm: float | None = None, coefficients_at: float | None = None,
+                attach: str | None = None, unbalance_node: int | None = None,
+                hub_mass_kg: float = DEFAULT_HUB_MASS_KG) -> dict:
+    """Read ``rotor_file`` (ROSS TOML), write the engine file ``out`` (not overwritten; written whole or not at
+    all) and return the engine description."""
+    o = Path(out)
+    if o.exists():
+        raise FileExistsError(f"--out {out}: already exists; choose a new file name")
+    if o.parent != Path("") and not o.parent.is_dir():
+        raise FileNotFoundError(f"--out {out}: the folder {o.parent} does not exist")
+    engine = from_ross(rotor_file, speed_rpm=speed_rpm, speed_rpm_coefficients=coefficients_at,
+                       attach=_attach(attach), unbalance_node=unbalance_node, hub_mass_kg=hub_mass_kg)
+    write(engine, o, header=f"Imported by rotorcosim import-ross from {Path(rotor_file).name}.\n"
+                            "The engine format: docs/reference/engine-format.md. Check it: rotorcosim check-engine "
+                            f"{o.name}")
+    return engine
+
+
+def add_arguments(parser):
+    """The options of ``rotorcosim import-ross`` on ``parser``."""
+    parser.add_argument("rotor", metavar="ROTOR.toml", help="a rotor file written by ROSS's Rotor.save")
+    parser.add_argument("--out", required=True, metavar="ENGINE.toml", help="the engine file to write (new)")
+    parser.add_argument("--speed", type=float, default=None, metavar="RPM",
+                        help=f"the spools' running speed (ROSS files carry none; default {DEFAULT_SPEED_RPM:g})")
+    parser.add_argument("--coefficients-at", type=float, default=None, metavar="RPM",
+                        help="take speed-dependent bearing coefficients at this speed (default: such a bearing "
+                             "is an error)")
+    parser.add_argument("--attach", default=None, metavar="0=NODE,5=NODE",
+                        help="the ROSS nodes of the two bearings to co-simulate as ball bearings #0 and #5")
+    parser.add_argument("--unbalance-node", type=int, default=None, metavar="NODE",
+                        help="ROSS node of the blade loss (with --attach; default: the first disk's)")
+    parser.add_argument("--hub-mass", type=float, default=DEFAULT_HUB_MASS_KG, metavar="KG",
+                        help=f"housing mass of each co-simulated bearing (default {DEFAULT_HUB_MASS_KG:g})")
+
+
+def run(args) -> int:
+    """Run the command ``args`` (parsed); returns the exit status."""
+    engine = import_ross(args.rotor, args.out, speed_rpm=args.speed, coefficients_at=args.coefficients_at,
+                         attach=args.attach, unbalance_node=args.unbalance_node, hub_mass_kg=args.hub_mass)
+    spools = ", ".join(f"{k} ({len(v['z_mm'])} nodes, {len(v['disks'])} disks)" for k, v in engine["spool"].items())
+    print(f"spools: {spools}; supports: {len(engine.get('support', []))}; pedestals: "
+          f"{len(engine.get('pedestal', {}))}; attached: "
+          f"{', '.join(k for k in engine.get('attach', {}) if k != 'oil_temperature_C') or 'nothing'}")
+    print(f"written: {args.out}")
+    return 0

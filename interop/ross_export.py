@@ -1,0 +1,143 @@
+"""An engine of rotorcosim's format as a ``ross.Rotor`` (needs ROSS: ``pip install "rotorcosim[ross]"``).
+
+What goes over: each shaft section as a uniform ``ShaftElement`` (the material's E, G, rho; the [damping]
+table's Rayleigh coefficients on every element when ``damped``), disks as ``DiskElement``, linear supports as
+``BearingElement`` (to ground, or through ``n_link`` to a pedestal's node, which carries the pedestal's mass as a
+``PointMass`` and its springs to ground). The co-simulated bearings the file attaches are linearised as
+``rotorcosim critical-speeds`` does (the scenario's ball contacts at the preloaded rest -> outer race + journal
+body -> O-ring + film at the stated oil temperature -> housing, :mod:`rotorcosim.cases.blade_loss.linear_engine`):
+contact bearing from the shaft node to a journal node (``PointMass``), O-ring + film from it to the housing's node.
+
+Two spools become a ``ross.CoAxialRotor`` (nodes numbered shaft after shaft; ROSS turns both at one speed, so an
+engine whose spools turn at different speeds gets ROSS's gyroscopic terms at the first spool's). Not carried (an
+error naming it): a casing shell (ROSS has no solid elements). The Rayleigh damping of
+disks and hub masses (rotorcosim damps M as a whole) is left out: ROSS's coefficients act per shaft element.
+
+Example::
+
+    rotor = to_ross("my_engine/engine.toml", scenario="my_engine/blade_loss.toml")
+    rotor.run_campbell(np.linspace(0, 2000, 41)).plot()
+"""
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+from rotorcosim.components.rotor import engine_check
+from rotorcosim.components.rotor import model as fem
+
+
+def _load(engine) -> tuple[dict, str]:
+    if isinstance(engine, (str, Path)):
+        data, _ = fem.load_data(engine)
+        return data, str(engine)
+    return engine, "engine description"
+
+
+def linear_supports(data: dict, scenario=None) -> dict | None:
+    """The attached co-simulated bearings linearised (None: the engine attaches none)."""
+    attach = data.get("attach", {})
+    if not any(k in attach for k in ("bearing0", "bearing5")):
+        return None
+    from rotorcosim.cases.blade_loss import linear_engine
+    from rotorcosim.master.scenario.build import load_scenario
+
+    sc = load_scenario(scenario) if isinstance(scenario, (str, Path)) else scenario
+    return linear_engine.supports(sc, data=data)
+
+
+def to_ross(engine, *, scenario=None, damped: bool = True):
+    """A ``ross.Rotor`` of the engine (a file path or an engine description); ``scenario``: the scenario (path
+    or Scenario) whose components linearise the attached bearings (None: the shipped blade-loss scenario);
+    ``damped``: False leaves every damping out (undamped critical speeds, as rotorcosim reports them)."""
+    try:
+        import ross as rs
+    except ImportError:
+        raise ImportError("to_ross needs ROSS: pip install \"rotorcosim[ross]\"") from None
+    data, where = _load(engine)
+    found = engine_check.problems(data)
+    if found:
+        raise ValueError(f"{where}: {found[0]}" + (f" (and {len(found) - 1} more: rotorcosim check-engine)"
+                                                   if len(found) > 1 else ""))
+    if data.get("casing"):
+        raise ValueError(f"{where}: a casing shell (8-node solids) has no ROSS element; to_ross carries rotors, "
+                         "supports and pedestals")
+    spools = data["spool"]
+    alpha = beta = 0.0
+    if damped:
+        d = data["damping"]
+        w1, w2 = 2 * math.pi * d["f1_Hz"], 2 * math.pi * d["f2_Hz"]
+        alpha, beta = 2 * d["zeta"] * w1 * w2 / (w1 + w2), 2 * d["zeta"] / (w1 + w2)
+    first: dict[str, int] = {}             # spool -> its first node's number in ROSS (spools numbered on)
+    shafts = []
+    n_next = 0
+    for sname, sp in spools.items():
+        mat = data["material"][sp.get("material", "rotor")]
+        G = mat["G"] if "G" in mat else mat["E"] / (2.0 * (1.0 + mat["nu"]))
+        material = rs.Material(name=sp.get("material", "rotor"), rho=mat["rho"], E=mat["E"], G_s=G)
+        d_out, d_in = fem.rotor_diameters(data, sname)
+        z = [v * 1e-3 for v in sp["z_mm"]]
+        first[sname] = n_next
+        shafts.append([rs.ShaftElement(L=z[e + 1] - z[e], idl=d_in[e], odl=d_out[e], material=material,
+                                       alpha=alpha, beta=beta, tag=f"{sname} section {e}")
+                       for e in range(len(z) - 1)])
+        n_next += len(z)
+
+    def gnode(ref) -> int:
+        return first[ref[0]] + int(ref[1])
+
+    disks = []
+    for sname, sp in spools.items():
+        for dk in sp.get("disks", []):
+            m, Ip, Id = fem.disk_inertia(data, dk)
+            disks.append(rs.DiskElement(n=gnode([sname, dk["node"]]), m=m, Id=Id, Ip=Ip,
+                                        tag=str(dk.get("name", "disk"))))
+    bearings, masses = [], []
+    hub_node: dict[str, int] = {}
+
+    def c(v):
+        return float(v) if damped else 0.0
+
+    def hub(h):
+        nonlocal n_next
+        if h not in hub_node:
+            pv = data["pedestal"][h]
+            hub_node[h] = n = n_next
+            n_next += 1
+            if pv["mass"] > 0:
+                masses.append(rs.PointMass(n=n, m=float(pv["mass"]), tag=f"hub {h}"))
+            kx, ky = (fem._knob(data, pv.get(k, pv.get("k"))) for k in ("kxx", "kyy"))
+            cx, cy = (pv.get(k, pv.get("c", 0.0)) for k in ("cxx", "cyy"))
+            bearings.append(rs.BearingElement(n=n, kxx=kx, kyy=ky, cxx=c(cx), cyy=c(cy), tag=f"pedestal {h}"))
+        return hub_node[h]
+
+    for s in data.get("support", []):
+        a, b = s["a"], s["b"]
+        kx, ky = (s.get(k, s.get("k")) for k in ("kxx", "kyy"))
+        cx, cy = (s.get(k, s.get("c", 0.0)) for k in ("cxx", "cyy"))
+        if b == "ground":
+            link = None
+        elif b[0] == "hub":
+            link = hub(b[1])
+        else:
+            link = gnode(b)
+        bearings.append(rs.BearingElement(n=gnode(a), n_link=link, kxx=kx, kyy=ky, cxx=c(cx), cyy=c(cy),
+                                          kzz=s.get("k_axial", 0.0), tag=str(s.get("name", "support"))))
+    sup = linear_supports(data, scenario)
+    for key, v in (sup or {}).items():
+        node = v["node"]
+        j = n_next
+        n_next += 1
+        h = hub(v["hub"])
+        masses.append(rs.PointMass(n=j, m=v["m_journal"], tag=f"journal {key}"))
+        bearings.append(rs.BearingElement(n=gnode(node), n_link=j, kxx=v["k_contact"], cxx=0.0,
+                                          tag=f"ball contacts {key}"))
+        bearings.append(rs.BearingElement(n=j, n_link=h, kxx=v["k_spring"], cxx=c(v["c_film"]),
+                                          tag=f"O-ring + film {key}"))
+    tag = data.get("engine", {}).get("name", "rotorcosim engine")
+    if len(shafts) == 2:
+        # ROSS numbers a coaxial rotor's nodes shaft after shaft, as above; both shafts turn at one speed there
+        return rs.CoAxialRotor(shafts, disk_elements=disks, bearing_elements=bearings,
+                               point_mass_elements=masses or None, tag=tag)
+    return rs.Rotor(shafts[0], disk_elements=disks, bearing_elements=bearings, point_mass_elements=masses or None,
+                    tag=tag)

@@ -1,0 +1,292 @@
+"""ROSS rotors to rotorcosim's engine format.
+
+:func:`from_ross` takes a ``ross.Rotor`` / ``ross.CoAxialRotor``, or the path of a file written by its
+``Rotor.save`` (read without ROSS, :mod:`.ross_toml`), and returns an engine description (a dict; write it with
+:func:`rotorcosim.interop.write_engine`):
+
+* shaft elements -> spools: a chain of elements whose nodes follow each other is one spool (a coaxial rotor
+  gives two); each element one section (uniform only: a tapered element is an error naming it; several
+  elements between the same two nodes, ROSS's layered sections, too); their materials keep ROSS's E, G_s, rho;
+* disks -> disks (m, Ip, Id);
+* bearings and seals -> linear supports (kxx, kyy, cxx, cyy, kzz as k_axial) to ground, to another spool's node
+  (``n_link``) or to a pedestal (a ROSS node on no shaft, whose point mass and ground bearing make it one);
+  speed-dependent coefficients are an error unless ``speed_rpm_coefficients`` names the speed to take them at
+  (linear interpolation over ROSS's ``frequency``); cross-coupled or mass coefficients are errors;
+* each spool turns at ``speed_rpm`` (ROSS's files carry no operating speed); its torsion and axial motion are
+  held at its first node (ROSS leaves them free: rigid modes that no lateral result depends on);
+* no structural damping ([damping] zeta = 0, as ROSS's shaft elements with alpha = beta = 0; other values are
+  an error).
+
+``attach`` makes two of the ROSS bearings the co-simulated ball bearings ("bearing0", "bearing5"): each such
+bearing's linear coefficients become a pedestal (the housing, ``hub_mass_kg``) on which the ball bearing and
+its squeeze film damper sit; the rub rings go to the same nodes and the unbalance to ``unbalance_node``.
+
+Example::
+
+    engine = from_ross("rotor_example.toml", attach={"bearing0": 0, "bearing5": 6}, unbalance_node=2)
+"""
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+
+from . import ross_toml
+
+#: the speed given to the spools when the caller gives none [rev/min]
+DEFAULT_SPEED_RPM = 10000.0
+#: the housing mass of a co-simulated bearing's pedestal when the caller gives none [kg]
+DEFAULT_HUB_MASS_KG = 3.0
+RPM = np.pi / 30.0
+
+
+class RossImportError(ValueError):
+    """A ROSS rotor that the engine format cannot express; the message names the element."""
+
+
+def _live(rotor) -> dict:
+    """The elements of a live ross.Rotor as :func:`ross_toml.read` gives them."""
+    def arr(b, k):
+        v = getattr(b, k, 0)
+        return [float(x) for x in np.atleast_1d(v)] if v is not None else [0.0]
+
+    out = {"version": "live", "shafts": [], "disks": [], "bearings": [], "point_masses": [],
+           "nodes_pos": [float(x) for x in rotor.nodes_pos]}
+    for e in rotor.shaft_elements:
+        out["shafts"].append({"kind": "ShaftElement", "tag": e.tag, "n": int(e.n), "L": float(e.L),
+                              "idl": float(e.idl), "odl": float(e.odl), "idr": float(e.idr), "odr": float(e.odr),
+                              "alpha": float(getattr(e, "alpha", 0.0)), "beta": float(getattr(e, "beta", 0.0)),
+                              "shear_effects": bool(e.shear_effects), "rotary_inertia": bool(e.rotary_inertia),
+                              "gyroscopic": bool(e.gyroscopic),
+                              "material": {"name": e.material.name, "rho": float(e.material.rho),
+                                           "E": float(e.material.E), "G_s": float(e.material.G_s)}})
+    for d in rotor.disk_elements:
+        out["disks"].append({"kind": "DiskElement", "tag": d.tag, "n": int(d.n), "m": float(d.m),
+                             "Id": float(d.Id), "Ip": float(d.Ip)})
+    for b in rotor.bearing_elements:
+        freq = getattr(b, "frequency", None)
+        row = {"kind": type(b).__name__, "tag": b.tag, "n": int(b.n),
+               "n_link": None if b.n_link is None else int(b.n_link),
+               "frequency": None if freq is None else [float(x) for x in np.atleast_1d(freq)]}
+        for k in ("kxx", "kyy", "kxy", "kyx", "cxx", "cyy", "cxy", "cyx", "kzz", "mxx", "myy", "mxy", "myx"):
+            row[k] = arr(b, k)
+        out["bearings"].append(row)
+    for pm in getattr(rotor, "point_mass_elements", []) or []:
+        out["point_masses"].append({"kind": "PointMass", "tag": pm.tag, "n": int(pm.n), "mx": float(pm.mx),
+                                    "my": float(pm.my)})
+    return out
+
+
+def _coefficient(b: dict, key: str, speed_rpm: float | None) -> float:
+    v = b.get(key, [0.0])
+    v = [float(x) for x in np.atleast_1d(v)] if v is not None else [0.0]
+    if len(v) == 1:
+        return v[0]
+    freq = b.get("frequency")
+    if speed_rpm is None:
+        raise RossImportError(f"ROSS {b['kind']} {b['tag']!r}: {key} depends on speed ({len(v)} values); give the "
+                              "speed to take the coefficients at (--coefficients-at RPM)")
+    if freq is None or len(freq) != len(v):
+        raise RossImportError(f"ROSS {b['kind']} {b['tag']!r}: {key} has {len(v)} values but no matching frequency")
+    return float(np.interp(speed_rpm * RPM, np.asarray(freq, float), np.asarray(v, float)))
+
+
+def from_ross(rotor, *, speed_rpm: float | None = None, speed_rpm_coefficients: float | None = None,
+              attach: dict | None = None, unbalance_node: int | None = None,
+              hub_mass_kg: float = DEFAULT_HUB_MASS_KG, name: str | None = None) -> dict:
+    """The engine description of ``rotor`` (a ``ross.Rotor``, or the path of a ROSS TOML file).
+
+    ``speed_rpm``: the spools' speed (default: the rotor's ``rated_w``, else :data:`DEFAULT_SPEED_RPM`);
+    ``speed_rpm_coefficients``: the speed at which speed-dependent bearing coefficients are taken (None: such a
+    bearing is an error); ``attach``: {"bearing0": ROSS node, "bearing5": ROSS node} of two ROSS bearings to
+    become the co-simulated ball bearings; ``unbalance_node``: the ROSS node of the blade loss (default: the
+    first disk's); ``hub_mass_kg``: the housing mass of each attached bearing's pedestal."""
+    if isinstance(rotor, (str, Path)):
+        el = ross_toml.read(rotor)
+        source = f"ROSS file {Path(rotor).name} (ROSS {el['version']})"
+    else:
+        el = _live(rotor)
+        source = f"ross.{type(rotor).__name__}"
+        if speed_rpm is None and getattr(rotor, "rated_w", None):
+            speed_rpm = float(rotor.rated_w) / RPM
+    speed = float(speed_rpm) if speed_rpm is not None else DEFAULT_SPEED_RPM
+    if not (np.isfinite(speed) and speed > 0):
+        raise RossImportError(f"speed must be a finite number > 0 rev/min, got {speed_rpm!r}")
+
+    # spools: chains of shaft elements
+    shafts = sorted(el["shafts"], key=lambda e: int(e["n"]))
+    seen = set()
+    for e in shafts:
+        n = int(e["n"])
+        if n in seen:
+            raise RossImportError(f"ROSS shaft element {e['tag']!r}: a second element between nodes {n} and "
+                                  f"{n + 1} (a layered section), which the engine format does not carry")
+        seen.add(n)
+        if e.get("idr", e["idl"]) != e["idl"] or e.get("odr", e["odl"]) != e["odl"]:
+            raise RossImportError(f"ROSS shaft element {e['tag']!r} is tapered (odl {e['odl']}, odr {e['odr']}, idl "
+                                  f"{e['idl']}, idr {e['idr']} m); the engine format has uniform sections: split it "
+                                  "into uniform elements in ROSS")
+        if float(e.get("alpha", 0.0)) != 0.0 or float(e.get("beta", 0.0)) != 0.0:
+            raise RossImportError(f"ROSS shaft element {e['tag']!r}: Rayleigh damping alpha/beta per element is not "
+                                  "carried (engine format: one [damping] for the structure)")
+        for flag in ("shear_effects", "rotary_inertia", "gyroscopic"):
+            if e.get(flag, True) is False:
+                raise RossImportError(f"ROSS shaft element {e['tag']!r}: {flag} = false is not carried (rotorcosim's "
+                                      "elements are Timoshenko beams with rotary inertia and gyroscopic terms)")
+    chains: list[list[dict]] = []
+    for e in shafts:
+        if chains and int(chains[-1][-1]["n"]) + 1 == int(e["n"]):
+            chains[-1].append(e)
+        else:
+            chains.append([e])
+    if len(chains) > 2:
+        raise RossImportError(f"ROSS rotor with {len(chains)} shafts; the engine format carries one or two spools")
+    names = ["shaft"] if len(chains) == 1 else ["inner", "outer"]
+    where: dict[int, tuple[str, int]] = {}       # ROSS node -> (spool, local node)
+    materials: dict[tuple, str] = {}
+    engine: dict = {"engine": {"format": 1, "name": name or f"imported from {source}",
+                               "source": source},
+                    "material": {}, "damping": {"zeta": 0.0, "f1_Hz": 1.0, "f2_Hz": 2.0}, "spool": {}}
+    pos = el.get("nodes_pos")
+    for s, chain in zip(names, chains):
+        first = int(chain[0]["n"])
+        z0 = float(pos[first]) if pos else 0.0
+        z = [z0]
+        for e in chain:
+            z.append(z[-1] + float(e["L"]))
+        for k in range(len(chain) + 1):
+            where[first + k] = (s, k)
+        mats = []
+        for e in chain:
+            m = e["material"]
+            key = (float(m["E"]), float(m["G_s"]), float(m["rho"]))
+            if key not in materials:
+                label = "".join(c if c.isalnum() else "_" for c in str(m.get("name", "material"))) or "material"
+                if label in engine["material"]:
+                    label = f"{label}_{len(materials)}"
+                materials[key] = label
+                engine["material"][label] = {"E": key[0], "G": key[1], "rho": key[2]}
+            mats.append(materials[key])
+        if len(set(mats)) > 1:
+            raise RossImportError(f"ROSS shaft {s}: elements of {len(set(mats))} materials; the engine format has "
+                                  "one material per spool")
+        engine["spool"][s] = {"name": s, "speed_rpm": speed, "material": mats[0],
+                              "z_mm": [v * 1e3 for v in z],
+                              "d_out_mm": [float(e["odl"]) * 1e3 for e in chain],
+                              "d_in_mm": [float(e["idl"]) * 1e3 for e in chain],
+                              "drive_node": 0, "axial_node": 0, "disks": []}
+
+    def node(n, what):
+        if n not in where:
+            raise RossImportError(f"ROSS {what}: node {n} is on no shaft")
+        return list(where[n])
+
+    for d in el["disks"]:
+        s, k = node(int(d["n"]), f"disk {d['tag']!r}")
+        engine["spool"][s]["disks"].append({"node": k, "name": str(d["tag"]), "mass": float(d["m"]),
+                                            "Ip": float(d["Ip"]), "Id": float(d["Id"])})
+
+    # extra nodes (on no shaft): pedestals, from their point masses and their bearings to ground
+    pedestals: dict[int, dict] = {}
+    for pm in el["point_masses"]:
+        n = int(pm["n"])
+        if n in where:
+            raise RossImportError(f"ROSS point mass {pm['tag']!r} on shaft node {n}: not carried (a disk with Ip = "
+                                  "Id = 0 is)")
+        mx = float(pm.get("mx", pm.get("m", 0.0)) or 0.0)
+        my = float(pm.get("my", pm.get("m", 0.0)) or 0.0)
+        if mx != my:
+            raise RossImportError(f"ROSS point mass {pm['tag']!r}: mx != my is not carried")
+        pedestals.setdefault(n, {"mass": 0.0})["mass"] += mx
+    supports = []
+    attach = dict(attach or {})
+    attached: dict[str, dict] = {}
+    for b in el["bearings"]:
+        what = f"{b['kind']} {b['tag']!r}"
+        for k in ("kxy", "kyx", "cxy", "cyx"):
+            if _coefficient(b, k, speed_rpm_coefficients) != 0.0:
+                raise RossImportError(f"ROSS {what}: cross-coupled {k} is not carried (engine format 1)")
+        for k in ("mxx", "myy", "mxy", "myx"):
+            if k in b and _coefficient(b, k, speed_rpm_coefficients) != 0.0:
+                raise RossImportError(f"ROSS {what}: added mass {k} is not carried")
+        co = {k: _coefficient(b, k, speed_rpm_coefficients) for k in ("kxx", "kyy", "cxx", "cyy", "kzz")}
+        n, link = int(b["n"]), b.get("n_link")
+        link = None if link is None or link == "None" else int(link)
+        if n not in where:                     # a pedestal's own bearing to ground
+            if link is not None:
+                raise RossImportError(f"ROSS {what}: links node {n} (on no shaft) to node {link}: not carried")
+            p = pedestals.setdefault(n, {"mass": 0.0})
+            if "kxx" in p:
+                raise RossImportError(f"ROSS {what}: a second bearing to ground at node {n}")
+            p.update(kxx=co["kxx"], kyy=co["kyy"], cxx=co["cxx"], cyy=co["cyy"], kzz=co["kzz"], tag=b["tag"])
+            continue
+        key = next((a for a, v in attach.items() if int(v) == n), None)
+        if key is not None:
+            if link is not None:
+                raise RossImportError(f"ROSS {what}: a linked bearing cannot become co-simulated bearing {key}")
+            attached[key] = {"node": node(n, what), "co": co, "tag": b["tag"]}
+            continue
+        sup = {"name": str(b["tag"]), "a": node(n, what)}
+        if link is None:
+            sup["b"] = "ground"
+        elif link in where:
+            sup["b"] = node(link, what)
+        else:
+            sup["b"] = ["hub", f"n{link}"]
+            pedestals.setdefault(link, {"mass": 0.0})
+        sup.update({"kxx": co["kxx"], "kyy": co["kyy"], "cxx": co["cxx"], "cyy": co["cyy"]})
+        if co["kzz"] > 0:
+            sup["k_axial"] = co["kzz"]
+        supports.append(sup)
+    missing = sorted(set(attach) - set(attached))
+    if attached:
+        # the spin and axial DOF are held at a node of no co-simulated bearing (whose axial motion is a port)
+        taken = {tuple(a["node"]) for a in attached.values()}
+        for sname, sp in engine["spool"].items():
+            free = [k for k in range(len(sp["z_mm"])) if (sname, k) not in taken]
+            sp["drive_node"] = sp["axial_node"] = free[-1]
+    if missing:
+        raise RossImportError(f"attach: no ROSS bearing (to ground) at node(s) "
+                              f"{', '.join(str(attach[k]) for k in missing)} for {', '.join(missing)}")
+    peds = {}
+    for n, p in sorted(pedestals.items()):
+        if "kxx" not in p:
+            raise RossImportError(f"ROSS node {n} (on no shaft) has no bearing to ground: not carried")
+        peds[f"n{n}"] = _pedestal(p, f"ROSS node {n}")
+    for key, a in sorted(attached.items()):
+        hub = f"h{key[-1]}"
+        peds[hub] = _pedestal({**a["co"], "mass": hub_mass_kg}, f"ROSS bearing {a['tag']!r}")
+    if supports:
+        engine["support"] = supports
+    if peds:
+        engine["pedestal"] = peds
+    if attached:
+        if set(attached) != {"bearing0", "bearing5"}:
+            raise RossImportError("attach: give both bearing0 and bearing5 (the blade-loss system has two)")
+        if unbalance_node is None:
+            if not el["disks"]:
+                raise RossImportError("attach: the rotor has no disk; give the unbalance node")
+            unbalance_node = int(el["disks"][0]["n"])
+        engine["attach"] = {
+            "bearing0": {"node": attached["bearing0"]["node"], "housing": "h0"},
+            "bearing5": {"node": attached["bearing5"]["node"], "housing": "h5"},
+            "rubring0": {"node": attached["bearing0"]["node"]},
+            "rubring5": {"node": attached["bearing5"]["node"]},
+            "unbalance": {"node": node(int(unbalance_node), "unbalance")},
+            "oil_temperature_C": 30.0}
+    return engine
+
+
+def _pedestal(p: dict, what: str) -> dict:
+    out = {"mass": float(p["mass"])}
+    if p["kxx"] == p["kyy"]:
+        out["k"] = p["kxx"]
+    else:
+        out["kxx"], out["kyy"] = p["kxx"], p["kyy"]
+    if p["cxx"] == p["cyy"]:
+        out["c"] = p["cxx"]
+    else:
+        out["cxx"], out["cyy"] = p["cxx"], p["cyy"]
+    if p.get("kzz", 0.0) > 0:
+        out["k_axial"] = p["kzz"]
+    return out

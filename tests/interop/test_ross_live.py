@@ -1,0 +1,84 @@
+"""ROSS itself (the test extra installs ross-rotordynamics): its example rotors, live, to rotorcosim and back.
+
+Peer code as the reference: ROSS's own run_critical_speed (tight rtol) and run_unbalance_response on the same
+rotor. The issue's bounds: forward synchronous critical speeds within 0.1 %, unbalance response within 0.5 %."""
+from __future__ import annotations
+
+import math
+import warnings
+
+import numpy as np
+import pytest
+
+with warnings.catch_warnings():
+    warnings.simplefilter("ignore")     # ROSS's dependency ccp warns that it finds no REFPROP library
+    import ross as rs
+
+from rotorcosim.components.rotor import critical, model as fem, response
+from rotorcosim.interop import from_ross, to_ross, write_engine
+from rotorcosim.interop.ross_import import RossImportError
+
+
+def _ross_forward_rpm(rotor) -> list[float]:
+    """ROSS's forward critical speeds [rev/min] (its Newton search, converged far below the 0.1 % compared)."""
+    cs = rotor.run_critical_speed(num_modes=12, rtol=1e-8)
+    return sorted(float(w) * 30 / math.pi for w, d in zip(np.asarray(cs.wn()), cs.whirl_direction)
+                  if d == "Forward")
+
+
+@pytest.mark.parametrize("example", ["rotor_example", "coaxrotor_example"])
+def test_ross_example_round_trip(tmp_path, example):
+    rotor = getattr(rs, example)()
+    engine = from_ross(rotor)
+    write_engine(engine, tmp_path / "engine.toml")
+    m = fem.load(tmp_path / "engine.toml")
+    ref = _ross_forward_rpm(rotor)[:2]
+    ours = critical.synchronous_critical_speeds(m, None, n=2, max_rpm=1e6)["forward_synchronous_rpm"]
+    assert np.allclose(ours, ref, rtol=1e-3), (ours, ref)
+    nd = int(rotor.disk_elements[0].n)
+    spool, k = next([s, i] for s, sp in engine["spool"].items() for i in range(len(sp["z_mm"]))
+                    if sum(len(v["z_mm"]) for v in list(engine["spool"].values())[:list(engine["spool"]).index(s)])
+                    + i == nd)
+    for rpm in (0.7 * ref[0], 1.6 * ref[0]):
+        W = rpm * math.pi / 30
+        R = np.asarray(rotor.run_unbalance_response(nd, 1e-3, 0.0, frequency=np.array([W])).forced_resp)[:, 0]
+        X = response.unbalance_response(m, None, (spool, k), 1e-3 * W * W, rpm)
+        for d in (0, 1):
+            assert abs(abs(X[m.info["dof"](spool, k, d)]) / abs(R[nd * rotor.number_dof + d]) - 1) < 5e-3
+
+
+@pytest.mark.parametrize("example", ["rotor_example", "coaxrotor_example"])
+def test_ross_to_rotorcosim_and_back_to_ross(example):
+    """The way back: to_ross of the imported engine (a Rotor, or a CoAxialRotor for two spools) has ROSS's own
+    forward critical speeds of the original rotor, by ROSS's computation on both."""
+    rotor = getattr(rs, example)()
+    back = to_ross(from_ross(rotor))
+    assert type(back) is type(rotor)
+    assert np.allclose(_ross_forward_rpm(back), _ross_forward_rpm(rotor), rtol=1e-6)
+
+
+def test_compressor_example_is_refused_by_name():
+    """Its seals and bearings are speed-dependent and cross-coupled, and it has layered shaft sections: the
+    engine format carries none of them (format 1), so the import says which element stops it."""
+    with pytest.raises(RossImportError, match="layered section|cross-coupled|depends on speed"):
+        from_ross(rs.compressor_example())
+
+
+def test_to_ross_gives_rosss_critical_speeds_of_the_linearised_engine(tmp_path):
+    """The textbook engine of new-engine, its co-simulated bearings linearised (contacts, journal, O-ring, film),
+    in ROSS: ROSS's forward critical speeds of the undamped rotor equal rotorcosim's critical-speeds within
+    0.1 %."""
+    from rotorcosim.cases.blade_loss import critical_speeds, new_engine
+    from rotorcosim.master.api import load_scenario
+
+    engine, scenario = new_engine.new_engine(tmp_path / "e")
+    rotor = to_ross(engine, scenario=scenario, damped=False)
+    ours = critical_speeds.critical_speeds(str(engine), count=2, max_rpm=1e6,
+                                           scenario=load_scenario(scenario))["forward_synchronous_rpm"]
+    ref = _ross_forward_rpm(rotor)[:2]
+    assert np.allclose(ours, ref, rtol=1e-3), (ours, ref)
+
+
+def test_to_ross_refuses_a_casing_by_name():
+    with pytest.raises(ValueError, match="casing shell"):
+        to_ross(fem.DEFAULT_FILE)
