@@ -21,7 +21,10 @@ from rotorcosim.master.core.algorithm import SimulationFailed
 from rotorcosim.master.api import DEFAULT_SCENARIO, SCHEDULE_ALIASES, SCHEDULES, load_scenario, simulate
 from rotorcosim.master.cli.options import SCHEDULE_HELP, add_dpi, add_out, add_scenario
 from rotorcosim.master.compiled.choice import ENGINES
-from rotorcosim.master.scenario.overrides import apply_set, apply_swap, apply_unbalance, parse_set, parse_swap  # noqa: F401  (apply_unbalance: the commands' import)
+from rotorcosim.master.scenario.overrides import apply_set, apply_swap, parse_set, parse_swap
+# the level parameter's setter lives with --set (the sweep engine needs it below the command line); imported here
+# for run and the commands that take it from this module
+from rotorcosim.master.scenario.overrides import apply_unbalance  # noqa: F401
 from rotorcosim.master.scenario.build import Scenario
 
 #: where a command-line change is said to come from, in error messages

@@ -81,7 +81,11 @@ class Cluster:
         self.root = root
         self.port = free_port()
         self.address = f"tcp://127.0.0.1:{self.port}"
-        env = {**os.environ, "PYTHONUNBUFFERED": "1"}
+        # the workers import the faulty plug-in (tests.helpers.faulty) from this checkout, as a user's workers
+        # import their plug-ins from where they are installed
+        checkout = str(Path(__file__).resolve().parents[2])
+        path = os.pathsep.join(p for p in (checkout, os.environ.get("PYTHONPATH", "")) if p)
+        env = {**os.environ, "PYTHONUNBUFFERED": "1", "PYTHONPATH": path}
         self.scheduler = subprocess.Popen(
             [sys.executable, "-m", "distributed.cli.dask_scheduler", "--host", "127.0.0.1", "--port",
              str(self.port), "--no-dashboard"], cwd=root, env=env, stdout=subprocess.DEVNULL,
