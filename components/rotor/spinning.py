@@ -35,7 +35,7 @@ from ..kernels import PYTHON
 from ..numba_internals import kernel_jit
 from .component import Rotor, full_model
 from .kernel import RotorState, advance, pack
-from .newmark import step_operator
+from .newmark import initial_acceleration, step_operator
 
 SpinParams = namedtuple("SpinParams", "TB O f s_new xv F_residual F_unbalance unbalance_phase t_blade_loss "
                                       "W_ref op tol")
@@ -90,6 +90,9 @@ class SpinningRotor(Rotor):
     variables = Rotor.variables + (
         Variable("gyro_tolerance", "parameter", unit="1", start=1e-3,
                  description="relative speed change that rebuilds the Newmark map (gyroscopic terms)"),
+        Variable("start_synchronous", "parameter", unit="1", start=0, type="Integer",
+                 description="1: start from the synchronous steady state of the linear model under the unbalance "
+                             "at the reference speeds (no port forces; a linear rotor's check case); 0: at rest"),
         Variable("Omega_pt", "input", 1, "rad/s", "power-turbine speed"),
         Variable("dOmega_pt", "input", 1, "rad/s2", "power-turbine angular acceleration (tangential unbalance)"),
         Variable("Omega_gg", "input", 1, "rad/s", "gas-generator speed"),
@@ -111,7 +114,24 @@ class SpinningRotor(Rotor):
         # no gyroscopic coupling (a spool without polar inertia): the step map never depends on its speed
         self._tol = np.array([math.inf if not np.any(g) else p["gyro_tolerance"] * abs(w)
                               for g, w in zip(self._G, self._op)])
-        self.state["ang"] = np.array([0.0, float(t0) * 0.0, float(p["omega_pt"])])
+        self.state["ang"] = np.array([0.0, 0.0, float(p["omega_pt"])])
+        if p["start_synchronous"]:
+            self._start_synchronous(float(t0))
+
+    def _start_synchronous(self, t0):
+        """x, v of the steady synchronous orbit X e^(i W t) of M x'' + C x' + K x = B f_u (the unbalance alone), at t0."""
+        red, p = self._red, self.p
+        W = float(p["omega_pt"])
+        Fh = p["F_residual"] * np.array([1.0, -1.0j])
+        if t0 >= p["t_blade_loss"]:
+            Fh = Fh + p["F_unbalance"] * np.exp(1j * p["unbalance_phase"]) * np.array([1.0, -1.0j])
+        B_u = red["B_in"][:, -2:]
+        X = np.linalg.solve(red["K"] - W * W * red["M"] + 1j * W * red["C"], B_u @ Fh) * np.exp(1j * W * t0)
+        x0, v0 = X.real.copy(), (1j * W * X).real.copy()
+        f0 = red["B_in"] @ self._input_vector(t0)
+        a0 = initial_acceleration(red["M"], red["C"], red["K"], x0, v0, f0)
+        self.state["s"] = np.concatenate([x0, v0, a0])
+        self._write_outputs(self.state["s"], t0)
 
     def _operators(self, h):
         key = (float(f"{h:.12g}"), self._op)

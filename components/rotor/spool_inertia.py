@@ -21,15 +21,22 @@ from .beam import disk, shaft_element
 
 
 def polar_inertia(model_file: str = "", spool: str = "power_turbine") -> float:
-    """J [kg m^2] of rotor ``spool`` ("power_turbine" or "gas_generator") of the model file ('' = shipped)."""
+    """J [kg m^2] of rotor ``spool`` ("power_turbine" or "gas_generator") of the model file ('' = shipped); the
+    shaft of a single-shaft file (shaft_model.py) whatever ``spool`` says."""
     data, _ = fem.load_data(model_file or None)
+    if "shaft" in data:                       # a single-shaft model file (shaft_model.py): its one spool
+        data = {"shaft": data["shaft"], "material": {"rotor": data["shaft"]["material"]}}
+        spool = "shaft"
     if spool not in data or "z_mm" not in data.get(spool, {}):
         raise ValueError(f"rotor model file {model_file or fem.DEFAULT_FILE}: no rotor {spool!r}")
     r = data[spool]
     z = np.asarray(r["z_mm"], float) * 1e-3
     mat = data["material"]["rotor"]
     E, rho, nu = float(mat["E"]), float(mat["rho"]), float(mat["nu"])
-    d_out, d_in = fem.rotor_diameters(data, spool)
+    if spool == "shaft":
+        d_out, d_in = [float(v) * 1e-3 for v in r["d_out_mm"]], [float(v) * 1e-3 for v in r["d_in_mm"]]
+    else:
+        d_out, d_in = fem.rotor_diameters(data, spool)
     rz = np.zeros(12)
     rz[[5, 11]] = 1.0
     J = 0.0
@@ -37,6 +44,6 @@ def polar_inertia(model_file: str = "", spool: str = "power_turbine") -> float:
         _, me, _ = shaft_element(z[e + 1] - z[e], E, E / (2 * (1 + nu)), rho, d_out[e], d_in[e])
         J += float(rz @ me @ rz)
     for dk in r.get("disks", []):
-        md, _ = disk(*fem.disk_inertia(data, dk))
+        md, _ = disk(*fem.disk_inertia(data, dk)) if spool != "shaft" else disk(dk["mass"], dk["Ip"], dk["Id"])
         J += float(md[5, 5])
     return J
