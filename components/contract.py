@@ -7,8 +7,10 @@ Modelled on FMI 2.0 co-simulation (and on fmpy's flat model description):
 * ``setup(t0)`` (enter/exit initialisation), ``set_inputs``, ``do_step(t, h)``, ``get_outputs``, ``terminate``;
 * ``get_state`` / ``set_state``: a full snapshot (FMI getFMUstate / setFMUstate), used for rollback and by
   the staggered schedule;
-* a preferred communication step and the phases it takes part in (``"TM"`` thermo-mechanical,
-  ``"TO"`` thermal-only).
+* a preferred communication step and the phases it takes part in, named by their role: ``COUPLED``
+  (``"TM"``: every component steps, the thermo-mechanical phase of a staggered scheme) and ``HELD`` (``"TO"``:
+  only the components that declare it step, the master holds the others' outputs: thermal-only). A scenario may
+  call its phases otherwise (master/core/phases.py); a component speaks of them by these roles.
 
 A component owns its internal integration and never reaches into another component.
 """
@@ -26,7 +28,9 @@ from .value_types import KINDS, UNCARRIED, check_value, dtype_of
 
 CAUSALITIES = ("parameter", "input", "output")
 TYPES = KINDS
-PHASES = ("TM", "TO")
+#: the roles of the two phases a component can take part in (see the module docstring)
+COUPLED, HELD = "TM", "TO"
+PHASES = (COUPLED, HELD)
 
 
 @dataclass(frozen=True)
@@ -213,7 +217,7 @@ class Component:
         self.time, self.state, self.u, self.y = _copy_snapshot(snapshot)
 
     def enter_phase(self, phase: str) -> None:
-        """Called by the master at the start of every interval with its phase (``"TM"`` or ``"TO"``), for
+        """Called by the master at the start of every interval with its phase's role (``COUPLED`` or ``HELD``), for
         every component, stepped or frozen. Components that behave differently in thermal-only intervals
         (``holds_state_in_TO``) override it."""
         self.phase = phase
@@ -274,6 +278,8 @@ __all__ = [
     "StopRequested",
     "Variable",
     "CAUSALITIES",
+    "COUPLED",
+    "HELD",
     "PHASES",
     "TYPES",
     "as_phases",

@@ -7,13 +7,14 @@ the import-linter contract in ``pyproject.toml``, run by ``tests/test_architectu
 ============================  ===========================================================================
 ``core``                      a system of components and connections (checked when built), the links that
                               carry values between them (one semantics for both loops), the stepping
-                              algorithms (Gauss-Seidel, Jacobi), the cycle a run counts its windows in
-``manipulator``               the staggered scheme's thermal-only hold (freeze, held values, TM restart)
+                              algorithms (Gauss-Seidel, Jacobi), the cycle a run counts its windows in, the
+                              phases a scenario declares (its names of the coupled and the held phase)
+``manipulator``               the staggered scheme's hold of the held phase (freeze, held values, restart)
 ``observer``                  recorder (``timeseries.h5``), progress, steady windows, energy; they never
                               change a run
 ``compiled``                  the optional fast path for thermo-mechanical intervals (numba kernels)
-``schedule``                  timelines of thermo-mechanical / thermal-only intervals, the automatic schedule,
-                              the time budget
+``schedule``                  timelines of coupled / held intervals (thermo-mechanical / thermal-only), the
+                              automatic schedule, the time budget
 ``simulation`` (module)       :class:`~rotorcosim.master.simulation.Simulation`: runs a system through a
                               schedule with its observers and hold
 ``scenario``                  scenarios as data: TOML / SSP, schema checks, ``extends``, ``--set`` / ``--swap``

@@ -45,6 +45,7 @@ from rotorcosim.master.schedule.timeline import Schedule
 from rotorcosim.master.observer.series import SeriesFile
 from rotorcosim.master.observer.validity import Validity
 from rotorcosim.master.simulation import engine_summary
+from rotorcosim.master.core.phases import Phases
 from rotorcosim.master.core.threads import one_thread
 
 #: the scenario run when none is named (declared with the shipped scenarios, ``scenarios.DEFAULT``)
@@ -53,7 +54,6 @@ DEFAULT_SCENARIO = scenarios.DEFAULT
 SCHEDULES = {"scenario": None, "auto": "auto", "monolithic": "monolithic"}
 #: other names accepted for those: "paper" is the scenario's own schedule (the shipped case's: the paper's timeline)
 SCHEDULE_ALIASES = {"paper": "scenario"}
-PHASE_NAMES = np.array(["TM", "TO"])
 
 
 def load_scenario(name_or_path: str | Path | None = None) -> Scenario:
@@ -112,14 +112,16 @@ def _schedule(sc: Scenario, schedule, duration: float | None):
 
 
 class Result:
-    """A run: ``time`` [s], ``phase`` ("TM" / "TO" per sample), ``res["comp.port"]`` (a 1-D array for a
+    """A run: ``time`` [s], ``phase`` (per sample, the name of its phase: "TM" / "TO" unless the scenario names
+    them otherwise), ``res["comp.port"]`` (a 1-D array for a
     scalar port, (n, size) for a vector one; SI units, see :meth:`unit` / :meth:`columns`), ``summary`` (the dict
     written to summary.json), ``files`` (the files written, with ``out=``). The arrays are in memory, or read
     from the run's time series file when first used (a run with ``out=`` and HDF5).
 
-    Made by :func:`simulate`; its parameters: ``data`` (``"time"``, ``"phase"`` (0 TM, 1 TO) and one (n, size)
-    array per recorded ``"comp.port"``), ``variables`` (``"comp.port"`` -> the port's declaration: unit, element
-    labels), ``summary`` and ``files``.
+    Made by :func:`simulate`; its parameters: ``data`` (``"time"``, ``"phase"`` (0 coupled, 1 held) and one
+    (n, size) array per recorded ``"comp.port"``), ``variables`` (``"comp.port"`` -> the port's declaration: unit,
+    element labels), ``summary``, ``files`` and ``phases`` (the scenario's phase names,
+    :class:`~rotorcosim.master.core.phases.Phases`; default "TM" / "TO").
 
     >>> import rotorcosim
     >>> res = rotorcosim.simulate("toy_thermomechanical", duration=0.05)
@@ -131,8 +133,10 @@ class Result:
     (0.05, 'TM', (51,))
     """
 
-    def __init__(self, data: Mapping[str, np.ndarray], variables: dict, summary: dict, files: Sequence[Path] = ()):
+    def __init__(self, data: Mapping[str, np.ndarray], variables: dict, summary: dict, files: Sequence[Path] = (),
+                 phases: Phases | None = None):
         self._data = data
+        self._phase_names = np.array((phases or Phases()).names)
         self._vars = variables
         self.summary = summary
         self.files = [Path(f) for f in files]
@@ -144,8 +148,9 @@ class Result:
 
     @property
     def phase(self) -> np.ndarray:
-        """The phase of each sample: "TM" (thermo-mechanical) or "TO" (thermal-only)."""
-        return PHASE_NAMES[self._data["phase"].astype(int)]
+        """The phase of each sample, by the scenario's names ("TM" thermo-mechanical / "TO" thermal-only by
+        default)."""
+        return self._phase_names[self._data["phase"].astype(int)]
 
     @property
     def signals(self) -> list[str]:
@@ -391,7 +396,7 @@ def _simulate(sc, duration, schedule, out, record, progress, figures, overwrite,
                     raise
             if status in ("complete", "stopped"):
                 (out / checkpoint.CHECKPOINT).unlink(missing_ok=True)
-        result = Result(data, dict(recorder.variables), _roundtrip(summary), files)
+        result = Result(data, dict(recorder.variables), _roundtrip(summary), files, sim.phases)
         if error is not None:
             try:
                 error.result = result

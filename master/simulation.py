@@ -1,8 +1,10 @@
 """Runs a system through a schedule: intervals, phases, observers.
 
-The staggered scheme alternates thermo-mechanical (TM) and thermal-only (TO) intervals; what is frozen and held
-in a TO interval is the thermal-only hold's (master/manipulator/hold.py). The next TM interval resumes from the
-frozen state with the new temperatures.
+The staggered scheme alternates intervals of the coupled phase (every component steps) and of the held phase
+(only the components that declare it step); what is frozen and held in a held interval is the hold's
+(master/manipulator/hold.py). The next coupled interval resumes from the frozen state with the new values. The
+scenario names its phases (master/core/phases.py; the blade-loss paper's thermo-mechanical "TM" and thermal-only
+"TO" by default).
 """
 from __future__ import annotations
 
@@ -13,12 +15,13 @@ from typing import Callable, Sequence
 
 import numpy as np
 
-from rotorcosim.components.contract import ContractError
+from rotorcosim.components.contract import COUPLED, HELD, ContractError
 
 from rotorcosim.master.compiled import ahead
 from rotorcosim.master.compiled import choice as compiled
 from rotorcosim.master.core.algorithm import Engine, EngineSettings, SimulationDiverged
 from rotorcosim.master.core.cycle import Cycle, as_cycle
+from rotorcosim.master.core.phases import Phases
 from rotorcosim.master.manipulator.hold import DEFAULT_HOLD, HOLDS, RESTART_CYCLES, StaggeredHold
 from rotorcosim.master.schedule.timeline import RunReport, Schedule, ScheduleError, UsedInterval
 from rotorcosim.master.core.system import System
@@ -36,7 +39,10 @@ class Simulation:
     (:class:`~rotorcosim.master.observer.observers.Observer`); ``t0``: the start time [s]; ``restart_cycles``:
     cycles [-] over which the thermal inputs of the mechanical components go to their new values when a
     thermo-mechanical interval restarts; ``temperature_zero`` [K]: the zero of the temperatures in the hold's
-    relative error estimate (0: absolute; a scenario reporting degrees C declares 273.15).
+    relative error estimate (0: absolute; a scenario reporting degrees C declares 273.15); ``phases``: the
+    scenario's names of its coupled and held phases (:class:`~rotorcosim.master.core.phases.Phases`; default
+    "TM" and "TO"). :attr:`phase` is the role of the running interval (``COUPLED`` / ``HELD`` of the component
+    contract), :attr:`phase_name` its name.
 
     A scenario's simulation is built by :func:`rotorcosim.master.scenario.build.build_simulation`.
 
@@ -59,7 +65,7 @@ class Simulation:
                  settings: EngineSettings | None = None, steps: dict[str, float] | None = None,
                  hold: str = DEFAULT_HOLD, hold_cycles: float = 5.0, cycle: Cycle | float | None = None,
                  observers: Sequence = (), t0: float = 0.0, restart_cycles: float = RESTART_CYCLES,
-                 temperature_zero: float = 0.0):
+                 temperature_zero: float = 0.0, phases: Phases | None = None):
         if hold not in HOLDS:
             raise ContractError(f"hold {hold!r} not in {HOLDS}")
         if not (hold_cycles > 0 and math.isfinite(hold_cycles)):
@@ -67,6 +73,7 @@ class Simulation:
         if not (restart_cycles >= 0 and math.isfinite(restart_cycles)):
             raise ContractError(f"restart_cycles must be a number >= 0, got {restart_cycles}")
         self.system = system
+        self.phases = phases or Phases()
         self.settings = settings or EngineSettings()
         self.engine = Engine(system, list(order or system.components), self.settings)
         self.steps = dict(steps or {})
@@ -85,6 +92,7 @@ class Simulation:
         self.t = float(t0)
         self.t0 = float(t0)
         self.phase = None
+        self.phase_name = None
         #: base steps of the current interval when it runs to its end (None: the automatic schedule may end it)
         self.interval_steps = None
         self.report = RunReport()
@@ -115,9 +123,9 @@ class Simulation:
         comp, _, port = ref.partition(".")
         return self.system.components[comp].y[port]
 
-    def components_in(self, phase: str) -> list[str]:
-        """The components that step in ``phase`` ("TM" or "TO"), in the engine's order."""
-        return [n for n in self.engine.order if phase in self.system.components[n].phases]
+    def components_in(self, role: str) -> list[str]:
+        """The components that step in the phase of ``role`` (``COUPLED`` or ``HELD``), in the engine's order."""
+        return [n for n in self.engine.order if role in self.system.components[n].phases]
 
     def initialise(self) -> None:
         """Set the constant inputs and set up every component at the start time (once; :meth:`run` calls it).
@@ -168,7 +176,7 @@ class Simulation:
         out = {}
         for n in names:
             s = self.steps.get(n)
-            if s is None or self.phase == "TO":
+            if s is None or self.phase == HELD:
                 out[n] = 1
                 continue
             m = s / h
@@ -181,10 +189,15 @@ class Simulation:
     # -- one interval ----------------------------------------------------------------------------------
     def run_interval(self, phase: str, duration: float, step: float, stop: "_StopTest | None" = None,
                      reason: str = "") -> UsedInterval:
-        """Run one interval of ``phase``; ``stop`` (automatic schedule) may end it early."""
+        """Run one interval of the phase called ``phase`` (one of :attr:`phases`' names) for ``duration`` [s] at
+        base step ``step`` [s]; ``stop`` (automatic schedule) may end it early."""
+        try:
+            role = self.phases.role(phase)
+        except ContractError as exc:
+            raise ScheduleError(f"schedule: {exc}") from None
         self.initialise()
-        self.phase = phase
-        active = self.components_in(phase)
+        self.phase, self.phase_name = role, phase
+        active = self.components_in(role)
         if not active:
             raise ScheduleError(f"no component takes part in phase {phase}")
         mult = self._multiples(active, step)
@@ -197,13 +210,13 @@ class Simulation:
             step = duration / nsteps
         nsteps = int(math.ceil(nsteps / lcm) * lcm)
         for comp in self.system.components.values():
-            comp.enter_phase(phase)
-        self.hold.start(phase, active, mult, step, self.t, self.engine.steps_taken)
+            comp.enter_phase(role)
+        self.hold.start(role, active, mult, step, self.t, self.engine.steps_taken)
         self.engine.prepare(active, mult, step)
         t_start = self.t
         self.interval_steps = nsteps if stop is None else None
         for obs in self.observers:
-            obs.interval_start(self, phase, step)
+            obs.interval_start(self, role, step)
         k = 0
         rp, self.resume_point = self.resume_point, None
         if rp is not None and rp.k:  # resumed mid-interval: the preparation above reset what the checkpoint holds
@@ -213,8 +226,8 @@ class Simulation:
         why = reason
         if self.engine_choice not in compiled.ENGINES:
             raise ContractError(f"engine {self.engine_choice!r} not in {compiled.ENGINES}")
-        runner = compiled.runner(self, phase, active, mult, step, stop, self.engine_choice)
-        if phase == "TM":
+        runner = compiled.runner(self, role, active, mult, step, stop, self.engine_choice)
+        if role == COUPLED:
             self.engines_used.append("compiled" if runner is not None else "python")
         try:
             if runner is not None:
@@ -253,7 +266,7 @@ class Simulation:
                 self.report.timeline.append(used)
             self.report.t_end = self.t
             self.report.component_steps = dict(self.engine.steps_taken)
-        self.hold.end(phase, self.t)
+        self.hold.end(role, self.t)
         self.report.hold = self.hold.report
         for obs in self.observers:
             obs.interval_end(self, used)

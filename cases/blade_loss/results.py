@@ -30,6 +30,7 @@ from pathlib import Path
 
 import numpy as np
 
+from rotorcosim.components.contract import COUPLED
 from rotorcosim.master.observer.observers import Observer, SteadyWindows, sampled_rows
 from rotorcosim.master.scenario.cycle import cycle_of
 
@@ -63,7 +64,7 @@ class Peaks(Observer):
         self.peak = {k: {"Q": 0.0, "sigma": 0.0, "whirl": 0.0} for k in BEARINGS}
 
     def interval_start(self, sim, phase, step):
-        self.active = phase == "TM"
+        self.active = phase == COUPLED
         comps = sim.system.components
         self._taps = []
         for k in BEARINGS:

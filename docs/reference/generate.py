@@ -177,7 +177,11 @@ NOTES = {
     "process": "FMU in a process of its own", "step_timeout": "s, limit of one FMU step",
     "from": "output port", "to": "input port", "average": "fast-to-slow: mean or RMS over the slow step",
     "extrapolation": "slow-to-fast: hold or linear", "convert": "type conversion on the link",
-    "unit": "unit of a unit-less side", "connection.hold": "what the link hands on during thermal-only intervals", "phase": "`TM` thermo-mechanical or `TO` thermal-only",
+    "unit": "unit of a unit-less side", "connection.hold": "what the link hands on during thermal-only intervals",
+    "phase": "a name of `[schedule.phases]`: `TM` thermo-mechanical or `TO` thermal-only by default",
+    "phases": "the scenario's names of its two phases (see below)",
+    "coupled": "name of the phase in which every component steps (default `TM`)",
+    "held": "name of the phase in which only the components that declare it step, the others held (default `TO`)",
     "name": "", "description": "",
 }
 
@@ -200,6 +204,7 @@ def scenario_page() -> str:
         else:
             out.append(_table(f"[{table}]", keys, NOTES, table))
     out.append(_table("[[schedule.intervals]]", schema.INTERVAL, NOTES, "intervals"))
+    out.append(_table("[schedule.phases]", {role: schema.text for role in schema.ROLES}, NOTES, "phases"))
     return "".join(out)
 
 

@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from rotorcosim.components.contract import ContractError
+from rotorcosim.components.contract import COUPLED, ContractError
 from rotorcosim.components.kernels import KernelComponent
 
 from rotorcosim.master.core.algorithm import GaussSeidel
@@ -58,7 +58,7 @@ def why_not(sim, active, mult, stop) -> str | None:
 def runner(sim, phase, active, mult, step, stop, choice: str):
     """A compiled runner for this interval (master/compiled/runner.Runner), or None for the generic loop (the
     reason in sim.engine_note); with ``choice`` "compiled", CompiledUnavailable instead of None."""
-    if choice == "python" or phase != "TM":
+    if choice == "python" or phase != COUPLED:
         return None
     reason = why_not(sim, active, mult, stop)
     if reason is not None:

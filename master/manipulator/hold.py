@@ -61,6 +61,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from rotorcosim.components.contract import COUPLED, HELD
 from rotorcosim.master.core import links
 from rotorcosim.master.core.cycle import Cycle
 from rotorcosim.master.core.system import HOLDS
@@ -86,7 +87,7 @@ DRIVER_MAX_LOG = 1.1
 
 def mechanical(comp) -> bool:
     """Frozen in TO, or stepped there only for its TO update with its mechanical state frozen."""
-    return "TO" not in comp.phases or bool(getattr(comp, "holds_state_in_TO", False))
+    return HELD not in comp.phases or bool(getattr(comp, "holds_state_in_TO", False))
 
 
 def feeds_thermal(src, dst) -> bool:
@@ -96,7 +97,7 @@ def feeds_thermal(src, dst) -> bool:
 
 def feeds_mechanics(src, dst) -> bool:
     """True for a hand-back: a connection from a thermal component (stepped in TO) to a mechanical one."""
-    return "TO" in src.phases and not mechanical(src) and mechanical(dst)
+    return HELD in src.phases and not mechanical(src) and mechanical(dst)
 
 
 class Restart:
@@ -458,7 +459,8 @@ class StaggeredHold:
     # -- intervals ---------------------------------------------------------------------------------------
     def start(self, phase: str, active: list[str], mult: dict[str, int], step: float, t: float = 0.0,
               steps_taken: dict[str, int] | None = None) -> None:
-        """Set the links up for an interval of ``phase`` with ``active`` components at base step ``step``."""
+        """Set the links up for an interval of the phase of role ``phase`` (``COUPLED`` / ``HELD``) with ``active``
+        components at base step ``step``."""
         if self.handoffs is None:
             self._find_handoffs()
         under_way = [link.ramp for link in self.handbacks]
@@ -466,16 +468,16 @@ class StaggeredHold:
             link.held = None
             link.window = None
             link.ramp = None
-        if phase == "TM":
+        if phase == COUPLED:
             # one period for the whole interval, read where it starts (a speed signal's value there)
             cycle = self.period = self.cycle
             length = self.restart_cycles * cycle if cycle else 0.0
-            if self._last_phase == "TO" and length > 0.0:
+            if self._last_phase == HELD and length > 0.0:
                 for i, link in enumerate(self.handbacks):
                     if i in self._tm_end:
                         link.ramp = Restart(self._tm_end[i] - np.array(link.src.y[link.sport], dtype=float),
                                             t, length)
-            elif self._last_phase == "TM":  # TM after TM: a restart's ramp still under way goes on
+            elif self._last_phase == COUPLED:  # TM after TM: a restart's ramp still under way goes on
                 for link, ramp in zip(self.handbacks, under_way):
                     if ramp is not None and t < ramp.t0 + ramp.length:
                         link.ramp = ramp
@@ -511,9 +513,9 @@ class StaggeredHold:
         """End of an interval at time t: after the first TM interval that follows a TO interval, the hand-off
         errors and the estimated temperature error of that TO interval."""
         self._last_phase = phase
-        if phase == "TM":
+        if phase == COUPLED:
             self._tm_end = {i: np.array(link.src.y[link.sport], dtype=float) for i, link in enumerate(self.handbacks)}
-        if phase == "TO":
+        if phase == HELD:
             for ho in self.handoffs:
                 ho.end_to()
             self._to_length = t - self._to_start

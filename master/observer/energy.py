@@ -13,6 +13,7 @@ from typing import Sequence
 
 import numpy as np
 
+from rotorcosim.components.contract import COUPLED
 from rotorcosim.master.observer.observers import Observer
 
 
@@ -44,7 +45,7 @@ class EnergyResidual(Observer):
         self._last_t = sim.t
 
     def interval_start(self, sim, phase, step):
-        self.active = phase == "TM"
+        self.active = phase == COUPLED
         self._last_t = sim.t
 
     def step(self, sim, t):

@@ -17,9 +17,10 @@ from typing import Sequence
 
 import numpy as np
 
+from rotorcosim.components.contract import COUPLED, HELD
 from rotorcosim.master.core.cycle import Cycle, as_cycle
+from rotorcosim.master.core.phases import Phases
 
-PHASE_CODE = {"TM": 0, "TO": 1}
 #: empty HDF5 files of this process's recordings by layout (Recorder._open): bytes, the last few layouts
 _H5_TEMPLATES: dict[tuple, bytes] = {}
 #: free space a recorder keeps on its disk, so that a file refused a write can still be closed whole
@@ -65,7 +66,8 @@ class Observer:
         pass
 
     def interval_start(self, sim, phase: str, step: float) -> None:
-        """An interval of ``phase`` ("TM" or "TO") starts at ``sim.t`` with base step ``step`` [s]."""
+        """An interval starts at ``sim.t`` with base step ``step`` [s]; ``phase`` is its role (``COUPLED`` or
+        ``HELD`` of the component contract; its name is ``sim.phase_name``)."""
         pass
 
     def step(self, sim, t: float) -> None:
@@ -156,6 +158,7 @@ class Recorder(Observer):
                 raise ValueError(f"recorder: {ref} is a {v.fmi_type or v.type} output: it holds no value to record")
             self.variables[ref] = v
         self.sizes = {r: v.size for r, v in self.variables.items()}
+        self._phases = sim.phases
         self.units = {r: v.unit for r, v in self.variables.items()}
         # each signal is stored with its own type: floats as f8, integers as i8 (UInt64 as u8), Booleans as
         # bool, strings as UTF-8 strings; so an integer beyond 2^53 is kept exactly
@@ -181,7 +184,7 @@ class Recorder(Observer):
 
             # the empty file (attributes and datasets, no rows) is made once per process and layout and copied:
             # its ~110 attributes and ~30 datasets cost ~16 ms per run through h5py, the copy and open ~5 ms
-            key = (self.record_step, self.chunk, tuple(
+            key = (self.record_step, self.chunk, self._phases, tuple(
                 (ref, sizes[ref], self.variables[ref].type, self.variables[ref].fmi_type, units[ref],
                  self.variables[ref].description, tuple(self.variables[ref].column_labels())) for ref in self.signals))
             blob = _H5_TEMPLATES.get(key)
@@ -208,7 +211,7 @@ class Recorder(Observer):
     def _skeleton(self, f) -> None:
         """The attributes and empty datasets of a new HDF5 file ``f``."""
         sizes, units = self.sizes, self.units
-        f.attrs["description"] = "rotorcosim time series: SI units; phase 0 = thermo-mechanical, 1 = thermal-only"
+        f.attrs["description"] = f"rotorcosim time series: SI units; phase {self._phases.description(tags=False)}"
         f.attrs["sampling_interval_s"] = self.record_step
         f.attrs["sampling"] = (f"every {self.record_step:g} s in thermo-mechanical intervals, every thermal step in "
                                f"thermal-only intervals (the time dataset has each sample's time)")
@@ -216,7 +219,7 @@ class Recorder(Observer):
         f["time"].attrs["unit"] = "s"
         f["time"].attrs["description"] = "simulated time of each sample"
         f.create_dataset("phase", shape=(0,), maxshape=(None,), dtype="i1", chunks=(self.chunk,))
-        f["phase"].attrs["description"] = "0 = thermo-mechanical (TM), 1 = thermal-only (TO)"
+        f["phase"].attrs["description"] = self._phases.description()
         for ref in self.signals:
             v = self.variables[ref]
             ds = f.create_dataset(ref, shape=(0, sizes[ref]), maxshape=(None, sizes[ref]), dtype=self._dtypes[ref],
@@ -228,7 +231,7 @@ class Recorder(Observer):
 
     def interval_start(self, sim, phase, step):
         # capped: a record_step longer than any interval (1e308 overflowed) records each interval's first sample
-        self.stride = 1 if phase == "TO" else max(1, int(round(min(self.record_step / step, 2.0 ** 62))))
+        self.stride = 1 if phase == HELD else max(1, int(round(min(self.record_step / step, 2.0 ** 62))))
 
     def step(self, sim, t):
         self._sample(sim, t)
@@ -238,7 +241,7 @@ class Recorder(Observer):
 
     def step_block(self, sim, ks, ts, data):
         stride = self.stride
-        phase = PHASE_CODE.get(sim.phase, 0)
+        phase = Phases.code(sim.phase)
         rows = sampled_rows(ks, stride)
         if not len(rows):
             return
@@ -257,7 +260,7 @@ class Recorder(Observer):
 
     def _sample(self, sim, t):
         self._buf_t.append(np.array([t], dtype=float))
-        self._buf_phase.append(np.array([PHASE_CODE.get(sim.phase, 0)], dtype=np.int8))
+        self._buf_phase.append(np.array([Phases.code(sim.phase)], dtype=np.int8))
         for ref in self.signals:
             self._buf[ref].append(np.array(sim.value(ref))[None])
         self._buffered += 1
@@ -491,7 +494,7 @@ class Progress(Observer):
         intervals = getattr(schedule, "intervals", None)
         # steps of each planned interval, in order (None: not known in advance)
         self.plan = None if intervals is None else [
-            (iv.phase, max(1, int(math.ceil(iv.duration / iv.step - 1e-9)))) for iv in intervals]
+            (sim.phases.role(iv.phase), max(1, int(math.ceil(iv.duration / iv.step - 1e-9)))) for iv in intervals]
         self.index = -1
         self.cost_wall = {}   # phase -> wall seconds spent in finished intervals
         self.cost_steps = {}  # phase -> steps taken in finished intervals
@@ -502,9 +505,9 @@ class Progress(Observer):
         self._shown_at = -1e9
 
     def interval_start(self, sim, phase, step):
-        self.stride = 1 if phase == "TO" else 256
+        self.stride = 1 if phase == HELD else 256
         self.index += 1
-        self.phase, self.h = phase, step
+        self.phase, self.h, self.name = phase, step, sim.phase_name
         self.t_iv, self.w_iv = sim.t, self._clock()
 
     def _cost(self, phase: str, steps_now: int, wall_now: float) -> float | None:
@@ -518,7 +521,7 @@ class Progress(Observer):
             return None
         done = max(0, int(round((t - self.t_iv) / self.h)))
         wall = self._clock() - self.w_iv
-        costs = {ph: self._cost(ph, done, wall) for ph in ("TM", "TO")}
+        costs = {ph: self._cost(ph, done, wall) for ph in (COUPLED, HELD)}
         known = [c for c in costs.values() if c is not None]
         if not known:
             return None
@@ -534,7 +537,7 @@ class Progress(Observer):
         now = self._clock()
         if now - self._shown_at >= 1.0 and not self.disable:
             left = self.remaining(t)
-            self.bar.set_postfix_str(f"{self.phase}, ~{_hms(left)} left" if left is not None else self.phase,
+            self.bar.set_postfix_str(f"{self.name}, ~{_hms(left)} left" if left is not None else self.name,
                                      refresh=False)
             self._shown_at = now
         self.bar.update(done - self.shown)  # tqdm redraws at most once per mininterval
@@ -542,8 +545,9 @@ class Progress(Observer):
 
     def interval_end(self, sim, used):
         if self.plan is not None:
-            self.cost_wall[used.phase] = self.cost_wall.get(used.phase, 0.0) + self._clock() - self.w_iv
-            self.cost_steps[used.phase] = self.cost_steps.get(used.phase, 0) + used.steps
+            role = sim.phase
+            self.cost_wall[role] = self.cost_wall.get(role, 0.0) + self._clock() - self.w_iv
+            self.cost_steps[role] = self.cost_steps.get(role, 0) + used.steps
 
     def block_signals(self, sim):
         return []
@@ -587,7 +591,7 @@ class SteadyWindows(Observer):
         self.windows: list[dict] = []
 
     def interval_start(self, sim, phase, step):
-        self.active = phase == "TM"
+        self.active = phase == COUPLED
         if self.active:
             self.window = self.cycles * self.cycle.period(sim.system)
         self.stride = 1 if self.sample_step is None else max(1, int(round(self.sample_step / step)))

@@ -12,6 +12,7 @@ import sys
 
 import numpy as np
 
+from rotorcosim.components.contract import HELD
 from rotorcosim.components.validity import Tracker, warning_line
 
 from .observers import Observer, sampled_rows
@@ -61,10 +62,10 @@ class Validity(Observer):
         self._clear()
 
     def interval_start(self, sim, phase, step):
-        self.stride = 1 if phase == "TO" else max(1, int(round(min(self.record_step / step, 2.0 ** 62))))
+        self.stride = 1 if phase == HELD else max(1, int(round(min(self.record_step / step, 2.0 ** 62))))
         # the components whose outputs change in this interval
         self._active = {n for n, c in sim.system.components.items() if phase in c.phases and not (
-            phase == "TO" and c.holds_state_in_TO)}
+            phase == HELD and c.holds_state_in_TO)}
         self._taps(sim)
 
     def step(self, sim, t):

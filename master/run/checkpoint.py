@@ -43,7 +43,7 @@ from pathlib import Path
 
 import numpy as np
 
-from rotorcosim.components.contract import Component
+from rotorcosim.components.contract import HELD, Component
 
 from rotorcosim.master.observer.observers import DISK_RESERVE_BYTES, Observer
 from rotorcosim.master.schedule.timeline import Timeline
@@ -259,7 +259,7 @@ class Checkpointer(Observer):
 
     def interval_start(self, sim, phase, step):
         # a thermo-mechanical base step is ~0.1-0.3 ms: looking every 64 steps keeps the reaction within ~20 ms
-        self.stride = 1 if phase == "TO" else 64
+        self.stride = 1 if phase == HELD else 64
         self._t_start = sim.t
         self._step = step
         self._phase = phase

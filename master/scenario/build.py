@@ -73,7 +73,7 @@ from rotorcosim.master.core.algorithm import EngineSettings
 from rotorcosim.master.manipulator.hold import DEFAULT_HOLD, RESTART_CYCLES
 from rotorcosim.master.scenario.compose import Origins, ScenarioError, compose, real_path
 from rotorcosim.master.scenario.overrides import resolve_file_parameters
-from rotorcosim.master.schedule.timeline import from_spec
+from rotorcosim.master.schedule.timeline import from_spec, phases_of
 from rotorcosim.master.simulation import Simulation
 from rotorcosim.master.core.system import Connection, System, split_port
 
@@ -368,7 +368,8 @@ def build_simulation(sc: Scenario, observers=(), system: System | None = None) -
                       hold=s.get("hold", DEFAULT_HOLD), hold_cycles=float(s.get("hold_cycles", 5)),
                       cycle=cycle, observers=observers,
                       restart_cycles=float(s.get("restart_cycles", RESTART_CYCLES)),
-                      temperature_zero=float(s.get("temperature_zero", TEMPERATURE_ZERO_K)))
+                      temperature_zero=float(s.get("temperature_zero", TEMPERATURE_ZERO_K)),
+                      phases=phases_of(s))
 
 
 def schedule_of(sc: Scenario, kind: str | None = None, duration: float | None = None):

@@ -25,9 +25,10 @@ import re
 from pathlib import Path
 from typing import Any, Callable, Mapping
 
-from rotorcosim.components.contract import PHASES, ContractError
+from rotorcosim.components.contract import COUPLED, HELD, ContractError
 
 from rotorcosim.master.core.algorithm import ALGORITHMS
+from rotorcosim.master.core.phases import ROLES, Phases
 from rotorcosim.master.manipulator.hold import RESTART_CYCLES
 from rotorcosim.master.schedule.timeline import SCHEDULES
 from rotorcosim.master.core.system import AVERAGES, EXTRAPOLATIONS, HOLDS
@@ -172,7 +173,7 @@ TABLES: dict[str, dict[str, Callable | None]] = {
     "schedule": {"kind": one_of(*SCHEDULE_KINDS), "duration": positive, "step": positive, "thermal_step": positive,
                  "speed_rpm": positive, "cycle": None, "temperature_zero": positive, "hold": one_of(*HOLDS),
                  "hold_cycles": whole_positive, "restart_cycles": not_negative,
-                 "intervals": None,
+                 "intervals": None, "phases": None,
                  "steady_tolerance": positive, "steady_cycles": count, "drift_tolerance": positive,
                  "tm_min": positive, "tm_max": positive, "to_min": positive, "to_max": positive,
                  "tracked": list_of(port_ref), "tolerance": positive},
@@ -190,7 +191,7 @@ CONNECTION = {"from": port_ref, "to": port_ref, "average": one_of(*AVERAGES),
               "extrapolation": one_of(*EXTRAPOLATIONS), "hold": one_of(*HOLDS),
               # type conversion and the unit of a unit-less side (master/core/conversions.py checks the values)
               "convert": text, "unit": text}
-INTERVAL = {"phase": one_of(*PHASES), "duration": positive, "cycles": positive, "step": positive}
+INTERVAL = {"phase": text, "duration": positive, "cycles": positive, "step": positive}
 #: ``[schedule] cycle``: a constant period [s], or a speed / frequency output and its unit (master/scenario/cycle.py)
 CYCLE = {"period": positive, "signal": port_ref, "unit": text}
 
@@ -460,26 +461,43 @@ def _cycle(c: _Checker, s: Mapping, comps: Mapping) -> tuple[float | None, str]:
     return None, ""
 
 
+def _phases(c: _Checker, s: Mapping) -> Phases:
+    """``[schedule.phases]``: the scenario's names of its coupled and held phases (master/core/phases.py)."""
+    spec = s.get("phases", {})
+    if not isinstance(spec, Mapping):
+        raise c.fail("schedule", "phases", f"must be a table {{coupled = NAME, held = NAME}}, got {spec!r}")
+    c.table("schedule.phases", spec, {role: text for role in ROLES})
+    try:
+        return Phases.from_spec(spec)
+    except ContractError as exc:
+        raise c.fail("schedule", "phases", str(exc)) from None
+
+
 def _schedule(c: _Checker, s: Mapping, comps: Mapping) -> None:
     raw = s.get("intervals")
     tm_durations = []
     step = s.get("step", 1e-5)
     period, per = _cycle(c, s, comps)
+    phases = _phases(c, s)
     if raw is not None:
         if not isinstance(raw, list) or not raw:
             raise c.fail("schedule", "intervals", "must be a non-empty list of {phase, duration} tables")
         for i, iv in enumerate(raw):
             w = f"schedule.intervals #{i + 1}"
             c.table(w, iv, INTERVAL)
+            names = f"{phases.coupled!r} or {phases.held!r}"
             if "phase" not in iv:
-                raise c.fail(w, "phase", "missing: each interval needs phase = \"TM\" or \"TO\"")
+                raise c.fail(w, "phase", f"missing: each interval needs phase = {names}")
+            if iv["phase"] not in phases.names:
+                raise c.fail(w, "phase", f"{iv['phase']!r} is not a phase of the scenario: {names} "
+                                         "([schedule.phases])" + _did_you_mean(iv["phase"], phases.names))
             if ("duration" in iv) == ("cycles" in iv):
                 raise c.fail(w, "duration", "give exactly one of duration (s) or cycles (rotor revolutions)")
             if "cycles" in iv and not period:
                 raise c.fail(w, "cycles", "an interval in rotor cycles needs schedule.speed_rpm (or a cycle "
                                           "of constant period, schedule.cycle = { period = S })")
             d = iv["duration"] if "duration" in iv else iv["cycles"] * period
-            if iv["phase"] == "TM":
+            if phases.role(iv["phase"]) == COUPLED:
                 tm_durations.append((w, d, iv.get("step", step)))
     elif s.get("kind", "monolithic") == "monolithic" and "duration" in s:
         tm_durations.append(("schedule", s["duration"], step))
@@ -511,7 +529,7 @@ def _schedule(c: _Checker, s: Mapping, comps: Mapping) -> None:
             raise c.fail("schedule", "hold_cycles", f"{cycles:g} cycles {per} last {window:.4g} s, "
                          f"longer than the longest thermo-mechanical interval ({longest:.4g} s): the hold's window "
                          "could never fill")
-    _restart(c, s, raw, period, per)
+    _restart(c, s, raw, period, per, phases)
     for name, spec in comps.items():
         cs = spec.get("step")
         if cs is None:
@@ -527,7 +545,7 @@ def _schedule(c: _Checker, s: Mapping, comps: Mapping) -> None:
                              f"{cs} s is not a whole multiple of the thermo-mechanical step {h} s")
 
 
-def _restart(c: _Checker, s: Mapping, raw, period: float | None, per: str) -> None:
+def _restart(c: _Checker, s: Mapping, raw, period: float | None, per: str, phases: Phases) -> None:
     """restart_cycles against the thermo-mechanical time a restart's ramp has (master/manipulator/hold.py, Restart): it starts
     at a TO -> TM change and goes on through the TM intervals that follow, until the next TO interval. A ramp
     longer than the shortest such run never ends: the hand-backs would stay a blend of held and live values for
@@ -541,7 +559,7 @@ def _restart(c: _Checker, s: Mapping, raw, period: float | None, per: str) -> No
     if isinstance(raw, list) and s.get("kind", "timeline") != "auto":
         for iv in raw:
             d = iv["duration"] if "duration" in iv else iv["cycles"] * period
-            if iv["phase"] == "TO":
+            if phases.role(iv["phase"]) == HELD:
                 if after_to and run > 0.0:
                     runs.append(run)
                 run, after_to = 0.0, True

@@ -21,6 +21,7 @@ from typing import Sequence
 
 import numpy as np
 
+from rotorcosim.components.contract import COUPLED, HELD
 from rotorcosim.master.manipulator.hold import feeds_thermal
 from rotorcosim.master.schedule.timeline import Schedule, ScheduleError, _positive, register_schedule
 
@@ -85,20 +86,20 @@ class AutoSchedule(Schedule):
                                 "the scenario's [schedule] cycle)")
         end = sim.t0 + self.duration
         eps = 1e-9
-        state = sim.schedule_state = sim.schedule_state or {"next": "TM", "to_len": self.to_min}
+        state = sim.schedule_state = sim.schedule_state or {"next": COUPLED, "to_len": self.to_min}
         while sim.t < end - eps:
             remaining = end - sim.t
-            if state["next"] == "TM":
+            if state["next"] == COUPLED:
                 if remaining <= self.tm_max + self.to_min:
                     # no room left for a thermal-only interval: one thermo-mechanical interval to the end
                     # (stopping it early when steady would only start another one)
                     state["next"] = "end"
-                    sim.run_interval("TM", remaining, self.step, reason="end")
+                    sim.run_interval(sim.phases.coupled, remaining, self.step, reason="end")
                     break
                 # the TO length is set after this interval, from the estimate its restart gave: flagged before
                 # it runs, so that a checkpoint at its end (which precedes the update) resumes the same way
-                state.update(next="TO", adjust=True)
-                sim.run_interval("TM", self.tm_max, self.step, _SteadyTest(sim, self), reason="tm_max")
+                state.update(next=HELD, adjust=True)
+                sim.run_interval(sim.phases.coupled, self.tm_max, self.step, _SteadyTest(sim, self), reason="tm_max")
                 if sim.report.stopped:
                     break
                 continue
@@ -111,11 +112,11 @@ class AutoSchedule(Schedule):
                 elif self.tolerance is None:
                     state["to_len"] = self.to_max
             # keep room for a final thermo-mechanical interval, where the results are read
-            state["next"] = "TM"
+            state["next"] = COUPLED
             d_to = min(state["to_len"], remaining - self.tm_max)
             if d_to < self.to_min:
                 continue
-            sim.run_interval("TO", d_to, self.thermal_step, _DriftTest(sim, self), reason="to_max")
+            sim.run_interval(sim.phases.held, d_to, self.thermal_step, _DriftTest(sim, self), reason="to_max")
             if sim.report.stopped:
                 break
 

@@ -16,7 +16,7 @@ from __future__ import annotations
 import math
 
 from rotorcosim.master.schedule.auto import AutoSchedule
-from rotorcosim.master.schedule.timeline import Timeline
+from rotorcosim.master.schedule.timeline import Timeline, phases_of
 
 MASTER_STEP_S = 30e-6
 COMPONENT_STEP_S = 30e-6
@@ -70,8 +70,9 @@ def check(sc, schedule, force: bool = False) -> dict:
     if isinstance(schedule, Timeline):
         if not schedule.intervals:
             raise BudgetError("the schedule is empty (a --duration too short for one step?)")
+        coupled = phases_of(sc.schedule).coupled
         for i, iv in enumerate(schedule.intervals):
-            if iv.phase != "TM":
+            if iv.phase != coupled:
                 continue
             base = sc.schedule.get("step")
             if base and iv.step == iv.duration and iv.duration < base * (1 - 1e-9):

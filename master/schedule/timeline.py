@@ -1,9 +1,11 @@
 """Schedules: which phase runs when, at which step (the staggered scheme).
 
-* ``TM`` (thermo-mechanical): every component steps at small steps;
-* ``TO`` (thermal-only): components that take no part in TO are frozen, the others step at a large step,
-  fed with the frozen components' outputs held at their mean (or RMS) over the last N cycles of the
-  previous TM interval (the cycle: master/core/cycle.py).
+* the coupled phase (``TM``, thermo-mechanical, by default): every component steps at small steps;
+* the held phase (``TO``, thermal-only): components that take no part in it are frozen, the others step at a
+  large step, fed with the frozen components' outputs held at their mean (or RMS) over the last N cycles of the
+  previous coupled interval (the cycle: master/core/cycle.py).
+
+A scenario names the two phases (``[schedule.phases]``, master/core/phases.py); intervals use those names.
 
 A schedule is a class behind a registry (``kind`` of a scenario's ``[schedule]``): an explicit ``timeline``,
 ``monolithic`` (one TM interval) or ``auto`` (master/schedule/auto.py: decided while the run goes, optionally to an error
@@ -16,7 +18,8 @@ import math
 from dataclasses import dataclass, field
 from typing import Any, Mapping
 
-from rotorcosim.components.contract import ContractError, PHASES
+from rotorcosim.components.contract import COUPLED, HELD, ContractError
+from rotorcosim.master.core.phases import Phases
 
 
 class ScheduleError(ContractError):
@@ -35,7 +38,8 @@ def _positive(name: str, value: Any) -> float:
 
 @dataclass(frozen=True)
 class Interval:
-    """One interval of a timeline: ``phase`` ("TM" thermo-mechanical or "TO" thermal-only), ``duration`` [s]
+    """One interval of a timeline: ``phase`` (a name the scenario declares: by default "TM" thermo-mechanical or
+    "TO" thermal-only; checked when the interval runs), ``duration`` [s]
     and base ``step`` [s] (at most the duration; the last step is shortened to end on the duration).
 
     >>> iv = Interval("TM", duration=0.25, step=1e-5)
@@ -51,8 +55,8 @@ class Interval:
     step: float
 
     def __post_init__(self):
-        if self.phase not in PHASES:
-            raise ScheduleError(f"schedule: interval phase {self.phase!r} not in {PHASES}")
+        if not isinstance(self.phase, str) or not self.phase:
+            raise ScheduleError(f"schedule: interval phase must be a phase's name, got {self.phase!r}")
         _positive("interval duration", self.duration)
         _positive("interval step", self.step)
         if self.step > self.duration * (1 + 1e-12):
@@ -69,7 +73,15 @@ SCHEDULES: dict[str, type["Schedule"]] = {}
 #: [schedule] keys every kind accepts (the step defaults, and the Simulation's: its cycle source and hold, which
 #: the scenario layer reads)
 COMMON_KEYS = ("kind", "duration", "step", "thermal_step", "cycle", "hold", "hold_cycles", "restart_cycles",
-               "temperature_zero")
+               "temperature_zero", "phases")
+
+
+def phases_of(spec: Mapping[str, Any]) -> Phases:
+    """The phases a ``[schedule]`` table declares (its ``phases`` sub-table; default "TM" / "TO")."""
+    try:
+        return Phases.from_spec(spec.get("phases"))
+    except ContractError as exc:
+        raise ScheduleError(f"schedule: {exc}") from None
 
 
 def register_schedule(kind: str):
@@ -152,10 +164,15 @@ class Timeline(Schedule):
         if not raw:
             raise ScheduleError("schedule: kind 'timeline' needs [[schedule.intervals]]")
         intervals = []
+        phases = phases_of(spec)
         for item in raw:
             phase = item.get("phase")
             d = _interval_duration(item, cycle)
-            h = item.get("step", step if phase == "TM" else thermal_step)
+            try:
+                coupled = phases.role(phase) == COUPLED
+            except ContractError as exc:
+                raise ScheduleError(f"schedule: {exc}") from None
+            h = item.get("step", step if coupled else thermal_step)
             intervals.append(Interval(phase, d, min(_positive("interval step", h), d)))
         tl = cls(intervals)
         if duration is not None:
@@ -163,7 +180,7 @@ class Timeline(Schedule):
         return tl
 
     def run(self, sim, first: int = 0) -> None:
-        if any(iv.phase == "TO" for iv in self.intervals) and sim.cycle_source is None:
+        if any(sim.phases.role(iv.phase) == HELD for iv in self.intervals) and sim.cycle_source is None:
             raise ScheduleError("a schedule with thermal-only intervals needs a cycle (the period over which the "
                                 "held outputs are averaged: the scenario's [schedule] cycle)")
         for i, iv in enumerate(self.intervals[first:], first):
@@ -182,7 +199,7 @@ class Monolithic(Timeline):
     @classmethod
     def from_spec(cls, spec, duration, step, thermal_step, cycle):
         total = _positive("duration", duration if duration is not None else spec.get("duration"))
-        return cls([Interval("TM", total, min(step, total))])
+        return cls([Interval(phases_of(spec).coupled, total, min(step, total))])
 
 
 def from_spec(spec: Mapping[str, Any], duration: float | None = None, cycle: float | None = None) -> Schedule:
