@@ -37,6 +37,7 @@ BUILTIN: dict[str, str] = {
     "rotor.mta_spinning": "rotorcosim.components.rotor.spinning:SpinningRotor",
     "bearing.hertz_spinning": "rotorcosim.components.bearing.spinning:SpinningBearing",
     "rubring.contact_spinning": "rotorcosim.components.rubring.spinning:SpinningRubRing",
+    "thermal.network_spinning": "rotorcosim.components.thermal.spinning:SpinningThermalNetwork",
 }
 
 _extra: dict[str, type[Component]] = {}

@@ -26,6 +26,7 @@ import math
 
 import numpy as np
 
+from rotorcosim.components.contract import COUPLED
 from rotorcosim.master.observer.observers import Observer
 
 #: time bins of the response track [s]: many per crossing (a crossing lasts ~0.1-1 s), few per hour of run
@@ -64,7 +65,7 @@ class RundownTrack(Observer):
             self.start_energy[sp].append(float(sim.value(f"{sp}.Omega")[0]))
 
     def interval_start(self, sim, phase, step):
-        self.active = phase == "TM"
+        self.active = phase == COUPLED
 
     def block_signals(self, sim):
         return [f"{sp}.Omega" for sp in self.spools] + [ref for _, _, ref in self.cols]

@@ -31,7 +31,7 @@ import math
 
 import numpy as np
 
-from ..contract import ContractError, Variable
+from ..contract import COUPLED, HELD, ContractError, Variable
 from ..kernels import KernelComponent
 from ..speeds import PT_SPEED_RPM
 from .kernel import CONSTANT, TABLE, TORQUE, SpoolParams, SpoolState, tm_step
@@ -83,7 +83,7 @@ class Spool(KernelComponent):
                  labels=ENERGY_LABELS),
     )
     preferred_step = 1e-4
-    phases = frozenset({"TM", "TO"})
+    phases = frozenset({COUPLED, HELD})
 
     def setup(self, t0=0.0):
         super().setup(t0)
@@ -128,6 +128,11 @@ class Spool(KernelComponent):
         self.state = {"x": np.array([w0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0])}
         self.kernel_step(t0, 0.0)
         self.time = float(t0)
+
+    def next_event(self, t):
+        """The fuel cut of a torque-driven spool, while it is ahead."""
+        cut = self.p["t_fuel_cut"]
+        return float(cut) if self.p["profile"] == "torque" and cut >= 0.0 and cut > t else None
 
     def _model_inertia(self) -> float:
         from ..rotor.spool_inertia import polar_inertia

@@ -7,7 +7,9 @@ components 3-35 us each per thermo-mechanical step; 150 000 TM steps took 41 s, 
 estimate gives 300 us). Components stepping at a multiple of the base step and
 thermal-only intervals make the estimate an upper bound.
 
-A run estimated above ``LIMIT_S`` of wall time is refused unless forced; a schedule with a thermo-mechanical
+A run estimated above ``LIMIT_S`` of wall time is refused unless forced (a run on the automatic schedule is not:
+its estimate, every step thermo-mechanical, is only an upper bound, often by a factor of a hundred where the
+thermal-only intervals carry the hours: a rundown's hour of windmilling); a schedule with a thermo-mechanical
 interval shorter than one communication step of a component, or than one base step, is refused always (the
 interval would be silently stretched to a step: a 1e-13 s "run" would report results of a millisecond).
 """
@@ -87,7 +89,9 @@ def check(sc, schedule, force: bool = False) -> dict:
         if schedule.duration < max(longest, schedule.step):
             raise BudgetError(f"duration {schedule.duration:.6g} s is shorter than one step ({max(longest, schedule.step):g} s)")
     est = estimate(sc, schedule)
-    if est["wall_s"] > LIMIT_S and not force:
+    if isinstance(schedule, AutoSchedule):
+        est["upper_bound"] = True
+    elif est["wall_s"] > LIMIT_S and not force:
         raise BudgetError(f"this run would take {est['steps']:.3g} steps, about {est['wall']} of wall time "
                           f"(estimated at {(MASTER_STEP_S + COMPONENT_STEP_S * max(1, len(sc.components))) * 1e6:.0f} us "
                           f"per step), above the {hms(LIMIT_S)} limit: give --force to run it anyway, or a shorter "
