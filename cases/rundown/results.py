@@ -7,7 +7,8 @@ bearings #0 and #5 (``rotor.X_brg{k}`` whirl, ``bearing{k}.Q_max_step`` / ``sigm
 inner-race stress, ``damper{k}.F_journal`` transmitted force: film + centering spring, eq. (23)'s numerator)
 when the system has them, else the rotor's ``X_brg0`` port alone (a test rotor's disk: ``"disk"``, whirl only).
 
-* ``speeds``: per spool ``start_rpm``, ``end_rpm``, ``t_fuel_cut_s`` (None: a prescribed profile or no cut);
+* ``speeds``: per spool ``start_rpm``, ``end_rpm``, ``t_fuel_cut_s`` (None: a prescribed profile or no cut),
+  ``stopped`` (it ended at 0 rev/min);
 * ``crossings``: per critical speed, over the thermo-mechanical samples whose speed lies within its band (half
   way to the neighbouring critical speeds, at most +-15 %): ``spool``, ``critical_speed_rpm``, ``t_s`` and
   ``peak_speed_rpm`` where the whirl at the first location peaks, ``direction`` (``"down"`` / ``"up"``), and per
@@ -182,7 +183,9 @@ def extract(sc, sim, obs, report) -> dict:
         c = comps[sp]
         cut = c.p.get("t_fuel_cut", -1.0)
         speeds[sp] = {"start_rpm": track.start_energy[sp][5] * RPM, "end_rpm": float(c.y["Omega"][0]) * RPM,
-                      "t_fuel_cut_s": float(cut) if c.p.get("profile") == "torque" and cut >= 0.0 else None}
+                      "t_fuel_cut_s": float(cut) if c.p.get("profile") == "torque" and cut >= 0.0 else None,
+                      # a stopped spool is a legal end state (friction, or a profile to 0 rev/min)
+                      "stopped": float(c.y["Omega"][0]) == 0.0}
         e0, e1 = track.start_energy[sp][:5], [float(x) for x in c.y["energy"]]
         lost = e0[0] - e1[0]
         work = {k: e1[n] - e0[n] for n, k in enumerate(("drive", "drag", "rub", "aero"), start=1)}

@@ -97,7 +97,7 @@ class Spool(KernelComponent):
                 raise ContractError(f"{where}.{k} must be a finite number >= 0, got {p[k]}")
         try:
             if p["profile"] == "table":
-                tt, tw = parse_table(p["table"], f"{where}.table")
+                tt, tw = parse_table(p["table"], "table")
             elif p["profile"] == "ramp":
                 tt, tw = ramp_table(p["speed_rpm"], p["end_speed_rpm"], p["t_start"], p["duration"])
             else:

@@ -7,7 +7,8 @@ temperatures); TO intervals run until the thermal outputs that feed the mechanic
 
 Non-stationary runs (a cycle that follows a speed signal, [schedule] cycle): a TM interval is not steady while
 the cycle's speed changes by more than ``drift_tolerance`` over ``to_min`` (a rundown: a held interval would skip
-that much of it), and one that ends at ``tm_max`` so is followed by another TM interval, not a TO one; a spool's
+that much of it), and one that ends at ``tm_max`` without having become steady is followed by another TM
+interval, not a TO one; a spool's
 speed is an output of a component stepped in TO intervals, so the drift test returns to TM when it has drifted by
 more than ``drift_tolerance``; a TO interval ends before a component's next scheduled event
 (``Component.next_event``: a fuel cut). With a constant cycle none of this changes a run.
@@ -110,8 +111,9 @@ class AutoSchedule(Schedule):
                 sim.run_interval(sim.phases.coupled, self.tm_max, self.step, test, reason="tm_max")
                 if sim.report.stopped:
                     break
-                if test.speed_changing:
-                    # the cycle's speed still changes fast (a rundown): no held interval yet, coupled again
+                if not test.ended_steady and getattr(sim.cycle_source, "constant", 0.0) is None:
+                    # a cycle that follows a speed signal and a response not yet steady (a rundown): no held
+                    # interval yet, coupled again (a constant cycle keeps the alternation)
                     state["next"] = COUPLED
                 continue
             if state.pop("adjust", False):
@@ -174,6 +176,7 @@ class _SteadyTest(_StopTest):
         # the cycle's speed (a speed signal's): not steady while it changes by more than drift_tolerance over a
         # minimal held interval (to_min), which would skip that much of a rundown; a constant cycle never does
         self.speed_changing = False
+        self.ended_steady = False
         self._period = (sim.t, sim.hold.cycle)
 
     def sample(self, sim):
@@ -215,6 +218,7 @@ class _SteadyTest(_StopTest):
                 self.steady = 0
         self._period = (t, p)
         if t - self.t_begin >= self.sch.tm_min - 1e-12 and self.steady >= self.sch.steady_cycles:
+            self.ended_steady = True
             return "steady"
         return None
 
