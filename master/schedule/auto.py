@@ -201,8 +201,12 @@ class _SteadyTest(_StopTest):
         self.n += rows.shape[0]
 
     def check(self, sim, t):
+        changing = self._speed_changing(sim, t)
         if self.acc is None:
-            return "steady" if t - self.t_begin >= self.sch.tm_min - 1e-12 else None
+            if not changing and t - self.t_begin >= self.sch.tm_min - 1e-12:
+                self.ended_steady = True
+                return "steady"
+            return None
         rms = np.sqrt(self.acc / self.n)
         self.acc, self.n = None, 0
         if self.last is not None:
@@ -210,17 +214,25 @@ class _SteadyTest(_StopTest):
             change = float(np.max(np.abs(rms - self.last) / scale))
             self.steady = self.steady + 1 if change < self.sch.steady_tolerance else 0
         self.last = rms
-        t0, p0 = self._period
-        p = sim.hold.cycle
-        if p and p0 and t > t0:
-            self.speed_changing = abs(p - p0) / p / (t - t0) * self.sch.to_min > self.sch.drift_tolerance
-            if self.speed_changing:
-                self.steady = 0
-        self._period = (t, p)
+        if changing:
+            self.steady = 0
         if t - self.t_begin >= self.sch.tm_min - 1e-12 and self.steady >= self.sch.steady_cycles:
             self.ended_steady = True
             return "steady"
         return None
+
+    def _speed_changing(self, sim, t) -> bool:
+        """Whether the cycle's speed changed since the last check faster than drift_tolerance per to_min (a
+        constant cycle never does; a stopped speed signal has no period: not changing)."""
+        t0, p0 = self._period
+        try:
+            p = sim.hold.cycle
+        except ValueError:
+            p = None
+        if p and p0 and t > t0:
+            self.speed_changing = abs(p - p0) / p / (t - t0) * self.sch.to_min > self.sch.drift_tolerance
+        self._period = (t, p)
+        return self.speed_changing
 
 
 class _DriftTest(_StopTest):
