@@ -7,8 +7,8 @@ temperatures); TO intervals run until the thermal outputs that feed the mechanic
 
 Non-stationary runs (a cycle that follows a speed signal, [schedule] cycle): a TM interval is not steady while
 the cycle's speed changes by more than ``drift_tolerance`` over ``to_min`` (a rundown: a held interval would skip
-that much of it), and one that ends at ``tm_max`` without having become steady is followed by another TM
-interval, not a TO one; a spool's
+that much of it), and one that ends at ``tm_max`` without having become steady while the speed moved by more
+than half ``drift_tolerance`` over it is followed by another TM interval, not a TO one; a spool's
 speed is an output of a component stepped in TO intervals, so the drift test returns to TM when it has drifted by
 more than ``drift_tolerance``; a TO interval ends before a component's next scheduled event
 (``Component.next_event``: a fuel cut). With a constant cycle none of this changes a run.
@@ -111,9 +111,9 @@ class AutoSchedule(Schedule):
                 sim.run_interval(sim.phases.coupled, self.tm_max, self.step, test, reason="tm_max")
                 if sim.report.stopped:
                     break
-                if not test.ended_steady and getattr(sim.cycle_source, "constant", 0.0) is None:
-                    # a cycle that follows a speed signal and a response not yet steady (a rundown): no held
-                    # interval yet, coupled again (a constant cycle keeps the alternation)
+                if not test.ended_steady and test.speed_change(sim) > 0.5 * self.drift_tolerance:
+                    # not steady, and the cycle's speed moved by more than half the drift tolerance over the
+                    # interval (a rundown): no held interval yet, coupled again (a constant cycle never does)
                     state["next"] = COUPLED
                 continue
             if state.pop("adjust", False):
@@ -178,6 +178,7 @@ class _SteadyTest(_StopTest):
         self.speed_changing = False
         self.ended_steady = False
         self._period = (sim.t, sim.hold.cycle)
+        self._p_start = self._period[1]
 
     def sample(self, sim):
         if not self.refs:
@@ -220,6 +221,15 @@ class _SteadyTest(_StopTest):
             self.ended_steady = True
             return "steady"
         return None
+
+    def speed_change(self, sim) -> float:
+        """The relative change of the cycle's speed since the interval started (0 for a constant cycle)."""
+        try:
+            p = sim.hold.cycle
+        except ValueError:
+            return 0.0
+        p0 = self._p_start
+        return abs(p - p0) / p if p and p0 else 0.0
 
     def _speed_changing(self, sim, t) -> bool:
         """Whether the cycle's speed changed since the last check faster than drift_tolerance per to_min (a
