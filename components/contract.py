@@ -244,6 +244,12 @@ class Component:
         (``holds_state_in_TO``) override it."""
         self.phase = phase
 
+    def next_event(self, t: float) -> float | None:
+        """The time of this component's next scheduled change of behaviour after ``t`` [s] (the spool's fuel cut),
+        or None. The automatic schedule ends a held-phase interval there, so that the change happens in a
+        coupled interval. None by default."""
+        return None
+
     def validity(self) -> tuple:
         """Where the model holds: :class:`~rotorcosim.components.validity.Check` objects on the outputs, asked for
         after :meth:`setup` (a limit may follow the parameters). None by default: a component that cannot say

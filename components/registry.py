@@ -32,6 +32,12 @@ BUILTIN: dict[str, str] = {
     "damper.fast": "rotorcosim.components.damper.component:FastDamper",
     "thermal.network": "rotorcosim.components.thermal.component:ThermalNetwork",
     "rubring.contact": "rotorcosim.components.rubring.component:RubRing",
+    # speed as a state: the spool, and the speed-following variants of the rotor, bearing, rub ring
+    "spool.speed": "rotorcosim.components.spool.component:Spool",
+    "rotor.mta_spinning": "rotorcosim.components.rotor.spinning:SpinningRotor",
+    "bearing.hertz_spinning": "rotorcosim.components.bearing.spinning:SpinningBearing",
+    "rubring.contact_spinning": "rotorcosim.components.rubring.spinning:SpinningRubRing",
+    "thermal.network_spinning": "rotorcosim.components.thermal.spinning:SpinningThermalNetwork",
 }
 
 _extra: dict[str, type[Component]] = {}

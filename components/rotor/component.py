@@ -44,6 +44,7 @@ from ..contract import ContractError, Variable
 from ..kernels import KernelComponent
 from ..speeds import GG_OMEGA, PT_OMEGA
 from . import model as fem
+from . import shaft_model
 from .mta import mta_basis, project
 from .kernel import RotorParams, RotorState, pack, tm_step
 from .newmark import check_parameters, initial_acceleration, step_operator
@@ -70,8 +71,9 @@ def full_model(model_file: str = "", omega_pt=None, omega_gg=None) -> fem.FullMo
     model = _FULL.get((fem.file_digest(model_file or None), omega_pt, omega_gg))
     if model is None:
         data, digest = fem.load_data(model_file or None)
-        model = _FULL[(digest, omega_pt, omega_gg)] = fem.build(data, digest, omega_pt, omega_gg,
-                                                                source=model_file or None)
+        build = shaft_model.build if shaft_model.is_shaft_model(data) else fem.build   # a test rotor's [shaft]
+        model = _FULL[(digest, omega_pt, omega_gg)] = build(data, digest, omega_pt, omega_gg,
+                                                            source=model_file or None)
     return model
 
 

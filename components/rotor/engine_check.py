@@ -20,6 +20,7 @@ import math
 import numpy as np
 
 from . import model as fem
+from .spool_inertia import spool_polar_inertia
 
 RESERVED = ("hub", "ground")
 
@@ -241,14 +242,13 @@ def report(full: fem.FullModel) -> dict:
         L = np.diff(z)
         do, di = np.asarray(d_out), np.asarray(d_in)
         shaft_m = float(np.sum(rho * math.pi / 4 * (do ** 2 - di ** 2) * L))
-        shaft_ip = float(np.sum(rho * math.pi / 32 * (do ** 4 - di ** 4) * L))
         disks = [fem.disk_inertia(data, dk) for dk in r.get("disks", [])]
         m = shaft_m + sum(d[0] for d in disks)
         total += m
         out["spools"][s] = {
             "name": r.get("name", s), "nodes": len(z), "length_mm": float((z[-1] - z[0]) * 1e3),
             "speed_rpm": float(r["speed_rpm"]), "mass_kg": m, "shaft_mass_kg": shaft_m,
-            "disk_mass_kg": sum(d[0] for d in disks), "polar_inertia_kgm2": shaft_ip + sum(d[1] for d in disks)}
+            "disk_mass_kg": sum(d[0] for d in disks), "polar_inertia_kgm2": spool_polar_inertia(data, s)}
     hub_m = 0.0
     for hv in data.get("casing", {}).get("hubs", {}).values() if data.get("casing") else ():
         hub_m += float(hv["mass"])

@@ -100,6 +100,12 @@ def tm_step(s, p, u, y, t, h):
     3: a non-finite response."""
     tau = s.tau[0] + h
     fux, fuy = unbalance(p, t + h, tau)
+    return advance(s, p, u, y, fux, fuy, tau)
+
+
+@kernel_jit(inline="always")
+def advance(s, p, u, y, fux, fuy, tau):
+    """The Newmark step under the port inputs and the unbalance force (fux, fuy); the mechanical time becomes tau."""
     if not math.isfinite(gather(p.f, u.F_brg0, u.F_brg5, u.F_sfd_housing0, u.F_rub_housing0, u.F_sfd_housing5,
                                 u.F_rub_housing5, u.F_rub0, u.F_rub5, fux, fuy)):
         return 2

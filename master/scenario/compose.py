@@ -12,6 +12,8 @@
   added: a name is the driven input (``"bearing0.K_journal"``) or ``"src -> dst"``; each must match one.
 * every other table (``scenario``, ``inputs``, ``algorithm``, ``schedule``, ``outputs``, ``results``) merges key
   by key, and any other value, lists included (``intervals``, ``record``, ``order``), is replaced.
+  ``[scenario] remove_keys = ["table.key", ...]`` removes inherited keys of those tables (each must exist), e.g.
+  ``"schedule.speed_rpm"`` where the child gives a ``cycle`` instead.
 
 :func:`compose` returns the composed dict, free of the composition keys (``extends``, ``remove_connections``,
 ``remove_parameters``), and an :class:`Origins` map that tells which file brought each component, parameter,
@@ -63,7 +65,7 @@ class Origins:
 
 
 #: composition keys, consumed here and never seen by the parser
-SCENARIO_DIRECTIVES = ("extends", "remove_connections")
+SCENARIO_DIRECTIVES = ("extends", "remove_connections", "remove_keys")
 COMPONENT_DIRECTIVES = ("remove_parameters",)
 
 
@@ -219,7 +221,10 @@ def compose(path: str | Path, _seen: tuple = ()) -> tuple[dict, Origins]:
     head = dict(head)
     base_ref = head.pop("extends", None)
     removes = _str_list(head.pop("remove_connections", []), f"{where}: [scenario]", "remove_connections")
+    remove_keys = _str_list(head.pop("remove_keys", []), f"{where}: [scenario]", "remove_keys")
     if base_ref is None:
+        if remove_keys:
+            raise CompositionError(f"{where}: [scenario] remove_keys needs 'extends' (nothing is inherited)")
         if removes:
             raise CompositionError(f"{where}: [scenario] remove_connections needs 'extends' (nothing is inherited)")
         origins = Origins()
@@ -234,6 +239,7 @@ def compose(path: str | Path, _seen: tuple = ()) -> tuple[dict, Origins]:
     if not isinstance(base_ref, str):
         raise CompositionError(f"{where}: [scenario] extends must be a file name, got {base_ref!r}")
     base, origins = compose(_base_path(path, base_ref), _seen + (path,))
+    base = _remove_keys(base, remove_keys, where)
     out = dict(base)
     for key, value in data.items():
         if key == "scenario":
@@ -254,3 +260,19 @@ def compose(path: str | Path, _seen: tuple = ()) -> tuple[dict, Origins]:
     if "scenario" not in data and "scenario" in base:
         out["scenario"] = dict(base["scenario"])
     return out, origins
+
+
+def _remove_keys(base: dict, keys: list[str], where: str) -> dict:
+    """``base`` without the inherited ``"table.key"`` entries of ``remove_keys`` (each must exist)."""
+    if not keys:
+        return base
+    out = dict(base)
+    for ref in keys:
+        table, _, key = ref.partition(".")
+        if table in ("components", "connections", "scenario") or not key:
+            raise CompositionError(f"{where}: [scenario] remove_keys: {ref!r} is not 'table.key' of inputs, algorithm, "
+                                   "schedule, outputs or results")
+        if not isinstance(out.get(table), Mapping) or key not in out[table]:
+            raise CompositionError(f"{where}: [scenario] remove_keys: no inherited key {ref!r}")
+        out[table] = {k: v for k, v in out[table].items() if k != key}
+    return out

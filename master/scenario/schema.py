@@ -181,7 +181,9 @@ TABLES: dict[str, dict[str, Callable | None]] = {
                  "tm_min": positive, "tm_max": positive, "to_min": positive, "to_max": positive,
                  "tracked": list_of(port_ref), "tolerance": positive},
     "outputs": {"record": list_of(port_ref), "record_step": positive, "format": one_of(*OUTPUT_FORMATS)},
-    "results": {"kind": text, "unbalance_parameter": port_ref, "speed_parameter": port_ref, "cycles": whole_positive},
+    "results": {"kind": text, "unbalance_parameter": port_ref, "speed_parameter": port_ref, "cycles": whole_positive,
+                # a case's own keys (cases/rundown: the spool components, the critical speeds of its crossings)
+                "spools": list_of(text), "critical_speeds_rpm": list_of(positive)},
 }
 COMPONENT = {"implementation": text, "fmu": text, "parameters": None, "step": positive,
              # FMUs only: start values of states / initial = "exact" variables (fmus/importer.py)

@@ -5,6 +5,14 @@ staggered scheme's assumption: once the mechanics are steady, their response cha
 temperatures); TO intervals run until the thermal outputs that feed the mechanical side have drifted by more than
 ``drift_tolerance``, within min/max durations. The last stretch is one TM interval, where results are read.
 
+Non-stationary runs (a cycle that follows a speed signal, [schedule] cycle): a TM interval is not steady while
+the cycle's speed changes by more than ``drift_tolerance`` over ``to_min`` (a rundown: a held interval would skip
+that much of it), and one that ends at ``tm_max`` without having become steady while the speed moved by more
+than half ``drift_tolerance`` over it is followed by another TM interval, not a TO one; a spool's
+speed is an output of a component stepped in TO intervals, so the drift test returns to TM when it has drifted by
+more than ``drift_tolerance``; a TO interval ends before a component's next scheduled event
+(``Component.next_event``: a fuel cut). With a constant cycle none of this changes a run.
+
 Error control (``tolerance``, percent; ``--tolerance PCT``): every TO interval's error is estimated at the next
 restart by the thermal-only hold (master/manipulator/hold.py: the hand-off error of each held power, carried through
 the thermal components over the interval's length, relative to the temperatures above the hold's
@@ -26,7 +34,7 @@ from rotorcosim.master.manipulator.hold import feeds_thermal
 from rotorcosim.master.schedule.timeline import Schedule, ScheduleError, _positive, register_schedule
 
 #: floors of the relative drift test, by unit (a change smaller than this is no drift)
-DRIFT_FLOORS = {"K": 0.5, "m": 1e-7, "Pa.s": 1e-4, "W": 1.0, "N": 1.0}
+DRIFT_FLOORS = {"K": 0.5, "m": 1e-7, "Pa.s": 1e-4, "W": 1.0, "N": 1.0, "rad/s": 1.0, "rad/s2": 1.0}
 #: the largest ``tolerance`` [%]: an error of a result larger than the result itself accepts anything
 TOLERANCE_MAX_PCT = 100.0
 #: the TO length controller: never more than these factors down or up from one interval to the next
@@ -99,9 +107,14 @@ class AutoSchedule(Schedule):
                 # the TO length is set after this interval, from the estimate its restart gave: flagged before
                 # it runs, so that a checkpoint at its end (which precedes the update) resumes the same way
                 state.update(next=HELD, adjust=True)
-                sim.run_interval(sim.phases.coupled, self.tm_max, self.step, _SteadyTest(sim, self), reason="tm_max")
+                test = _SteadyTest(sim, self)
+                sim.run_interval(sim.phases.coupled, self.tm_max, self.step, test, reason="tm_max")
                 if sim.report.stopped:
                     break
+                if not test.ended_steady and test.speed_change(sim) > 0.5 * self.drift_tolerance:
+                    # not steady, and the cycle's speed moved by more than half the drift tolerance over the
+                    # interval (a rundown): no held interval yet, coupled again (a constant cycle never does)
+                    state["next"] = COUPLED
                 continue
             if state.pop("adjust", False):
                 estimate = sim.hold.report.last_estimate_pct
@@ -114,6 +127,11 @@ class AutoSchedule(Schedule):
             # keep room for a final thermo-mechanical interval, where the results are read
             state["next"] = COUPLED
             d_to = min(state["to_len"], remaining - self.tm_max)
+            # a component's scheduled change (a fuel cut) happens in a coupled interval: the held one ends before
+            events = [e for c in sim.system.components.values()
+                      for e in [getattr(c, "next_event", lambda t: None)(sim.t)] if e is not None]
+            if events:
+                d_to = min(d_to, min(events) - sim.t)
             if d_to < self.to_min:
                 continue
             sim.run_interval(sim.phases.held, d_to, self.thermal_step, _DriftTest(sim, self), reason="to_max")
@@ -155,6 +173,12 @@ class _SteadyTest(_StopTest):
         self.n = 0
         self.last = None
         self.steady = 0
+        # the cycle's speed (a speed signal's): not steady while it changes by more than drift_tolerance over a
+        # minimal held interval (to_min), which would skip that much of a rundown; a constant cycle never does
+        self.speed_changing = False
+        self.ended_steady = False
+        self._period = (sim.t, sim.hold.cycle)
+        self._p_start = self._period[1]
 
     def sample(self, sim):
         if not self.refs:
@@ -178,8 +202,12 @@ class _SteadyTest(_StopTest):
         self.n += rows.shape[0]
 
     def check(self, sim, t):
+        changing = self._speed_changing(sim, t)
         if self.acc is None:
-            return "steady" if t - self.t_begin >= self.sch.tm_min - 1e-12 else None
+            if not changing and t - self.t_begin >= self.sch.tm_min - 1e-12:
+                self.ended_steady = True
+                return "steady"
+            return None
         rms = np.sqrt(self.acc / self.n)
         self.acc, self.n = None, 0
         if self.last is not None:
@@ -187,9 +215,34 @@ class _SteadyTest(_StopTest):
             change = float(np.max(np.abs(rms - self.last) / scale))
             self.steady = self.steady + 1 if change < self.sch.steady_tolerance else 0
         self.last = rms
+        if changing:
+            self.steady = 0
         if t - self.t_begin >= self.sch.tm_min - 1e-12 and self.steady >= self.sch.steady_cycles:
+            self.ended_steady = True
             return "steady"
         return None
+
+    def speed_change(self, sim) -> float:
+        """The relative change of the cycle's speed since the interval started (0 for a constant cycle)."""
+        try:
+            p = sim.hold.cycle
+        except ValueError:
+            return 0.0
+        p0 = self._p_start
+        return abs(p - p0) / p if p and p0 else 0.0
+
+    def _speed_changing(self, sim, t) -> bool:
+        """Whether the cycle's speed changed since the last check faster than drift_tolerance per to_min (a
+        constant cycle never does; a stopped speed signal has no period: not changing)."""
+        t0, p0 = self._period
+        try:
+            p = sim.hold.cycle
+        except ValueError:
+            p = None
+        if p and p0 and t > t0:
+            self.speed_changing = abs(p - p0) / p / (t - t0) * self.sch.to_min > self.sch.drift_tolerance
+        self._period = (t, p)
+        return self.speed_changing
 
 
 class _DriftTest(_StopTest):

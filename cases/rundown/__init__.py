@@ -1,0 +1,14 @@
+"""The rundown case: a rotor whose spools change speed (components/spool), read as an engine-dynamics engineer
+reads a rundown: the speed of each spool against time, each critical-speed crossing (the time, the speed where
+the response peaks, the peak whirl, contact load, contact stress and transmitted force at each location), the
+spools' energy balance, and for the blade-loss engine the Table 4 results at the end (cases/blade_loss).
+
+- :mod:`.results`: ``summary.json`` keys ``speeds``, ``crossings``, ``energy`` (and ``bearings`` for the engine);
+- :mod:`.figures`: speed against time with the thermal-only intervals shaded, whirl and transmitted force against
+  speed, the Campbell diagram with the run's trajectory, the temperatures.
+
+Scenarios: ``jeffcott_rundown`` (the check case against an independent integration) and ``blade_loss_rundown``.
+"""
+
+#: the result extraction of the scenarios whose ``[results] kind`` is ``"rundown"`` (rotorcosim.master.case)
+RESULTS = "rotorcosim.cases.rundown.results"

@@ -1,0 +1,255 @@
+"""Figures of a rundown, from the recorded time series (``data``: ``time``, ``phase`` and one array per port):
+
+* ``rundown_speed.png``: each spool's speed against time, the held-phase (thermal-only) intervals shaded: (a) from
+  the start to a minute after the last fuel cut, (b) the whole run in minutes;
+* ``rundown_response.png``: the whirl and the transmitted force (film + centering spring) at bearings #0 and #5
+  against the power-turbine speed through the rundown (the coupled samples), the critical speeds marked
+  (a test rotor: its disk's whirl only);
+* ``rundown_campbell.png``: the Campbell diagram of the linear engine (components/rotor/critical.py; a test
+  rotor: its critical speeds as constant frequencies) with the run's 1x trajectory and each crossing's peak;
+* ``rundown_temperatures.png``: the bearing temperatures over the whole run (when recorded).
+"""
+from __future__ import annotations
+
+import math
+from pathlib import Path
+from typing import NamedTuple
+
+import numpy as np
+
+from rotorcosim.cases.blade_loss.results import KELVIN, NODES
+from rotorcosim.master.run.outputs import check_dpi
+
+RPM = 30.0 / math.pi
+#: coupled samples per speed bin of the response figure
+SPEED_BIN_RPM = 25.0
+
+
+def _plt():
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    return plt
+
+
+def _get(data, ref):
+    try:
+        return np.asarray(data[ref])
+    except KeyError:
+        return None
+
+
+def _held_spans(t, phase):
+    """(start, end) of each run of held-phase samples (phase code 1)."""
+    held = np.asarray(phase) == 1
+    if not held.any():
+        return []
+    d = np.diff(np.concatenate([[0], held.astype(int), [0]]))
+    starts, ends = np.flatnonzero(d == 1), np.flatnonzero(d == -1) - 1
+    return [(t[max(s - 1, 0)], t[e]) for s, e in zip(starts, ends)]
+
+
+def _shade(ax, spans, scale=1.0, label=True):
+    for i, (a, b) in enumerate(spans):
+        ax.axvspan(a * scale, b * scale, color="0.85", lw=0, zorder=0,
+                   label="thermal-only (held) intervals" if label and i == 0 else None)
+
+
+class _Out(NamedTuple):
+    """Where the figures go, at which resolution."""
+    folder: Path
+    dpi: int
+
+
+def _save(fig, out: _Out, name):
+    fig.tight_layout()
+    fig.savefig(out.folder / name, dpi=out.dpi)
+    _plt().close(fig)
+    return name
+
+
+def _spools(sc):
+    r = sc.extra.get("results", {})
+    return list(r.get("spools") or [n for n, c in sc.components.items() if c.implementation == "spool.speed"])
+
+
+def _locations(data):
+    out = {}
+    for k in (0, 5):
+        if _get(data, f"damper{k}.F_journal") is not None:
+            out[f"#{k}"] = (f"rotor.X_brg{k}", f"damper{k}.F_journal")
+    return out or {"disk": ("rotor.X_brg0", None)}
+
+
+def figures(sc, data, out, dpi: int | None = None) -> list[str]:
+    """Draw the figures (module docstring) into the folder ``out`` at ``dpi`` (None: the default,
+    :data:`~rotorcosim.master.run.outputs.FIGURE_DPI`); returns the file names."""
+    out = _Out(Path(out), check_dpi(dpi))
+    t = _get(data, "time")
+    if t is None or not len(t):
+        return []
+    phase = _get(data, "phase")
+    spools = [s for s in _spools(sc) if _get(data, f"{s}.Omega") is not None]
+    if not spools:
+        return []
+    crit = [float(c) for c in sc.extra.get("results", {}).get("critical_speeds_rpm", [])]
+    names = [_speed(sc, data, t, phase, spools, out)]
+    w = _get(data, f"{spools[0]}.Omega").reshape(len(t), -1)[:, 0] * RPM
+    coupled = phase == 0 if phase is not None else np.ones(len(t), bool)
+    peaks = _peaks(data, w, coupled, crit)
+    names.append(_response(data, w, coupled, crit, out))
+    names.append(_campbell(sc, w, crit, peaks, out))
+    if _get(data, "thermal0.T_nodes") is not None:
+        names.append(_temperatures(data, t, phase, out))
+    return names
+
+
+def _speed(sc, data, t, phase, spools, out):
+    plt = _plt()
+    cuts = [float(sc.components[s].parameters.get("t_fuel_cut", -1.0)) for s in spools]
+    cuts = [c for c in cuts if c >= 0.0]
+    t_zoom = min(t[-1], (max(cuts) if cuts else 0.0) + 60.0)
+    spans = _held_spans(t, phase) if phase is not None else []
+    long_run = t[-1] > 2.0 * t_zoom
+    fig, axes = plt.subplots(1, 2 if long_run else 1, figsize=(11 if long_run else 7, 4), squeeze=False)
+    panels = [(axes[0, 0], 1.0, "time [s]", t_zoom, "(a) release, fuel cut, rundown")]
+    if long_run:
+        panels.append((axes[0, 1], 1.0 / 60.0, "time [min]", t[-1], "(b) the whole run"))
+    for ax, scale, xlabel, t_end, title in panels:
+        _shade(ax, spans, scale)
+        for s in spools:
+            ax.plot(t * scale, _get(data, f"{s}.Omega").reshape(len(t), -1)[:, 0] * RPM, lw=1.2, label=s)
+        for c in cuts:
+            ax.axvline(c * scale, color="tab:red", ls=":", lw=1)
+        ax.set_xlim(0, t_end * scale)
+        ax.set_ylim(bottom=0)
+        ax.set_xlabel(xlabel)
+        ax.set_ylabel("speed [rev/min]")
+        ax.set_title(title, fontsize=9)
+        ax.grid(alpha=0.3)
+    axes[0, 0].legend(fontsize=8, loc="lower left")
+    fig.suptitle(f"{sc.name}: spool speeds (dotted: fuel cut)", fontsize=10)
+    return _save(fig, out, "rundown_speed.png")
+
+
+def _binned(w, y, sel):
+    """The largest y per speed bin of the selected samples: (bin centre speed, max)."""
+    if not sel.any():
+        return np.array([]), np.array([])
+    b = np.floor(w[sel] / SPEED_BIN_RPM).astype(np.int64)
+    order = np.argsort(b, kind="stable")
+    b, ys = b[order], y[sel][order]
+    starts = np.concatenate([[0], np.flatnonzero(np.diff(b)) + 1])
+    return (b[starts] + 0.5) * SPEED_BIN_RPM, np.maximum.reduceat(ys, starts)
+
+
+def _radius(a, n):
+    a = a.reshape(n, -1)
+    return np.hypot(a[:, 0], a[:, 1])
+
+
+def _peaks(data, w, coupled, crit):
+    """(speed, whirl) of the largest whirl at the first location within each critical speed's band."""
+    from .results import BAND
+
+    ref = next(iter(_locations(data).values()))[0]
+    r = _radius(_get(data, ref), len(w))
+    out = []
+    cs = sorted(crit)
+    for i, c in enumerate(cs):
+        lo = max(c * (1 - BAND), 0.5 * (cs[i - 1] + c) if i > 0 else 0.0)
+        hi = min(c * (1 + BAND), 0.5 * (cs[i + 1] + c) if i + 1 < len(cs) else math.inf)
+        sel = np.flatnonzero(coupled & (w >= lo) & (w <= hi))
+        if len(sel):
+            j = sel[np.argmax(r[sel])]
+            out.append((c, w[j], r[j]))
+    return out
+
+
+def _response(data, w, coupled, crit, out):
+    plt = _plt()
+    locs = _locations(data)
+    forces = any(f is not None for _, f in locs.values())
+    fig, axes = plt.subplots(2 if forces else 1, 1, figsize=(8, 6.5 if forces else 3.8), sharex=True, squeeze=False)
+    n = len(w)
+    for name, (xref, fref) in locs.items():
+        s, y = _binned(w, _radius(_get(data, xref), n) * 1e3, coupled)
+        axes[0, 0].plot(s, y, lw=1.2, label=f"{name}")
+        if fref is not None:
+            s, y = _binned(w, _radius(_get(data, fref), n), coupled)
+            axes[1, 0].plot(s, y, lw=1.2, label=f"{name}")
+    axes[0, 0].set_ylabel("whirl (largest radius) [mm]")
+    if forces:
+        axes[1, 0].set_ylabel("transmitted force [N]")
+    for ax in axes[:, 0]:
+        for c in crit:
+            ax.axvline(c, color="tab:red", ls="--", lw=0.8)
+        ax.grid(alpha=0.3)
+        ax.legend(fontsize=8, loc="upper left")
+        ax.set_ylim(bottom=0)
+    axes[-1, 0].set_xlabel("power-turbine speed [rev/min] (dashed: critical speeds)")
+    axes[0, 0].set_title("response through the rundown: largest value per 25 rev/min of speed", fontsize=9)
+    return _save(fig, out, "rundown_response.png")
+
+
+def _campbell(sc, w, crit, peaks, out):
+    plt = _plt()
+    top = 1.1 * float(np.nanmax(w))
+    fig, ax = plt.subplots(figsize=(8, 5))
+    rpm = np.linspace(0.0, top, 41)
+    drawn = False
+    model_file = sc.components["rotor"].parameters.get("model_file", "") if "rotor" in sc.components else ""
+    if not model_file:
+        try:
+            from rotorcosim.cases.blade_loss import linear_engine
+            from rotorcosim.components.rotor import critical
+            from rotorcosim.components.rotor import model as fem
+
+            m = fem.load(None)
+            f, kind = critical.campbell(m, rpm, linear_engine.supports(data=m.data))
+            for code, colour, label in ((1, "tab:blue", "forward whirl"), (-1, "tab:orange", "backward whirl")):
+                sel = kind == code
+                ax.scatter(np.broadcast_to(rpm[:, None], f.shape)[sel], f[sel], s=5, c=colour, label=label)
+            drawn = True
+        except Exception:  # the figure still shows the trajectory and the crossings
+            drawn = False
+    if not drawn:
+        for c in crit:
+            ax.axhline(c / 60.0, color="tab:blue", lw=1)
+    ax.plot([np.nanmin(w), np.nanmax(w)], [np.nanmin(w) / 60.0, np.nanmax(w) / 60.0], color="k", lw=2.5,
+            alpha=0.6, label="the run's trajectory (1x power turbine)")
+    for c in crit:
+        ax.plot(c, c / 60.0, "o", mfc="none", mec="tab:red", ms=9)
+    for c, s, _ in peaks:
+        ax.plot(s, s / 60.0, "x", color="tab:red", ms=9, mew=2)
+        ax.annotate(f"peak {s:.0f}", (s, s / 60.0), textcoords="offset points", xytext=(6, -14), fontsize=8,
+                    color="tab:red")
+    ax.set_xlim(0, top)
+    ax.set_ylim(0, 1.3 * top / 60.0)
+    ax.set_xlabel("power-turbine speed [rev/min]")
+    ax.set_ylabel("whirl frequency [Hz]")
+    ax.set_title("Campbell diagram (o: critical speeds, x: where the run's response peaked)", fontsize=9)
+    ax.legend(fontsize=8, loc="upper left")
+    ax.grid(alpha=0.3)
+    return _save(fig, out, "rundown_campbell.png")
+
+
+def _temperatures(data, t, phase, out):
+    plt = _plt()
+    fig, axes = plt.subplots(1, 2, figsize=(11, 4), sharey=True)
+    spans = _held_spans(t, phase) if phase is not None else []
+    for ax, k in zip(axes, (0, 5)):
+        T = _get(data, f"thermal{k}.T_nodes")
+        if T is None:
+            continue
+        _shade(ax, spans, 1.0 / 60.0, label=k == 0)
+        for node in ("inner_race", "ball", "outer_race", "sfd_oil"):
+            ax.plot(t / 60.0, T[:, NODES.index(node)] - KELVIN, lw=1.2, label=node.replace("_", " "))
+        ax.set_title(f"bearing #{k}", fontsize=9)
+        ax.set_xlabel("time [min]")
+        ax.grid(alpha=0.3)
+    axes[0].set_ylabel("temperature [deg C]")
+    axes[0].legend(fontsize=8)
+    return _save(fig, out, "rundown_temperatures.png")

@@ -1,0 +1,211 @@
+"""The results of a rundown: ``speeds``, ``crossings`` and ``energy`` of ``summary.json``.
+
+The scenario's ``[results]`` (kind ``"rundown"``) names ``spools`` (the spool components, components/spool; the
+first is the one whose crossings are reported) and ``critical_speeds_rpm`` (the forward synchronous critical
+speeds of the linear rotor, e.g. from ``rotorcosim critical-speeds``). The locations read are the engine's
+bearings #0 and #5 (``rotor.X_brg{k}`` whirl, ``bearing{k}.Q_max_step`` / ``sigma_max_step`` contact load and
+inner-race stress, ``damper{k}.F_journal`` transmitted force: film + centering spring, eq. (23)'s numerator)
+when the system has them, else the rotor's ``X_brg0`` port alone (a test rotor's disk: ``"disk"``, whirl only).
+
+* ``speeds``: per spool ``start_rpm``, ``end_rpm``, ``t_fuel_cut_s`` (None: a prescribed profile or no cut),
+  ``stopped`` (it ended at 0 rev/min);
+* ``crossings``: per critical speed, over the thermo-mechanical samples whose speed lies within its band (half
+  way to the neighbouring critical speeds, at most +-15 %): ``spool``, ``critical_speed_rpm``, ``t_s`` and
+  ``peak_speed_rpm`` where the whirl at the first location peaks, ``direction`` (``"down"`` / ``"up"``), and per
+  location ``peak_whirl_mm``, ``peak_contact_load_N``, ``peak_contact_stress_MPa``, ``peak_transmitted_force_N``
+  (the maxima over the band; keys without a signal are left out). A critical speed the run never reaches has
+  no entry;
+* ``energy``: per spool its ``inertia_kg_m2``, ``kinetic_energy_lost_J``, the work of each torque
+  ``work_J`` (drive, drag, rub, aero: the spool's own bookkeeping, components/spool/kernel.py) and
+  ``residual_pct``: (kinetic energy lost - (drag + rub + aero - drive)) / kinetic energy lost, in percent.
+
+The response is kept as maxima over bins of ``BIN_S`` of thermo-mechanical time (``RundownTrack``).
+"""
+from __future__ import annotations
+
+import importlib
+import math
+
+import numpy as np
+
+from rotorcosim.components.contract import COUPLED
+from rotorcosim.master.observer.observers import Observer
+
+#: time bins of the response track [s]: many per crossing (a crossing lasts ~0.1-1 s), few per hour of run
+BIN_S = 2e-3
+RPM = 30.0 / math.pi
+BAND = 0.15
+#: the module that draws the figures (imported by name: it reads this one's BAND)
+FIGURES_MODULE = "rotorcosim.cases.rundown.figures"
+
+
+def _locations(components) -> dict[str, dict[str, str]]:
+    if all(f"bearing{k}" in components for k in (0, 5)):
+        out = {}
+        for k in (0, 5):
+            b = components[f"bearing{k}"]
+            q = "Q_max_step" if "Q_max_step" in b.y else "Q_max"
+            s = "sigma_max_step" if "sigma_max_step" in b.y else "sigma_max"
+            out[str(k)] = {"whirl": f"rotor.X_brg{k}", "load": f"bearing{k}.{q}", "stress": f"bearing{k}.{s}",
+                           "force": f"damper{k}.F_journal"}
+        return out
+    return {"disk": {"whirl": "rotor.X_brg0"}}
+
+
+class RundownTrack(Observer):
+    """Per bin of BIN_S of thermo-mechanical time: its end time, each spool's speed, and per location the largest
+    whirl radius, contact load, inner-race stress and transmitted force."""
+
+    def __init__(self, spools):
+        self.spools = list(spools)
+        self.rows: list[np.ndarray] = []
+        self.start_energy: dict[str, list[float]] = {}
+
+    def start(self, sim, schedule):
+        self.locations = _locations(sim.system.components)
+        self.cols = [(loc, kind, ref) for loc, d in self.locations.items() for kind, ref in d.items()]
+        for sp in self.spools:
+            self.start_energy[sp] = [float(x) for x in sim.value(f"{sp}.energy")]
+            self.start_energy[sp].append(float(sim.value(f"{sp}.Omega")[0]))
+
+    def interval_start(self, sim, phase, step):
+        self.active = phase == COUPLED
+
+    def block_signals(self, sim):
+        return [f"{sp}.Omega" for sp in self.spools] + [ref for _, _, ref in self.cols]
+
+    def step_block(self, sim, ks, ts, data):
+        if not self.active or not len(ts):
+            return
+        bins = np.floor(np.asarray(ts) / BIN_S).astype(np.int64)
+        edges = np.flatnonzero(np.diff(bins)) + 1
+        starts = np.concatenate([[0], edges])
+        ends = np.concatenate([edges, [len(ts)]])
+        cols = [np.asarray(ts)[ends - 1]]
+        cols += [np.asarray(data[f"{sp}.Omega"])[ends - 1, 0] for sp in self.spools]
+        for _, kind, ref in self.cols:
+            v = np.asarray(data[ref])
+            if kind in ("whirl", "force"):
+                v = np.hypot(v[:, 0], v[:, 1])
+            else:
+                v = v[:, 0]                     # load: inner race of [inner, outer]; stress: the inner race
+            cols.append(np.maximum.reduceat(v, starts))
+        self.rows.append(np.column_stack(cols))
+
+    def step(self, sim, t):
+        if not getattr(self, "active", False):
+            return
+        row = [t] + [float(sim.value(f"{sp}.Omega")[0]) for sp in self.spools]
+        for _, kind, ref in self.cols:
+            v = np.asarray(sim.value(ref))
+            row.append(float(np.hypot(v[0], v[1])) if kind in ("whirl", "force") else float(v[0]))
+        self.rows.append(np.array([row]))
+
+    def table(self) -> np.ndarray:
+        """All bins: columns t, the spools' speeds [rad/s], then per location its (whirl, load, stress, force)."""
+        n = 1 + len(self.spools) + len(self.cols)
+        if not self.rows:
+            return np.zeros((0, n))
+        a = np.vstack(self.rows)
+        # the step() path gives one row per step: fold it into bins like step_block's
+        b = np.floor(a[:, 0] / BIN_S).astype(np.int64)
+        if len(np.unique(b)) == len(b):
+            return a
+        starts = np.concatenate([[0], np.flatnonzero(np.diff(b)) + 1])
+        ends = np.concatenate([starts[1:], [len(b)]])
+        out = np.maximum.reduceat(a, starts)
+        out[:, :1 + len(self.spools)] = a[ends - 1, :1 + len(self.spools)]
+        return out
+
+
+def _spools(sc) -> list[str]:
+    r = sc.extra.get("results", {})
+    spools = r.get("spools") or [n for n, c in sc.components.items() if c.implementation == "spool.speed"]
+    return list(spools)
+
+
+def _case_blade_loss(sc) -> bool:
+    return all(f"bearing{k}" in sc.components for k in (0, 5))
+
+
+def observers(sc, cycle):
+    obs = [RundownTrack(_spools(sc))]
+    if _case_blade_loss(sc):
+        from rotorcosim.cases.blade_loss import results as bl
+        obs += bl.observers(sc, cycle)
+    return obs
+
+
+def check(sc, sim) -> None:
+    spools = _spools(sc)
+    if not spools:
+        raise ValueError(f"scenario {sc.name!r}: [results] kind = 'rundown' needs a spool component (spool.speed)")
+    for sp in spools:
+        if sp not in sim.system.components:
+            raise ValueError(f"[results] spools: no component {sp!r}")
+
+
+def crossings(table: np.ndarray, spool: str, criticals_rpm, locations: dict, n_spools: int) -> list[dict]:
+    """The crossings of the first spool's speed through each critical speed (module docstring)."""
+    out = []
+    if not len(table):
+        return out
+    crit = sorted(float(c) for c in criticals_rpm)
+    w = table[:, 1] * RPM
+    names = {"whirl": ("peak_whirl_mm", 1e3), "load": ("peak_contact_load_N", 1.0),
+             "stress": ("peak_contact_stress_MPa", 1e-6), "force": ("peak_transmitted_force_N", 1.0)}
+    col0 = 1 + n_spools
+    for i, c in enumerate(crit):
+        lo = max(c * (1 - BAND), 0.5 * (crit[i - 1] + c) if i > 0 else 0.0)
+        hi = min(c * (1 + BAND), 0.5 * (crit[i + 1] + c) if i + 1 < len(crit) else math.inf)
+        sel = np.flatnonzero((w >= lo) & (w <= hi))
+        if not len(sel):
+            continue
+        j = sel[np.argmax(table[sel, col0])]
+        dw = np.gradient(w)[j] if len(w) > 1 else 0.0
+        entry = {"spool": spool, "critical_speed_rpm": c, "t_s": float(table[j, 0]),
+                 "peak_speed_rpm": float(w[j]), "direction": "up" if dw > 0 else "down", "bearings": {}}
+        col = col0
+        for loc, d in locations.items():
+            r = {}
+            for kind in d:
+                key, f = names[kind]
+                r[key] = float(table[sel, col].max()) * f
+                col += 1
+            entry["bearings"][loc] = r
+        out.append(entry)
+    return out
+
+
+def extract(sc, sim, obs, report) -> dict:
+    track = obs[0]
+    table = track.table()
+    comps = sim.system.components
+    speeds, energy = {}, {}
+    for i, sp in enumerate(track.spools):
+        c = comps[sp]
+        cut = c.p.get("t_fuel_cut", -1.0)
+        speeds[sp] = {"start_rpm": track.start_energy[sp][5] * RPM, "end_rpm": float(c.y["Omega"][0]) * RPM,
+                      "t_fuel_cut_s": float(cut) if c.p.get("profile") == "torque" and cut >= 0.0 else None,
+                      # a stopped spool is a legal end state (friction, or a profile to 0 rev/min)
+                      "stopped": float(c.y["Omega"][0]) == 0.0}
+        e0, e1 = track.start_energy[sp][:5], [float(x) for x in c.y["energy"]]
+        lost = e0[0] - e1[0]
+        work = {k: e1[n] - e0[n] for n, k in enumerate(("drive", "drag", "rub", "aero"), start=1)}
+        balance = work["drag"] + work["rub"] + work["aero"] - work["drive"]
+        energy[sp] = {"inertia_kg_m2": float(c.J), "kinetic_energy_lost_J": lost, "work_J": work,
+                      "residual_pct": 100.0 * (lost - balance) / lost if lost else 0.0}
+    crit = sc.extra.get("results", {}).get("critical_speeds_rpm", [])
+    out = {"speeds": speeds, "energy": energy,
+           "crossings": crossings(table, track.spools[0], crit, track.locations, len(track.spools))
+           if track.spools else []}
+    if _case_blade_loss(sc):
+        from rotorcosim.cases.blade_loss import results as bl
+        out.update(bl.extract(sc, sim, obs[1:], report))
+    return out
+
+
+def figures(sc, data, out, pool=None, dpi: int | None = None) -> list[str]:
+    """The rundown figures (:mod:`rotorcosim.cases.rundown.figures`) from the run's series, drawn here at ``dpi``
+    (None: the default)."""
+    return importlib.import_module(FIGURES_MODULE).figures(sc, data, out, dpi=dpi)

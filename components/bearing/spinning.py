@@ -1,0 +1,120 @@
+"""The ball bearing at a varying speed (``bearing.hertz_spinning``): the inner race speed is an input.
+
+The same bearing as component.BallBearing, with ``Omega`` [rad/s] (the spool's speed, components/spool) as an
+input instead of the constant ``omega``; at each step whose speed differs from the last one it sets the speed
+terms: the cage (ball orbit) speed ``omega_c = Omega/2 (1 - D cos a0 / d_m)``, the balls' centrifugal force
+``m_b (d_m/2) omega_c^2`` of eq. (4), and the speed of Palmgren's drag torque (its ``(nu n)^(2/3)`` term and
+``P_drag = M Omega``). It also outputs the drag torque ``T_drag = P_drag / Omega`` [N m] that decelerates the
+spool (0 on a stopped spool). The inner race's axial offset z0 (the preload set-up) stays the one found at the
+reference speed ``omega``: the preload is a fixed axial position, not a spring that follows the balls'
+centrifugal force. At Omega = omega throughout every number is the constant-speed bearing's, bit for bit.
+
+Example (a scenario)::
+
+    [components.bearing0]
+    implementation = "bearing.hertz_spinning"
+    parameters = { bearing = 0 }     # connection: spool_pt.Omega -> bearing0.Omega
+"""
+from __future__ import annotations
+
+import math
+from collections import namedtuple
+
+import numpy as np
+
+from ..contract import ContractError, Variable
+from ..kernels import port_tuple
+from ..numba_internals import kernel_jit
+from .component import BallBearing
+from .kernel import D_OMEGA, G_F_C, G_OMEGA, G_OMEGA_CAGE, O_P_DRAG, BearingState, tm_step
+
+#: the constant-speed bearing's containers (its kernel, kernel.tm_step, is called with its own types: a call with
+#: this class's types would put them in tm_step's on-disk cache index, unreadable by a process without them), the
+#: speed terms' ratios [cage speed per rad/s, centrifugal force per (rad/s of the cage)^2]
+SpinBearingParams = namedtuple("SpinBearingParams", "base spin")
+_IN = port_tuple("BallBearing", "Inputs", ("X_inner", "V_inner", "F_journal", "K_journal", "C_journal", "eps",
+                                           "T_oil"))
+_OUT = port_tuple("BallBearing", "Outputs", ("F_rotor", "X_journal", "V_journal", "Q_max", "Q_max_step",
+                                             "sigma_max", "sigma_max_step", "P_drag"))
+
+
+@kernel_jit
+def spinning_step(s, p, u, y, t, h):
+    """Set the speed terms at the input speed (when it changed), then the bearing's step (kernel.tm_step)."""
+    w = u.Omega[0]
+    if not math.isfinite(w):
+        return 11
+    b = p.base
+    geo = b.geo
+    if w != geo[G_OMEGA]:
+        wc = p.spin[0] * w
+        geo[G_OMEGA] = w
+        geo[G_OMEGA_CAGE] = wc
+        geo[G_F_C] = p.spin[1] * wc * wc
+        b.drag[D_OMEGA] = w
+        b.cache[1] = np.nan                  # the viscous drag power of the last T_oil was at the old speed
+    status = tm_step(s, b, _IN(u.X_inner, u.V_inner, u.F_journal, u.K_journal, u.C_journal, u.eps, u.T_oil),
+                     _OUT(y.F_rotor, y.X_journal, y.V_journal, y.Q_max, y.Q_max_step, y.sigma_max,
+                          y.sigma_max_step, y.P_drag), t, h)
+    if status == 0:
+        y.T_drag[0] = b.out[O_P_DRAG] / w if w > 0.0 else 0.0
+    return status
+
+
+class SpinningBearing(BallBearing):
+    """The ball bearing with the spool speed as an input (module docstring)."""
+
+    description = BallBearing.description + " (inner race speed as an input)"
+    variables = BallBearing.variables + (
+        Variable("Omega", "input", 1, "rad/s", "inner race (spool) speed"),
+        Variable("T_drag", "output", 1, "N.m", "drag torque on the spool, P_drag / Omega"),
+    )
+
+    def setup(self, t0=0.0):
+        super().setup(t0)
+        g = self.geometry
+        wc1 = g.cage_speed(1.0)
+        spin = np.array([wc1, g.centrifugal_force(1.0) / (wc1 * wc1)])
+        self._base_p = self._kernel_p
+        self._spin_p = SpinBearingParams(self._kernel_p, spin)
+        w = self.p["omega"]
+        self.y["T_drag"] = np.array([self.y["P_drag"][0] / w if w > 0.0 else 0.0])
+
+    def _advance(self, h, t):
+        """component.BallBearing._advance through the constant-speed kernel with its own port types."""
+        self._nu(float(self.u["T_oil"][0]))
+        st = self.state
+        s = BearingState(st["balls"].copy(), st["journal"].copy(), st["phi"].copy(), self.u["eps"].copy())
+        y = _OUT(*[np.zeros_like(self.y[n]) for n in _OUT._fields])
+        status = tm_step(s, self._kernel_p, _IN(*[self.u[n] for n in _IN._fields]), y, t, h)
+        if status != 0:
+            self._fail(float(status - 10), t + h)
+        for n, a in zip(_OUT._fields, y):
+            self.y[n] = a
+
+    STEP = staticmethod(spinning_step)
+
+    def kernel_params(self):
+        # the base's own methods (the TO update, the viscosity) keep using the base container, _kernel_p
+        return self._spin_p
+
+    def kernel_status(self, status, t, h):
+        if status == 11 and not np.all(np.isfinite(self.u["Omega"])):
+            raise ContractError(f"{self.name}: non-finite input Omega at t = {t + h:.9g} s")
+        super().kernel_status(status, t, h)
+
+    def _thermal_only_step(self, t, h):
+        """The TO update (component.BallBearing) at the present spool speed: Palmgren's viscous term follows it;
+        the load term, frozen as a power with the mechanical state, is scaled to it (a torque frozen)."""
+        p = self._base_p
+        w0, w = float(p.geo[G_OMEGA]), float(self.u["Omega"][0])
+        if not math.isfinite(w):
+            raise ContractError(f"{self.name}: non-finite input Omega at t = {t:.9g} s")
+        if w != w0:
+            p.drag[D_OMEGA] = w
+            p.geo[G_OMEGA] = w
+            p.cache[1] = np.nan
+            if w0 > 0.0:
+                self._frozen_load = getattr(self, "_frozen_load", 0.0) * w / w0
+        super()._thermal_only_step(t, h)
+        self.y["T_drag"] = np.array([self.y["P_drag"][0] / w if w > 0.0 else 0.0])

@@ -1,0 +1,184 @@
+"""The rotor at a varying speed: the speed-following variant of the rotor component (``rotor.mta_spinning``).
+
+The same MTA-reduced model and Newmark step as component.Rotor, with the power-turbine and gas-generator speeds as
+inputs (``Omega_pt``, ``dOmega_pt``, ``Omega_gg``, from the spools, components/spool) instead of constants:
+
+* gyroscopics: the reduced damping matrix is ``C_r + (Omega_pt - W_pt) G_r,pt + (Omega_gg - W_gg) G_r,gg`` about
+  the reference speeds W (the parameters ``omega_pt``, ``omega_gg``) where the reduced model was projected:
+  projected once, scaled per step. The Newmark step map is rebuilt whenever a speed has left the one it was
+  built for by more than ``gyro_tolerance`` of its reference speed (the kernel hands that step to Python, status
+  PYTHON), so the gyroscopic terms lag the speed by at most that fraction (default 1e-3);
+* unbalance: ``m e Omega^2`` at the rotor's angle plus the tangential ``m e dOmega/dt`` (90 deg ahead, in the
+  sense of rotation), ``m e = F / W_pt^2`` for each of ``F_residual`` and ``F_unbalance`` (the levels stay given
+  as forces at the reference speed). The angle is the rotor's own: the integral of the speed over the steps the
+  rotor has taken (its mechanical time), so that a thermal-only interval, which freezes the rotor, does not turn
+  the unbalance against the frozen orbit (component.Rotor._unbalance).
+
+At Omega_pt = W_pt and Omega_gg = W_gg throughout, every number is the constant-speed rotor's, bit for bit
+(the angle is W tau, the scale factor 1.0, no tangential term, the same step map).
+
+Example (a scenario)::
+
+    [components.rotor]
+    implementation = "rotor.mta_spinning"
+    # connections: spool_pt.Omega -> rotor.Omega_pt, spool_pt.dOmega -> rotor.dOmega_pt, spool_gg.Omega -> rotor.Omega_gg
+"""
+from __future__ import annotations
+
+import math
+from collections import namedtuple
+
+import numpy as np
+
+from ..contract import ContractError, Variable
+from ..kernels import PYTHON
+from ..numba_internals import kernel_jit
+from .component import Rotor, full_model
+from .kernel import RotorState, advance, pack
+from .newmark import initial_acceleration, step_operator
+
+SpinParams = namedtuple("SpinParams", "TB O f s_new xv F_residual F_unbalance unbalance_phase t_blade_loss "
+                                      "W_ref op tol")
+#: per process: (model digest, n_modes, reference speeds) -> the reduced gyroscopic matrices per rad/s
+_GYRO: dict[tuple, tuple[np.ndarray, np.ndarray]] = {}
+
+
+@kernel_jit
+def spinning_step(s, p, u, y, t, h):
+    """One Newmark step at the input speeds; status 2 a non-finite input, 3 a non-finite response, PYTHON: a speed
+    left the step map's by more than the tolerance (rebuild it)."""
+    w = u.Omega_pt[0]
+    wg = u.Omega_gg[0]
+    dw = u.dOmega_pt[0]
+    if not math.isfinite(w + wg + dw):
+        return 2
+    if abs(w - p.op[0]) > p.tol[0] or abs(wg - p.op[1]) > p.tol[1]:
+        return PYTHON
+    ang = s.ang                              # angle bookkeeping: [angle at tau_ref, tau_ref, speed since]
+    if w != ang[2]:
+        ang[0] += ang[2] * (s.tau[0] - ang[1])
+        ang[1] = s.tau[0]
+        ang[2] = w
+    tau = s.tau[0] + h
+    a = ang[0] + ang[2] * (tau - ang[1])
+    scale = (w / p.W_ref) * (w / p.W_ref)
+    fr = p.F_residual * scale
+    fx = fr * math.cos(a)
+    fy = fr * math.sin(a)
+    fb = p.F_unbalance * scale
+    blade = t + h >= p.t_blade_loss
+    if blade:
+        ph = a + p.unbalance_phase
+        fx += fb * math.cos(ph)
+        fy += fb * math.sin(ph)
+    if dw != 0.0:
+        tr = p.F_residual * dw / (p.W_ref * p.W_ref)
+        fx -= tr * math.sin(a)
+        fy += tr * math.cos(a)
+        if blade:
+            tb = p.F_unbalance * dw / (p.W_ref * p.W_ref)
+            fx -= tb * math.sin(ph)
+            fy += tb * math.cos(ph)
+    return advance(s, p, u, y, fx, fy, tau)
+
+
+class SpinningRotor(Rotor):
+    """The rotor with its spools' speeds as inputs (module docstring)."""
+
+    description = ("Flexible dual-rotor engine + casing (MTA, Newmark) at varying spool speeds: gyroscopics and "
+                   "unbalance follow the speed inputs")
+    variables = Rotor.variables + (
+        Variable("gyro_tolerance", "parameter", unit="1", start=1e-3,
+                 description="relative speed change that rebuilds the Newmark map (gyroscopic terms)"),
+        Variable("start_synchronous", "parameter", unit="1", start=0, type="Integer",
+                 description="1: start from the synchronous steady state of the linear model under the unbalance "
+                             "at the reference speeds (no port forces; a linear rotor's check case); 0: at rest"),
+        Variable("Omega_pt", "input", 1, "rad/s", "power-turbine speed"),
+        Variable("dOmega_pt", "input", 1, "rad/s2", "power-turbine angular acceleration (tangential unbalance)"),
+        Variable("Omega_gg", "input", 1, "rad/s", "gas-generator speed"),
+    )
+
+    def setup(self, t0=0.0):
+        p = self.p
+        if not (math.isfinite(p["gyro_tolerance"]) and p["gyro_tolerance"] > 0.0):
+            raise ContractError(f"{self.name}.gyro_tolerance must be > 0, got {p['gyro_tolerance']}")
+        self._op = (float(p["omega_pt"]), float(p["omega_gg"]))
+        super().setup(t0)
+        red = self._red
+        full = full_model(p["model_file"], p["omega_pt"], p["omega_gg"])
+        key = (full.digest, int(p["n_modes"]), float(p["omega_pt"]), float(p["omega_gg"]))
+        if key not in _GYRO:
+            B = red["basis"]
+            _GYRO[key] = (B.T @ full.G_pt @ B, B.T @ full.G_gg @ B)
+        self._G = _GYRO[key]
+        # no gyroscopic coupling (a spool without polar inertia): the step map never depends on its speed
+        self._tol = np.array([math.inf if not np.any(g) else p["gyro_tolerance"] * abs(w)
+                              for g, w in zip(self._G, self._op)])
+        self.state["ang"] = np.array([0.0, 0.0, float(p["omega_pt"])])
+        if p["start_synchronous"]:
+            self._start_synchronous(float(t0))
+
+    def _start_synchronous(self, t0):
+        """x, v of the steady synchronous orbit X e^(i W t) of M x'' + C x' + K x = B f_u (the unbalance alone), at t0."""
+        red, p = self._red, self.p
+        W = float(p["omega_pt"])
+        Fh = p["F_residual"] * np.array([1.0, -1.0j])
+        if t0 >= p["t_blade_loss"]:
+            Fh = Fh + p["F_unbalance"] * np.exp(1j * p["unbalance_phase"]) * np.array([1.0, -1.0j])
+        B_u = red["B_in"][:, -2:]
+        X = np.linalg.solve(red["K"] - W * W * red["M"] + 1j * W * red["C"], B_u @ Fh) * np.exp(1j * W * t0)
+        x0, v0 = X.real.copy(), (1j * W * X).real.copy()
+        f0 = red["B_in"] @ self._input_vector(t0)
+        a0 = initial_acceleration(red["M"], red["C"], red["K"], x0, v0, f0)
+        self.state["s"] = np.concatenate([x0, v0, a0])
+        self._write_outputs(self.state["s"], t0)
+
+    def _operators(self, h):
+        key = (float(f"{h:.12g}"), self._op)
+        ops = self._ops.get(key)
+        if ops is None:
+            red, p = self._red, self.p
+            C = red["C"]
+            if self._op != (p["omega_pt"], p["omega_gg"]):
+                C = C + (self._op[0] - p["omega_pt"]) * self._G[0] + (self._op[1] - p["omega_gg"]) * self._G[1]
+            T, B = step_operator(red["M"], C, red["K"], key[0], p["newmark_beta"], p["newmark_gamma"])
+            ops = pack(T, B @ red["B_in"])
+            if len(self._ops) > 32:
+                self._ops.clear()
+            self._ops[key] = ops
+        return ops
+
+    STEP = staticmethod(spinning_step)
+
+    def kernel_state(self):
+        return _SpinState(self.state["s"], self.state["tau"], self.state["ang"])
+
+    def kernel_prepare(self, h):
+        if h != getattr(self, "_kernel_h", None):
+            p = self.p
+            n3 = 3 * self._red["n"]
+            self._kernel_p = SpinParams(self._operators(h), self._Oxv, self._f, np.empty(n3),
+                                        np.empty(self._Oxv.shape[0]), float(p["F_residual"]),
+                                        float(p["F_unbalance"]), float(p["unbalance_phase"]),
+                                        float(p["t_blade_loss"]), float(p["omega_pt"]), np.array(self._op),
+                                        self._tol)
+            self._kernel_h = h
+            self._last_h = h
+
+    def kernel_status(self, status, t, h):
+        if status == PYTHON:
+            # a speed left the step map's: rebuild it at the present speeds, then the kernel's step
+            self._op = (float(self.u["Omega_pt"][0]), float(self.u["Omega_gg"][0]))
+            self._kernel_h = None
+            self.kernel_prepare(h)
+            status = self.STEP(*self.kernel_args(), t, h)
+            if status == 0:
+                return
+        if status == 2:
+            bad = [k for k in ("Omega_pt", "dOmega_pt", "Omega_gg") if not np.all(np.isfinite(self.u[k]))]
+            if bad:
+                raise ContractError(f"{self.name}: non-finite speed input {', '.join(bad)} at t = {t + h:.9g} s")
+        super().kernel_status(status, t, h)
+
+
+_SpinState = namedtuple("SpinState", "s tau ang")

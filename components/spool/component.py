@@ -1,0 +1,157 @@
+"""The spool component: one rotor's speed and angle as signals, prescribed or from its torque balance.
+
+``profile`` picks the law:
+
+* ``"constant"``: ``speed_rpm`` throughout;
+* ``"ramp"``: ``speed_rpm`` until ``t_start``, linear to ``end_speed_rpm`` over ``duration``, then held;
+* ``"table"``: ``table = "t rpm, t rpm, ..."`` (s, rev/min), linear in between, held outside;
+* ``"torque"``: ``J dOmega/dt = T_drive - T_drag - T_rub - T_aero(Omega)`` from ``speed_rpm``: the drive (the
+  turbine, its governor holding the speed) until the fuel is cut at ``t_fuel_cut``, then none; ``T_drag`` the
+  bearings' drag torques (inputs) plus the spool's other bearings as a viscous ``drag_coefficient`` Omega;
+  ``T_rub`` the rub rings' friction torques (inputs); ``T_aero = c (Omega - Omega_wm) |Omega - Omega_wm|`` the
+  windmilling law, zero at the windmill speed ``windmill_rpm``, ``c`` set by its value ``aero_torque`` at
+  ``speed_rpm`` (below the windmill speed the airflow drives the spool).
+
+``inertia`` J [kg m^2]: 0 takes the polar inertia of rotor ``spool`` of the model file ``model_file``
+(rotor/spool_inertia.py). Speeds are given in rev/min (the edge), outputs are SI: ``Omega`` [rad/s], ``theta``
+[rad] (the integral of Omega from set-up), ``dOmega`` [rad/s^2], the torques, and ``energy`` = (kinetic energy,
+work of the drive, drag, rub and aerodynamic torques) [J], whose balance (kernel.py) the run's summary reports.
+It runs in thermal-only intervals too (its torque inputs then held by the master at their mean over the last
+rotor cycles): the speed drifts with them.
+
+Example (a scenario)::
+
+    [components.spool]
+    implementation = "spool.speed"
+    parameters = { profile = "ramp", speed_rpm = 9000, end_speed_rpm = 3000, t_start = 0.0, duration = 1.0 }
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from ..contract import COUPLED, HELD, ContractError, Variable
+from ..kernels import KernelComponent
+from ..speeds import PT_SPEED_RPM
+from .kernel import CONSTANT, TABLE, TORQUE, SpoolParams, SpoolState, tm_step
+from .profile import RPM, cumulative_angle, parse_table, ramp_table
+
+PROFILES = {"constant": CONSTANT, "ramp": TABLE, "table": TABLE, "torque": TORQUE}
+ENERGY_LABELS = ("kinetic", "drive", "drag", "rub", "aero")
+
+
+class Spool(KernelComponent):
+    """A spool's speed, angle and torque balance (module docstring)."""
+
+    description = "spool speed and angle: prescribed profile or torque balance J dOmega/dt = sum of torques"
+    file_parameters = ("model_file",)
+    variables = (
+        Variable("profile", "parameter", unit="1", start="constant", type="String",
+                 description="constant | ramp | table | torque"),
+        Variable("speed_rpm", "parameter", unit="rpm", start=PT_SPEED_RPM,
+                 description="start speed (the constant speed; the ramp's start; the torque balance's start), rev/min"),
+        Variable("end_speed_rpm", "parameter", unit="rpm", start=PT_SPEED_RPM, description="ramp end speed, rev/min"),
+        Variable("t_start", "parameter", unit="s", start=0.0, description="ramp start time"),
+        Variable("duration", "parameter", unit="s", start=1.0, description="ramp duration"),
+        Variable("table", "parameter", unit="1", start="", type="String",
+                 description="speed table \"t rpm, t rpm, ...\" (s, rev/min), times increasing"),
+        Variable("inertia", "parameter", unit="kg.m2", start=0.0,
+                 description="polar moment of inertia J (0: from the rotor model file's spool)"),
+        Variable("model_file", "parameter", unit="1", start="", type="String",
+                 description="rotor model file for J ('' = the shipped engine)"),
+        Variable("spool", "parameter", unit="1", start="pt", type="String",
+                 description="the spool of the model file ([spool.NAME]) this one is (for J)"),
+        Variable("t_fuel_cut", "parameter", unit="s", start=-1.0,
+                 description="torque law: the turbine drives (holds the speed) until this time (< 0: never cut)"),
+        Variable("windmill_rpm", "parameter", unit="rpm", start=0.0,
+                 description="torque law: the speed at which the aerodynamic torque vanishes, rev/min"),
+        Variable("aero_torque", "parameter", unit="N.m", start=0.0,
+                 description="torque law: aerodynamic drag torque at speed_rpm (sets c of c (W - W_wm)|W - W_wm|)"),
+        Variable("drag_coefficient", "parameter", unit="N.m.s", start=0.0,
+                 description="viscous drag torque per rad/s of the spool's bearings not modelled as components"),
+        Variable("T_drag1", "input", 1, "N.m", "a bearing's drag torque on the spool (opposing its spin)"),
+        Variable("T_drag2", "input", 1, "N.m", "another bearing's drag torque"),
+        Variable("T_rub1", "input", 1, "N.m", "a rub ring's friction torque (opposing the spin)"),
+        Variable("T_rub2", "input", 1, "N.m", "another rub ring's friction torque"),
+        Variable("Omega", "output", 1, "rad/s", "spool speed"),
+        Variable("theta", "output", 1, "rad", "spool angle (integral of Omega from set-up)"),
+        Variable("dOmega", "output", 1, "rad/s2", "spool angular acceleration"),
+        Variable("T_drive", "output", 1, "N.m", "drive torque (a prescribed profile: the one it implies)"),
+        Variable("T_aero", "output", 1, "N.m", "aerodynamic (windmilling) drag torque"),
+        Variable("energy", "output", 5, "J", "kinetic energy; work of the drive, drag, rub, aerodynamic torques",
+                 labels=ENERGY_LABELS),
+    )
+    preferred_step = 1e-4
+    phases = frozenset({COUPLED, HELD})
+
+    def setup(self, t0=0.0):
+        super().setup(t0)
+        p = self.p
+        where = self.name
+        if p["profile"] not in PROFILES:
+            raise ContractError(f"{where}.profile must be one of {', '.join(PROFILES)}, got {p['profile']!r}")
+        mode = PROFILES[p["profile"]]
+        for k in ("speed_rpm", "end_speed_rpm", "windmill_rpm", "inertia", "aero_torque", "drag_coefficient"):
+            if not (math.isfinite(p[k]) and p[k] >= 0.0):
+                raise ContractError(f"{where}.{k} must be a finite number >= 0, got {p[k]}")
+        try:
+            if p["profile"] == "table":
+                tt, tw = parse_table(p["table"], "table")
+            elif p["profile"] == "ramp":
+                tt, tw = ramp_table(p["speed_rpm"], p["end_speed_rpm"], p["t_start"], p["duration"])
+            else:
+                tt, tw = np.array([0.0]), np.array([p["speed_rpm"] * RPM])
+            J = p["inertia"] or self._model_inertia()
+        except (ValueError, FileNotFoundError, KeyError) as exc:
+            raise ContractError(f"{where}: {exc}") from None
+        if not J > 0.0:
+            raise ContractError(f"{where}.inertia must be > 0 kg m^2, got {J}")
+        w0 = p["speed_rpm"] * RPM
+        c_aero = 0.0
+        if mode == TORQUE:
+            if p["windmill_rpm"] >= p["speed_rpm"] and p["aero_torque"] > 0.0:
+                raise ContractError(f"{where}.windmill_rpm = {p['windmill_rpm']:g} is not below the start speed "
+                                    f"speed_rpm = {p['speed_rpm']:g} rev/min: the windmilling law would drive the "
+                                    "spool up after the fuel cut")
+            if p["aero_torque"] > 0.0:
+                c_aero = p["aero_torque"] / (w0 - p["windmill_rpm"] * RPM) ** 2
+        th = cumulative_angle(tt, tw)
+        theta0 = 0.0
+        if mode != TORQUE:
+            from .kernel import profile_at
+            w0, theta0, _ = profile_at(tt, tw, th, float(t0))
+        self.J = float(J)
+        self._kernel_p = SpoolParams(mode, tt, tw, th, float(theta0), float(J),
+                                     float(p["t_fuel_cut"]) if p["t_fuel_cut"] >= 0.0 else math.inf,
+                                     p["windmill_rpm"] * RPM, float(c_aero), float(p["drag_coefficient"]))
+        self.state = {"x": np.array([w0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0])}
+        self.kernel_step(t0, 0.0)
+        self.time = float(t0)
+
+    def next_event(self, t):
+        """The fuel cut of a torque-driven spool, while it is ahead."""
+        cut = self.p["t_fuel_cut"]
+        return float(cut) if self.p["profile"] == "torque" and cut >= 0.0 and cut > t else None
+
+    def _model_inertia(self) -> float:
+        from ..rotor.spool_inertia import polar_inertia
+        return polar_inertia(self.p["model_file"], self.p["spool"])
+
+    # -- the compiled kernel (components/kernels.py) ---------------------------------------------------------
+    STEP = staticmethod(tm_step)
+
+    def kernel_state(self):
+        return SpoolState(self.state["x"])
+
+    def kernel_params(self):
+        return self._kernel_p
+
+    def kernel_status(self, status, t, h):
+        bad = [k for k in ("T_drag1", "T_drag2", "T_rub1", "T_rub2") if not np.all(np.isfinite(self.u[k]))]
+        raise ContractError(f"{self.name}: non-finite torque input {', '.join(bad)} at t = {t + h:.9g} s")
+
+    def do_step(self, t, h):
+        if not (h > 0.0 and math.isfinite(h)):
+            raise ContractError(f"{self.name}: step size must be a finite number > 0, got {h!r}")
+        self.kernel_step(t, h)
