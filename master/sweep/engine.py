@@ -172,7 +172,7 @@ class _Sweep:
 
     def run(self, scheduler, workers, serial, client, connect_timeout, finish) -> SweepRun:
         todo = [c for c in self.cases if self.status[c.name] != "complete"]
-        with _sigterm_as_interrupt():
+        with sigterm_as_interrupt():
             try:
                 if not todo:
                     self.where = "nothing to run (every case complete)"
@@ -215,7 +215,7 @@ class _Sweep:
         own = client is None
         cluster = None
         if own:
-            client, cluster, self.where = _client(scheduler, workers, connect_timeout, len(todo))
+            client, cluster, self.where = dask_client(scheduler, workers, connect_timeout, len(todo))
         else:
             self.where = f"{client.scheduler.address}, {len(client.scheduler_info().get('workers', {}))} workers"
         address = scheduler or client.scheduler.address
@@ -248,7 +248,7 @@ class _Sweep:
             for fut in futures:
                 fut.cancel()
             if own:
-                _close(client, cluster, quiet=lost)
+                close_client(client, cluster, quiet=lost)
 
     def _not_started(self, client, futures: dict) -> None:
         """At an interrupt: the cases sent but not yet taken by a worker back to ``pending`` (only those a worker
@@ -303,7 +303,10 @@ def _scheduler_gone(client, exc: BaseException) -> bool:
     return False
 
 
-def _client(scheduler: str | None, workers: int | None, connect_timeout: float, n_cases: int):
+def dask_client(scheduler: str | None, workers: int | None, connect_timeout: float, n_cases: int):
+    """A Dask client on the running scheduler ``scheduler`` (an address) or on a local cluster of one single-threaded
+    worker process per core (at most ``workers``, at most ``n_cases``); returns ``(client, cluster or None, where
+    it runs in words)``. An unreachable or malformed address is a ValueError saying so."""
     from dask.distributed import Client, LocalCluster
 
     if scheduler:
@@ -345,14 +348,14 @@ except ImportError:  # pragma: no cover  (Dask is needed only off --serial)
 
 
 class _IgnoreInterrupt(_WorkerPlugin):
-    """A local worker ignores SIGINT: the sweep's own process ends it (see :func:`_client`)."""
+    """A local worker ignores SIGINT: the sweep's own process ends it (see :func:`dask_client`)."""
 
     def setup(self, worker):
         if threading.current_thread() is threading.main_thread():
             signal.signal(signal.SIGINT, signal.SIG_IGN)
 
 
-def _close(client, cluster, quiet: bool = False) -> None:
+def close_client(client, cluster, quiet: bool = False) -> None:
     """Close the client and the local cluster, quietly when the scheduler is gone (Dask logs its failed
     reconnection with tracebacks: the sweep's own one-line error says it)."""
     loggers = [logging.getLogger(n) for n in ("distributed.client", "distributed.core", "distributed.comm")]
@@ -374,7 +377,7 @@ def _close(client, cluster, quiet: bool = False) -> None:
             pass
 
 
-class _sigterm_as_interrupt:
+class sigterm_as_interrupt:
     """SIGTERM ends the sweep as Ctrl-C does (in the main thread; elsewhere signals are the caller's)."""
 
     def __enter__(self):
