@@ -66,3 +66,6 @@ def test_slow_rundown_peaks_against_linear_engine():
     for b in ("0", "5"):
         assert len(got[b]) == len(ref[b]), (b, got[b], ref[b])
         assert got[b] == pytest.approx(ref[b], rel=0.02), (b, got[b], ref[b])
+    # the power turbine's gyroscopic matrix moves the lower peak at #0 by 0.7 % (9 040 rev/min without it, the
+    # linear engine), the gas generator's by nothing: 0.3 % tells a rundown with the gyroscopics from one without
+    assert got["0"][0] == pytest.approx(ref["0"][0], rel=0.003)
