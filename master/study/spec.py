@@ -260,21 +260,9 @@ def read_calibration(path: str | Path) -> CalibrationSpec:
         raise SpecError(f"{w}: cases must be tables of overrides, [calibrate.cases.NAME] \"comp.param\" = value")
     for name, over in cases.items():
         check_parameters(sc, over, f"{w} cases.{name}")
-    params = t.get("parameter", [])
-    if not isinstance(params, list) or not params:
-        raise SpecError(f"{w}: no [[calibrate.parameter]] given")
     out = []
-    for i, p in enumerate(params):
-        pw = f"{w} parameter {i + 1}"
-        if not isinstance(p, dict):
-            raise SpecError(f"{pw}: must be a table")
+    for pw, name, p in _parameter_tables(w, t, "calibrate", taken=()):
         _unknown_keys(pw, p, ("name", "lower", "upper", "start", "scale"))
-        name = p.get("name")
-        if not isinstance(name, str) or "." not in name:
-            raise SpecError(f"{pw}: name must be written 'component.parameter'")
-        pw = f"{w} parameter {name}"
-        if name in [q.name for q in out]:
-            raise SpecError(f"{pw}: given twice")
         for c, over in cases.items():
             if name in over:
                 raise SpecError(f"{pw}: case {c!r} sets it too (a parameter to update cannot be a case's setting)")
@@ -311,6 +299,27 @@ def read_calibration(path: str | Path) -> CalibrationSpec:
                            residual, nmax, step, tol)
 
 
+def _parameter_tables(w: str, t: dict, section: str, taken):
+    """The ``[[SECTION.parameter]]`` tables of a spec as (where, name, table), each a table with a ``name``
+    written 'component.parameter' that no earlier table, nor ``taken``, gives."""
+    params = t.get("parameter", [])
+    if not isinstance(params, list) or not params:
+        raise SpecError(f"{w}: no [[{section}.parameter]] given")
+    seen = set(taken)
+    for i, p in enumerate(params):
+        pw = f"{w} parameter {i + 1}"
+        if not isinstance(p, dict):
+            raise SpecError(f"{pw}: must be a table")
+        name = p.get("name")
+        if not isinstance(name, str) or "." not in name:
+            raise SpecError(f"{pw}: name must be written 'component.parameter'")
+        pw = f"{w} parameter {name}"
+        if name in seen:
+            raise SpecError(f"{pw}: given twice")
+        seen.add(name)
+        yield pw, name, p
+
+
 def read_uq(path: str | Path) -> UQSpec:
     """Read and check the UQ SPEC ``path`` (see the module's docstring): the scenario loads, every parameter
     exists, every distribution has its keys with std > 0 and lower < upper, samples >= 1."""
@@ -338,20 +347,8 @@ def read_uq(path: str | Path) -> UQSpec:
     if not isinstance(overrides, dict):
         raise SpecError(f"{w}: set must be a table of \"comp.param\" = value")
     check_parameters(sc, overrides, f"{w} set")
-    params = t.get("parameter", [])
-    if not isinstance(params, list) or not params:
-        raise SpecError(f"{w}: no [[uq.parameter]] given")
     out = []
-    for i, p in enumerate(params):
-        pw = f"{w} parameter {i + 1}"
-        if not isinstance(p, dict):
-            raise SpecError(f"{pw}: must be a table")
-        name = p.get("name")
-        if not isinstance(name, str) or "." not in name:
-            raise SpecError(f"{pw}: name must be written 'component.parameter'")
-        pw = f"{w} parameter {name}"
-        if name in [q.name for q in out] or name in overrides:
-            raise SpecError(f"{pw}: given twice")
+    for pw, name, p in _parameter_tables(w, t, "uq", taken=overrides):
         kind = p.get("distribution")
         if kind not in DISTRIBUTIONS:
             raise SpecError(f"{pw}: distribution {kind!r} not in {tuple(DISTRIBUTIONS)}")
