@@ -38,8 +38,8 @@ from ..kernels import KernelComponent
 from ..oil_fit import SOURCE, T_FLASH_K, T_POUR_K, check_oil_temperature
 from ..speeds import PT_OMEGA
 from ..validity import Check
-from .geometry import (BEARINGS, BALL, IR, JOURNAL, LE, LI, NODES, OR, SFD, SHAFT, _DATA, build_network,
-                       default_sources, radii)
+from .geometry import (BEARINGS, BALL, IR, JOURNAL, LE, LI, NODES, OR, SFD, SHAFT, _DATA, bearing_data,
+                       build_network, default_sources, radii)
 from .growth import growths
 from .kernel import ThermalParams, ThermalState, tm_step
 from .network import METHODS
@@ -62,9 +62,18 @@ CHECKS = tuple(Check(f"{what} temperature", (port,), _port(port), limit, "K", SO
 #: the geometry parameters: (parameter, data-file key, SI per file unit)
 GEOMETRY = (("bore", "bore_diameter_mm", 1e-3), ("outside_diameter", "outside_diameter_mm", 1e-3),
             ("width", "width_mm", 1e-3), ("balls", "n_balls", 1), ("ball_diameter", "ball_diameter_mm", 1e-3),
+            ("contact_angle", "contact_angle_deg", math.pi / 180.0),
             ("damper_radius", "damper_radius_mm", 1e-3), ("damper_length", "damper_length_mm", 1e-3),
             ("damper_clearance", "damper_clearance_mm", 1e-3), ("shaft_length", "shaft_length_mm", 1e-3),
-            ("housing_wall", "housing_wall_mm", 1e-3), ("housing_length", "housing_length_mm", 1e-3))
+            ("housing_wall", "housing_wall_mm", 1e-3), ("housing_length", "housing_length_mm", 1e-3),
+            ("rub_radius", "rub_ring_radius_mm", 1e-3))
+_REC0 = bearing_data(0)      # the start values: bearing #0's record, its defaults filled in
+_DFLT = _DATA["defaults"]
+_DOC = "docs/explanation/paper-components.md"
+
+
+def _table3(what: str) -> str:
+    return f"{what} (default: the Table 3 record of `bearing`; set it for another bearing)"
 
 
 class ThermalNetwork(KernelComponent):
@@ -97,30 +106,39 @@ class ThermalNetwork(KernelComponent):
                              " < 0: the data-file value of the bearing (2 L/min at #0, 3 L/min at #5)"),
         Variable("sfd_oil_flow", "parameter", unit="m3/s", start=_DATA["oil_flow"]["sfd_L_per_min"] * _LMIN,
                  description="squeeze-film damper oil flow (renewal of the SFD oil node)"),
-        # the geometry of Table 1's network: by default the record of ``bearing`` (data/thermal.toml); each one
-        # set replaces that record's value (SI here; the record is in mm)
-        Variable("bore", "parameter", unit="m", start=BEARINGS[0]["bore_diameter_mm"] * 1e-3,
-                 description="bearing bore (shaft radius r_s = bore / 2) (default: the record of `bearing`)"),
-        Variable("outside_diameter", "parameter", unit="m", start=BEARINGS[0]["outside_diameter_mm"] * 1e-3,
-                 description="bearing outside diameter (default: the record of `bearing`)"),
-        Variable("width", "parameter", unit="m", start=BEARINGS[0]["width_mm"] * 1e-3,
-                 description="bearing width (default: the record of `bearing`)"),
-        Variable("balls", "parameter", unit="1", start=BEARINGS[0]["n_balls"], type="Integer",
-                 description="number of balls (default: the record of `bearing`)"),
-        Variable("ball_diameter", "parameter", unit="m", start=BEARINGS[0]["ball_diameter_mm"] * 1e-3,
-                 description="ball diameter (default: the record of `bearing`)"),
-        Variable("damper_radius", "parameter", unit="m", start=BEARINGS[0]["damper_radius_mm"] * 1e-3,
-                 description="squeeze film damper journal radius r_j (default: the record of `bearing`)"),
-        Variable("damper_length", "parameter", unit="m", start=BEARINGS[0]["damper_length_mm"] * 1e-3,
-                 description="squeeze film damper length L_j (default: the record of `bearing`)"),
-        Variable("damper_clearance", "parameter", unit="m", start=BEARINGS[0]["damper_clearance_mm"] * 1e-3,
-                 description="squeeze film damper clearance c_sf (default: the record of `bearing`)"),
-        Variable("shaft_length", "parameter", unit="m", start=BEARINGS[0]["shaft_length_mm"] * 1e-3,
-                 description="shaft conduction length L_s to its sink (default: the record of `bearing`)"),
-        Variable("housing_wall", "parameter", unit="m", start=BEARINGS[0]["housing_wall_mm"] * 1e-3,
-                 description="housing wall outside the damper film (default: the record of `bearing`)"),
-        Variable("housing_length", "parameter", unit="m", start=BEARINGS[0]["housing_length_mm"] * 1e-3,
-                 description="housing length L_h (default: the record of `bearing`)"),
+        # the geometry of Table 1's network: by default the record of ``bearing`` (data/thermal.toml, the paper's
+        # Table 3); each one set replaces that record's value (SI here; the record is in mm and degrees)
+        Variable("bore", "parameter", unit="m", start=_REC0["bore_diameter_mm"] * 1e-3,
+                 description=_table3("bearing bore, shaft radius r_s = bore/2")),
+        Variable("outside_diameter", "parameter", unit="m", start=_REC0["outside_diameter_mm"] * 1e-3,
+                 description=_table3("bearing outside diameter, r_o = OD/2")),
+        Variable("width", "parameter", unit="m", start=_REC0["width_mm"] * 1e-3,
+                 description=_table3("bearing width W_i = W_e")),
+        Variable("balls", "parameter", unit="1", start=_REC0["n_balls"], type="Integer",
+                 description=_table3("number of balls n")),
+        Variable("ball_diameter", "parameter", unit="m", start=_REC0["ball_diameter_mm"] * 1e-3,
+                 description=_table3("ball diameter 2 r_b")),
+        Variable("contact_angle", "parameter", unit="rad", start=math.radians(_REC0["contact_angle_deg"]),
+                 description=_table3("initial contact angle (the balls' share of the oil convection)")),
+        Variable("damper_radius", "parameter", unit="m", start=_REC0["damper_radius_mm"] * 1e-3,
+                 description=_table3("squeeze film damper journal radius r_j")),
+        Variable("damper_length", "parameter", unit="m", start=_REC0["damper_length_mm"] * 1e-3,
+                 description=_table3("squeeze film damper length L_j")),
+        Variable("damper_clearance", "parameter", unit="m", start=_REC0["damper_clearance_mm"] * 1e-3,
+                 description=_table3("squeeze film damper radial clearance c_sf")),
+        Variable("shaft_length", "parameter", unit="m", start=_REC0["shaft_length_mm"] * 1e-3,
+                 description=f"shaft conduction length L_s of R_sa (default {_DFLT['shaft_length_mm']:g} mm, "
+                             f"data/thermal.toml [defaults]: an assumption, {_DOC})"),
+        Variable("housing_wall", "parameter", unit="m", start=_REC0["housing_wall_mm"] * 1e-3,
+                 description=f"housing wall outside the damper film, r_h = r_j + c_sf + wall (default "
+                             f"{_DFLT['housing_wall_mm']:g} mm, data/thermal.toml [defaults]: an assumption, {_DOC})"),
+        Variable("housing_length", "parameter", unit="m", start=_REC0["housing_length_mm"] * 1e-3,
+                 description=f"housing length L_h (default {_DFLT['housing_length_per_damper_length']:g} x "
+                             f"damper_length, data/thermal.toml [defaults]: an assumption, {_DOC})"),
+        Variable("rub_radius", "parameter", unit="m", start=_REC0["rub_ring_radius_mm"] * 1e-3,
+                 description="rotor radius at the rub ring, R_r of eq. (11), the rub's sliding speed for the Blok "
+                             "partition (default bore/2, as components/rubring/data/rubrings.toml; set it to the "
+                             "rub ring's radius)"),
         Variable("method", "parameter", unit="1", start="exact", type="String",
                  description="integration: 'exact' (held-input exact solution) or 'backward-euler'"),
         Variable("P_drag", "input", 1, "W", "bearing drag-torque power (mean over the step)"),
@@ -157,24 +175,35 @@ class ThermalNetwork(KernelComponent):
                 check_oil_temperature(p[key])
             except ValueError as exc:
                 raise ContractError(f"{self.name}.{key}: {exc}; temperatures are in kelvin") from None
-        rec = BEARINGS[p["bearing"]]
         for name, key, scale in GEOMETRY:
             if name in self.explicit:
-                if not (isinstance(p[name], (int, float)) and math.isfinite(p[name]) and p[name] > 0):
-                    raise ContractError(f"{self.name}.{name} must be a finite number > 0, got {p[name]!r}")
-            else:
-                p[name] = rec[key] * scale if name != "balls" else int(rec[key])
-        # the record the network is built from: the data file's number (unchanged) or the record with the set values
+                v = p[name]
+                ok = isinstance(v, (int, float)) and not isinstance(v, bool) and math.isfinite(v) and v > 0
+                if name == "balls":
+                    ok = ok and float(v).is_integer()
+                elif name == "contact_angle":
+                    ok = ok and v < math.pi / 2
+                if not ok:
+                    limit = " (radians, below pi/2)" if name == "contact_angle" else \
+                        " (a whole number)" if name == "balls" else ""
+                    raise ContractError(f"{self.name}.{name} must be a finite number > 0{limit}, got {v!r}")
+        # the record the network is built from: the data file's number (unchanged) or the record with the set
+        # values (the defaults that follow the geometry, housing_length and rub_radius, follow the set values)
         over = {key: (p[name] / scale if name != "balls" else int(p[name]))
                 for name, key, scale in GEOMETRY if name in self.explicit}
-        bearing = {**rec, **over} if over else p["bearing"]
+        bearing = {**BEARINGS[p["bearing"]], **over} if over else p["bearing"]
         try:
+            full = bearing_data(bearing)
             self.network = build_network(
                 bearing, p["omega"], p["T_ambient"], p["T_supply"], p["drag_inner_fraction"],
                 p["contact_race_fraction"], p["rub_shaft_fraction"], p["bearing_oil_flow"], p["sfd_oil_flow"],
                 p["rub_ring_housing_fraction"])
         except ValueError as exc:
             raise ContractError(f"{self.name}: {exc}") from None
+        for name, key, scale in GEOMETRY:
+            if name not in self.explicit:
+                p[name] = full[key] * scale if name != "balls" else int(full[key])
+        self._bearing = bearing
         g = radii(bearing)
         st = _DATA["steel"]
         self._growth_args = (p["T_initial"], st["expansion"], st["poisson"], g["r_i"], g["r_e"], g["r_j"], g["r_b"])
