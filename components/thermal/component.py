@@ -178,15 +178,13 @@ class ThermalNetwork(KernelComponent):
         for name, key, scale in GEOMETRY:
             if name in self.explicit:
                 v = p[name]
-                ok = isinstance(v, (int, float)) and not isinstance(v, bool) and math.isfinite(v) and v > 0
-                if name == "balls":
-                    ok = ok and float(v).is_integer()
-                elif name == "contact_angle":
-                    ok = ok and v < math.pi / 2
-                if not ok:
-                    limit = " (radians, below pi/2)" if name == "contact_angle" else \
-                        " (a whole number)" if name == "balls" else ""
-                    raise ContractError(f"{self.name}.{name} must be a finite number > 0{limit}, got {v!r}")
+                ok = isinstance(v, (int, float)) and not isinstance(v, bool) and math.isfinite(v)
+                if name == "contact_angle":
+                    if not (ok and 0.0 <= v < math.pi / 2):
+                        raise ContractError(f"{self.name}.contact_angle must be in [0, pi/2) rad, got {v!r}")
+                elif not (ok and v > 0 and (name != "balls" or float(v).is_integer())):
+                    what = "a whole number > 0" if name == "balls" else "a finite number > 0"
+                    raise ContractError(f"{self.name}.{name} must be {what}, got {v!r}")
         # the record the network is built from: the data file's number (unchanged) or the record with the set
         # values (the defaults that follow the geometry, housing_length and rub_radius, follow the set values)
         over = {key: (p[name] / scale if name != "balls" else int(p[name]))
