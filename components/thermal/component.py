@@ -2,8 +2,16 @@
 
 Nine lumped nodes per bearing (``T_nodes`` order: shaft, inner_race, lub_inner, ball, lub_outer, outer_race,
 journal, sfd_oil, housing; the journal sleeve's inner radial shells are further state nodes, geometry.py), eq. (12)
-at each, the Table 1 resistances from the Table 3 geometry (geometry.py), heat
-sources from the three power inputs, and the growths of eqs. (13)-(15) (growth.py).
+at each, the Table 1 resistances and the heat masses from the geometry (geometry.py), heat sources from the three
+power inputs, and the growths of eqs. (13)-(15) (growth.py).
+
+Geometry, as parameters (the component reads no other component's): the bearing's ``bore``,
+``outside_diameter``, ``width``, ``balls``, ``ball_diameter``, ``contact_angle``, the damper's ``damper_radius``,
+``damper_length``, ``damper_clearance`` and the rub ring's ``rub_radius``; ``bearing = 0 | 5`` gives the defaults
+of the paper's Table 3 and each one set replaces its default. What Table 3 does not give (``shaft_length``,
+``housing_wall``, ``housing_length`` = 2 ``damper_length``, ``rub_radius`` = ``bore``/2) follows data/thermal.toml
+[defaults] (sources: docs/explanation/paper-components.md). A scenario gives a thermal network the values it gives
+the bearing, damper and rub ring whose heat it takes (the blade-loss case checks that before a run).
 
 Added to the paper's network (geometry.py, data/thermal.toml): the oil-wetted convection between the races / balls
 and the bearing lubricant (Harris's film coefficient), the renewal of the lubricant by the oil jet and of the damper
@@ -83,7 +91,7 @@ class ThermalNetwork(KernelComponent):
     required_parameters = ("bearing",)  # which of Table 3's gives the data: never a silent default
     variables = (
         Variable("bearing", "parameter", unit="1", start=0, type="Integer",
-                 description="which bearing of Table 3 (0 or 5) gives the geometry"),
+                 description="which bearing of Table 3 (0 or 5) gives the geometry parameters' defaults"),
         Variable("T_ambient", "parameter", unit="K", start=303.15, description="ambient temperature (30 C)"),
         Variable("T_initial", "parameter", unit="K", start=303.15,
                  description="initial temperature of all nodes, and the zero-growth reference of eqs. (13)-(15)"),
@@ -102,8 +110,9 @@ class ThermalNetwork(KernelComponent):
                  description="share of the ring's part of the rub power entering the housing node (rest stays in "
                              "the ring and casing, not modelled); < 0: the data-file value (0)"),
         Variable("bearing_oil_flow", "parameter", unit="m3/s", start=-1.0,
-                 description="oil-jet flow through the bearing (renewal of the lubricant nodes);"
-                             " < 0: the data-file value of the bearing (2 L/min at #0, 3 L/min at #5)"),
+                 description="oil-jet flow through the bearing (renewal of the lubricant nodes); < 0: data/thermal.toml"
+                             " [defaults] jet_L_per_min, 0 (none, as Table 1's network; the jet option's 2 L/min at"
+                             f" #0 and 3 L/min at #5: {_DOC})"),
         Variable("sfd_oil_flow", "parameter", unit="m3/s", start=_DATA["oil_flow"]["sfd_L_per_min"] * _LMIN,
                  description="squeeze-film damper oil flow (renewal of the SFD oil node)"),
         # the geometry of Table 1's network: by default the record of ``bearing`` (data/thermal.toml, the paper's
@@ -119,7 +128,7 @@ class ThermalNetwork(KernelComponent):
         Variable("ball_diameter", "parameter", unit="m", start=_REC0["ball_diameter_mm"] * 1e-3,
                  description=_table3("ball diameter 2 r_b")),
         Variable("contact_angle", "parameter", unit="rad", start=math.radians(_REC0["contact_angle_deg"]),
-                 description=_table3("initial contact angle (the balls' share of the oil convection)")),
+                 description=_table3("initial contact angle, gamma = D cos(alpha)/d_m of the oil convection")),
         Variable("damper_radius", "parameter", unit="m", start=_REC0["damper_radius_mm"] * 1e-3,
                  description=_table3("squeeze film damper journal radius r_j")),
         Variable("damper_length", "parameter", unit="m", start=_REC0["damper_length_mm"] * 1e-3,

@@ -6,7 +6,9 @@ chamber oil on the housing).
 
 Radii: r_s = bore/2 (shaft), r_i = (d_m - D)/2 and r_e = (d_m + D)/2 (inner/outer raceway, d_m = (bore + OD)/2),
 r_o = OD/2 (outer race outside = journal bore), r_j = damper radius (journal outside), r_hi = r_j + c_sf (housing
-bore), r_h = r_hi + wall (housing outside); r_b = D/2; W_i = W_e = bearing width.
+bore), r_h = r_hi + wall (housing outside); r_b = D/2; W_i = W_e = bearing width. What Table 3 does not give
+is a rule of data/thermal.toml [defaults] unless set (:func:`bearing_data`): the shaft length L_s, the wall, the
+housing length L_h = 2 L_j, the rub ring's radius R_r = bore/2, no oil jet.
 
 Branches (Table 1 resistances; a lubricant node sits in the middle of its layer, so each side gets half of R_L):
 
@@ -25,9 +27,10 @@ Branches (Table 1 resistances; a lubricant node sits in the middle of its layer,
 
 Table 1 prints R_hr, R_ha with r_o (the outer race radius): with the damper between the journal and the housing,
 the housing's bore is r_hi, used here. Its h_h is the oil-wetted bearing-chamber wall value and its sink the oil
-supply (data/thermal.toml [convection]).
+supply (docs/explanation/paper-components.md, "Convection").
 
-Added to Table 1 (physically real paths of a jet-lubricated bearing, values and sources in data/thermal.toml):
+Added to Table 1 (physically real paths of a jet-lubricated bearing, values in data/thermal.toml, sources in
+docs/explanation/paper-components.md):
 
     inner_race - lub_inner   1/(h_i A_i)          oil-wetted convection (Harris), in parallel with R_Li/2
     ball - lub_inner         1/(h_b A_b/2)        A_b = n 4 pi r_b^2, half of it facing each lubricant node
