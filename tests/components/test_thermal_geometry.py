@@ -33,8 +33,9 @@ def _chain(K, nodes):
 
 def test_papers_values_follow_from_the_defaults():
     """What the paper's Table 3 does not give are the rules of data/thermal.toml [defaults]; for the paper's two
-    bearings they give exactly the values its results were computed with: L_s 100 mm, housing wall 15 mm, L_h = 2 L_j (64 and 80 mm),
-    the rub ring at the bore radius (25.4 and 41.9 mm, as components/rubring/data/rubrings.toml), no oil jet."""
+    bearings they give exactly the values its results were computed with: L_s 100 mm, housing wall 15 mm,
+    L_h = 2 L_j (64 and 80 mm), the rub ring at the bore radius (25.4 and 41.9 mm, as
+    components/rubring/data/rubrings.toml), no oil jet."""
     shipped = {0: (100.0, 15.0, 64.0, 25.4, 0.0), 5: (100.0, 15.0, 80.0, 41.9, 0.0)}
     for k, values in shipped.items():
         d = bearing_data(k)
