@@ -163,3 +163,20 @@ def test_a_users_engine_passes_its_geometry_to_the_thermal_network(tmp_path):
     ref = create_component(sc.components["thermal0"])
     ref.setup(0.0)
     assert th.network.C[BALL] / ref.network.C[BALL] == pytest.approx(19 / 21, rel=1e-12)
+
+
+def test_the_speed_following_network_rebuilds_with_its_own_geometry():
+    """thermal.network_spinning rebuilds its speed terms when the spool's speed leaves the network's: the rebuilt
+    network is that of the set geometry (USER's bearing) at the new speed, the constant-speed network's at
+    omega = the new speed (not the paper's record the ``bearing`` number names)."""
+    from rotorcosim.components.thermal.spinning import SpinningThermalNetwork
+
+    sp = SpinningThermalNetwork("thermal0", {"bearing": 0, **USER})
+    sp.setup(0.0)
+    half = 0.5 * PT_OMEGA
+    sp.set_inputs({"P_drag": [100.0], "P_sfd": [10.0], "P_rub": [0.0], "Omega": [half]})
+    sp.do_step(0.0, 1e-3)      # the kernel hands the step to Python, which rebuilds at the input speed
+    ref = make(0, omega=half, **USER).network
+    for a, b in ((sp.network.C, ref.C), (sp.network.K, ref.K), (sp.network.b, ref.b), (sp.network.S, ref.S)):
+        np.testing.assert_array_equal(a, b)
+    assert not np.array_equal(sp.network.K, make(0, omega=half).network.K)
