@@ -137,6 +137,11 @@ def test_parameters_list_the_geometry_with_unit_default_and_source(capsys):
     assert "2 x damper_length" in rows["housing_length"]["description"]
     assert "paper-components.md" in rows["shaft_length"]["description"]
     assert "Table 3" in rows["balls"]["description"]
+    # the text listing of one component carries each parameter's description under its row
+    assert main(["parameters", "thermal0"]) == 0
+    lines = capsys.readouterr().out.splitlines()
+    at = next(i for i, line in enumerate(lines) if line.split()[:1] == ["housing_length"])
+    assert " m " in lines[at] and "default 0.064" in lines[at] and "2 x damper_length" in lines[at + 1]
 
 
 def test_a_users_engine_passes_its_geometry_to_the_thermal_network(tmp_path):
