@@ -393,22 +393,29 @@ def write_candidate(path: str, kind: str = "span120", oring: float = 2.0) -> Non
     d, f, what = candidate(kind, oring)
     text = fem.DEFAULT_FILE.read_text().splitlines()
     section, out = "", []
-    lists = {("power_turbine", "z_mm"), ("power_turbine", "d_out_mm"), ("power_turbine", "d_in_mm"),
-             ("gas_generator", "z_mm"), ("casing", "ring_z_mm")}
+    # (table of the file, key): where the value is in the data (engine format 1: [spool.pt], [spool.gg], [casing])
+    lists = {("spool.pt", "z_mm"): ("spool", "pt", "z_mm"), ("spool.pt", "d_out_mm"): ("spool", "pt", "d_out_mm"),
+             ("spool.pt", "d_in_mm"): ("spool", "pt", "d_in_mm"), ("spool.gg", "z_mm"): ("spool", "gg", "z_mm"),
+             ("casing", "ring_z_mm"): ("casing", "ring_z_mm")}
+
+    def at(data, where):
+        for k in where:
+            data = data[k]
+        return data
     for line in text:
         m = re.match(r"^\[([\w.]+)\]", line)
         if m:
             section = m.group(1)
         key = line.split("=")[0].strip()
         if (section, key) in lists:
-            line = f"{key} = [{', '.join(_fmt(float(v)) for v in d[section][key])}]"
+            line = f"{key} = [{', '.join(_fmt(float(v)) for v in at(d, lists[section, key]))}]"
         elif section == "calibration" and key in ("pt_stage_mass_kg", "mount_k"):
             line = f"{key} = {d['calibration'][key]:.6g}"
         elif section == "casing.hubs" and key in d["casing"]["hubs"]:
             h = d["casing"]["hubs"][key]
             line = f"{key} = {{ z_mm = {_fmt(float(h['z_mm']))}, mass = {_fmt(float(h['mass']))} }}"
         out.append(line)
-        if section == "power_turbine" and line.lstrip().startswith('{ node = 1, name = "PT stage 1"'):
+        if section == "spool.pt" and line.lstrip().startswith('{ node = 1, name = "PT stage 1"'):
             for dk in d["spool"]["pt"]["disks"][2:]:
                 out.append(f'  {{ node = {dk["node"]}, name = "{dk["name"]}", mass = {dk["mass"]:.6g}, '
                            f'Ip = {dk["Ip"]:.6g}, Id = {dk["Id"]:.6g} }},')
@@ -416,9 +423,12 @@ def write_candidate(path: str, kind: str = "span120", oring: float = 2.0) -> Non
               f"# O-rings {oring:g} x 5254 N/mm; forward critical speeds {[round(x) for x in f]} rev/min.\n")
     Path(path).write_text(header + "\n".join(out) + "\n")
     back, _ = fem.load_data(path)
-    for sec, key in lists:
-        assert np.allclose(back[sec][key], d[sec][key]), (sec, key)
+    for where in lists.values():
+        assert np.allclose(at(back, where), at(d, where)), where
     assert len(back["spool"]["pt"]["disks"]) == len(d["spool"]["pt"]["disks"])
+    # the file written is the layout computed (mount_k and the coupling are written to 6 digits)
+    again = _forward(back, supports(oring), n=len(f))
+    assert np.allclose(again, f, rtol=1e-5), (again, f)
     print(f"wrote {path}: forward critical speeds {[round(x) for x in f]} rev/min")
 
 

@@ -116,10 +116,10 @@ def breakdown(bearing, P, label):
 
 
 SENSITIVITY = [
-    ("shaft length L_s x0.5", {("bearing", "0", "shaft_length_mm"): 0.5, ("bearing", "5", "shaft_length_mm"): 0.5}),
-    ("shaft length L_s x2", {("bearing", "0", "shaft_length_mm"): 2.0, ("bearing", "5", "shaft_length_mm"): 2.0}),
+    ("shaft length L_s x0.5", {("defaults", "shaft_length_mm"): 0.5}),
+    ("shaft length L_s x2", {("defaults", "shaft_length_mm"): 2.0}),
     ("shaft-end convection x10", {("convection", "shaft_a"): 10.0}),
-    ("housing wall x2", {("bearing", "0", "housing_wall_mm"): 2.0, ("bearing", "5", "housing_wall_mm"): 2.0}),
+    ("housing wall x2", {("defaults", "housing_wall_mm"): 2.0}),
     ("housing oil-wetted h x3", {("convection", "housing"): 3.0}),
     ("damper oil feed x3", {("oil_flow", "sfd_L_per_min"): 3.0}),
     ("lubricant fill 100 %", {("oil_flow", "lubricant_fill_fraction"): ("=", 1.0)}),

@@ -34,6 +34,8 @@ from rotorcosim.components.contract import COUPLED
 from rotorcosim.master.observer.observers import Observer, SteadyWindows, sampled_rows
 from rotorcosim.master.scenario.cycle import cycle_of
 
+from . import thermal_geometry
+
 BEARINGS = (0, 5)
 #: columns of the bearing's [inner, outer] contact outputs (Q_max, sigma_max): the reported stress is the inner race's
 INNER, OUTER = 0, 1
@@ -111,7 +113,9 @@ def observers(sc, cycle):
 def check(sc, sim) -> None:
     """Before the run: ``[schedule] speed_rpm`` (the cycle of the windows and of the hold) is the speed the
     unbalance turns at, the parameter ``[results] speed_parameter`` names (rad/s; its default comes from
-    components/speeds.py). A mismatch would read every steady window over a wrong cycle: a clear error."""
+    components/speeds.py). A mismatch would read every steady window over a wrong cycle: a clear error. And each
+    thermal network has the geometry of the bearing, damper and rub ring whose heat it takes (.thermal_geometry)."""
+    thermal_geometry.check(sc, sim.system)
     ref = sc.extra.get("results", {}).get("speed_parameter")
     if not ref:
         return

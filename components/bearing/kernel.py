@@ -11,7 +11,7 @@ u_z = z, w_r = x_e cos phi + y_e sin phi):
     force on the inner race  -Q_i (cos alpha_i cos phi, cos alpha_i sin phi, sin alpha_i)   (eqs. 2, 3);
     force on the outer race  +Q_e cos alpha_e (cos phi, sin phi)                             (eq. 5);
     plus a light viscous ball damping c_b (ball velocity minus the mean of the two groove centres' velocities,
-    reacted half by each race; not in the paper, see data/bearings.toml).
+    reacted half by each race; not in the paper, see docs/explanation/paper-components.md).
 Integration: symplectic (semi-implicit) Euler sub-steps for the balls; the journal (eq. 5) with the damper force
 linearised about the start of the step, F0 + K (x - x0) + C (v - v0), taken implicitly in each sub-step.
 """

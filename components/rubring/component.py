@@ -9,8 +9,8 @@ evaluated at the inputs given for the step (the rotor's state at the end of the 
 over it. The component is memoryless, so ``P_rub`` evaluated at those held inputs is also the mean friction power
 over the step that those forces deliver (the held force times the held sliding speed).
 
-Parameters default to ring #0 (``bearing = 0``); ``bearing = 5`` picks ring #5's clearance and radius. Values and
-reasons in data/rubrings.toml: stiffness 3e8 N/m (conformal line contact, Johnson), damping 4900 N s/m, friction 0.2, clearance 0.508 mm, radius
+Parameters default to ring #0 (``bearing = 0``); ``bearing = 5`` picks ring #5's clearance and radius. Values in
+data/rubrings.toml, their reasons in docs/explanation/paper-components.md: stiffness 3e8 N/m (conformal line contact, Johnson), damping 4900 N s/m, friction 0.2, clearance 0.508 mm, radius
 25.4 mm (41.9 mm at #5), omega = 16 000 rev/min (power-turbine speed).
 """
 from __future__ import annotations
@@ -60,7 +60,7 @@ class RubRing(Memoryless, KernelComponent):
                  description="contact damping on the penetration rate"),
         # at most 2: the largest dry coefficients of metal pairs in the handbooks are ~1.0-1.4 (clean aluminium on
         # aluminium 1.05-1.35, silver on silver 1.4: CRC Handbook of Chemistry and Physics, "Coefficient of
-        # friction"); 50 was accepted. The shipped 0.2 and its effect on Table 5: data/rubrings.toml
+        # friction"); 50 was accepted. The shipped 0.2: docs/explanation/paper-components.md
         Variable("friction", "parameter", unit="1", start=CONTACT["friction"], description="Coulomb coefficient",
                  min=0.0, max=2.0),
         Variable("radius", "parameter", unit="m", start=RINGS[0]["radius_mm"] * 1e-3,

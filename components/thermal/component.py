@@ -2,8 +2,16 @@
 
 Nine lumped nodes per bearing (``T_nodes`` order: shaft, inner_race, lub_inner, ball, lub_outer, outer_race,
 journal, sfd_oil, housing; the journal sleeve's inner radial shells are further state nodes, geometry.py), eq. (12)
-at each, the Table 1 resistances from the Table 3 geometry (geometry.py), heat
-sources from the three power inputs, and the growths of eqs. (13)-(15) (growth.py).
+at each, the Table 1 resistances and the heat masses from the geometry (geometry.py), heat sources from the three
+power inputs, and the growths of eqs. (13)-(15) (growth.py).
+
+Geometry, as parameters (the component reads no other component's): the bearing's ``bore``,
+``outside_diameter``, ``width``, ``balls``, ``ball_diameter``, ``contact_angle``, the damper's ``damper_radius``,
+``damper_length``, ``damper_clearance`` and the rub ring's ``rub_radius``; ``bearing = 0 | 5`` gives the defaults
+of the paper's Table 3 and each one set replaces its default. What Table 3 does not give (``shaft_length``,
+``housing_wall``, ``housing_length`` = 2 ``damper_length``, ``rub_radius`` = ``bore``/2) follows data/thermal.toml
+[defaults] (sources: docs/explanation/paper-components.md). A scenario gives a thermal network the values it gives
+the bearing, damper and rub ring whose heat it takes (the blade-loss case checks that before a run).
 
 Added to the paper's network (geometry.py, data/thermal.toml): the oil-wetted convection between the races / balls
 and the bearing lubricant (Harris's film coefficient), the renewal of the lubricant by the oil jet and of the damper
@@ -38,8 +46,8 @@ from ..kernels import KernelComponent
 from ..oil_fit import SOURCE, T_FLASH_K, T_POUR_K, check_oil_temperature
 from ..speeds import PT_OMEGA
 from ..validity import Check
-from .geometry import (BEARINGS, BALL, IR, JOURNAL, LE, LI, NODES, OR, SFD, SHAFT, _DATA, build_network,
-                       default_sources, radii)
+from .geometry import (BEARINGS, BALL, IR, JOURNAL, LE, LI, NODES, OR, SFD, SHAFT, _DATA, bearing_data,
+                       build_network, default_sources, radii)
 from .growth import growths
 from .kernel import ThermalParams, ThermalState, tm_step
 from .network import METHODS
@@ -62,9 +70,18 @@ CHECKS = tuple(Check(f"{what} temperature", (port,), _port(port), limit, "K", SO
 #: the geometry parameters: (parameter, data-file key, SI per file unit)
 GEOMETRY = (("bore", "bore_diameter_mm", 1e-3), ("outside_diameter", "outside_diameter_mm", 1e-3),
             ("width", "width_mm", 1e-3), ("balls", "n_balls", 1), ("ball_diameter", "ball_diameter_mm", 1e-3),
+            ("contact_angle", "contact_angle_deg", math.pi / 180.0),
             ("damper_radius", "damper_radius_mm", 1e-3), ("damper_length", "damper_length_mm", 1e-3),
             ("damper_clearance", "damper_clearance_mm", 1e-3), ("shaft_length", "shaft_length_mm", 1e-3),
-            ("housing_wall", "housing_wall_mm", 1e-3), ("housing_length", "housing_length_mm", 1e-3))
+            ("housing_wall", "housing_wall_mm", 1e-3), ("housing_length", "housing_length_mm", 1e-3),
+            ("rub_radius", "rub_ring_radius_mm", 1e-3))
+_REC0 = bearing_data(0)      # the start values: bearing #0's record, its defaults filled in
+_DFLT = _DATA["defaults"]
+_DOC = "docs/explanation/paper-components.md"
+
+
+def _table3(what: str) -> str:
+    return f"{what} (default: the Table 3 record of `bearing`; set it for another bearing)"
 
 
 class ThermalNetwork(KernelComponent):
@@ -74,7 +91,7 @@ class ThermalNetwork(KernelComponent):
     required_parameters = ("bearing",)  # which of Table 3's gives the data: never a silent default
     variables = (
         Variable("bearing", "parameter", unit="1", start=0, type="Integer",
-                 description="which bearing of Table 3 (0 or 5) gives the geometry"),
+                 description="which bearing of Table 3 (0 or 5) gives the geometry parameters' defaults"),
         Variable("T_ambient", "parameter", unit="K", start=303.15, description="ambient temperature (30 C)"),
         Variable("T_initial", "parameter", unit="K", start=303.15,
                  description="initial temperature of all nodes, and the zero-growth reference of eqs. (13)-(15)"),
@@ -93,34 +110,44 @@ class ThermalNetwork(KernelComponent):
                  description="share of the ring's part of the rub power entering the housing node (rest stays in "
                              "the ring and casing, not modelled); < 0: the data-file value (0)"),
         Variable("bearing_oil_flow", "parameter", unit="m3/s", start=-1.0,
-                 description="oil-jet flow through the bearing (renewal of the lubricant nodes);"
-                             " < 0: the data-file value of the bearing (2 L/min at #0, 3 L/min at #5)"),
+                 description="oil-jet flow through the bearing (renewal of the lubricant nodes); < 0: data/thermal.toml"
+                             " [defaults] jet_L_per_min, 0 (none, as Table 1's network; the jet option's 2 L/min at"
+                             f" #0 and 3 L/min at #5: {_DOC})"),
         Variable("sfd_oil_flow", "parameter", unit="m3/s", start=_DATA["oil_flow"]["sfd_L_per_min"] * _LMIN,
                  description="squeeze-film damper oil flow (renewal of the SFD oil node)"),
-        # the geometry of Table 1's network: by default the record of ``bearing`` (data/thermal.toml); each one
-        # set replaces that record's value (SI here; the record is in mm)
-        Variable("bore", "parameter", unit="m", start=BEARINGS[0]["bore_diameter_mm"] * 1e-3,
-                 description="bearing bore (shaft radius r_s = bore / 2) (default: the record of `bearing`)"),
-        Variable("outside_diameter", "parameter", unit="m", start=BEARINGS[0]["outside_diameter_mm"] * 1e-3,
-                 description="bearing outside diameter (default: the record of `bearing`)"),
-        Variable("width", "parameter", unit="m", start=BEARINGS[0]["width_mm"] * 1e-3,
-                 description="bearing width (default: the record of `bearing`)"),
-        Variable("balls", "parameter", unit="1", start=BEARINGS[0]["n_balls"], type="Integer",
-                 description="number of balls (default: the record of `bearing`)"),
-        Variable("ball_diameter", "parameter", unit="m", start=BEARINGS[0]["ball_diameter_mm"] * 1e-3,
-                 description="ball diameter (default: the record of `bearing`)"),
-        Variable("damper_radius", "parameter", unit="m", start=BEARINGS[0]["damper_radius_mm"] * 1e-3,
-                 description="squeeze film damper journal radius r_j (default: the record of `bearing`)"),
-        Variable("damper_length", "parameter", unit="m", start=BEARINGS[0]["damper_length_mm"] * 1e-3,
-                 description="squeeze film damper length L_j (default: the record of `bearing`)"),
-        Variable("damper_clearance", "parameter", unit="m", start=BEARINGS[0]["damper_clearance_mm"] * 1e-3,
-                 description="squeeze film damper clearance c_sf (default: the record of `bearing`)"),
-        Variable("shaft_length", "parameter", unit="m", start=BEARINGS[0]["shaft_length_mm"] * 1e-3,
-                 description="shaft conduction length L_s to its sink (default: the record of `bearing`)"),
-        Variable("housing_wall", "parameter", unit="m", start=BEARINGS[0]["housing_wall_mm"] * 1e-3,
-                 description="housing wall outside the damper film (default: the record of `bearing`)"),
-        Variable("housing_length", "parameter", unit="m", start=BEARINGS[0]["housing_length_mm"] * 1e-3,
-                 description="housing length L_h (default: the record of `bearing`)"),
+        # the geometry of Table 1's network: by default the record of ``bearing`` (data/thermal.toml, the paper's
+        # Table 3); each one set replaces that record's value (SI here; the record is in mm and degrees)
+        Variable("bore", "parameter", unit="m", start=_REC0["bore_diameter_mm"] * 1e-3,
+                 description=_table3("bearing bore, shaft radius r_s = bore/2")),
+        Variable("outside_diameter", "parameter", unit="m", start=_REC0["outside_diameter_mm"] * 1e-3,
+                 description=_table3("bearing outside diameter, r_o = OD/2")),
+        Variable("width", "parameter", unit="m", start=_REC0["width_mm"] * 1e-3,
+                 description=_table3("bearing width W_i = W_e")),
+        Variable("balls", "parameter", unit="1", start=_REC0["n_balls"], type="Integer",
+                 description=_table3("number of balls n")),
+        Variable("ball_diameter", "parameter", unit="m", start=_REC0["ball_diameter_mm"] * 1e-3,
+                 description=_table3("ball diameter 2 r_b")),
+        Variable("contact_angle", "parameter", unit="rad", start=math.radians(_REC0["contact_angle_deg"]),
+                 description=_table3("initial contact angle, gamma = D cos(alpha)/d_m of the oil convection")),
+        Variable("damper_radius", "parameter", unit="m", start=_REC0["damper_radius_mm"] * 1e-3,
+                 description=_table3("squeeze film damper journal radius r_j")),
+        Variable("damper_length", "parameter", unit="m", start=_REC0["damper_length_mm"] * 1e-3,
+                 description=_table3("squeeze film damper length L_j")),
+        Variable("damper_clearance", "parameter", unit="m", start=_REC0["damper_clearance_mm"] * 1e-3,
+                 description=_table3("squeeze film damper radial clearance c_sf")),
+        Variable("shaft_length", "parameter", unit="m", start=_REC0["shaft_length_mm"] * 1e-3,
+                 description=f"shaft conduction length L_s of R_sa (default {_DFLT['shaft_length_mm']:g} mm, "
+                             f"data/thermal.toml [defaults]: an assumption, {_DOC})"),
+        Variable("housing_wall", "parameter", unit="m", start=_REC0["housing_wall_mm"] * 1e-3,
+                 description=f"housing wall outside the damper film, r_h = r_j + c_sf + wall (default "
+                             f"{_DFLT['housing_wall_mm']:g} mm, data/thermal.toml [defaults]: an assumption, {_DOC})"),
+        Variable("housing_length", "parameter", unit="m", start=_REC0["housing_length_mm"] * 1e-3,
+                 description=f"housing length L_h (default {_DFLT['housing_length_per_damper_length']:g} x "
+                             f"damper_length, data/thermal.toml [defaults]: an assumption, {_DOC})"),
+        Variable("rub_radius", "parameter", unit="m", start=_REC0["rub_ring_radius_mm"] * 1e-3,
+                 description="rotor radius at the rub ring, R_r of eq. (11), the rub's sliding speed for the Blok "
+                             "partition (default bore/2, as components/rubring/data/rubrings.toml; set it to the "
+                             "rub ring's radius)"),
         Variable("method", "parameter", unit="1", start="exact", type="String",
                  description="integration: 'exact' (held-input exact solution) or 'backward-euler'"),
         Variable("P_drag", "input", 1, "W", "bearing drag-torque power (mean over the step)"),
@@ -157,24 +184,33 @@ class ThermalNetwork(KernelComponent):
                 check_oil_temperature(p[key])
             except ValueError as exc:
                 raise ContractError(f"{self.name}.{key}: {exc}; temperatures are in kelvin") from None
-        rec = BEARINGS[p["bearing"]]
         for name, key, scale in GEOMETRY:
             if name in self.explicit:
-                if not (isinstance(p[name], (int, float)) and math.isfinite(p[name]) and p[name] > 0):
-                    raise ContractError(f"{self.name}.{name} must be a finite number > 0, got {p[name]!r}")
-            else:
-                p[name] = rec[key] * scale if name != "balls" else int(rec[key])
-        # the record the network is built from: the data file's number (unchanged) or the record with the set values
+                v = p[name]
+                ok = isinstance(v, (int, float)) and not isinstance(v, bool) and math.isfinite(v)
+                if name == "contact_angle":
+                    if not (ok and 0.0 <= v < math.pi / 2):
+                        raise ContractError(f"{self.name}.contact_angle must be in [0, pi/2) rad, got {v!r}")
+                elif not (ok and v > 0 and (name != "balls" or float(v).is_integer())):
+                    what = "a whole number > 0" if name == "balls" else "a finite number > 0"
+                    raise ContractError(f"{self.name}.{name} must be {what}, got {v!r}")
+        # the record the network is built from: the data file's number (unchanged) or the record with the set
+        # values (the defaults that follow the geometry, housing_length and rub_radius, follow the set values)
         over = {key: (p[name] / scale if name != "balls" else int(p[name]))
                 for name, key, scale in GEOMETRY if name in self.explicit}
-        bearing = {**rec, **over} if over else p["bearing"]
+        bearing = {**BEARINGS[p["bearing"]], **over} if over else p["bearing"]
         try:
+            full = bearing_data(bearing)
             self.network = build_network(
                 bearing, p["omega"], p["T_ambient"], p["T_supply"], p["drag_inner_fraction"],
                 p["contact_race_fraction"], p["rub_shaft_fraction"], p["bearing_oil_flow"], p["sfd_oil_flow"],
                 p["rub_ring_housing_fraction"])
         except ValueError as exc:
             raise ContractError(f"{self.name}: {exc}") from None
+        for name, key, scale in GEOMETRY:
+            if name not in self.explicit:
+                p[name] = full[key] * scale if name != "balls" else int(full[key])
+        self._bearing = bearing
         g = radii(bearing)
         st = _DATA["steel"]
         self._growth_args = (p["T_initial"], st["expansion"], st["poisson"], g["r_i"], g["r_e"], g["r_j"], g["r_b"])

@@ -6,7 +6,9 @@ chamber oil on the housing).
 
 Radii: r_s = bore/2 (shaft), r_i = (d_m - D)/2 and r_e = (d_m + D)/2 (inner/outer raceway, d_m = (bore + OD)/2),
 r_o = OD/2 (outer race outside = journal bore), r_j = damper radius (journal outside), r_hi = r_j + c_sf (housing
-bore), r_h = r_hi + wall (housing outside); r_b = D/2; W_i = W_e = bearing width.
+bore), r_h = r_hi + wall (housing outside); r_b = D/2; W_i = W_e = bearing width. What Table 3 does not give
+is a rule of data/thermal.toml [defaults] unless set (:func:`bearing_data`): the shaft length L_s, the wall, the
+housing length L_h = 2 L_j, the rub ring's radius R_r = bore/2, no oil jet.
 
 Branches (Table 1 resistances; a lubricant node sits in the middle of its layer, so each side gets half of R_L):
 
@@ -25,9 +27,10 @@ Branches (Table 1 resistances; a lubricant node sits in the middle of its layer,
 
 Table 1 prints R_hr, R_ha with r_o (the outer race radius): with the damper between the journal and the housing,
 the housing's bore is r_hi, used here. Its h_h is the oil-wetted bearing-chamber wall value and its sink the oil
-supply (data/thermal.toml [convection]).
+supply (docs/explanation/paper-components.md, "Convection").
 
-Added to Table 1 (physically real paths of a jet-lubricated bearing, values and sources in data/thermal.toml):
+Added to Table 1 (physically real paths of a jet-lubricated bearing, values in data/thermal.toml, sources in
+docs/explanation/paper-components.md):
 
     inner_race - lub_inner   1/(h_i A_i)          oil-wetted convection (Harris), in parallel with R_Li/2
     ball - lub_inner         1/(h_b A_b/2)        A_b = n 4 pi r_b^2, half of it facing each lubricant node
@@ -77,6 +80,9 @@ DATA = Path(__file__).with_name("data") / "thermal.toml"
 with open(DATA, "rb") as _f:
     _DATA = tomllib.load(_f)
 BEARINGS = {int(k): v for k, v in _DATA["bearing"].items()}
+#: the keys of a bearing record that have no default (the paper's Table 3 gives them for #0 and #5)
+REQUIRED = ("bore_diameter_mm", "outside_diameter_mm", "width_mm", "n_balls", "ball_diameter_mm",
+            "contact_angle_deg", "damper_radius_mm", "damper_length_mm", "damper_clearance_mm")
 
 NODES = ("shaft", "inner_race", "lub_inner", "ball", "lub_outer", "outer_race", "journal", "sfd_oil", "housing")
 SHAFT, IR, LI, BALL, LE, OR, JOURNAL, SFD, HOUSING = range(9)
@@ -84,18 +90,33 @@ INPUTS = ("P_drag", "P_sfd", "P_rub")
 
 
 def bearing_data(bearing: int | dict) -> dict:
-    """The geometry record of bearing 0 or 5 (data file [bearing.N]), or ``bearing`` itself when it is a record
-    of the same keys (a bearing described by its parameters, :class:`~.component.ThermalNetwork`)."""
+    """The full geometry record (mm, deg) of bearing 0 or 5 (data file [bearing.N]), or of ``bearing`` itself
+    when it is a record of the same keys (a bearing described by its parameters,
+    :class:`~.component.ThermalNetwork`); the keys a record leaves out take the data file's [defaults]:
+    ``shaft_length_mm``, ``housing_wall_mm``, ``jet_L_per_min`` its values, ``housing_length_mm`` =
+    ``housing_length_per_damper_length`` x ``damper_length_mm``, ``rub_ring_radius_mm`` = ``bore_diameter_mm`` / 2
+    (the ring on the shaft next to the bearing)."""
     if isinstance(bearing, dict):
-        return dict(bearing)
-    if bearing not in BEARINGS:
+        d = dict(bearing)
+    elif bearing in BEARINGS:
+        d = dict(BEARINGS[bearing])
+    else:
         raise ValueError(f"bearing must be one of {sorted(BEARINGS)}, got {bearing!r}")
-    return dict(BEARINGS[bearing])
+    missing = [key for key in REQUIRED if key not in d]
+    if missing:
+        raise ValueError(f"bearing record lacks {', '.join(missing)}")
+    dflt = _DATA["defaults"]
+    for key in ("shaft_length_mm", "housing_wall_mm", "jet_L_per_min"):
+        d.setdefault(key, dflt[key])
+    d.setdefault("housing_length_mm", dflt["housing_length_per_damper_length"] * d["damper_length_mm"])
+    d.setdefault("rub_ring_radius_mm", d["bore_diameter_mm"] / 2)
+    return d
 
 
-def radii(bearing: int) -> dict:
+def radii(bearing: int | dict) -> dict:
     """Radii and lengths (m) of the bearing, journal and housing used by Table 1 and eqs. (13)-(15)."""
     d = bearing_data(bearing)
+    name = bearing if isinstance(bearing, int) else "(parameters)"
     mm = 1e-3
     bore, od, D = d["bore_diameter_mm"] * mm, d["outside_diameter_mm"] * mm, d["ball_diameter_mm"] * mm
     dm = 0.5 * (bore + od)   # pitch diameter ~ mean of bore and OD (Harris & Kotzalas)
@@ -109,9 +130,12 @@ def radii(bearing: int) -> dict:
     g["r_h"] = g["r_hi"] + d["housing_wall_mm"] * mm
     for key, value in g.items():
         if not (math.isfinite(value) and value > 0):
-            raise ValueError(f"bearing {bearing}: {key} must be > 0, got {value}")
+            raise ValueError(f"bearing {name}: {key} must be > 0, got {value}")
     if not g["r_s"] < g["r_i"] < g["r_e"] < g["r_o"] < g["r_j"] < g["r_hi"] < g["r_h"]:
-        raise ValueError(f"bearing {bearing}: radii are not nested (shaft < races < journal < housing): {g}")
+        raise ValueError(f"bearing {name}: radii are not nested (shaft bore/2 < inner raceway < outer raceway < "
+                         f"outside diameter/2 < damper radius < housing): "
+                         + ", ".join(f"{k} = {1e3 * g[k]:.4g} mm" for k in ("r_s", "r_i", "r_e", "r_o", "r_j",
+                                                                            "r_hi", "r_h")))
     return g
 
 

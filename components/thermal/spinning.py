@@ -61,7 +61,7 @@ class SpinningThermalNetwork(ThermalNetwork):
         p = self.p
         try:
             self.network = build_network(
-                p["bearing"], w, p["T_ambient"], p["T_supply"], p["drag_inner_fraction"],
+                self._bearing, w, p["T_ambient"], p["T_supply"], p["drag_inner_fraction"],
                 p["contact_race_fraction"], p["rub_shaft_fraction"], p["bearing_oil_flow"], p["sfd_oil_flow"],
                 p["rub_ring_housing_fraction"])
         except ValueError as exc:

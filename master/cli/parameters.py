@@ -1,5 +1,6 @@
 """``rotorcosim parameters [COMP | IMPL | SCENARIO]``: every parameter with unit, default, current value and
-source (:meth:`rotorcosim.master.scenario.build.Scenario.parameters`).
+source (:meth:`rotorcosim.master.scenario.build.Scenario.parameters`); the listing of one component or
+implementation adds each parameter's description (where its default comes from).
 
 WHAT is a component of the scenario (``bearing0``), an implementation (``bearing.hertz``: its declared
 parameters and defaults) or a scenario (a shipped name or a TOML file: all its components); none lists the
@@ -62,10 +63,14 @@ def run(args) -> int:
         print(json.dumps(rows))
         return 0
     comp = None
+    # one component (or implementation): each parameter's description too, which names its default's source
+    described = len({r["component"] for r in rows}) == 1
     for r in rows:
         if r["component"] != comp:
             comp = r["component"]
             print(f"{comp}:")
         print(f"  {r['name']:<28} {_fmt(r['value']):>14} {r['unit'] or '':<8} default {_fmt(r['default']):<12} "
               f"{r['source']}")
+        if described and r.get("description"):
+            print(f"      {r['description']}")
     return 0
