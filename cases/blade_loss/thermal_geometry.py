@@ -27,7 +27,8 @@ def _values(sc, name: str, cache: dict) -> dict:
     if name not in cache:
         try:
             cache[name] = {r["name"]: r["value"] for r in sc.parameters(name)}
-        except ValueError:
+        except (ValueError, RuntimeError, ArithmeticError):
+            # the same set-up failures the run's own set-up turns into "could not be set up with its parameters"
             cache[name] = {}
     return cache[name]
 
