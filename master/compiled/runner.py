@@ -137,8 +137,16 @@ class Plan:
             row[op.L_HB] = j in self.handbacks
             row[op.L_VOFF] = vo
             vo += links.NV * n
+            row[op.L_ANG] = -1
             if link.window is not None:
                 row[op.L_WIN] = 1
+                if link.window.turns is not None:   # its cycles end at the turns of the cycle's angle
+                    comp, _, port = link.window.turns[0].ref.partition(".")
+                    key = (self.index.get(comp, -1), "y", port)
+                    if key not in self.offset:
+                        raise ContractError(f"{link.con.src}: its hand-off window counts the turns of "
+                                            f"{comp}.{port}, not an output stepped in this interval")
+                    row[op.L_ANG] = self.offset[key]
                 row[op.L_WP0] = len(idx)
                 for p in link.window.ports:
                     idx += [self.offset[(i_src, "u", p)], self.comps[i_src].variable(p).size]
@@ -282,7 +290,9 @@ class Runner:
                 LI[j, op.L_GOFF], LI[j, op.L_GNR] = go, nr
                 go += nr * n
                 LI[j, op.L_COFF] = co
-                co += (CHUNK // link.window.n_cycle + 2) * int(LI[j, op.L_CW])
+                # at most one cycle a sample when counted in turns (links.record)
+                per = link.window.n_cycle if link.window.turns is None else 1
+                co += (CHUNK // per + 2) * int(LI[j, op.L_CW])
         G = np.zeros(max(1, go))
         C = np.zeros(max(1, co))
         count = np.zeros(len(comps), dtype=np.int64)
@@ -478,5 +488,6 @@ def _plan_key(sim, mult) -> tuple:
             tuple(tuple(map(id, eng.inputs_of(n))) for n in eng.active),
             tuple(tuple(map(id, eng.outgoing_of(n))) for n in eng.active),
             tuple(tuple(eng.watched_of(n)) for n in eng.active),
-            tuple((link.mode, None if link.window is None else tuple(link.window.ports)) for link in eng.links),
+            tuple((link.mode, None if link.window is None else (tuple(link.window.ports), link.window.turns is None))
+                  for link in eng.links),
             tuple(map(id, sim.hold.handbacks)))

@@ -196,7 +196,7 @@ CONNECTION = {"from": port_ref, "to": port_ref, "average": one_of(*AVERAGES),
               "convert": text, "unit": text}
 INTERVAL = {"phase": text, "duration": positive, "cycles": positive, "step": positive}
 #: ``[schedule] cycle``: a constant period [s], or a speed / frequency output and its unit (master/scenario/cycle.py)
-CYCLE = {"period": positive, "signal": port_ref, "unit": text}
+CYCLE = {"period": positive, "signal": port_ref, "unit": text, "angle": port_ref}
 
 
 def _did_you_mean(word: Any, known) -> str:
@@ -457,10 +457,14 @@ def _cycle(c: _Checker, s: Mapping, comps: Mapping) -> tuple[float | None, str]:
     if ("period" in cyc) == ("signal" in cyc):
         raise c.fail("schedule.cycle", None, "give exactly one of period (s) or signal (\"component.port\")")
     if "period" in cyc:
-        if "unit" in cyc:
-            raise c.fail("schedule.cycle", "unit", "is the unit of a signal; a period is in seconds")
+        for key in ("unit", "angle"):
+            if key in cyc:
+                raise c.fail("schedule.cycle", key, f"is the {key} of a signal's cycle; a constant period counts "
+                                                    "in seconds")
         return cyc["period"], f"of {cyc['period']:g} s"
     _known_component(c, "schedule.cycle", "signal", cyc["signal"], list(comps))
+    if "angle" in cyc:
+        _known_component(c, "schedule.cycle", "angle", cyc["angle"], list(comps))
     return None, ""
 
 

@@ -158,7 +158,12 @@ class _StopTest:
 
 class _SteadyTest(_StopTest):
     """Steady when the RMS of the tracked outputs over a cycle changes by less than the tolerance
-    (relative) for ``steady_cycles`` consecutive cycles, after ``tm_min``."""
+    (relative) for ``steady_cycles`` consecutive cycles, after ``tm_min``.
+
+    A cycle is the ``every`` base steps between two checks (the period at the interval's start); with a cycle
+    source that has an angle, it is a turn of that angle instead (from the interval's start: the RMS of each
+    whole turn is compared with the previous turn's), and the checks, still every ``every`` base steps, take the
+    turns completed since the last one in order."""
 
     def __init__(self, sim, sch: AutoSchedule):
         self.sch = sch
@@ -179,6 +184,25 @@ class _SteadyTest(_StopTest):
         self.ended_steady = False
         self._period = (sim.t, sim.hold.cycle)
         self._p_start = self._period[1]
+        # counted in turns: (the angle's outputs, its port, its ref), the next whole turn, the direction, and the
+        # RMS of each turn completed since the last check
+        self.turns = None
+        counter = getattr(sim, "revolutions", None)
+        if counter is not None:
+            comp, _, port = counter.ref.partition(".")
+            self.turns = (comps[comp].y, port, counter.ref)
+            self.dir = sim.cycle_source.direction(sim.system)
+            self.next = float(comps[comp].y[port][0]) + 2.0 * np.pi * self.dir
+            self.done: list[np.ndarray] = []
+
+    def _turn_done(self, theta: float) -> None:
+        """A turn ends at this sample: its RMS, and the next whole turn past ``theta``."""
+        self.done.append(np.sqrt(self.acc / self.n))
+        self.acc, self.n = None, 0
+        turn = 2.0 * np.pi * self.dir
+        self.next += turn
+        while (theta - self.next) * self.dir >= 0.0:
+            self.next += turn
 
     def sample(self, sim):
         if not self.refs:
@@ -186,14 +210,15 @@ class _SteadyTest(_StopTest):
         vals = np.concatenate([np.ravel(sim.value(r)) for r in self.refs])
         self.acc = vals * vals if self.acc is None else self.acc + vals * vals
         self.n += 1
+        if self.turns is not None:
+            theta = float(self.turns[0][self.turns[1]][0])
+            if (theta - self.next) * self.dir >= 0.0:
+                self._turn_done(theta)
 
     def block_refs(self):
-        return list(self.refs)
+        return list(self.refs) + ([self.turns[2]] if self.turns is not None else [])
 
-    def sample_block(self, cols):
-        if not self.refs:
-            return
-        rows = np.concatenate([cols[r] for r in self.refs], axis=1)
+    def _accumulate(self, rows) -> None:
         sq = rows * rows
         if self.acc is not None:
             sq = np.vstack([self.acc[None, :], sq])
@@ -201,20 +226,45 @@ class _SteadyTest(_StopTest):
         self.acc = np.add.accumulate(sq, axis=0)[-1]
         self.n += rows.shape[0]
 
-    def check(self, sim, t):
-        changing = self._speed_changing(sim, t)
-        if self.acc is None:
-            if not changing and t - self.t_begin >= self.sch.tm_min - 1e-12:
-                self.ended_steady = True
-                return "steady"
-            return None
-        rms = np.sqrt(self.acc / self.n)
-        self.acc, self.n = None, 0
+    def sample_block(self, cols):
+        if not self.refs:
+            return
+        rows = np.concatenate([cols[r] for r in self.refs], axis=1)
+        if self.turns is None:
+            self._accumulate(rows)
+            return
+        theta = np.asarray(cols[self.turns[2]])[:, 0]
+        start = 0
+        while start < rows.shape[0]:   # the block cut at the samples that end a turn, as ``sample`` would
+            passed = np.flatnonzero((theta[start:] - self.next) * self.dir >= 0.0)
+            end = start + int(passed[0]) + 1 if len(passed) else rows.shape[0]
+            self._accumulate(rows[start:end])
+            if len(passed):
+                self._turn_done(float(theta[end - 1]))
+            start = end
+
+    def _compare(self, rms) -> None:
         if self.last is not None:
             scale = np.maximum(np.abs(self.last), 1e-12)
             change = float(np.max(np.abs(rms - self.last) / scale))
             self.steady = self.steady + 1 if change < self.sch.steady_tolerance else 0
         self.last = rms
+
+    def check(self, sim, t):
+        changing = self._speed_changing(sim, t)
+        if self.turns is not None and self.refs:
+            for rms in self.done:   # the turns completed since the last check
+                self._compare(rms)
+            self.done = []
+        else:
+            if self.acc is None:
+                if not changing and t - self.t_begin >= self.sch.tm_min - 1e-12:
+                    self.ended_steady = True
+                    return "steady"
+                return None
+            rms = np.sqrt(self.acc / self.n)
+            self.acc, self.n = None, 0
+            self._compare(rms)
         if changing:
             self.steady = 0
         if t - self.t_begin >= self.sch.tm_min - 1e-12 and self.steady >= self.sch.steady_cycles:
