@@ -149,3 +149,39 @@ def test_automatic_schedule_runs_compiled_and_decides_as_the_generic_loop(tmp_pa
     for name, comp in cs.system.components.items():
         for port, y in comp.y.items():
             assert _rel(y, ps.system.components[name].y[port]) <= RTOL, f"{name}.{port}"
+
+
+def test_compiled_equals_generic_with_windows_counted_in_turns(tmp_path):
+    """blade_loss_rundown (its cycle counts the turns of spool_pt.theta), the fuel cut at once: the hand-off
+    windows, the cycle means that end at each turn and the steady windows are the same in both loops, and span the
+    5 turns asked for (the speed falls ~1.5 % over the first interval)."""
+    runs = {}
+    for engine in ("compiled", "python"):
+        sc = resolve("blade_loss_rundown").set({"spool_pt.t_fuel_cut": 0.0, "spool_gg.t_fuel_cut": 0.0})
+        obs = result_observers(sc, cycle_of(sc.schedule))
+        sim = build_simulation(sc, obs)
+        sim.engine_choice = engine
+        h = float(sc.schedule["step"])
+        sim.run(Timeline([Interval("TM", 0.03, h), Interval("TO", 1.0, 0.1), Interval("TM", 0.004, h)]))
+        runs[engine] = (sim, obs)
+    (cs, cobs), (ps, pobs) = runs["compiled"], runs["python"]
+    assert cs.engines_used == ["compiled", "compiled"] and ps.engines_used == ["python", "python"]
+    assert cs.revolutions is not None and cs.engine.steps_taken == ps.engine.steps_taken
+    for ch, ph in zip(cs.hold.handoffs, ps.hold.handoffs):
+        assert ch.turns is not None and (ch.pos, ch.count, ch.cn) == (ph.pos, ph.count, ph.cn)
+        assert _rel(ch.ring, ph.ring) <= RTOL
+        for ca_, pa_ in zip(sum(ch.history, []), sum(ph.history, [])):
+            assert _rel(ca_[0], pa_[0]) <= RTOL and _rel(ca_[1], pa_[1]) <= RTOL
+        assert len(ch.history[0]) == len(ph.history[0]) >= 7     # turns of the first interval: ~7.9
+    rep = cs.report.hold.as_dict()
+    assert rep == ps.report.hold.as_dict()
+    assert rep["window_revolutions"]["asked"] == 5.0
+    assert 5.0 <= rep["window_revolutions"]["smallest"] < 5.01
+    for a, b in zip(cobs[0].windows, pobs[0].windows):
+        assert a.keys() == b.keys() and "revolutions" in a
+        for key in a:
+            assert _rel(a[key], b[key]) <= RTOL, key
+    assert 5.0 <= cobs[0].windows[0]["revolutions"] < 5.02
+    for name, comp in cs.system.components.items():
+        for port, y in comp.y.items():
+            assert _rel(y, ps.system.components[name].y[port]) <= RTOL, f"{name}.{port}"
