@@ -191,6 +191,14 @@ NOTES = {
     "coupled": "name of the phase in which every component steps (default `TM`)",
     "held": "name of the phase in which only the components that declare it step, the others held (default `TO`)",
     "name": "", "description": "",
+    "schedule.cycle": "the cycle of the windows, when no `speed_rpm` gives it",
+    "cycle.period": "s: a constant period",
+    "cycle.signal": "a speed (rad/s, rev/min) or frequency (Hz) output: the period read at the start of each TM "
+    "interval",
+    "cycle.unit": "the signal's unit where its port declares none",
+    "cycle.angle": "an output in rad (the shaft's angle, with `signal`): the hold's windows, their cycle means, the "
+    "steady windows and the automatic schedule's steadiness test counted in its turns (summary.json "
+    "`hold.window_revolutions`), for a speed that changes within an interval",
 }
 
 
@@ -215,6 +223,7 @@ def scenario_page() -> str:
             out.append(_table(f"[{table}]", keys, NOTES, table))
     out.append(_table("[[schedule.intervals]]", schema.INTERVAL, NOTES, "intervals"))
     out.append(_table("[schedule.phases]", {role: schema.text for role in schema.ROLES}, NOTES, "phases"))
+    out.append(_table("schedule.cycle = { ... }", schema.CYCLE, NOTES, "cycle"))
     return "".join(out)
 
 

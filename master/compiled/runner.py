@@ -7,7 +7,8 @@ same semantics, operation for operation:
 * the Gauss-Seidel order and the multi-rate firing (component c fires at base step k when (k + 1) % n_c == 0,
   over [t_end - n_c h, t_end], t_end = t0 + (k + 1) h);
 * each consumer's inputs gathered just before it fires, and each link's bookkeeping after its producer fired
-  (averages, extrapolation history, the thermal-only hold's windows and restart offsets), by the very functions
+  (averages, extrapolation history, the thermal-only hold's windows and restart offsets; a window counted in
+  turns of the cycle's angle reads that angle from the port array), by the very functions
   of master/core/links.py the generic loop calls, on the same state layout (each link's state is copied into the
   loop's tables and back around each chunk);
 * after each firing, as algorithm.Engine._fire: the step count, the finiteness of the outputs other components
@@ -29,7 +30,9 @@ that component.
 
 Not compiled (the generic loop runs, and the reason is reported): a component without a kernel (FMUs, Python
 plug-ins), Jacobi or iterative coupling, converted or non-Real links, inputs from components not stepped in the
-interval, an observer without step_block, the automatic schedule's steadiness test.
+interval, an observer without step_block (the cycle's RevolutionCounter reads the angle's column, so an angle
+whose component does not step in the interval would be one; the hold refuses that run), a steadiness test that
+samples an output not stepped in the interval.
 """
 from __future__ import annotations
 

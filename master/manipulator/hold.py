@@ -65,7 +65,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from rotorcosim.components.contract import COUPLED, HELD
+from rotorcosim.components.contract import COUPLED, HELD, ContractError
 from rotorcosim.master.core import links
 from rotorcosim.master.core.cycle import WINDOW_MARGIN, Cycle
 from rotorcosim.master.core.system import HOLDS
@@ -536,6 +536,9 @@ class StaggeredHold:
                         link.ramp = ramp
             counter = self.revolutions
             if counter is not None:
+                if counter.ref.partition(".")[0] not in active:
+                    raise ContractError(f"cycle angle {counter.ref}: its component does not step in the coupled "
+                                        "phase, so its turns cannot count the windows")
                 counter.need(self.hold_cycles)
                 self.report.revolutions_asked = self.hold_cycles
                 comp, _, port = counter.ref.partition(".")
