@@ -168,7 +168,7 @@ class HandOff:
         self.error: float | None = None
         self._to_end: np.ndarray | None = None
         self.count = 0                      # samples in the window (none before the first TM interval)
-        self.turns = None                   # (RevolutionCounter, turns of the window, the angle's outputs, port)
+        self.turns = None                   # (RevolutionCounter, turns of the window, the angle's component, port)
         self.hs = 0.0                       # the producer's step in the TM interval [s]
 
     # -- TM: record -------------------------------------------------------------------------------------
@@ -206,7 +206,7 @@ class HandOff:
             self.cn -= 1
         # the sample and the cycle it belongs to (links.record: the compiled loop records with the same function)
         ring = self.ring
-        theta = float(self.turns[2][self.turns[3]][0]) if self.turns is not None else 0.0
+        theta = float(self.turns[2].y[self.turns[3]][0]) if self.turns is not None else 0.0
         if links.record(y, 0, ring.shape[1], m, ring.reshape(-1), 0, ring.shape[0], t_end, theta):
             # a whole rotor cycle: its mean, and the thermal inputs at its end (they change at the thermal step, far
             # slower than the rotor)
@@ -503,6 +503,14 @@ class StaggeredHold:
         self.handbacks = [link for link in links if link.real and
                           feeds_mechanics(comps[link.con.src_component], comps[link.con.dst_component])]
 
+    def bind_revolutions(self, counter) -> None:
+        """Count the windows with ``counter`` (the run's RevolutionCounter): a hold read back from a checkpoint
+        holds a copy of the one it was saved with, which the resumed run's observers no longer feed."""
+        self.revolutions = counter
+        for ho in self.handoffs or []:
+            if ho.turns is not None:
+                ho.turns = (counter, *ho.turns[1:])
+
     @property
     def cycle(self) -> float | None:
         """The cycle period now [s], or None without a cycle source."""
@@ -542,9 +550,9 @@ class StaggeredHold:
                 counter.need(self.hold_cycles)
                 self.report.revolutions_asked = self.hold_cycles
                 comp, _, port = counter.ref.partition(".")
-                outs = self.system.components[comp].y
+                outs = self.system.components[comp]
                 direction = self.cycle_source.direction(self.system)
-                next_turn = float(outs[port][0]) + 2.0 * math.pi * direction
+                next_turn = float(outs.y[port][0]) + 2.0 * math.pi * direction
             for ho in self.handoffs:
                 ho.end_to()
                 if cycle:

@@ -185,3 +185,46 @@ def test_compiled_equals_generic_with_windows_counted_in_turns(tmp_path):
     for name, comp in cs.system.components.items():
         for port, y in comp.y.items():
             assert _rel(y, ps.system.components[name].y[port]) <= RTOL, f"{name}.{port}"
+
+
+def test_a_run_resumed_inside_an_interval_counts_the_same_turns(tmp_path, monkeypatch):
+    """blade_loss_rundown interrupted (a real SIGINT) inside its first thermo-mechanical interval and resumed from
+    its checkpoint: the hold read back counts the turns the resumed run records, not the copy it was saved with
+    (a copy whose angle ends at the interruption: its windows would begin ~3 turns early)."""
+    import os
+    import signal
+
+    import rotorcosim
+    from rotorcosim.master.observer.observers import Progress
+    from rotorcosim.master.run import checkpoint
+
+    sc = resolve("blade_loss_rundown").set({"spool_pt.t_fuel_cut": 0.0, "spool_gg.t_fuel_cut": 0.0})
+    h = float(sc.schedule["step"])
+    tl = Timeline([Interval("TM", 0.03, h), Interval("TO", 1.0, 0.1), Interval("TM", 0.004, h)])
+    original, fired = Progress.step, []
+
+    def step(self, sim, t):
+        if not fired and t >= 0.02:
+            fired.append(t)
+            os.kill(os.getpid(), signal.SIGINT)
+        original(self, sim, t)
+
+    monkeypatch.setattr(Progress, "step", step)
+    out = tmp_path / "cut"
+    with pytest.raises(checkpoint.RunInterrupted):
+        rotorcosim.simulate(sc, schedule=tl, out=out, figures=False, checkpoint_every=1e-6)
+    monkeypatch.setattr(Progress, "step", original)
+    restore, bound = checkpoint.ResumePoint.restore, []
+
+    def watched(self, sim):
+        restore(self, sim)
+        hos = [ho for ho in sim.hold.handoffs if ho.turns is not None]
+        bound.append(bool(hos) and sim.hold.revolutions is sim.revolutions
+                     and all(ho.turns[0] is sim.revolutions for ho in hos))
+
+    monkeypatch.setattr(checkpoint.ResumePoint, "restore", watched)
+    res = rotorcosim.simulate(sc, schedule=tl, out=out, figures=False, resume=True)
+    assert 0.0 < res.summary["resumed_from_t_s"] < 0.03
+    assert bound and all(bound)
+    revs = res.summary["hold"]["window_revolutions"]
+    assert revs["asked"] == 5.0 and 5.0 <= revs["smallest"] < 5.01, revs
