@@ -172,6 +172,8 @@ NOTES = {
     "intervals": "the timeline: a list of interval tables",
     "steady_tolerance": "auto: TM ends when tracked outputs repeat within this fraction",
     "steady_cycles": "auto: cycles compared", "drift_tolerance": "auto: TO ends at this drift",
+    "speed_tolerance": "auto, a cycle that follows a speed: a TM interval is not steady while the speed changes by "
+    "more than this fraction over `to_min` (default `drift_tolerance`)",
     "tm_min": "s", "tm_max": "s", "to_min": "s", "to_max": "s", "tracked": "auto: outputs watched",
     "record": "signals written to the time series", "record_step": "s", "format": "time series file format",
     "unbalance_parameter": "parameter holding the unbalance force (results plug-in)",

@@ -178,6 +178,7 @@ TABLES: dict[str, dict[str, Callable | None]] = {
                  "hold_cycles": whole_positive, "restart_cycles": not_negative,
                  "intervals": None, "phases": None,
                  "steady_tolerance": positive, "steady_cycles": count, "drift_tolerance": positive,
+                 "speed_tolerance": positive,
                  "tm_min": positive, "tm_max": positive, "to_min": positive, "to_max": positive,
                  "tracked": list_of(port_ref), "tolerance": positive},
     "outputs": {"record": list_of(port_ref), "record_step": positive, "format": one_of(*OUTPUT_FORMATS)},

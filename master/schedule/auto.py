@@ -6,9 +6,11 @@ temperatures); TO intervals run until the thermal outputs that feed the mechanic
 ``drift_tolerance``, within min/max durations. The last stretch is one TM interval, where results are read.
 
 Non-stationary runs (a cycle that follows a speed signal, [schedule] cycle): a TM interval is not steady while
-the cycle's speed changes by more than ``drift_tolerance`` over ``to_min`` (a rundown: a held interval would skip
-that much of it), and one that ends at ``tm_max`` without having become steady while the speed moved by more
-than half ``drift_tolerance`` over it is followed by another TM interval, not a TO one; a spool's
+the cycle's speed changes by more than ``speed_tolerance`` (default ``drift_tolerance``) over ``to_min`` (a rundown:
+a held interval would skip that much of it; a steadiness test counted in turns of the cycle's angle sees a response
+that changes little from one turn to the next even through a critical speed, so this is the test that keeps a
+rundown coupled), and one that ends at ``tm_max`` without having become steady while the speed moved by more
+than half that tolerance over it is followed by another TM interval, not a TO one; a spool's
 speed is an output of a component stepped in TO intervals, so the drift test returns to TM when it has drifted by
 more than ``drift_tolerance``; a TO interval ends before a component's next scheduled event
 (``Component.next_event``: a fuel cut). With a constant cycle none of this changes a run.
@@ -62,14 +64,17 @@ class AutoSchedule(Schedule):
     to_max: float = 30.0
     tracked: Sequence[str] = ()
     tolerance: float | None = None
+    speed_tolerance: float | None = None
 
     keys = ("steady_tolerance", "steady_cycles", "drift_tolerance", "tm_min", "tm_max", "to_min", "to_max",
-            "tracked", "tolerance")
+            "tracked", "tolerance", "speed_tolerance")
 
     def __post_init__(self):
         for name in ("duration", "step", "thermal_step", "steady_tolerance", "drift_tolerance",
                      "tm_min", "tm_max", "to_min", "to_max"):
             setattr(self, name, _positive(name, getattr(self, name)))
+        if self.speed_tolerance is not None:
+            self.speed_tolerance = _positive("speed_tolerance", self.speed_tolerance)
         if self.tolerance is not None:
             self.tolerance = _positive("tolerance (percent)", self.tolerance)
             if self.tolerance > TOLERANCE_MAX_PCT:
@@ -79,6 +84,11 @@ class AutoSchedule(Schedule):
             raise ScheduleError("schedule: minimum interval durations must not exceed the maxima")
         if int(self.steady_cycles) < 1:
             raise ScheduleError("schedule: steady_cycles must be >= 1")
+
+    @property
+    def speed_limit(self) -> float:
+        """The relative speed change of the non-stationary tests: ``speed_tolerance``, else ``drift_tolerance``."""
+        return self.speed_tolerance if self.speed_tolerance is not None else self.drift_tolerance
 
     @classmethod
     def from_spec(cls, spec, duration, step, thermal_step, cycle):
@@ -111,8 +121,8 @@ class AutoSchedule(Schedule):
                 sim.run_interval(sim.phases.coupled, self.tm_max, self.step, test, reason="tm_max")
                 if sim.report.stopped:
                     break
-                if not test.ended_steady and test.speed_change(sim) > 0.5 * self.drift_tolerance:
-                    # not steady, and the cycle's speed moved by more than half the drift tolerance over the
+                if not test.ended_steady and test.speed_change(sim) > 0.5 * self.speed_limit:
+                    # not steady, and the cycle's speed moved by more than half the speed tolerance over the
                     # interval (a rundown): no held interval yet, coupled again (a constant cycle never does)
                     state["next"] = COUPLED
                 continue
@@ -178,7 +188,7 @@ class _SteadyTest(_StopTest):
         self.n = 0
         self.last = None
         self.steady = 0
-        # the cycle's speed (a speed signal's): not steady while it changes by more than drift_tolerance over a
+        # the cycle's speed (a speed signal's): not steady while it changes by more than speed_tolerance over a
         # minimal held interval (to_min), which would skip that much of a rundown; a constant cycle never does
         self.speed_changing = False
         self.ended_steady = False
@@ -282,7 +292,7 @@ class _SteadyTest(_StopTest):
         return abs(p - p0) / p if p and p0 else 0.0
 
     def _speed_changing(self, sim, t) -> bool:
-        """Whether the cycle's speed changed since the last check faster than drift_tolerance per to_min (a
+        """Whether the cycle's speed changed since the last check faster than speed_tolerance per to_min (a
         constant cycle never does; a stopped speed signal has no period: not changing)."""
         t0, p0 = self._period
         try:
@@ -290,7 +300,7 @@ class _SteadyTest(_StopTest):
         except ValueError:
             p = None
         if p and p0 and t > t0:
-            self.speed_changing = abs(p - p0) / p / (t - t0) * self.sch.to_min > self.sch.drift_tolerance
+            self.speed_changing = abs(p - p0) / p / (t - t0) * self.sch.to_min > self.sch.speed_limit
         self._period = (t, p)
         return self.speed_changing
 

@@ -76,3 +76,15 @@ def test_the_compiled_loop_decides_in_turns_as_the_generic_loop():
     ta = [(iv["phase"], iv["steps"], iv["reason"]) for iv in a.summary["timeline"]]
     assert ta == [(iv["phase"], iv["steps"], iv["reason"]) for iv in b.summary["timeline"]]
     assert a.summary["engine"] == "compiled" and b.summary["engine"] == "python"
+
+
+@pytest.mark.parametrize("speed_tolerance, held_in_ramp", [(None, True), (0.005, False)])
+def test_speed_tolerance_keeps_a_slow_ramp_coupled(speed_tolerance, held_in_ramp):
+    """A slow ramp, 9000 -> 3000 rev/min in 6 s (1.1-3.3 % of the speed per to_min of 0.1 s): counted in turns the
+    disk's orbit is steady turn to turn, so with the default (drift_tolerance, 5 %) held intervals run during the
+    ramp; with speed_tolerance 0.5 % none starts before its end."""
+    sc = _auto(load_scenario("jeffcott_rundown").set({"spool.duration": 6.0}), cycle=dict(TURNS),
+               tracked=["rotor.X_brg0"], **({} if speed_tolerance is None else {"speed_tolerance": speed_tolerance}))
+    r = simulate(sc, duration=6.5, figures=False)
+    held = [iv for iv in r.summary["timeline"] if iv["phase"] == "TO"]
+    assert any(iv["t_start"] < 6.0 for iv in held) == held_in_ramp, r.summary["timeline"]
