@@ -621,8 +621,9 @@ class SteadyWindows(Observer):
     cycle source (master/core/cycle.py), read at the start of each TM interval. A cycle source with an angle
     counts the window in its turns (the run's RevolutionCounter): the samples since the last ``cycles`` turns
     began, plus the one at or before that time, as a window of ``cycles`` periods has; the window's dict then has
-    ``revolutions``, the turns it spans (fewer than ``cycles`` where the interval was shorter, or the speed fell
-    below 1 / WINDOW_MARGIN of its start value within the window)."""
+    ``revolutions``, the turns it spans (fewer than ``cycles`` where the interval was shorter); its ring, sized for
+    the turns at 1 / WINDOW_MARGIN of the speed at the interval's start, grows where the speed falls further (a
+    monolithic rundown)."""
 
     def __init__(self, signals: Sequence[str], cycle: Cycle | float, cycles: float = 5.0,
                  sample_step: float | None = None):
@@ -661,10 +662,34 @@ class SteadyWindows(Observer):
         # multiples of the stride): step_block leaves those ring slots for the later rows that overwrite them
         steps = sim.interval_steps
         self._old = None if steps is None else steps - (n + 1) * self.stride
+        if self._turns is not None:   # the ring may grow (_room): every row is kept
+            self._old = None
+
+    def _room(self, t: float, more: int = 0) -> None:
+        """Counted in turns: a ring that would drop samples the window still needs (the speed fell below
+        1 / WINDOW_MARGIN of its value at the interval's start) grows, oldest samples first."""
+        need = int(math.ceil((t - self._turns.began(self.cycles, t)) / (self.stride * self._h) - 1e-9)) + 2 + more
+        if need <= self._n:
+            return
+        n, count = self._n, self._count
+        a = (self._pos - count) % n
+        size = max(need, 2 * n)
+
+        def grown(x):
+            y = np.zeros((size,) + x.shape[1:]) if x.ndim > 1 else np.full(size, np.nan)
+            y[:count] = x[a:a + count] if a + count <= n else np.concatenate((x[a:], x[:a + count - n]))
+            return y
+
+        self._t = grown(self._t)
+        self._data = {r: grown(b) for r, b in self._data.items()}
+        self._taps = [(c, port, self._data[r]) for (c, port, _), r in zip(self._taps, self.signals)]
+        self._n, self._pos = size, count % size
 
     def step(self, sim, t):
         if not self.active:
             return
+        if self._turns is not None and self._count == self._n and self._pos % 64 == 0:
+            self._room(t, 64)
         i = self._pos
         self._t[i] = t
         for comp, port, buf in self._taps:
@@ -682,6 +707,8 @@ class SteadyWindows(Observer):
         nr = len(rows)
         if not nr:
             return
+        if self._turns is not None:   # the run's RevolutionCounter has this block already (the first observer)
+            self._room(float(np.asarray(ts)[rows[-1]]))
         n = self._n
         m = min(nr, n)  # the ring keeps the last n samples: rows[nr - m:], the first of them at ring slot pos
         pos = (self._pos + (nr - m)) % n

@@ -300,3 +300,21 @@ def test_a_bad_cycle_angle_is_a_clear_error(tmp_path):
         build_simulation(_scenario(tmp_path, 'cycle = { signal = "spin.Omega", angle = "spun.theta" }'))
     with pytest.raises(ValueError, match=r"\[schedule.cycle\] angle: is the angle of a signal's cycle"):
         build_simulation(_scenario(tmp_path, 'cycle = { period = 0.02, angle = "spin.theta" }'))
+
+
+def test_a_steady_window_grows_where_the_speed_falls_below_the_margin():
+    """One interval of 0.78 s, 50 -> 3.2 Hz (6 % of the starting speed, below 1 / WINDOW_MARGIN): the steady
+    window's ring grows and the window still spans the last 3 turns (0.27 s, more than the 0.24 s its ring was
+    sized for); the hand-off's ring, fixed in the compiled loop's tables, does not: its window is cut to the ring and
+    the turns it spanned say so (fewer than 3)."""
+    sim, obs = _falling(SignalCycle("spin.Omega", angle="spin.theta"))
+    sim.run_interval("TM", 0.78, HR)
+    t_end = sim.t
+    win = obs.windows[-1]
+    t0 = _analytic_began(3.0, t_end)
+    assert t_end - t0 > 0.24
+    assert win["t"][0] <= t0 < win["t"][1]
+    assert 3.0 <= win["revolutions"] < 3.001
+    ho = sim.hold.handoffs[0]
+    assert ho.window_samples() == len(ho.ring) == 2400      # 4 x 3 turns of 20 ms at 0.1 ms
+    assert 2.0 < ho.window_revolutions() < 3.0
