@@ -237,6 +237,8 @@ class Simulation:
         why = reason
         if self.engine_choice not in compiled.ENGINES:
             raise ContractError(f"engine {self.engine_choice!r} not in {compiled.ENGINES}")
+        if stop is not None:
+            stop.check_steps = math.lcm(stop.every, lcm)   # the base steps between two of its checks
         runner = compiled.runner(self, role, active, mult, step, stop, self.engine_choice)
         if role == COUPLED:
             self.engines_used.append("compiled" if runner is not None else "python")

@@ -151,6 +151,8 @@ class AutoSchedule(Schedule):
 
 class _StopTest:
     every = 1
+    #: base steps between two checks (run_interval sets it: ``every`` and the interval's multi-rate period)
+    check_steps = 1
 
     def sample(self, sim) -> None:
         pass
@@ -170,10 +172,11 @@ class _SteadyTest(_StopTest):
     """Steady when the RMS of the tracked outputs over a cycle changes by less than the tolerance
     (relative) for ``steady_cycles`` consecutive cycles, after ``tm_min``.
 
-    A cycle is the ``every`` base steps between two checks (the period at the interval's start); with a cycle
-    source that has an angle, it is a turn of that angle instead (from the interval's start: the RMS of each
-    whole turn is compared with the previous turn's), and the checks, still every ``every`` base steps, take the
-    turns completed since the last one in order."""
+    A cycle is the ``check_steps`` base steps between two checks (a period at the interval's start, ``every``,
+    or the whole number of periods of the multi-rate period); with a cycle source that has an angle, it is as
+    many whole turns of that angle, counted from the interval's start, as there are periods between two checks
+    at the starting speed (the RMS over each such span of turns is compared with the previous span's), and the
+    checks, still every ``check_steps`` base steps, take the spans completed since the last one in order."""
 
     def __init__(self, sim, sch: AutoSchedule):
         self.sch = sch
@@ -204,11 +207,15 @@ class _SteadyTest(_StopTest):
             self.dir = sim.cycle_source.direction(sim.system)
             self.next = float(comps[comp].y[port][0]) + 2.0 * np.pi * self.dir
             self.done: list[np.ndarray] = []
+            self.turn_count = 0
 
     def _turn_done(self, theta: float) -> None:
-        """A turn ends at this sample: its RMS, and the next whole turn past ``theta``."""
-        self.done.append(np.sqrt(self.acc / self.n))
-        self.acc, self.n = None, 0
+        """A turn ends at this sample: the RMS of the span if it is its last turn, and the next whole turn past
+        ``theta``."""
+        self.turn_count += 1
+        if self.turn_count % max(1, int(round(self.check_steps / self.every))) == 0:
+            self.done.append(np.sqrt(self.acc / self.n))
+            self.acc, self.n = None, 0
         turn = 2.0 * np.pi * self.dir
         self.next += turn
         while (theta - self.next) * self.dir >= 0.0:
