@@ -15,8 +15,9 @@ when the system has them, else the rotor's ``X_brg0`` port alone (a test rotor's
   peak per critical speed, the nearest, at most ``MAX_SHIFT`` away): ``spool``, ``critical_speed_rpm``,
   ``peak_found``, ``t_s`` and ``peak_speed_rpm`` of the peak's largest sample, ``direction`` (``"down"`` /
   ``"up"``), ``speed_range_rpm`` (the peak's width at half its prominence) and per location ``peak_whirl_mm``,
-  ``peak_contact_load_N``, ``peak_contact_stress_MPa``, ``peak_transmitted_force_N`` (the maxima over that
-  range; keys without a signal are left out). A critical speed within the run's speeds that has no peak gets
+  ``peak_contact_load_N``, ``peak_contact_stress_MPa``, ``peak_transmitted_force_N`` (keys without a signal are
+  left out), the maxima over the width of that location's own whirl peak assigned to the critical speed, or over
+  the first location's where it has none, and that ``speed_range_rpm``. A critical speed within the run's speeds that has no peak gets
   ``peak_found`` false, a ``note`` and None for the speed, the time and the peaks (not the edge of a band
   around it); one outside the run's speeds and without a peak has no entry;
 * ``energy``: per spool its ``inertia_kg_m2``, ``kinetic_energy_lost_J``, the work of each torque
@@ -231,7 +232,9 @@ def assign_peaks(criticals, peaks: list[Peak], max_shift: float = MAX_SHIFT) -> 
 
 def crossings(table: np.ndarray, spool: str, criticals_rpm, locations: dict, n_spools: int) -> list[dict]:
     """The crossings of the first spool's speed through each critical speed (module docstring): the resonance
-    peaks of the whirl at the first location over the rows of ``table`` (RundownTrack.table)."""
+    peaks of the whirl at the first location over the rows of ``table`` (RundownTrack.table); each location's
+    values over its own whirl's peak for that critical speed, or over the first location's peak where it has none
+    (its ``speed_range_rpm`` says which)."""
     out = []
     if not len(table):
         return out
@@ -239,13 +242,17 @@ def crossings(table: np.ndarray, spool: str, criticals_rpm, locations: dict, n_s
     w = table[:, 1] * RPM
     names = {"whirl": ("peak_whirl_mm", 1e3), "load": ("peak_contact_load_N", 1.0),
              "stress": ("peak_contact_stress_MPa", 1e-6), "force": ("peak_transmitted_force_N", 1.0)}
-    col0 = 1 + n_spools
+    cols, col = {}, 1 + n_spools
+    for loc, d in locations.items():
+        cols[loc] = col                     # its whirl first, then the other kinds in d's order
+        col += len(d)
+    own = {loc: assign_peaks(crit, resonance_peaks(w, table[:, c])) for loc, c in cols.items()}
     first = next(iter(locations))
-    peaks = resonance_peaks(w, table[:, col0])
     running = w[w > 0.0]
     w_lo, w_hi = (float(running.min()), float(running.max())) if len(running) else (math.nan, math.nan)
     dw = np.gradient(w) if len(w) > 1 else np.zeros(len(w))
-    for c, pk in zip(crit, assign_peaks(crit, peaks)):
+    for i, c in enumerate(crit):
+        pk = own[first][i]
         if pk is None and not w_lo <= c <= w_hi:
             continue                        # never reached
         entry = {"spool": spool, "critical_speed_rpm": c, "peak_found": pk is not None}
@@ -258,17 +265,14 @@ def crossings(table: np.ndarray, spool: str, criticals_rpm, locations: dict, n_s
             out.append(entry)
             continue
         j = pk.index
-        sel = np.flatnonzero((w >= pk.lo) & (w <= pk.hi))
         entry.update(t_s=float(table[j, 0]), peak_speed_rpm=float(w[j]), direction="up" if dw[j] > 0 else "down",
                      speed_range_rpm=[pk.lo, pk.hi])
         entry["bearings"] = {}
-        col = col0
         for loc, d in locations.items():
-            r = {}
-            for kind in d:
-                key, f = names[kind]
-                r[key] = float(table[sel, col].max()) * f
-                col += 1
+            p = own[loc][i] or pk
+            sel = np.flatnonzero((w >= p.lo) & (w <= p.hi))
+            r = {names[kind][0]: float(table[sel, cols[loc] + k].max()) * names[kind][1] for k, kind in enumerate(d)}
+            r["speed_range_rpm"] = [p.lo, p.hi]
             entry["bearings"][loc] = r
         out.append(entry)
     return out

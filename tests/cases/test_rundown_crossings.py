@@ -75,6 +75,26 @@ def test_two_peaks_each_to_its_critical_speed():
     assert abs(10200.0 - 9100.0) < abs(11400.0 - 10200.0)
 
 
+def test_each_location_over_its_own_peak():
+    """Two locations as the engine's bearings: #0 with damped peaks at ~9 100 and ~11 400 rev/min, #5 with one
+    at ~9 950 (between them, the upper mode seen at #5). The crossing of 10 200 takes #5's values over #5's own peak
+    (its analytic maximum, though it lies outside #0's peak width), that of 8 500, where #5 has no peak, over #0's
+    peak width."""
+    w = falling(16000.0, 4500.0, 60_001)
+    w0 = sdof(w, 9100.0, 0.03) + 0.9 * sdof(w, 11400.0, 0.03)
+    w5 = 0.15 * sdof(w, 9950.0, 0.05)
+    tab = np.column_stack([np.linspace(0.0, 1.0, len(w)), w / RPM, w0, w5])
+    locs = {"0": {"whirl": "rotor.X_brg0"}, "5": {"whirl": "rotor.X_brg5"}}
+    lo, hi = crossings(tab, "spool_pt", [8500.0, 10200.0], locs, 1)
+    assert not hi["speed_range_rpm"][0] <= 9950.0 <= hi["speed_range_rpm"][1]
+    amp5 = 0.15 * U_M / (2.0 * 0.05 * math.sqrt(1.0 - 0.05 ** 2))
+    assert hi["bearings"]["5"]["peak_whirl_mm"] == pytest.approx(amp5 * 1e3, rel=1e-3)
+    assert hi["bearings"]["5"]["speed_range_rpm"][0] < 9950.0 < hi["bearings"]["5"]["speed_range_rpm"][1]
+    assert lo["bearings"]["5"]["speed_range_rpm"] == lo["speed_range_rpm"] == lo["bearings"]["0"]["speed_range_rpm"]
+    sel = (w >= lo["speed_range_rpm"][0]) & (w <= lo["speed_range_rpm"][1])
+    assert lo["bearings"]["5"]["peak_whirl_mm"] == pytest.approx(w5[sel].max() * 1e3)
+
+
 def test_no_peak_is_said_not_a_band_edge():
     """A whirl that rises monotonically with speed (a mode far above the run's speeds) has no peak: the crossings
     within the run's speeds say so (peak_found false, a note, no speed), none outside them is made up."""
