@@ -229,7 +229,8 @@ def _campbell(sc, w, crit, peaks, out):
     ax.set_ylim(0, 1.3 * top / 60.0)
     ax.set_xlabel("power-turbine speed [rev/min]")
     ax.set_ylabel("whirl frequency [Hz]")
-    ax.set_title("Campbell diagram (o: critical speeds, x: the resonance peaks of the run's whirl, the crossings)", fontsize=9)
+    ax.set_title("Campbell diagram (o: critical speeds, x: the resonance peaks of the run's whirl, the crossings)",
+                 fontsize=9)
     ax.legend(fontsize=8, loc="upper left")
     ax.grid(alpha=0.3)
     return _save(fig, out, "rundown_campbell.png")

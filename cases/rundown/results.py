@@ -17,9 +17,9 @@ when the system has them, else the rotor's ``X_brg0`` port alone (a test rotor's
   ``"up"``), ``speed_range_rpm`` (the peak's width at half its prominence) and per location ``peak_whirl_mm``,
   ``peak_contact_load_N``, ``peak_contact_stress_MPa``, ``peak_transmitted_force_N`` (keys without a signal are
   left out), the maxima over the width of that location's own whirl peak assigned to the critical speed, or over
-  the first location's where it has none, and that ``speed_range_rpm``. A critical speed within the run's speeds that has no peak gets
-  ``peak_found`` false, a ``note`` and None for the speed, the time and the peaks (not the edge of a band
-  around it); one outside the run's speeds and without a peak has no entry;
+  the first location's where it has none, and that ``speed_range_rpm``. A critical speed within the run's speeds
+  that has no peak gets ``peak_found`` false, a ``note`` and None for the speed, the time and the peaks (not the
+  edge of a band around it); one outside the run's speeds and without a peak has no entry;
 * ``energy``: per spool its ``inertia_kg_m2``, ``kinetic_energy_lost_J``, the work of each torque
   ``work_J`` (drive, drag, rub, aero: the spool's own bookkeeping, components/spool/kernel.py) and
   ``residual_pct``: (kinetic energy lost - (drag + rub + aero - drive)) / kinetic energy lost, in percent.
