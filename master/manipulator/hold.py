@@ -176,7 +176,7 @@ class HandOff:
                  next_turn: float = 0.0, direction: float = 1.0) -> None:
         """A TM interval starts: record the producer's output (a port of ``size`` elements, every ``hs`` seconds)
         in a ring of ``n_window`` samples, in rotor cycles of ``n_cycle`` samples; or, with ``turns``
-        (RevolutionCounter, turns of the window, the angle component's outputs, the angle's port), in cycles that
+        (RevolutionCounter, turns of the window, the angle's component, the angle's port), in cycles that
         end at each whole turn of the angle (the first where it passes ``next_turn`` [rad], turning in
         ``direction``), the window being the samples of its last turns."""
         self.ring = np.zeros((max(1, n_window), size))
@@ -550,9 +550,9 @@ class StaggeredHold:
                 counter.need(self.hold_cycles)
                 self.report.revolutions_asked = self.hold_cycles
                 comp, _, port = counter.ref.partition(".")
-                outs = self.system.components[comp]
+                angle_comp = self.system.components[comp]
                 direction = self.cycle_source.direction(self.system)
-                next_turn = float(outs.y[port][0]) + 2.0 * math.pi * direction
+                next_turn = float(angle_comp.y[port][0]) + 2.0 * math.pi * direction
             for ho in self.handoffs:
                 ho.end_to()
                 if cycle:
@@ -568,7 +568,8 @@ class StaggeredHold:
                         n = int(math.ceil(WINDOW_MARGIN * self.hold_cycles * cycle / hs - 1e-9))
                         if nsteps is not None:
                             n = min(n, nsteps // mult.get(ho.link.con.src_component, 1) + 1)
-                        ho.start_tm(n, 0, size, hs, (counter, self.hold_cycles, outs, port), next_turn, direction)
+                        ho.start_tm(n, 0, size, hs, (counter, self.hold_cycles, angle_comp, port), next_turn,
+                                    direction)
                     ho.link.window = ho
             return
         on = set(active)

@@ -237,7 +237,8 @@ def test_a_window_counted_in_turns_spans_them_while_the_speed_falls():
     t_end = sim.t
     counter = sim.revolutions
     # within the error of a linear interpolation of theta between samples: ALPHA h^2 / 8 in angle, over Omega
-    assert counter.began(3.0) == pytest.approx(_analytic_began(3.0, t_end), abs=ALPHA * HR ** 2 / 8 / (2 * math.pi * 20))
+    interp = ALPHA * HR ** 2 / 8 / (2 * math.pi * 20)
+    assert counter.began(3.0) == pytest.approx(_analytic_began(3.0, t_end), abs=interp)
     ho = sim.hold.handoffs[0]
     k = ho.window_samples()
     # the samples of the steps since the turns began: the first one's step contains that time
