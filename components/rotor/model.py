@@ -22,6 +22,7 @@ from pathlib import Path
 import numpy as np
 
 from .. import toml_text
+from . import attach as attach_layout
 from .beam import disk, shaft_element
 from .hexa import hex8
 
@@ -487,21 +488,10 @@ def _assemble(data: dict, digest: str, omega_pt: float | None, omega_gg: float |
                      omega_pt=w_pt, omega_gg=w_gg, data=data, digest=digest, info=info)
 
 
-#: the rotor component's port groups and the [attach] entry each comes from: (entry, what)
-ATTACH = {"brg0": ("bearing0", "node"), "brg5": ("bearing5", "node"), "housing0": ("bearing0", "housing"),
-          "housing5": ("bearing5", "housing"), "rub0": ("rubring0", "node"), "rub5": ("rubring5", "node"),
-          "unbalance": ("unbalance", "node")}
-
-
 def _ports(attach: dict, dof) -> dict:
-    """The port groups of the [attach] entries the file gives (the rotor component asks for all of them)."""
-    known = {e for e, _ in ATTACH.values()} | {"oil_temperature_C"}
-    for key in attach:
-        if key not in known:
-            raise ValueError(f"rotor model: [attach] {key!r} is not an attachment point (known: "
-                             f"{', '.join(sorted(known))})")
+    """The port groups of the [attach] entries the file gives (attach.groups: any number of bearings and rub rings)."""
     ports = {}
-    for group, (entry, what) in ATTACH.items():
+    for group, entry, what, n in attach_layout.groups(attach_layout.layout(attach)):
         if entry not in attach:
             continue
         a = attach[entry]
@@ -511,17 +501,21 @@ def _ports(attach: dict, dof) -> dict:
             node = a["node"]
             if not (isinstance(node, list) and len(node) == 2):
                 raise ValueError(f"rotor model: [attach] {entry}.node must be [spool, node], got {node!r}")
-            n = 3 if group.startswith("brg") else 2
             ports[group] = np.asarray([dof(node[0], node[1], d) for d in range(n)])
     return ports
 
 
 def require_ports(full: FullModel, groups) -> None:
     """A ValueError naming the [attach] entries the model lacks for the port groups ``groups``."""
-    missing = sorted({ATTACH[g][0] for g in groups if g not in full.ports})
+    missing = [g for g in groups if g not in full.ports]
+    if "unbalance" in missing:
+        raise ValueError("rotor model: [attach] has no unbalance (the blade-loss rotor component needs it, and at "
+                         "least one bearing<ID>; docs/reference/engine-format.md)")
+    if not any(g.startswith("brg") for g in full.ports):
+        raise ValueError("rotor model: [attach] has no bearing<ID> (the blade-loss rotor component needs at least "
+                         "one co-simulated bearing; docs/reference/engine-format.md)")
     if missing:
-        raise ValueError(f"rotor model: [attach] has no {', '.join(missing)} (the blade-loss rotor component "
-                         "needs bearing0, bearing5, rubring0, rubring5 and unbalance; docs/reference/engine-format.md)")
+        raise ValueError(f"rotor model: no port group {', '.join(missing)} (docs/reference/engine-format.md)")
 
 
 def load(path: str | Path | None = None, **kw) -> FullModel:

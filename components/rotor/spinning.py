@@ -38,7 +38,7 @@ from .kernel import RotorState, advance, pack
 from .newmark import initial_acceleration, step_operator
 
 SpinParams = namedtuple("SpinParams", "TB O f s_new xv F_residual F_unbalance unbalance_phase t_blade_loss "
-                                      "W_ref op tol")
+                                      "W_ref op tol in_off out_off")
 #: per process: (model digest, n_modes, reference speeds) -> the reduced gyroscopic matrices per rad/s
 _GYRO: dict[tuple, tuple[np.ndarray, np.ndarray]] = {}
 
@@ -161,7 +161,7 @@ class SpinningRotor(Rotor):
                                         np.empty(self._Oxv.shape[0]), float(p["F_residual"]),
                                         float(p["F_unbalance"]), float(p["unbalance_phase"]),
                                         float(p["t_blade_loss"]), float(p["omega_pt"]), np.array(self._op),
-                                        self._tol)
+                                        self._tol, self._in_off, self._out_off)
             self._kernel_h = h
             self._last_h = h
 
