@@ -75,7 +75,6 @@ from rotorcosim.master.scenario.cycle import constant_period, cycle_of, without_
 from rotorcosim.master.core.algorithm import EngineSettings
 from rotorcosim.master.manipulator.hold import DEFAULT_HOLD, RESTART_CYCLES
 from rotorcosim.master.scenario.compose import Origins, ScenarioError, compose, real_path
-from rotorcosim.master.scenario import templates
 from rotorcosim.master.scenario.overrides import resolve_file_parameters
 from rotorcosim.master.schedule.timeline import from_spec, phases_of
 from rotorcosim.master.simulation import Simulation
@@ -313,7 +312,7 @@ def load_scenario(path: str | Path) -> Scenario:
     :func:`rotorcosim.load_scenario`."""
     path = real_path(path)
     data, origins = compose(path)
-    return parse(templates.expand(data, origins, str(path)), path, origins)
+    return parse(data, path, origins)
 
 
 def create_component(spec: ComponentSpec) -> Component:

@@ -27,16 +27,18 @@ def _rotor(**params):
 
 
 def test_ports_match_the_blade_loss_scenario():
-    """Every rotor.<port> wired in scenarios/blade_loss.toml exists with the right causality (output when it is a
-    'from', input when it is a 'to'), and every rotor input is driven."""
+    """Every rotor.<port> wired in scenarios/blade_loss.toml (its templates instantiated) exists with the right
+    causality (output when it is a 'from', input when it is a 'to'), and every rotor input is driven."""
+    from rotorcosim.master.scenario.build import load_scenario
+
     sc = tomllib.loads(SCENARIO.read_text())
     by_name = {v.name: v for v in Rotor.variables}
     driven = set()
-    for c in sc["connections"]:
-        for end, causality in (("from", "output"), ("to", "input")):
-            comp, _, port = c[end].partition(".")
+    for c in load_scenario(SCENARIO).connections:
+        for end, causality in (("src", "output"), ("dst", "input")):
+            comp, _, port = getattr(c, end).partition(".")
             if comp == "rotor":
-                assert port in by_name and by_name[port].causality == causality, c[end]
+                assert port in by_name and by_name[port].causality == causality, getattr(c, end)
                 if causality == "input":
                     driven.add(port)
     assert driven == {v.name for v in Rotor.variables if v.causality == "input"}
