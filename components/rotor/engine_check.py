@@ -88,8 +88,8 @@ def problems(data: dict) -> list[str]:
     if not isinstance(spools, dict) or not spools:
         p.add("[spool.NAME]", "no spool (one table per shaft)")
         spools = {}
-    elif len(spools) > 2:
-        p.add("[spool]", f"{len(spools)} spools; the rotor component carries one or two")
+    elif len(spools) > fem.MAX_SPOOLS:
+        p.add("[spool]", f"{len(spools)} spools; the engine format carries at most {fem.MAX_SPOOLS}")
     for s, r in spools.items():
         w = f"spool.{s}"
         if s in RESERVED:

@@ -2,7 +2,7 @@
 
 Paper section 2.1 (Fig. 2, Table 2) and eq. (16): M q'' + (C + Omega_pt G_pt + Omega_gg G_gg) q + K q = F.
 Built from an engine file of the engine format (docs/reference/engine-format.md; data/engine.toml, the paper's
-engine, by default): one or two spools, supports, pedestals, an optional casing, and where the co-simulated parts
+engine, by default): one or more spools (up to MAX_SPOOLS), supports, pedestals, an optional casing, and where the co-simulated parts
 attach ([attach] -> :attr:`FullModel.ports`). Timoshenko shaft elements and disks (beam), 8-node
 solids for the casing shell (hexa), spring elements for the struts, mounts and bearings.
 
@@ -30,6 +30,9 @@ DEFAULT_FILE = Path(__file__).with_name("data") / "engine.toml"
 #: the engine format this module reads ([engine] format)
 FORMAT = 1
 RPM = 2.0 * math.pi / 60.0
+#: spools an engine file may have. The first turns at the rotor component's omega_pt; the second at omega_gg; a
+#: third and later at their files' speeds in a constant ratio to the second (G_gg carries them: _assemble)
+MAX_SPOOLS = 8
 
 
 def _read(path: str | Path | None) -> tuple[Path, bytes]:
@@ -241,8 +244,8 @@ def _spools(data: dict) -> dict:
     sp = data["spool"]
     if not isinstance(sp, dict) or not sp:
         raise ValueError("rotor model: [spool.NAME] tables needed (one per shaft), none found")
-    if len(sp) > 2:
-        raise ValueError(f"rotor model: {len(sp)} spools; the rotor component carries one or two "
+    if len(sp) > MAX_SPOOLS:
+        raise ValueError(f"rotor model: {len(sp)} spools; the engine format carries at most {MAX_SPOOLS} "
                          f"({', '.join(sp)})")
     for reserved in ("hub", "ground"):
         if reserved in sp:
@@ -483,6 +486,10 @@ def _assemble(data: dict, digest: str, omega_pt: float | None, omega_gg: float |
             "spools": {s: len(z[s]) for s in names}, "hubs": hubs,
             "pt_lateral": np.array([dof(names[0], n, d) for n in range(len(z[names[0]])) for d in range(2)])}
     G_gg = G[names[1]][sub] if len(names) > 1 else np.zeros((free.size, free.size))
+    for s in names[2:]:
+        # a third spool and later: their gyroscopic terms ride on the second spool's speed, at the files' ratio
+        # (omega_gg G_gg = sum of w_i G_i at the files' speeds)
+        G_gg = G_gg + (spools[s]["speed_rpm"] / spools[names[1]]["speed_rpm"]) * G[s][sub]
     return FullModel(M=M[sub], K=K[sub], C=C[sub], G_pt=G[names[0]][sub], G_gg=G_gg,
                      ports=ports, rotor_lateral=np.asarray(lateral),
                      omega_pt=w_pt, omega_gg=w_gg, data=data, digest=digest, info=info)
