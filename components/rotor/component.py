@@ -36,13 +36,12 @@ Conventions:
 """
 from __future__ import annotations
 
-import hashlib
 import math
 
 import numpy as np
 
 from ..contract import ContractError, Variable
-from ..kernels import KernelComponent, port_tuple
+from ..kernels import KernelComponent
 from ..speeds import GG_OMEGA, PT_OMEGA
 from . import attach
 from . import model as fem
@@ -253,21 +252,28 @@ class Rotor(KernelComponent):
         self._out_slices = [(name, rows[name], rows[name] + sizes[name]) for name in rows]
         _, _, in_fields, out_fields = self.kernel_ports()
         self._in_off = np.array([at.get(name, -1) for name in in_fields], dtype=np.int64)
+        # where the speed inputs of the speed-following variant (spinning.py) are in the input tuple
+        self._speed_at = np.array([in_fields.index(n) if n in in_fields else -1
+                                   for n in ("Omega_pt", "Omega_gg", "dOmega_pt")], dtype=np.int64)
         self._out_off = np.array([rows.get(name, -1) for name in out_fields], dtype=np.int64)
 
     def kernel_ports(self):
+        """Plain tuples, not named ones: the ports follow the engine file (attach.py), and numba's on-disk cache of
+        the kernel holds every signature it was compiled for in one index, which a process must unpickle whole: a
+        named tuple class of another engine's ports would not exist there. The kernel reads the ports by position
+        (the offset tables), so a plain tuple carries all it needs; its type is keyed by the ports' count."""
         kp = self.__dict__.get("_kernel_ports")
         if kp is None:
-            ins, outs = self._ports("input"), self._ports("output")
-            # the paper's ports keep the class's tuple names (and numba's cached kernels); other layouts get names
-            # of their own from their port names, the same in every process, so numba's on-disk cache key (the
-            # types, pickled by name) never mixes two layouts
-            name = type(self).__name__
-            if self._layout != attach.PAPER:
-                name += "_" + hashlib.sha256(repr((ins, outs)).encode()).hexdigest()[:10]
-            kp = (port_tuple(name, "Inputs", ins), port_tuple(name, "Outputs", outs), ins, outs)
+            kp = (tuple, tuple, self._ports("input"), self._ports("output"))
             self._kernel_ports = kp
         return kp
+
+    def kernel_io(self):
+        # one array type for all ports (the kernel indexes them at run time): inputs made contiguous (a no-op for
+        # the master's arrays); outputs are the component's own contiguous arrays, written in place
+        _, _, ins, outs = self.kernel_ports()
+        u, y = self.u, self.y
+        return tuple(np.ascontiguousarray(u[n]) for n in ins), tuple(y[n] for n in outs)
 
     def _input_vector(self, t):
         u = self.u

@@ -19,10 +19,10 @@ from ..numba_internals import kernel_jit
 
 @kernel_jit(inline="always")
 def gather(f, u, in_off, fux, fuy):
-    """Fill the force vector: input port j (the fields of ``u``, all float arrays) at offset ``in_off[j]`` (-1: not a
+    """Fill the force vector: input port j (the j-th array of the tuple ``u``) at offset ``in_off[j]`` (-1: not a
     force, e.g. a speed input), in the order of attach.input_ports, then the unbalance (fux, fuy) last; returns the
     sum of squares over the vector in its order (non-finite if any input is)."""
-    for j in range(len(u)):
+    for j in range(len(u)):         # a homogeneous tuple of contiguous arrays (component.Rotor.kernel_io)
         k = in_off[j]
         if k >= 0:
             a = u[j]
