@@ -22,6 +22,7 @@ keeps (links, rings, observers), so an output array is never held across a step.
 from __future__ import annotations
 
 import hashlib
+import re
 from collections import namedtuple
 
 from .contract import Component
@@ -69,7 +70,7 @@ def __getattr__(name):
         from . import numba_internals
 
         return getattr(numba_internals, name)
-    if name.endswith(("Inputs", "Outputs")) and name.isidentifier() and not name.startswith("_"):
+    if re.fullmatch(r"[A-Za-z]\w*(Inputs|Outputs)(_[0-9a-f]+)?", name):
         # a port tuple that a numba cache index names but this process has not made (numba unpickles a kernel's
         # whole index, every signature in it, before it reads any: e.g. the rotor's named ports of an older
         # version): a stand-in class that no live type equals, so that entry is skipped, not an error
