@@ -5,6 +5,8 @@ truncation augmentation, eqs. (16)-(22) (mta), integrated by the Newmark-beta me
 (16 000 / 15 000 rev/min), with the blade-loss force rotating at the power-turbine speed at the outboard end.
 
 Conventions:
+* the ports follow the engine file's [attach] (attach.py: any number of bearings and rub rings, by id); what
+  follows is the paper's engine (bearings and rub rings #0 and #5);
 * the reduced basis is [lowest ``n_modes`` modes of the model without bearings #0/#5, augmentation vectors for
   every DOF where a force enters]: PT node at bearing #0 and #5 (x y z), the two housing hubs (x y), the PT nodes
   at the rub rings (x y; the rings act at the bearing nodes, engine.toml, so these add no vector) and the

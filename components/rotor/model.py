@@ -6,7 +6,7 @@ engine, by default): one or more spools (up to MAX_SPOOLS), supports, pedestals,
 attach ([attach] -> :attr:`FullModel.ports`). Timoshenko shaft elements and disks (beam), 8-node
 solids for the casing shell (hexa), spring elements for the struts, mounts and bearings.
 
-Bearings #0 and #5 are not in K: their forces, and the damper and rub-ring reactions on the housings, enter as
+The co-simulated bearings ([attach] bearing<ID>; #0 and #5 of the paper's engine) are not in K: their forces, and the damper and rub-ring reactions on the housings, enter as
 external forces at the port DOFs (:attr:`FullModel.ports`). The engine with them linearised (ball contacts, the
 outer race + journal body of eq. 5, O-ring and film) is :meth:`FullModel.coupled`, given the supports' values,
 which the system's linearisation (rotorcosim.cases.blade_loss.linear_engine) takes from the bearing and damper components.
