@@ -16,7 +16,7 @@ import numpy as np
 
 from rotorcosim.components.rotor import attach, critical
 from rotorcosim.components.rotor import model as fem
-from rotorcosim.cases.blade_loss import linear_engine
+from rotorcosim.cases.blade_loss import linear_engine, response_peaks
 
 
 def add_arguments(parser):
@@ -51,7 +51,9 @@ def critical_speeds(model_file: str = "", count: int = 6, max_rpm: float = 30000
     [degrees C] (None: the file's), with the speed ratio, the paper's targets and the support model. The
     co-simulated bearings the file attaches are linearised from the components of ``scenario`` (a
     :class:`~rotorcosim.master.api.Scenario`; None: the shipped blade-loss scenario's); an engine that attaches
-    none stands on its [[support]] entries alone.
+    none stands on its [[support]] entries alone. With co-simulated bearings, ``damped_critical_speeds_rpm``: per
+    bearing id the speeds from half the lowest critical speed to ``max_rpm`` where the linear engine's unbalance
+    response peaks there (:mod:`.response_peaks`), where a run's response peaks.
 
     Example: ``critical_speeds("engine.toml", count=3)["forward_synchronous_rpm"]``."""
     if count < 1:
@@ -67,6 +69,12 @@ def critical_speeds(model_file: str = "", count: int = 6, max_rpm: float = 30000
     out["model_file"] = str(model_file or fem.DEFAULT_FILE)
     out["support_model"] = linear_engine.describe(sup) if sup is not None else {
         "kind": "linear", "description": "the engine file's linear supports only (no co-simulated bearing attached)"}
+    if sup is not None and out["forward_synchronous_rpm"]:
+        # the speeds a run sees its response peak at (response_peaks): from half the lowest undamped critical
+        # speed, below which the films' damping cannot move a peak, to max_rpm
+        ref = m.omega_pt * 30.0 / np.pi
+        out["damped_critical_speeds_rpm"] = response_peaks.damped_critical_speeds(
+            m, sup, 0.5 * out["forward_synchronous_rpm"][0], max_rpm, ref)
     return out
 
 
@@ -173,6 +181,10 @@ def run(args) -> int:
         for b, v in sm.get("bearings", {}).items():
             print(f"    #{b}: contact {v['k_contact']:.3g} N/m, journal {v['m_journal']:.3g} kg, O-ring "
                   f"{v['k_spring']:.4g} N/m, film {v['c_film']:.4g} N s/m")
+        if out.get("damped_critical_speeds_rpm"):
+            print("  damped (where the unbalance response peaks), rev/min:")
+            for b, v in out["damped_critical_speeds_rpm"].items():
+                print(f"    #{b}: " + (", ".join(f"{w:.0f}" for w in v) or "no peak"))
         if args.campbell:
             print(f"Campbell diagram: {args.campbell}")
     return 0
