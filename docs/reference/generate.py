@@ -223,6 +223,11 @@ def scenario_page() -> str:
                        "unconnected_inputs`).\n")
         else:
             out.append(_table(f"[{table}]", keys, NOTES, table))
+    out.append("\n## [templates]\n\n`NAME = [\"ID\", ...]`: instantiate the shipped template "
+               "`scenarios/templates/NAME.toml` (`bearing`: ball bearing + damper + thermal network and their 16 "
+               "connections; `rubring`: a rub ring and its 7) once per id, as a base the file's own tables change; "
+               "`\"{NAME}\"` in `[algorithm] order` and `[outputs] record` stands for one entry per id "
+               "(`master/scenario/templates.py`).\n")
     out.append(_table("[[schedule.intervals]]", schema.INTERVAL, NOTES, "intervals"))
     out.append(_table("[schedule.phases]", {role: schema.text for role in schema.ROLES}, NOTES, "phases"))
     out.append(_table("schedule.cycle = { ... }", schema.CYCLE, NOTES, "cycle"))
