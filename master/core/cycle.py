@@ -176,9 +176,10 @@ class RevolutionCounter:
 
     # -- the observer's side ---------------------------------------------------------------------------------
     def start(self, sim, schedule) -> None:
-        pass
+        """The run begins: nothing to record before its first interval."""
 
     def interval_start(self, sim, phase, step) -> None:
+        """A coupled interval starts a new record from the angle now; a held one records nothing."""
         self.active = phase == COUPLED
         if self.active:
             self._t = np.zeros(4096)
@@ -191,27 +192,32 @@ class RevolutionCounter:
         return float(sim.system.components[comp].y[port][0])
 
     def step(self, sim, t) -> None:
+        """Record the angle at the step's end time ``t``."""
         if self.active:
             self._add(np.array([t]), np.array([self._angle(sim)]))
 
     def block_signals(self, sim) -> list[str]:
+        """The one signal the compiled loop hands over per block: the angle."""
         return [self.ref]
 
     def step_block(self, sim, ks, ts, data) -> None:
+        """Record a block of steps' angles (the compiled loop's form of :meth:`step`)."""
         if self.active and len(ts):
             self._add(np.asarray(ts, dtype=float), np.asarray(data[self.ref], dtype=float)[:, 0])
 
     def interval_end(self, sim, used) -> None:
-        pass
+        """Keep the record: the hold reads its windows after the interval ends."""
 
     def end(self, sim, error) -> None:
-        pass
+        """Nothing to write: the record is the hold's input, not a result."""
 
     def checkpoint_state(self):
+        """The record and its bounds, for a checkpoint."""
         return {"t": self._t[:self._n].copy(), "th": self._th[:self._n].copy(), "active": self.active,
                 "keep": self.keep}
 
     def restore_checkpoint(self, state) -> None:
+        """Take back the record :meth:`checkpoint_state` gave."""
         self._t, self._th = state["t"].copy(), state["th"].copy()
         self._n, self.active, self.keep = len(self._t), state["active"], state["keep"]
 
