@@ -28,7 +28,7 @@ The relative error is ``100 |staggered - monolithic| / |monolithic|`` (temperatu
 ``rotorcosim compare``'s Table 6 give them; 0 when both are 0).
 
 The default duration is the rundown plus :data:`WINDMILLING_S` (10 minutes) of windmilling: the fuel
-cut of the scenario's torque-driven spools plus :data:`RUNDOWN_S`, the time the shipped rundown takes from the
+cut of the spool whose crossings are reported plus :data:`RUNDOWN_S`, the time the shipped rundown takes from the
 fuel cut to windmilling (see its comment), plus :data:`WINDMILLING_S`; for ``blade_loss_rundown`` 15.01 + 45 +
 600 = 660.01 s. A scenario without a fuel cut needs ``--duration``.
 
@@ -155,7 +155,7 @@ def table(st: dict, mono: dict) -> dict:
             "within_2pct": within}
 
 
-def _phases(summary: dict) -> dict:
+def phase_totals(summary: dict) -> dict:
     """Simulated time [s], intervals and steps of each phase of a run's timeline."""
     out = {}
     for iv in summary.get("timeline") or []:
@@ -238,15 +238,23 @@ def compare_rundown(scenario: Scenario | str | Path = "blade_loss_rundown", dura
     # --resume: the complete runs of this comparison are kept (another scenario, level or duration is an error)
     kept = {kind: _kept(out / kind, plans[kind][0].name, unbalance, duration) for kind in held} if resume else {}
     kept = {k: v for k, v in kept.items() if v is not None}
+    made = not out.exists()
     ensure_folder(out)
-    with FolderLock(out, "comparison"):
-        try:
-            return _compare(out, duration, rule, sc, plans, kept, quiet, figures, overwrite or resume, dpi,
-                            warm_up, unbalance)
-        except KeyboardInterrupt:
-            said = [f"{k} complete (kept in {out / k})" if _kept(out / k, None, None, None) is not None
-                    else f"{k} not complete" for k in KINDS]
-            raise SweepInterrupted(f"interrupted: {', '.join(said)}; continue with --resume") from None
+    try:
+        with FolderLock(out, "comparison"):
+            try:
+                return _compare(out, duration, rule, sc, plans, kept, quiet, figures, overwrite or resume, dpi,
+                                warm_up, unbalance)
+            except KeyboardInterrupt:
+                said = [f"{k} complete (kept in {out / k})" if _kept(out / k, None, None, None) is not None
+                        else f"{k} not complete" for k in KINDS]
+                raise SweepInterrupted(f"interrupted: {', '.join(said)}; continue with --resume") from None
+    except BaseException:
+        # refused at set-up (a bad --set value: the warm-up's components say so first): a folder made here for
+        # nothing goes again, as a run's does (rundir.py)
+        if made and out.is_dir() and not any(out.iterdir()):
+            out.rmdir()
+        raise
 
 
 def _compare(out, duration, rule, sc, plans, kept, quiet, figures, overwrite, dpi, warm_up, unbalance) -> dict:
@@ -287,7 +295,7 @@ def _compare(out, duration, rule, sc, plans, kept, quiet, figures, overwrite, dp
               "speedup_cpu": cpu["monolithic"] / cpu["staggered"] if cpu["monolithic"] and cpu["staggered"] else None,
               # the machine's 1-minute load average before and after each run (a shared machine's wall times)
               "load_average": loads,
-              "staggered_phases": _phases(st), "hold": st.get("hold")}
+              "staggered_phases": phase_totals(st), "hold": st.get("hold")}
     try:
         write_json(out / TABLE, result)
     except OSError as exc:  # the runs are complete and kept: a --resume writes the table
