@@ -230,10 +230,10 @@ def compare_rundown(scenario: Scenario | str | Path = "blade_loss_rundown", dura
     plans = _plans(sc, duration)
     # each run's own checks (schedule, budget) before anything runs; then the two together
     ests = {kind: check_run(s, sch) for kind, (s, sch) in plans.items()}
-    if sum(e["wall_s"] for e in ests.values()) > budget.LIMIT_S:
-        raise budget.BudgetError(f"this comparison would take about {budget.hms(sum(e['wall_s'] for e in ests.values()))}"
-                                 f" of wall time, above the {budget.hms(budget.LIMIT_S)} limit: give a shorter "
-                                 "--duration")
+    total = sum(e["wall_s"] for e in ests.values())
+    if total > budget.LIMIT_S:
+        raise budget.BudgetError(f"this comparison would take about {budget.hms(total)} of wall time, above the "
+                                 f"{budget.hms(budget.LIMIT_S)} limit: give a shorter --duration")
     unbalance = unbalance_force(sc)
     # --resume: the complete runs of this comparison are kept (another scenario, level or duration is an error)
     kept = {kind: _kept(out / kind, plans[kind][0].name, unbalance, duration) for kind in held} if resume else {}

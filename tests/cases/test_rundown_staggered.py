@@ -3,10 +3,14 @@ every crossing's peaks within 2 %"): ``rotorcosim compare blade_loss_rundown`` (
 
 The independent reference is the monolithic run: the same system through one thermo-mechanical interval, with no
 hold, no restart and no thermal-only interval, so every difference is the staggered scheme's. The suite's version
-moves the fuel cut to 0.51 s (both spools) so that both critical-speed crossings (within 3 s of the cut) and the
-first thermal-only intervals of the windmilling (from ~6.5 s after the cut) fall inside a 12 s window (~60 s of
-CPU time for both runs); ``ROTORCOSIM_SLOW=1`` runs the command's default, the shipped rundown plus 10 minutes of
-windmilling (660 s simulated; the monolithic run alone takes ~40 min of CPU time).
+moves the fuel cut to 1.01 s (both spools): the response at full speed is steady from 0.5 s on (the automatic
+schedule's first steady test), so the rundown starts from the steady blade-loss state as the shipped one does after
+its 15 s, and both crossings (1.2 and 2.3 s after the cut) and the first thermal-only intervals of the windmilling
+(from ~6.5 s after the cut) fall inside a 12 s window (~65 s of CPU time for both runs and the warm-up). A cut at
+0.51 s, inside the blade-loss transient, is not that case: there the schedule took a thermal-only interval at
+9 650 rev/min in the middle of the rundown and the peak whirl at #5 in the 8 500 rev/min band was 22 % off.
+``ROTORCOSIM_SLOW=1`` runs the command's default, the shipped rundown plus 10 minutes of windmilling (660 s
+simulated; the monolithic run alone takes ~40 min of CPU time).
 """
 from __future__ import annotations
 
@@ -22,7 +26,7 @@ from rotorcosim.cases.rundown import compare as rc
 from rotorcosim.master.cli import main
 from rotorcosim.master.sweep import SweepInterrupted
 
-CUT = 0.51
+CUT = 1.01
 DURATION = 12.0
 #: the JSON keys the command promises (module docstring of cases/rundown/compare.py)
 KEYS = {"results", "crossings", "speeds", "wall_time_s", "cpu_time_s", "speedup", "speedup_cpu", "load_average",
@@ -43,7 +47,8 @@ def _check(t: dict, out):
     st, mono = (json.loads((out / k / "summary.json").read_text()) for k in rc.KINDS)
     assert [iv["phase"] for iv in mono["timeline"]] == ["TM"]
     # the staggered run did leave the coupled phase: the comparison is not of two equal schedules
-    assert t["staggered_phases"]["TO"]["simulated_s"] > 0.2 * t["duration_s"]
+    assert t["staggered_phases"]["TO"]["intervals"] >= 2
+    assert t["staggered_phases"]["TO"]["simulated_s"] > 0.15 * t["duration_s"]
     for b in ("0", "5"):
         for key, e in t["results"][b].items():
             a, m = st["bearings"][b][key], mono["bearings"][b][key]
@@ -73,6 +78,10 @@ def test_short_rundown_staggered_within_2pct_of_monolithic(tmp_path):
     t = rc.compare_rundown(_early_cut(), DURATION, out, figures=False)
     _check(t, out)
     assert t["duration_s"] == DURATION and t["duration_rule"] == "given" and t["t_fuel_cut_s"] == CUT
+    # the rundown starts coupled: a coupled interval ends at the cut here (0.95 + 0.06 s), and no held one may
+    # start there (it ran the first 0.3 s of the rundown frozen, and put #5's 8 500 rev/min peak 10 % off)
+    timeline = json.loads((out / "staggered" / "summary.json").read_text())["timeline"]
+    assert [iv["phase"] for iv in timeline if abs(iv["t_start"] - CUT) < 1e-6] == ["TM"]
     # the windmilling's thermal-only intervals make the staggered run the cheaper one
     assert t["speedup_cpu"] > 1.0
 
