@@ -3,10 +3,10 @@
 * ``rundown_speed.png``: each spool's speed against time, the held-phase (thermal-only) intervals shaded: (a) from
   the start to a minute after the last fuel cut, (b) the whole run in minutes;
 * ``rundown_response.png``: the whirl and the transmitted force (film + centering spring) at bearings #0 and #5
-  against the power-turbine speed through the rundown (the coupled samples), the critical speeds marked
-  (a test rotor: its disk's whirl only);
+  against the power-turbine speed through the rundown (the coupled samples), the critical speeds and the
+  crossings' resonance peaks (results.resonance_peaks) marked (a test rotor: its disk's whirl only);
 * ``rundown_campbell.png``: the Campbell diagram of the linear engine (components/rotor/critical.py; a test
-  rotor: its critical speeds as constant frequencies) with the run's 1x trajectory and each crossing's peak;
+  rotor: its critical speeds as constant frequencies) with the run's 1x trajectory and each crossing's resonance peak;
 * ``rundown_temperatures.png``: the bearing temperatures over the whole run (when recorded).
 """
 from __future__ import annotations
@@ -99,7 +99,7 @@ def figures(sc, data, out, dpi: int | None = None) -> list[str]:
     w = _get(data, f"{spools[0]}.Omega").reshape(len(t), -1)[:, 0] * RPM
     coupled = phase == 0 if phase is not None else np.ones(len(t), bool)
     peaks = _peaks(data, w, coupled, crit)
-    names.append(_response(data, w, coupled, crit, out))
+    names.append(_response(data, w, coupled, crit, peaks, out))
     names.append(_campbell(sc, w, crit, peaks, out))
     if _get(data, "thermal0.T_nodes") is not None:
         names.append(_temperatures(data, t, phase, out))
@@ -151,24 +151,20 @@ def _radius(a, n):
 
 
 def _peaks(data, w, coupled, crit):
-    """(speed, whirl) of the largest whirl at the first location within each critical speed's band."""
-    from .results import BAND
+    """(critical speed, speed, whirl) of each critical speed's resonance peak of the whirl at the first location
+    over the coupled samples (results.resonance_peaks and assign_peaks, as the summary's crossings); a critical
+    speed without a peak is left out."""
+    from .results import assign_peaks, resonance_peaks
 
     ref = next(iter(_locations(data).values()))[0]
     r = _radius(_get(data, ref), len(w))
-    out = []
+    sel = np.flatnonzero(coupled)
     cs = sorted(crit)
-    for i, c in enumerate(cs):
-        lo = max(c * (1 - BAND), 0.5 * (cs[i - 1] + c) if i > 0 else 0.0)
-        hi = min(c * (1 + BAND), 0.5 * (cs[i + 1] + c) if i + 1 < len(cs) else math.inf)
-        sel = np.flatnonzero(coupled & (w >= lo) & (w <= hi))
-        if len(sel):
-            j = sel[np.argmax(r[sel])]
-            out.append((c, w[j], r[j]))
-    return out
+    found = assign_peaks(cs, resonance_peaks(w[sel], r[sel]))
+    return [(c, w[sel][p.index], r[sel][p.index]) for c, p in zip(cs, found) if p is not None]
 
 
-def _response(data, w, coupled, crit, out):
+def _response(data, w, coupled, crit, peaks, out):
     plt = _plt()
     locs = _locations(data)
     forces = any(f is not None for _, f in locs.values())
@@ -180,6 +176,9 @@ def _response(data, w, coupled, crit, out):
         if fref is not None:
             s, y = _binned(w, _radius(_get(data, fref), n), coupled)
             axes[1, 0].plot(s, y, lw=1.2, label=f"{name}")
+    for i, (c, s_pk, r_pk) in enumerate(peaks):
+        axes[0, 0].plot(s_pk, r_pk * 1e3, "x", color="tab:red", ms=8, mew=2,
+                        label="resonance peaks (the crossings)" if i == 0 else None)
     axes[0, 0].set_ylabel("whirl (largest radius) [mm]")
     if forces:
         axes[1, 0].set_ylabel("transmitted force [N]")
@@ -189,7 +188,7 @@ def _response(data, w, coupled, crit, out):
         ax.grid(alpha=0.3)
         ax.legend(fontsize=8, loc="upper left")
         ax.set_ylim(bottom=0)
-    axes[-1, 0].set_xlabel("power-turbine speed [rev/min] (dashed: critical speeds)")
+    axes[-1, 0].set_xlabel("power-turbine speed [rev/min] (dashed: undamped critical speeds)")
     axes[0, 0].set_title("response through the rundown: largest value per 25 rev/min of speed", fontsize=9)
     return _save(fig, out, "rundown_response.png")
 
@@ -230,7 +229,8 @@ def _campbell(sc, w, crit, peaks, out):
     ax.set_ylim(0, 1.3 * top / 60.0)
     ax.set_xlabel("power-turbine speed [rev/min]")
     ax.set_ylabel("whirl frequency [Hz]")
-    ax.set_title("Campbell diagram (o: critical speeds, x: where the run's response peaked)", fontsize=9)
+    ax.set_title("Campbell diagram (o: critical speeds, x: the resonance peaks of the run's whirl, the crossings)",
+                 fontsize=9)
     ax.legend(fontsize=8, loc="upper left")
     ax.grid(alpha=0.3)
     return _save(fig, out, "rundown_campbell.png")

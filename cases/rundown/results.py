@@ -9,12 +9,17 @@ when the system has them, else the rotor's ``X_brg0`` port alone (a test rotor's
 
 * ``speeds``: per spool ``start_rpm``, ``end_rpm``, ``t_fuel_cut_s`` (None: a prescribed profile or no cut),
   ``stopped`` (it ended at 0 rev/min);
-* ``crossings``: per critical speed, over the thermo-mechanical samples whose speed lies within its band (half
-  way to the neighbouring critical speeds, at most +-15 %): ``spool``, ``critical_speed_rpm``, ``t_s`` and
-  ``peak_speed_rpm`` where the whirl at the first location peaks, ``direction`` (``"down"`` / ``"up"``), and per
-  location ``peak_whirl_mm``, ``peak_contact_load_N``, ``peak_contact_stress_MPa``, ``peak_transmitted_force_N``
-  (the maxima over the band; keys without a signal are left out). A critical speed the run never reaches has
-  no entry;
+* ``crossings``: per critical speed, the resonance peak of the response against speed (:func:`resonance_peaks`
+  over the thermo-mechanical samples: the largest whirl at the first location per speed bin of ``SPEED_BIN``,
+  the local maxima that stand out by ``PROMINENCE`` of the largest whirl) assigned to it (:func:`assign_peaks`: one
+  peak per critical speed, the nearest, at most ``MAX_SHIFT`` away): ``spool``, ``critical_speed_rpm``,
+  ``peak_found``, ``t_s`` and ``peak_speed_rpm`` of the peak's largest sample, ``direction`` (``"down"`` /
+  ``"up"``), ``speed_range_rpm`` (the peak's width at half its prominence) and per location ``peak_whirl_mm``,
+  ``peak_contact_load_N``, ``peak_contact_stress_MPa``, ``peak_transmitted_force_N`` (keys without a signal are
+  left out), the maxima over the width of that location's own whirl peak assigned to the critical speed, or over
+  the first location's where it has none, and that ``speed_range_rpm``. A critical speed within the run's speeds
+  that has no peak gets ``peak_found`` false, a ``note`` and None for the speed, the time and the peaks (not the
+  edge of a band around it); one outside the run's speeds and without a peak has no entry;
 * ``energy``: per spool its ``inertia_kg_m2``, ``kinetic_energy_lost_J``, the work of each torque
   ``work_J`` (drive, drag, rub, aero: the spool's own bookkeeping, components/spool/kernel.py) and
   ``residual_pct``: (kinetic energy lost - (drag + rub + aero - drive)) / kinetic energy lost, in percent.
@@ -25,8 +30,11 @@ from __future__ import annotations
 
 import importlib
 import math
+from typing import NamedTuple
 
 import numpy as np
+from scipy.optimize import linear_sum_assignment
+from scipy.signal import find_peaks, peak_widths
 
 from rotorcosim.components.contract import COUPLED
 from rotorcosim.master.observer.observers import Observer
@@ -34,8 +42,14 @@ from rotorcosim.master.observer.observers import Observer
 #: time bins of the response track [s]: many per crossing (a crossing lasts ~0.1-1 s), few per hour of run
 BIN_S = 2e-3
 RPM = 30.0 / math.pi
-BAND = 0.15
-#: the module that draws the figures (imported by name: it reads this one's BAND)
+#: the resonance search: relative width of its speed bins (the response's maximum per bin, at least a turn of the
+#: rotor per bin at a rundown's rates), the prominence of a peak relative to the largest response (ripple of the
+#: per-bin maximum and contact noise stay below it), the largest distance of a damped peak from its undamped
+#: critical speed (the squeeze-film dampers put the engine's 7-12 % above: docs/explanation/rundown.md)
+SPEED_BIN = 2e-3
+PROMINENCE = 0.01
+MAX_SHIFT = 0.25
+#: the module that draws the figures (imported by name)
 FIGURES_MODULE = "rotorcosim.cases.rundown.figures"
 
 
@@ -145,8 +159,82 @@ def check(sc, sim) -> None:
             raise ValueError(f"[results] spools: no component {sp!r}")
 
 
+class Peak(NamedTuple):
+    """A resonance peak of a response against speed: the sample where it is largest (its index into the samples
+    given, its speed and amplitude) and the speeds of its width at half its prominence."""
+    index: int
+    speed: float
+    amplitude: float
+    lo: float
+    hi: float
+
+
+def resonance_peaks(speed, amplitude, bin_rel: float = SPEED_BIN, prominence: float = PROMINENCE) -> list[Peak]:
+    """The resonance peaks of ``amplitude`` against ``speed`` (any unit, any order: a rundown, a run-up or both),
+    lowest speed first.
+
+    The samples at speeds > 0 are put into bins of relative width ``bin_rel`` (geometric: bin k holds
+    (1 + bin_rel)^k <= speed < (1 + bin_rel)^(k+1)), each bin keeping its largest sample; a peak is a local maximum
+    of the bins' maxima, in speed order over the bins that have samples, whose prominence (scipy.signal.find_peaks:
+    its height above the higher of the lowest points between it and a higher bin on either side) is at least
+    ``prominence`` times the largest amplitude. The first and last bin are never peaks: a response that still
+    rises at the edge of the speeds run through has not peaked there."""
+    w = np.asarray(speed, dtype=float).ravel()
+    a = np.asarray(amplitude, dtype=float).ravel()
+    if w.shape != a.shape:
+        raise ValueError(f"speed and amplitude differ in length ({len(w)} and {len(a)})")
+    idx = np.flatnonzero((w > 0.0) & np.isfinite(w) & np.isfinite(a))
+    if len(idx) < 3:
+        return []
+    b = np.floor(np.log(w[idx]) / math.log1p(bin_rel)).astype(np.int64)
+    # per bin: its largest sample (ties: the first in the input's order)
+    order = np.lexsort((-a[idx], b))
+    b, idx = b[order], idx[order]
+    first = np.concatenate([[True], np.diff(b) != 0])
+    best = idx[first]
+    y = a[best]
+    top = float(y.max())
+    if not top > 0.0:
+        return []
+    pk, props = find_peaks(y, prominence=prominence * top)
+    if not len(pk):
+        return []
+    _, _, left, right = peak_widths(y, pk, rel_height=0.5, prominence_data=(props["prominences"],
+                                                                           props["left_bases"],
+                                                                           props["right_bases"]))
+    ws = w[best]
+    grid = np.arange(len(ws))
+    return [Peak(int(best[j]), float(ws[j]), float(y[j]), float(np.interp(lo, grid, ws)),
+                 float(np.interp(hi, grid, ws))) for j, lo, hi in zip(pk, left, right)]
+
+
+def assign_peaks(criticals, peaks: list[Peak], max_shift: float = MAX_SHIFT) -> list[Peak | None]:
+    """Each critical speed's resonance peak (None: none), one peak per critical speed and one critical speed per
+    peak, the nearest in |ln(peak / critical)| and at most ``max_shift`` (relative) away; where peaks compete
+    the assignment with the most pairs, then the least total distance (scipy.optimize.linear_sum_assignment).
+
+    The nearest peak of each critical speed on its own is not enough: the engine's damped peaks at bearing #0 lie
+    at 9 100 and 11 400 rev/min, its critical speeds at 8 500 and 10 200, and 9 100 is the nearer of the two to
+    10 200 as well."""
+    crit = [float(c) for c in criticals]
+    out: list[Peak | None] = [None] * len(crit)
+    if not crit or not peaks:
+        return out
+    lim = math.log1p(max_shift)
+    d = np.abs(np.log(np.array([p.speed for p in peaks])[None, :] / np.array(crit)[:, None]))
+    # a pair beyond the limit costs more than any set of allowed pairs: the most pairs within it win
+    cost = np.where(d <= lim, d, lim * (len(crit) + len(peaks) + 1))
+    for i, j in zip(*linear_sum_assignment(cost)):
+        if d[i, j] <= lim:
+            out[i] = peaks[j]
+    return out
+
+
 def crossings(table: np.ndarray, spool: str, criticals_rpm, locations: dict, n_spools: int) -> list[dict]:
-    """The crossings of the first spool's speed through each critical speed (module docstring)."""
+    """The crossings of the first spool's speed through each critical speed (module docstring): the resonance
+    peaks of the whirl at the first location over the rows of ``table`` (RundownTrack.table); each location's
+    values over its own whirl's peak for that critical speed, or over the first location's peak where it has none
+    (its ``speed_range_rpm`` says which)."""
     out = []
     if not len(table):
         return out
@@ -154,24 +242,37 @@ def crossings(table: np.ndarray, spool: str, criticals_rpm, locations: dict, n_s
     w = table[:, 1] * RPM
     names = {"whirl": ("peak_whirl_mm", 1e3), "load": ("peak_contact_load_N", 1.0),
              "stress": ("peak_contact_stress_MPa", 1e-6), "force": ("peak_transmitted_force_N", 1.0)}
-    col0 = 1 + n_spools
+    cols, col = {}, 1 + n_spools
+    for loc, d in locations.items():
+        cols[loc] = col                     # its whirl first, then the other kinds in d's order
+        col += len(d)
+    own = {loc: assign_peaks(crit, resonance_peaks(w, table[:, c])) for loc, c in cols.items()}
+    first = next(iter(locations))
+    running = w[w > 0.0]
+    w_lo, w_hi = (float(running.min()), float(running.max())) if len(running) else (math.nan, math.nan)
+    dw = np.gradient(w) if len(w) > 1 else np.zeros(len(w))
     for i, c in enumerate(crit):
-        lo = max(c * (1 - BAND), 0.5 * (crit[i - 1] + c) if i > 0 else 0.0)
-        hi = min(c * (1 + BAND), 0.5 * (crit[i + 1] + c) if i + 1 < len(crit) else math.inf)
-        sel = np.flatnonzero((w >= lo) & (w <= hi))
-        if not len(sel):
+        pk = own[first][i]
+        if pk is None and not w_lo <= c <= w_hi:
+            continue                        # never reached
+        entry = {"spool": spool, "critical_speed_rpm": c, "peak_found": pk is not None}
+        if pk is None:
+            entry.update(t_s=None, peak_speed_rpm=None, direction=None, speed_range_rpm=None,
+                         note=f"no resonance peak of the whirl at {first} within {MAX_SHIFT:.0%} of this critical "
+                              f"speed (the whirl against speed has no local maximum standing out by "
+                              f"{PROMINENCE:.0%} of its largest value there)")
+            entry["bearings"] = {loc: {names[kind][0]: None for kind in d} for loc, d in locations.items()}
+            out.append(entry)
             continue
-        j = sel[np.argmax(table[sel, col0])]
-        dw = np.gradient(w)[j] if len(w) > 1 else 0.0
-        entry = {"spool": spool, "critical_speed_rpm": c, "t_s": float(table[j, 0]),
-                 "peak_speed_rpm": float(w[j]), "direction": "up" if dw > 0 else "down", "bearings": {}}
-        col = col0
+        j = pk.index
+        entry.update(t_s=float(table[j, 0]), peak_speed_rpm=float(w[j]), direction="up" if dw[j] > 0 else "down",
+                     speed_range_rpm=[pk.lo, pk.hi])
+        entry["bearings"] = {}
         for loc, d in locations.items():
-            r = {}
-            for kind in d:
-                key, f = names[kind]
-                r[key] = float(table[sel, col].max()) * f
-                col += 1
+            p = own[loc][i] or pk
+            sel = np.flatnonzero((w >= p.lo) & (w <= p.hi))
+            r = {names[kind][0]: float(table[sel, cols[loc] + k].max()) * names[kind][1] for k, kind in enumerate(d)}
+            r["speed_range_rpm"] = [p.lo, p.hi]
             entry["bearings"][loc] = r
         out.append(entry)
     return out

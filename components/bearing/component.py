@@ -51,8 +51,8 @@ from ..speeds import PT_OMEGA
 from ..validity import Check
 from .drag import static_load_rating
 from .geometry import DATA, BEARINGS, build_geometry
-from .kernel import (DRAG, G_EPS_LIMIT, G_F_C, GEO, NUM, O_SIZE, O_SUBSTEPS, BearingParams, BearingState, oil_viscosity,
-                     pack, step, tm_step, viscous_power)
+from .kernel import (DRAG, G_EPS_LIMIT, G_F_C, G_Z0, GEO, NUM, O_SIZE, O_SUBSTEPS, BearingParams, BearingState,
+                     oil_viscosity, pack, step, tm_step, viscous_power)
 from .oil import WALTHER_A, WALTHER_B, sae30_kinematic_viscosity
 from .static import preload_offset, solve_balls
 
@@ -214,7 +214,7 @@ class BallBearing(KernelComponent):
                          m_journal=p["m_journal"], omega_cage=g.cage_speed(omega), preload=g.preload,
                          stress_inner=g.inner.stress_coeff, stress_outer=g.outer.stress_coeff, omega=omega,
                          eps_limit=0.05 * g.D, ball_damping=p["ball_damping"],
-                         axial_direction=p["axial_direction"])
+                         axial_direction=p["axial_direction"], z0=self.z0)
         self._drag = pack(DRAG, nu=0.0, omega=omega, d_m=g.d_m, f0=p["f0"], f1_z=_DRAG["f1_z"], f1_y=_DRAG["f1_y"],
                           X0=_DRAG["X0"], Y0=_DRAG["Y0"], C0=self.C0)
         self._num = pack(NUM, cfl=p["cfl"], min_substeps=_NUM["min_substeps"], substeps=p["substeps"],
@@ -232,7 +232,7 @@ class BallBearing(KernelComponent):
         self.holds_state_in_TO = bool(p["drag_in_thermal_only"])
         self.phase = "TM"
         self._out = np.zeros(O_SIZE)
-        self._kernel_p = BearingParams(float(self.z0), self._cb, self._sb, self._geo, self._drag, self._num,
+        self._kernel_p = BearingParams(self._cb, self._sb, self._geo, self._drag, self._num,
                                        np.full(3, np.nan), self._out, self._eps_jump, float(WALTHER_A),
                                        float(WALTHER_B), T_MIN_K, T_MAX_K, address_of(step))
         # outputs of the rest state: one zero-length evaluation
@@ -286,7 +286,7 @@ class BallBearing(KernelComponent):
         xe, ye = s["journal"][0], s["journal"][1]
         ur = X[0] * c + X[1] * sn
         wr = xe * c + ye * sn
-        v, _ = solve_balls(g, ur, ax * X[2] + self.z0, wr, tuple(u["eps"]), float(self._geo[G_F_C]),
+        v, _ = solve_balls(g, ur, ax * X[2] + float(self._geo[G_Z0]), wr, tuple(u["eps"]), float(self._geo[G_F_C]),
                            v0=s["balls"][:2].copy())
         s["balls"][:2] = v
 

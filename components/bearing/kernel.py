@@ -31,10 +31,11 @@ from .drag import palmgren_torque
 # file so that numba's cache, keyed by this file, is invalidated when they change.
 
 #: geo: the geometry and contact constants (eqs. 1-10)
+#: (z0: the inner race's axial offset that carries the preload, component.py; it follows the speed in spinning.py)
 GEO = ("l_oi", "l_oe", "cos_a0", "sin_a0", "K_i", "K_e", "alpha_d", "F_c", "m_b", "m_journal", "omega_cage",
-       "preload", "stress_inner", "stress_outer", "omega", "eps_limit", "ball_damping", "axial_direction")
+       "preload", "stress_inner", "stress_outer", "omega", "eps_limit", "ball_damping", "axial_direction", "z0")
 (G_L_OI, G_L_OE, G_COS_A0, G_SIN_A0, G_K_I, G_K_E, G_ALPHA_D, G_F_C, G_M_B, G_M_JOURNAL, G_OMEGA_CAGE, G_PRELOAD,
- G_STRESS_INNER, G_STRESS_OUTER, G_OMEGA, G_EPS_LIMIT, G_BALL_DAMPING, G_AXIAL_DIRECTION) = range(len(GEO))
+ G_STRESS_INNER, G_STRESS_OUTER, G_OMEGA, G_EPS_LIMIT, G_BALL_DAMPING, G_AXIAL_DIRECTION, G_Z0) = range(len(GEO))
 #: drag: Palmgren's drag torque (drag.py): oil viscosity (kept for the last T_oil), speed, pitch diameter,
 #: coefficients and the static load rating
 DRAG = ("nu", "omega", "d_m", "f0", "f1_z", "f1_y", "X0", "Y0", "C0")
@@ -275,12 +276,12 @@ by_address(step, STEP_SIG)
 
 #: the bearing's kernel containers (components/kernels.py). State: the balls (4, Z), the journal (4), the cage
 #: angle (1), the growths the balls were last seated for (3).
-#: Constants: the inner race's axial offset z0, the balls' angle cosines/sines, the geometry, drag and numerics
+#: Constants: the balls' angle cosines/sines, the geometry (the inner race's axial offset z0 with it), drag and numerics
 #: vectors of tm_step, a cache [T of nu, T of P_v, P_v], the step's output buffer, the growth jump that
 #: re-seats the balls, the Walther constants of the oil viscosity, the address of step (numba_internals.address_of).
 BearingState = namedtuple("BearingState", "balls journal phi eps_seated")
 BearingParams = namedtuple("BearingParams",
-                           "z0 c_b s_b geo drag num cache out eps_jump walther_A walther_B T_min T_max step_at")
+                           "c_b s_b geo drag num cache out eps_jump walther_A walther_B T_min T_max step_at")
 
 
 @kernel_jit
@@ -364,7 +365,7 @@ def tm_step(s, p, u, y, t, h):
     Xa[2] *= ax
     res = np.empty(R_SIZE)
     balls = s.balls
-    call_at(p.step_at, step, (h, Xa, Vb, p.z0, eps, F0, Kj, Cj, balls, s.journal, s.phi, p.c_b, p.s_b, geo, p.drag,
+    call_at(p.step_at, step, (h, Xa, Vb, geo[G_Z0], eps, F0, Kj, Cj, balls, s.journal, s.phi, p.c_b, p.s_b, geo, p.drag,
                               num, res))
     jour = s.journal
     out[O_F_ROTOR] = res[R_F_INNER]

@@ -4,10 +4,16 @@ The same bearing as component.BallBearing, with ``Omega`` [rad/s] (the spool's s
 input instead of the constant ``omega``; at each step whose speed differs from the last one it sets the speed
 terms: the cage (ball orbit) speed ``omega_c = Omega/2 (1 - D cos a0 / d_m)``, the balls' centrifugal force
 ``m_b (d_m/2) omega_c^2`` of eq. (4), and the speed of Palmgren's drag torque (its ``(nu n)^(2/3)`` term and
-``P_drag = M Omega``). It also outputs the drag torque ``T_drag = P_drag / Omega`` [N m] that decelerates the
-spool (0 on a stopped spool). The inner race's axial offset z0 (the preload set-up) stays the one found at the
-reference speed ``omega``: the preload is a fixed axial position, not a spring that follows the balls'
-centrifugal force. At Omega = omega throughout every number is the constant-speed bearing's, bit for bit.
+``P_drag = M Omega``) and the inner race's axial offset z0 at which the balls carry the preload with no radial
+load (component.BallBearing): the balls' centrifugal force pushes them outward, opening the inner contact's angle
+and lowering the offset that carries the same preload (bearing #5: 22.5 um at rest, 16.2 um at 16 000 rev/min).
+z0 is read from a cubic spline over 0 to ``TABLE_TOP`` x omega (static.preload_offset_spline: equally spaced
+knots, enough of them for a relative error of ``TABLE_TOLERANCE`` at the intervals' midpoints, checked at set-up
+against the static solve), evaluated in the kernel (:func:`preload_offset_at`); a speed beyond the table is an
+error naming ``omega``. The preload is a constant force (a spring preload), so the bearing's axial force on the
+rotor at X_inner = 0 stays zero at every speed. It also outputs the drag torque ``T_drag = P_drag / Omega`` [N m]
+that decelerates the spool (0 on a stopped spool). At Omega = omega throughout every number is the constant-speed
+bearing's, bit for bit (the speed terms, z0 among them, are set only when the speed differs from the last one).
 
 Example (a scenario)::
 
@@ -26,12 +32,53 @@ from ..contract import ContractError, Variable
 from ..kernels import port_tuple
 from ..numba_internals import kernel_jit
 from .component import BallBearing
-from .kernel import D_OMEGA, G_F_C, G_OMEGA, G_OMEGA_CAGE, O_P_DRAG, BearingState, tm_step
+from .kernel import D_OMEGA, G_F_C, G_OMEGA, G_OMEGA_CAGE, G_Z0, O_P_DRAG, BearingState, tm_step
+from .static import preload_offset_spline
 
 #: the constant-speed bearing's containers (its kernel, kernel.tm_step, is called with its own types: a call with
 #: this class's types would put them in tm_step's on-disk cache index, unreadable by a process without them), the
-#: speed terms' ratios [cage speed per rad/s, centrifugal force per (rad/s of the cage)^2]
-SpinBearingParams = namedtuple("SpinBearingParams", "base spin")
+#: speed terms' ratios [cage speed per rad/s, centrifugal force per (rad/s of the cage)^2], the preload offset's
+#: spline against the speed (coefficients (4, n), knot spacing [rad/s]: static.preload_offset_spline)
+SpinBearingParams = namedtuple("SpinBearingParams", "base spin z0_c z0_h")
+#: the preload offset's table: its top speed / omega, its largest relative interpolation error
+TABLE_TOP = 1.5
+TABLE_TOLERANCE = 1e-6
+#: status of a speed beyond the table
+BEYOND_TABLE = 14
+
+
+@kernel_jit
+def preload_offset_at(c, h, w):
+    """z0 at the speed w [rad/s] from the spline (c, h): interval k = floor(|w| / h), d = |w| - k h,
+    z0 = ((c0 d + c1) d + c2) d + c3 (z0 is even in w); NaN beyond the table."""
+    x = abs(w) / h
+    n = c.shape[1]
+    k = int(x)
+    if k >= n:
+        if x > n:
+            return np.nan
+        k = n - 1                          # the top knot itself
+    d = abs(w) - k * h
+    return ((c[0, k] * d + c[1, k]) * d + c[2, k]) * d + c[3, k]
+
+
+@kernel_jit
+def set_speed(p, w):
+    """The speed terms at w [rad/s]: the cage speed, the balls' centrifugal force, the preload offset, Palmgren's
+    speed. False (nothing changed) when w is beyond the preload offset's table."""
+    z0 = preload_offset_at(p.z0_c, p.z0_h, w)
+    if not math.isfinite(z0):
+        return False
+    b = p.base
+    geo = b.geo
+    wc = p.spin[0] * w
+    geo[G_OMEGA] = w
+    geo[G_OMEGA_CAGE] = wc
+    geo[G_F_C] = p.spin[1] * wc * wc
+    geo[G_Z0] = z0
+    b.drag[D_OMEGA] = w
+    b.cache[1] = np.nan                  # the viscous drag power of the last T_oil was at the old speed
+    return True
 _IN = port_tuple("BallBearing", "Inputs", ("X_inner", "V_inner", "F_journal", "K_journal", "C_journal", "eps",
                                            "T_oil"))
 _OUT = port_tuple("BallBearing", "Outputs", ("F_rotor", "X_journal", "V_journal", "Q_max", "Q_max_step",
@@ -45,14 +92,8 @@ def spinning_step(s, p, u, y, t, h):
     if not math.isfinite(w):
         return 11
     b = p.base
-    geo = b.geo
-    if w != geo[G_OMEGA]:
-        wc = p.spin[0] * w
-        geo[G_OMEGA] = w
-        geo[G_OMEGA_CAGE] = wc
-        geo[G_F_C] = p.spin[1] * wc * wc
-        b.drag[D_OMEGA] = w
-        b.cache[1] = np.nan                  # the viscous drag power of the last T_oil was at the old speed
+    if w != b.geo[G_OMEGA] and not set_speed(p, w):
+        return BEYOND_TABLE
     status = tm_step(s, b, _IN(u.X_inner, u.V_inner, u.F_journal, u.K_journal, u.C_journal, u.eps, u.T_oil),
                      _OUT(y.F_rotor, y.X_journal, y.V_journal, y.Q_max, y.Q_max_step, y.sigma_max,
                           y.sigma_max_step, y.P_drag), t, h)
@@ -75,9 +116,16 @@ class SpinningBearing(BallBearing):
         g = self.geometry
         wc1 = g.cage_speed(1.0)
         spin = np.array([wc1, g.centrifugal_force(1.0) / (wc1 * wc1)])
-        self._base_p = self._kernel_p
-        self._spin_p = SpinBearingParams(self._kernel_p, spin)
         w = self.p["omega"]
+        if not w > 0.0:
+            raise ContractError(f"{self.name}.omega must be > 0 rad/s for the speed-following bearing: the preload "
+                                f"offset's table spans 0-{TABLE_TOP:g} x omega, got {w}")
+        try:
+            c, h, self.z0_table_error = preload_offset_spline(g, TABLE_TOP * w, TABLE_TOLERANCE)
+        except ValueError as exc:
+            raise ContractError(f"{self.name}: {exc}") from None
+        self._base_p = self._kernel_p
+        self._spin_p = SpinBearingParams(self._kernel_p, spin, c, h)
         self.y["T_drag"] = np.array([self.y["P_drag"][0] / w if w > 0.0 else 0.0])
 
     def _advance(self, h, t):
@@ -101,7 +149,23 @@ class SpinningBearing(BallBearing):
     def kernel_status(self, status, t, h):
         if status == 11 and not np.all(np.isfinite(self.u["Omega"])):
             raise ContractError(f"{self.name}: non-finite input Omega at t = {t + h:.9g} s")
+        if status == BEYOND_TABLE:
+            self._beyond_table(float(self.u["Omega"][0]), t + h)
         super().kernel_status(status, t, h)
+
+    def _beyond_table(self, w, t):
+        top = TABLE_TOP * self.p["omega"]
+        raise ContractError(f"{self.name}: inner race speed {abs(w) * 30.0 / math.pi:.0f} rev/min at t = {t:.9g} s "
+                            f"is beyond the preload offset's table (0-{top * 30.0 / math.pi:.0f} rev/min, "
+                            f"{TABLE_TOP:g} x {self.name}.omega): set omega nearer the run's speeds")
+
+    def preload_offset(self, w: float | None = None) -> float:
+        """The inner race's axial offset z0 [m] at the speed w [rad/s] (None: the present one) as the kernel
+        reads it (NaN beyond the table)."""
+        p = self._spin_p
+        if w is None:
+            return float(p.base.geo[G_Z0])
+        return float(preload_offset_at(p.z0_c, p.z0_h, float(w)))
 
     def _thermal_only_step(self, t, h):
         """The TO update (component.BallBearing) at the present spool speed: Palmgren's viscous term follows it;
@@ -111,9 +175,9 @@ class SpinningBearing(BallBearing):
         if not math.isfinite(w):
             raise ContractError(f"{self.name}: non-finite input Omega at t = {t:.9g} s")
         if w != w0:
-            p.drag[D_OMEGA] = w
-            p.geo[G_OMEGA] = w
-            p.cache[1] = np.nan
+            # every speed term, so that the next coupled step starts with this speed's
+            if not set_speed(self._spin_p, w):
+                self._beyond_table(w, t)
             if w0 > 0.0:
                 self._frozen_load = getattr(self, "_frozen_load", 0.0) * w / w0
         super()._thermal_only_step(t, h)

@@ -212,3 +212,91 @@ def _preload_offset(g: BearingGeometry, Fc: float) -> tuple[float, BallState]:
         return 0.0, st
     X, st = static_equilibrium(g, np.array([0.0, 0.0, g.preload]), Fc=Fc)
     return float(X[2]), st
+
+
+def axisymmetric_preload_offset(g: BearingGeometry, Fc: float, z_guess: float) -> float:
+    """z0 of :func:`preload_offset` from one ball: with no radial load every ball sits alike, and the inner race
+    carries the preload when Z Q_i sin(alpha_i) = P (eq. 2 axially), Q_i of the one ball in equilibrium (eq. 4,
+    :func:`solve_balls`). A secant iteration from ``z_guess`` (a neighbouring speed's z0), bracketed (brentq) when
+    it does not converge. For the speed table of z0 (:func:`preload_offset_table`): about a third of
+    preload_offset's cost; the two agree to ~1e-10 (tests/components/test_bearing_spinning.py)."""
+    from scipy.optimize import brentq
+
+    if g.preload == 0.0:
+        return 0.0
+    seat = [None]
+
+    def excess(z):
+        v, (A, _, Li, _, _, _, Qi, _) = solve_balls(g, 0.0, z, 0.0, Fc=Fc, v0=seat[0])
+        seat[0] = v
+        return g.Z * float(Qi[0] * A[1, 0] / Li[0]) - g.preload
+
+    z0, z1 = z_guess, z_guess * (1.0 + 1e-3)
+    f0, f1 = excess(z0), excess(z1)
+    for _ in range(30):
+        if f1 == f0:
+            break
+        z0, z1, f0 = z1, z1 - f1 * (z1 - z0) / (f1 - f0), f1
+        f1 = excess(z1)
+        if abs(z1 - z0) <= 1e-13 * abs(z1):
+            return float(z1)
+    # bracket: no axial offset carries nothing of the preload (the balls sit in their clearance), the rest
+    # state's offset at zero speed doubled carries more than it (the centrifugal force only lowers z0)
+    seat[0] = None
+    hi = 2.0 * abs(preload_offset(g, 0.0)[0])
+    return float(brentq(excess, 0.0, hi, xtol=1e-18, rtol=1e-14))
+
+
+#: preload_offset_table's tables in this process, by (geometry, top speed, intervals)
+_TABLES: dict = {}
+
+
+def preload_offset_table(g: BearingGeometry, omega_max: float, intervals: int) -> tuple[np.ndarray, np.ndarray]:
+    """The preload offset z0 (:func:`axisymmetric_preload_offset`) at ``intervals + 1`` equally spaced inner race
+    speeds from 0 to ``omega_max`` [rad/s]: (speeds, z0)."""
+    key = (g, float(omega_max), int(intervals))
+    if key not in _TABLES:
+        w = np.linspace(0.0, float(omega_max), int(intervals) + 1)
+        z = np.empty_like(w)
+        guess = preload_offset(g, 0.0)[0]
+        for k, wk in enumerate(w):
+            z[k] = guess = axisymmetric_preload_offset(g, g.centrifugal_force(wk), guess)
+        _TABLES[key] = (w, z)
+    w, z = _TABLES[key]
+    return w.copy(), z.copy()
+
+
+#: preload_offset_spline's splines in this process, by (geometry, top speed, tolerance)
+_SPLINES: dict = {}
+
+
+def preload_offset_spline(g: BearingGeometry, omega_max: float, tol: float = 1e-6,
+                          intervals: int = 48, max_intervals: int = 768) -> tuple[np.ndarray, float, float]:
+    """A cubic spline of the preload offset z0 against the inner race speed over [0, omega_max] on equally spaced
+    knots (:func:`preload_offset_table`; zero slope at rest: z0 is even in the speed), with as many intervals
+    (``intervals``, doubled as needed) as make its largest relative error at the intervals' midpoints, against
+    :func:`axisymmetric_preload_offset` there, at most ``tol``: (coefficients (4, n): interval k is
+    c[0] d^3 + c[1] d^2 + c[2] d + c[3] at d = omega - k h, the knot spacing h, that error).
+    ValueError when ``max_intervals`` are not enough."""
+    from scipy.interpolate import CubicSpline
+
+    key = (g, float(omega_max), float(tol))
+    if key in _SPLINES:
+        c, h, err = _SPLINES[key]
+        return c.copy(), h, err
+    n = int(intervals)
+    while True:
+        w, z = preload_offset_table(g, omega_max, n)
+        s = CubicSpline(w, z, bc_type=((1, 0.0), "not-a-knot"))
+        mid = 0.5 * (w[1:] + w[:-1])
+        direct = np.array([axisymmetric_preload_offset(g, g.centrifugal_force(m), zk) for m, zk in zip(mid, z)])
+        err = float(np.max(np.abs(s(mid) - direct) / np.maximum(np.abs(direct), 1e-300)))
+        if err <= tol:
+            break
+        n *= 2
+        if n > max_intervals:
+            raise ValueError(f"the preload offset against speed needs more than {max_intervals} spline intervals "
+                             f"over 0-{omega_max * 30.0 / math.pi:.0f} rev/min for a relative error of {tol:g} "
+                             f"({err:.2g} with {n // 2})")
+    _SPLINES[key] = (np.ascontiguousarray(s.c), float(w[1] - w[0]), err)
+    return np.ascontiguousarray(s.c).copy(), float(w[1] - w[0]), err

@@ -1,0 +1,158 @@
+"""The crossings of a rundown (cases/rundown/results.py: resonance_peaks, assign_peaks, crossings) on synthetic
+response curves whose peaks are known in closed form or by a dense maximisation of the analytic curve: the
+single-dof unbalance response (u/m) r^2 / sqrt((1 - r^2)^2 + (2 zeta r)^2), r = Omega / omega_n, whose peak is at
+r = 1 / sqrt(1 - 2 zeta^2) with the amplitude (u/m) / (2 zeta sqrt(1 - zeta^2)) (any vibration textbook, e.g.
+Genta, Dynamics of Rotating Systems, sect. 4.3), sampled along a falling speed as RundownTrack.table gives it."""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+from scipy.optimize import minimize_scalar
+
+from rotorcosim.cases.rundown.results import (SPEED_BIN, assign_peaks, crossings, resonance_peaks)
+
+RPM = 30.0 / math.pi
+U_M = 1e-5          # u / m [m]
+LOCS = {"disk": {"whirl": "rotor.X_brg0"}}
+
+
+def sdof(rpm, wn_rpm, zeta):
+    """The single-dof unbalance response [m] at rpm."""
+    r = np.asarray(rpm, dtype=float) / wn_rpm
+    return U_M * r * r / np.sqrt((1.0 - r * r) ** 2 + (2.0 * zeta * r) ** 2)
+
+
+def table(rpm, whirl, t_end=1.0):
+    """A RundownTrack.table of one spool and one location: t, Omega [rad/s], whirl [m]."""
+    t = np.linspace(0.0, t_end, len(rpm))
+    return np.column_stack([t, np.asarray(rpm) / RPM, whirl])
+
+
+def falling(top=9000.0, bottom=3000.0, n=30_001):
+    return np.linspace(top, bottom, n)
+
+
+def test_single_dof_peak_within_a_bin():
+    """The peak of a single-dof curve (6040 rev/min, zeta 0.02) within one speed bin of the analytic peak speed,
+    its amplitude within 0.1 % of the analytic one, the time that of the sample at the peak."""
+    wn, zeta = 6039.5, 0.02
+    w = falling()
+    tab = table(w, sdof(w, wn, zeta))
+    (c,) = crossings(tab, "spool", [wn], LOCS, 1)
+    exact = wn / math.sqrt(1.0 - 2.0 * zeta ** 2)
+    assert c["peak_found"] is True
+    assert abs(math.log(c["peak_speed_rpm"] / exact)) <= math.log1p(SPEED_BIN)
+    amp = U_M / (2.0 * zeta * math.sqrt(1.0 - zeta ** 2))
+    assert c["bearings"]["disk"]["peak_whirl_mm"] == pytest.approx(amp * 1e3, rel=1e-3)
+    j = int(np.argmin(abs(w - c["peak_speed_rpm"])))
+    assert c["t_s"] == pytest.approx(tab[j, 0])
+    assert c["direction"] == "down"
+    lo, hi = c["speed_range_rpm"]
+    assert lo < c["peak_speed_rpm"] < hi
+    # the half-prominence width of a light-damped peak: about +-sqrt(3) zeta around it
+    assert hi / lo - 1.0 == pytest.approx(2.0 * math.sqrt(3.0) * zeta, rel=0.1)
+
+
+def test_two_peaks_each_to_its_critical_speed():
+    """Two modes, damped peaks above their undamped critical speeds as the engine's squeeze-film dampers put them
+    (8500 -> ~9100, 10200 -> ~11400 rev/min, docs/explanation/rundown.md): each critical speed gets its own peak,
+    within a bin of the composite curve's maxima found by a bounded scalar maximisation; 10 200 is nearer to the
+    lower peak than to the upper one, and the lower peak is not given to both."""
+    w = falling(16000.0, 4500.0, 60_001)
+
+    def curve(x):
+        return sdof(x, 9100.0, 0.08) + 0.9 * sdof(x, 11400.0, 0.06)
+
+    tab = table(w, curve(w))
+    got = crossings(tab, "spool_pt", [8500.0, 10200.0], LOCS, 1)
+    assert [c["critical_speed_rpm"] for c in got] == [8500.0, 10200.0]
+    assert all(c["peak_found"] for c in got)
+    for c, (a, b) in zip(got, ((8000.0, 10000.0), (10500.0, 13000.0))):
+        ref = minimize_scalar(lambda x: -curve(x), bounds=(a, b), method="bounded", options={"xatol": 1e-3}).x
+        assert abs(math.log(c["peak_speed_rpm"] / ref)) <= math.log1p(SPEED_BIN), (c["peak_speed_rpm"], ref)
+    assert abs(10200.0 - 9100.0) < abs(11400.0 - 10200.0)
+
+
+def test_each_location_over_its_own_peak():
+    """Two locations as the engine's bearings: #0 with damped peaks at ~9 100 and ~11 400 rev/min, #5 with one
+    at ~9 950 (between them, the upper mode seen at #5). The crossing of 10 200 takes #5's values over #5's own peak
+    (its analytic maximum, though it lies outside #0's peak width), that of 8 500, where #5 has no peak, over #0's
+    peak width."""
+    w = falling(16000.0, 4500.0, 60_001)
+    w0 = sdof(w, 9100.0, 0.03) + 0.9 * sdof(w, 11400.0, 0.03)
+    w5 = 0.15 * sdof(w, 9950.0, 0.05)
+    tab = np.column_stack([np.linspace(0.0, 1.0, len(w)), w / RPM, w0, w5])
+    locs = {"0": {"whirl": "rotor.X_brg0"}, "5": {"whirl": "rotor.X_brg5"}}
+    lo, hi = crossings(tab, "spool_pt", [8500.0, 10200.0], locs, 1)
+    assert not hi["speed_range_rpm"][0] <= 9950.0 <= hi["speed_range_rpm"][1]
+    amp5 = 0.15 * U_M / (2.0 * 0.05 * math.sqrt(1.0 - 0.05 ** 2))
+    assert hi["bearings"]["5"]["peak_whirl_mm"] == pytest.approx(amp5 * 1e3, rel=1e-3)
+    assert hi["bearings"]["5"]["speed_range_rpm"][0] < 9950.0 < hi["bearings"]["5"]["speed_range_rpm"][1]
+    assert lo["bearings"]["5"]["speed_range_rpm"] == lo["speed_range_rpm"] == lo["bearings"]["0"]["speed_range_rpm"]
+    sel = (w >= lo["speed_range_rpm"][0]) & (w <= lo["speed_range_rpm"][1])
+    assert lo["bearings"]["5"]["peak_whirl_mm"] == pytest.approx(w5[sel].max() * 1e3)
+
+
+def test_no_peak_is_said_not_a_band_edge():
+    """A whirl that rises monotonically with speed (a mode far above the run's speeds) has no peak: the crossings
+    within the run's speeds say so (peak_found false, a note, no speed), none outside them is made up."""
+    w = falling(12000.0, 3000.0)
+    tab = table(w, sdof(w, 30000.0, 0.05))
+    got = crossings(tab, "spool", [8500.0, 10200.0, 14000.0], LOCS, 1)
+    assert [c["critical_speed_rpm"] for c in got] == [8500.0, 10200.0]
+    for c in got:
+        assert c["peak_found"] is False and c["peak_speed_rpm"] is None and c["t_s"] is None
+        assert "no resonance peak" in c["note"]
+        assert c["bearings"]["disk"]["peak_whirl_mm"] is None
+
+
+def test_band_edge_maximum_is_not_a_peak():
+    """One damped peak at 11 400 rev/min (critical 10 200) on a whirl that falls from 9 000 down: the largest
+    whirl within +-15 % of 8 500 (half way to 10 200: 9 350) is at that band's edge, which the crossing of 8 500
+    must not report; 10 200 gets 11 400."""
+    w = falling(16000.0, 4500.0, 60_001)
+    whirl = sdof(w, 11400.0, 0.06)
+    band = (w >= 8500 * 0.85) & (w <= 9350.0)
+    assert w[band][np.argmax(whirl[band])] == pytest.approx(9350.0, abs=1.0)   # what a band's maximum gives
+    lo, hi = crossings(table(w, whirl), "spool", [8500.0, 10200.0], LOCS, 1)
+    assert lo["peak_found"] is False and lo["peak_speed_rpm"] is None
+    assert hi["peak_found"] is True
+    exact = 11400.0 / math.sqrt(1.0 - 2.0 * 0.06 ** 2)
+    assert abs(math.log(hi["peak_speed_rpm"] / exact)) <= math.log1p(SPEED_BIN)
+
+
+def test_ripple_below_the_prominence_is_no_peak():
+    """A monotone whirl with a 0.2 % ripple (the per-bin maximum of an elliptic orbit) has no peak; the same
+    ripple on a resonance curve leaves its one peak."""
+    w = falling(9000.0, 3000.0)
+    ripple = 1.0 + 0.002 * np.sin(w / 7.0)
+    assert resonance_peaks(w, sdof(w, 30000.0, 0.05) * ripple) == []
+    (p,) = resonance_peaks(w, sdof(w, 6000.0, 0.05) * ripple)
+    assert p.speed == pytest.approx(6000.0 / math.sqrt(1.0 - 2.0 * 0.05 ** 2), rel=2 * SPEED_BIN)
+
+
+def test_samples_in_any_order_and_stopped_samples():
+    """The peaks do not depend on the samples' order (a rundown, a run-up, shuffled); samples at 0 rev/min (a
+    stopped rotor) are left out."""
+    w = np.concatenate([falling(), np.zeros(50)])
+    a = sdof(w, 6000.0, 0.03)
+    ref = resonance_peaks(w, a)
+    perm = np.random.default_rng(1).permutation(len(w))
+    got = resonance_peaks(w[perm], a[perm])
+    assert [p.speed for p in got] == [p.speed for p in ref] and len(ref) == 1
+    assert perm[got[0].index] == ref[0].index or w[perm][got[0].index] == w[ref[0].index]
+
+
+def test_assignment_limits():
+    """No peak further than MAX_SHIFT from a critical speed is assigned to it; one critical speed, two peaks: the
+    nearer; bad shapes are a clear error."""
+    from rotorcosim.cases.rundown.results import Peak
+
+    pk = [Peak(0, 5000.0, 1.0, 4900.0, 5100.0), Peak(1, 9000.0, 1.0, 8800.0, 9200.0)]
+    assert assign_peaks([8500.0], pk) == [pk[1]]
+    assert assign_peaks([13000.0], pk) == [None]
+    assert assign_peaks([], pk) == [] and assign_peaks([8500.0], []) == [None]
+    with pytest.raises(ValueError, match="differ in length"):
+        resonance_peaks([1.0, 2.0], [1.0])
