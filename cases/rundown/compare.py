@@ -11,8 +11,9 @@ summary, time series and figures). ``DIR/rundown_compare.json`` holds:
 - ``crossings``: per critical-speed crossing of the monolithic run (matched by spool and critical speed) its
   ``spool``, ``critical_speed_rpm``, ``t_s`` and ``peak_speed_rpm`` of each run (the speed with its relative
   error) and per bearing each peak (``peak_whirl_mm``, ``peak_contact_load_N``, ``peak_contact_stress_MPa``,
-  ``peak_transmitted_force_N``) ``{staggered, monolithic, rel_error_pct}``; a crossing one run has and the
-  other not is listed with ``null`` for the missing run;
+  ``peak_transmitted_force_N``) ``{staggered, monolithic, rel_error_pct}``, and ``peak_found`` of each run; a
+  crossing one run has (or finds a peak at) and the other not is listed with ``null`` for the missing values and
+  is not within; one where neither run finds a resonance peak has a ``note`` and is not judged;
 - ``speeds``: per spool its speed at the end ``end_rpm`` of each run and their relative error (not judged);
 - ``wall_time_s``, ``cpu_time_s`` of each run (as ``rotorcosim run`` times a run: the simulation whole, no
   figures), ``speedup`` = monolithic / staggered wall time and ``speedup_cpu`` the same in CPU time (the
@@ -132,25 +133,29 @@ def table(st: dict, mono: dict) -> dict:
     mono_by_key = {(c["spool"], c["critical_speed_rpm"]): c for c in mono.get("crossings") or []}
     for key in keys:
         a, b = by_key.get(key), mono_by_key.get(key)
-        entry = {"spool": key[0], "critical_speed_rpm": key[1],
+        found = {k: c is not None and c.get("peak_found", True) for k, c in zip(KINDS, (a, b))}
+        entry = {"spool": key[0], "critical_speed_rpm": key[1], "peak_found": found,
                  "t_s": {"staggered": a and a["t_s"], "monolithic": b and b["t_s"]},
                  "peak_speed_rpm": _pair(a and a["peak_speed_rpm"], b and b["peak_speed_rpm"]), "bearings": {}}
         for loc in sorted(set((a or {}).get("bearings", {})) | set((b or {}).get("bearings", {}))):
             ra, rb = (a or {}).get("bearings", {}).get(loc, {}), (b or {}).get("bearings", {}).get(loc, {})
             entry["bearings"][loc] = {p: _pair(ra.get(p), rb.get(p)) for p in PEAKS if p in ra or p in rb}
+        if not any(found.values()):  # both runs agree that the response has no peak there: nothing to compare
+            entry["note"] = "no resonance peak in either run"
         crossings.append(entry)
+    judged = [c for c in crossings if any(c["peak_found"].values())]
     speeds = {sp: {"end_rpm": _pair((st.get("speeds") or {}).get(sp, {}).get("end_rpm"), v.get("end_rpm"))}
               for sp, v in (mono.get("speeds") or {}).items()}
     groups = {
         "results": [e for r in results.values() for e in r.values()],
-        "crossing_peaks": [e for c in crossings for r in c["bearings"].values() for e in r.values()],
-        "crossing_speeds": [c["peak_speed_rpm"] for c in crossings],
+        "crossing_peaks": [e for c in judged for r in c["bearings"].values() for e in r.values()],
+        "crossing_speeds": [c["peak_speed_rpm"] for c in judged],
     }
     largest, within = {}, {}
     for name, entries in groups.items():
         largest[name], within[name] = _within(entries)
     # no result at all to judge (no bearings, no crossing) is not a pass
-    within["all"] = all(within.values()) and bool(groups["results"]) and bool(crossings)
+    within["all"] = all(within.values()) and bool(groups["results"]) and bool(judged)
     return {"results": results, "crossings": crossings, "speeds": speeds, "largest_error_pct": largest,
             "within_2pct": within}
 

@@ -117,6 +117,17 @@ def test_table_errors_and_verdicts():
     assert missing["peak_speed_rpm"]["staggered"] is None and missing["peak_speed_rpm"]["rel_error_pct"] is None
     assert not t["within_2pct"]["crossing_speeds"] and not t["within_2pct"]["all"]
     assert rc.rel_error_pct(1.0, 0.0) is None and rc.rel_error_pct(None, 1.0) is None
+    # a critical speed where neither run finds a resonance peak (cases/rundown/results.py: peak_found false, None
+    # values) is noted and not judged; one run finding a peak the other does not is not within
+    a, b = _summary(1.0, 2.0), _summary(1.0, 2.0)
+    for s in (a, b):
+        s["crossings"][0].update(peak_found=False, t_s=None, peak_speed_rpm=None,
+                                 bearings={"0": {p: None for p in rc.PEAKS}})
+    t = rc.table(a, b)
+    assert t["crossings"][0]["note"] and t["within_2pct"]["all"]
+    t = rc.table(a, _summary(1.0, 2.0))
+    assert t["crossings"][0]["peak_found"] == {"staggered": False, "monolithic": True}
+    assert not t["within_2pct"]["crossing_peaks"] and not t["within_2pct"]["all"]
 
 
 def test_default_duration_is_fuel_cut_plus_rundown_plus_ten_minutes():
