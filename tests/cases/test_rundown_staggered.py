@@ -79,7 +79,8 @@ def test_short_rundown_staggered_within_2pct_of_monolithic(tmp_path):
     _check(t, out)
     assert t["duration_s"] == DURATION and t["duration_rule"] == "given" and t["t_fuel_cut_s"] == CUT
     # the rundown starts coupled: a coupled interval ends at the cut here (0.95 + 0.06 s), and no held one may
-    # start there (it ran the first 0.3 s of the rundown frozen, and put #5's 8 500 rev/min peak 10 % off)
+    # start there (it ran the first 0.3 s of the rundown frozen: #5's 8 500 rev/min crossing came out 10 % off
+    # when the crossings were still read as maxima over a speed band)
     timeline = json.loads((out / "staggered" / "summary.json").read_text())["timeline"]
     assert [iv["phase"] for iv in timeline if abs(iv["t_start"] - CUT) < 1e-6] == ["TM"]
     # the windmilling's thermal-only intervals make the staggered run the cheaper one
