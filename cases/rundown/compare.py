@@ -36,11 +36,13 @@ fuel cut to windmilling (see its comment), plus :data:`WINDMILLING_S`; for ``bla
 Under faults it behaves as ``rotorcosim compare`` (cases/blade_loss/compare.py): one comparison at a time
 writes into DIR (a lock); a failed run says what happened and keeps what it recorded in its folder; Ctrl-C
 stops the run going on (its folder says ``interrupted``), keeps the complete ones and says which;
-``--resume`` runs only the runs that are not complete.
+``--resume`` runs only the runs that are not complete (the complete ones checked to be this comparison's: the
+scenario, its level, the duration and every ``--set`` / ``--swap``).
 """
 from __future__ import annotations
 
 import copy
+import json
 import math
 import sys
 import tempfile
@@ -171,6 +173,13 @@ def phase_totals(summary: dict) -> dict:
     return out
 
 
+def _changes(edits) -> list | None:
+    """A scenario's edits (provenance.py) without where they came from (the command line, Python), as JSON."""
+    if not isinstance(edits, list):
+        return None
+    return json.loads(json.dumps([{k: v for k, v in dict(e).items() if k != "origin"} for e in edits]))
+
+
 def _plans(sc: Scenario, duration: float) -> dict:
     """(scenario, schedule) of each run: the scenario's own (automatic) schedule, and one coupled interval."""
     plans = {}
@@ -243,6 +252,10 @@ def compare_rundown(scenario: Scenario | str | Path = "blade_loss_rundown", dura
     # --resume: the complete runs of this comparison are kept (another scenario, level or duration is an error)
     kept = {kind: _kept(out / kind, plans[kind][0].name, unbalance, duration) for kind in held} if resume else {}
     kept = {k: v for k, v in kept.items() if v is not None}
+    for kind, s in kept.items():  # the same --set / --swap / --unbalance too (a fuel cut moved, a part swapped)
+        if _changes((s.get("provenance") or {}).get("edits")) != _changes(sc.edits):
+            raise ValueError(f"--resume: {out / kind} holds a run made with other --set/--swap/--unbalance "
+                             f"({(s.get('provenance') or {}).get('edits')}): give the same command, or another folder")
     made = not out.exists()
     ensure_folder(out)
     try:

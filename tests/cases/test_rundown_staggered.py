@@ -147,7 +147,8 @@ def _fake_execute(fail_on: str, error: BaseException):
         status = "complete" if kind != fail_on else ("interrupted" if isinstance(error, KeyboardInterrupt)
                                                       else "failed")
         s = {"status": status, "scenario": sc.name, "unbalance_N": 2850.0, "t_end_s": kw["schedule"].duration,
-             "wall_time_s": 1.0, "cpu_time_s": 1.0, "timeline": [], **_summary(1.0, 2.0)}
+             "wall_time_s": 1.0, "cpu_time_s": 1.0, "timeline": [], "provenance": {"edits": list(sc.edits)},
+             **_summary(1.0, 2.0)}
         (out / "summary.json").write_text(json.dumps(s))
         if kind == fail_on:
             raise error
@@ -169,6 +170,10 @@ def test_ctrl_c_keeps_the_complete_run_and_says_so(tmp_path, monkeypatch):
     monkeypatch.setattr(rc, "execute", lambda sc, o, **kw: ran.append(sc.name) or done(sc, o, **kw))
     t = rc.compare_rundown("blade_loss_rundown", 5.0, out, figures=False, warm_up=False, resume=True)
     assert ran == ["blade_loss_rundown_monolithic"] and t["within_2pct"]["all"]
+    # a resume with another --set is refused: the kept runs are not of that scenario
+    other = rotorcosim.load_scenario("blade_loss_rundown").set({"spool_pt.t_fuel_cut": 2.01})
+    with pytest.raises(ValueError, match="made with other --set/--swap/--unbalance"):
+        rc.compare_rundown(other, 5.0, out, figures=False, warm_up=False, resume=True)
 
 
 def test_a_failed_run_is_raised_and_its_folder_kept(tmp_path, monkeypatch):
