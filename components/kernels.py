@@ -22,6 +22,7 @@ keeps (links, rings, observers), so an output array is never held across a step.
 from __future__ import annotations
 
 import hashlib
+import re
 from collections import namedtuple
 
 from .contract import Component
@@ -60,12 +61,24 @@ def port_tuple(cls_name: str, kind: str, names: tuple[str, ...]) -> type:
 _BY_ADDRESS_NAMES = ("by_address", "address_of", "call_at")
 
 
+_STALE: dict[str, type] = {}
+
+
 def __getattr__(name):
     # imported on first use: this module (KernelComponent, the status codes) does not import numba
     if name in _BY_ADDRESS_NAMES:
         from . import numba_internals
 
         return getattr(numba_internals, name)
+    if re.fullmatch(r"[A-Za-z]\w*(Inputs|Outputs)(_[0-9a-f]+)?", name):
+        # a port tuple that a numba cache index names but this process has not made (numba unpickles a kernel's
+        # whole index, every signature in it, before it reads any: e.g. the rotor's named ports of an older
+        # version): a stand-in class that no live type equals, so that entry is skipped, not an error
+        t = _STALE.get(name)
+        if t is None:
+            t = _STALE[name] = namedtuple(name, ())
+            t.__module__ = __name__
+        return t
     raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 

@@ -1,13 +1,16 @@
 """``rotorcosim import-ross ROTOR.toml --out ENGINE.toml``: a rotor saved by ROSS (``Rotor.save``) as an engine
 file of rotorcosim's format (docs/reference/engine-format.md); no ROSS needed.
 
-``--attach 0=NODE,5=NODE`` makes the ROSS bearings at those nodes the co-simulated ball bearings #0 and #5
+``--attach ID=NODE,...`` (e.g. ``0=NODE,5=NODE``; any number of ids of letters, digits or ``_``) makes the ROSS
+bearings at those nodes the co-simulated ball bearings #ID
 (their linear coefficients become the housings' pedestals), so that ``blade_loss.toml`` scenarios can run the
 rotor; without it the file has the ROSS bearings as linear supports (critical speeds, check-engine, to_ross).
 """
 from __future__ import annotations
 
 from pathlib import Path
+
+from rotorcosim.components.rotor.attach import ID
 
 from .engine_toml import write
 from .ross_import import DEFAULT_HUB_MASS_KG, DEFAULT_SPEED_RPM, from_ross
@@ -20,8 +23,11 @@ def _attach(text: str | None) -> dict:
     for item in text.split(","):
         key, _, node = item.partition("=")
         key = key.strip()
-        if key not in ("0", "5") or not node.strip().lstrip("-").isdigit():
-            raise ValueError(f"--attach {text!r}: expected 0=NODE,5=NODE (ROSS node numbers of two bearings)")
+        if not ID.match(key) or not node.strip().lstrip("-").isdigit():
+            raise ValueError(f"--attach {text!r}: expected ID=NODE,... (bearing ids of letters, digits or _, and "
+                             "the ROSS node numbers of their bearings, e.g. 0=2,5=9)")
+        if f"bearing{key}" in out:
+            raise ValueError(f"--attach {text!r}: bearing id {key!r} given twice")
         out[f"bearing{key}"] = int(node)
     return out
 
@@ -53,8 +59,9 @@ def add_arguments(parser):
     parser.add_argument("--coefficients-at", type=float, default=None, metavar="RPM",
                         help="take speed-dependent bearing coefficients at this speed (default: such a bearing "
                              "is an error)")
-    parser.add_argument("--attach", default=None, metavar="0=NODE,5=NODE",
-                        help="the ROSS nodes of the two bearings to co-simulate as ball bearings #0 and #5")
+    parser.add_argument("--attach", default=None, metavar="ID=NODE,...",
+                        help="the ROSS nodes of the bearings to co-simulate as ball bearings #ID (any number, e.g. "
+                             "0=NODE,5=NODE for a scenario that extends the shipped blade_loss)")
     parser.add_argument("--unbalance-node", type=int, default=None, metavar="NODE",
                         help="ROSS node of the blade loss (with --attach; default: the first disk's)")
     parser.add_argument("--hub-mass", type=float, default=DEFAULT_HUB_MASS_KG, metavar="KG",

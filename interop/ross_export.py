@@ -23,6 +23,7 @@ from __future__ import annotations
 import math
 from pathlib import Path
 
+from rotorcosim.components.rotor import attach as attach_layout
 from rotorcosim.components.rotor import engine_check
 from rotorcosim.components.rotor import model as fem
 
@@ -37,7 +38,7 @@ def _load(engine) -> tuple[dict, str]:
 def linear_supports(data: dict, scenario=None) -> dict | None:
     """The attached co-simulated bearings linearised (None: the engine attaches none)."""
     attach = data.get("attach", {})
-    if not any(k in attach for k in ("bearing0", "bearing5")):
+    if not attach_layout.layout(attach).bearings:
         return None
     from rotorcosim.cases.blade_loss import linear_engine
     from rotorcosim.master.scenario.build import load_scenario

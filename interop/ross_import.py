@@ -17,7 +17,7 @@
 * no structural damping ([damping] zeta = 0, as ROSS's shaft elements with alpha = beta = 0; other values are
   an error).
 
-``attach`` makes two of the ROSS bearings the co-simulated ball bearings ("bearing0", "bearing5"): each such
+``attach`` makes ROSS bearings the co-simulated ball bearings ("bearing<ID>": any number, any ids): each such
 bearing's linear coefficients become a pedestal (the housing, ``hub_mass_kg``) on which the ball bearing and
 its squeeze film damper sit; the rub rings go to the same nodes and the unbalance to ``unbalance_node``.
 
@@ -30,6 +30,10 @@ from __future__ import annotations
 from pathlib import Path
 
 import numpy as np
+
+from rotorcosim.components.rotor.attach import ID
+from rotorcosim.components.rotor.model import MAX_SPOOLS
+from rotorcosim.scenarios import natural_key
 
 from . import ross_toml
 
@@ -98,8 +102,8 @@ def from_ross(rotor, *, speed_rpm: float | None = None, speed_rpm_coefficients: 
 
     ``speed_rpm``: the spools' speed (default: the rotor's ``rated_w``, else :data:`DEFAULT_SPEED_RPM`);
     ``speed_rpm_coefficients``: the speed at which speed-dependent bearing coefficients are taken (None: such a
-    bearing is an error); ``attach``: {"bearing0": ROSS node, "bearing5": ROSS node} of two ROSS bearings to
-    become the co-simulated ball bearings; ``unbalance_node``: the ROSS node of the blade loss (default: the
+    bearing is an error); ``attach``: {"bearing<ID>": ROSS node, ...} of the ROSS bearings to become the
+    co-simulated ball bearings (ids of letters, digits or _); ``unbalance_node``: the ROSS node of the blade loss (default: the
     first disk's); ``hub_mass_kg``: the housing mass of each attached bearing's pedestal."""
     if isinstance(rotor, (str, Path)):
         el = ross_toml.read(rotor)
@@ -139,9 +143,11 @@ def from_ross(rotor, *, speed_rpm: float | None = None, speed_rpm_coefficients: 
             chains[-1].append(e)
         else:
             chains.append([e])
-    if len(chains) > 2:
-        raise RossImportError(f"ROSS rotor with {len(chains)} shafts; the engine format carries one or two spools")
-    names = ["shaft"] if len(chains) == 1 else ["inner", "outer"]
+    if len(chains) > MAX_SPOOLS:
+        raise RossImportError(f"ROSS rotor with {len(chains)} shafts; the engine format carries at most "
+                              f"{MAX_SPOOLS} spools")
+    names = ["shaft"] if len(chains) == 1 else ["inner", "outer"] if len(chains) == 2 else \
+        [f"shaft{i}" for i in range(len(chains))]
     where: dict[int, tuple[str, int]] = {}       # ROSS node -> (spool, local node)
     materials: dict[tuple, str] = {}
     engine: dict = {"engine": {"format": 1, "name": name or f"imported from {source}",
@@ -200,6 +206,9 @@ def from_ross(rotor, *, speed_rpm: float | None = None, speed_rpm_coefficients: 
         pedestals.setdefault(n, {"mass": 0.0})["mass"] += mx
     supports = []
     attach = dict(attach or {})
+    for key in attach:
+        if not (key.startswith("bearing") and ID.match(key[len("bearing"):])):
+            raise RossImportError(f"attach: {key!r} is not bearing<ID> (an id of letters, digits or _)")
     attached: dict[str, dict] = {}
     for b in el["bearings"]:
         what = f"{b['kind']} {b['tag']!r}"
@@ -253,25 +262,22 @@ def from_ross(rotor, *, speed_rpm: float | None = None, speed_rpm_coefficients: 
         if "kxx" not in p:
             raise RossImportError(f"ROSS node {n} (on no shaft) has no bearing to ground: not carried")
         peds[f"n{n}"] = _pedestal(p, f"ROSS node {n}")
-    for key, a in sorted(attached.items()):
-        hub = f"h{key[-1]}"
+    for key, a in sorted(attached.items(), key=lambda kv: natural_key(kv[0])):
+        hub = f"h{key[len('bearing'):]}"
         peds[hub] = _pedestal({**a["co"], "mass": hub_mass_kg}, f"ROSS bearing {a['tag']!r}")
     if supports:
         engine["support"] = supports
     if peds:
         engine["pedestal"] = peds
     if attached:
-        if set(attached) != {"bearing0", "bearing5"}:
-            raise RossImportError("attach: give both bearing0 and bearing5 (the blade-loss system has two)")
         if unbalance_node is None:
             if not el["disks"]:
                 raise RossImportError("attach: the rotor has no disk; give the unbalance node")
             unbalance_node = int(el["disks"][0]["n"])
+        ids = sorted((k[len("bearing"):] for k in attached), key=natural_key)
         engine["attach"] = {
-            "bearing0": {"node": attached["bearing0"]["node"], "housing": "h0"},
-            "bearing5": {"node": attached["bearing5"]["node"], "housing": "h5"},
-            "rubring0": {"node": attached["bearing0"]["node"]},
-            "rubring5": {"node": attached["bearing5"]["node"]},
+            **{f"bearing{i}": {"node": attached[f"bearing{i}"]["node"], "housing": f"h{i}"} for i in ids},
+            **{f"rubring{i}": {"node": attached[f"bearing{i}"]["node"]} for i in ids},
             "unbalance": {"node": node(int(unbalance_node), "unbalance")},
             "oil_temperature_C": 30.0}
     return engine

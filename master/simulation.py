@@ -20,7 +20,7 @@ from rotorcosim.components.contract import COUPLED, HELD, ContractError
 from rotorcosim.master.compiled import ahead
 from rotorcosim.master.compiled import choice as compiled
 from rotorcosim.master.core.algorithm import Engine, EngineSettings, SimulationFailed
-from rotorcosim.master.core.cycle import Cycle, as_cycle
+from rotorcosim.master.core.cycle import Cycle, RevolutionCounter, as_cycle
 from rotorcosim.master.core.phases import Phases
 from rotorcosim.master.manipulator.hold import DEFAULT_HOLD, HOLDS, RESTART_CYCLES, StaggeredHold
 from rotorcosim.master.schedule.timeline import RunReport, Schedule, ScheduleError, UsedInterval
@@ -88,7 +88,12 @@ class Simulation:
             self.cycle_source.check(system)
         self.hold = StaggeredHold(system, self.engine.links, hold, hold_cycles, self.cycle_source, restart_cycles,
                                   temperature_zero)
-        self.observers = list(observers)
+        #: the turns of the cycle's angle (a cycle source with ``angle``: windows counted in revolutions), or None;
+        #: it watches the run as its first observer
+        self.revolutions = None
+        if self.cycle_source is not None and self.cycle_source.angle is not None:
+            self.revolutions = self.hold.revolutions = RevolutionCounter(self.cycle_source.angle)
+        self.observers = ([self.revolutions] if self.revolutions is not None else []) + list(observers)
         self.t = float(t0)
         self.t0 = float(t0)
         self.phase = None
@@ -217,7 +222,7 @@ class Simulation:
         nsteps = int(math.ceil(nsteps / lcm) * lcm)
         for comp in self.system.components.values():
             comp.enter_phase(role)
-        self.hold.start(role, active, mult, step, self.t, self.engine.steps_taken)
+        self.hold.start(role, active, mult, step, self.t, self.engine.steps_taken, nsteps)
         self.engine.prepare(active, mult, step)
         t_start = self.t
         self.interval_steps = nsteps if stop is None else None
@@ -232,6 +237,8 @@ class Simulation:
         why = reason
         if self.engine_choice not in compiled.ENGINES:
             raise ContractError(f"engine {self.engine_choice!r} not in {compiled.ENGINES}")
+        if stop is not None:
+            stop.check_steps = math.lcm(stop.every, lcm)   # the base steps between two of its checks
         runner = compiled.runner(self, role, active, mult, step, stop, self.engine_choice)
         if role == COUPLED:
             self.engines_used.append("compiled" if runner is not None else "python")

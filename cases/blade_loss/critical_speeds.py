@@ -1,7 +1,7 @@
 """``rotorcosim critical-speeds``: synchronous critical speeds (and Campbell diagram) of the rotor model.
 
-The gas generator turns at the scenario's speed ratio (15 000 / 16 000) of the power turbine; bearings #0 and #5
-are the co-simulated system linearised (rotorcosim.cases.blade_loss.linear_engine: ball contacts at the preloaded rest, the
+The gas generator turns at the scenario's speed ratio (15 000 / 16 000) of the power turbine; the co-simulated
+bearings (#0 and #5 of the paper's engine, every [attach] bearing<ID> of another) are the system linearised (rotorcosim.cases.blade_loss.linear_engine: ball contacts at the preloaded rest, the
 outer race + journal body of eq. 5, O-ring, film at the stated oil temperature), the one engine model the
 calibration uses. ``--json`` reports it under ``support_model``. (A master command: the system's linearisation
 takes the bearing and damper components, which the rotor package, bundled alone into its FMU, may not import.)
@@ -14,9 +14,9 @@ from pathlib import Path
 
 import numpy as np
 
-from rotorcosim.components.rotor import critical
+from rotorcosim.components.rotor import attach, critical
 from rotorcosim.components.rotor import model as fem
-from rotorcosim.cases.blade_loss import linear_engine
+from rotorcosim.cases.blade_loss import linear_engine, response_peaks
 
 
 def add_arguments(parser):
@@ -37,15 +37,10 @@ def add_arguments(parser):
 
 
 def _supports(m, oil_temperature, scenario=None):
-    """The co-simulated bearings linearised where the engine attaches them ([attach] bearing0 and bearing5), or
-    None for an engine that attaches none (its [[support]] entries are all its supports, e.g. a ROSS rotor)."""
-    attach = m.data.get("attach", {})
-    there = [k for k in ("bearing0", "bearing5") if k in attach]
-    if not there:
+    """The co-simulated bearings linearised where the engine attaches them (every [attach] bearing<ID>), or None
+    for an engine that attaches none (its [[support]] entries are all its supports, e.g. a ROSS rotor)."""
+    if not attach.layout(m.data.get("attach", {})).bearings:
         return None
-    if len(there) == 1:
-        raise ValueError(f"engine file: [attach] has {there[0]} but not the other of bearing0, bearing5 (the "
-                         "linearised engine takes both or none)")
     return linear_engine.supports(scenario, oil_temperature_C=oil_temperature, data=m.data)
 
 
@@ -56,7 +51,9 @@ def critical_speeds(model_file: str = "", count: int = 6, max_rpm: float = 30000
     [degrees C] (None: the file's), with the speed ratio, the paper's targets and the support model. The
     co-simulated bearings the file attaches are linearised from the components of ``scenario`` (a
     :class:`~rotorcosim.master.api.Scenario`; None: the shipped blade-loss scenario's); an engine that attaches
-    none stands on its [[support]] entries alone.
+    none stands on its [[support]] entries alone. With co-simulated bearings, ``damped_critical_speeds_rpm``: per
+    bearing id the speeds from half the lowest critical speed to ``max_rpm`` where the linear engine's unbalance
+    response peaks there (:mod:`.response_peaks`), where a run's response peaks.
 
     Example: ``critical_speeds("engine.toml", count=3)["forward_synchronous_rpm"]``."""
     if count < 1:
@@ -72,6 +69,12 @@ def critical_speeds(model_file: str = "", count: int = 6, max_rpm: float = 30000
     out["model_file"] = str(model_file or fem.DEFAULT_FILE)
     out["support_model"] = linear_engine.describe(sup) if sup is not None else {
         "kind": "linear", "description": "the engine file's linear supports only (no co-simulated bearing attached)"}
+    if sup is not None and out["forward_synchronous_rpm"]:
+        # the speeds a run sees its response peak at (response_peaks): from half the lowest undamped critical
+        # speed, below which the films' damping cannot move a peak, to max_rpm
+        ref = m.omega_pt * 30.0 / np.pi
+        out["damped_critical_speeds_rpm"] = response_peaks.damped_critical_speeds(
+            m, sup, 0.5 * out["forward_synchronous_rpm"][0], max_rpm, ref)
     return out
 
 
@@ -173,10 +176,15 @@ def run(args) -> int:
         if sm["kind"] != "coupled":
             print(f"  supports: {sm['description']}")
         else:
-            print(f"  supports #0/#5: {sm['description']}; film at {sm['oil_temperature_C']:g} C")
+            ids = "/".join(f"#{b}" for b in sm.get("bearings", {}))
+            print(f"  supports {ids}: {sm['description']}; film at {sm['oil_temperature_C']:g} C")
         for b, v in sm.get("bearings", {}).items():
             print(f"    #{b}: contact {v['k_contact']:.3g} N/m, journal {v['m_journal']:.3g} kg, O-ring "
                   f"{v['k_spring']:.4g} N/m, film {v['c_film']:.4g} N s/m")
+        if out.get("damped_critical_speeds_rpm"):
+            print("  damped (where the unbalance response peaks), rev/min:")
+            for b, v in out["damped_critical_speeds_rpm"].items():
+                print(f"    #{b}: " + (", ".join(f"{w:.0f}" for w in v) or "no peak"))
         if args.campbell:
             print(f"Campbell diagram: {args.campbell}")
     return 0

@@ -20,6 +20,9 @@ Conventions, so that each figure reads at a glance:
   Table 5 load/stress pairs describe: they follow the inner-race Hertz law, ~248 Q^(1/3) MPa at #0, although its
   text says outer race), with the outer race's (dashed, ``max_contact_stress_outer_MPa``; at light loads the
   balls' centrifugal force makes it the larger);
+* one response figure per co-simulated bearing: the first bearing's is ``fig09_response_bearing<ID>.png``, every
+  other's ``fig10_response_bearing<ID>.png`` (#0 and #5 for the paper's engine); Figs. 11-14 have a row or a line
+  per bearing;
 * "(paper Fig. N)" only on the paper's own cases (a shipped blade-loss scenario at one of Table 5's levels,
   unchanged); any other run is titled by its scenario name.
 """
@@ -32,7 +35,7 @@ from pathlib import Path
 import numpy as np
 
 from rotorcosim.cases.blade_loss.table5 import PAPER_LEVELS
-from rotorcosim.cases.blade_loss.results import BEARINGS, KELVIN, NODES
+from rotorcosim.cases.blade_loss.results import KELVIN, NODES, bearing_ids
 from rotorcosim.master.run.outputs import FIGURE_DPI
 
 RUB_CLEARANCE_MM = 0.508  # Table 3 (both rings)
@@ -54,6 +57,8 @@ PNG_COMPRESS_LEVEL = 1
 PLOT_POINTS = 4000
 #: the figures, in the order they are written (the job names of :func:`draw`)
 JOBS = ("fig09", "fig10", "fig11", "fig12", "fig13", "fig14")
+#: the temperature lines of the bearings, in the order of their ids (#0 solid, #5 dotted for the paper's engine)
+LINE_STYLES = ("-", ":", "--", "-.")
 
 
 @dataclass(frozen=True)
@@ -65,12 +70,14 @@ class Context:
     speed_rpm: float | None  # rotor speed, for the orbit window in rotor cycles
     paper: bool  # one of the paper's own cases: titled "(paper Fig. N)"
     dpi: int = FIGURE_DPI  # resolution of the PNG files [dots per inch]
+    bearings: tuple = ("0", "5")  # the ids of the co-simulated bearings (results.bearing_ids), in order
 
 
 def context(sc, F_u: float, speed_rpm: float | None, dpi: int | None = None) -> Context:
     """The :class:`Context` of a run of scenario ``sc`` with blade-loss force ``F_u`` [N] at the rotor speed
     ``speed_rpm`` [rev/min] (None: not declared), drawn at ``dpi`` (None: :data:`FIGURE_DPI`)."""
-    return Context(sc.name, float(F_u), speed_rpm, is_paper_case(sc, F_u), int(dpi or FIGURE_DPI))
+    return Context(sc.name, float(F_u), speed_rpm, is_paper_case(sc, F_u), int(dpi or FIGURE_DPI),
+                   bearing_ids(sc.components))
 
 
 def envelope(t: np.ndarray, y: np.ndarray, points: int = PLOT_POINTS) -> tuple[np.ndarray, np.ndarray]:
@@ -94,11 +101,11 @@ def is_paper_case(sc, F_u: float) -> bool:
     """A shipped blade-loss scenario at one of Table 5's levels, every component and parameter as shipped."""
     from rotorcosim import scenarios
 
-    folder = Path(scenarios.FOLDER).resolve()
+    folders = (Path(scenarios.FOLDER).resolve(), Path(scenarios.FOLDER).resolve() / "templates")
 
-    def shipped(f) -> bool:
+    def shipped(f) -> bool:   # a shipped scenario or template
         try:
-            return f is not None and Path(f).resolve().parent == folder
+            return f is not None and Path(f).resolve().parent in folders
         except (OSError, TypeError):
             return False
 
@@ -312,7 +319,7 @@ class _Figures:
                     styles=None, ratio: bool = False) -> None:
         """One row per bearing; ``series[k]`` is (n,) or (n, m) with ``styles`` ((linestyle, label) per column).
         ``ratio``: the quantity is a ratio, drawn from zero."""
-        rows = [k for k in BEARINGS if series.get(k) is not None]
+        rows = [k for k in self.ctx.bearings if series.get(k) is not None]
         if not rows or not self.panels:
             return
         n = len(self.panels)
@@ -345,7 +352,7 @@ class _Figures:
         fig, ax = self.plt.subplots(1, 2, figsize=(12, 4.2))
         drawn = False
         for a, (node, title) in zip(ax, pair):
-            for k, style in ((0, "-"), (5, ":")):
+            for k, style in zip(self.ctx.bearings, LINE_STYLES * len(self.ctx.bearings)):
                 T = self.get(f"thermal{k}.T_nodes")
                 if T is not None:
                     _plot(a, self.t, T[:, NODES.index(node)] - KELVIN, style, label=f"bearing #{k}")
@@ -374,19 +381,22 @@ def draw(job: str, data, out: Path, ctx: Context, keep: list | None = None) -> l
     f.keep = keep
     if not f.blocks:
         return []
-    if job in ("fig09", "fig10"):
-        k = 0 if job == "fig09" else 5
-        f.response(k, int(job[3:]))
+    ids = ctx.bearings
+    if job == "fig09" and ids:    # the first bearing's response (#0 of the paper's engine)
+        f.response(ids[0], 9)
+    elif job == "fig10":          # every other bearing's (#5)
+        for k in ids[1:]:
+            f.response(k, 10)
     elif job == "fig11":
         trans = {}
-        for k in BEARINGS:
+        for k in ids:
             F = f.get(f"damper{k}.F_journal")
             if F is not None and f.F_u > 0:
                 trans[k] = np.hypot(F[:, 0], F[:, 1]) / f.F_u
         f.per_bearing(trans, "transmissibility, eq. (23)", "fig11_transmissibility.png",
                       "Transmissibility |F_sfd + F_cs| / F_u", 11, ratio=True)
     elif job == "fig12":
-        stress = {k: 1e-6 * S for k in BEARINGS if (S := f.get(f"bearing{k}.sigma_max")) is not None}
+        stress = {k: 1e-6 * S for k in ids if (S := f.get(f"bearing{k}.sigma_max")) is not None}
         f.per_bearing(stress, "max contact stress [MPa]", "fig12_contact_stress.png",
                       "Maximum ball contact stress (reported: inner race, solid)", 12,
                       line=(PLASTIC_FLOW_MPA, f"incipient plastic flow {PLASTIC_FLOW_MPA:.0f} MPa"),

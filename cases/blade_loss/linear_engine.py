@@ -1,7 +1,8 @@
 """The co-simulated engine linearised: the one linear model behind ``rotorcosim critical-speeds`` and the
 calibration of the rotor data (calibrated on the system that is simulated).
 
-Each support of bearings #0 and #5 is taken from the components the blade-loss scenario simulates, with the
+Each support of a co-simulated bearing (every ``bearing<ID>`` of the engine file's [attach]; #0 and #5 of the
+paper's engine) is taken from the components the blade-loss scenario simulates, with the
 scenario's parameters, at the preloaded rest state and the running speed:
 
 * ball contacts: the radial stiffness d(sum T^T Q)/dX of the bearing's own quasi-static model (eqs. 1-9 at rest,
@@ -21,13 +22,12 @@ import math
 import numpy as np
 
 from rotorcosim import scenarios
-from rotorcosim.components.rotor import calibration, critical
+from rotorcosim.components.rotor import attach, calibration, critical
 from rotorcosim.components.rotor import model as fem
 
 from rotorcosim.master.scenario.build import create_component, load_scenario
 
 KELVIN = 273.15
-BEARINGS = (0, 5)
 
 
 def _scenario(sc):
@@ -35,8 +35,9 @@ def _scenario(sc):
 
 
 def supports(sc=None, oil_temperature_C: float | None = None, data: dict | None = None) -> dict:
-    """{"h0": {...}, "h5": {...}}: node, hub (the rotor data's [attach] bearing{k}) and k_contact, m_journal,
-    k_spring, c_film, oil_temperature_C taken from the scenario's bearing{k} and damper{k} components."""
+    """{"h<ID>": {...}} for every bearing<ID> of the rotor data's [attach] (in its order; "h0", "h5" for the paper's
+    engine): node, hub and k_contact, m_journal, k_spring, c_film, oil_temperature_C taken from the scenario's
+    bearing<ID> and damper<ID> components (a scenario without them is an error naming the id)."""
     sc = _scenario(sc)
     if data is None:
         data, _ = fem.load_data(sc.components["rotor"].parameters.get("model_file") or None)
@@ -45,10 +46,15 @@ def supports(sc=None, oil_temperature_C: float | None = None, data: dict | None 
     if not (math.isfinite(T_C) and -20.0 < T_C < 300.0):
         raise ValueError(f"oil temperature for the linearised film must be a temperature in C, got {T_C!r}")
     out = {}
-    for k in BEARINGS:
+    ids = attach.layout(ls).bearings
+    if not ids:
+        raise ValueError("rotor model data: [attach] has no bearing<ID> entry (node, housing)")
+    for k in ids:
         key = f"h{k}"
-        if f"bearing{k}" not in ls:
-            raise ValueError(f"rotor model data: [attach] has no entry 'bearing{k}' (node, housing)")
+        missing = [c for c in (f"bearing{k}", f"damper{k}") if c not in sc.components]
+        if missing:
+            raise ValueError(f"scenario {sc.name!r} has no {' or '.join(missing)} for the engine's [attach] "
+                             f"bearing{k}: give the engine's own blade-loss scenario (--scenario FILE)")
         brg = create_component(sc.components[f"bearing{k}"])
         brg.setup(0.0)
         dmp = create_component(sc.components[f"damper{k}"])
@@ -100,7 +106,7 @@ def critical_speeds(full: fem.FullModel, sup: dict, n: int = 6, max_rpm: float =
 
 def response(full: fem.FullModel, sup: dict, F_u: float, rpm: float | None = None) -> dict:
     """Steady synchronous response of the linear engine (:func:`rotorcosim.components.rotor.calibration.
-    coupled_response`): per bearing "0"/"5" whirl_mm, journal_mm, transmissibility (eq. 23)."""
+    coupled_response`): per bearing id ("0", "5" for the paper's engine) whirl_mm, journal_mm, transmissibility (eq. 23)."""
     return calibration.coupled_response(full, sup, F_u, rpm)
 
 

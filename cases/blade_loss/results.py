@@ -26,6 +26,7 @@ from __future__ import annotations
 
 import importlib
 import math
+import re
 from pathlib import Path
 
 import numpy as np
@@ -36,6 +37,7 @@ from rotorcosim.master.scenario.cycle import cycle_of
 
 from . import thermal_geometry
 
+#: the paper's bearings; a scenario's own are :func:`bearing_ids`
 BEARINGS = (0, 5)
 #: columns of the bearing's [inner, outer] contact outputs (Q_max, sigma_max): the reported stress is the inner race's
 INNER, OUTER = 0, 1
@@ -49,35 +51,46 @@ FIGURES_MODULE = "rotorcosim.cases.blade_loss.figures"
 NODES = ("shaft", "inner_race", "lub_inner", "ball", "lub_outer", "outer_race", "journal", "sfd_oil", "housing")
 
 
+def bearing_ids(names) -> tuple[str, ...]:
+    """The ids of the co-simulated bearings among component names ``names`` (a scenario's components: every
+    ``bearing<ID>``, in their order; the paper's: "0", "5"); an id's damper, rub ring and thermal network are
+    ``damper<ID>``, ``rubring<ID>`` (optional), ``thermal<ID>``."""
+    return tuple(n[len("bearing"):] for n in names if re.match(r"^bearing[A-Za-z0-9_]+$", n))
+
+
 def window_signals(sc=None) -> list[str]:
-    """The outputs the steady windows keep for each bearing: whirl, film force, contact load and stress, rub,
-    drag and film powers (``sc``: the scenario, unused: the blade-loss scenarios all have the same ports)."""
+    """The outputs the steady windows keep for each bearing of ``sc`` (the paper's without one): whirl, film
+    force, contact load and stress, rub (where the bearing has a rub ring), drag and film powers."""
+    ids = bearing_ids(sc.components) if sc is not None else tuple(map(str, BEARINGS))
     out = []
-    for k in BEARINGS:
-        out += [f"rotor.X_brg{k}", f"damper{k}.F_journal", f"bearing{k}.Q_max", f"bearing{k}.sigma_max",
-                f"rubring{k}.P_rub", f"bearing{k}.P_drag", f"damper{k}.P_film"]
+    for k in ids:
+        out += [f"rotor.X_brg{k}", f"damper{k}.F_journal", f"bearing{k}.Q_max", f"bearing{k}.sigma_max"]
+        if sc is None or f"rubring{k}" in sc.components:
+            out.append(f"rubring{k}.P_rub")
+        out += [f"bearing{k}.P_drag", f"damper{k}.P_film"]
     return out
 
 
 class Peaks(Observer):
     """Largest contact load (either race), inner-race stress and whirl radius over the whole run (TM intervals)."""
 
-    def __init__(self):
-        self.peak = {k: {"Q": 0.0, "sigma": 0.0, "whirl": 0.0} for k in BEARINGS}
+    def __init__(self, ids=tuple(map(str, BEARINGS))):
+        self.ids = tuple(ids)
+        self.peak = {k: {"Q": 0.0, "sigma": 0.0, "whirl": 0.0} for k in self.ids}
 
     def interval_start(self, sim, phase, step):
         self.active = phase == COUPLED
         comps = sim.system.components
         self._taps = []
-        for k in BEARINGS:
+        for k in self.ids:
             b = comps[f"bearing{k}"]
             q = "Q_max_step" if "Q_max_step" in b.y else "Q_max"
             s = "sigma_max_step" if "sigma_max_step" in b.y else "sigma_max"
             self._taps.append((self.peak[k], b, q, s, comps["rotor"], f"X_brg{k}"))
 
     def block_signals(self, sim):
-        return [r for k in BEARINGS for r in (f"bearing{k}.{self._taps[BEARINGS.index(k)][2]}",
-                                              f"bearing{k}.{self._taps[BEARINGS.index(k)][3]}", f"rotor.X_brg{k}")]
+        return [r for k, tap in zip(self.ids, self._taps)
+                for r in (f"bearing{k}.{tap[2]}", f"bearing{k}.{tap[3]}", f"rotor.X_brg{k}")]
 
     def step_block(self, sim, ks, ts, data):
         """As step() over the block (the same maxima: max is exact, and hypot row by row)."""
@@ -86,7 +99,7 @@ class Peaks(Observer):
         rows = sampled_rows(ks, self.stride)
         if not len(rows):
             return
-        for k, (p, b, q, s, rotor, xb) in zip(BEARINGS, self._taps):
+        for k, (p, b, q, s, rotor, xb) in zip(self.ids, self._taps):
             p["Q"] = max(p["Q"], float(data[f"bearing{k}.{q}"][rows].max()))
             p["sigma"] = max(p["sigma"], float(data[f"bearing{k}.{s}"][rows, INNER].max()))
             x = data[f"rotor.{xb}"][rows]
@@ -107,7 +120,7 @@ def observers(sc, cycle):
     """The run's observers for the results: the steady windows over the last ``[results] cycles`` cycles of
     ``cycle`` (the scenario's cycle source, master/core/cycle.py) and the peaks."""
     cycles = float(sc.extra.get("results", {}).get("cycles", 5))
-    return [SteadyWindows(window_signals(sc), cycle, cycles), Peaks()]
+    return [SteadyWindows(window_signals(sc), cycle, cycles), Peaks(bearing_ids(sc.components))]
 
 
 def check(sc, sim) -> None:
@@ -145,8 +158,8 @@ def unbalance_force(sc) -> float:
 
 
 def extract(sc, sim, obs, report) -> dict:
-    """The results of a finished run (summary.json's ``unbalance_N``, ``window`` and ``bearings``): for bearings
-    #0 and #5 the paper's Table 4 quantities over the last steady window (mm, N, MPa, W, degrees C) and the peaks
+    """The results of a finished run (summary.json's ``unbalance_N``, ``window`` and ``bearings``): for each
+    bearing (by id; #0 and #5 for the paper's engine) the paper's Table 4 quantities over the last steady window (mm, N, MPa, W, degrees C) and the peaks
     over the run. ``obs``: the :func:`observers` of the run; ``sim``, ``report``: the simulation and its report."""
     windows, peaks = obs
     if not windows.windows:
@@ -154,7 +167,7 @@ def extract(sc, sim, obs, report) -> dict:
     w = windows.windows[-1]
     F_u = unbalance_force(sc)
     out = {}
-    for k in BEARINGS:
+    for k in peaks.ids:
         X = w[f"rotor.X_brg{k}"]
         F = w[f"damper{k}.F_journal"]
         T = sim.value(f"thermal{k}.T_nodes")
@@ -164,7 +177,8 @@ def extract(sc, sim, obs, report) -> dict:
             "max_contact_load_N": float(np.max(w[f"bearing{k}.Q_max"])),
             "max_contact_stress_MPa": 1e-6 * float(np.max(w[f"bearing{k}.sigma_max"][:, INNER])),
             "max_contact_stress_outer_MPa": 1e-6 * float(np.max(w[f"bearing{k}.sigma_max"][:, OUTER])),
-            "rub_power_W": float(np.mean(w[f"rubring{k}.P_rub"])),
+            # a bearing without a rub ring: no rub power (null)
+            "rub_power_W": float(np.mean(w[f"rubring{k}.P_rub"])) if f"rubring{k}.P_rub" in w else None,
             "drag_power_W": float(np.mean(w[f"bearing{k}.P_drag"])),
             "sfd_power_W": float(np.mean(w[f"damper{k}.P_film"])),
             "T_inner_race_C": float(T[NODES.index("inner_race")]) - KELVIN,

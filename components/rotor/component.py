@@ -5,6 +5,8 @@ truncation augmentation, eqs. (16)-(22) (mta), integrated by the Newmark-beta me
 (16 000 / 15 000 rev/min), with the blade-loss force rotating at the power-turbine speed at the outboard end.
 
 Conventions:
+* the ports follow the engine file's [attach] (attach.py: any number of bearings and rub rings, by id); what
+  follows is the paper's engine (bearings and rub rings #0 and #5);
 * the reduced basis is [lowest ``n_modes`` modes of the model without bearings #0/#5, augmentation vectors for
   every DOF where a force enters]: PT node at bearing #0 and #5 (x y z), the two housing hubs (x y), the PT nodes
   at the rub rings (x y; the rings act at the bearing nodes, engine.toml, so these add no vector) and the
@@ -43,6 +45,7 @@ import numpy as np
 from ..contract import ContractError, Variable
 from ..kernels import KernelComponent
 from ..speeds import GG_OMEGA, PT_OMEGA
+from . import attach
 from . import model as fem
 from . import shaft_model
 from .mta import mta_basis, project
@@ -51,16 +54,37 @@ from .newmark import check_parameters, initial_acceleration, step_operator
 
 RPM = fem.RPM
 
-# input ports -> (port DOF group of the model, size), in the order of the input vector
-_INPUTS = (("F_brg0", "brg0", 3), ("F_brg5", "brg5", 3),
-           ("F_sfd_housing0", "housing0", 2), ("F_rub_housing0", "housing0", 2),
-           ("F_sfd_housing5", "housing5", 2), ("F_rub_housing5", "housing5", 2),
-           ("F_rub0", "rub0", 2), ("F_rub5", "rub5", 2))
-_OUTPUTS = (("brg0", "X_brg0", "V_brg0", 3), ("brg5", "X_brg5", "V_brg5", 3),
-            ("housing0", "X_housing0", "V_housing0", 2), ("housing5", "X_housing5", "V_housing5", 2),
-            ("rub0", "X_rub0", "V_rub0", 2), ("rub5", "X_rub5", "V_rub5", 2))
-LOAD_GROUPS = ("brg0", "brg5", "housing0", "housing5", "rub0", "rub5", "unbalance")
 
+
+def port_variables(lay: attach.Layout) -> tuple[Variable, ...]:
+    """The rotor component's port variables for the attached bearings and rub rings (attach.py), then F_u."""
+    ins = attach.input_ports(lay)
+    outs = attach.output_ports(lay)
+    by_kind = {k: [v for v in ins if v[0].startswith(k)] for k in ("F_brg", "F_sfd_housing", "F_rub_housing")}
+    by_kind["F_rub"] = [v for v in ins if v[0].startswith("F_rub") and not v[0].startswith("F_rub_housing")]
+    out = [Variable(name, "input", n, "N", desc) for k in by_kind for name, _, n, desc in by_kind[k]]
+    for prefix in ("brg", "housing", "rub"):
+        group = [o for o in outs if o[0].startswith(prefix)]
+        out += [Variable(x, "output", n, "m", d.format("displacement")) for _, x, _, n, d in group]
+        out += [Variable(v, "output", n, "m/s", d.format("velocity")) for _, _, v, n, d in group]
+    out.append(Variable("F_u", "output", 2, "N", "applied rotating unbalance force vector (residual + blade loss)"))
+    return tuple(out)
+
+
+def layout_of_file(model_file: str = "") -> attach.Layout:
+    """The bearings and rub rings of a model file's [attach] (a test rotor's [shaft] has the paper's)."""
+    key = fem.file_digest(model_file or None)
+    lay = _LAYOUTS.get(key)
+    if lay is None:
+        data, _ = fem.load_data(model_file or None)
+        lay = attach.PAPER if shaft_model.is_shaft_model(data) else attach.layout(data.get("attach", {}))
+        _LAYOUTS[key] = lay
+    return lay
+
+
+_LAYOUTS: dict[str, attach.Layout] = {}
+#: the paper's engine's load groups (brg0, brg5, housing0, housing5, rub0, rub5, unbalance)
+LOAD_GROUPS = attach.load_groups(attach.PAPER)
 # reduced models, per process: (file digest, n_modes, omega_pt, omega_gg) -> dict
 _REDUCED: dict[tuple, dict] = {}
 _FULL: dict[tuple, fem.FullModel] = {}
@@ -78,20 +102,23 @@ def full_model(model_file: str = "", omega_pt=None, omega_gg=None) -> fem.FullMo
 
 
 def reduced_model(model_file: str, n_modes: int, omega_pt: float, omega_gg: float) -> dict:
-    """MTA-reduced matrices (eqs. 20-22) and the port rows of the basis; cached per process."""
+    """MTA-reduced matrices (eqs. 20-22) and the port rows of the basis, in the order of attach.py's groups and
+    ports for the model's bearings and rub rings (``layout``); cached per process."""
     full = full_model(model_file, omega_pt, omega_gg)
-    fem.require_ports(full, LOAD_GROUPS)
+    lay = attach.layout_of_ports(full.ports)
+    fem.require_ports(full, attach.load_groups(lay))
     key = (full.digest, int(n_modes), float(omega_pt), float(omega_gg))
     red = _REDUCED.get(key)
     if red is None:
-        load_dofs = np.concatenate([full.ports[g] for g in LOAD_GROUPS])
+        load_dofs = np.concatenate([full.ports[g] for g in attach.load_groups(lay)])
         basis, n_aug = mta_basis(full.K, full.M, int(n_modes), load_dofs)
         C = full.C + omega_pt * full.G_pt + omega_gg * full.G_gg
         Mr, Cr, Kr = project(basis, full.M, C, full.K)
-        in_dofs = np.concatenate([full.ports[g] for _, g, _ in _INPUTS] + [full.ports["unbalance"]])
-        out_dofs = np.concatenate([full.ports[g] for g, _, _, _ in _OUTPUTS])
+        in_dofs = np.concatenate([full.ports[g] for _, g, _, _ in attach.input_ports(lay)]
+                                 + [full.ports["unbalance"]])
+        out_dofs = np.concatenate([full.ports[g] for g, _, _, _, _ in attach.output_ports(lay)])
         red = {"M": Mr, "C": Cr, "K": Kr, "B_in": basis[in_dofs].T.copy(), "O": basis[out_dofs].copy(),
-               "n": basis.shape[1], "n_aug": n_aug, "basis": basis}
+               "n": basis.shape[1], "n_aug": n_aug, "basis": basis, "layout": lay}
         _REDUCED[key] = red
     return red
 
@@ -119,31 +146,26 @@ class Rotor(KernelComponent):
                  description="TOML model data file ('' = the shipped data/engine.toml)"),
         Variable("newmark_beta", "parameter", unit="1", start=0.25, description="Newmark beta"),
         Variable("newmark_gamma", "parameter", unit="1", start=0.5, description="Newmark gamma"),
-        Variable("F_brg0", "input", 3, "N", "bearing #0 force on the PT node (x y z)"),
-        Variable("F_brg5", "input", 3, "N", "bearing #5 force on the PT node (x y z)"),
-        Variable("F_sfd_housing0", "input", 2, "N", "damper #0 reaction on the casing hub under bearing #0"),
-        Variable("F_sfd_housing5", "input", 2, "N", "damper #5 reaction on the casing hub under bearing #5"),
-        Variable("F_rub_housing0", "input", 2, "N", "rub ring #0 reaction on the casing hub under bearing #0"),
-        Variable("F_rub_housing5", "input", 2, "N", "rub ring #5 reaction on the casing hub under bearing #5"),
-        Variable("F_rub0", "input", 2, "N", "rub force on the PT node at rub ring #0"),
-        Variable("F_rub5", "input", 2, "N", "rub force on the PT node at rub ring #5"),
-        Variable("X_brg0", "output", 3, "m", "PT displacement at bearing #0 (x y z)"),
-        Variable("X_brg5", "output", 3, "m", "PT displacement at bearing #5 (x y z)"),
-        Variable("V_brg0", "output", 3, "m/s", "PT velocity at bearing #0 (x y z)"),
-        Variable("V_brg5", "output", 3, "m/s", "PT velocity at bearing #5 (x y z)"),
-        Variable("X_housing0", "output", 2, "m", "casing hub displacement under bearing #0"),
-        Variable("X_housing5", "output", 2, "m", "casing hub displacement under bearing #5"),
-        Variable("V_housing0", "output", 2, "m/s", "casing hub velocity under bearing #0"),
-        Variable("V_housing5", "output", 2, "m/s", "casing hub velocity under bearing #5"),
-        Variable("X_rub0", "output", 2, "m", "PT displacement at rub ring #0"),
-        Variable("X_rub5", "output", 2, "m", "PT displacement at rub ring #5"),
-        Variable("V_rub0", "output", 2, "m/s", "PT velocity at rub ring #0"),
-        Variable("V_rub5", "output", 2, "m/s", "PT velocity at rub ring #5"),
-        Variable("F_u", "output", 2, "N", "applied rotating unbalance force vector (residual + blade loss)"),
-    )
+    ) + port_variables(attach.PAPER)   # an instance declares those of its model file's [attach] (__init__)
     preferred_step = 1e-5
     phases = frozenset({"TM"})
     step_cost_s, kernel_step_cost_s, setup_cost_s = 16e-6, 5e-6, 0.2  # bench/bench_estimate.py
+
+    def __init__(self, name: str = "rotor", parameters=None):
+        # the ports follow the model file's [attach] (attach.py): any number of bearings and rub rings. A file that
+        # cannot be read keeps the class's ports here; setup names its problem.
+        try:
+            lay = layout_of_file(str((parameters or {}).get("model_file", "") or ""))
+        except (ValueError, OSError):
+            lay = attach.PAPER
+        self._layout = lay
+        if lay != attach.PAPER:
+            declared = port_variables(attach.PAPER)
+            names = {v.name for v in declared}
+            own = [v for v in type(self).variables if v.name not in names]
+            at = next(i for i, v in enumerate(type(self).variables) if v.name in names)
+            self.variables = tuple(own[:at]) + port_variables(lay) + tuple(own[at:])
+        super().__init__(name, parameters)
 
     # -- parameters ------------------------------------------------------------------------------------
     def _check_parameters(self):
@@ -169,7 +191,13 @@ class Rotor(KernelComponent):
             red = reduced_model(p["model_file"], p["n_modes"], p["omega_pt"], p["omega_gg"])
         except (ValueError, FileNotFoundError) as exc:
             raise ContractError(f"{self.name}: {exc}") from None
+        if red["layout"] != self._layout:
+            raise ContractError(f"{self.name}: the model file's bearings {list(red['layout'].bearings)} and rub rings "
+                                f"{list(red['layout'].rubrings)} are not those the component was made with "
+                                f"({list(self._layout.bearings)}, {list(self._layout.rubrings)}): model_file "
+                                "changed after it was made")
         self._red = red
+        self._offsets()
         self._ops: dict[float, tuple] = {}
         self._W = p["omega_pt"]
         n, O = red["n"], red["O"]
@@ -204,11 +232,56 @@ class Rotor(KernelComponent):
             fy += p["F_unbalance"] * math.sin(ph)
         return fx, fy
 
+    def _offsets(self):
+        """The offset tables of the ports (kernel.RotorParams): where each input enters the force vector, where
+        each output is read from the output rows, and the Python side's output slices."""
+        lay = self._layout
+        ins = attach.input_ports(lay)
+        at, k = {}, 0
+        for name, _, n, _ in ins:
+            at[name] = k
+            k += n
+        self._in_names = [name for name, _, _, _ in ins]
+        rows, r = {}, 0
+        outs = attach.output_ports(lay)
+        for _, x, _, n, _ in outs:
+            rows[x] = r
+            r += n
+        for _, _, v, n, _ in outs:
+            rows[v] = r
+            r += n
+        sizes = {x: n for _, x, _, n, _ in outs} | {v: n for _, _, v, n, _ in outs}
+        self._out_slices = [(name, rows[name], rows[name] + sizes[name]) for name in rows]
+        _, _, in_fields, out_fields = self.kernel_ports()
+        self._in_off = np.array([at.get(name, -1) for name in in_fields], dtype=np.int64)
+        # where the speed inputs of the speed-following variant (spinning.py) are in the input tuple
+        self._speed_at = np.array([in_fields.index(n) if n in in_fields else -1
+                                   for n in ("Omega_pt", "Omega_gg", "dOmega_pt")], dtype=np.int64)
+        self._out_off = np.array([rows.get(name, -1) for name in out_fields], dtype=np.int64)
+
+    def kernel_ports(self):
+        """Plain tuples, not named ones: the ports follow the engine file (attach.py), and numba's on-disk cache of
+        the kernel holds every signature it was compiled for in one index, which a process must unpickle whole: a
+        named tuple class of another engine's ports would not exist there. The kernel reads the ports by position
+        (the offset tables), so a plain tuple carries all it needs; its type is keyed by the ports' count."""
+        kp = self.__dict__.get("_kernel_ports")
+        if kp is None:
+            kp = (tuple, tuple, self._ports("input"), self._ports("output"))
+            self._kernel_ports = kp
+        return kp
+
+    def kernel_io(self):
+        # one array type for all ports (the kernel indexes them at run time): inputs made contiguous (a no-op for
+        # the master's arrays); outputs are the component's own contiguous arrays, written in place
+        _, _, ins, outs = self.kernel_ports()
+        u, y = self.u, self.y
+        return tuple(np.ascontiguousarray(u[n]) for n in ins), tuple(y[n] for n in outs)
+
     def _input_vector(self, t):
         u = self.u
-        f = np.concatenate([u[name] for name, _, _ in _INPUTS] + [self._unbalance(t)])
+        f = np.concatenate([u[name] for name in self._in_names] + [self._unbalance(t)])
         if not np.all(np.isfinite(f)):
-            bad = [name for name, _, _ in _INPUTS if not np.all(np.isfinite(u[name]))]
+            bad = [name for name in self._in_names if not np.all(np.isfinite(u[name]))]
             raise ContractError(f"{self.name}: non-finite input force(s) {bad} at t = {t:.9g} s")
         return f
 
@@ -233,12 +306,8 @@ class Rotor(KernelComponent):
 
     def _publish(self, xv, t, fux=None, fuy=None):
         y = self.y
-        y["X_brg0"], y["X_brg5"] = xv[0:3], xv[3:6]
-        y["X_housing0"], y["X_housing5"] = xv[6:8], xv[8:10]
-        y["X_rub0"], y["X_rub5"] = xv[10:12], xv[12:14]
-        y["V_brg0"], y["V_brg5"] = xv[14:17], xv[17:20]
-        y["V_housing0"], y["V_housing5"] = xv[20:22], xv[22:24]
-        y["V_rub0"], y["V_rub5"] = xv[24:26], xv[26:28]
+        for name, a, b in self._out_slices:
+            y[name] = xv[a:b]
         y["F_u"] = np.array(self._unbalance(t) if fux is None else (fux, fuy))
 
     # -- the compiled kernel (components/kernels.py) ---------------------------------------------------------
@@ -254,7 +323,7 @@ class Rotor(KernelComponent):
             self._kernel_p = RotorParams(self._operators(h), self._Oxv, self._f, np.empty(n3),
                                          np.empty(self._Oxv.shape[0]), float(self._W), float(p["F_residual"]),
                                          float(p["F_unbalance"]), float(p["unbalance_phase"]),
-                                         float(p["t_blade_loss"]))
+                                         float(p["t_blade_loss"]), self._in_off, self._out_off)
             self._kernel_h = h
             self._last_h = h
 

@@ -19,6 +19,7 @@ import math
 
 import numpy as np
 
+from . import attach as attach_layout
 from . import model as fem
 from .spool_inertia import spool_polar_inertia
 
@@ -87,8 +88,8 @@ def problems(data: dict) -> list[str]:
     if not isinstance(spools, dict) or not spools:
         p.add("[spool.NAME]", "no spool (one table per shaft)")
         spools = {}
-    elif len(spools) > 2:
-        p.add("[spool]", f"{len(spools)} spools; the rotor component carries one or two")
+    elif len(spools) > fem.MAX_SPOOLS:
+        p.add("[spool]", f"{len(spools)} spools; the engine format carries at most {fem.MAX_SPOOLS}")
     for s, r in spools.items():
         w = f"spool.{s}"
         if s in RESERVED:
@@ -211,11 +212,15 @@ def problems(data: dict) -> list[str]:
             if s.get(k, 0.0) != 0.0:
                 p.add(f"{w}.{k}", "cross-coupled coefficients are not carried (format 1)")
     attach = data.get("attach", {})
-    known = {e for e, _ in fem.ATTACH.values()} | {"oil_temperature_C"}
+    if not isinstance(attach, dict):
+        attach = {}
     for key, a in attach.items():
-        if key not in known:
-            p.add(f"attach.{key}", f"not an attachment point (known: {', '.join(sorted(known))})")
-            continue
+        try:
+            attach_layout.layout({key: a})
+        except ValueError as exc:
+            if "has no bearing" not in str(exc):   # a rub ring's bearing is checked below, with all of them
+                p.add(f"attach.{key}", str(exc).removeprefix("rotor model: ").removeprefix(f"[attach] {key!r} is "))
+                continue
         if key == "oil_temperature_C":
             continue
         ref(f"attach.{key}.node", a.get("node") if isinstance(a, dict) else a, hub_ok=False)
@@ -223,6 +228,9 @@ def problems(data: dict) -> list[str]:
             h = a.get("housing") if isinstance(a, dict) else None
             if h not in hubs:
                 p.add(f"attach.{key}.housing", f"hub {h!r} does not exist (hubs: {', '.join(hubs) or 'none'})")
+        if key.startswith("rubring") and f"bearing{key[len('rubring'):]}" not in attach:
+            p.add(f"attach.{key}", f"no bearing{key[len('rubring'):]} in [attach] (a rub ring's ring is on the "
+                                   "housing of the bearing of the same id)")
     return p.out
 
 

@@ -1,6 +1,7 @@
 """The hot loop of the rotor component: one Newmark step of the reduced model and its port outputs.
 
-s_new = T s + B f (newmark.step_operator, f = the 20 port/unbalance forces), xv = O s_new (displacements and
+s_new = T s + B f (newmark.step_operator, f = the port forces of the attached bearings, dampers and rub rings (20 for the
+paper's engine), then the unbalance), xv = O s_new (displacements and
 velocities at the port DOFs). Compiled with numba (found by profiling: numpy's call overheads for three small
 matrix-vector products, the input gathering and the finiteness checks were ~50 us per step; this is a few us).
 The products are written column by column (axpy) so the inner loop vectorises without reassociating sums, and
@@ -17,28 +18,21 @@ from ..numba_internals import kernel_jit
 
 
 @kernel_jit(inline="always")
-def _put(f, k, a, n):
-    for i in range(n):
-        f[k + i] = a[i]
-    return k + n
-
-
-@kernel_jit(inline="always")
-def gather(f, fb0, fb5, fs0, fr0, fs5, fr5, fq0, fq5, fux, fuy):
-    """Fill the force vector in the order of component._INPUTS, then the unbalance; returns the sum of squares
-    (non-finite if any input is)."""
-    k = _put(f, 0, fb0, 3)
-    k = _put(f, k, fb5, 3)
-    k = _put(f, k, fs0, 2)
-    k = _put(f, k, fr0, 2)
-    k = _put(f, k, fs5, 2)
-    k = _put(f, k, fr5, 2)
-    k = _put(f, k, fq0, 2)
-    k = _put(f, k, fq5, 2)
-    f[k] = fux
-    f[k + 1] = fuy
+def gather(f, u, in_off, fux, fuy):
+    """Fill the force vector: input port j (the j-th array of the tuple ``u``) at offset ``in_off[j]`` (-1: not a
+    force, e.g. a speed input), in the order of attach.input_ports, then the unbalance (fux, fuy) last; returns the
+    sum of squares over the vector in its order (non-finite if any input is)."""
+    for j in range(len(u)):         # a homogeneous tuple of contiguous arrays (component.Rotor.kernel_io)
+        k = in_off[j]
+        if k >= 0:
+            a = u[j]
+            for i in range(a.shape[0]):
+                f[k + i] = a[i]
+    n = f.shape[0]
+    f[n - 2] = fux
+    f[n - 1] = fuy
     acc = 0.0
-    for i in range(k + 2):
+    for i in range(n):
         acc += f[i] * f[i]
     return acc
 
@@ -78,7 +72,10 @@ def pack(T: np.ndarray, B: np.ndarray) -> np.ndarray:
 #: the rotor's kernel containers (components/kernels.py): state s = (x_v_a: the Newmark state (x, v, a), tau: the
 #: mechanical time); constants p = (TB, O: the step map and output rows, f, s_new, xv: scratch, the unbalance data)
 RotorState = namedtuple("RotorState", "s tau")
-RotorParams = namedtuple("RotorParams", "TB O f s_new xv W F_residual F_unbalance unbalance_phase t_blade_loss")
+#: in_off / out_off: the offset table of the ports (component.Rotor._offsets): input field j of u enters the force
+#: vector at in_off[j] (-1: not a force); output field j of y is xv[out_off[j]:] (-1: the unbalance force F_u)
+RotorParams = namedtuple("RotorParams", "TB O f s_new xv W F_residual F_unbalance unbalance_phase t_blade_loss "
+                                        "in_off out_off")
 
 
 @kernel_jit(inline="always")
@@ -106,8 +103,7 @@ def tm_step(s, p, u, y, t, h):
 @kernel_jit(inline="always")
 def advance(s, p, u, y, fux, fuy, tau):
     """The Newmark step under the port inputs and the unbalance force (fux, fuy); the mechanical time becomes tau."""
-    if not math.isfinite(gather(p.f, u.F_brg0, u.F_brg5, u.F_sfd_housing0, u.F_rub_housing0, u.F_sfd_housing5,
-                                u.F_rub_housing5, u.F_rub0, u.F_rub5, fux, fuy)):
+    if not math.isfinite(gather(p.f, u, p.in_off, fux, fuy)):
         return 2
     if not math.isfinite(step(p.TB, p.O, s.s, p.f, p.s_new, p.xv)):
         return 3
@@ -119,20 +115,13 @@ def advance(s, p, u, y, fux, fuy, tau):
         st[i] = sn[i]
     s.tau[0] = tau
     xv = p.xv
-    for i in range(3):
-        y.X_brg0[i] = xv[i]
-        y.X_brg5[i] = xv[3 + i]
-        y.V_brg0[i] = xv[14 + i]
-        y.V_brg5[i] = xv[17 + i]
-    for i in range(2):
-        y.X_housing0[i] = xv[6 + i]
-        y.X_housing5[i] = xv[8 + i]
-        y.X_rub0[i] = xv[10 + i]
-        y.X_rub5[i] = xv[12 + i]
-        y.V_housing0[i] = xv[20 + i]
-        y.V_housing5[i] = xv[22 + i]
-        y.V_rub0[i] = xv[24 + i]
-        y.V_rub5[i] = xv[26 + i]
-    y.F_u[0] = fux
-    y.F_u[1] = fuy
+    for j in range(len(y)):
+        k = p.out_off[j]
+        a = y[j]
+        if k >= 0:
+            for i in range(a.shape[0]):
+                a[i] = xv[k + i]
+        else:
+            a[0] = fux
+            a[1] = fuy
     return 0

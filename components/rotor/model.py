@@ -2,11 +2,11 @@
 
 Paper section 2.1 (Fig. 2, Table 2) and eq. (16): M q'' + (C + Omega_pt G_pt + Omega_gg G_gg) q + K q = F.
 Built from an engine file of the engine format (docs/reference/engine-format.md; data/engine.toml, the paper's
-engine, by default): one or two spools, supports, pedestals, an optional casing, and where the co-simulated parts
+engine, by default): one or more spools (up to MAX_SPOOLS), supports, pedestals, an optional casing, and where the co-simulated parts
 attach ([attach] -> :attr:`FullModel.ports`). Timoshenko shaft elements and disks (beam), 8-node
 solids for the casing shell (hexa), spring elements for the struts, mounts and bearings.
 
-Bearings #0 and #5 are not in K: their forces, and the damper and rub-ring reactions on the housings, enter as
+The co-simulated bearings ([attach] bearing<ID>; #0 and #5 of the paper's engine) are not in K: their forces, and the damper and rub-ring reactions on the housings, enter as
 external forces at the port DOFs (:attr:`FullModel.ports`). The engine with them linearised (ball contacts, the
 outer race + journal body of eq. 5, O-ring and film) is :meth:`FullModel.coupled`, given the supports' values,
 which the system's linearisation (rotorcosim.cases.blade_loss.linear_engine) takes from the bearing and damper components.
@@ -22,6 +22,7 @@ from pathlib import Path
 import numpy as np
 
 from .. import toml_text
+from . import attach as attach_layout
 from .beam import disk, shaft_element
 from .hexa import hex8
 
@@ -29,6 +30,9 @@ DEFAULT_FILE = Path(__file__).with_name("data") / "engine.toml"
 #: the engine format this module reads ([engine] format)
 FORMAT = 1
 RPM = 2.0 * math.pi / 60.0
+#: spools an engine file may have. The first turns at the rotor component's omega_pt; the second at omega_gg; a
+#: third and later at their files' speeds in a constant ratio to the second (G_gg carries them: _assemble)
+MAX_SPOOLS = 8
 
 
 def _read(path: str | Path | None) -> tuple[Path, bytes]:
@@ -240,8 +244,8 @@ def _spools(data: dict) -> dict:
     sp = data["spool"]
     if not isinstance(sp, dict) or not sp:
         raise ValueError("rotor model: [spool.NAME] tables needed (one per shaft), none found")
-    if len(sp) > 2:
-        raise ValueError(f"rotor model: {len(sp)} spools; the rotor component carries one or two "
+    if len(sp) > MAX_SPOOLS:
+        raise ValueError(f"rotor model: {len(sp)} spools; the engine format carries at most {MAX_SPOOLS} "
                          f"({', '.join(sp)})")
     for reserved in ("hub", "ground"):
         if reserved in sp:
@@ -482,26 +486,19 @@ def _assemble(data: dict, digest: str, omega_pt: float | None, omega_gg: float |
             "spools": {s: len(z[s]) for s in names}, "hubs": hubs,
             "pt_lateral": np.array([dof(names[0], n, d) for n in range(len(z[names[0]])) for d in range(2)])}
     G_gg = G[names[1]][sub] if len(names) > 1 else np.zeros((free.size, free.size))
+    for s in names[2:]:
+        # a third spool and later: their gyroscopic terms ride on the second spool's speed, at the files' ratio
+        # (omega_gg G_gg = sum of w_i G_i at the files' speeds)
+        G_gg = G_gg + (spools[s]["speed_rpm"] / spools[names[1]]["speed_rpm"]) * G[s][sub]
     return FullModel(M=M[sub], K=K[sub], C=C[sub], G_pt=G[names[0]][sub], G_gg=G_gg,
                      ports=ports, rotor_lateral=np.asarray(lateral),
                      omega_pt=w_pt, omega_gg=w_gg, data=data, digest=digest, info=info)
 
 
-#: the rotor component's port groups and the [attach] entry each comes from: (entry, what)
-ATTACH = {"brg0": ("bearing0", "node"), "brg5": ("bearing5", "node"), "housing0": ("bearing0", "housing"),
-          "housing5": ("bearing5", "housing"), "rub0": ("rubring0", "node"), "rub5": ("rubring5", "node"),
-          "unbalance": ("unbalance", "node")}
-
-
 def _ports(attach: dict, dof) -> dict:
-    """The port groups of the [attach] entries the file gives (the rotor component asks for all of them)."""
-    known = {e for e, _ in ATTACH.values()} | {"oil_temperature_C"}
-    for key in attach:
-        if key not in known:
-            raise ValueError(f"rotor model: [attach] {key!r} is not an attachment point (known: "
-                             f"{', '.join(sorted(known))})")
+    """The port groups of the [attach] entries the file gives (attach.groups: any number of bearings and rub rings)."""
     ports = {}
-    for group, (entry, what) in ATTACH.items():
+    for group, entry, what, n in attach_layout.groups(attach_layout.layout(attach)):
         if entry not in attach:
             continue
         a = attach[entry]
@@ -511,17 +508,21 @@ def _ports(attach: dict, dof) -> dict:
             node = a["node"]
             if not (isinstance(node, list) and len(node) == 2):
                 raise ValueError(f"rotor model: [attach] {entry}.node must be [spool, node], got {node!r}")
-            n = 3 if group.startswith("brg") else 2
             ports[group] = np.asarray([dof(node[0], node[1], d) for d in range(n)])
     return ports
 
 
 def require_ports(full: FullModel, groups) -> None:
     """A ValueError naming the [attach] entries the model lacks for the port groups ``groups``."""
-    missing = sorted({ATTACH[g][0] for g in groups if g not in full.ports})
+    missing = [g for g in groups if g not in full.ports]
+    if "unbalance" in missing:
+        raise ValueError("rotor model: [attach] has no unbalance (the blade-loss rotor component needs it, and at "
+                         "least one bearing<ID>; docs/reference/engine-format.md)")
+    if not any(g.startswith("brg") for g in full.ports):
+        raise ValueError("rotor model: [attach] has no bearing<ID> (the blade-loss rotor component needs at least "
+                         "one co-simulated bearing; docs/reference/engine-format.md)")
     if missing:
-        raise ValueError(f"rotor model: [attach] has no {', '.join(missing)} (the blade-loss rotor component "
-                         "needs bearing0, bearing5, rubring0, rubring5 and unbalance; docs/reference/engine-format.md)")
+        raise ValueError(f"rotor model: no port group {', '.join(missing)} (docs/reference/engine-format.md)")
 
 
 def load(path: str | Path | None = None, **kw) -> FullModel:

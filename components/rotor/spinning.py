@@ -38,7 +38,7 @@ from .kernel import RotorState, advance, pack
 from .newmark import initial_acceleration, step_operator
 
 SpinParams = namedtuple("SpinParams", "TB O f s_new xv F_residual F_unbalance unbalance_phase t_blade_loss "
-                                      "W_ref op tol")
+                                      "W_ref op tol in_off out_off speed_at")
 #: per process: (model digest, n_modes, reference speeds) -> the reduced gyroscopic matrices per rad/s
 _GYRO: dict[tuple, tuple[np.ndarray, np.ndarray]] = {}
 
@@ -47,9 +47,9 @@ _GYRO: dict[tuple, tuple[np.ndarray, np.ndarray]] = {}
 def spinning_step(s, p, u, y, t, h):
     """One Newmark step at the input speeds; status 2 a non-finite input, 3 a non-finite response, PYTHON: a speed
     left the step map's by more than the tolerance (rebuild it)."""
-    w = u.Omega_pt[0]
-    wg = u.Omega_gg[0]
-    dw = u.dOmega_pt[0]
+    w = u[p.speed_at[0]][0]          # the ports are a plain tuple (component.Rotor.kernel_ports): by position
+    wg = u[p.speed_at[1]][0]
+    dw = u[p.speed_at[2]][0]
     if not math.isfinite(w + wg + dw):
         return 2
     if abs(w - p.op[0]) > p.tol[0] or abs(wg - p.op[1]) > p.tol[1]:
@@ -161,7 +161,7 @@ class SpinningRotor(Rotor):
                                         np.empty(self._Oxv.shape[0]), float(p["F_residual"]),
                                         float(p["F_unbalance"]), float(p["unbalance_phase"]),
                                         float(p["t_blade_loss"]), float(p["omega_pt"]), np.array(self._op),
-                                        self._tol)
+                                        self._tol, self._in_off, self._out_off, self._speed_at)
             self._kernel_h = h
             self._last_h = h
 

@@ -172,6 +172,8 @@ NOTES = {
     "intervals": "the timeline: a list of interval tables",
     "steady_tolerance": "auto: TM ends when tracked outputs repeat within this fraction",
     "steady_cycles": "auto: cycles compared", "drift_tolerance": "auto: TO ends at this drift",
+    "speed_tolerance": "auto, a cycle that follows a speed: a TM interval is not steady while the speed changes by "
+    "more than this fraction over `to_min` (default `drift_tolerance`)",
     "tm_min": "s", "tm_max": "s", "to_min": "s", "to_max": "s", "tracked": "auto: outputs watched",
     "record": "signals written to the time series", "record_step": "s", "format": "time series file format",
     "unbalance_parameter": "parameter holding the unbalance force (results plug-in)",
@@ -191,6 +193,14 @@ NOTES = {
     "coupled": "name of the phase in which every component steps (default `TM`)",
     "held": "name of the phase in which only the components that declare it step, the others held (default `TO`)",
     "name": "", "description": "",
+    "schedule.cycle": "the cycle of the windows, when no `speed_rpm` gives it",
+    "cycle.period": "s: a constant period",
+    "cycle.signal": "a speed (rad/s, rev/min) or frequency (Hz) output: the period read at the start of each TM "
+    "interval",
+    "cycle.unit": "the signal's unit where its port declares none",
+    "cycle.angle": "an output in rad (the shaft's angle, with `signal`): the hold's windows, their cycle means, the "
+    "steady windows and the automatic schedule's steadiness test counted in its turns (summary.json "
+    "`hold.window_revolutions`), for a speed that changes within an interval",
 }
 
 
@@ -213,8 +223,14 @@ def scenario_page() -> str:
                        "unconnected_inputs`).\n")
         else:
             out.append(_table(f"[{table}]", keys, NOTES, table))
+    out.append("\n## [templates]\n\n`NAME = [\"ID\", ...]`: instantiate the shipped template "
+               "`scenarios/templates/NAME.toml` (`bearing`: ball bearing + damper + thermal network and their 16 "
+               "connections; `rubring`: a rub ring and its 7) once per id, as a base the file's own tables change; "
+               "`\"{NAME}\"` in `[algorithm] order` and `[outputs] record` stands for one entry per id "
+               "(`master/scenario/templates.py`).\n")
     out.append(_table("[[schedule.intervals]]", schema.INTERVAL, NOTES, "intervals"))
     out.append(_table("[schedule.phases]", {role: schema.text for role in schema.ROLES}, NOTES, "phases"))
+    out.append(_table("schedule.cycle = { ... }", schema.CYCLE, NOTES, "cycle"))
     return "".join(out)
 
 

@@ -41,8 +41,9 @@ from rotorcosim.master.core import links
 from rotorcosim.master.core.links import CMEAN, NOUT, R0, RLEN
 
 # columns of Tables.links
-(L_SRC, L_DST, L_N, L_TAKE, L_PROD, L_HB, L_WIN, L_VOFF, L_GOFF, L_GNR, L_COFF, L_CW, L_WP0, L_WP1) = range(14)
-NL = 14
+(L_SRC, L_DST, L_N, L_TAKE, L_PROD, L_HB, L_WIN, L_VOFF, L_GOFF, L_GNR, L_COFF, L_CW, L_WP0, L_WP1,
+ L_ANG) = range(15)
+NL = 15
 # columns of Tables.comps
 C_IN0, C_IN1, C_OUT0, C_OUT1, C_W0, C_W1 = range(6)
 NC = 6
@@ -145,7 +146,9 @@ def produced(i, t, hc, X, tab, st):
         n = LI[j, L_N]
         m = st.rows[j]
         produce(LI[j, L_PROD], X, y, st.vectors, LI[j, L_VOFF], n, m, hc, te)
-        if LI[j, L_WIN] != 0 and record(X, y, n, m, st.rings, LI[j, L_GOFF], LI[j, L_GNR], te):
+        # a window counted in revolutions reads the cycle's angle (its offset in X; -1: counted in samples)
+        theta = X[LI[j, L_ANG]] if LI[j, L_ANG] >= 0 else 0.0
+        if LI[j, L_WIN] != 0 and record(X, y, n, m, st.rings, LI[j, L_GOFF], LI[j, L_GNR], te, theta):
             cw = LI[j, L_CW]
             c0 = LI[j, L_COFF] + int(m[NOUT]) * cw
             C[c0] = m[CMEAN]

@@ -7,7 +7,8 @@ same semantics, operation for operation:
 * the Gauss-Seidel order and the multi-rate firing (component c fires at base step k when (k + 1) % n_c == 0,
   over [t_end - n_c h, t_end], t_end = t0 + (k + 1) h);
 * each consumer's inputs gathered just before it fires, and each link's bookkeeping after its producer fired
-  (averages, extrapolation history, the thermal-only hold's windows and restart offsets), by the very functions
+  (averages, extrapolation history, the thermal-only hold's windows and restart offsets; a window counted in
+  turns of the cycle's angle reads that angle from the port array), by the very functions
   of master/core/links.py the generic loop calls, on the same state layout (each link's state is copied into the
   loop's tables and back around each chunk);
 * after each firing, as algorithm.Engine._fire: the step count, the finiteness of the outputs other components
@@ -29,7 +30,9 @@ that component.
 
 Not compiled (the generic loop runs, and the reason is reported): a component without a kernel (FMUs, Python
 plug-ins), Jacobi or iterative coupling, converted or non-Real links, inputs from components not stepped in the
-interval, an observer without step_block, the automatic schedule's steadiness test.
+interval, an observer without step_block (the cycle's RevolutionCounter reads the angle's column, so an angle
+whose component does not step in the interval would be one; the hold refuses that run), a steadiness test that
+samples an output not stepped in the interval.
 """
 from __future__ import annotations
 
@@ -137,8 +140,16 @@ class Plan:
             row[op.L_HB] = j in self.handbacks
             row[op.L_VOFF] = vo
             vo += links.NV * n
+            row[op.L_ANG] = -1
             if link.window is not None:
                 row[op.L_WIN] = 1
+                if link.window.turns is not None:   # its cycles end at the turns of the cycle's angle
+                    comp, _, port = link.window.turns[0].ref.partition(".")
+                    key = (self.index.get(comp, -1), "y", port)
+                    if key not in self.offset:
+                        raise ContractError(f"{link.con.src}: its hand-off window counts the turns of "
+                                            f"{comp}.{port}, not an output stepped in this interval")
+                    row[op.L_ANG] = self.offset[key]
                 row[op.L_WP0] = len(idx)
                 for p in link.window.ports:
                     idx += [self.offset[(i_src, "u", p)], self.comps[i_src].variable(p).size]
@@ -282,7 +293,9 @@ class Runner:
                 LI[j, op.L_GOFF], LI[j, op.L_GNR] = go, nr
                 go += nr * n
                 LI[j, op.L_COFF] = co
-                co += (CHUNK // link.window.n_cycle + 2) * int(LI[j, op.L_CW])
+                # at most one cycle a sample when counted in turns (links.record)
+                per = link.window.n_cycle if link.window.turns is None else 1
+                co += (CHUNK // per + 2) * int(LI[j, op.L_CW])
         G = np.zeros(max(1, go))
         C = np.zeros(max(1, co))
         count = np.zeros(len(comps), dtype=np.int64)
@@ -478,5 +491,6 @@ def _plan_key(sim, mult) -> tuple:
             tuple(tuple(map(id, eng.inputs_of(n))) for n in eng.active),
             tuple(tuple(map(id, eng.outgoing_of(n))) for n in eng.active),
             tuple(tuple(eng.watched_of(n)) for n in eng.active),
-            tuple((link.mode, None if link.window is None else tuple(link.window.ports)) for link in eng.links),
+            tuple((link.mode, None if link.window is None else (tuple(link.window.ports), link.window.turns is None))
+                  for link in eng.links),
             tuple(map(id, sim.hold.handbacks)))

@@ -9,7 +9,11 @@ libcosim would call it a manipulator: it changes what crosses some connections, 
   thermo-mechanical (TM) interval the master records, per hand-off, the window of its last ``hold_cycles``
   cycles and the cycle means of the signal and of the thermal inputs its producer received. The cycle period
   comes from the run's cycle source (master/core/cycle.py: a constant period, or a speed signal read at the
-  start of each TM interval).
+  start of each TM interval). A cycle source with an angle counts both in revolutions instead: the window is the
+  samples since the time the last ``hold_cycles`` turns of the angle began (the run's RevolutionCounter), and a
+  cycle mean ends at each whole turn of the angle from the interval's start, so that a window spans
+  ``hold_cycles`` turns while the speed changes within the interval (a rundown); the turns each TO interval's
+  windows spanned are reported (``HoldReport.window_revolutions``).
 * The held value over a TO interval: the window's statistic, per connection (``hold`` of the connection, else the
   schedule's): ``mean`` by default (it keeps the energy of a power), ``rms``, or ``last``.
 * The TO update of a producer that declares one: the held statistic S_w follows the producer's own TO output
@@ -61,9 +65,9 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from rotorcosim.components.contract import COUPLED, HELD
+from rotorcosim.components.contract import COUPLED, HELD, ContractError
 from rotorcosim.master.core import links
-from rotorcosim.master.core.cycle import Cycle
+from rotorcosim.master.core.cycle import WINDOW_MARGIN, Cycle
 from rotorcosim.master.core.system import HOLDS
 
 #: the default statistic: the mean keeps the energy of a power (the RMS overstates a fluctuating one)
@@ -151,6 +155,7 @@ class HandOff:
     cn = _InState(links.CN, int)
     _last = _InState(links.WLAST)
     n_cycle = _InState(links.NCYC, int)
+    _last_cn = _InState(links.LCN, int)
 
     def __init__(self, link, hold: str, thermal_ports: list[str]):
         self.link = link
@@ -163,15 +168,24 @@ class HandOff:
         self.error: float | None = None
         self._to_end: np.ndarray | None = None
         self.count = 0                      # samples in the window (none before the first TM interval)
+        self.turns = None                   # (RevolutionCounter, turns of the window, the angle's component, port)
+        self.hs = 0.0                       # the producer's step in the TM interval [s]
 
     # -- TM: record -------------------------------------------------------------------------------------
-    def start_tm(self, n_window: int, n_cycle: int, size: int) -> None:
-        """A TM interval starts: record the producer's output in a window of ``n_window`` samples, in rotor
-        cycles of ``n_cycle`` samples, of a port of ``size`` elements."""
+    def start_tm(self, n_window: int, n_cycle: int, size: int, hs: float = 0.0, turns=None,
+                 next_turn: float = 0.0, direction: float = 1.0) -> None:
+        """A TM interval starts: record the producer's output (a port of ``size`` elements, every ``hs`` seconds)
+        in a ring of ``n_window`` samples, in rotor cycles of ``n_cycle`` samples; or, with ``turns``
+        (RevolutionCounter, turns of the window, the angle's component, the angle's port), in cycles that
+        end at each whole turn of the angle (the first where it passes ``next_turn`` [rad], turning in
+        ``direction``), the window being the samples of its last turns."""
         self.ring = np.zeros((max(1, n_window), size))
         self.pos = self.count = 0
         self.t_last = None
-        self.n_cycle = max(1, n_cycle)
+        self.hs, self.turns = float(hs), turns
+        self.n_cycle = max(1, n_cycle) if turns is None else 0
+        m = self.link.state
+        m[links.NEXT], m[links.DIR] = (float(next_turn), float(direction)) if turns is not None else (0.0, 0.0)
         self.csum, self.cn, self._last = 0.0, 0, 0.0     # the rotor cycle being recorded
         self.cycles: list[tuple[np.ndarray, float]] = []
         self.history.append(self.cycles)
@@ -185,12 +199,15 @@ class HandOff:
             self.count -= 1
             if self.cn == 0 and self.cycles:
                 _, mean = self.cycles.pop()
-                self.csum, self.cn = mean * self.n_cycle, self.n_cycle
+                self.csum, self.cn = mean * self._last_cn, self._last_cn
+                if self.turns is not None:   # the turn it ended at is to be passed again
+                    m[links.NEXT] -= 2.0 * math.pi * m[links.DIR]
             self.csum -= self._last
             self.cn -= 1
         # the sample and the cycle it belongs to (links.record: the compiled loop records with the same function)
         ring = self.ring
-        if links.record(y, 0, ring.shape[1], m, ring.reshape(-1), 0, ring.shape[0], t_end):
+        theta = float(self.turns[2].y[self.turns[3]][0]) if self.turns is not None else 0.0
+        if links.record(y, 0, ring.shape[1], m, ring.reshape(-1), 0, ring.shape[0], t_end, theta):
             # a whole rotor cycle: its mean, and the thermal inputs at its end (they change at the thermal step, far
             # slower than the rotor)
             self.cycles.append((self._thermal_inputs(), float(m[links.CMEAN])))
@@ -200,7 +217,29 @@ class HandOff:
         return np.concatenate([np.ravel(u[p]) for p in self.ports]) if self.ports else np.zeros(0)
 
     def _data(self):
-        return self.ring if self.count == len(self.ring) else self.ring[: self.count]
+        if self.turns is None:
+            return self.ring if self.count == len(self.ring) else self.ring[: self.count]
+        k = self.window_samples()
+        return self.ring[(self.pos - k + np.arange(k)) % len(self.ring)]
+
+    def window_samples(self) -> int:
+        """The samples of the window: all (up to the ring's size) when counted in samples; counted in turns, those
+        of the steps since the last turns of the window began (each sample stands for the producer's step that
+        ends at it; the samples are ``hs`` apart and the newest is at ``t_last``)."""
+        if self.turns is None or self.count == 0:
+            return self.count
+        counter, turns = self.turns[0], self.turns[1]
+        t_last = self.t_last
+        began = counter.began(turns, t_last)
+        k = int(math.ceil((t_last - began) / self.hs - 1e-9))
+        return min(max(k, 1), self.count)
+
+    def window_revolutions(self) -> float | None:
+        """The turns of the cycle's angle the window spans (None when it is not counted in turns)."""
+        if self.turns is None or self.count == 0:
+            return None
+        k = self.window_samples()
+        return self.turns[0].revolutions(self.t_last - k * self.hs, self.t_last)
 
     def statistic(self, how: str) -> np.ndarray:
         """RMS, mean or last of the window (the last ``hold_cycles`` rotor cycles of the TM interval)."""
@@ -394,6 +433,11 @@ class HoldReport:
     errors: dict[str, float] = field(default_factory=dict)
     interval_estimates_pct: list[float] = field(default_factory=list)
     drivers: dict[str, dict | None] = field(default_factory=dict)
+    #: windows counted in turns of the cycle's angle: the turns asked for (hold_cycles), and per TO interval the
+    #: fewest turns a hand-off's window spanned (fewer than asked where the TM interval was shorter, or the speed
+    #: fell below 1 / WINDOW_MARGIN of its start value within the window); None: windows counted in periods
+    revolutions_asked: float | None = None
+    window_revolutions: list[float] = field(default_factory=list)
 
     @property
     def last_estimate_pct(self) -> float | None:
@@ -407,10 +451,15 @@ class HoldReport:
 
     def as_dict(self) -> dict:
         """The report as summary.json's ``hold`` (hand-off errors in percent)."""
-        return {"elasticity": dict(self.elasticity), "drivers": dict(self.drivers),
-                "handoff_error_pct": {k: 100.0 * v for k, v in self.errors.items()},
-                "interval_estimates_pct": list(self.interval_estimates_pct),
-                "estimated_error_pct": self.estimated_error_pct}
+        out = {"elasticity": dict(self.elasticity), "drivers": dict(self.drivers),
+               "handoff_error_pct": {k: 100.0 * v for k, v in self.errors.items()},
+               "interval_estimates_pct": list(self.interval_estimates_pct),
+               "estimated_error_pct": self.estimated_error_pct}
+        if self.revolutions_asked is not None:
+            w = self.window_revolutions
+            out["window_revolutions"] = {"asked": self.revolutions_asked, "smallest": min(w) if w else None,
+                                         "per_interval": list(w)}
+        return out
 
 
 class StaggeredHold:
@@ -430,6 +479,9 @@ class StaggeredHold:
         self.cycle_source = cycle
         #: the period of the present TM interval's windows [s] (None before the first one)
         self.period: float | None = None
+        #: the run's RevolutionCounter when the cycle has an angle (windows counted in its turns), set by the
+        #: simulation; None: windows of hold_cycles periods
+        self.revolutions = None
         #: the temperature (K) the error estimate's relative errors are taken above (0: absolute temperatures)
         self.temperature_zero = float(temperature_zero)
         self.handoffs: list[HandOff] | None = None
@@ -451,6 +503,14 @@ class StaggeredHold:
         self.handbacks = [link for link in links if link.real and
                           feeds_mechanics(comps[link.con.src_component], comps[link.con.dst_component])]
 
+    def bind_revolutions(self, counter) -> None:
+        """Count the windows with ``counter`` (the run's RevolutionCounter): a hold read back from a checkpoint
+        holds a copy of the one it was saved with, which the resumed run's observers no longer feed."""
+        self.revolutions = counter
+        for ho in self.handoffs or []:
+            if ho.turns is not None:
+                ho.turns = (counter, *ho.turns[1:])
+
     @property
     def cycle(self) -> float | None:
         """The cycle period now [s], or None without a cycle source."""
@@ -458,9 +518,10 @@ class StaggeredHold:
 
     # -- intervals ---------------------------------------------------------------------------------------
     def start(self, phase: str, active: list[str], mult: dict[str, int], step: float, t: float = 0.0,
-              steps_taken: dict[str, int] | None = None) -> None:
+              steps_taken: dict[str, int] | None = None, nsteps: int | None = None) -> None:
         """Set the links up for an interval of the phase of role ``phase`` (``COUPLED`` / ``HELD``) with ``active``
-        components at base step ``step``."""
+        components at base step ``step`` (``nsteps`` base steps at most, if known: a ring counted in turns need
+        not be longer)."""
         if self.handoffs is None:
             self._find_handoffs()
         under_way = [link.ramp for link in self.handbacks]
@@ -481,13 +542,34 @@ class StaggeredHold:
                 for link, ramp in zip(self.handbacks, under_way):
                     if ramp is not None and t < ramp.t0 + ramp.length:
                         link.ramp = ramp
+            counter = self.revolutions
+            if counter is not None:
+                if counter.ref.partition(".")[0] not in active:
+                    raise ContractError(f"cycle angle {counter.ref}: its component does not step in the coupled "
+                                        "phase, so its turns cannot count the windows")
+                counter.need(self.hold_cycles)
+                self.report.revolutions_asked = self.hold_cycles
+                comp, _, port = counter.ref.partition(".")
+                angle_comp = self.system.components[comp]
+                direction = self.cycle_source.direction(self.system)
+                next_turn = float(angle_comp.y[port][0]) + 2.0 * math.pi * direction
             for ho in self.handoffs:
                 ho.end_to()
                 if cycle:
                     hs = mult.get(ho.link.con.src_component, 1) * step
                     n_cycle = int(math.ceil(cycle / hs - 1e-9))
-                    n = int(math.ceil(self.hold_cycles * cycle / hs - 1e-9))
-                    ho.start_tm(n, n_cycle, ho.link.src.variable(ho.link.sport).size)
+                    size = ho.link.src.variable(ho.link.sport).size
+                    if counter is None:
+                        n = int(math.ceil(self.hold_cycles * cycle / hs - 1e-9))
+                        ho.start_tm(n, n_cycle, size)
+                    else:
+                        # counted in turns: room for them at a fraction of the present speed (WINDOW_MARGIN), never
+                        # more than the interval's samples
+                        n = int(math.ceil(WINDOW_MARGIN * self.hold_cycles * cycle / hs - 1e-9))
+                        if nsteps is not None:
+                            n = min(n, nsteps // mult.get(ho.link.con.src_component, 1) + 1)
+                        ho.start_tm(n, 0, size, hs, (counter, self.hold_cycles, angle_comp, port), next_turn,
+                                    direction)
                     ho.link.window = ho
             return
         on = set(active)
@@ -497,6 +579,9 @@ class StaggeredHold:
         self._to_start = t
         probe = _Probe(t, step)
         steps_taken = steps_taken if steps_taken is not None else {}
+        turns = [r for r in (ho.window_revolutions() for ho in self.handoffs) if r is not None]
+        if turns:
+            self.report.window_revolutions.append(min(turns))
         for ho in self.handoffs:
             name, n0 = ho.link.con.src_component, steps_taken.get(ho.link.con.src_component, 0)
             group = [g for g in self.handoffs if g.link.con.dst_component == ho.link.con.dst_component]

@@ -18,7 +18,7 @@ from typing import Sequence
 import numpy as np
 
 from rotorcosim.components.contract import COUPLED, HELD
-from rotorcosim.master.core.cycle import Cycle, as_cycle
+from rotorcosim.master.core.cycle import WINDOW_MARGIN, Cycle, as_cycle
 from rotorcosim.master.core.phases import Phases
 
 #: empty HDF5 files of this process's recordings by layout (Recorder._open): bytes, the last few layouts
@@ -618,7 +618,12 @@ def _hms(seconds: float) -> str:
 class SteadyWindows(Observer):
     """Keeps the last ``cycles`` cycles of ``signals`` in each TM interval; at the interval end, the window is
     stored in ``windows`` as a dict with ``t`` and one array per signal. ``cycle``: the cycle period [s] or a
-    cycle source (master/core/cycle.py), read at the start of each TM interval."""
+    cycle source (master/core/cycle.py), read at the start of each TM interval. A cycle source with an angle
+    counts the window in its turns (the run's RevolutionCounter): the samples since the last ``cycles`` turns
+    began, plus the one at or before that time, as a window of ``cycles`` periods has; the window's dict then has
+    ``revolutions``, the turns it spans (fewer than ``cycles`` where the interval was shorter); its ring, sized for
+    the turns at 1 / WINDOW_MARGIN of the speed at the interval's start, grows where the speed falls further (a
+    monolithic rundown)."""
 
     def __init__(self, signals: Sequence[str], cycle: Cycle | float, cycles: float = 5.0,
                  sample_step: float | None = None):
@@ -632,10 +637,19 @@ class SteadyWindows(Observer):
 
     def interval_start(self, sim, phase, step):
         self.active = phase == COUPLED
+        counter = getattr(sim, "revolutions", None)
+        # counted in the turns of the run's angle when this window's cycle has that angle
+        self._turns = counter if counter is not None and self.cycle.angle == counter.ref else None
         if self.active:
             self.window = self.cycles * self.cycle.period(sim.system)
         self.stride = 1 if self.sample_step is None else max(1, int(round(self.sample_step / step)))
+        self._h = step
         n = int(math.ceil((self.window or 0.0) / (self.stride * step))) + 1
+        if self._turns is not None and self.active:
+            self._turns.need(self.cycles)
+            n = int(math.ceil(WINDOW_MARGIN * self.window / (self.stride * step))) + 1
+            if sim.interval_steps is not None:
+                n = min(n, sim.interval_steps // self.stride + 1)
         self._n = n
         self._t = np.full(n, np.nan)
         self._data = {r: np.zeros((n, len(sim.value(r)))) for r in self.signals}
@@ -648,10 +662,34 @@ class SteadyWindows(Observer):
         # multiples of the stride): step_block leaves those ring slots for the later rows that overwrite them
         steps = sim.interval_steps
         self._old = None if steps is None else steps - (n + 1) * self.stride
+        if self._turns is not None:   # the ring may grow (_room): every row is kept
+            self._old = None
+
+    def _room(self, t: float, more: int = 0) -> None:
+        """Counted in turns: a ring that would drop samples the window still needs (the speed fell below
+        1 / WINDOW_MARGIN of its value at the interval's start) grows, oldest samples first."""
+        need = int(math.ceil((t - self._turns.began(self.cycles, t)) / (self.stride * self._h) - 1e-9)) + 2 + more
+        if need <= self._n:
+            return
+        n, count = self._n, self._count
+        a = (self._pos - count) % n
+        size = max(need, 2 * n)
+
+        def grown(x):
+            y = np.zeros((size,) + x.shape[1:]) if x.ndim > 1 else np.full(size, np.nan)
+            y[:count] = x[a:a + count] if a + count <= n else np.concatenate((x[a:], x[:a + count - n]))
+            return y
+
+        self._t = grown(self._t)
+        self._data = {r: grown(b) for r, b in self._data.items()}
+        self._taps = [(c, port, self._data[r]) for (c, port, _), r in zip(self._taps, self.signals)]
+        self._n, self._pos = size, count % size
 
     def step(self, sim, t):
         if not self.active:
             return
+        if self._turns is not None and self._count == self._n and self._pos % 64 == 0:
+            self._room(t, 64)
         i = self._pos
         self._t[i] = t
         for comp, port, buf in self._taps:
@@ -669,6 +707,8 @@ class SteadyWindows(Observer):
         nr = len(rows)
         if not nr:
             return
+        if self._turns is not None:   # the run's RevolutionCounter has this block already (the first observer)
+            self._room(float(np.asarray(ts)[rows[-1]]))
         n = self._n
         m = min(nr, n)  # the ring keeps the last n samples: rows[nr - m:], the first of them at ring slot pos
         pos = (self._pos + (nr - m)) % n
@@ -709,4 +749,12 @@ class SteadyWindows(Observer):
         win = {"t": ordered(self._t), "t_start": used.t_start, "t_end": used.t_end}
         for r in self.signals:
             win[r] = ordered(self._data[r])
+        if self._turns is not None:
+            # the samples since the last turns began, and the one at or before that time
+            t = win["t"]
+            began = self._turns.began(self.cycles, float(t[-1]))
+            k = min(int(math.ceil((t[-1] - began) / (self.stride * self._h) - 1e-9)) + 1, len(t))
+            for key in ["t", *self.signals]:
+                win[key] = win[key][len(t) - k:]
+            win["revolutions"] = self._turns.revolutions(float(win["t"][0]), float(win["t"][-1]))
         self.windows.append(win)

@@ -346,6 +346,8 @@ class ResumePoint:
             raise CheckpointError(f"--resume: the checkpoint is not readable ({type(exc).__name__}: {exc})") from None
         sim.engine = data["engine"]
         sim.hold = data["hold"]  # pickled with the engine: it shares the engine's connection objects
+        if sim.revolutions is not None:  # the windows count the turns this run's observer records
+            sim.hold.bind_revolutions(sim.revolutions)
         sim.report = data["report"]
         sim.schedule_state = data["schedule_state"]
         for name, snap in data["components"].items():

@@ -36,6 +36,7 @@ else:  # pragma: no cover
 
 from rotorcosim.components import toml_text
 from rotorcosim.components.contract import ContractError
+from rotorcosim.master.scenario import templates
 
 
 class ScenarioError(ContractError):
@@ -54,6 +55,7 @@ class Origins:
     parameters: dict[tuple[str, str], str] = field(default_factory=dict)  # (component, parameter)
     connections: list[str] = field(default_factory=list)                # parallel to data["connections"]
     inputs: dict[str, str] = field(default_factory=dict)
+    templated: set[str] = field(default_factory=set)                     # components a template made
 
     def component(self, name: str) -> str | None:
         """The file that chose component ``name``'s implementation, or None."""
@@ -222,7 +224,8 @@ def compose(path: str | Path, _seen: tuple = ()) -> tuple[dict, Origins]:
     base_ref = head.pop("extends", None)
     removes = _str_list(head.pop("remove_connections", []), f"{where}: [scenario]", "remove_connections")
     remove_keys = _str_list(head.pop("remove_keys", []), f"{where}: [scenario]", "remove_keys")
-    if base_ref is None:
+    tpl = data.get("templates")
+    if base_ref is None and tpl is None:
         if remove_keys:
             raise CompositionError(f"{where}: [scenario] remove_keys needs 'extends' (nothing is inherited)")
         if removes:
@@ -236,10 +239,18 @@ def compose(path: str | Path, _seen: tuple = ()) -> tuple[dict, Origins]:
         if "scenario" in data:
             data["scenario"] = head
         return data, origins
-    if not isinstance(base_ref, str):
-        raise CompositionError(f"{where}: [scenario] extends must be a file name, got {base_ref!r}")
-    base, origins = compose(_base_path(path, base_ref), _seen + (path,))
-    base = _remove_keys(base, remove_keys, where)
+    if base_ref is None:   # the instantiated templates are this file's base
+        if remove_keys:
+            raise CompositionError(f"{where}: [scenario] remove_keys needs 'extends' (nothing is inherited)")
+        base, origins = {}, Origins()
+    else:
+        if not isinstance(base_ref, str):
+            raise CompositionError(f"{where}: [scenario] extends must be a file name, got {base_ref!r}")
+        base, origins = compose(_base_path(path, base_ref), _seen + (path,))
+        base = _remove_keys(base, remove_keys, where)
+    if tpl is not None:
+        tpl = _merge(base.get("templates", {}), tpl) if isinstance(tpl, Mapping) else tpl
+        base = _instantiate(_strip_templated(base, origins), tpl, origins, where)
     out = dict(base)
     for key, value in data.items():
         if key == "scenario":
@@ -259,7 +270,58 @@ def compose(path: str | Path, _seen: tuple = ()) -> tuple[dict, Origins]:
         out["connections"] = _connections(base.get("connections", []), [], removes, origins, where)
     if "scenario" not in data and "scenario" in base:
         out["scenario"] = dict(base["scenario"])
+    if not _seen and "templates" in out:
+        out = _expand_entries(out, origins, where)
     return out, origins
+
+
+def _strip_templated(base: dict, origins: Origins) -> dict:
+    """``base`` without the components and connections its templates made (a file that instantiates its own)."""
+    if not origins.templated:
+        return base
+    out = dict(base)
+    out["components"] = {k: v for k, v in _table(base.get("components")).items() if k not in origins.templated}
+    for k in origins.templated:
+        origins.components.pop(k, None)
+    origins.parameters = {kp: v for kp, v in origins.parameters.items() if kp[0] not in origins.templated}
+    keep = [i for i, src in enumerate(origins.connections) if not templates.is_template_file(src)]
+    out["connections"] = [base.get("connections", [])[i] for i in keep]
+    origins.connections = [origins.connections[i] for i in keep]
+    origins.templated = set()
+    return out
+
+
+def _instantiate(base: dict, tpl: Any, origins: Origins, where: str) -> dict:
+    """``base`` extended by the instantiated templates of ``tpl`` (templates.py), one virtual file per template."""
+    try:
+        files = templates.instances(tpl, where)
+    except templates.TemplateError as exc:
+        raise CompositionError(str(exc)) from None
+    out = dict(base)
+    for path, virtual in files:
+        out["components"] = _components(_table(out.get("components")), virtual["components"], origins, path)
+        out["connections"] = _connections(out.get("connections", []), virtual["connections"], [], origins, path)
+        origins.templated |= set(virtual["components"])
+    return out
+
+
+def _expand_entries(data: dict, origins: Origins, where: str) -> dict:
+    """The composed scenario without its [templates] table: the ``{NAME}`` entries of ``[algorithm] order`` and
+    ``[outputs] record`` expanded per id, and the components in the order the file gave its own (the rotor) first,
+    then the instantiated ones."""
+    out = dict(data)
+    tpl = out.pop("templates")
+    try:
+        for table, key in (("algorithm", "order"), ("outputs", "record")):
+            if isinstance(out.get(table), Mapping) and key in out[table]:
+                out[table] = {**out[table], key: templates.expand_list(out[table][key], tpl,
+                                                                     f"{where}: [{table}] {key}")}
+    except templates.TemplateError as exc:
+        raise CompositionError(str(exc)) from None
+    comps = _table(out.get("components"))
+    out["components"] = {**{k: v for k, v in comps.items() if k not in origins.templated},
+                         **{k: v for k, v in comps.items() if k in origins.templated}}
+    return out
 
 
 def _remove_keys(base: dict, keys: list[str], where: str) -> dict:

@@ -8,6 +8,9 @@ the automatic schedule and intervals given in ``cycles`` count in (master/core/c
     cycle = { period = 0.00375 }                         # a constant period [s]
     cycle = { signal = "shaft.Omega", unit = "rad/s" }   # the period of a speed (or frequency) output, read at
                                                          # the start of each thermo-mechanical interval
+    cycle = { signal = "shaft.Omega", angle = "shaft.theta" }   # and the windows counted in turns of an angle
+                                                                # output [rad] (a speed that changes within an
+                                                                # interval: a rundown)
 
 At most one of them; none: the run has no cycle (no thermal-only intervals, no automatic schedule). ``speed_rpm``
 is the edge spelling of a constant speed (a quantity at the edge carries its unit in its name); the master itself
@@ -23,7 +26,7 @@ from rotorcosim.master.scenario.compose import ScenarioError
 #: the [schedule] keys of the cycle source
 KEYS = ("speed_rpm", "cycle")
 #: the keys of a ``cycle`` table
-TABLE_KEYS = ("period", "signal", "unit")
+TABLE_KEYS = ("period", "signal", "unit", "angle")
 
 
 def cycle_of(schedule: Mapping[str, Any]) -> Cycle | None:
@@ -42,10 +45,10 @@ def cycle_of(schedule: Mapping[str, Any]) -> Cycle | None:
     if ("period" in table) == ("signal" in table):
         raise ScenarioError("[schedule] cycle: give exactly one of period (s) or signal (\"component.port\")")
     if "period" in table:
-        if "unit" in table:
-            raise ScenarioError("[schedule] cycle: unit is the unit of a signal; a period is in seconds")
+        if "unit" in table or "angle" in table:
+            raise ScenarioError("[schedule] cycle: unit and angle belong to a signal's cycle; a period is in seconds")
         return ConstantCycle(table["period"])
-    return SignalCycle(table["signal"], table.get("unit"))
+    return SignalCycle(table["signal"], table.get("unit"), table.get("angle"))
 
 
 def constant_period(schedule: Mapping[str, Any]) -> float | None:

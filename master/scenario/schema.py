@@ -178,6 +178,7 @@ TABLES: dict[str, dict[str, Callable | None]] = {
                  "hold_cycles": whole_positive, "restart_cycles": not_negative,
                  "intervals": None, "phases": None,
                  "steady_tolerance": positive, "steady_cycles": count, "drift_tolerance": positive,
+                 "speed_tolerance": positive,
                  "tm_min": positive, "tm_max": positive, "to_min": positive, "to_max": positive,
                  "tracked": list_of(port_ref), "tolerance": positive},
     "outputs": {"record": list_of(port_ref), "record_step": positive, "format": one_of(*OUTPUT_FORMATS)},
@@ -196,7 +197,7 @@ CONNECTION = {"from": port_ref, "to": port_ref, "average": one_of(*AVERAGES),
               "convert": text, "unit": text}
 INTERVAL = {"phase": text, "duration": positive, "cycles": positive, "step": positive}
 #: ``[schedule] cycle``: a constant period [s], or a speed / frequency output and its unit (master/scenario/cycle.py)
-CYCLE = {"period": positive, "signal": port_ref, "unit": text}
+CYCLE = {"period": positive, "signal": port_ref, "unit": text, "angle": port_ref}
 
 
 def _did_you_mean(word: Any, known) -> str:
@@ -457,10 +458,14 @@ def _cycle(c: _Checker, s: Mapping, comps: Mapping) -> tuple[float | None, str]:
     if ("period" in cyc) == ("signal" in cyc):
         raise c.fail("schedule.cycle", None, "give exactly one of period (s) or signal (\"component.port\")")
     if "period" in cyc:
-        if "unit" in cyc:
-            raise c.fail("schedule.cycle", "unit", "is the unit of a signal; a period is in seconds")
+        for key in ("unit", "angle"):
+            if key in cyc:
+                raise c.fail("schedule.cycle", key, f"is the {key} of a signal's cycle; a constant period counts "
+                                                    "in seconds")
         return cyc["period"], f"of {cyc['period']:g} s"
     _known_component(c, "schedule.cycle", "signal", cyc["signal"], list(comps))
+    if "angle" in cyc:
+        _known_component(c, "schedule.cycle", "angle", cyc["angle"], list(comps))
     return None, ""
 
 

@@ -6,9 +6,11 @@ temperatures); TO intervals run until the thermal outputs that feed the mechanic
 ``drift_tolerance``, within min/max durations. The last stretch is one TM interval, where results are read.
 
 Non-stationary runs (a cycle that follows a speed signal, [schedule] cycle): a TM interval is not steady while
-the cycle's speed changes by more than ``drift_tolerance`` over ``to_min`` (a rundown: a held interval would skip
-that much of it), and one that ends at ``tm_max`` without having become steady while the speed moved by more
-than half ``drift_tolerance`` over it is followed by another TM interval, not a TO one; a spool's
+the cycle's speed changes by more than ``speed_tolerance`` (default ``drift_tolerance``) over ``to_min`` (a rundown:
+a held interval would skip that much of it; a steadiness test counted in turns of the cycle's angle sees a response
+that changes little from one turn to the next even through a critical speed, so this is the test that keeps a
+rundown coupled), and one that ends at ``tm_max`` without having become steady while the speed moved by more
+than half that tolerance over it is followed by another TM interval, not a TO one; a spool's
 speed is an output of a component stepped in TO intervals, so the drift test returns to TM when it has drifted by
 more than ``drift_tolerance``; a TO interval ends before a component's next scheduled event
 (``Component.next_event``: a fuel cut). With a constant cycle none of this changes a run.
@@ -62,14 +64,17 @@ class AutoSchedule(Schedule):
     to_max: float = 30.0
     tracked: Sequence[str] = ()
     tolerance: float | None = None
+    speed_tolerance: float | None = None
 
     keys = ("steady_tolerance", "steady_cycles", "drift_tolerance", "tm_min", "tm_max", "to_min", "to_max",
-            "tracked", "tolerance")
+            "tracked", "tolerance", "speed_tolerance")
 
     def __post_init__(self):
         for name in ("duration", "step", "thermal_step", "steady_tolerance", "drift_tolerance",
                      "tm_min", "tm_max", "to_min", "to_max"):
             setattr(self, name, _positive(name, getattr(self, name)))
+        if self.speed_tolerance is not None:
+            self.speed_tolerance = _positive("speed_tolerance", self.speed_tolerance)
         if self.tolerance is not None:
             self.tolerance = _positive("tolerance (percent)", self.tolerance)
             if self.tolerance > TOLERANCE_MAX_PCT:
@@ -79,6 +84,11 @@ class AutoSchedule(Schedule):
             raise ScheduleError("schedule: minimum interval durations must not exceed the maxima")
         if int(self.steady_cycles) < 1:
             raise ScheduleError("schedule: steady_cycles must be >= 1")
+
+    @property
+    def speed_limit(self) -> float:
+        """The relative speed change of the non-stationary tests: ``speed_tolerance``, else ``drift_tolerance``."""
+        return self.speed_tolerance if self.speed_tolerance is not None else self.drift_tolerance
 
     @classmethod
     def from_spec(cls, spec, duration, step, thermal_step, cycle):
@@ -111,8 +121,8 @@ class AutoSchedule(Schedule):
                 sim.run_interval(sim.phases.coupled, self.tm_max, self.step, test, reason="tm_max")
                 if sim.report.stopped:
                     break
-                if not test.ended_steady and test.speed_change(sim) > 0.5 * self.drift_tolerance:
-                    # not steady, and the cycle's speed moved by more than half the drift tolerance over the
+                if not test.ended_steady and test.speed_change(sim) > 0.5 * self.speed_limit:
+                    # not steady, and the cycle's speed moved by more than half the speed tolerance over the
                     # interval (a rundown): no held interval yet, coupled again (a constant cycle never does)
                     state["next"] = COUPLED
                 continue
@@ -141,6 +151,8 @@ class AutoSchedule(Schedule):
 
 class _StopTest:
     every = 1
+    #: base steps between two checks (run_interval sets it: ``every`` and the interval's multi-rate period)
+    check_steps = 1
 
     def sample(self, sim) -> None:
         pass
@@ -158,7 +170,13 @@ class _StopTest:
 
 class _SteadyTest(_StopTest):
     """Steady when the RMS of the tracked outputs over a cycle changes by less than the tolerance
-    (relative) for ``steady_cycles`` consecutive cycles, after ``tm_min``."""
+    (relative) for ``steady_cycles`` consecutive cycles, after ``tm_min``.
+
+    A cycle is the ``check_steps`` base steps between two checks (a period at the interval's start, ``every``,
+    or the whole number of periods of the multi-rate period); with a cycle source that has an angle, it is as
+    many whole turns of that angle, counted from the interval's start, as there are periods between two checks
+    at the starting speed (the RMS over each such span of turns is compared with the previous span's), and the
+    checks, still every ``check_steps`` base steps, take the spans completed since the last one in order."""
 
     def __init__(self, sim, sch: AutoSchedule):
         self.sch = sch
@@ -173,12 +191,35 @@ class _SteadyTest(_StopTest):
         self.n = 0
         self.last = None
         self.steady = 0
-        # the cycle's speed (a speed signal's): not steady while it changes by more than drift_tolerance over a
+        # the cycle's speed (a speed signal's): not steady while it changes by more than speed_tolerance over a
         # minimal held interval (to_min), which would skip that much of a rundown; a constant cycle never does
         self.speed_changing = False
         self.ended_steady = False
         self._period = (sim.t, sim.hold.cycle)
         self._p_start = self._period[1]
+        # counted in turns: (the angle's outputs, its port, its ref), the next whole turn, the direction, and the
+        # RMS of each turn completed since the last check
+        self.turns = None
+        counter = getattr(sim, "revolutions", None)
+        if counter is not None:
+            comp, _, port = counter.ref.partition(".")
+            self.turns = (comps[comp].y, port, counter.ref)
+            self.dir = sim.cycle_source.direction(sim.system)
+            self.next = float(comps[comp].y[port][0]) + 2.0 * np.pi * self.dir
+            self.done: list[np.ndarray] = []
+            self.turn_count = 0
+
+    def _turn_done(self, theta: float) -> None:
+        """A turn ends at this sample: the RMS of the span if it is its last turn, and the next whole turn past
+        ``theta``."""
+        self.turn_count += 1
+        if self.turn_count % max(1, int(round(self.check_steps / self.every))) == 0:
+            self.done.append(np.sqrt(self.acc / self.n))
+            self.acc, self.n = None, 0
+        turn = 2.0 * np.pi * self.dir
+        self.next += turn
+        while (theta - self.next) * self.dir >= 0.0:
+            self.next += turn
 
     def sample(self, sim):
         if not self.refs:
@@ -186,14 +227,15 @@ class _SteadyTest(_StopTest):
         vals = np.concatenate([np.ravel(sim.value(r)) for r in self.refs])
         self.acc = vals * vals if self.acc is None else self.acc + vals * vals
         self.n += 1
+        if self.turns is not None:
+            theta = float(self.turns[0][self.turns[1]][0])
+            if (theta - self.next) * self.dir >= 0.0:
+                self._turn_done(theta)
 
     def block_refs(self):
-        return list(self.refs)
+        return list(self.refs) + ([self.turns[2]] if self.turns is not None else [])
 
-    def sample_block(self, cols):
-        if not self.refs:
-            return
-        rows = np.concatenate([cols[r] for r in self.refs], axis=1)
+    def _accumulate(self, rows) -> None:
         sq = rows * rows
         if self.acc is not None:
             sq = np.vstack([self.acc[None, :], sq])
@@ -201,20 +243,45 @@ class _SteadyTest(_StopTest):
         self.acc = np.add.accumulate(sq, axis=0)[-1]
         self.n += rows.shape[0]
 
-    def check(self, sim, t):
-        changing = self._speed_changing(sim, t)
-        if self.acc is None:
-            if not changing and t - self.t_begin >= self.sch.tm_min - 1e-12:
-                self.ended_steady = True
-                return "steady"
-            return None
-        rms = np.sqrt(self.acc / self.n)
-        self.acc, self.n = None, 0
+    def sample_block(self, cols):
+        if not self.refs:
+            return
+        rows = np.concatenate([cols[r] for r in self.refs], axis=1)
+        if self.turns is None:
+            self._accumulate(rows)
+            return
+        theta = np.asarray(cols[self.turns[2]])[:, 0]
+        start = 0
+        while start < rows.shape[0]:   # the block cut at the samples that end a turn, as ``sample`` would
+            passed = np.flatnonzero((theta[start:] - self.next) * self.dir >= 0.0)
+            end = start + int(passed[0]) + 1 if len(passed) else rows.shape[0]
+            self._accumulate(rows[start:end])
+            if len(passed):
+                self._turn_done(float(theta[end - 1]))
+            start = end
+
+    def _compare(self, rms) -> None:
         if self.last is not None:
             scale = np.maximum(np.abs(self.last), 1e-12)
             change = float(np.max(np.abs(rms - self.last) / scale))
             self.steady = self.steady + 1 if change < self.sch.steady_tolerance else 0
         self.last = rms
+
+    def check(self, sim, t):
+        changing = self._speed_changing(sim, t)
+        if self.turns is not None and self.refs:
+            for rms in self.done:   # the turns completed since the last check
+                self._compare(rms)
+            self.done = []
+        else:
+            if self.acc is None:
+                if not changing and t - self.t_begin >= self.sch.tm_min - 1e-12:
+                    self.ended_steady = True
+                    return "steady"
+                return None
+            rms = np.sqrt(self.acc / self.n)
+            self.acc, self.n = None, 0
+            self._compare(rms)
         if changing:
             self.steady = 0
         if t - self.t_begin >= self.sch.tm_min - 1e-12 and self.steady >= self.sch.steady_cycles:
@@ -232,7 +299,7 @@ class _SteadyTest(_StopTest):
         return abs(p - p0) / p if p and p0 else 0.0
 
     def _speed_changing(self, sim, t) -> bool:
-        """Whether the cycle's speed changed since the last check faster than drift_tolerance per to_min (a
+        """Whether the cycle's speed changed since the last check faster than speed_tolerance per to_min (a
         constant cycle never does; a stopped speed signal has no period: not changing)."""
         t0, p0 = self._period
         try:
@@ -240,7 +307,7 @@ class _SteadyTest(_StopTest):
         except ValueError:
             p = None
         if p and p0 and t > t0:
-            self.speed_changing = abs(p - p0) / p / (t - t0) * self.sch.to_min > self.sch.drift_tolerance
+            self.speed_changing = abs(p - p0) / p / (t - t0) * self.sch.to_min > self.sch.speed_limit
         self._period = (t, p)
         return self.speed_changing
 

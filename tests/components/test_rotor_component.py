@@ -27,16 +27,18 @@ def _rotor(**params):
 
 
 def test_ports_match_the_blade_loss_scenario():
-    """Every rotor.<port> wired in scenarios/blade_loss.toml exists with the right causality (output when it is a
-    'from', input when it is a 'to'), and every rotor input is driven."""
+    """Every rotor.<port> wired in scenarios/blade_loss.toml (its templates instantiated) exists with the right
+    causality (output when it is a 'from', input when it is a 'to'), and every rotor input is driven."""
+    from rotorcosim.master.scenario.build import load_scenario
+
     sc = tomllib.loads(SCENARIO.read_text())
     by_name = {v.name: v for v in Rotor.variables}
     driven = set()
-    for c in sc["connections"]:
-        for end, causality in (("from", "output"), ("to", "input")):
-            comp, _, port = c[end].partition(".")
+    for c in load_scenario(SCENARIO).connections:
+        for end, causality in (("src", "output"), ("dst", "input")):
+            comp, _, port = getattr(c, end).partition(".")
             if comp == "rotor":
-                assert port in by_name and by_name[port].causality == causality, c[end]
+                assert port in by_name and by_name[port].causality == causality, getattr(c, end)
                 if causality == "input":
                     driven.add(port)
     assert driven == {v.name for v in Rotor.variables if v.causality == "input"}
@@ -180,3 +182,25 @@ def test_critical_speeds_command_json(capsys):
 def test_critical_speeds_command_bad_count(capsys):
     assert main(["critical-speeds", "--count", "0"]) == 2
     assert "--count" in capsys.readouterr().err
+
+
+def test_ports_follow_the_engine_files_attach():
+    """Three bearings and one rub ring in [attach] (docs/examples/three_bearings): the component's ports are theirs
+    (attach.py), its kernel's port containers plain tuples (numba's cache index then names no class of a layout),
+    and a port-tuple class that an older cache index names unpickles to a stand-in instead of failing."""
+    import pickle
+
+    from rotorcosim.components import kernels
+
+    engine = Path(__file__).resolve().parents[2] / "docs" / "examples" / "three_bearings" / "engine.toml"
+    r = _rotor(model_file=str(engine))
+    ins = [v.name for v in r.variables if v.causality == "input"]
+    assert ins == ["F_brg1", "F_brg2", "F_brg3", "F_sfd_housing1", "F_sfd_housing2", "F_sfd_housing3",
+                   "F_rub_housing1", "F_rub1"]
+    assert {"X_brg3", "V_housing2", "X_rub1"} <= set(r.y) and "X_rub2" not in r.y
+    u, y = r.kernel_io()
+    assert type(u) is tuple and type(y) is tuple and len(u) == 8
+    r.do_step(0.0, H)
+    assert np.all(np.isfinite(r.y["X_brg2"]))
+    stale = kernels.RotorInputs_0123456789
+    assert pickle.loads(pickle.dumps(stale)) is stale and stale._fields == ()

@@ -113,3 +113,27 @@ def test_attach_makes_two_ross_bearings_the_cosimulated_ones(tmp_path):
     write_engine(e, tmp_path / "e.toml")
     m = fem.load(tmp_path / "e.toml")
     fem.require_ports(m, ("brg0", "brg5", "housing0", "housing5", "rub0", "rub5", "unbalance"))
+
+
+def test_attach_takes_any_bearing_ids(tmp_path, capsys):
+    """--attach with one id of another name: that ROSS bearing becomes pedestal h<ID> under bearing<ID> (and its
+    rub ring), the other stays a linear support; the rotor component's ports follow (attach.py). A bad id is one
+    line."""
+    from rotorcosim.components.rotor.component import Rotor
+    from rotorcosim.master.cli import main
+
+    e = from_ross(DATA / "rotor_example.toml", attach={"bearingfront": 0})
+    assert list(e["attach"])[:2] == ["bearingfront", "rubringfront"] and "hfront" in e["pedestal"]
+    assert len(e["support"]) == 1
+    write_engine(e, tmp_path / "e.toml")
+    rotor = Rotor("rotor", {"model_file": str(tmp_path / "e.toml")})
+    ports = {v.name for v in rotor.variables if v.causality == "input"}
+    assert ports == {"F_brgfront", "F_sfd_housingfront", "F_rub_housingfront", "F_rubfront"}
+    assert main(["import-ross", str(DATA / "rotor_example.toml"), "--out", str(tmp_path / "x.toml"),
+                 "--attach", "1=0,2=6"]) == 0
+    assert [k for k in fem.load_data(tmp_path / "x.toml")[0]["attach"] if k.startswith("b")] == ["bearing1", "bearing2"]
+    capsys.readouterr()
+    assert main(["import-ross", str(DATA / "rotor_example.toml"), "--out", str(tmp_path / "y.toml"),
+                 "--attach", "a-b=0"]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "expected ID=NODE" in err[0] and not (tmp_path / "y.toml").exists()

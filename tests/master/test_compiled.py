@@ -149,3 +149,82 @@ def test_automatic_schedule_runs_compiled_and_decides_as_the_generic_loop(tmp_pa
     for name, comp in cs.system.components.items():
         for port, y in comp.y.items():
             assert _rel(y, ps.system.components[name].y[port]) <= RTOL, f"{name}.{port}"
+
+
+def test_compiled_equals_generic_with_windows_counted_in_turns(tmp_path):
+    """blade_loss_rundown (its cycle counts the turns of spool_pt.theta), the fuel cut at once: the hand-off
+    windows, the cycle means that end at each turn and the steady windows are the same in both loops, and span the
+    5 turns asked for (the speed falls ~1.5 % over the first interval)."""
+    runs = {}
+    for engine in ("compiled", "python"):
+        sc = resolve("blade_loss_rundown").set({"spool_pt.t_fuel_cut": 0.0, "spool_gg.t_fuel_cut": 0.0})
+        obs = result_observers(sc, cycle_of(sc.schedule))
+        sim = build_simulation(sc, obs)
+        sim.engine_choice = engine
+        h = float(sc.schedule["step"])
+        sim.run(Timeline([Interval("TM", 0.03, h), Interval("TO", 1.0, 0.1), Interval("TM", 0.004, h)]))
+        runs[engine] = (sim, obs)
+    (cs, cobs), (ps, pobs) = runs["compiled"], runs["python"]
+    assert cs.engines_used == ["compiled", "compiled"] and ps.engines_used == ["python", "python"]
+    assert cs.revolutions is not None and cs.engine.steps_taken == ps.engine.steps_taken
+    for ch, ph in zip(cs.hold.handoffs, ps.hold.handoffs):
+        assert ch.turns is not None and (ch.pos, ch.count, ch.cn) == (ph.pos, ph.count, ph.cn)
+        assert _rel(ch.ring, ph.ring) <= RTOL
+        for ca_, pa_ in zip(sum(ch.history, []), sum(ph.history, [])):
+            assert _rel(ca_[0], pa_[0]) <= RTOL and _rel(ca_[1], pa_[1]) <= RTOL
+        assert len(ch.history[0]) == len(ph.history[0]) >= 7     # turns of the first interval: ~7.9
+    rep = cs.report.hold.as_dict()
+    assert rep == ps.report.hold.as_dict()
+    assert rep["window_revolutions"]["asked"] == 5.0
+    assert 5.0 <= rep["window_revolutions"]["smallest"] < 5.01
+    for a, b in zip(cobs[0].windows, pobs[0].windows):
+        assert a.keys() == b.keys() and "revolutions" in a
+        for key in a:
+            assert _rel(a[key], b[key]) <= RTOL, key
+    assert 5.0 <= cobs[0].windows[0]["revolutions"] < 5.02
+    for name, comp in cs.system.components.items():
+        for port, y in comp.y.items():
+            assert _rel(y, ps.system.components[name].y[port]) <= RTOL, f"{name}.{port}"
+
+
+def test_a_run_resumed_inside_an_interval_counts_the_same_turns(tmp_path, monkeypatch):
+    """blade_loss_rundown interrupted (a real SIGINT) inside its first thermo-mechanical interval and resumed from
+    its checkpoint: the hold read back counts the turns the resumed run records, not the copy it was saved with
+    (a copy whose angle ends at the interruption: its windows would begin ~3 turns early)."""
+    import os
+    import signal
+
+    import rotorcosim
+    from rotorcosim.master.observer.observers import Progress
+    from rotorcosim.master.run import checkpoint
+
+    sc = resolve("blade_loss_rundown").set({"spool_pt.t_fuel_cut": 0.0, "spool_gg.t_fuel_cut": 0.0})
+    h = float(sc.schedule["step"])
+    tl = Timeline([Interval("TM", 0.03, h), Interval("TO", 1.0, 0.1), Interval("TM", 0.004, h)])
+    original, fired = Progress.step, []
+
+    def step(self, sim, t):
+        if not fired and t >= 0.02:
+            fired.append(t)
+            os.kill(os.getpid(), signal.SIGINT)
+        original(self, sim, t)
+
+    monkeypatch.setattr(Progress, "step", step)
+    out = tmp_path / "cut"
+    with pytest.raises(checkpoint.RunInterrupted):
+        rotorcosim.simulate(sc, schedule=tl, out=out, figures=False, checkpoint_every=1e-6)
+    monkeypatch.setattr(Progress, "step", original)
+    restore, bound = checkpoint.ResumePoint.restore, []
+
+    def watched(self, sim):
+        restore(self, sim)
+        hos = [ho for ho in sim.hold.handoffs if ho.turns is not None]
+        bound.append(bool(hos) and sim.hold.revolutions is sim.revolutions
+                     and all(ho.turns[0] is sim.revolutions for ho in hos))
+
+    monkeypatch.setattr(checkpoint.ResumePoint, "restore", watched)
+    res = rotorcosim.simulate(sc, schedule=tl, out=out, figures=False, resume=True)
+    assert 0.0 < res.summary["resumed_from_t_s"] < 0.03
+    assert bound and all(bound)
+    revs = res.summary["hold"]["window_revolutions"]
+    assert revs["asked"] == 5.0 and 5.0 <= revs["smallest"] < 5.01, revs

@@ -187,3 +187,135 @@ def test_the_steady_windows_follow_the_signal(tmp_path):
     assert np.mean(first["spin.P"][1:]) == pytest.approx(P0, rel=1e-12)     # 2 turns at 50 Hz: 40 samples
     assert len(first["t"]) == 41 and len(second["t"]) == 81                 # 2 turns at 25 Hz: 80 samples
     assert np.mean(second["spin.P"][1:]) == pytest.approx(P0, rel=1e-12)
+
+
+# -- windows counted in turns of the cycle's angle ----------------------------------------------------------------
+W0, ALPHA = 2 * math.pi * 50.0, 2 * math.pi * 60.0     # 50 Hz at t = 0, falling 60 Hz per second
+HR = 1e-4                                              # 200 steps a turn at 50 Hz, 500 at 20 Hz
+
+
+class FallingSpinner(Spinner):
+    """The spinner with a prescribed falling speed Omega(t) = W0 - ALPHA t: its angle is the exact integral,
+    theta(t) = W0 t - ALPHA t^2 / 2 (each step adds (Omega(t) - ALPHA h / 2) h)."""
+
+    def _speed(self, t_own):
+        return self.p["Omega0"] - ALPHA * t_own
+
+    def do_step(self, t, h):
+        self.state["theta"] += (self._speed(self.state["t_own"]) - 0.5 * ALPHA * h) * h
+        self.state["t_own"] += h
+        self.time = t + h
+        self._outputs()
+
+
+def _theta(t):
+    return W0 * t - 0.5 * ALPHA * t * t
+
+
+def _analytic_began(turns, t_end):
+    """The time the last ``turns`` turns before t_end began: theta(t) = theta(t_end) - 2 pi turns, solved."""
+    target = _theta(t_end) - 2 * math.pi * turns
+    return (W0 - math.sqrt(W0 * W0 - 2.0 * ALPHA * target)) / ALPHA
+
+
+def _falling(cycle, turns=3.0):
+    spin = FallingSpinner("spin", {"Omega0": W0, "P0": P0, "a": A})
+    node = registry.create("testing.thermal_node", "node")
+    system = System({"spin": spin, "node": node}, [Connection("spin.P", "node.P")])
+    from rotorcosim.master.observer.observers import SteadyWindows
+    obs = SteadyWindows(["spin.P", "spin.theta"], cycle, cycles=turns)
+    return Simulation(system, order=["spin", "node"], hold="mean", hold_cycles=turns, cycle=cycle,
+                      observers=[obs]), obs
+
+
+def test_a_window_counted_in_turns_spans_them_while_the_speed_falls():
+    """TM 0.5 s while the speed falls from 50 to 20 Hz, then TO: the hand-off window and the steady window span 3
+    turns of the angle at the interval's end (an analytic integral of the speed), where a window of 3 periods
+    read at the interval's start (0.06 s) spans 1.3 turns."""
+    sim, obs = _falling(SignalCycle("spin.Omega", angle="spin.theta"))
+    sim.run_interval("TM", 0.5, HR)
+    t_end = sim.t
+    counter = sim.revolutions
+    # within the error of a linear interpolation of theta between samples: ALPHA h^2 / 8 in angle, over Omega
+    interp = ALPHA * HR ** 2 / 8 / (2 * math.pi * 20)
+    assert counter.began(3.0) == pytest.approx(_analytic_began(3.0, t_end), abs=interp)
+    ho = sim.hold.handoffs[0]
+    k = ho.window_samples()
+    # the samples of the steps since the turns began: the first one's step contains that time
+    t0 = _analytic_began(3.0, t_end)
+    assert t_end - k * HR <= t0 < t_end - (k - 1) * HR
+    assert ho.window_revolutions() == pytest.approx((_theta(t_end) - _theta(t_end - k * HR)) / (2 * math.pi),
+                                                    rel=1e-9)
+    assert 3.0 <= ho.window_revolutions() < 3.0 + W0 * HR / (2 * math.pi)
+    # the held power is the window's mean, exactly: the samples' P0 (1 + a cos theta) at the analytic angles
+    ts = t_end - HR * np.arange(k)[::-1]
+    expected = np.mean(P0 * (1.0 + A * np.cos(_theta(ts))))
+    sim.run_interval("TO", 0.5, 0.05)
+    assert float(sim.system.components["node"].u["P"][0]) == pytest.approx(expected, rel=1e-9)
+    assert expected == pytest.approx(P0, rel=0.01)     # whole turns: the fluctuation averages out (nearly)
+    rep = sim.report.hold.as_dict()["window_revolutions"]
+    assert rep["asked"] == 3.0 and rep["per_interval"] == [pytest.approx(ho_revs := rep["smallest"])]
+    assert 3.0 <= ho_revs < 3.02
+    # the elasticity fit's cycle means end at each whole turn from the interval's start
+    cycles = ho.history[-1]
+    assert len(cycles) == int(_theta(t_end) // (2 * math.pi))
+    # the steady window (Table 4's): the same turns, and the sample at or before their start
+    win = obs.windows[-1]
+    assert win["t"][0] <= t0 < win["t"][1] and win["t"][-1] == pytest.approx(t_end)
+    assert win["revolutions"] == pytest.approx((_theta(win["t"][-1]) - _theta(win["t"][0])) / (2 * math.pi))
+
+
+def test_without_the_angle_the_window_is_sized_by_the_starting_period():
+    """The same run with the speed's period alone (read at the interval's start): the window is 3 x 20 ms, 600
+    samples, 1.3 turns at the end of the rundown, and its held mean is off P0 by a share of a."""
+    sim, _ = _falling(SignalCycle("spin.Omega"))
+    sim.run_interval("TM", 0.5, HR)
+    ho = sim.hold.handoffs[0]
+    assert ho.window_samples() == 600 and ho.window_revolutions() is None
+    turns = (_theta(sim.t) - _theta(sim.t - 600 * HR)) / (2 * math.pi)
+    assert 1.2 < turns < 1.4
+    assert "window_revolutions" not in sim.report.hold.as_dict()
+
+
+def test_at_a_constant_speed_turns_and_periods_give_the_same_window():
+    """theta = Omega t: the window counted in turns holds the very samples of the window of 3 periods."""
+    sims = {}
+    for angle in (None, "spin.theta"):
+        spin = Spinner("spin", {"Omega0": W50, "P0": P0, "a": A})
+        node = registry.create("testing.thermal_node", "node")
+        sim = Simulation(System({"spin": spin, "node": node}, [Connection("spin.P", "node.P")]),
+                         order=["spin", "node"], hold="mean", hold_cycles=3, cycle=SignalCycle("spin.Omega",
+                                                                                                  angle=angle))
+        sim.run_interval("TM", 0.2, H)
+        sims[angle] = sim
+    a, b = sims[None].hold.handoffs[0], sims["spin.theta"].hold.handoffs[0]
+    assert a.window_samples() == b.window_samples() == 60
+    assert np.array_equal(np.sort(a._data(), axis=0), np.sort(b._data(), axis=0))
+    assert [m for _, m in a.history[-1]] == pytest.approx([m for _, m in b.history[-1]], rel=1e-12)
+
+
+def test_a_bad_cycle_angle_is_a_clear_error(tmp_path):
+    with pytest.raises(ValueError, match=r"cycle angle spin.P: a scalar Real output in \[rad\]"):
+        build_simulation(_scenario(tmp_path, 'cycle = { signal = "spin.Omega", angle = "spin.P" }'))
+    with pytest.raises(ValueError, match=r"\[schedule.cycle\] angle: .*spun"):
+        build_simulation(_scenario(tmp_path, 'cycle = { signal = "spin.Omega", angle = "spun.theta" }'))
+    with pytest.raises(ValueError, match=r"\[schedule.cycle\] angle: is the angle of a signal's cycle"):
+        build_simulation(_scenario(tmp_path, 'cycle = { period = 0.02, angle = "spin.theta" }'))
+
+
+def test_a_steady_window_grows_where_the_speed_falls_below_the_margin():
+    """One interval of 0.78 s, 50 -> 3.2 Hz (6 % of the starting speed, below 1 / WINDOW_MARGIN): the steady
+    window's ring grows and the window still spans the last 3 turns (0.27 s, more than the 0.24 s its ring was
+    sized for); the hand-off's ring, fixed in the compiled loop's tables, does not: its window is cut to the ring and
+    the turns it spanned say so (fewer than 3)."""
+    sim, obs = _falling(SignalCycle("spin.Omega", angle="spin.theta"))
+    sim.run_interval("TM", 0.78, HR)
+    t_end = sim.t
+    win = obs.windows[-1]
+    t0 = _analytic_began(3.0, t_end)
+    assert t_end - t0 > 0.24
+    assert win["t"][0] <= t0 < win["t"][1]
+    assert 3.0 <= win["revolutions"] < 3.001
+    ho = sim.hold.handoffs[0]
+    assert ho.window_samples() == len(ho.ring) == 2400      # 4 x 3 turns of 20 ms at 0.1 ms
+    assert 2.0 < ho.window_revolutions() < 3.0

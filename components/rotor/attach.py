@@ -1,0 +1,98 @@
+"""Where the co-simulated parts attach to the rotor, and the rotor component's ports that follow from it.
+
+An engine file's ``[attach]`` names any number of ball bearings ``bearing<ID> = {node, housing}`` and rub rings
+``rubring<ID> = {node}`` (docs/reference/engine-format.md); ``ID`` is any name of letters, digits and ``_``
+("0", "5", "front"). From those ids come, in a fixed order that the reduced model, the input vector of the
+Newmark step and the kernel's offset tables share:
+
+* the DOF groups (:func:`groups`): ``brg<ID>`` (x y z of the spool node at each bearing), ``housing<ID>`` (x y of
+  each bearing's housing hub), ``rub<ID>`` (x y of the spool node at each rub ring), ``unbalance`` (x y);
+* the input ports (:func:`input_ports`): ``F_brg<ID>`` for every bearing, then per bearing ``F_sfd_housing<ID>``
+  and (when it has a rub ring) ``F_rub_housing<ID>``, then ``F_rub<ID>`` for every rub ring;
+* the output ports (:func:`output_ports`): ``X_/V_brg<ID>``, ``X_/V_housing<ID>``, ``X_/V_rub<ID>``.
+
+For the paper's engine (bearings "0" and "5", rub rings "0" and "5") this is the order the rotor component has
+always used, so its numbers are unchanged bit for bit. A rub ring's ring sits on the housing of the bearing of
+the same id (a rub ring without such a bearing is refused by name).
+"""
+from __future__ import annotations
+
+import re
+from dataclasses import dataclass
+
+#: an attachment id: what follows "bearing" / "rubring" in an [attach] key
+ID = re.compile(r"^[A-Za-z0-9_]+$")
+#: [attach] keys that are not bearings or rub rings
+OTHER_KEYS = ("unbalance", "oil_temperature_C")
+
+
+@dataclass(frozen=True)
+class Layout:
+    """The ids of the attached bearings and rub rings, in [attach] order."""
+
+    bearings: tuple[str, ...]
+    rubrings: tuple[str, ...]
+
+
+#: the paper's engine (and the class-level declaration of the rotor component)
+PAPER = Layout(("0", "5"), ("0", "5"))
+
+
+def layout(attach: dict) -> Layout:
+    """The layout of an ``[attach]`` table; a key that is not an attachment, or a rub ring without its bearing,
+    is a ValueError naming it."""
+    bearings, rubrings = [], []
+    for key in attach:
+        if key in OTHER_KEYS:
+            continue
+        m = re.match(r"^(bearing|rubring)(.*)$", key)
+        if not m or not ID.match(m.group(2)):
+            raise ValueError(f"rotor model: [attach] {key!r} is not an attachment point (known: bearing<ID>, "
+                             f"rubring<ID> with ID of letters, digits or _, {', '.join(OTHER_KEYS)})")
+        (bearings if m.group(1) == "bearing" else rubrings).append(m.group(2))
+    for r in rubrings:
+        if r not in bearings:
+            raise ValueError(f"rotor model: [attach] rubring{r} has no bearing{r} (a rub ring's ring is on the "
+                             f"housing of the bearing of the same id)")
+    return Layout(tuple(bearings), tuple(rubrings))
+
+
+def layout_of_ports(ports: dict) -> Layout:
+    """The layout of a model's port groups (``FullModel.ports``), in their order."""
+    return Layout(tuple(g[3:] for g in ports if g.startswith("brg")),
+                  tuple(g[3:] for g in ports if g.startswith("rub")))
+
+
+def groups(lay: Layout) -> list[tuple[str, str, str, int]]:
+    """The DOF groups in the reduced basis's order: (group, [attach] entry, what: "node" | "housing", size)."""
+    return ([(f"brg{b}", f"bearing{b}", "node", 3) for b in lay.bearings]
+            + [(f"housing{b}", f"bearing{b}", "housing", 2) for b in lay.bearings]
+            + [(f"rub{r}", f"rubring{r}", "node", 2) for r in lay.rubrings]
+            + [("unbalance", "unbalance", "node", 2)])
+
+
+def load_groups(lay: Layout) -> tuple[str, ...]:
+    """The groups where forces enter (the augmentation vectors of the reduced basis), in order."""
+    return tuple(g for g, _, _, _ in groups(lay))
+
+
+def input_ports(lay: Layout) -> list[tuple[str, str, int, str]]:
+    """(input port, DOF group, size, description) in the order of the Newmark step's force vector."""
+    out = [(f"F_brg{b}", f"brg{b}", 3, f"bearing #{b} force on the PT node (x y z)") for b in lay.bearings]
+    for b in lay.bearings:
+        out.append((f"F_sfd_housing{b}", f"housing{b}", 2, f"damper #{b} reaction on the casing hub under "
+                                                           f"bearing #{b}"))
+        if b in lay.rubrings:
+            out.append((f"F_rub_housing{b}", f"housing{b}", 2, f"rub ring #{b} reaction on the casing hub under "
+                                                               f"bearing #{b}"))
+    out += [(f"F_rub{r}", f"rub{r}", 2, f"rub force on the PT node at rub ring #{r}") for r in lay.rubrings]
+    return out
+
+
+def output_ports(lay: Layout) -> list[tuple[str, str, str, int, str]]:
+    """(DOF group, displacement port, velocity port, size, description of X and V: "{} at ...") in the order of
+    the output rows. ("PT": the spool the part is on; the paper's bearings are on the power turbine.)"""
+    return ([(f"brg{b}", f"X_brg{b}", f"V_brg{b}", 3, f"PT {{}} at bearing #{b} (x y z)") for b in lay.bearings]
+            + [(f"housing{b}", f"X_housing{b}", f"V_housing{b}", 2, f"casing hub {{}} under bearing #{b}")
+               for b in lay.bearings]
+            + [(f"rub{r}", f"X_rub{r}", f"V_rub{r}", 2, f"PT {{}} at rub ring #{r}") for r in lay.rubrings])
