@@ -5,12 +5,15 @@ The independent reference is the monolithic run: the same system through one the
 hold, no restart and no thermal-only interval, so every difference is the staggered scheme's. The suite's version
 moves the fuel cut to 1.01 s (both spools): the response at full speed is steady from 0.5 s on (the automatic
 schedule's first steady test), so the rundown starts from the steady blade-loss state as the shipped one does after
-its 15 s, and both crossings (1.2 and 2.3 s after the cut) and the first thermal-only intervals of the windmilling
-(from ~6.5 s after the cut) fall inside a 12 s window (~65 s of CPU time for both runs and the warm-up). A cut at
-0.51 s, inside the blade-loss transient, is not that case: there the schedule took a thermal-only interval at
-9 650 rev/min in the middle of the rundown and the peak whirl at #5 at 8 500 rev/min came out 1.9 % off.
+its 15 s, and both crossings (1.2 and 2.3 s after the cut) and the first thermal-only interval of the windmilling
+(the schedule keeps the rundown coupled until ~10 s after the cut, [schedule] speed_tolerance) fall inside a 12 s
+window (~75 s of CPU time for both runs and the warm-up; in so short a window the staggered run is barely the
+cheaper: its gain is the windmilling's, see the slow version). A cut at
+0.51 s, inside the blade-loss transient, is not that case: before [schedule] speed_tolerance the schedule took a
+thermal-only interval there at 9 650 rev/min, in the middle of the rundown, and the peak whirl at #5 at
+8 500 rev/min came out 1.9 % off.
 ``ROTORCOSIM_SLOW=1`` runs the command's default, the shipped rundown plus 10 minutes of windmilling (660 s
-simulated; the monolithic run alone takes ~40 min of CPU time).
+simulated; the monolithic run alone took 30 min of CPU time).
 """
 from __future__ import annotations
 
@@ -48,7 +51,8 @@ def _check(t: dict, out):
     assert [iv["phase"] for iv in mono["timeline"]] == ["TM"]
     # the staggered run did leave the coupled phase: the comparison is not of two equal schedules
     assert t["staggered_phases"]["TO"]["intervals"] >= 2
-    assert t["staggered_phases"]["TO"]["simulated_s"] > 0.15 * t["duration_s"]
+    # the results at the end are read in a coupled interval restarted from a thermal-only one
+    assert [iv["phase"] for iv in st["timeline"][-2:]] == ["TO", "TM"]
     for b in ("0", "5"):
         for key, e in t["results"][b].items():
             a, m = st["bearings"][b][key], mono["bearings"][b][key]
@@ -78,16 +82,13 @@ def test_short_rundown_staggered_within_2pct_of_monolithic(tmp_path):
     t = rc.compare_rundown(_early_cut(), DURATION, out, figures=False)
     _check(t, out)
     assert t["duration_s"] == DURATION and t["duration_rule"] == "given" and t["t_fuel_cut_s"] == CUT
-    # the rundown starts coupled: a coupled interval ends at the cut here (0.95 + 0.06 s), and no held one may
-    # start there (it ran the first 0.3 s of the rundown frozen: #5's 8 500 rev/min crossing came out 10 % off
-    # when the crossings were still read as maxima over a speed band)
+    # the rundown is coupled from the cut through both crossings (no held interval starts at the cut: a coupled
+    # interval ending exactly there once let one start, tests/components/test_spool.py)
     timeline = json.loads((out / "staggered" / "summary.json").read_text())["timeline"]
-    assert [iv["phase"] for iv in timeline if abs(iv["t_start"] - CUT) < 1e-6] == ["TM"]
-    # the windmilling's thermal-only intervals make the staggered run the cheaper one
-    assert t["speedup_cpu"] > 1.0
+    assert all(iv["phase"] == "TM" for iv in timeline if CUT - 0.1 < iv["t_end"] and iv["t_start"] < CUT + 3.0)
 
 
-@pytest.mark.skipif(os.environ.get("ROTORCOSIM_SLOW") != "1", reason="~45 min of CPU time: ROTORCOSIM_SLOW=1")
+@pytest.mark.skipif(os.environ.get("ROTORCOSIM_SLOW") != "1", reason="~32 min of CPU time: ROTORCOSIM_SLOW=1")
 def test_default_shortened_rundown_within_2pct(tmp_path):
     """The issue's run: blade_loss_rundown, the rundown plus 10 minutes of windmilling (15.01 + 45 + 600 s)."""
     out = tmp_path / "cmp"
