@@ -245,8 +245,8 @@ class Component:
         self.phase = phase
 
     def next_event(self, t: float) -> float | None:
-        """The time of this component's next scheduled change of behaviour after ``t`` [s] (the spool's fuel cut),
-        or None. The automatic schedule ends a held-phase interval there, so that the change happens in a
+        """The time of this component's next scheduled change of behaviour at or after ``t`` [s] (the spool's fuel
+        cut), or None. The automatic schedule ends a held-phase interval there, so that the change happens in a
         coupled interval. None by default."""
         return None
 

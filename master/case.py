@@ -22,7 +22,10 @@ A case is a module or object with any of these attributes:
 - ``SWEEP_SCORE``: ``"module:function"``, ``function(score, out) -> str``, the line ``rotorcosim sweep`` prints
   for a score of ``SWEEP_TABLES``;
 - ``COMMANDS``: ``{"command-name": ("dotted.module", "one line of help")}``, added to the ``rotorcosim`` program
-  (each module offers ``add_arguments(parser)`` and ``run(args) -> int``, as the master's own commands).
+  (each module offers ``add_arguments(parser)`` and ``run(args) -> int``, as the master's own commands);
+- ``COMPARE``: ``"module:function"``, ``function(args, sc) -> int``: what ``rotorcosim compare SCENARIO`` does
+  for a scenario of this case (``args``: the command's parsed options, ``sc``: the scenario with its ``--set`` /
+  ``--swap`` / ``--unbalance`` applied); without it ``compare`` is the blade-loss case's Table 6.
 
 The master names no case: it asks this module.
 """

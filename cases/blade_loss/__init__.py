@@ -33,7 +33,8 @@ The generic master runs the case as any other; what its parts measured on this s
 RESULTS = "rotorcosim.cases.blade_loss.results"
 #: the case's own commands of the ``rotorcosim`` program
 COMMANDS = {
-    "compare": ("rotorcosim.cases.blade_loss.compare", "the paper's Table 6: staggered against monolithic"),
+    "compare": ("rotorcosim.cases.blade_loss.compare",
+                "staggered against monolithic: the paper's Table 6, or a rundown's"),
     "critical-speeds": ("rotorcosim.cases.blade_loss.critical_speeds",
                         "synchronous critical speeds and Campbell diagram of the rotor"),
     "new-engine": ("rotorcosim.cases.blade_loss.new_engine",

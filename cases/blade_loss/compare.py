@@ -48,7 +48,8 @@ from rotorcosim.master.sweep.folder import named_os_error
 from rotorcosim.master.sweep.lock import FolderLock
 
 from rotorcosim.master.cli.options import add_dpi, add_out, add_scenario
-from rotorcosim.master.cli.run import apply_unbalance, execute, resolve
+from rotorcosim.master.cli.run import add_edit_arguments, apply_edits, apply_unbalance, execute, parse_set, resolve
+from rotorcosim.master import case
 
 #: Table 6's rows (no rub power: there is no rub at 2850 N)
 KEYS = ("whirl_amplitude_mm", "transmissibility", "max_contact_load_N", "max_contact_stress_MPa", "drag_power_W",
@@ -75,16 +76,24 @@ REVOLUTIONS = 32.0
 
 
 def add_arguments(p):
-    """The options of ``rotorcosim compare`` on the parser ``p``."""
-    p.add_argument("--duration", type=float, default=2.0, help="simulated duration [s] (default 2, as the paper)")
-    p.add_argument("--unbalance", type=float, default=2850.0, help="blade-loss force [N] (default 2850)")
+    """The options of ``rotorcosim compare`` on the parser ``p``. A scenario whose case offers its own
+    comparison (``COMPARE``, master/case.py: the rundown's) takes the options its function names; the Table 6
+    defaults are filled in by :func:`run` so that an option given to a comparison it does not belong to is seen."""
+    p.add_argument("--duration", type=float, default=None,
+                   help="simulated duration [s] (default 2, as the paper; a rundown scenario: the rundown plus 10 "
+                        "minutes of windmilling, cases/rundown/compare.py)")
+    p.add_argument("--unbalance", type=float, default=None, help="blade-loss force [N] (default 2850; a rundown "
+                                                                 "scenario: its own level)")
     add_scenario(p, "blade_loss", note="the levels' base file, F_u = 2850 N as in blade_loss_2850 that run uses; "
-                                       "the runs' results carry its name")
+                                       "the runs' results carry its name. blade_loss_rundown: staggered against "
+                                       "monolithic over a rundown, rundown_compare.json")
     add_out(p, "output folder")
-    p.add_argument("--revolutions", type=float, default=REVOLUTIONS,
-                   help=f"rotor revolutions in all thermo-mechanical intervals of the staggered run (default "
-                        f"{REVOLUTIONS:g}; the paper: 50)")
-    p.add_argument("--bearing", type=int, choices=(0, 5), default=0, help="bearing of the table (default 0)")
+    add_edit_arguments(p)
+    p.add_argument("--revolutions", type=float, default=None,
+                   help=f"Table 6: rotor revolutions in all thermo-mechanical intervals of the staggered run "
+                        f"(default {REVOLUTIONS:g}; the paper: 50)")
+    p.add_argument("--bearing", type=int, choices=(0, 5), default=None,
+                   help="Table 6: bearing of the table (default 0)")
     p.add_argument("--no-figures", action="store_true",
                    help="skip the PNG figures of the two runs (they are drawn after both timed runs, untimed)")
     add_dpi(p)
@@ -93,18 +102,19 @@ def add_arguments(p):
     p.add_argument("--resume", action="store_true",
                    help="continue the interrupted comparison in --out: its complete runs are kept, the others run "
                         "again (same command otherwise)")
-    p.add_argument("--schedule", choices=("paper", "auto"), default="paper",
-                   help="staggered run: paper (3 TM + 2 TO intervals, Table 6) or auto (the scenario's automatic "
-                        "schedule over --duration)")
+    p.add_argument("--schedule", choices=("paper", "auto"), default=None,
+                   help="Table 6's staggered run: paper (3 TM + 2 TO intervals, the default) or auto (the "
+                        "scenario's automatic schedule over --duration)")
     p.add_argument("--tolerance", type=float, default=None, metavar="PCT",
                    help="with --schedule auto: the largest Table 4 error accepted, percent (see rotorcosim run)")
     p.add_argument("--timing-runs", type=int, default=None, metavar="N",
-                   help=f"timings of the staggered run (paper schedule, monolithic run made here), half before and "
-                        f"half after the monolithic run; its time in table6.json (wall_time_s, cpu_time_s) is their "
-                        f"mean, each one kept in staggered_runs (default {TIMING_RUNS}; 1: a single timing)")
+                   help=f"Table 6: timings of the staggered run (paper schedule, monolithic run made here), half "
+                        f"before and half after the monolithic run; its time in table6.json (wall_time_s, "
+                        f"cpu_time_s) is their mean, each one kept in staggered_runs (default {TIMING_RUNS}; 1: a "
+                        f"single timing)")
     p.add_argument("--monolithic", default=None, metavar="DIR",
-                   help="reuse the monolithic run in DIR (a previous comparison's monolithic/ folder of the same "
-                        "scenario, unbalance and duration) instead of running it again")
+                   help="Table 6: reuse the monolithic run in DIR (a previous comparison's monolithic/ folder of "
+                        "the same scenario, unbalance and duration) instead of running it again")
 
 
 def staggered_timeline(duration: float, step: float, thermal_step: float, speed_rpm: float,
@@ -449,11 +459,26 @@ def _reuse(folder: Path, unbalance: float, duration: float, name: str | None = N
 
 
 def run(args) -> int:
-    """Run the command ``args`` (parsed); prints the speed-up and the largest error; returns 0."""
-    t = compare(Path(args.out), args.duration, args.unbalance, args.scenario, args.revolutions, args.bearing,
-                quiet=args.quiet, figures=not args.no_figures, overwrite=args.overwrite, schedule=args.schedule,
-                tolerance=args.tolerance, monolithic=args.monolithic, timing_runs=args.timing_runs,
-                resume=args.resume, dpi=args.dpi)
+    """Run the command ``args`` (parsed): a scenario whose case offers its own comparison (``COMPARE``) goes to
+    it with ``--set`` / ``--swap`` / ``--unbalance`` applied; otherwise Table 6, which prints the speed-up and the
+    largest error. Returns 0."""
+    sc = resolve(args.scenario)
+    own = case.attribute(sc.extra.get("results", {}).get("kind"), "COMPARE")
+    if own is not None:
+        sc = apply_edits(sc, args)
+        if args.unbalance is not None:
+            apply_unbalance(sc, args.unbalance, [parse_set(text)[0] for text in args.set_values or []])
+        return int(own(args, sc) or 0)
+    if args.set_values or args.swap:
+        raise ValueError("compare: --set / --swap apply to a case's own comparison (blade_loss_rundown); Table 6 "
+                         "compares the scenario as it is (give --unbalance for its level)")
+    t = compare(Path(args.out), 2.0 if args.duration is None else args.duration,
+                2850.0 if args.unbalance is None else args.unbalance, args.scenario,
+                REVOLUTIONS if args.revolutions is None else args.revolutions,
+                0 if args.bearing is None else args.bearing,
+                quiet=args.quiet, figures=not args.no_figures, overwrite=args.overwrite,
+                schedule=args.schedule or "paper", tolerance=args.tolerance, monolithic=args.monolithic,
+                timing_runs=args.timing_runs, resume=args.resume, dpi=args.dpi)
     est = (t.get("hold") or {}).get("estimated_error_pct")
     cpu = f" (CPU time {t['speedup_cpu']:.1f})" if t.get("speedup_cpu") else ""
     print(f"Table 6 (bearing #{t['bearing']}, {t['duration_s']} s, {t['schedule']} schedule): speed-up "

@@ -5,10 +5,14 @@ spools' energy balance, and for the blade-loss engine the Table 4 results at the
 
 - :mod:`.results`: ``summary.json`` keys ``speeds``, ``crossings``, ``energy`` (and ``bearings`` for the engine);
 - :mod:`.figures`: speed against time with the thermal-only intervals shaded, whirl and transmitted force against
-  speed, the Campbell diagram with the run's trajectory, the temperatures.
+  speed, the Campbell diagram with the run's trajectory, the temperatures;
+- :mod:`.compare`: ``rotorcosim compare blade_loss_rundown``, the staggered scheme against the monolithic run
+  over the rundown and 10 minutes of windmilling (``compare_rundown``).
 
 Scenarios: ``jeffcott_rundown`` (the check case against an independent integration) and ``blade_loss_rundown``.
 """
 
 #: the result extraction of the scenarios whose ``[results] kind`` is ``"rundown"`` (rotorcosim.master.case)
 RESULTS = "rotorcosim.cases.rundown.results"
+#: ``rotorcosim compare`` for the scenarios of this case (master/case.py ``COMPARE``)
+COMPARE = "rotorcosim.cases.rundown.compare:run"

@@ -39,6 +39,8 @@ from .profile import RPM, cumulative_angle, parse_table, ramp_table
 
 PROFILES = {"constant": CONSTANT, "ramp": TABLE, "table": TABLE, "torque": TORQUE}
 ENERGY_LABELS = ("kinetic", "drive", "drag", "rub", "aero")
+#: how far past its time [s] an event still counts as to come (interval ends are sums of steps: round-off)
+EVENT_TOL = 1e-9
 
 
 class Spool(KernelComponent):
@@ -130,9 +132,11 @@ class Spool(KernelComponent):
         self.time = float(t0)
 
     def next_event(self, t):
-        """The fuel cut of a torque-driven spool, while it is ahead."""
+        """The fuel cut of a torque-driven spool while it is to come, at ``t`` itself too: the step from the cut on
+        is the first without drive, so a held interval starting at the cut (a coupled one ended there) would run
+        the start of the rundown frozen. EVENT_TOL absorbs the round-off of interval ends."""
         cut = self.p["t_fuel_cut"]
-        return float(cut) if self.p["profile"] == "torque" and cut >= 0.0 and cut > t else None
+        return float(cut) if self.p["profile"] == "torque" and cut >= 0.0 and cut >= t - EVENT_TOL else None
 
     def _model_inertia(self) -> float:
         from ..rotor.spool_inertia import polar_inertia

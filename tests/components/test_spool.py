@@ -66,6 +66,8 @@ def test_torque_rundown_against_analytic_solution_and_energy():
 def test_drive_holds_speed_until_fuel_cut_and_event():
     s = _spool(profile="torque", speed_rpm=16000.0, t_fuel_cut=0.5, windmill_rpm=4900.0, aero_torque=30.0)
     assert s.next_event(0.0) == 0.5 and s.next_event(0.6) is None
+    # a coupled interval that ends at the cut: the cut is still to come, so no held interval starts there
+    assert s.next_event(0.5) == 0.5 and s.next_event(0.5 + 1e-12) == 0.5 and s.next_event(0.5 + 1e-6) is None
     _run(s, 0.5, 1e-3, torque=0.3)
     assert s.y["Omega"][0] == 16000 * RPM
     assert s.y["T_drive"][0] == pytest.approx(4 * 0.3 + 30.0)
