@@ -196,7 +196,7 @@ def _response(data, w, coupled, crit, peaks, out):
 def _campbell(sc, w, crit, peaks, out):
     plt = _plt()
     top = 1.1 * float(np.nanmax(w))
-    fig, ax = plt.subplots(figsize=(8, 5))
+    fig, ax = plt.subplots(figsize=(10, 5))
     rpm = np.linspace(0.0, top, 41)
     drawn = False
     model_file = sc.components["rotor"].parameters.get("model_file", "") if "rotor" in sc.components else ""
@@ -223,15 +223,16 @@ def _campbell(sc, w, crit, peaks, out):
         ax.plot(c, c / 60.0, "o", mfc="none", mec="tab:red", ms=9)
     for c, s, _ in peaks:
         ax.plot(s, s / 60.0, "x", color="tab:red", ms=9, mew=2)
-        ax.annotate(f"peak {s:.0f}", (s, s / 60.0), textcoords="offset points", xytext=(6, -14), fontsize=8,
-                    color="tab:red")
+        # above-left of the mark: the trajectory runs up-right from it, the mode lines run flat beside it
+        ax.annotate(f"peak {s:.0f}", (s, s / 60.0), textcoords="offset points", xytext=(-8, 6), ha="right",
+                    fontsize=8, color="tab:red")
     ax.set_xlim(0, top)
     ax.set_ylim(0, 1.3 * top / 60.0)
     ax.set_xlabel("power-turbine speed [rev/min]")
     ax.set_ylabel("whirl frequency [Hz]")
     ax.set_title("Campbell diagram (o: critical speeds, x: the resonance peaks of the run's whirl, the crossings)",
                  fontsize=9)
-    ax.legend(fontsize=8, loc="upper left")
+    ax.legend(fontsize=8, loc="upper left", bbox_to_anchor=(1.01, 1.0))   # outside: mode lines fill the axes
     ax.grid(alpha=0.3)
     return _save(fig, out, "rundown_campbell.png")
 
