@@ -57,9 +57,16 @@ def cli(*argv, timeout=180) -> subprocess.CompletedProcess:
                           text=True, timeout=timeout)
 
 
+FOREGROUND = ("import signal, sys\nsignal.signal(signal.SIGINT, signal.default_int_handler)\n"
+              "from rotorcosim.master.cli import main\nsys.exit(main(sys.argv[1:]))\n")
+
+
 def start(*argv) -> subprocess.Popen:
     """``rotorcosim ARGV`` started in a session of its own: a signal to its group is a terminal's Ctrl-C."""
-    return subprocess.Popen([sys.executable, "-m", "rotorcosim.master.cli", *map(str, argv)],
+    # SIGINT raising KeyboardInterrupt, as in a terminal's foreground command: pytest started as a background job
+    # of a non-interactive shell ignores SIGINT, an ignored signal stays ignored in every child, and the sweep then
+    # ran to its end under the Ctrl-C of the test below
+    return subprocess.Popen([sys.executable, "-c", FOREGROUND, *map(str, argv)],
                             stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, start_new_session=True)
 
 
