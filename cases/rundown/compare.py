@@ -1,5 +1,5 @@
 """``rotorcosim compare blade_loss_rundown [--duration D] --out DIR``: the staggered scheme against the monolithic
-run on a rundown (issue 26's verification of the scheme in non-stationary operation).
+run on a rundown: the check of the scheme in non-stationary operation.
 
 The rundown scenario runs twice over the same ``duration``: staggered (the scenario's own automatic schedule:
 coupled intervals through the rundown, thermal-only ones once the response is steady) and monolithic (one
@@ -61,9 +61,9 @@ from rotorcosim.master.sweep.lock import FolderLock
 from rotorcosim.cases.blade_loss.compare import _draw, _kept, _load, _quantum
 from rotorcosim.cases.blade_loss.results import RESULT_KEYS, unbalance_force
 
-#: the acceptance of issue 26: every Table 4 result at the end and every crossing's peaks within 2 %
+#: the acceptance: every Table 4 result at the end and every crossing's peaks within 2 %
 TOLERANCE_PCT = 2.0
-#: windmilling after the rundown in the default duration [s] (issue 26: "the rundown plus 10 minutes")
+#: windmilling after the rundown in the default duration [s]: the rundown plus 10 minutes
 WINDMILLING_S = 600.0
 #: the rundown's length from the fuel cut to windmilling [s]. Measured on blade_loss_rundown (2850 N, the shipped
 #: torque law, its automatic schedule over 120 s): the power turbine passes both critical speeds within 3 s of the
