@@ -164,6 +164,7 @@ class RevolutionCounter:
 
     def __init__(self, ref: str):
         self.ref = ref
+        self._comp, _, self._port = ref.partition(".")   # read at every step: split once
         self.keep = 1.0
         self.active = False
         self._t = np.zeros(0)
@@ -188,8 +189,7 @@ class RevolutionCounter:
             self._add(np.array([sim.t]), np.array([self._angle(sim)]))
 
     def _angle(self, sim) -> float:
-        comp, _, port = self.ref.partition(".")
-        return float(sim.system.components[comp].y[port][0])
+        return float(sim.system.components[self._comp].y[self._port][0])
 
     def step(self, sim, t) -> None:
         """Record the angle at the step's end time ``t``."""

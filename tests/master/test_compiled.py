@@ -187,33 +187,20 @@ def test_compiled_equals_generic_with_windows_counted_in_turns(tmp_path):
             assert _rel(y, ps.system.components[name].y[port]) <= RTOL, f"{name}.{port}"
 
 
-def test_a_run_resumed_inside_an_interval_counts_the_same_turns(tmp_path, monkeypatch):
+def test_a_run_resumed_inside_an_interval_counts_the_same_turns(tmp_path, monkeypatch, sigint_at):
     """blade_loss_rundown interrupted (a real SIGINT) inside its first thermo-mechanical interval and resumed from
     its checkpoint: the hold read back counts the turns the resumed run records, not the copy it was saved with
     (a copy whose angle ends at the interruption: its windows would begin ~3 turns early)."""
-    import os
-    import signal
-
     import rotorcosim
-    from rotorcosim.master.observer.observers import Progress
     from rotorcosim.master.run import checkpoint
 
     sc = resolve("blade_loss_rundown").set({"spool_pt.t_fuel_cut": 0.0, "spool_gg.t_fuel_cut": 0.0})
     h = float(sc.schedule["step"])
     tl = Timeline([Interval("TM", 0.03, h), Interval("TO", 1.0, 0.1), Interval("TM", 0.004, h)])
-    original, fired = Progress.step, []
-
-    def step(self, sim, t):
-        if not fired and t >= 0.02:
-            fired.append(t)
-            os.kill(os.getpid(), signal.SIGINT)
-        original(self, sim, t)
-
-    monkeypatch.setattr(Progress, "step", step)
+    sigint_at(0.02)   # once: the resumed run below goes on undisturbed
     out = tmp_path / "cut"
     with pytest.raises(checkpoint.RunInterrupted):
         rotorcosim.simulate(sc, schedule=tl, out=out, figures=False, checkpoint_every=1e-6)
-    monkeypatch.setattr(Progress, "step", original)
     restore, bound = checkpoint.ResumePoint.restore, []
 
     def watched(self, sim):

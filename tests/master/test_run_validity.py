@@ -1,13 +1,10 @@
 """The validity observer (master/observer/validity.py): a run's summary.json carries the checks it left (empty
 when all held), with one warning line each at the end, through the compiled and the generic loop alike."""
 import json
-import os
-import signal
 
 import pytest
 
 import rotorcosim
-from rotorcosim.master.observer.observers import Progress
 from rotorcosim.master.run import checkpoint
 
 # the bearing oil of thermal0 started and supplied past the fit's flash-point limit (500 K, components/oil_fit.py)
@@ -42,18 +39,10 @@ def test_components_that_declare_nothing_give_an_empty_list():
     assert res.summary["validity"] == []
 
 
-def test_a_resumed_run_keeps_what_the_interrupted_one_found(tmp_path, monkeypatch):
+def test_a_resumed_run_keeps_what_the_interrupted_one_found(tmp_path, sigint_at):
     """Interrupted (a real SIGINT) after the oil was found past its limit at t = 0, then resumed: the resumed
     run's entries keep the first time, 0, not the time it resumed at."""
-    original, fired = Progress.step, []
-
-    def step(self, sim, t):
-        if not fired and t >= 0.015:
-            fired.append(t)
-            os.kill(os.getpid(), signal.SIGINT)
-        original(self, sim, t)
-
-    monkeypatch.setattr(Progress, "step", step)
+    fired = sigint_at(0.015)
     sc = rotorcosim.load_scenario("blade_loss_2850").set(HOT)
     out = tmp_path / "r"
     with pytest.raises(checkpoint.RunInterrupted):
