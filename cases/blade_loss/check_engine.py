@@ -83,9 +83,9 @@ def run(args) -> int:
     print("  attached: " + (", ".join(f"{k} at {v['node']}" + (f" (housing {v['housing']})" if "housing" in v
                                                                else "") for k, v in at.items()) or "nothing"))
     c = out["critical_speeds"]
-    print(f"  forward synchronous critical speeds [rev/min]: "
+    print("  forward synchronous critical speeds [rev/min]: "
           + ", ".join(f"{v:.0f}" for v in c["forward_synchronous_rpm"]))
-    print(f"  backward synchronous critical speeds [rev/min]: "
+    print("  backward synchronous critical speeds [rev/min]: "
           + ", ".join(f"{v:.0f}" for v in c["backward_synchronous_rpm"]))
     print(f"  supports: {c['support_model']['description']}")
     print(f"Campbell diagram: {out['campbell']}")

@@ -3,7 +3,6 @@ set, the bearing's geometry among them."""
 from __future__ import annotations
 
 import json
-import math
 
 import pytest
 
