@@ -1,5 +1,5 @@
-"""Is there a plausible layout with bearing #0's support mode ABOVE the 16 000 rev/min running speed? (issue 17,
-fourth session: a time-boxed structural study, linear engine only.)
+"""Is there a plausible layout with bearing #0's support mode ABOVE the 16 000 rev/min running speed? (A
+time-boxed structural study, linear engine only.)
 
 The question (docs/results/calibration.md, "A layout with #0's support mode above the running speed"): a layout in which
   (a) the linear engine (master/linear_engine, as ``rotorcosim critical-speeds``) has its two lowest forward

@@ -12,7 +12,7 @@ The Python API (``master/api.py``)::
     rotorcosim.calibrate("spec.toml", "out")                   # model updating (master/study/calibrate.py)
     rotorcosim.uq("uq.toml", "out")                            # uncertainty quantification (master/study/uq.py)
 
-The code lives in the top-level folders fixed by the design card and is installed as sub-packages:
+The code lives in the checkout's top-level folders and is installed as sub-packages:
 ``rotorcosim.components`` (components/), ``rotorcosim.master`` (master/), ``rotorcosim.fmus`` (fmus/).
 """
 import os as _os

@@ -1,7 +1,7 @@
 """ROSS itself (the test extra installs ross-rotordynamics): its example rotors, live, to rotorcosim and back.
 
 Peer code as the reference: ROSS's own run_critical_speed (tight rtol) and run_unbalance_response on the same
-rotor. The issue's bounds: forward synchronous critical speeds within 0.1 %, unbalance response within 0.5 %."""
+rotor. The bounds: forward synchronous critical speeds within 0.1 %, unbalance response within 0.5 %."""
 from __future__ import annotations
 
 import math

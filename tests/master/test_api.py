@@ -1,4 +1,4 @@
-"""The Python API of issue 14, line by line of the README's snippet, on the blade-loss system (1 ms) and the toy.
+"""The Python API, line by line of the README's snippet, on the blade-loss system (1 ms) and the toy.
 
     import rotorcosim
     sc = rotorcosim.load_scenario("blade_loss_2850")
