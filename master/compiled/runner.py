@@ -297,7 +297,7 @@ class Runner:
                 LI[j, op.L_GOFF], LI[j, op.L_GNR] = go, nr
                 go += nr * n
                 LI[j, op.L_COFF] = co
-                # at most one cycle a sample when counted in turns (links.record)
+                # at most one cycle a sample when counted in turns (window.record)
                 per = link.window.w.n_cycle if link.window.turns is None else 1
                 co += (CHUNK // per + 2) * int(LI[j, op.L_CW])
         G = np.zeros(max(1, go))
