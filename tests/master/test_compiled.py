@@ -168,7 +168,7 @@ def test_compiled_equals_generic_with_windows_counted_in_turns(tmp_path):
     assert cs.engines_used == ["compiled", "compiled"] and ps.engines_used == ["python", "python"]
     assert cs.revolutions is not None and cs.engine.steps_taken == ps.engine.steps_taken
     for ch, ph in zip(cs.hold.handoffs, ps.hold.handoffs):
-        assert ch.turns is not None and (ch.pos, ch.count, ch.cn) == (ph.pos, ph.count, ph.cn)
+        assert ch.turns is not None and (ch.w.pos, ch.w.count, ch.w.cn) == (ph.w.pos, ph.w.count, ph.w.cn)
         assert _rel(ch.ring, ph.ring) <= RTOL
         for ca_, pa_ in zip(sum(ch.history, []), sum(ph.history, [])):
             assert _rel(ca_[0], pa_[0]) <= RTOL and _rel(ca_[1], pa_[1]) <= RTOL
