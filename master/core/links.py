@@ -4,8 +4,9 @@ A link carries a producer's output ``y`` (n values) to a consumer's input ``u``.
 (fast producer -> slow consumer), extrapolate (slow -> fast, or ``linear-end``) and add a hand-back's restart offset
 (master/manipulator/hold.py, Restart); a hand-off window's recording is the hold's own record (master/core/window.py),
 not part of the link's state. Its state is two sequences of floats with the layout below, the same for the generic
-loop (algorithm._Link keeps them as lists: ``link.state``, ``link.vectors``) and the compiled loop (master/compiled/loop_ops: a row of a float64 table and a slice of another
-per link, copied from and back to the link's lists around each chunk).
+loop (algorithm._Link keeps them as lists: ``link.state``, ``link.vectors``) and the compiled loop
+(master/compiled/loop_ops: a row of a float64 table and a slice of another per link, copied from and back to the
+link's lists around each chunk).
 
 The operations are plain functions over arrays with offsets, written with element loops and no calls, so that the
 compiled loop compiles these very functions (numba) and the generic loop calls them in Python: one source, the
