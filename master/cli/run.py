@@ -173,9 +173,14 @@ def run(args) -> int:
         print(f"rotorcosim run: {stop['component']} asked to stop the simulation at t = {stop['t_s']:.9g} s; "
               f"the run ended there (status \"stopped\")")
     est = (s.get("hold") or {}).get("estimated_error_pct")
+    which = (s.get("estimated_error") or {}).get("largest")
     print(f"{sc.name}: {s['t_end_s']:.4g} s simulated in {s['wall_time_s']:.3g} s wall time "
           f"({s['engine'] or 'no'} engine)"
-          + (f"; estimated error of the staggered scheme {est:.2f} %" if est is not None else ""))
+          + (f"; estimated error of the staggered scheme {est:.2f} %" + (f" ({which})" if which else "")
+             if est is not None else ""))
+    note = (s.get("hold") or {}).get("advice")
+    if note:
+        print(f"rotorcosim run: {note}")
     # the last line: every file the run wrote
     print("written: " + ", ".join(str(f) for f in res.files))
     return 0
