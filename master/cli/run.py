@@ -45,9 +45,10 @@ def add_arguments(p):
                    help="the ports to record, comma-separated (default: the scenario's [outputs] record; the "
                         "figures need the scenario's own)")
     p.add_argument("--tolerance", type=float, default=None, metavar="PCT",
-                   help="with --schedule auto: the largest error of a reported temperature against the monolithic "
-                        "run that you accept, in percent; the thermal-only intervals follow it and summary.json "
-                        "reports the estimated error achieved (hold.estimated_error_pct)")
+                   help="with --schedule auto: the largest error of a result against the monolithic run that you "
+                        "accept, in percent (a temperature's of its rise above the initial temperature); the "
+                        "thermal-only intervals follow it and summary.json reports the estimated error achieved "
+                        "(hold.estimated_error_pct; hold.advice where it is above)")
     add_out(p, "output folder (empty, or see --overwrite / --resume)")
     p.add_argument("--overwrite", action="store_true", help="replace the results of a previous run in --out")
     p.add_argument("--resume", action="store_true",
