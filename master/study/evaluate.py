@@ -23,11 +23,13 @@ from __future__ import annotations
 import os
 import sys
 import time
+import uuid
 from typing import Any, Callable, Sequence
 
 # one place for these: the sweep engine's connection timeout [s], retries of a job whose worker died, its Dask
 # client (local cluster or scheduler address), its closing and its SIGTERM-as-Ctrl-C (module-private there)
-from rotorcosim.master.sweep.engine import CONNECT_TIMEOUT_S, RETRIES
+from rotorcosim.master.sweep import attempts
+from rotorcosim.master.sweep.engine import CONNECT_TIMEOUT_S
 from rotorcosim.master.sweep.engine import close_client, dask_client as sweep_client
 from rotorcosim.master.sweep.engine import sigterm_as_interrupt as terminate_as_interrupt  # noqa: F401 - used as evaluate.terminate_as_interrupt
 
@@ -57,6 +59,14 @@ def run_job(scenario: str, overrides: dict[str, Any], duration: float | None) ->
         summary.update(status="failed", error=f"{type(exc).__name__}: {' '.join(str(exc).split())}")
     summary.setdefault("wall_time_s", time.perf_counter() - t0)
     return summary
+
+
+def _counted(task: Callable, key: list, scenario: str, overrides: dict[str, Any], duration: float | None) -> dict:
+    """What a worker runs for a job: ``task``, unless the job's workers died too often already (attempts.py)."""
+    error = attempts.gave_up(key)
+    if error is not None:
+        return {"status": "failed", "error": error}
+    return task(scenario, overrides, duration)
 
 
 def check_scheduler(scheduler: str | None, connect_timeout: float = CONNECT_TIMEOUT_S) -> None:
@@ -103,14 +113,10 @@ class Evaluator:
     def _connect(self):
         if self._client is not None:
             return self._client
-        import dask
-
-        # a job whose worker died is run RETRIES more times by the scheduler, then reported failed (KilledWorker;
-        # a scheduler given by address keeps its own setting); the local cluster is sized for the workers asked
-        # for, not the first batch (a calibration's first batch may be one run)
-        with dask.config.set({"distributed.scheduler.allowed-failures": RETRIES}):
-            self._client, self._cluster, self.where = sweep_client(self.scheduler, self.workers, self.connect_timeout,
-                                                                   self.workers or os.cpu_count() or 1)
+        # a job whose worker died is run again, then reported failed, as a sweep's case (attempts.py); the local
+        # cluster is sized for the workers asked for, not the first batch (a calibration's first batch may be one run)
+        self._client, self._cluster, self.where = sweep_client(self.scheduler, self.workers, self.connect_timeout,
+                                                               self.workers or os.cpu_count() or 1)
         return self._client
 
     def map(self, jobs: Sequence[Job], done: Callable[[int, Job, dict], None] | None = None) -> list[dict]:
@@ -139,10 +145,12 @@ class Evaluator:
         slots = max(1, sum(w.get("nthreads", 1) for w in client.scheduler_info().get("workers", {}).values()))
         waiting = list(range(len(jobs)))
         futures: dict = {}
+        token = uuid.uuid4().hex
 
         def submit():
             i = waiting.pop(0)
-            fut = client.submit(self.task, self.scenario, jobs[i][1], self.duration, pure=False)
+            fut = client.submit(_counted, self.task, [attempts.KEY, token, str(i)], self.scenario, jobs[i][1],
+                                self.duration, pure=False)
             futures[fut] = i
             return fut
 
@@ -152,10 +160,8 @@ class Evaluator:
                 i = futures.pop(fut)
                 try:
                     summary = fut.result()
-                except Exception as exc:  # KilledWorker: its worker died twice; or the task could not start
-                    summary = {"status": "failed",
-                               "error": f"{type(exc).__name__}: {' '.join(str(exc).split())} (the job's worker "
-                                        f"died or could not run it; tried {RETRIES + 1} times)"}
+                except Exception as exc:  # the task could not start, or Dask gave up on it (KilledWorker)
+                    summary = {"status": "failed", "error": attempts.task_error(exc)}
                 if waiting:
                     running.add(submit())
                 finish(i, summary)

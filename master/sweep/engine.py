@@ -10,7 +10,7 @@ unlocked):
 
 * a case that fails (a bad value, a divergence, a crashed FMU): its summary's ``error``, the others go on;
 * the worker running a case dies (killed, out of memory, a crash in native code): the case is run once more
-  (:data:`RETRIES`), then reported failed by name ("its worker died ..."), the others go on;
+  (attempts.py, the retry of studies too), then reported failed by name ("its worker died ..."), the others go on;
 * the scheduler goes away: the sweep ends with :class:`SchedulerLost` naming it and how many cases are kept;
 * Ctrl-C or SIGTERM: the sweep stops (on Dask at once; ``serial`` once the case running, which takes the
   signal over, has stopped or ended), the cases still running marked ``interrupted`` in sweep.json, the others
@@ -42,15 +42,12 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any, Callable, Sequence
 
+from rotorcosim.master.sweep import attempts
 from rotorcosim.master.sweep.case import Case, failed_summary, run_case
 from rotorcosim.master.sweep.folder import SweepFolder, named_os_error
 
 #: how long the client waits for a scheduler given by ``scheduler=`` before saying it cannot reach it [s]
 CONNECT_TIMEOUT_S = 20.0
-#: how often a case whose worker died is run again before it is reported failed
-RETRIES = 1
-#: the Dask metadata key under which a case's attempts are counted (on the scheduler, under it per sweep and case)
-ATTEMPTS = "rotorcosim-sweep-attempts"
 
 
 class SweepError(RuntimeError):
@@ -59,10 +56,6 @@ class SweepError(RuntimeError):
 
 class SchedulerLost(SweepError):
     """The Dask scheduler went away during the sweep."""
-
-
-class WorkerDied(SweepError):
-    """A case whose worker died on every attempt."""
 
 
 class SweepInterrupted(KeyboardInterrupt):
@@ -224,7 +217,7 @@ class _Sweep:
         lost = False
         try:
             try:
-                futures = {client.submit(_attempt, c, [ATTEMPTS, self.token, c.name], pure=False): c for c in todo}
+                futures = {client.submit(_attempt, c, [attempts.KEY, self.token, c.name], pure=False): c for c in todo}
             except (OSError, TimeoutError):
                 lost = True
                 raise SchedulerLost(self._lost(address)) from None
@@ -239,7 +232,7 @@ class _Sweep:
                     if _scheduler_gone(client, exc):
                         lost = True
                         raise SchedulerLost(self._lost(address)) from None
-                    res = {"summary": failed_summary(c, _task_error(exc)), "files": {}, "host": None}
+                    res = {"summary": failed_summary(c, attempts.task_error(exc)), "files": {}, "host": None}
                 self.finished(c, res)
         except KeyboardInterrupt:
             self._not_started(client, futures)
@@ -254,7 +247,7 @@ class _Sweep:
         """At an interrupt: the cases sent but not yet taken by a worker back to ``pending`` (only those a worker
         runs are ``interrupted``); when the scheduler cannot say, all stay ``running``."""
         try:
-            started = client.get_metadata([ATTEMPTS, self.token], {})
+            started = attempts.started(client, [attempts.KEY, self.token])
         except Exception:
             return
         for c in futures.values():
@@ -268,27 +261,13 @@ class _Sweep:
 
 
 def _attempt(case: Case, key: list) -> dict:
-    """The task a worker runs: count the attempt on the scheduler (a worker that dies while running the case
-    makes the scheduler run it again on another), fail it on a third, else run the case."""
-    from dask.distributed import get_client
-
-    client = get_client()
-    n = client.get_metadata(key, 0)
-    client.set_metadata(key, n + 1)
-    if n > RETRIES:   # returned, not raised: the workers would log a raised one as an error with its traceback
+    """The task a worker runs: the case, unless its workers died too often already (attempts.py)."""
+    error = attempts.gave_up(key)
+    if error is not None:
         import socket
 
-        error = f"{WorkerDied.__name__}: its worker died while running it, {n} times (retried {RETRIES} time(s))"
         return {"summary": failed_summary(case, error), "files": {}, "host": socket.gethostname()}
     return run_case(case)
-
-
-def _task_error(exc: BaseException) -> str:
-    """A failed task's error, as a case's summary says it."""
-    name = type(exc).__name__
-    if name == "KilledWorker":   # the scheduler gave up on the task after its own limit of worker deaths
-        return f"WorkerDied: its worker died while running it ({exc})"
-    return f"{name}: {exc}"
 
 
 def _scheduler_gone(client, exc: BaseException) -> bool:
@@ -298,7 +277,7 @@ def _scheduler_gone(client, exc: BaseException) -> bool:
 
     if client.status not in ("running", "connecting"):
         return True
-    if isinstance(exc, (CancelledError, asyncio.CancelledError)) or type(exc).__name__ == "FutureCancelledError":
+    if isinstance(exc, (CancelledError, asyncio.CancelledError)):   # distributed's FutureCancelledError too
         return True
     return False
 
@@ -337,22 +316,10 @@ def dask_client(scheduler: str | None, workers: int | None, connect_timeout: flo
         if main:
             signal.signal(signal.SIGINT, old)
     client = Client(cluster)
-    client.register_plugin(_IgnoreInterrupt(), name="rotorcosim-ignore-sigint")
+    from rotorcosim.master.sweep.worker_plugin import IgnoreInterrupt   # Dask's, loaded with the cluster only
+
+    client.register_plugin(IgnoreInterrupt(), name="rotorcosim-ignore-sigint")
     return client, cluster, f"local cluster, {n} workers"
-
-
-try:
-    from distributed.diagnostics.plugin import WorkerPlugin as _WorkerPlugin
-except ImportError:  # pragma: no cover  (Dask is needed only off --serial)
-    _WorkerPlugin = object
-
-
-class _IgnoreInterrupt(_WorkerPlugin):
-    """A local worker ignores SIGINT: the sweep's own process ends it (see :func:`dask_client`)."""
-
-    def setup(self, worker):
-        if threading.current_thread() is threading.main_thread():
-            signal.signal(signal.SIGINT, signal.SIG_IGN)
 
 
 def close_client(client, cluster, quiet: bool = False) -> None:
