@@ -265,7 +265,7 @@ def _speed_table(p: _Problems, w: str, s: dict) -> None:
             p.add(f"{w}.speed_rpm", "must be a list of speeds (rev/min) at which the coefficients are given")
             return
         for k, v in enumerate(speeds):
-            p.value(f"{w}.speed_rpm[{k}]", v)
+            p.value(f"{w}.speed_rpm[{k}]", v, positive=False)
         if all(_num(v) for v in speeds) and not all(b > a for a, b in zip(speeds, speeds[1:])):
             p.add(f"{w}.speed_rpm", "must increase strictly")
         n = len(speeds)

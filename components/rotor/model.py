@@ -553,7 +553,7 @@ def _support_table(s: dict, s_i: int, label: str, ix: int, iy: int, far) -> dict
     """A speed-dependent support as data: its coefficients (arrays over ``speed_rpm``, or one value) and DOFs."""
     speeds = s.get("speed_rpm")
     if speeds is not None:
-        speeds = np.asarray([_positive(f"{label} speed_rpm[{k}]", v) for k, v in enumerate(speeds)]) * RPM
+        speeds = np.asarray([_nonneg(f"{label} speed_rpm[{k}]", v) for k, v in enumerate(speeds)]) * RPM
         if speeds.size < 1 or not np.all(np.diff(speeds) > 0):
             raise ValueError(f"rotor model: {label} speed_rpm must increase strictly")
     out = {"name": s.get("name", f"support[{s_i}]"), "speeds": speeds, "dofs": (ix, iy) + (far or (None, None))}
