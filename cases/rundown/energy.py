@@ -13,7 +13,9 @@ the bearings' drag torques (``bearing<ID>.T_drag``, their drag model), the rub r
 drag ``drag_coefficient Omega``, each times the spool's speed. The residual, the kinetic energy lost less the net
 work, is what the coupling (a torque held over a step, a hold's mean over a thermal-only interval) and the spool's
 integration lost or created: it is not zero by construction, and a torque the spool integrates otherwise than its
-producer reports moves it (tests/cases/test_rundown_energy.py).
+producer reports moves it (tests/cases/test_rundown_energy.py). In a held (thermal-only) interval a frozen
+producer's report is what the master hands on for it, the hold's value (the spool's input; a power at its
+consumer's input).
 
 Separately, the energy the rub rings and bearings dissipate, the integral of their power outputs (``P_rub``,
 ``P_drag``): a rub ring's power exceeds its torque's work on the spool by the whirl's share of the sliding speed
@@ -21,7 +23,9 @@ Separately, the energy the rub rings and bearings dissipate, the integral of the
 ``Omega R``), reported as ``rub_whirl_share_J``.
 
 Per spool: ``inertia_kg_m2``, ``kinetic_energy_lost_J``, ``work_J`` {drive, drag, rub, aero} (the viscous drag in
-``drag``), ``residual_J``, ``residual_pct`` (of the energy the torques exchanged, the sum of the works' magnitudes),
+``drag``), ``residual_J``, ``residual_pct`` (of the energy the torques exchanged, the sum of the works' magnitudes: a
+governed spool's drive and drag exchange far more than it loses), ``residual_of_lost_pct`` (of the kinetic energy
+lost; None when none was),
 ``rub_dissipated_J``, ``rub_whirl_share_J`` (None without a rub ring's power), ``drag_dissipated_J`` (the bearings'
 ``P_drag``; None without one).
 """
@@ -29,6 +33,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from rotorcosim.components.contract import HELD
 from rotorcosim.master.observer.observers import Observer
 
 #: the spool's torque inputs by kind (components/spool/component.py)
@@ -65,6 +70,11 @@ class SpoolEnergy(Observer):
                 if POWERS[kind] in comps[comp].y:
                     pw.append((kind, f"{comp}.{POWERS[kind]}"))
             self.torques[sp], self.powers[sp] = tq, pw
+        # in a held interval a frozen producer reports what the master hands on for it (the hold's value): the
+        # torque at the spool's input, a power at the input of its first consumer
+        self.handed = {ref: dst for dst, ref in reversed(list(by_dst.items()))}
+        self.held = False
+        self._inputs = {sp: set(comps[sp].u) for sp in self.spools}
         self.J = {sp: float(getattr(comps[sp], "J", np.nan)) for sp in self.spools}
         self.c_visc = {sp: float(comps[sp].p.get("drag_coefficient", 0.0)) for sp in self.spools}
         self.omega0 = {sp: self._omega(sim, sp) for sp in self.spools}
@@ -77,19 +87,34 @@ class SpoolEnergy(Observer):
     def _omega(sim, sp) -> float:
         return float(np.asarray(sim.value(f"{sp}.Omega")).reshape(-1)[0])
 
-    def _sample(self, value, sp) -> np.ndarray:
-        """[Omega, torque of each kind in KINDS, dissipated drag power, dissipated rub power] now."""
+    def _sample(self, value, sp, inputs=None) -> np.ndarray:
+        """[Omega, torque of each kind in KINDS, dissipated drag power, dissipated rub power] now; ``inputs``: the
+        system's components, whose inputs give the held values in a held interval."""
         w = float(np.asarray(value(f"{sp}.Omega")).reshape(-1)[0])
         out = np.zeros(7)
         out[0] = w
         out[1] = float(np.asarray(value(f"{sp}.T_drive")).reshape(-1)[0])
         out[4] = float(np.asarray(value(f"{sp}.T_aero")).reshape(-1)[0])
         out[2] = self.c_visc[sp] * w
-        for kind, src, const in self.torques[sp]:
-            out[1 + KINDS.index(kind)] += const if src is None else float(np.asarray(value(src)).reshape(-1)[0])
+        for port, (kind, src, const) in zip(self._ports(sp), self.torques[sp]):
+            if src is None:
+                out[1 + KINDS.index(kind)] += const
+            else:
+                v = value(src) if inputs is None else inputs[sp].u[port]
+                out[1 + KINDS.index(kind)] += float(np.asarray(v).reshape(-1)[0])
         for kind, ref in self.powers[sp]:
-            out[5 if kind == "drag" else 6] += float(np.asarray(value(ref)).reshape(-1)[0])
+            dst = self.handed.get(ref)
+            if inputs is None or dst is None:
+                v = value(ref)
+            else:
+                comp, _, port = dst.partition(".")
+                v = inputs[comp].u[port]
+            out[5 if kind == "drag" else 6] += float(np.asarray(v).reshape(-1)[0])
         return out
+
+    def _ports(self, sp) -> list[str]:
+        """The spool's torque inputs in the order of ``self.torques[sp]``."""
+        return [p for p in TORQUE_INPUTS if p in self._inputs[sp]]
 
     def _add(self, sp, prev, rows, dt):
         """The steps ``rows`` (one per step, the values each reports after it; steps ``dt`` long) after ``prev``:
@@ -103,13 +128,17 @@ class SpoolEnergy(Observer):
         self.dissipated[sp]["rub"] += float(np.dot(rows[:, 6], dt))
         return rows[-1]
 
+    def interval_start(self, sim, phase, step):
+        self.held = phase == HELD
+
     def step(self, sim, t):
         dt = np.array([t - self._t])
         self._t = t
         if not dt[0] > 0.0:
             return
+        comps = sim.system.components if self.held else None
         for sp in self.spools:
-            row = self._sample(lambda ref: sim.value(ref), sp)
+            row = self._sample(lambda ref: sim.value(ref), sp, comps)
             self._prev[sp] = self._add(sp, self._prev[sp], row[None, :], dt)
 
     def block_signals(self, sim):
@@ -157,6 +186,7 @@ class SpoolEnergy(Observer):
             drag = self.dissipated[sp]["drag"] if any(k == "drag" for k, _ in self.powers[sp]) else None
             out[sp] = {"inertia_kg_m2": J, "kinetic_energy_lost_J": lost, "work_J": work, "residual_J": residual,
                        "residual_pct": 100.0 * residual / exchanged if exchanged else 0.0,
+                       "residual_of_lost_pct": 100.0 * residual / lost if lost else None,
                        "rub_dissipated_J": rub, "rub_whirl_share_J": None if rub is None else rub - work["rub"],
                        "drag_dissipated_J": drag}
         return out
