@@ -8,7 +8,8 @@ unbalance response peaks, per bearing id). Each damped critical speed is one mod
 critical speed is nearest to it (the films move the engine's peaks 5-12 %, less than half the distance between
 its modes). The film's damping follows the oil's viscosity, so the damped speeds are computed per set of film
 temperatures (each bearing's damper its own, rounded to ``TEMPERATURE_STEP_C``), once each per run; the search
-covers the speeds of the peaks found (``prepare``) widened by ``SEARCH_MARGIN``.
+covers the speeds of the peaks found (``prepare``) widened by ``SEARCH_MARGIN``. All of it is kept per process
+(the runs of a sweep or of a comparison share it).
 
 A test rotor without co-simulated bearings (the Jeffcott check case) has the scenario's ``[results]
 critical_speeds_rpm`` (undamped; no damped speeds).
@@ -24,6 +25,11 @@ TEMPERATURE_STEP_C = 0.25
 SEARCH_MARGIN = 1.3
 #: how many forward critical speeds of the linear engine are listed
 COUNT = 8
+#: the damped search's range is widened to multiples of this [rev/min]
+RANGE_STEP_RPM = 500.0
+#: per process: (model digest, reference speed, bearing and damper specifications, top speed) -> (supports,
+#: undamped critical speeds, damped ones per (range, film temperatures))
+_ENGINES: dict[tuple, tuple] = {}
 KELVIN = 273.15
 
 
@@ -50,25 +56,32 @@ class EngineModes:
         from rotorcosim.components.rotor import critical
 
         self.full = rotor.full_model()
-        self.sup = linear_engine.supports(sc, data=self.full.data)
         self.dampers = dampers
         self.ref_rpm = float(rotor.p["omega_pt"]) * 30.0 / math.pi
-        crit = critical.synchronous_critical_speeds(self.full, self.sup, n=COUNT, max_rpm=max_rpm)
-        self.undamped = [float(c) for c in crit["forward_synchronous_rpm"]]
+        # per process, the linear engine of a model and of the bearings' and dampers' specifications (a sweep's
+        # or a comparison's runs share it)
+        specs = repr(sorted((n, c.implementation, sorted(c.parameters.items())) for n, c in sc.components.items()
+                            if n.startswith(("bearing", "damper"))))
+        self._key = (self.full.digest, self.ref_rpm, specs, max_rpm)
+        if self._key not in _ENGINES:
+            sup = linear_engine.supports(sc, data=self.full.data)
+            crit = critical.synchronous_critical_speeds(self.full, sup, n=COUNT, max_rpm=max_rpm)
+            _ENGINES[self._key] = (sup, [float(c) for c in crit["forward_synchronous_rpm"]], {})
+        self.sup, self.undamped, self._cache = _ENGINES[self._key]
         self.range = None
-        self._cache: dict[tuple, dict] = {}
 
     def prepare(self, lo_rpm: float, hi_rpm: float) -> None:
-        """Search the damped critical speeds over [lo / SEARCH_MARGIN, hi * SEARCH_MARGIN] [rev/min]."""
-        self.range = (lo_rpm / SEARCH_MARGIN, hi_rpm * SEARCH_MARGIN)
-        self._cache.clear()
+        """Search the damped critical speeds over [lo / SEARCH_MARGIN, hi * SEARCH_MARGIN] [rev/min], widened to
+        whole RANGE_STEP_RPM (runs whose peaks differ a little share the search)."""
+        self.range = (math.floor(lo_rpm / SEARCH_MARGIN / RANGE_STEP_RPM) * RANGE_STEP_RPM,
+                      math.ceil(hi_rpm * SEARCH_MARGIN / RANGE_STEP_RPM) * RANGE_STEP_RPM)
 
     def damped(self, temps: dict) -> dict:
         from rotorcosim.cases.blade_loss import linear_engine, response_peaks
 
         step = TEMPERATURE_STEP_C
         rounded = {k: round(float(t) / step) * step for k, t in temps.items() if math.isfinite(t)}
-        key = tuple(sorted(rounded.items()))
+        key = (self.range, tuple(sorted(rounded.items())))
         out = self._cache.get(key)
         if out is None:
             sup = {}
