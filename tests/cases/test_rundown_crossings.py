@@ -242,3 +242,29 @@ def test_assignment_limits():
     assert assign_peaks([], pk) == [] and assign_peaks([8500.0], []) == [None]
     with pytest.raises(ValueError, match="differ in length"):
         resonance_peaks([1.0, 2.0], [1.0])
+
+
+def test_locations_are_the_engines_bearing_ids():
+    """Any engine's co-simulated bearings are read, by its own ids, in the rotor's port order, each with its
+    contact outputs, its damper's transmitted force and the film temperature fed to the damper; a rotor without
+    co-simulated bearings is a test rotor's disk."""
+    from types import SimpleNamespace as NS
+
+    from rotorcosim.cases.rundown.results import _locations
+    from rotorcosim.master.core.system import Connection
+
+    def comp(*outs):
+        return NS(y={o: None for o in outs})
+
+    comps = {"rotor": comp("X_brg2", "X_brg7", "X_brg11", "F_u"), "bearing2": comp("Q_max", "sigma_max"),
+             "bearing7": comp("Q_max_step", "sigma_max_step", "Q_max"), "bearing11": comp("Q_max"),
+             "damper2": comp("F_journal"), "damper7": comp("F_journal")}
+    cons = [Connection("thermal2.T_sfd_oil", "damper2.T_oil"), Connection("thermal7.T_sfd_oil", "damper7.T_oil")]
+    locs = _locations(NS(system=NS(components=comps, connections=cons)))
+    assert list(locs) == ["2", "7", "11"]
+    assert locs["2"] == {"whirl": "rotor.X_brg2", "load": "bearing2.Q_max", "stress": "bearing2.sigma_max",
+                         "force": "damper2.F_journal", "film": "thermal2.T_sfd_oil"}
+    assert locs["7"]["load"] == "bearing7.Q_max_step" and locs["11"] == {"whirl": "rotor.X_brg11",
+                                                                         "load": "bearing11.Q_max"}
+    assert _locations(NS(system=NS(components={"rotor": comp("X_brg0")}, connections=[]))) == {
+        "disk": {"whirl": "rotor.X_brg0"}}
