@@ -286,7 +286,8 @@ def extract(sc, sim, obs, report) -> dict:
     for i, sp in enumerate(track.spools):
         c = comps[sp]
         cut = c.p.get("t_fuel_cut", -1.0)
-        speeds[sp] = {"start_rpm": track.start_energy[sp][5] * RPM, "end_rpm": float(c.y["Omega"][0]) * RPM,
+        speeds[sp] = {"inertia_kgm2": float(c.J), "start_rpm": track.start_energy[sp][5] * RPM,
+                      "end_rpm": float(c.y["Omega"][0]) * RPM,
                       "t_fuel_cut_s": float(cut) if c.p.get("profile") == "torque" and cut >= 0.0 else None,
                       # a stopped spool is a legal end state (friction, or a profile to 0 rev/min)
                       "stopped": float(c.y["Omega"][0]) == 0.0}
