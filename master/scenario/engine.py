@@ -101,6 +101,13 @@ def bind(data: dict, origins, where: str) -> EngineBinding | None:
         first = next(iter(targets))
         raise ScenarioError(f"{where}: {first} = \"{PREFIX}{targets[first]}\" takes a value from the engine, but "
                             "[scenario] engine names no engine file")
+    for cname, spec in comps.items():
+        mf = spec.get("parameters", {}).get("model_file") if isinstance(spec, Mapping) else None
+        if isinstance(mf, str) and mf and not is_ref(mf) and "file" in targets.values():
+            # the rotor of one file and the parts of another: the engine is named once, by [scenario] engine
+            raise ScenarioError(f"{origins.parameter(cname, 'model_file') or where}: [components.{cname}] model_file "
+                                f"= {mf!r}, but the scenario's engine is {file!r}: name the engine once, with "
+                                "[scenario] engine = \"FILE\" (every part takes its values from it)")
     binding = EngineBinding(file, targets)
     apply(binding, data=data, where=where, origins=origins)
     return binding
