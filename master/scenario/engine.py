@@ -167,3 +167,30 @@ def set_bound(sc, ref: str, value: Any, origin: str) -> bool:
     apply(trial, sc=sc, where=f"set {ref}", origin_note=f"{origin} {ref}")
     sc.engine = trial
     return True
+
+
+def part_parameters(component: str, *, engine: str | None = None, scenario=None) -> dict:
+    """The parameters component ``component`` (``"bearing1"``, ``"damper1"``, ``"thermal1"``, ``"rubring1"``)
+    takes from the engine file ``engine`` (through the shipped templates: the same values a run of that engine
+    gives it) or from the scenario ``scenario`` (a :class:`Scenario`); a ValueError naming what is missing."""
+    if scenario is not None:
+        if component not in scenario.components:
+            raise ValueError(f"scenario {scenario.name!r} has no component {component!r} (it has "
+                             f"{', '.join(scenario.components)})")
+        return dict(scenario.components[component].parameters)
+    from rotorcosim.master.scenario import templates
+
+    for name in templates.shipped():
+        for _, made in templates.instances({name: ["ID"]}, "rotorcosim"):
+            for key in made["components"]:
+                prefix, pid = key[:-2], component[len(key) - 2:]
+                if component.startswith(prefix) and templates.ID.match(pid):
+                    spec = templates.instances({name: [pid]}, "rotorcosim")[0][1]["components"][component]
+                    view = EngineView(engine)
+                    out = {}
+                    for p, v in spec.get("parameters", {}).items():
+                        value = view.value(v[len(PREFIX):])[0] if is_ref(v) else v
+                        if value is not None:
+                            out[p] = value
+                    return out
+    raise ValueError(f"no shipped template makes a component {component!r}")

@@ -152,10 +152,11 @@ def uq(spec: str | Path | UQSpec, out: str | Path, *, scheduler: str | None = No
     from rotorcosim.master.study import figures
 
     cols = {r: [row[r] if row["status"] != "failed" else None for row in ordered] for r in spec.results}
-    figures.histograms(out / HISTOGRAMS, spec.results, cols, report["results"])
+    figures.histograms(out / HISTOGRAMS, spec.results, cols, report["results"], report["failed"], len(ordered))
     figures.tornado(out / TORNADO, spec.results, names,
                     {r: report["results"][r].get("tornado") for r in spec.results},
-                    {r: report["results"][r].get("mean", 0.0) for r in spec.results})
+                    {r: report["results"][r].get("mean", 0.0) or 0.0 for r in spec.results},
+                    report["failed"], len(ordered))
     write_json(out / REPORT, report)
     return report
 
