@@ -77,9 +77,10 @@ def _spools(sc):
 
 def _locations(data):
     out = {}
-    for k in (0, 5):
-        if _get(data, f"damper{k}.F_journal") is not None:
-            out[f"#{k}"] = (f"rotor.X_brg{k}", f"damper{k}.F_journal")
+    for name in data:
+        if name.startswith("damper") and name.endswith(".F_journal"):
+            k = name[len("damper"):-len(".F_journal")]
+            out[f"#{k}"] = (f"rotor.X_brg{k}", name)
     return out or {"disk": ("rotor.X_brg0", None)}
 
 

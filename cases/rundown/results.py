@@ -54,9 +54,13 @@ FIGURES_MODULE = "rotorcosim.cases.rundown.figures"
 
 
 def _locations(components) -> dict[str, dict[str, str]]:
-    if all(f"bearing{k}" in components for k in (0, 5)):
+    """Per co-simulated bearing (every component bearing<ID> with its damper<ID>, in the system's order) the ports
+    read; else the rotor's first bearing port alone (a test rotor's disk)."""
+    ids = [n[len("bearing"):] for n in components if n.startswith("bearing") and f"damper{n[len('bearing'):]}" in
+           components]
+    if ids:
         out = {}
-        for k in (0, 5):
+        for k in ids:
             b = components[f"bearing{k}"]
             q = "Q_max_step" if "Q_max_step" in b.y else "Q_max"
             s = "sigma_max_step" if "sigma_max_step" in b.y else "sigma_max"

@@ -137,6 +137,8 @@ KEYS: dict[str, tuple[Key, ...]] = {
             source="quadrature (components/rotor/component.py: the residual changes the amplitude least)"),
     ),
 }
+#: the SI unit of a quantity given in a file unit
+SI_UNIT = {"mm": "m", "deg": "rad", "MPa": "Pa", "L/min": "m3/s"}
 #: the part tables keyed by id (``[unbalance]`` is one table)
 PER_ID = ("bearing", "damper", "rubring", "thermal")
 #: which [attach] entry each part table belongs to
@@ -211,9 +213,10 @@ def problems(data: dict) -> list[str]:
 class EngineView:
     """The named SI quantities of the engine file ``path`` (module docstring), with ``overrides``."""
 
-    def __init__(self, path: str | Path | None = None, overrides: dict[str, Any] | None = None):
+    def __init__(self, path: str | Path | None = None, overrides: dict[str, Any] | None = None,
+                 data: dict | None = None):
         self.path = str(Path(path) if path else fem.DEFAULT_FILE)
-        self.data, self.digest = fem.load_data(self.path)
+        self.data, self.digest = (data, "") if data is not None else fem.load_data(self.path)
         self.overrides = dict(overrides or {})
         self._spools = list(self.data.get("spool", {})) if isinstance(self.data.get("spool"), dict) else []
         self._inertia: dict[str, float] = {}
@@ -243,14 +246,29 @@ class EngineView:
             return f"spool.{self._spool_of(parts[0] + parts[1])}.omega"
         return name
 
-    def set(self, name: str, value: Any) -> str:
+    def set(self, name: str, value: Any, label: str | None = None) -> str:
         """Override quantity ``name`` (SI); returns the canonical name stored (a speed in rad/s is stored as the
-        spool's rev/min, the file's quantity, so that everything derived from it follows)."""
+        spool's rev/min, the file's quantity, so that everything derived from it follows). ``label``: how an error
+        names the value (the parameter it was given as)."""
         c = self.canonical(name)
+        what = f"{label} must be" if label else f"{c} must be"
+        tail = f" (the engine's {c})" if label else ""
         if c == "file":
             self.__init__(value, self.overrides)
             return c
         parts = c.split(".")
+        table = parts[0] if parts[0] in KEYS else None
+        k = _by_name(table, parts[-1]) if table else None
+        if k is not None:
+            si = SI_UNIT.get(k.unit, k.unit)
+            if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
+                raise ValueError(f"{what} a finite number ({si}), got {value!r}{tail}")
+            if k.whole and (not float(value).is_integer() or value < 1):
+                raise ValueError(f"{what} a whole number >= 1, got {value!r}{tail}")
+            if k.positive and not value > 0:
+                raise ValueError(f"{what} a finite number > 0 ({si}), got {value!r}{tail}")
+            if not k.positive and value < 0:
+                raise ValueError(f"{what} >= 0 ({si}), got {value!r}{tail}")
         if parts[0] == "spool" and len(parts) == 3 and parts[2] == "omega":
             c, value = f"spool.{parts[1]}.speed_rpm", float(value) / RPM
         self.overrides[c] = value

@@ -160,7 +160,7 @@ def set_bound(sc, ref: str, value: Any, origin: str) -> bool:
     trial = copy.deepcopy(binding)
     try:
         view = trial.view()
-        view.set(binding.targets[ref], value)
+        view.set(binding.targets[ref], value, label=ref)
         trial.file, trial.overrides = view.path, view.overrides
     except (ValueError, OSError) as exc:
         raise ScenarioError(f"set {ref}: {exc}") from None
@@ -169,10 +169,11 @@ def set_bound(sc, ref: str, value: Any, origin: str) -> bool:
     return True
 
 
-def part_parameters(component: str, *, engine: str | None = None, scenario=None) -> dict:
+def part_parameters(component: str, *, engine: str | None = None, scenario=None, data: dict | None = None) -> dict:
     """The parameters component ``component`` (``"bearing1"``, ``"damper1"``, ``"thermal1"``, ``"rubring1"``)
     takes from the engine file ``engine`` (through the shipped templates: the same values a run of that engine
-    gives it) or from the scenario ``scenario`` (a :class:`Scenario`); a ValueError naming what is missing."""
+    gives it) or from the scenario ``scenario`` (a :class:`Scenario`); ``data``: the engine file's contents, already
+    read; a ValueError naming what is missing."""
     if scenario is not None:
         if component not in scenario.components:
             raise ValueError(f"scenario {scenario.name!r} has no component {component!r} (it has "
@@ -186,7 +187,7 @@ def part_parameters(component: str, *, engine: str | None = None, scenario=None)
                 prefix, pid = key[:-2], component[len(key) - 2:]
                 if component.startswith(prefix) and templates.ID.match(pid):
                     spec = templates.instances({name: [pid]}, "rotorcosim")[0][1]["components"][component]
-                    view = EngineView(engine)
+                    view = EngineView(engine, data=data)
                     out = {}
                     for p, v in spec.get("parameters", {}).items():
                         value = view.value(v[len(PREFIX):])[0] if is_ref(v) else v
@@ -194,3 +195,17 @@ def part_parameters(component: str, *, engine: str | None = None, scenario=None)
                             out[p] = value
                     return out
     raise ValueError(f"no shipped template makes a component {component!r}")
+
+
+def bound_together(sc, refs) -> list[str]:
+    """Every component parameter (``"comp.param"``) bound to the same engine quantity as one of ``refs``, each once,
+    in the order of ``refs`` (``"damper0.clearance"`` -> ``["damper0.clearance", "thermal0.damper_clearance"]``);
+    a ref bound to nothing stands alone."""
+    binding = getattr(sc, "engine", None)
+    out: list[str] = []
+    for ref in refs:
+        q = binding.targets.get(ref) if binding is not None else None
+        group = [ref] + ([t for t, tq in binding.targets.items() if tq == q and t != ref and not
+                          t.startswith("schedule.")] if q is not None else [])
+        out += [t for t in group if t not in out]
+    return out

@@ -11,6 +11,7 @@
 """
 from __future__ import annotations
 
+import csv
 import json
 import math
 from pathlib import Path
@@ -98,11 +99,12 @@ def test_a_uq_over_a_damper_clearance_moves_its_thermal_network(tmp_path):
     assert main(["uq", str(spec), "--out", str(out), "--serial"]) == 0
     report = json.loads((out / "uq.json").read_text())
     assert report["failed"]["count"] == 0
-    runs = list(out.rglob("summary.json"))
-    assert len(runs) == 2
-    for f in runs:
-        r = _recorded(f)
-        assert r["damper"] == r["thermal"] and 5.0e-4 <= r["damper"] <= 6.0e-4 and r["damper"] != 6.35e-4
+    rows = list(csv.DictReader((out / "samples.csv").open()))
+    assert len(rows) == 2
+    for r in rows:
+        sampled = float(r["damper0.clearance"])
+        assert 5.0e-4 <= sampled <= 6.0e-4
+        assert float(r["recorded damper0.clearance"]) == float(r["recorded thermal0.damper_clearance"]) == sampled
 
 
 @pytest.mark.parametrize("edit, message", [
