@@ -22,6 +22,7 @@ import numpy as np
 from . import attach as attach_layout
 from . import engine_parts
 from . import model as fem
+from .engine_shape import shape_problems
 from .spool_inertia import spool_polar_inertia
 
 RESERVED = ("hub", "ground")
@@ -54,7 +55,11 @@ class _Problems:
 
 
 def problems(data: dict) -> list[str]:
-    """One line per problem of the engine description ``data`` (empty: none found)."""
+    """One line per problem of the engine description ``data`` (empty: none found). A value of the wrong TOML
+    shape (:func:`.engine_shape.shape_problems`) is reported alone: the values are judged once the shape holds."""
+    shape = shape_problems(data)
+    if shape:
+        return shape
     p = _Problems(data)
     fmt = data.get("engine", {}).get("format")
     if fmt is None:
