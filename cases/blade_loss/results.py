@@ -324,5 +324,5 @@ def figures(sc, data, out: Path, pool=None, dpi: int | None = None) -> list[str]
 
     F_u, speed = unbalance_force(sc), sc.schedule.get("speed_rpm")
     if pool is not None and pool.usable and isinstance(data, SeriesFile) and len(data["time"]):
-        return pool.draw(fb, fb.JOBS, data.path, out, fb.context(sc, F_u, speed, dpi))
+        return pool.draw(fb, fb.JOBS, data.path, out, fb.context(sc, F_u, speed, dpi, out))
     return fb.figures(sc, data, out, F_u, speed, dpi)

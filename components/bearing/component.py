@@ -172,6 +172,14 @@ class BallBearing(KernelComponent):
         Variable("P_drag", "output", 1, "W", "drag torque power loss M omega, mean over the step"),
     )
 
+    def speed_range(self) -> tuple[float, float]:
+        """(bore [m], highest inner race speed [rad/s] of the model: geometry.speed_limit) from the parameters
+        as given (the ``bearing`` record's bore when none is), known before set-up: what ``check-engine`` holds
+        against the shaft and the spool's speed."""
+        rec = BEARINGS.get(self.p["bearing"], BEARINGS[0])
+        bore = float(self.p["bore"]) if "bore" in self.explicit else rec["bore_mm"] * 1e-3
+        return bore, speed_limit(bore)
+
     # -- set-up --------------------------------------------------------------------------------------------
     def setup(self, t0=0.0):
         super().setup(t0)
