@@ -37,7 +37,7 @@ DURATION = 12.0
 #: the JSON keys the command promises (module docstring of cases/rundown/compare.py)
 KEYS = {"results", "crossings", "speeds", "wall_time_s", "cpu_time_s", "speedup", "speedup_cpu", "load_average",
         "largest_error_pct", "within_2pct", "duration_s", "duration_rule", "t_fuel_cut_s", "staggered_phases",
-        "hold", "scenario", "unbalance_N", "tolerance_pct"}
+        "hold", "scenario", "unbalance_N", "tolerance_pct", "estimated_error"}
 
 
 def _early_cut():
