@@ -11,7 +11,7 @@ from __future__ import annotations
 import math
 import threading
 import time as _time
-from typing import Callable, Sequence
+from typing import Sequence
 
 import numpy as np
 
@@ -196,10 +196,10 @@ class Simulation:
         return out
 
     # -- one interval ----------------------------------------------------------------------------------
-    def run_interval(self, phase: str, duration: float, step: float, stop: "_StopTest | None" = None,
+    def run_interval(self, phase: str, duration: float, step: float, stop=None,
                      reason: str = "") -> UsedInterval:
         """Run one interval of the phase called ``phase`` (one of :attr:`phases`' names) for ``duration`` [s] at
-        base step ``step`` [s]; ``stop`` (automatic schedule) may end it early."""
+        base step ``step`` [s]; ``stop`` (the automatic schedule's stop test, schedule/auto.py) may end it early."""
         try:
             role = self.phases.role(phase)
         except ContractError as exc:
