@@ -8,7 +8,7 @@ load and inner-race stress, ``damper<ID>.F_journal`` transmitted force: film + c
 numerator, and the film temperature the damper is fed), else the rotor's ``X_brg0`` port alone (a test rotor's
 disk: ``"disk"``, whirl only).
 
-* ``speeds``: per spool ``start_rpm``, ``end_rpm``, ``t_fuel_cut_s`` (None: a prescribed profile or no cut),
+* ``speeds``: per spool ``inertia_kgm2``, ``start_rpm``, ``end_rpm``, ``t_fuel_cut_s`` (None: a prescribed profile or no cut),
   ``stopped`` (it ended at 0 rev/min);
 * ``crossings``: every resonance peak of the whirl against speed at any location (:func:`resonance_peaks` over the
   thermo-mechanical samples: the largest whirl per speed bin of ``SPEED_BIN``, the local maxima standing out by
@@ -423,7 +423,8 @@ def extract(sc, sim, obs, report) -> dict:
     for sp in track.spools:
         c = comps[sp]
         cut = c.p.get("t_fuel_cut", -1.0)
-        speeds[sp] = {"start_rpm": track.start_speed[sp] * RPM, "end_rpm": float(c.y["Omega"][0]) * RPM,
+        speeds[sp] = {"inertia_kgm2": float(c.J), "start_rpm": track.start_speed[sp] * RPM,
+                      "end_rpm": float(c.y["Omega"][0]) * RPM,
                       "t_fuel_cut_s": float(cut) if c.p.get("profile") == "torque" and cut >= 0.0 else None,
                       # a stopped spool is a legal end state (friction, or a profile to 0 rev/min)
                       "stopped": float(c.y["Omega"][0]) == 0.0}
