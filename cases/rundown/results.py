@@ -16,7 +16,7 @@ disk: ``"disk"``, whirl only).
   engine (:mod:`.modes`: the engine's damped critical speeds at that location at the film temperatures the run had
   at the peak, each the response peak of one mode; a test rotor: the scenario's ``critical_speeds_rpm``). No band
   around a critical speed decides whether a peak exists. One entry per mode, lowest first: ``spool`` (and
-  ``spool_name``, the engine file's name of its rotor spool),
+  ``spool_name``, the engine file's name of the spool it turns, cases/blade_loss/engine_names.py),
   ``critical_speed_rpm`` (the mode's undamped critical speed), ``damped_critical_speed_rpm`` (its damped one at
   ``film_temperature_C``, per bearing id; None for a test rotor), ``location`` (whose peak it is: the first
   location with a peak of that mode), ``peak_found``, ``t_s`` and ``peak_speed_rpm`` of the peak's largest sample,
@@ -402,17 +402,6 @@ def crossings(table: np.ndarray, spool: str, modes, locations: dict, n_spools: i
     return out
 
 
-def _spool_name(comps, spool: str) -> str | None:
-    """The engine file's name of the rotor spool a spool component drives (its ``spool`` parameter's
-    ``[spool.ID] name``), or None (a test rotor, a spool without one)."""
-    rotor, sp = comps.get("rotor"), comps.get(spool)
-    if rotor is None or sp is None or not hasattr(rotor, "full_model"):
-        return None
-    data = getattr(rotor.full_model(), "data", None) or {}
-    entry = data.get("spool", {}).get(str(sp.p.get("spool", "")), {})
-    return entry.get("name") if isinstance(entry, dict) else None
-
-
 def extract(sc, sim, obs, report) -> dict:
     from .modes import modes_of
 
@@ -432,7 +421,8 @@ def extract(sc, sim, obs, report) -> dict:
     if track.crossing_spool is not None and len(table):
         modes = modes_of(sc, sim, track.locations)
         out["crossings"] = crossings(table, track.crossing_spool, modes, track.locations, len(track.spools))
-        name = _spool_name(comps, track.crossing_spool)
+        from rotorcosim.cases.blade_loss.engine_names import spool_name
+        name = spool_name(sc, track.crossing_spool)
         for c in out["crossings"]:
             c["spool_name"] = name
     if _case_blade_loss(sc):
