@@ -182,7 +182,8 @@ NOTES = {
     "unbalance_parameter": "parameter holding the unbalance force (results plug-in)",
     "speed_parameter": "parameter holding the rotor speed (results plug-in)",
     "spools": "rundown case: the spool components (the first: the crossings' spool)",
-    "critical_speeds_rpm": "rundown case: the critical speeds whose crossings are reported [rev/min]",
+    "critical_speeds_rpm": "rundown case: the undamped critical speeds [rev/min] the figures mark and a test "
+                           "rotor's crossings are labelled with (an engine's: its linearised engine's)",
     "results.cycles": "rotor cycles the results are taken over", "intervals.cycles": "length in rotor cycles "
     "(needs `schedule.speed_rpm`)",
     "implementation": "registry name, `\"module:Class\"` or entry point", "fmu": "path of an FMU (instead of "
