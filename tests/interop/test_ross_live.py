@@ -1,7 +1,7 @@
 """ROSS itself (the test extra installs ross-rotordynamics): its example rotors, live, to rotorcosim and back.
 
 Peer code as the reference: ROSS's own run_critical_speed (tight rtol) and run_unbalance_response on the same
-rotor. The issue's bounds: forward synchronous critical speeds within 0.1 %, unbalance response within 0.5 %."""
+rotor. The bounds: forward synchronous critical speeds within 0.1 %, unbalance response within 0.5 %."""
 from __future__ import annotations
 
 import math
@@ -10,13 +10,18 @@ import warnings
 import numpy as np
 import pytest
 
-with warnings.catch_warnings():
-    warnings.simplefilter("ignore")     # ROSS's dependency ccp warns that it finds no REFPROP library
-    import ross as rs
-
 from rotorcosim.components.rotor import critical, model as fem, response
 from rotorcosim.interop import from_ross, to_ross, write_engine
-from rotorcosim.interop.ross_import import RossImportError
+
+
+@pytest.fixture(scope="module")
+def rs():
+    """ROSS, imported when a test of this module runs, not when the suite is collected (~7 s of CPU)."""
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")     # ROSS's dependency ccp warns that it finds no REFPROP library
+        import ross
+
+    return ross
 
 
 def _ross_forward_rpm(rotor) -> list[float]:
@@ -27,7 +32,7 @@ def _ross_forward_rpm(rotor) -> list[float]:
 
 
 @pytest.mark.parametrize("example", ["rotor_example", "coaxrotor_example"])
-def test_ross_example_round_trip(tmp_path, example):
+def test_ross_example_round_trip(tmp_path, example, rs):
     rotor = getattr(rs, example)()
     engine = from_ross(rotor)
     write_engine(engine, tmp_path / "engine.toml")
@@ -48,7 +53,7 @@ def test_ross_example_round_trip(tmp_path, example):
 
 
 @pytest.mark.parametrize("example", ["rotor_example", "coaxrotor_example"])
-def test_ross_to_rotorcosim_and_back_to_ross(example):
+def test_ross_to_rotorcosim_and_back_to_ross(example, rs):
     """The way back: to_ross of the imported engine (a Rotor, or a CoAxialRotor for two spools) has ROSS's own
     forward critical speeds of the original rotor, by ROSS's computation on both."""
     rotor = getattr(rs, example)()
@@ -57,7 +62,7 @@ def test_ross_to_rotorcosim_and_back_to_ross(example):
     assert np.allclose(_ross_forward_rpm(back), _ross_forward_rpm(rotor), rtol=1e-6)
 
 
-def test_compressor_example_live_imports_as_its_saved_file():
+def test_compressor_example_live_imports_as_its_saved_file(rs):
     """ROSS's compressor_example (layered sections, seals and a bearing with speed-dependent, cross-coupled
     coefficients), live, gives the engine its saved file gives (whose critical speeds equal ROSS's:
     test_ross_compressor.py)."""
@@ -91,7 +96,7 @@ def test_to_ross_refuses_a_casing_by_name():
         to_ross(fem.DEFAULT_FILE)
 
 
-def test_compressor_example_back_to_ross_has_rosss_matrices_at_every_speed():
+def test_compressor_example_back_to_ross_has_rosss_matrices_at_every_speed(rs):
     """The way back for layered sections and coefficient tables: to_ross of the imported compressor has ROSS's
     own mass, gyroscopic, stiffness and damping matrices of the original, the bearings' and seals' coefficients
     taken at several speeds (ROSS's assembly on both sides)."""
