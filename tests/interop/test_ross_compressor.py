@@ -70,8 +70,14 @@ def test_coaxial_rotor_bearings_attach_to_their_pedestals(tmp_path, capsys):
     """ROSS's coaxial rotor holds its inner shaft's ends by bearings linked to pedestals (point masses on their
     own bearings to ground): those pedestals become the co-simulated bearings' housings."""
     out = tmp_path / "coax.toml"
+    parts = tmp_path / "parts.toml"
+    parts.write_text("".join(f"[bearing.{i}]\nballs = 21\nball_diameter_mm = 8.73\nbore_mm = 50.8\n"
+                             f"outside_diameter_mm = 90.0\nwidth_mm = 20.0\ncontact_angle_deg = 15.0\n"
+                             f"preload_N = 800.0\n[damper.{i}]\nradius_mm = 80.0\nlength_mm = 32.0\n"
+                             f"clearance_mm = 0.635\nsupply_pressure_MPa = 0.2\nk_spring = 5.254e6\n"
+                             f"[rubring.{i}]\nclearance_mm = 0.508\n" for i in (0, 5)))
     assert main(["import-ross", str(DATA / "coaxrotor_example.toml"), "--out", str(out), "--attach", "0=0,5=10",
-                 "--speed", "16000"]) == 0
+                 "--speed", "16000", "--parts", str(parts)]) == 0
     capsys.readouterr()
     data, _ = fem.load_data(out)
     assert data["attach"]["bearing0"] == {"node": ["inner", 0], "housing": "n18"}
