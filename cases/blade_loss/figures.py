@@ -81,6 +81,7 @@ class Context:
         return name[:1].upper() + name[1:]
 
     def rub_clearance_mm(self, k) -> float | None:
+        """The run's rub-ring clearance at bearing ``k`` [mm] (None: no rub ring there, or not known)."""
         return dict(self.rub_clearances_mm).get(str(k))
 
 
