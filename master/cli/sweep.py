@@ -132,13 +132,13 @@ def one_case_a_level(levels, grid: dict[str, list[Any]]) -> bool:
 
 
 def cases_of(levels: list[float] | None, grid: dict[str, list[Any]], scenario=None, duration=None,
-             schedule=None, dpi=None) -> list[Case]:
+             schedule=None, dpi=None, level=None) -> list[Case]:
     """The grid of cases of ``scenario`` (None: :func:`rotorcosim.master.case.default_scenario`): its levels
     (outer; folders named with its case's ``folder_prefix``) times the ``--set`` parameters' values. Each
     case's folder name says its values (:func:`_fmt`); two cases whose names would be the same (two files of one
     name in different folders) are an error naming both values."""
     scenario = cases_.default_scenario() if scenario is None else scenario
-    level = cases_.scenario_level(resolve(scenario))[0]
+    level = level or cases_.scenario_level(resolve(scenario))[0]
     if not levels and not grid:
         raise ValueError(f"nothing to sweep: give {level.option} and/or --set")
     out, seen = [], {}
@@ -174,10 +174,11 @@ def sweep(levels=None, out: Path = Path("sweep"), scenario=None, scheduler=None,
     ``sweep.json``."""
     grid = dict(grid or {})
     scenario = cases_.default_scenario() if scenario is None else scenario
-    cases = cases_of(list(levels) if levels else None, grid, scenario, duration, schedule, check_dpi(dpi))
-    kind = case_kind(scenario)
+    sc = resolve(scenario)
+    kind = sc.extra.get("results", {}).get("kind")
+    level = cases_.scenario_level(sc)[0]
+    cases = cases_of(list(levels) if levels else None, grid, scenario, duration, schedule, check_dpi(dpi), level)
     tables = cases_.attribute(kind, "SWEEP_TABLES")
-    level = cases_.scenario_level(resolve(scenario))[0]
     score_key = score_key_of(kind)
 
     def finish(folder: Path, summaries: dict) -> dict:
@@ -195,11 +196,14 @@ def sweep(levels=None, out: Path = Path("sweep"), scenario=None, scheduler=None,
 
 def run(args) -> int:
     """Run the command ``args`` (parsed); returns the exit status (1 when a case failed)."""
-    kind_of_case = case_kind(args.scenario)
-    level = cases_.scenario_level(resolve(args.scenario))[0]
+    sc = resolve(args.scenario)
+    kind_of_case = sc.extra.get("results", {}).get("kind")
+    level = cases_.scenario_level(sc)[0]
     levels = parse_levels(args.level, cases_.attribute(kind_of_case, "LEVELS", {}), args.level_option or level.option,
                           level.unit) if args.level else None
     grid = parse_grid(args.set)
+    if levels:  # the level's own checks in the spelling given (a --set of the level parameter too is an error)
+        cases_.apply_level(sc, levels[0], list(grid), args.level_option or level.option)
     kind = SCHEDULES[cases_.schedule_aliases().get(args.schedule, args.schedule)]
 
     def progress(done, total, case, res):

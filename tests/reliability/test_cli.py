@@ -31,7 +31,7 @@ def one_line_error(err: str) -> str:
     (["--out", "{dir}/o", "--checkpoint-every", "0"], 2, "--checkpoint-every must be a positive"),
     (["--out", "{dir}/o", "--step-timeout", "-1"], 2, "--step-timeout must be a number of seconds >= 0"),
     (["--out", "{dir}/o", "--overwrite", "--resume"], 2, "exclude each other"),
-    (["--out", "{dir}/o", "--unbalance", "nan"], 2, "--unbalance must be a finite blade-loss unbalance force >= 0 N"),
+    (["--out", "{dir}/o", "--unbalance", "nan"], 2, "--unbalance must be a finite level >= 0"),
     # was "unexpected OverflowError: cannot convert float infinity to integer" (exit 1)
     (["--out", "{dir}/o", "--duration", "1e308"], 2, "the schedule asks for inf steps, beyond the 9.01e+15"),
     (["--out", "{dir}/o", "--schedule", "monolithic", "--duration", "1e14", "--force"], 2, "asks for 1e+17 steps"),

@@ -154,7 +154,7 @@ def test_ctrl_c_stops_cleanly_and_resume_reruns_only_the_rest_bit_identical(tmp_
     out, ref = tmp_path / "out", tmp_path / "ref"
     args = ["sweep", sc, "--unbalance", "1,2,3,4", "--duration", "0.05", "--quiet"]
     p = start(*args, "--workers", "2", "--out", out)
-    wait_for(lambda: any(out.glob("F_*")), what="the first case")
+    wait_for(lambda: any(out.glob("level_*")), what="the first case")
     os.killpg(p.pid, signal.SIGINT)
     _, err = p.communicate(timeout=120)
     assert p.returncode == 130, err
