@@ -39,8 +39,6 @@
     hold_cycles = 5
     restart_cycles = 2                   # TM restart: rotor cycles over which the thermal inputs of the
                                          # mechanical components go from their pre-TO to their new values
-    temperature_zero = 273.15            # K: the hold's error estimate takes relative errors of temperatures
-                                         # above it (default 0 degrees C)
 
     [outputs]
     record = ["m1.x", "m2.x"]
@@ -70,6 +68,7 @@ from typing import Any, Mapping
 from rotorcosim.components import registry
 from rotorcosim.components.contract import Component, ContractError
 
+from rotorcosim.master.scenario import engine as engine_binding
 from rotorcosim.master.scenario import schema
 from rotorcosim.master.scenario.cycle import constant_period, cycle_of, without_source
 from rotorcosim.master.core.algorithm import EngineSettings
@@ -79,11 +78,6 @@ from rotorcosim.master.scenario.overrides import resolve_file_parameters
 from rotorcosim.master.schedule.timeline import from_spec, phases_of
 from rotorcosim.master.simulation import Simulation
 from rotorcosim.master.core.system import Connection, System, defaulted_line, split_port
-
-#: the hold's error estimate takes temperatures' relative errors above 0 degrees C [K], as temperatures are
-#: reported; ``[schedule] temperature_zero`` declares another zero
-TEMPERATURE_ZERO_K = 273.15
-
 
 @dataclass
 class ComponentSpec:
@@ -163,6 +157,8 @@ class Scenario:
     unconnected_inputs: str = "start"
     loaded_name: str | None = None
     edits: list[dict] = field(default_factory=list)
+    #: the engine file and what the scenario takes from it (master/scenario/engine.py), or None
+    engine: Any = None
 
     def __post_init__(self):
         if self.loaded_name is None:
@@ -313,7 +309,10 @@ def load_scenario(path: str | Path) -> Scenario:
     :func:`rotorcosim.load_scenario`."""
     path = real_path(path)
     data, origins = compose(path)
-    return parse(data, path, origins)
+    binding = engine_binding.bind(data, origins, str(path))
+    sc = parse(data, path, origins)
+    sc.engine = binding
+    return sc
 
 
 def create_component(spec: ComponentSpec) -> Component:
@@ -402,7 +401,6 @@ def build_simulation(sc: Scenario, observers=(), system: System | None = None) -
                       hold=s.get("hold", DEFAULT_HOLD), hold_cycles=float(s.get("hold_cycles", 5)),
                       cycle=cycle, observers=observers,
                       restart_cycles=float(s.get("restart_cycles", RESTART_CYCLES)),
-                      temperature_zero=float(s.get("temperature_zero", TEMPERATURE_ZERO_K)),
                       phases=phases_of(s))
 
 

@@ -167,14 +167,14 @@ def parameter_value(v: Any) -> str | None:
 TABLES: dict[str, dict[str, Callable | None]] = {
     # unconnected_inputs: a policy of the whole system's wiring (every component, every file it extends), so
     # it sits with the scenario's name rather than in one component's table
-    "scenario": {"name": text, "description": text, "extends": text_or_texts,
+    "scenario": {"name": text, "description": text, "extends": text_or_texts, "engine": text,
                  "unconnected_inputs": one_of(*UNCONNECTED_INPUTS)},
     "components": {},   # one sub-table per component: COMPONENT
     "connections": {},  # a list of CONNECTION tables
     "inputs": {},       # "component.port" -> number(s)
     "algorithm": {"kind": one_of(*ALGORITHMS), "order": list_of(text), "iterations": count, "tolerance": positive},
     "schedule": {"kind": one_of(*SCHEDULE_KINDS), "duration": positive, "step": positive, "thermal_step": positive,
-                 "speed_rpm": positive, "cycle": None, "temperature_zero": positive, "hold": one_of(*HOLDS),
+                 "speed_rpm": positive, "cycle": None, "hold": one_of(*HOLDS),
                  "hold_cycles": whole_positive, "restart_cycles": not_negative,
                  "intervals": None, "phases": None,
                  "steady_tolerance": positive, "steady_cycles": count, "drift_tolerance": positive,
