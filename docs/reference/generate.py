@@ -186,7 +186,8 @@ NOTES = {
     "(`--unbalance`)",
     "rundown.unbalance_parameter": "the blade-loss engine's level, as the blade-loss case's (`--unbalance`)",
     "rundown.spools": "the spool components (the first: the crossings' spool)",
-    "rundown.critical_speeds_rpm": "the critical speeds whose crossings are reported [rev/min]",
+    "rundown.critical_speeds_rpm": "the undamped critical speeds [rev/min] the figures mark and a test rotor's "
+                                   "crossings are labelled with (an engine's: its linearised engine's)",
     "results.cycles": "rotor cycles the results are taken over", "intervals.cycles": "length in rotor cycles "
     "(needs `schedule.speed_rpm`)",
     "implementation": "registry name, `\"module:Class\"` or entry point", "fmu": "path of an FMU (instead of "
