@@ -3,8 +3,8 @@
 The staggered scheme alternates intervals of the coupled phase (every component steps) and of the held phase
 (only the components that declare it step); what is frozen and held in a held interval is the hold's
 (master/manipulator/hold.py). The next coupled interval resumes from the frozen state with the new values. The
-scenario names its phases (master/core/phases.py; the blade-loss paper's thermo-mechanical "TM" and thermal-only
-"TO" by default).
+scenario names its phases (master/core/phases.py; the staggered scheme's thermo-mechanical "TM" and
+thermal-only "TO" by default).
 """
 from __future__ import annotations
 

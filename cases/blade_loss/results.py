@@ -32,6 +32,7 @@ from pathlib import Path
 import numpy as np
 
 from rotorcosim.components.contract import COUPLED
+from rotorcosim.master import case
 from rotorcosim.master.manipulator.hold import RISE_FLOOR_K
 from rotorcosim.master.observer.observers import Observer, SteadyWindows, sampled_rows
 from rotorcosim.master.scenario.cycle import cycle_of
@@ -221,6 +222,12 @@ def check(sc, sim) -> None:
         raise ValueError(f"scenario {sc.name!r}: [schedule] speed_rpm = {speed} rev/min but {ref} = "
                          f"{float(c.p[param]):.9g} rad/s ({rpm:.9g} rev/min), the speed the unbalance turns at: "
                          f"give them the same speed")
+
+
+def apply_unbalance(sc, force: float, settings=()) -> None:
+    """Set the blade-loss force of ``sc`` to ``force`` [N] (in place; the case's level, ``--unbalance``):
+    :func:`rotorcosim.master.case.apply_level`."""
+    case.apply_level(sc, force, settings)
 
 
 def unbalance_force(sc) -> float:

@@ -14,7 +14,17 @@ spools' energy balance, and for the blade-loss engine the Table 4 results at the
 Scenarios: ``jeffcott_rundown`` (the check case against an independent integration) and ``blade_loss_rundown``.
 """
 
+from rotorcosim.cases import blade_loss
+from rotorcosim.master.scenario import schema
+
 #: the result extraction of the scenarios whose ``[results] kind`` is ``"rundown"`` (rotorcosim.master.case)
 RESULTS = "rotorcosim.cases.rundown.results"
 #: ``rotorcosim compare`` for the scenarios of this case (master/case.py ``COMPARE``)
 COMPARE = "rotorcosim.cases.rundown.compare:run"
+#: the level: the blade-loss engine's unbalance force (``[results] unbalance_parameter``, ``--unbalance``), as the
+#: blade-loss case's; a rundown of a scenario without that key (a test rotor) has no level to set
+LEVEL = blade_loss.LEVEL
+#: the case's own ``[results]`` keys: the spool components whose speeds and crossings it reports, the critical
+#: speeds whose crossings it reports [rev/min]; and the blade-loss engine's level when it runs that engine
+RESULTS_KEYS = {"spools": schema.list_of(schema.text), "critical_speeds_rpm": schema.list_of(schema.positive),
+                "unbalance_parameter": schema.port_ref}

@@ -12,7 +12,7 @@ libcosim would call it a manipulator: it changes what crosses some connections, 
   start of each TM interval). A cycle source with an angle counts both in revolutions instead: the window is the
   samples since the time the last ``hold_cycles`` turns of the angle began (the run's RevolutionCounter), and a
   cycle mean ends at each whole turn of the angle from the interval's start, so that a window spans
-  ``hold_cycles`` turns while the speed changes within the interval (a rundown); the turns each TO interval's
+  ``hold_cycles`` turns while the speed changes within the interval (a speed that falls); the turns each TO interval's
   windows spanned are reported (``HoldReport.window_revolutions``).
 * The held value over a TO interval: the window's statistic, per connection (``hold`` of the connection, else the
   schedule's): ``mean`` by default (it keeps the energy of a power), ``rms``, or ``last``.
