@@ -463,7 +463,8 @@ class HoldReport:
     def advice(self, estimate_pct: float, tolerance_pct: float) -> str | None:
         """What to change when the run's estimated error ``estimate_pct`` exceeds ``tolerance_pct`` (None when it
         does not, or no interval was charged): the held interval whose own estimate is the largest, to be held
-        shorter (its length scaled by tolerance / estimate), or a tighter drift tolerance."""
+        shorter (its length scaled by tolerance / estimate; the automatic schedule's shortest, ``to_min``), or a
+        tighter drift tolerance."""
         charged = [i for i in self.intervals if i["estimate_pct"] is not None]
         if not charged or not estimate_pct > tolerance_pct:
             return None
@@ -472,8 +473,8 @@ class HoldReport:
         return (f"estimated error {estimate_pct:.2f} % is above the tolerance {tolerance_pct:g} %; the largest share "
                 f"comes from the held interval {worst['t_start']:.6g}-{worst['t_end']:.6g} s (alone "
                 f"{worst['estimate_pct']:.2f} % on {worst['output']}): hold shorter intervals there (about "
-                f"{length * tolerance_pct / estimate_pct:.3g} s instead of {length:.3g} s), or, with the automatic "
-                f"schedule, set a tighter drift_tolerance")
+                f"{length * tolerance_pct / estimate_pct:.3g} s instead of {length:.3g} s; with the automatic "
+                f"schedule a smaller to_min, or a tighter drift_tolerance)")
 
     def as_dict(self) -> dict:
         """The report as summary.json's ``hold`` (hand-off errors in percent)."""
