@@ -448,7 +448,8 @@ class HoldReport:
     #: per component that hands values back to the mechanics: the largest, over its hand-backs, of their estimated
     #: error against their move over the last charged TO interval (norms over the port's elements; a temperature
     #: that rose less than RISE_FLOOR_K over the run left out): the share of that move the mechanics took in error,
-    #: which the results the mechanics give share
+    #: which the results the mechanics give share; empty where the cycle's speed differed between the last two TM
+    #: intervals (the mechanics then moved with the speed too)
     mechanics_fraction: dict[str, float] = field(default_factory=dict)
     #: the run's estimated error [%] (None before a TO interval was charged)
     estimated_error_pct: float | None = None
@@ -536,6 +537,8 @@ class StaggeredHold:
         #: charged one did
         self._at_to_start: dict[str, np.ndarray] = {}
         self._at_last_restart: dict[str, np.ndarray] = {}
+        #: the cycle's period at the starts of the last two TM intervals
+        self._tm_periods: list = []
 
     def _find_handoffs(self) -> None:
         """After set-up: a component may decide its phases from its parameters (whether it has a TO update)."""
@@ -581,6 +584,7 @@ class StaggeredHold:
         if phase == COUPLED:
             # one period for the whole interval, read where it starts (a speed signal's value there)
             cycle = self.period = self.cycle
+            self._tm_periods = self._tm_periods[-1:] + [cycle]
             length = self.restart_cycles * cycle if cycle else 0.0
             if self._last_phase == HELD and length > 0.0:
                 for i, link in enumerate(self.handbacks):
@@ -737,6 +741,12 @@ class StaggeredHold:
         rep.output_move = {k: (present[k] - v).tolist() for k, v in self._at_last_restart.items() if k in present}
         rep.estimated_error_pct, rep.estimated_output = self._largest(errors)
         frac: dict[str, float] = {}
+        periods = self._tm_periods
+        if len(periods) == 2 and periods[0] != periods[1]:
+            # the speed changed between the last two TM intervals (a rundown): their results differ by more than
+            # the hand-backs' move, and no share of that difference is the hold's
+            rep.mechanics_fraction = {}
+            return
         for link in self.handbacks:
             name = link.con.src_component
             ref = f"{name}.{link.sport}"
