@@ -33,7 +33,7 @@ from rotorcosim.master import case
 from rotorcosim.master.schedule import budget
 from rotorcosim.master.run import checkpoint
 from rotorcosim.master.run import watchdog
-from rotorcosim.master.core.algorithm import SimulationDiverged
+from rotorcosim.master.core.algorithm import SimulationDiverged  # noqa: F401 - re-exported: rotorcosim.SimulationDiverged
 from rotorcosim.master.compiled.choice import ENGINES
 from rotorcosim.master.run.figure_pool import FigurePool
 from rotorcosim.master.observer.observers import Progress, Recorder, column_names

@@ -4,6 +4,8 @@ the response peaks, the peak whirl, contact load, contact stress and transmitted
 spools' energy balance, and for the blade-loss engine the Table 4 results at the end (cases/blade_loss).
 
 - :mod:`.results`: ``summary.json`` keys ``speeds``, ``crossings``, ``energy`` (and ``bearings`` for the engine);
+- :mod:`.modes`: the critical speeds a crossing is labelled with (the linearised engine's, per film temperature);
+- :mod:`.energy`: the spools' energy balance from the torques the components report;
 - :mod:`.figures`: speed against time with the thermal-only intervals shaded, whirl and transmitted force against
   speed, the Campbell diagram with the run's trajectory, the temperatures;
 - :mod:`.compare`: ``rotorcosim compare blade_loss_rundown``, the staggered scheme against the monolithic run

@@ -18,7 +18,7 @@ summary, time series and figures). ``DIR/rundown_compare.json`` holds:
 - ``wall_time_s``, ``cpu_time_s`` of each run (as ``rotorcosim run`` times a run: the simulation whole, no
   figures), ``speedup`` = monolithic / staggered wall time and ``speedup_cpu`` the same in CPU time (the
   staggered run costs ``1 / speedup_cpu`` of the monolithic one), ``load_average`` around each run;
-- ``largest_error_pct`` and ``within_2pct`` (the issue's acceptance, :data:`TOLERANCE_PCT`) for ``results``,
+- ``largest_error_pct`` and ``within_2pct`` (the acceptance bound, :data:`TOLERANCE_PCT`) for ``results``,
   ``crossing_peaks`` (the peak values), ``crossing_speeds`` (the peak speeds) and ``all``; a result whose
   relative error cannot be formed (the monolithic value 0, the staggered one not; a missing crossing) counts as
   not within;

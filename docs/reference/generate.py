@@ -155,6 +155,9 @@ def _table(title: str, keys: dict, notes: dict, table: str = "") -> str:
 #: what a key means, where its name does not say it (the schema knows types, not meanings)
 NOTES = {
     "extends": "base scenario(s): a file path or a shipped name",
+    "engine": "the engine file the scenario takes the machine from (relative to the file that names it): a "
+              "parameter or `[schedule] speed_rpm` written `\"engine:NAME\"` takes its quantity NAME "
+              "(engine-format.md, master/scenario/engine.py)",
     "unconnected_inputs": "an input no connection or `[inputs]` constant drives: `start` keeps the start value it "
     "declares (every FMU input with a start value; a native input only where its component declares a default; "
     "one stderr line lists them), `error` refuses it (default `start`)",
@@ -179,7 +182,8 @@ NOTES = {
     "unbalance_parameter": "parameter holding the unbalance force (results plug-in)",
     "speed_parameter": "parameter holding the rotor speed (results plug-in)",
     "spools": "rundown case: the spool components (the first: the crossings' spool)",
-    "critical_speeds_rpm": "rundown case: the critical speeds whose crossings are reported [rev/min]",
+    "critical_speeds_rpm": "rundown case: the undamped critical speeds [rev/min] the figures mark and a test "
+                           "rotor's crossings are labelled with (an engine's: its linearised engine's)",
     "results.cycles": "rotor cycles the results are taken over", "intervals.cycles": "length in rotor cycles "
     "(needs `schedule.speed_rpm`)",
     "implementation": "registry name, `\"module:Class\"` or entry point", "fmu": "path of an FMU (instead of "

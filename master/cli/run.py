@@ -24,7 +24,7 @@ from rotorcosim.master.compiled.choice import ENGINES
 from rotorcosim.master.scenario.overrides import apply_set, apply_swap, parse_set, parse_swap
 # the level parameter's setter lives with --set (the sweep engine needs it below the command line); imported here
 # for run and the commands that take it from this module
-from rotorcosim.master.scenario.overrides import apply_unbalance  # noqa: F401
+from rotorcosim.master.scenario.overrides import apply_unbalance  # noqa: F401 - re-exported for the tests and benches
 from rotorcosim.master.scenario.build import Scenario
 
 #: where a command-line change is said to come from, in error messages

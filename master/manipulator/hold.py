@@ -81,7 +81,7 @@ from rotorcosim.components.contract import COUPLED, HELD, ContractError
 from rotorcosim.master.core import links, window
 from rotorcosim.master.core.window import Window
 from rotorcosim.master.core.cycle import WINDOW_MARGIN, Cycle
-from rotorcosim.master.core.system import HOLDS
+from rotorcosim.master.core.system import HOLDS  # noqa: F401 - re-exported: the hold modes beside the hold
 
 #: the default statistic: the mean keeps the energy of a power (the RMS overstates a fluctuating one)
 DEFAULT_HOLD = "mean"

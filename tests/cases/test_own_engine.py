@@ -3,7 +3,6 @@ set, the bearing's geometry among them."""
 from __future__ import annotations
 
 import json
-import math
 
 import pytest
 
@@ -11,7 +10,7 @@ from rotorcosim.master.cli import main
 
 
 def test_new_engine_check_and_run(tmp_path, capsys):
-    """The issue's "done when": new-engine X, then a run of X/blade_loss.toml writes the usual results and
+    """The walk-through: new-engine X, then a run of X/blade_loss.toml writes the usual results and
     figures. The run's whirl at bearing 0 is checked against the linear engine's (an independent harmonic
     solve of the same rotor with the bearings linearised): the film's nonlinearity and the thermal growth move
     it, by much less than a factor of 2 at this small orbit (the rub ring is not touched)."""
@@ -63,7 +62,7 @@ def test_check_engine_lists_every_problem_and_writes_nothing(tmp_path, capsys):
 
 
 def test_parameters_lists_and_sets_the_bearing_geometry(capsys):
-    """Every parameter with unit, default, value and source; the ball count is one (the issue: "--set
+    """Every parameter with unit, default, value and source; the ball count is one (as documented: "--set
     bearing0.balls=19" was "no parameter 'balls'"). Fewer balls carry the same preload with more load each:
     at rest, Q = P / (Z sin alpha) (Harris, Rolling Bearing Analysis, the axially loaded bearing), so 19 balls
     instead of 21 raise the contact load by a little less than 21/19: each ball's larger load opens its contact
@@ -72,9 +71,9 @@ def test_parameters_lists_and_sets_the_bearing_geometry(capsys):
 
     sc = rotorcosim.load_scenario("blade_loss_2850")
     rows = {r["name"]: r for r in sc.parameters("bearing5")}
-    assert rows["balls"]["value"] == 27 and rows["balls"]["source"] == "set-up"
-    # the Table 3 number comes from the bearing template the scenario instantiates for id "5"
-    assert rows["bearing"]["source"].endswith("templates/bearing.toml") and rows["preload"]["unit"] == "N"
+    # every value of the bearing comes from the engine file's record of bearing 5
+    assert rows["balls"]["value"] == 27 and rows["balls"]["source"].endswith("engine.toml [bearing.5] balls")
+    assert rows["preload"]["source"].endswith("engine.toml [bearing.5] preload_N") and rows["preload"]["unit"] == "N"
     assert main(["parameters", "bearing0", "--json"]) == 0
     assert {r["name"] for r in json.loads(capsys.readouterr().out)} >= {"balls", "ball_diameter", "contact_angle"}
 
@@ -93,7 +92,9 @@ def test_parameters_lists_and_sets_the_bearing_geometry(capsys):
     ("bearing0.ball_diameter=0.03", "a ball of 30 mm does not fit between the races"),
     ("bearing0.bore=nan", "'nan' is not a finite number"),
     ("bearing0.bore=-0.05", "bearing0.bore must be a finite number > 0"),
-    ("thermal0.damper_radius=-0.1", "thermal0.damper_radius must be a finite number > 0"),
+    # one quantity: the damper's radius is also the journal's and the thermal network's
+    ("thermal0.damper_radius=-0.1", "thermal0.damper_radius must be a finite number > 0 (m), got -0.1 (the engine's "
+                                    "damper.0.radius"),
 ])
 def test_bad_geometry_is_one_line(tmp_path, capsys, setting, message):
     rc = main(["run", "--set", setting, "--duration", "0.001", "--no-figures", "--out", str(tmp_path / "o")])
