@@ -68,6 +68,7 @@ from typing import Any, Mapping
 from rotorcosim.components import registry
 from rotorcosim.components.contract import Component, ContractError
 
+from rotorcosim.master.scenario import engine as engine_binding
 from rotorcosim.master.scenario import schema
 from rotorcosim.master.scenario.cycle import constant_period, cycle_of, without_source
 from rotorcosim.master.core.algorithm import EngineSettings
@@ -116,11 +117,14 @@ class Scenario:
     ``schedule`` and ``outputs``: the ``[algorithm]``, ``[schedule]`` and ``[outputs]`` tables as dicts;
     ``source``: the file it was read from (relative paths resolve against its folder); ``description``;
     ``extra``: the other top-level tables (``[results]``, read by the scenario's case); ``loaded_name``: the
-    name it was loaded under (``name`` may change: ``run --unbalance`` renames a run); ``edits``: each change
+    name it was loaded under (``name`` may change: setting the level renames a run); ``edits``: each change
     made since it was loaded, in order (``{"set": "comp.param", "value": ...}``, ``{"swap": "comp",
-    "implementation": ...}``, ``{"unbalance": value, "parameter": "comp.param"}``, each with its ``origin``),
+    "implementation": ...}``, ``{<level name>: value, "parameter": "comp.param"}`` (the level, named by its case: master/case.py), each
+    with its ``origin``),
     which a run records in its summary (master/run/provenance.py); ``unconnected_inputs``:
-    ``"start"`` (an input nothing drives keeps the start value it declares) or ``"error"`` (refused).
+    ``"start"`` (an input nothing drives keeps the start value it declares) or ``"error"`` (refused); ``engine``:
+    the engine file the scenario takes the machine from and the parameters bound to its quantities
+    (:class:`~rotorcosim.master.scenario.engine.EngineBinding`; None: no engine).
 
     :meth:`set` and :meth:`swap` return changed copies; :func:`build_system` and :func:`build_simulation` make
     it runnable; :func:`rotorcosim.simulate` runs it.
@@ -146,6 +150,8 @@ class Scenario:
     unconnected_inputs: str = "start"
     loaded_name: str | None = None
     edits: list[dict] = field(default_factory=list)
+    #: the engine file and what the scenario takes from it (master/scenario/engine.py), or None
+    engine: Any = None
 
     def __post_init__(self):
         if self.loaded_name is None:
@@ -156,7 +162,7 @@ class Scenario:
         return copy.deepcopy(self)
 
     def set(self, values: Mapping[str, Any]) -> "Scenario":
-        """A new scenario with component parameters changed: ``sc.set({"rotor.F_unbalance": 5700.0})``.
+        """A new scenario with component parameters changed: ``sc.set({"osc.F0": 20.0})``.
 
         Keys are ``"component.parameter"`` (SI values; numbers, booleans, strings or lists). This scenario is
         left unchanged. An unknown component, or a parameter the component's implementation does not declare,
@@ -178,7 +184,7 @@ class Scenario:
         """Every parameter of the components (or of ``component``): dicts with ``component``, ``name``,
         ``unit``, ``default``, ``value`` (what a run uses, after the component's set-up), ``source`` (the file
         that set it, "default" or "set-up") and ``description``. Example:
-        ``rotorcosim.load_scenario("blade_loss_2850").parameters("bearing0")``."""
+        ``rotorcosim.load_scenario("toy_thermomechanical").parameters("osc")``."""
         from rotorcosim.master.scenario.parameters import scenario_parameters
 
         return scenario_parameters(self, component)
@@ -296,7 +302,10 @@ def load_scenario(path: str | Path) -> Scenario:
     :func:`rotorcosim.load_scenario`."""
     path = real_path(path)
     data, origins = compose(path)
-    return parse(data, path, origins)
+    binding = engine_binding.bind(data, origins, str(path))
+    sc = parse(data, path, origins)
+    sc.engine = binding
+    return sc
 
 
 def create_component(spec: ComponentSpec) -> Component:

@@ -9,7 +9,9 @@ as it finishes: run again with the same SPEC and ``--out``, a UQ runs only the m
 It writes into ``out``:
 
 - ``samples.csv``: one row per sample: ``sample``, each parameter, each result, ``status``, ``wall_time_s``,
-  ``error``;
+  ``error``, and ``recorded <comp.param>``: the value the run recorded of each sampled parameter and of every
+  component parameter bound to the same engine quantity (``damperA.clearance`` and
+  ``thermalA.damper_clearance`` together: master/scenario/engine.py);
 - ``uq.json``: per result (``results``): ``mean``, ``std``, ``p5``, ``p50``, ``p95``, each with its 95 %
   interval (``mean_ci``...; :func:`.statistics.summarize`), ``n``; ``sobol`` (first-order ``S1`` and, with the
   sobol sampler, total ``ST`` indices with their confidence half-widths: SALib), ``rank_correlation`` (Spearman)
@@ -36,7 +38,9 @@ from typing import Callable
 
 import numpy as np
 
+from rotorcosim.master.api import load_scenario
 from rotorcosim.master.run.outputs import write_json
+from rotorcosim.master.scenario.engine import bound_together
 from rotorcosim.master.study import evaluate, statistics, store
 from rotorcosim.master.study.spec import Distribution, UQSpec, read_uq
 from rotorcosim.master.study.targets import value_of
@@ -44,6 +48,8 @@ from rotorcosim.master.study.targets import value_of
 REPORT = "uq.json"
 TABLE = "samples.csv"
 HISTOGRAMS = "uq_histograms.png"
+#: the prefix of the columns of what a run recorded of a parameter
+RECORDED = "recorded "
 TORNADO = "uq_tornado.png"
 #: unit-hypercube values are kept this far from 0 and 1 (an unbounded distribution's inverse CDF is infinite there)
 EDGE = 1e-12
@@ -110,7 +116,11 @@ def uq(spec: str | Path | UQSpec, out: str | Path, *, scheduler: str | None = No
             "parameters": {p.name: {"distribution": p.distribution, **p.values} for p in spec.parameters}}
     evaluate.check_scheduler(scheduler)   # before the folder is touched
     resumed = store.open_folder(out, REPORT, TABLE, spec.fingerprint(), head)
-    table = store.RowStore(out / TABLE, ["sample", *names, *spec.results, "status", "wall_time_s", "error"])
+    # what each run recorded of every component parameter a sampled one moves (the engine's quantity: a damper's
+    # clearance is its thermal network's too, master/scenario/engine.py)
+    recorded = bound_together(load_scenario(spec.scenario), names)
+    table = store.RowStore(out / TABLE, ["sample", *names, *spec.results, "status", "wall_time_s", "error",
+                                         *(RECORDED + t for t in recorded)])
     rows = {int(r["sample"]): r for r in table.read()}
     todo = [i for i in range(len(x)) if i not in rows]
     report = {**head, "fingerprint": spec.fingerprint(), "status": "running"}
@@ -123,7 +133,8 @@ def uq(spec: str | Path | UQSpec, out: str | Path, *, scheduler: str | None = No
         row = {"sample": i, **{n: float(x[i, j]) for j, n in enumerate(names)},
                **{r: value_of(summary, r) for r in spec.results},
                "status": "failed" if evaluate.failed(summary) else summary.get("status"),
-               "wall_time_s": summary.get("wall_time_s"), "error": summary.get("error")}
+               "wall_time_s": summary.get("wall_time_s"), "error": summary.get("error"),
+               **{RECORDED + t: recorded_value(summary, t) for t in recorded}}
         if row["status"] != "failed" and any(row[r] is None for r in spec.results):
             missing = [r for r in spec.results if row[r] is None]
             row.update(status="failed", error=f"no number at {', '.join(missing)} in the run's summary")
@@ -152,12 +163,20 @@ def uq(spec: str | Path | UQSpec, out: str | Path, *, scheduler: str | None = No
     from rotorcosim.master.study import figures
 
     cols = {r: [row[r] if row["status"] != "failed" else None for row in ordered] for r in spec.results}
-    figures.histograms(out / HISTOGRAMS, spec.results, cols, report["results"])
+    figures.histograms(out / HISTOGRAMS, spec.results, cols, report["results"], report["failed"], len(ordered))
     figures.tornado(out / TORNADO, spec.results, names,
                     {r: report["results"][r].get("tornado") for r in spec.results},
-                    {r: report["results"][r].get("mean", 0.0) for r in spec.results})
+                    {r: report["results"][r].get("mean", 0.0) or 0.0 for r in spec.results},
+                    report["failed"], len(ordered))
     write_json(out / REPORT, report)
     return report
+
+
+def recorded_value(summary: dict, ref: str):
+    """The value run ``summary`` recorded of parameter ``ref`` (``"comp.param"``), or None."""
+    comp, _, param = ref.partition(".")
+    params = summary.get("provenance", {}).get("parameters", {}).get(comp, {}).get("parameters", {})
+    return params.get(param)
 
 
 def analyse(spec: UQSpec, u: np.ndarray, rows: list[dict]) -> dict:

@@ -72,9 +72,8 @@ def _variant(tmp_path, old, new, source="rotor_example.toml"):
     ('["DiskElement_Disk 0"]', '["MagneticBearingElement_Disk 0"]', RossFileError,
      "is a MagneticBearingElement, which rotorcosim does not carry"),
     ("odr = 0.05", "odr = 0.06", RossImportError, "is tapered"),
-    ("kxx = [ 1000000.0,]", "kxx = [ 1000000.0, 2000000.0,]\nfrequency = [ 0.0, 1000.0,]", RossImportError,
-     "kxx depends on speed"),
-    ("kxy = [ 0,]", "kxy = [ 1000.0,]", RossImportError, "cross-coupled kxy is not carried"),
+    ("kxx = [ 1000000.0,]", "kxx = [ 1000000.0, 2000000.0,]", RossImportError, "but no matching frequency"),
+    ("mxx = [ 0,]", "mxx = [ 5.0,]", RossImportError, "added mass mxx is not carried"),
 ])
 def test_files_that_cannot_be_carried_are_named(tmp_path, old, new, error, message):
     with pytest.raises(error, match=message.replace("(", r"\(").replace(")", r"\)")):
@@ -86,6 +85,23 @@ def test_speed_dependent_coefficients_at_a_named_speed(tmp_path):
     p = _variant(tmp_path, "kxx = [ 1000000.0,]", "kxx = [ 1000000.0, 2000000.0,]\nfrequency = [ 0.0, 1000.0,]")
     e = from_ross(p, speed_rpm_coefficients=500.0 * 30 / 3.141592653589793)
     assert e["support"][0]["kxx"] == pytest.approx(1.5e6, rel=1e-12)
+
+
+def test_speed_dependent_and_cross_coupled_coefficients_are_carried(tmp_path):
+    """A bearing of coefficients over ROSS's frequency becomes a support with a table over speed_rpm (0 and
+    1000 rad/s = 9549.3 rev/min), and a cross-coupled one keeps its kxy; at a table's speed the engine has the
+    table's value."""
+    p = _variant(tmp_path, "kxx = [ 1000000.0,]", "kxx = [ 1000000.0, 2000000.0,]\nfrequency = [ 0.0, 1000.0,]")
+    e = from_ross(p)
+    s = e["support"][0]
+    assert s["speed_rpm"] == pytest.approx([0.0, 1000.0 * 30 / 3.141592653589793])
+    assert s["kxx"] == [1e6, 2e6] and s["kyy"] == 8e5
+    write_engine(e, tmp_path / "e.toml")
+    m = fem.load(tmp_path / "e.toml")
+    t = m.info["speed_supports"][0]
+    assert fem.support_matrices(t, 1000.0)[0][0, 0] == pytest.approx(2e6)
+    e = from_ross(_variant(tmp_path, "kxy = [ 0,]", "kxy = [ 1000.0,]"))
+    assert e["support"][0]["kxy"] == 1000.0 and "speed_rpm" not in e["support"][0]
 
 
 def test_import_ross_command(tmp_path, capsys):
@@ -115,7 +131,7 @@ def test_attach_makes_two_ross_bearings_the_cosimulated_ones(tmp_path):
     fem.require_ports(m, ("brg0", "brg5", "housing0", "housing5", "rub0", "rub5", "unbalance"))
 
 
-def test_attach_takes_any_bearing_ids(tmp_path, capsys):
+def test_attach_takes_any_bearing_ids(tmp_path, capsys, monkeypatch):
     """--attach with one id of another name: that ROSS bearing becomes pedestal h<ID> under bearing<ID> (and its
     rub ring), the other stays a linear support; the rotor component's ports follow (attach.py). A bad id is one
     line."""
@@ -129,9 +145,23 @@ def test_attach_takes_any_bearing_ids(tmp_path, capsys):
     rotor = Rotor("rotor", {"model_file": str(tmp_path / "e.toml")})
     ports = {v.name for v in rotor.variables if v.causality == "input"}
     assert ports == {"F_brgfront", "F_sfd_housingfront", "F_rub_housingfront", "F_rubfront"}
+    # what each attached part is comes from --parts (ROSS describes no ball bearing): the file check-engine accepts
+    assert main(["import-ross", str(DATA / "rotor_example.toml"), "--out", str(tmp_path / "n.toml"),
+                 "--attach", "1=0,2=6"]) == 2
+    assert "--attach needs --parts FILE" in capsys.readouterr().err and not (tmp_path / "n.toml").exists()
+    parts = tmp_path / "parts.toml"
+    parts.write_text("".join(f"[bearing.{i}]\nballs = 21\nball_diameter_mm = 8.73\nbore_mm = 50.8\n"
+                             f"outside_diameter_mm = 90.0\nwidth_mm = 20.0\ncontact_angle_deg = 15.0\n"
+                             f"preload_N = 800.0\n[damper.{i}]\nradius_mm = 80.0\nlength_mm = 32.0\n"
+                             f"clearance_mm = 0.635\nsupply_pressure_MPa = 0.2\nk_spring = 5.254e6\n"
+                             f"[rubring.{i}]\nclearance_mm = 0.508\n" for i in (1, 2)))
     assert main(["import-ross", str(DATA / "rotor_example.toml"), "--out", str(tmp_path / "x.toml"),
-                 "--attach", "1=0,2=6"]) == 0
+                 "--attach", "1=0,2=6", "--parts", str(parts)]) == 0
     assert [k for k in fem.load_data(tmp_path / "x.toml")[0]["attach"] if k.startswith("b")] == ["bearing1", "bearing2"]
+    assert fem.load_data(tmp_path / "x.toml")[0]["damper"]["2"]["clearance_mm"] == 0.635
+    capsys.readouterr()
+    monkeypatch.chdir(tmp_path)
+    assert main(["check-engine", str(tmp_path / "x.toml")]) == 0
     capsys.readouterr()
     assert main(["import-ross", str(DATA / "rotor_example.toml"), "--out", str(tmp_path / "y.toml"),
                  "--attach", "a-b=0"]) == 2
