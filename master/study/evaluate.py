@@ -23,12 +23,11 @@ from __future__ import annotations
 import os
 import sys
 import time
-import uuid
 from typing import Any, Callable, Sequence
 
 # one place for these: the sweep engine's connection timeout [s], retries of a job whose worker died, its Dask
 # client (local cluster or scheduler address), its closing and its SIGTERM-as-Ctrl-C (module-private there)
-from rotorcosim.master.sweep import attempts
+from rotorcosim.master.sweep.attempts import RETRIES
 from rotorcosim.master.sweep.engine import CONNECT_TIMEOUT_S
 from rotorcosim.master.sweep.engine import close_client, dask_client as sweep_client
 from rotorcosim.master.sweep.engine import sigterm_as_interrupt as terminate_as_interrupt  # noqa: F401 - used as evaluate.terminate_as_interrupt
@@ -61,20 +60,43 @@ def run_job(scenario: str, overrides: dict[str, Any], duration: float | None) ->
     return summary
 
 
-def _counted(task: Callable, key: list, scenario: str, overrides: dict[str, Any], duration: float | None) -> dict:
-    """What a worker runs for a job: ``task``, unless the job's workers died too often already (attempts.py)."""
-    error = attempts.gave_up(key)
-    if error is not None:
-        return {"status": "failed", "error": error}
-    return task(scenario, overrides, duration)
-
-
-def check_scheduler(scheduler: str | None, connect_timeout: float = CONNECT_TIMEOUT_S) -> None:
+def check_scheduler(scheduler: str | None, connect_timeout: float = CONNECT_TIMEOUT_S) -> int | None:
     """A scheduler address that cannot be reached is an error (ValueError, one line) now, before a study writes
-    anything; None (a local cluster or serial) passes."""
+    anything; None (a local cluster or serial) passes. Returns the threads the scheduler's workers offer (None
+    without a scheduler)."""
     if scheduler:
         client, cluster, _ = sweep_client(scheduler, None, connect_timeout, 1)
-        close_client(client, cluster)
+        try:
+            return max(1, sum(w.get("nthreads", 1) for w in client.scheduler_info().get("workers", {}).values()))
+        finally:
+            close_client(client, cluster)
+    return None
+
+
+def slots(scheduler: str | None, workers: int | None, serial: bool) -> int:
+    """How many runs a study runs at once: 1 serial, the scheduler's threads, or the local cluster's workers
+    (``workers``, default the cores). Checks the scheduler (:func:`check_scheduler`)."""
+    if serial:
+        return 1
+    threads = check_scheduler(scheduler)
+    return threads if threads is not None else (workers or os.cpu_count() or 1)
+
+
+def estimate(scenario: str, overrides: list[dict], duration: float | None, runs: int, at_once: int, what: str,
+             shorten: str, force: bool) -> dict:
+    """The wall time of a study of ``runs`` runs of ``scenario`` for ``duration``, ``at_once`` at a time, each
+    priced as ``rotorcosim run`` prices a run (budget.py) at the mean of ``overrides`` (a study's cases, or its
+    first sample); refused beyond 24 h unless ``force`` (:func:`rotorcosim.master.schedule.budget.check_many`)."""
+    from rotorcosim.master.api import check_run, load_scenario
+    from rotorcosim.master.schedule import budget
+
+    base = load_scenario(scenario)
+    costs, bound = [], False
+    for over in overrides or [{}]:
+        est = check_run(base.set(over) if over else base, None, duration, force=force)
+        costs.append(est["wall_s"])
+        bound = bound or bool(est.get("upper_bound"))
+    return budget.check_many(sum(costs) / len(costs), runs, at_once, what, shorten, force, bound)
 
 
 class Evaluator:
@@ -113,10 +135,14 @@ class Evaluator:
     def _connect(self):
         if self._client is not None:
             return self._client
-        # a job whose worker died is run again, then reported failed, as a sweep's case (attempts.py); the local
-        # cluster is sized for the workers asked for, not the first batch (a calibration's first batch may be one run)
-        self._client, self._cluster, self.where = sweep_client(self.scheduler, self.workers, self.connect_timeout,
-                                                               self.workers or os.cpu_count() or 1)
+        import dask
+
+        # a job whose worker died is run RETRIES more times by the scheduler, then reported failed (KilledWorker;
+        # a scheduler given by address keeps its own setting); the local cluster is sized for the workers asked
+        # for, not the first batch (a calibration's first batch may be one run)
+        with dask.config.set({"distributed.scheduler.allowed-failures": RETRIES}):
+            self._client, self._cluster, self.where = sweep_client(self.scheduler, self.workers, self.connect_timeout,
+                                                                   self.workers or os.cpu_count() or 1)
         return self._client
 
     def map(self, jobs: Sequence[Job], done: Callable[[int, Job, dict], None] | None = None) -> list[dict]:
@@ -145,12 +171,10 @@ class Evaluator:
         slots = max(1, sum(w.get("nthreads", 1) for w in client.scheduler_info().get("workers", {}).values()))
         waiting = list(range(len(jobs)))
         futures: dict = {}
-        token = uuid.uuid4().hex
 
         def submit():
             i = waiting.pop(0)
-            fut = client.submit(_counted, self.task, [attempts.KEY, token, str(i)], self.scenario, jobs[i][1],
-                                self.duration, pure=False)
+            fut = client.submit(self.task, self.scenario, jobs[i][1], self.duration, pure=False)
             futures[fut] = i
             return fut
 
@@ -160,8 +184,10 @@ class Evaluator:
                 i = futures.pop(fut)
                 try:
                     summary = fut.result()
-                except Exception as exc:  # the task could not start, or Dask gave up on it (KilledWorker)
-                    summary = {"status": "failed", "error": attempts.task_error(exc)}
+                except Exception as exc:  # KilledWorker: its worker died twice; or the task could not start
+                    summary = {"status": "failed",
+                               "error": f"{type(exc).__name__}: {' '.join(str(exc).split())} (the job's worker "
+                                        f"died or could not run it; tried {RETRIES + 1} times)"}
                 if waiting:
                     running.add(submit())
                 finish(i, summary)
@@ -176,8 +202,9 @@ class Progress:
     """A line per finished job on ``stream``: how many are done of how many, the elapsed time and the time left
     (from the mean time per job so far and the jobs still to run). ``quiet``: no lines."""
 
-    def __init__(self, total: int, what: str = "runs", stream=sys.stderr, quiet: bool = False):
-        self.total, self.what, self.stream, self.quiet = total, what, stream, quiet
+    def __init__(self, total: int, what: str = "runs", stream=None, quiet: bool = False):
+        # sys.stderr as it is now (a default argument would keep the stream of the time of import)
+        self.total, self.what, self.stream, self.quiet = total, what, stream or sys.stderr, quiet
         self.done = 0
         self.t0 = time.perf_counter()
 

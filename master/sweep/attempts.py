@@ -1,4 +1,4 @@
-"""A Dask worker that dies while running a task: the one retry mechanism of sweeps and studies.
+"""A Dask worker that dies while running a sweep's case: how often the case runs again, and how it is named.
 
 A task whose worker dies (killed, out of memory, a crash in native code) is run again by the scheduler on a
 restarted or another worker. Each run of a task first counts itself on the scheduler, under the task's key: one
@@ -9,7 +9,10 @@ and no further worker is put at risk.
 
 Dask's own limit (``distributed.scheduler.allowed-failures``, default 3) stays the scheduler's: it counts the deaths
 of every task a worker held, waiting ones too, and a scheduler started elsewhere keeps its own setting; the count
-here is the task's own runs, the same on every cluster, and below Dask's default, so it decides first.
+here is the task's own runs, the same on every cluster, and below Dask's default, so it decides first. The studies
+(master/study/evaluate.py) still rely on Dask's limit, set to :data:`RETRIES` on their local cluster: counted
+this way, a study on a local cluster of one worker waited forever after its first worker death (no worker process
+was left; the cause is not found yet), so they keep the mechanism that works there.
 """
 from __future__ import annotations
 

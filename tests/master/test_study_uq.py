@@ -132,8 +132,7 @@ upper = 1.0
     assert rep["failed"]["count"] == 0 and rep["results"]["y"]["n"] == 2
     rep = rotorcosim.uq(spec, tmp_path / "always", workers=1, quiet=True, task=always_dies)
     assert rep["failed"]["count"] == 2
-    assert all(s["error"].startswith("WorkerDied: its worker died while running it, 2 times (retried 1 time(s))")
-               for s in rep["failed"]["samples"]), rep["failed"]["samples"]
+    assert all("tried 2 times" in s["error"] for s in rep["failed"]["samples"])
 
 
 def test_a_study_stopped_by_sigterm_says_so_and_resumes(tmp_path):
