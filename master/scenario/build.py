@@ -131,7 +131,9 @@ class Scenario:
     "implementation": ...}``, ``{<level name>: value, "parameter": "comp.param"}`` (the level, named by its case: master/case.py), each
     with its ``origin``),
     which a run records in its summary (master/run/provenance.py); ``unconnected_inputs``:
-    ``"start"`` (an input nothing drives keeps the start value it declares) or ``"error"`` (refused).
+    ``"start"`` (an input nothing drives keeps the start value it declares) or ``"error"`` (refused); ``engine``:
+    the engine file the scenario takes the machine from and the parameters bound to its quantities
+    (:class:`~rotorcosim.master.scenario.engine.EngineBinding`; None: no engine).
 
     :meth:`set` and :meth:`swap` return changed copies; :func:`build_system` and :func:`build_simulation` make
     it runnable; :func:`rotorcosim.simulate` runs it.

@@ -40,6 +40,7 @@ SCHEDULE_KEYS = ("speed_rpm",)
 
 
 def is_ref(value: Any) -> bool:
+    """Whether ``value`` takes an engine quantity (``"engine:NAME"``)."""
     return isinstance(value, str) and value.startswith(PREFIX)
 
 
@@ -54,6 +55,7 @@ class EngineBinding:
     sources: dict[str, str] = field(default_factory=dict)
 
     def view(self) -> EngineView:
+        """The engine's quantities with this binding's overrides (components/rotor/engine_parts.py)."""
         return EngineView(self.file, self.overrides)
 
     def provenance(self) -> dict:
