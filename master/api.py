@@ -440,6 +440,7 @@ def _simulate(sc, duration, schedule, out, record, progress, figures, overwrite,
             else:
                 summary["final_outputs"] = {f"{n}.{k}": v for n, c in sim.system.components.items()
                                             for k, v in c.y.items()}
+                _estimate_summary(summary, sc, report.hold)
         except Exception as exc:
             if error is None:
                 raise

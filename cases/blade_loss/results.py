@@ -349,7 +349,8 @@ def estimated_errors(windows, bearings, hold, F_u) -> dict | None:
     thermal network hands back to the mechanics (``mechanics_fraction`` of ``thermal<ID>``: its oil temperature
     and growths) of its own change between the last two thermo-mechanical intervals, percent of its value: the
     mechanics follow those values quasi-statically, so an error that is a share of their move over the held
-    interval is that share of the result's move. ``largest_pct`` and ``largest`` ("bearing.key") are the run's
+    interval is that share of the result's move (not estimated where the speed changed between those intervals:
+    the hold gives no fraction then). ``largest_pct`` and ``largest`` ("bearing.key") are the run's
     estimate."""
     if hold is None or hold.estimated_error_pct is None:
         return None
