@@ -28,6 +28,7 @@ from typing import Any, Mapping, Sequence
 import numpy as np
 
 from rotorcosim import scenarios
+from rotorcosim.components.bounded_read import read_json
 from rotorcosim.master import case
 
 from rotorcosim.master.schedule import budget
@@ -470,7 +471,7 @@ def draw_figures(sc: Scenario | str | Path, out: str | Path, pool: FigurePool | 
         raise ValueError(f"scenario {sc.name!r} has no [results] kind: it draws no figures")
     f = out / "summary.json"
     try:
-        summary = json.loads(f.read_text())
+        summary = read_json(f, "summary")
     except (OSError, ValueError) as exc:
         raise ValueError(f"{out}: no readable summary.json of a finished run ({exc})") from None
     if summary.get("status") not in ("complete", "stopped"):

@@ -36,6 +36,7 @@ import tempfile
 from pathlib import Path
 
 from rotorcosim.master.schedule import budget
+from rotorcosim.components.bounded_read import read_json
 from rotorcosim.master.api import check_run, draw_figures
 from rotorcosim.master.run.figure_pool import FigurePool
 from rotorcosim.master.run.outputs import check_dpi, write_json
@@ -411,7 +412,7 @@ def _kept(folder: Path, name: str | None, unbalance: float | None, duration: flo
     ``name``, a complete run of another scenario, unbalance or duration is an error (--resume continues the same
     comparison)."""
     try:
-        summary = json.loads((folder / "summary.json").read_text())
+        summary = read_json(folder / "summary.json", "summary")
     except (OSError, ValueError):
         return None
     if not isinstance(summary, dict) or summary.get("status") != "complete":
@@ -433,7 +434,7 @@ def _reuse(folder: Path, unbalance: float, duration: float, name: str | None = N
     monolithic run's scenario name this comparison would give it)."""
     f = folder / "summary.json"
     try:
-        summary = json.loads(f.read_text())
+        summary = read_json(f, "summary")
     except (OSError, ValueError) as exc:
         raise ValueError(f"--monolithic {folder}: no readable summary.json ({exc})") from None
     if not isinstance(summary, dict):

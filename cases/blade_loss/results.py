@@ -44,6 +44,9 @@ INNER, OUTER = 0, 1
 RESULT_KEYS = ("whirl_amplitude_mm", "transmissibility", "max_contact_load_N", "max_contact_stress_MPa",
                "rub_power_W", "drag_power_W", "sfd_power_W", "T_inner_race_C", "T_ball_C", "T_outer_race_C",
                "T_sfd_oil_C")
+#: every key of a bearing's entry in ``bearings``: the paper's results, the outer race's stress and the peaks
+BEARING_KEYS = (*RESULT_KEYS, "max_contact_stress_outer_MPa", "max_contact_load_peak_N",
+                "max_contact_stress_peak_MPa", "whirl_amplitude_peak_mm")
 KELVIN = 273.15
 #: the module that draws the figures (a figure pool's workers import it while the run goes)
 FIGURES_MODULE = "rotorcosim.cases.blade_loss.figures"
@@ -195,6 +198,13 @@ def extract(sc, sim, obs, report) -> dict:
 
 
 # -- figures ------------------------------------------------------------------------------------------
+def result_paths(sc) -> list[str]:
+    """The results :func:`extract` reports for scenario ``sc``, as dotted paths into summary.json (a study's
+    SPEC is checked against them before its first run)."""
+    return ["unbalance_N", "window.t_start", "window.t_end",
+            *(f"bearings.{k}.{key}" for k in bearing_ids(sc.components) for key in BEARING_KEYS)]
+
+
 def figures(sc, data, out: Path, pool=None, dpi: int | None = None) -> list[str]:
     """PNG figures like the paper's Figs. 9-14 from the recorded time series (``data``: ``time``, ``phase`` and
     one array per recorded port, as :meth:`Recorder.data` gives them, or the run's

@@ -306,6 +306,21 @@ def extract(sc, sim, obs, report) -> dict:
     return out
 
 
+def result_paths(sc) -> list[str]:
+    """The results :func:`extract` reports for scenario ``sc``, as dotted paths into summary.json (``crossings.``
+    ending in a dot: any path below it, the crossings found being known only after the run)."""
+    out = []
+    for sp in _spools(sc):
+        out += [f"speeds.{sp}.{k}" for k in ("start_rpm", "end_rpm", "t_fuel_cut_s")]
+        out += [f"energy.{sp}.{k}" for k in ("inertia_kg_m2", "kinetic_energy_lost_J", "residual_pct")]
+        out += [f"energy.{sp}.work_J.{k}" for k in ("drive", "drag", "rub", "aero")]
+    out.append("crossings.")
+    if _case_blade_loss(sc):
+        from rotorcosim.cases.blade_loss import results as bl
+        out += bl.result_paths(sc)
+    return out
+
+
 def figures(sc, data, out, pool=None, dpi: int | None = None) -> list[str]:
     """The rundown figures (:mod:`rotorcosim.cases.rundown.figures`) from the run's series, drawn here at ``dpi``
     (None: the default)."""

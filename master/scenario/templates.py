@@ -31,6 +31,7 @@ from typing import Any, Mapping
 
 from rotorcosim import scenarios
 from rotorcosim.components import toml_text
+from rotorcosim.components.bounded_read import read_text
 from rotorcosim.components.contract import ContractError
 
 #: the shipped templates
@@ -59,7 +60,7 @@ def _template(name: str, where: str) -> tuple[dict, str]:
     path = FOLDER / f"{name}.toml"
     if not ID.match(name) or not path.is_file():
         raise TemplateError(f"{where}: [templates] {name!r} is not a template (shipped: {', '.join(shipped())})")
-    tpl = toml_text.loads(path.read_text())
+    tpl = toml_text.loads(read_text(path, "template file"))
     unknown = set(tpl) - {"components", "connections"}
     if unknown:
         raise TemplateError(f"{path}: a template holds [components.*] and connections only, not "

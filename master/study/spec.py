@@ -68,6 +68,8 @@ else:  # pragma: no cover
     import tomli as tomllib
 
 from rotorcosim import scenarios
+from rotorcosim.components import toml_text
+from rotorcosim.components.bounded_read import read_bytes, read_text
 from rotorcosim.master.api import load_scenario
 from rotorcosim.master.scenario.build import Scenario
 
@@ -139,11 +141,18 @@ class CalibrationSpec:
     diff_step: float = DIFF_STEP
     tolerance: float = TOLERANCE
 
+    def definition(self) -> dict:
+        """Everything the SPEC says, as JSON values: a folder holding a calibration of another definition is
+        refused, naming the keys that differ (the targets by their file's digest)."""
+        digest = (hashlib.sha256(read_bytes(self.targets, "targets file")).hexdigest()[:16]
+                  if self.targets.is_file() else None)
+        return {"scenario": self.scenario, "duration": self.duration, "cases": self.cases,
+                "parameters": [asdict(p) for p in self.parameters], "targets": digest, "residual": self.residual,
+                "max_evaluations": self.max_evaluations, "diff_step": self.diff_step, "tolerance": self.tolerance}
+
     def fingerprint(self) -> str:
-        """What an evaluation depends on (the scenario, duration, cases and parameter names): evaluations stored
-        under another fingerprint are not reused."""
-        return _digest({"scenario": self.scenario, "duration": self.duration, "cases": self.cases,
-                        "parameters": [p.name for p in self.parameters]})
+        """The digest of :meth:`definition`: evaluations stored under another fingerprint are not reused."""
+        return _digest(self.definition())
 
 
 @dataclass
@@ -159,11 +168,16 @@ class UQSpec:
     parameters: list[Distribution]
     overrides: dict[str, Any] = field(default_factory=dict)
 
+    def definition(self) -> dict:
+        """Everything the SPEC says, as JSON values: a folder holding a UQ of another definition is refused,
+        naming the keys that differ."""
+        return {"scenario": self.scenario, "duration": self.duration, "samples": self.samples,
+                "sampler": self.sampler, "seed": self.seed, "overrides": self.overrides, "results": self.results,
+                "parameters": [asdict(p) for p in self.parameters]}
+
     def fingerprint(self) -> str:
-        """What the samples depend on: samples stored under another fingerprint are not reused."""
-        return _digest({"scenario": self.scenario, "duration": self.duration, "samples": self.samples,
-                        "sampler": self.sampler, "seed": self.seed, "overrides": self.overrides,
-                        "parameters": [asdict(p) for p in self.parameters]})
+        """The digest of :meth:`definition`: samples stored under another fingerprint are not reused."""
+        return _digest(self.definition())
 
 
 def _digest(obj) -> str:
@@ -175,7 +189,7 @@ def _read(path: Path, table: str) -> dict:
     if not path.is_file():
         raise FileNotFoundError(f"SPEC {path}: no such file")
     try:
-        data = tomllib.loads(path.read_text())
+        data = toml_text.loads(read_text(path, "SPEC"))
     except (tomllib.TOMLDecodeError, UnicodeDecodeError) as exc:
         raise SpecError(f"SPEC {path}: not valid TOML: {exc}") from None
     if table not in data or not isinstance(data[table], dict):
@@ -277,7 +291,8 @@ def read_calibration(path: str | Path) -> CalibrationSpec:
             raise SpecError(f"{pw}: lower {lower:g} must be below upper {upper:g}")
         if scale == "log" and lower <= 0:
             raise SpecError(f"{pw}: a log scale needs lower > 0, got {lower:g}")
-        check_parameters(sc, {name: (lower + upper) / 2}, pw)
+        for value in (lower, upper):   # every point of the search lies between them: both must be taken
+            check_parameters(sc, {name: value}, pw)
         start = p["start"] if "start" in p else _default_value(sc, name, pw)
         start = _number(f"{pw} start", start)
         if not lower <= start <= upper:

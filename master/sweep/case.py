@@ -59,10 +59,11 @@ class Case:
             sc.name = f"{sc.name}_{self.name}"
         return sc
 
-    def check(self) -> dict:
+    def check(self, force: bool = False) -> dict:
         """The run's own checks before it is sent anywhere (the scenario, its overrides, the duration, the
-        schedule, the wall-time budget); returns the run's estimate (``budget.check``)."""
-        return check_run(self.scenario_of(), self.schedule, self.duration)
+        schedule, the wall-time budget: ``force`` lifts its 24 h limit); returns the run's estimate
+        (``budget.check``)."""
+        return check_run(self.scenario_of(), self.schedule, self.duration, force=force)
 
     def definition(self) -> dict:
         """What the case runs, as JSON values (``sweep.json``'s ``definitions``): a ``--resume`` checks that the
