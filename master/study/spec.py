@@ -192,12 +192,25 @@ def _read(path: Path, table: str) -> dict:
         data = toml_text.loads(read_text(path, "SPEC"))
     except (tomllib.TOMLDecodeError, UnicodeDecodeError) as exc:
         raise SpecError(f"SPEC {path}: not valid TOML: {exc}") from None
-    if table not in data or not isinstance(data[table], dict):
+    if table not in data:
         raise SpecError(f"SPEC {path}: no [{table}] table")
+    if not isinstance(data[table], dict):
+        raise SpecError(f"SPEC {path}: [{table}] must be a table, got {_shape(data[table])}")
     return data[table]
 
 
+def _shape(value) -> str:
+    """What a TOML value is, in a refusal's words: "a list ([1])", "a table", "int (5)"."""
+    if isinstance(value, dict):
+        return "a table"
+    if isinstance(value, list):
+        return f"a list ({value!r:.40})"
+    return f"{type(value).__name__} ({value!r:.40})"
+
+
 def _number(where: str, value, *, positive: bool = False) -> float:
+    if isinstance(value, (dict, list)):
+        raise SpecError(f"{where}: must be a number, got {_shape(value)}")
     if isinstance(value, bool) or not isinstance(value, numbers.Real) or not math.isfinite(value):
         raise SpecError(f"{where}: {value!r} is not a finite number")
     if positive and value <= 0:
@@ -281,7 +294,7 @@ def read_calibration(path: str | Path) -> CalibrationSpec:
             if name in over:
                 raise SpecError(f"{pw}: case {c!r} sets it too (a parameter to update cannot be a case's setting)")
         scale = p.get("scale", "linear")
-        if scale not in SCALES:
+        if not isinstance(scale, str) or scale not in SCALES:
             raise SpecError(f"{pw}: scale {scale!r} not in {SCALES}")
         for key in ("lower", "upper"):
             if key not in p:
@@ -299,7 +312,7 @@ def read_calibration(path: str | Path) -> CalibrationSpec:
             raise SpecError(f"{pw}: start {start:g} is outside the bounds [{lower:g}, {upper:g}]")
         out.append(Parameter(name, lower, upper, start, scale))
     residual = t.get("residual", "log")
-    if residual not in RESIDUALS:
+    if not isinstance(residual, str) or residual not in RESIDUALS:
         raise SpecError(f"{w}: residual {residual!r} not in {RESIDUALS}")
     nmax = t.get("max_evaluations", MAX_EVALUATIONS)
     if isinstance(nmax, bool) or not isinstance(nmax, int) or nmax < 1:
@@ -348,7 +361,7 @@ def read_uq(path: str | Path) -> UQSpec:
     if isinstance(n, bool) or not isinstance(n, int) or n < 1:
         raise SpecError(f"{w}: samples must be an integer >= 1, got {n!r}")
     sampler = t.get("sampler", "lhs")
-    if sampler not in SAMPLERS:
+    if not isinstance(sampler, str) or sampler not in SAMPLERS:
         raise SpecError(f"{w}: sampler {sampler!r} not in {SAMPLERS}")
     seed = t.get("seed", 0)
     if isinstance(seed, bool) or not isinstance(seed, int) or seed < 0:
@@ -365,7 +378,7 @@ def read_uq(path: str | Path) -> UQSpec:
     out = []
     for pw, name, p in _parameter_tables(w, t, "uq", taken=overrides):
         kind = p.get("distribution")
-        if kind not in DISTRIBUTIONS:
+        if not isinstance(kind, str) or kind not in DISTRIBUTIONS:
             raise SpecError(f"{pw}: distribution {kind!r} not in {tuple(DISTRIBUTIONS)}")
         vals = {}
         for key in DISTRIBUTIONS[kind]:
