@@ -201,8 +201,9 @@ class Progress:
     """A line per finished job on ``stream``: how many are done of how many, the elapsed time and the time left
     (from the mean time per job so far and the jobs still to run). ``quiet``: no lines."""
 
-    def __init__(self, total: int, what: str = "runs", stream=sys.stderr, quiet: bool = False):
-        self.total, self.what, self.stream, self.quiet = total, what, stream, quiet
+    def __init__(self, total: int, what: str = "runs", stream=None, quiet: bool = False):
+        # sys.stderr as it is now (a default argument would keep the stream of the time of import)
+        self.total, self.what, self.stream, self.quiet = total, what, stream or sys.stderr, quiet
         self.done = 0
         self.t0 = time.perf_counter()
 

@@ -268,6 +268,33 @@ def check_parameters(sc: Scenario, values: dict[str, Any], where: str) -> None:
         raise SpecError(f"{where}: {' '.join(str(exc).split())}") from None
 
 
+def check_values(sc: Scenario, name: str, values, where: str) -> None:
+    """Each of ``values`` of the parameter ``name`` (``comp.param``) is one its component takes: its declared range
+    (:func:`check_parameters`), and the component built and set up alone with it, where it sets up alone with the
+    scenario's own values (an FMU's parameters are checked by its runs). A SpecError naming the first that is
+    not."""
+    from rotorcosim.master.scenario.build import create_component
+
+    comp = name.partition(".")[0]
+    for v in values:
+        check_parameters(sc, {name: v}, where)
+    if sc.components[comp].fmu is not None or _sets_up(create_component, sc.components[comp]) is not None:
+        return
+    for v in values:
+        why = _sets_up(create_component, sc.set({name: v}).components[comp])
+        if why is not None:
+            raise SpecError(f"{where}: {' '.join(why.split())}")
+
+
+def _sets_up(create, component_spec) -> str | None:
+    """Why the component of ``component_spec`` cannot be built and set up alone, or None when it can."""
+    try:
+        create(component_spec).setup(0.0)
+    except (ValueError, TypeError, ArithmeticError, RuntimeError, LookupError) as exc:
+        return str(exc)
+    return None
+
+
 def read_calibration(path: str | Path) -> CalibrationSpec:
     """Read and check the calibration SPEC ``path`` (see the module's docstring): the scenario loads, every
     parameter exists with bounds lower < start < upper (log: all > 0), every case's overrides apply. The targets
@@ -304,8 +331,7 @@ def read_calibration(path: str | Path) -> CalibrationSpec:
             raise SpecError(f"{pw}: lower {lower:g} must be below upper {upper:g}")
         if scale == "log" and lower <= 0:
             raise SpecError(f"{pw}: a log scale needs lower > 0, got {lower:g}")
-        for value in (lower, upper):   # every point of the search lies between them: both must be taken
-            check_parameters(sc, {name: value}, pw)
+        check_values(sc, name, (lower, upper), pw)   # every point of the search lies between them
         start = p["start"] if "start" in p else _default_value(sc, name, pw)
         start = _number(f"{pw} start", start)
         if not lower <= start <= upper:

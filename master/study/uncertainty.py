@@ -202,22 +202,23 @@ def check_results(spec: UQSpec) -> None:
 
 def check_samples(spec: UQSpec, x: np.ndarray) -> None:
     """Every parameter's smallest and largest sampled value is one its component takes (a distribution reaching
-    past a parameter's range, a normal stiffness drawn negative, would fail those samples' runs): a SpecError
-    naming the parameter, the value and its distribution, before anything runs."""
+    past a parameter's range, a normal stiffness drawn negative, would fail those samples' runs;
+    :func:`.spec.check_values`): a SpecError naming the parameter, the value and its distribution, before
+    anything runs."""
     from rotorcosim.master.api import load_scenario
-    from rotorcosim.master.study.spec import SpecError, check_parameters
+    from rotorcosim.master.study.spec import SpecError, check_values
 
     sc = load_scenario(spec.scenario)
     if spec.overrides:
         sc = sc.set(spec.overrides)
     for j, p in enumerate(spec.parameters):
-        for v in (float(x[:, j].min()), float(x[:, j].max())):
-            try:
-                check_parameters(sc, {p.name: v}, f"SPEC {spec.source} [uq] parameter {p.name}")
-            except SpecError as exc:
-                vals = ", ".join(f"{k} {val:g}" for k, val in p.values.items())
-                raise SpecError(f"{exc} (a sample of its {p.distribution} distribution, {vals}: narrow it or "
-                                "truncate it, truncnormal)") from None
+        try:
+            check_values(sc, p.name, (float(x[:, j].min()), float(x[:, j].max())),
+                         f"SPEC {spec.source} [uq] parameter {p.name}")
+        except SpecError as exc:
+            vals = ", ".join(f"{k} {val:g}" for k, val in p.values.items())
+            raise SpecError(f"{exc} (a sample of its {p.distribution} distribution, {vals}: narrow it or "
+                            "truncate it, truncnormal)") from None
 
 
 def analyse(spec: UQSpec, u: np.ndarray, rows: list[dict]) -> dict:
