@@ -72,12 +72,12 @@ def check_scheduler(scheduler: str | None, connect_timeout: float = CONNECT_TIME
     return None
 
 
-def slots(scheduler: str | None, workers: int | None, serial: bool, connect_timeout: float = CONNECT_TIMEOUT_S) -> int:
+def slots(scheduler: str | None, workers: int | None, serial: bool) -> int:
     """How many runs a study runs at once: 1 serial, the scheduler's threads, or the local cluster's workers
     (``workers``, default the cores). Checks the scheduler (:func:`check_scheduler`)."""
     if serial:
         return 1
-    threads = check_scheduler(scheduler, connect_timeout)
+    threads = check_scheduler(scheduler)
     return threads if threads is not None else (workers or os.cpu_count() or 1)
 
 
