@@ -227,10 +227,13 @@ def check_many(run_s: float, runs: int, workers: int, what: str, shorten: str, f
 
 
 def many_line(est: dict, what: str) -> str:
-    """The line a study or sweep prints before its first run: its estimate (:func:`check_many`)."""
-    bound = "at most " if est["upper_bound"] else "about "
-    return (f"{what}: {est['runs']} runs of {bound}{_each(est['run_s'])} each, {est['workers']} at a time: "
-            f"{bound}{est['wall']} of wall time (estimated)")
+    """The line a study or sweep prints before its first run: its estimate (:func:`check_many`; ``runs_at_most``
+    in it: the run count is a bound, as a calibration's)."""
+    runs = "at most " if est.get("runs_at_most") else ""    # a search that may stop early
+    each = "at most " if est["upper_bound"] else "about "   # a run on the automatic schedule
+    total = "at most " if runs or est["upper_bound"] else "about "
+    return (f"{what}: {runs}{est['runs']} runs of {each}{_each(est['run_s'])} each, {est['workers']} at a time: "
+            f"{total}{est['wall']} of wall time (estimated)")
 
 
 def _each(s: float) -> str:

@@ -186,7 +186,7 @@ def calibrate(spec: str | Path | CalibrationSpec, out: str | Path, *, scheduler:
                             runs, at_once, f"calibrate {spec.source} (at most)",
                             "a smaller max_evaluations, fewer cases or a shorter duration in the SPEC, or more "
                             "workers (--workers, --scheduler)", force)
-    est["upper_bound"] = True   # the search may stop long before max_evaluations
+    est["runs_at_most"] = True   # the search may stop long before max_evaluations
     print(budget.many_line(est, "calibrate"), file=sys.stderr, flush=True)
     resumed = store.open_folder(out, REPORT, TABLE, spec.fingerprint(), {**head, "estimate": est},
                                 spec.definition(), resume)
