@@ -71,8 +71,21 @@ def dumps(engine: dict, header: str = "") -> str:
     return "\n".join(lines).rstrip() + "\n"
 
 
+def refuse_invalid(engine: dict, path) -> None:
+    """A ValueError with the first problem ``rotorcosim check-engine`` would find in ``engine`` (the same checks:
+    :func:`rotorcosim.components.rotor.engine_check.problems`), naming the element and the key, if any."""
+    from rotorcosim.components.rotor.engine_check import problems
+
+    found = problems(engine)
+    if found:
+        more = f" (and {len(found) - 1} more)" if len(found) > 1 else ""
+        raise ValueError(f"{path}: not written, check-engine would reject it: {found[0]}{more}")
+
+
 def write(engine: dict, path, header: str = "") -> None:
-    """Write ``engine`` to ``path`` whole or not at all (a temporary file renamed into place)."""
+    """Write ``engine`` to ``path`` whole or not at all (a temporary file renamed into place); an engine that
+    ``check-engine`` would reject is refused (:func:`refuse_invalid`) and nothing is written."""
+    refuse_invalid(engine, path)
     text = dumps(engine, header)
     p = Path(path)
     fd, tmp = tempfile.mkstemp(dir=p.parent if str(p.parent) else ".", prefix=f".{p.name}.", suffix=".tmp")

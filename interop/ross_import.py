@@ -116,6 +116,9 @@ def from_ross(rotor, *, speed_rpm: float | None = None, speed_rpm_coefficients: 
     speed = float(speed_rpm) if speed_rpm is not None else DEFAULT_SPEED_RPM
     if not (np.isfinite(speed) and speed > 0):
         raise RossImportError(f"speed must be a finite number > 0 rev/min, got {speed_rpm!r}")
+    if not (isinstance(hub_mass_kg, (int, float)) and np.isfinite(hub_mass_kg) and hub_mass_kg >= 0):
+        raise RossImportError(f"hub mass (--hub-mass) must be a finite mass >= 0 kg, got {hub_mass_kg!r}")
+    _check_elements(el)
 
     # spools: chains of shaft elements
     shafts = sorted(el["shafts"], key=lambda e: int(e["n"]))
@@ -281,6 +284,49 @@ def from_ross(rotor, *, speed_rpm: float | None = None, speed_rpm_coefficients: 
             "unbalance": {"node": node(int(unbalance_node), "unbalance")},
             "oil_temperature_C": 30.0}
     return engine
+
+
+def _number(e: dict, key: str, what: str, *, positive: bool = False, inner_of: str | None = None) -> float:
+    """The element's ``key`` as a finite number (> 0 with ``positive``, else >= 0); RossImportError naming the
+    element and the key otherwise."""
+    if key not in e:
+        raise RossImportError(f"ROSS {what}: {key} missing")
+    v = e[key]
+    ok = isinstance(v, (int, float)) and not isinstance(v, bool) and np.isfinite(v) and (v > 0 if positive else v >= 0)
+    if not ok:
+        raise RossImportError(f"ROSS {what}: {key} must be a finite number {'> 0' if positive else '>= 0'}, got {v!r}")
+    if inner_of is not None and not v < e[inner_of]:
+        raise RossImportError(f"ROSS {what}: inner diameter {key} = {v!r} m is not smaller than the outer "
+                              f"{inner_of} = {e[inner_of]!r} m")
+    return float(v)
+
+
+def _check_elements(el: dict) -> None:
+    """Every value the engine file takes from the ROSS elements, checked and named by element and key before
+    anything is written (the engine file's own checks would name only the engine key it became)."""
+    for e in el["shafts"]:
+        what = f"ShaftElement {e.get('tag')!r}"
+        _number(e, "L", what, positive=True)
+        for side in ("l", "r"):
+            if f"od{side}" in e or side == "l":
+                _number(e, f"od{side}", what, positive=True)
+                _number(e, f"id{side}", what, inner_of=f"od{side}")
+        m = e.get("material")
+        if not isinstance(m, dict):
+            raise RossImportError(f"ROSS {what}: material missing")
+        for k in ("E", "G_s", "rho"):
+            _number(m, k, f"{what} material {m.get('name', '')!r}", positive=True)
+    for d in el["disks"]:
+        for k in ("m", "Ip", "Id"):
+            _number(d, k, f"DiskElement {d.get('tag')!r}")
+    for b in el["bearings"]:
+        for k in ("kxx", "kyy", "kxy", "kyx", "cxx", "cyy", "cxy", "cyx", "kzz"):
+            v = b.get(k, [0.0])
+            vals = [v] if not isinstance(v, (list, tuple, np.ndarray)) else list(v)
+            if not all(isinstance(x, (int, float, np.floating, np.integer)) and not isinstance(x, bool)
+                       and np.isfinite(x) for x in vals):
+                raise RossImportError(f"ROSS {b.get('kind', 'BearingElement')} {b.get('tag')!r}: {k} must be finite "
+                                      f"numbers, got {v!r}")
 
 
 def _pedestal(p: dict, what: str) -> dict:

@@ -23,6 +23,9 @@ the import-linter contract in ``pyproject.toml``, run by ``tests/test_architectu
 ``api`` (module)              the Python API: :func:`load_scenario`, :func:`simulate`, :class:`Result`
 ``sweep``                     many cases on Dask into one folder (:func:`~rotorcosim.master.sweep.run_cases`):
                               the lock, each case's folder whole, resume, what it does under faults
+``study``                     calibration and uncertainty quantification over many runs, stored and resumed
+``compare``                   any scenario run staggered and monolithic, timed and tabulated
+                              (:func:`~rotorcosim.master.compare.compare_schemes`)
 ``cli``                       the ``rotorcosim`` program, a thin layer over the API
 ============================  ===========================================================================
 

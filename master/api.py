@@ -425,6 +425,9 @@ def _simulate(sc, duration, schedule, out, record, progress, figures, overwrite,
         try:
             if post is not None and (error is None or sim.computed):   # a run that computed nothing has no results
                 summary.update(post.extract(sc, sim, post_obs, report))
+                # what the case found at some time of the run that its end values do not show: one line each
+                for event in summary.get("events") or []:
+                    print(f"{sc.name}: warning: {event['message']}", file=sys.stderr)
                 if figures and out is not None and status in ("complete", "stopped"):
                     names = post.figures(sc, data, out, pool=pool, dpi=dpi)
                     summary["figures"] = names

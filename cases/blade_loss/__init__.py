@@ -40,8 +40,8 @@ COMMANDS = {
     "new-engine": ("rotorcosim.cases.blade_loss.new_engine",
                    "write a small engine of your own and a blade-loss scenario of it into a folder"),
     "check-engine": ("rotorcosim.cases.blade_loss.check_engine",
-                     "an engine file's problems, or its nodes, masses, inertias, critical speeds and Campbell "
-                     "diagram"),
+                     "an engine file's problems, or its nodes, masses, inertias, critical speeds with their "
+                     "separation margins, warnings and Campbell diagram"),
 }
 #: ``rotorcosim sweep --unbalance paper``: the seven levels of the paper's Table 5 [N]
 LEVELS = {"paper": (712.0, 1425.0, 2850.0, 5700.0, 8551.0, 11401.0, 14252.0)}

@@ -1,28 +1,39 @@
 """``rotorcosim check-engine FILE``: an engine file's problems by name, or its model: nodes, masses, spool
-polar inertias, critical speeds and a Campbell diagram.
+polar inertias, critical speeds with their separation margins, warnings and a Campbell diagram.
 
-Every problem of the file is listed (one line each, exit status 2), not only the first; a valid file gets its
-report, its synchronous critical speeds on the linearised supports (the co-simulated bearings it attaches,
-linearised from the components of ``--scenario``, default the shipped blade-loss scenario) and a Campbell
-diagram PNG. Example::
+Every problem of the file is listed (one line each, exit status 2), not only the first, a value of the wrong
+TOML shape first (components/rotor/engine_shape.py). A valid file gets its report; every synchronous critical
+speed up to 1.5 x each spool's highest operating speed, excited by that spool's unbalance, with the whirl of its
+mode and its separation margin from each operating speed, on the linearised supports (the co-simulated bearings
+it attaches, linearised from the components of ``--scenario``, default the shipped blade-loss scenario); one
+warning line each (exit status 0) for a critical speed nearer an operating speed than API 684's 15 %, a bearing
+bore that fits no shaft section at its node, dimensions implausible for mm and a spool turning a bearing beyond
+its model's speed range; and a Campbell diagram PNG. Example::
 
     rotorcosim check-engine my_engine/engine.toml --scenario my_engine/blade_loss.toml
 """
 from __future__ import annotations
 
 import json
+import math
 from pathlib import Path
 
 from rotorcosim.cases.blade_loss import critical_speeds as cs
-from rotorcosim.components.rotor import engine_check
+from rotorcosim.cases.blade_loss import linear_engine
+from rotorcosim.components.bearing.geometry import DN_LIMIT
+from rotorcosim.components.rotor import attach, critical, engine_check
 from rotorcosim.components.rotor import model as fem
+from rotorcosim.master.scenario.build import create_component
 
 
 def check_engine(path: str, scenario: str | None = None, campbell: str | None = None,
                  max_rpm: float | None = None, count: int = 6) -> dict:
     """``{"problems": [...]}`` for a file with problems; else the report (:func:`engine_check.report`) with
-    ``critical_speeds`` (:func:`critical_speeds.critical_speeds`) and ``campbell`` (the PNG written, when
-    ``campbell`` names one). ``max_rpm`` None: twice the first spool's speed."""
+    ``critical_speeds`` (:func:`critical_speeds.critical_speeds`), ``separation`` (every synchronous critical
+    speed up to :data:`SPAN` x each spool's highest operating speed, excited by that spool's unbalance, with its
+    whirl and its separation margin from each operating speed: :func:`engine_check.separation`), ``warnings``
+    (one line each: :func:`warnings`) and ``campbell`` (the PNG written, when ``campbell`` names one).
+    ``max_rpm`` None: twice the first spool's speed (the list of ``critical_speeds`` and the diagram)."""
     data, _ = fem.load_data(path)
     found = engine_check.problems(data)
     if found:
@@ -38,10 +49,56 @@ def check_engine(path: str, scenario: str | None = None, campbell: str | None = 
         max_rpm = 2.0 * abs(next(iter(out["spools"].values()))["speed_rpm"])
     crit = cs.critical_speeds(str(path), count=count, max_rpm=max_rpm, scenario=sc)
     out["critical_speeds"] = crit
+    sup = cs._supports(full, None, sc)
+    ops = engine_check.operating_speeds(data)
+    first = next(iter(ops.values()))[0]
+    out["operating_speeds_rpm"] = ops
+    out["separation"], warn = [], []
+    for s, speeds in ops.items():
+        every = critical.every_synchronous_critical_speed(full, sup, SPAN * max(speeds), excited=speeds[0] / first)
+        rows, w = engine_check.separation(every, s, data["spool"][s].get("name", s), speeds)
+        out["separation"] += rows
+        warn += w
+    out["warnings"] = warn + warnings(data, sc)
     if campbell:
         cs._check_figure_path(campbell)
         cs.draw_campbell(campbell, str(path), max_rpm, crit, scenario=sc)
         out["campbell"] = str(campbell)
+    return out
+
+
+#: the separation list spans the synchronous critical speeds up to this times each spool's highest operating speed
+SPAN = 1.5
+
+
+def warnings(data: dict, sc=None) -> list[str]:
+    """One line per implausible dimension of the engine (:func:`engine_check.implausible`), and per attached
+    bearing whose bore fits no shaft section at its node (:func:`engine_check.bore_fit`) or whose spool turns
+    beyond its model's speed range; the bearings as the scenario ``sc`` (None: the shipped blade-loss
+    scenario) makes them."""
+    out = engine_check.implausible(data)
+    ids = attach.layout(data.get("attach", {})).bearings
+    if not ids:
+        return out
+    sc = linear_engine._scenario(sc)
+    for b in ids:
+        spec = sc.components.get(f"bearing{b}")
+        if spec is None:
+            continue
+        comp = create_component(spec)
+        if not hasattr(comp, "speed_range"):
+            continue            # a bearing of another model (a plug-in, an FMU): its range is its own
+        bore, w_max = comp.speed_range()
+        key = f"bearing{b}"
+        line = engine_check.bore_fit(data, key, bore * 1e3)
+        if line:
+            out.append(line)
+        spool = data["attach"][key]["node"][0]
+        rpm = abs(float(data["spool"][spool]["speed_rpm"]))
+        if rpm > w_max * 30.0 / math.pi:
+            out.append(f"attach.{key}: the bearing turns with spool {spool} at {rpm:.0f} rev/min, above the ball "
+                       f"bearing model's speed limit {w_max * 30.0 / math.pi:.0f} rev/min (bore {bore * 1e3:g} mm, "
+                       f"bore x speed <= {DN_LIMIT:.3g} mm rev/min)")
     return out
 
 
@@ -72,7 +129,8 @@ def run(args) -> int:
         for line in out["problems"]:
             print(f"  {line}")
         return 2
-    print(f"{args.file}: no problem found; {out['dof']} DOF")
+    n = len(out["warnings"])
+    print(f"{args.file}: no problem found; {out['dof']} DOF" + (f"; {n} warning(s) below" if n else ""))
     for s, v in out["spools"].items():
         print(f"  spool {s} ({v['name']}): {v['nodes']} nodes over {v['length_mm']:.0f} mm, {v['mass_kg']:.2f} kg "
               f"(shaft {v['shaft_mass_kg']:.2f}, disks {v['disk_mass_kg']:.2f}), polar inertia "
@@ -83,10 +141,15 @@ def run(args) -> int:
     print("  attached: " + (", ".join(f"{k} at {v['node']}" + (f" (housing {v['housing']})" if "housing" in v
                                                                else "") for k, v in at.items()) or "nothing"))
     c = out["critical_speeds"]
-    print(f"  forward synchronous critical speeds [rev/min]: "
-          + ", ".join(f"{v:.0f}" for v in c["forward_synchronous_rpm"]))
-    print(f"  backward synchronous critical speeds [rev/min]: "
-          + ", ".join(f"{v:.0f}" for v in c["backward_synchronous_rpm"]))
+    for s, speeds in out["operating_speeds_rpm"].items():
+        rows = [r for r in out["separation"] if r["spool"] == s]
+        print(f"  synchronous critical speeds excited by spool {s} up to {SPAN:g} x its operating speed "
+              f"{', '.join(f'{v:.0f}' for v in speeds)} rev/min (separation margin):")
+        print("    " + (", ".join(f"{r['rpm']:.0f} {r['whirl']} ("
+                                  + "/".join(f"{m['margin_percent']:+.1f} %" for m in r["margins"]) + ")"
+                                  for r in rows) or "none"))
     print(f"  supports: {c['support_model']['description']}")
+    for line in out["warnings"]:
+        print(f"  warning: {line}")
     print(f"Campbell diagram: {out['campbell']}")
     return 0

@@ -34,12 +34,11 @@ from pathlib import Path
 
 import numpy as np
 
+from rotorcosim.cases.blade_loss.engine_names import bearing_spools, rub_clearances_mm
 from rotorcosim.cases.blade_loss.table5 import PAPER_LEVELS
-from rotorcosim.cases.blade_loss.results import KELVIN, NODES, bearing_ids
+from rotorcosim.cases.blade_loss.results import KELVIN, NODES, PLASTIC_FLOW_MPA, bearing_ids
 from rotorcosim.master.run.outputs import FIGURE_DPI
 
-RUB_CLEARANCE_MM = 0.508  # Table 3 (both rings)
-PLASTIC_FLOW_MPA = 3200.0  # the paper's incipient plastic flow limit of the ball/race contact [13]
 ORBIT_CYCLES = 5
 #: the narrowest a shaded interval is drawn, as a fraction of the axis's width (~3.7 pixels of a 5-inch axis at
 #: 150 dpi): every interval of the timeline shows, however short
@@ -71,13 +70,28 @@ class Context:
     paper: bool  # one of the paper's own cases: titled "(paper Fig. N)"
     dpi: int = FIGURE_DPI  # resolution of the PNG files [dots per inch]
     bearings: tuple = ("0", "5")  # the ids of the co-simulated bearings (results.bearing_ids), in order
+    #: (id, the engine's name of the spool the bearing is on), in the order of ``bearings``
+    spools: tuple = (("0", "power turbine"), ("5", "power turbine"))
+    #: (id, the run's rub-ring clearance at the bearing [mm], None: no rub ring or not known)
+    rub_clearances_mm: tuple = (("0", 0.508), ("5", 0.508))
+
+    def spool(self, k) -> str:
+        """The engine's name of the spool bearing ``k`` is on, capitalised for a title."""
+        name = dict(self.spools).get(str(k)) or "rotor"
+        return name[:1].upper() + name[1:]
+
+    def rub_clearance_mm(self, k) -> float | None:
+        return dict(self.rub_clearances_mm).get(str(k))
 
 
-def context(sc, F_u: float, speed_rpm: float | None, dpi: int | None = None) -> Context:
+def context(sc, F_u: float, speed_rpm: float | None, dpi: int | None = None, out: Path | None = None) -> Context:
     """The :class:`Context` of a run of scenario ``sc`` with blade-loss force ``F_u`` [N] at the rotor speed
-    ``speed_rpm`` [rev/min] (None: not declared), drawn at ``dpi`` (None: :data:`FIGURE_DPI`)."""
-    return Context(sc.name, float(F_u), speed_rpm, is_paper_case(sc, F_u), int(dpi or FIGURE_DPI),
-                   bearing_ids(sc.components))
+    ``speed_rpm`` [rev/min] (None: not declared), drawn at ``dpi`` (None: :data:`FIGURE_DPI`); ``out``: the
+    run's folder (its summary's provenance gives the clearances the run had)."""
+    ids = bearing_ids(sc.components)
+    spools, clear = bearing_spools(sc, ids), rub_clearances_mm(sc, ids, out)
+    return Context(sc.name, float(F_u), speed_rpm, is_paper_case(sc, F_u), int(dpi or FIGURE_DPI), ids,
+                   tuple((k, spools[k]) for k in ids), tuple((k, clear[k]) for k in ids))
 
 
 def envelope(t: np.ndarray, y: np.ndarray, points: int = PLOT_POINTS) -> tuple[np.ndarray, np.ndarray]:
@@ -272,7 +286,7 @@ class _Figures:
             _absolute_time(a)
         self.orbit(ax[n], k, X)
         _legend_below(fig, ax)
-        fig.suptitle(self.title(f"Power turbine at bearing #{k}", fig_no))
+        fig.suptitle(self.title(f"{self.ctx.spool(k)} at bearing #{k}", fig_no))
         self.save(fig, f"fig{fig_no:02d}_response_bearing{k}.png")
 
     def orbit(self, a, k: int, X) -> None:
@@ -294,17 +308,17 @@ class _Figures:
         a.plot(xy[:, 0], xy[:, 1], lw=0.9, color="C2", label=label)
         cx, cy = 0.5 * (xy.max(axis=0) + xy.min(axis=0))
         half = max(float(np.ptp(xy[:, 0])), float(np.ptp(xy[:, 1])), 1e-9) * 0.5 * 1.25
-        if relative:
+        clearance = self.ctx.rub_clearance_mm(k)
+        if relative and clearance is not None:
             r = float(np.max(np.hypot(*xy.T)))
-            if RUB_CLEARANCE_MM <= CIRCLE_RANGE * r:  # in range of the orbit: draw it, and scale to show it
+            text = f"rub-ring clearance {clearance:.4g} mm"
+            if clearance <= CIRCLE_RANGE * r:  # in range of the orbit: draw it, and scale to show it
                 th = np.linspace(0, 2 * np.pi, 200)
-                a.plot(RUB_CLEARANCE_MM * np.cos(th), RUB_CLEARANCE_MM * np.sin(th), "k:", lw=1,
-                       label=f"rub-ring clearance {RUB_CLEARANCE_MM} mm")
-                half = max(half, 1.1 * RUB_CLEARANCE_MM)
+                a.plot(clearance * np.cos(th), clearance * np.sin(th), "k:", lw=1, label=text)
+                half = max(half, 1.1 * clearance)
                 cx = cy = 0.0
             else:  # a legend entry without a line: the circle would shrink the orbit to a dot
-                a.plot([], [], " ", label=f"rub-ring clearance {RUB_CLEARANCE_MM} mm: off this scale "
-                                          f"(orbit radius {r:.2g} mm)")
+                a.plot([], [], " ", label=f"{text}: off this scale (orbit radius {r:.2g} mm)")
         a.set_xlim(cx - half, cx + half)
         a.set_ylim(cy - half, cy + half)
         a.set_aspect("equal")
@@ -415,5 +429,5 @@ def figures(sc, data, out: Path, F_u: float, speed_rpm: float | None = None, dpi
     file names."""
     if data is None or "time" not in data or not len(data["time"]):
         return []
-    ctx = context(sc, F_u, speed_rpm, dpi)
+    ctx = context(sc, F_u, speed_rpm, dpi, out)
     return [name for job in JOBS for name in draw(job, data, out, ctx)]

@@ -48,6 +48,11 @@ RESULT_KEYS = ("whirl_amplitude_mm", "transmissibility", "max_contact_load_N", "
 BEARING_KEYS = (*RESULT_KEYS, "max_contact_stress_outer_MPa", "max_contact_load_peak_N",
                 "max_contact_stress_peak_MPa", "whirl_amplitude_peak_mm")
 KELVIN = 273.15
+#: the paper's damage criterion of a ball/race contact: incipient plastic flow at 3200 MPa (its ref. [13]; the
+#: line of its Fig. 12). Not the end of the model (the bearing's own envelope is ISO 76's 4200 MPa,
+#: components/bearing/component.py): a run above it is reported (``plastic_flow_first_time_s``, ``events``)
+PLASTIC_FLOW_MPA = 3200.0
+PLASTIC_FLOW_PA = PLASTIC_FLOW_MPA * 1e6
 #: the module that draws the figures (a figure pool's workers import it while the run goes)
 FIGURES_MODULE = "rotorcosim.cases.blade_loss.figures"
 #: order of thermal{k}.T_nodes
@@ -61,9 +66,19 @@ def bearing_ids(names) -> tuple[str, ...]:
     return tuple(n[len("bearing"):] for n in names if re.match(r"^bearing[A-Za-z0-9_]+$", n))
 
 
+def housing_signal(sc, k) -> str | None:
+    """``rotor.X_housing<k>``, the housing's displacement at bearing ``k``, where the scenario connects it (the
+    rotor offers it for every attached bearing); None for a scenario without it (then no relative whirl)."""
+    ref = f"rotor.X_housing{k}"
+    if sc is None or any(c.src == ref for c in getattr(sc, "connections", ())):
+        return ref
+    return None
+
+
 def window_signals(sc=None) -> list[str]:
     """The outputs the steady windows keep for each bearing of ``sc`` (the paper's without one): whirl, film
-    force, contact load and stress, rub (where the bearing has a rub ring), drag and film powers."""
+    force, contact load and stress, rub (where the bearing has a rub ring), drag and film powers, the housing's
+    displacement (the whirl relative to it)."""
     ids = bearing_ids(sc.components) if sc is not None else tuple(map(str, BEARINGS))
     out = []
     for k in ids:
@@ -71,15 +86,28 @@ def window_signals(sc=None) -> list[str]:
         if sc is None or f"rubring{k}" in sc.components:
             out.append(f"rubring{k}.P_rub")
         out += [f"bearing{k}.P_drag", f"damper{k}.P_film"]
+        housing = housing_signal(sc, k)
+        if housing is not None:
+            out.append(housing)
     return out
 
 
 class Peaks(Observer):
-    """Largest contact load (either race), inner-race stress and whirl radius over the whole run (TM intervals)."""
+    """The largest values over the whole run (every step of the coupled intervals; the held ones change no
+    mechanical output), per bearing id: contact load (either race), contact stress of the inner and of the outer
+    race, whirl radius of the rotor at the bearing (absolute, and relative to its housing where the housing's
+    displacement is connected), transmitted force |F_journal| (film + centering spring) and rub power; and the
+    first time the rub power was above zero and the first time a contact stress (either race) was above
+    ``plastic_flow_pa``. Nothing is kept but these numbers: a run that records to file holds no series for
+    them."""
 
-    def __init__(self, ids=tuple(map(str, BEARINGS))):
+    def __init__(self, ids=tuple(map(str, BEARINGS)), housing=None, plastic_flow_pa: float = PLASTIC_FLOW_PA):
         self.ids = tuple(ids)
-        self.peak = {k: {"Q": 0.0, "sigma": 0.0, "whirl": 0.0} for k in self.ids}
+        #: id -> the housing displacement's port name on the rotor (None: no relative whirl)
+        self.housing = dict(housing or {})
+        self.plastic_flow_pa = float(plastic_flow_pa)
+        self.peak = {k: {"Q": 0.0, "sigma": 0.0, "whirl": 0.0, "sigma_outer": 0.0, "whirl_relative": None,
+                         "force": 0.0, "rub": None, "t_rub": None, "t_plastic": None} for k in self.ids}
 
     def interval_start(self, sim, phase, step):
         self.active = phase == COUPLED
@@ -89,11 +117,20 @@ class Peaks(Observer):
             b = comps[f"bearing{k}"]
             q = "Q_max_step" if "Q_max_step" in b.y else "Q_max"
             s = "sigma_max_step" if "sigma_max_step" in b.y else "sigma_max"
-            self._taps.append((self.peak[k], b, q, s, comps["rotor"], f"X_brg{k}"))
+            d, r = comps.get(f"damper{k}"), comps.get(f"rubring{k}")
+            h = self.housing.get(k)
+            self._taps.append((self.peak[k], b, q, s, comps["rotor"], f"X_brg{k}",
+                               h.partition(".")[2] if h else None,
+                               d if d is not None and "F_journal" in d.y else None,
+                               r if r is not None and "P_rub" in r.y else None))
 
     def block_signals(self, sim):
-        return [r for k, tap in zip(self.ids, self._taps)
-                for r in (f"bearing{k}.{tap[2]}", f"bearing{k}.{tap[3]}", f"rotor.X_brg{k}")]
+        out = []
+        for k, (p, b, q, s, rotor, xb, xh, d, r) in zip(self.ids, self._taps):
+            out += [f"bearing{k}.{q}", f"bearing{k}.{s}", f"rotor.{xb}"]
+            out += [f"rotor.{xh}"] * (xh is not None) + [f"damper{k}.F_journal"] * (d is not None)
+            out += [f"rubring{k}.P_rub"] * (r is not None)
+        return out
 
     def step_block(self, sim, ks, ts, data):
         """As step() over the block (the same maxima: max is exact, and hypot row by row)."""
@@ -102,28 +139,64 @@ class Peaks(Observer):
         rows = sampled_rows(ks, self.stride)
         if not len(rows):
             return
-        for k, (p, b, q, s, rotor, xb) in zip(self.ids, self._taps):
+        t = np.asarray(ts)[rows]
+        for k, (p, b, q, s, rotor, xb, xh, d, r) in zip(self.ids, self._taps):
             p["Q"] = max(p["Q"], float(data[f"bearing{k}.{q}"][rows].max()))
-            p["sigma"] = max(p["sigma"], float(data[f"bearing{k}.{s}"][rows, INNER].max()))
+            sig = data[f"bearing{k}.{s}"][rows]
+            p["sigma"] = max(p["sigma"], float(sig[:, INNER].max()))
+            p["sigma_outer"] = max(p["sigma_outer"], float(sig[:, OUTER].max()))
+            if p["t_plastic"] is None:
+                over = np.flatnonzero(sig.max(axis=1) > self.plastic_flow_pa)
+                if len(over):
+                    p["t_plastic"] = float(t[over[0]])
             x = data[f"rotor.{xb}"][rows]
             p["whirl"] = max(p["whirl"], float(np.hypot(x[:, 0], x[:, 1]).max()))
+            if xh is not None:
+                e = x[:, :2] - data[f"rotor.{xh}"][rows][:, :2]
+                p["whirl_relative"] = max(p["whirl_relative"] or 0.0, float(np.hypot(e[:, 0], e[:, 1]).max()))
+            if d is not None:
+                f = data[f"damper{k}.F_journal"][rows]
+                p["force"] = max(p["force"], float(np.hypot(f[:, 0], f[:, 1]).max()))
+            if r is not None:
+                w = data[f"rubring{k}.P_rub"][rows, 0]
+                p["rub"] = max(p["rub"] or 0.0, float(w.max()))
+                if p["t_rub"] is None:
+                    on = np.flatnonzero(w > 0.0)
+                    if len(on):
+                        p["t_rub"] = float(t[on[0]])
 
     def step(self, sim, t):
         if not self.active:
             return
-        for p, b, q, s, rotor, xb in self._taps:
+        for p, b, q, s, rotor, xb, xh, d, r in self._taps:
             y = b.y
             p["Q"] = max(p["Q"], *y[q])
             p["sigma"] = max(p["sigma"], y[s][INNER])
+            p["sigma_outer"] = max(p["sigma_outer"], float(y[s][OUTER]))
+            if p["t_plastic"] is None and max(y[s]) > self.plastic_flow_pa:
+                p["t_plastic"] = float(t)
             x = rotor.y[xb]
             p["whirl"] = max(p["whirl"], float(np.hypot(x[0], x[1])))
+            if xh is not None:
+                h = rotor.y[xh]
+                p["whirl_relative"] = max(p["whirl_relative"] or 0.0, float(np.hypot(x[0] - h[0], x[1] - h[1])))
+            if d is not None:
+                f = d.y["F_journal"]
+                p["force"] = max(p["force"], float(np.hypot(f[0], f[1])))
+            if r is not None:
+                w = float(r.y["P_rub"][0])
+                p["rub"] = max(p["rub"] or 0.0, w)
+                if p["t_rub"] is None and w > 0.0:
+                    p["t_rub"] = float(t)
 
 
 def observers(sc, cycle):
     """The run's observers for the results: the steady windows over the last ``[results] cycles`` cycles of
     ``cycle`` (the scenario's cycle source, master/core/cycle.py) and the peaks."""
     cycles = float(sc.extra.get("results", {}).get("cycles", 5))
-    return [SteadyWindows(window_signals(sc), cycle, cycles), Peaks(bearing_ids(sc.components))]
+    ids = bearing_ids(sc.components)
+    housing = {k: h for k in ids if (h := housing_signal(sc, k)) is not None}
+    return [SteadyWindows(window_signals(sc), cycle, cycles), Peaks(ids, housing)]
 
 
 def check(sc, sim) -> None:
@@ -174,8 +247,11 @@ def extract(sc, sim, obs, report) -> dict:
         X = w[f"rotor.X_brg{k}"]
         F = w[f"damper{k}.F_journal"]
         T = sim.value(f"thermal{k}.T_nodes")
+        H = w.get(peaks.housing[k]) if k in peaks.housing else None
+        whirl = 1e3 * float(np.max(np.hypot(X[:, 0], X[:, 1])))
+        pk = peaks.peak[k]
         r = {
-            "whirl_amplitude_mm": 1e3 * float(np.max(np.hypot(X[:, 0], X[:, 1]))),
+            "whirl_amplitude_mm": whirl,
             "transmissibility": float(np.max(np.hypot(F[:, 0], F[:, 1]))) / F_u if F_u > 0 else None,
             "max_contact_load_N": float(np.max(w[f"bearing{k}.Q_max"])),
             "max_contact_stress_MPa": 1e-6 * float(np.max(w[f"bearing{k}.sigma_max"][:, INNER])),
@@ -188,13 +264,53 @@ def extract(sc, sim, obs, report) -> dict:
             "T_ball_C": float(T[NODES.index("ball")]) - KELVIN,
             "T_outer_race_C": float(T[NODES.index("outer_race")]) - KELVIN,
             "T_sfd_oil_C": float(T[NODES.index("sfd_oil")]) - KELVIN,
-            "max_contact_load_peak_N": peaks.peak[k]["Q"],
-            "max_contact_stress_peak_MPa": 1e-6 * peaks.peak[k]["sigma"],
-            "whirl_amplitude_peak_mm": 1e3 * peaks.peak[k]["whirl"],
+            "max_contact_load_peak_N": pk["Q"],
+            "max_contact_stress_peak_MPa": 1e-6 * pk["sigma"],
+            "whirl_amplitude_peak_mm": 1e3 * pk["whirl"],
+            # the whirl named by its reference: absolute (the housing's own motion included; the Table 4 value
+            # above) and relative to the bearing's housing (the rotor's excursion inside its support)
+            "whirl_amplitude_absolute_mm": whirl,
+            "whirl_amplitude_relative_mm": (None if H is None else
+                                            1e3 * float(np.max(np.hypot(X[:, 0] - H[:, 0], X[:, 1] - H[:, 1])))),
+            "whirl_amplitude_absolute_peak_mm": 1e3 * pk["whirl"],
+            "whirl_amplitude_relative_peak_mm": None if pk["whirl_relative"] is None else 1e3 * pk["whirl_relative"],
+            "max_contact_stress_outer_peak_MPa": 1e-6 * pk["sigma_outer"],
+            "transmitted_force_peak_N": pk["force"],
+            "rub_power_peak_W": pk["rub"],
+            # a rub at any time (the blade-loss transient's included), and a contact stress above the paper's
+            # plastic-flow limit at any time: the first time, null for never
+            "rub_first_time_s": pk["t_rub"],
+            "plastic_flow_limit_MPa": PLASTIC_FLOW_MPA,
+            "plastic_flow_first_time_s": pk["t_plastic"],
         }
         out[str(k)] = r
     return {"unbalance_N": F_u, "window": {"t_start": float(w["t"][0]), "t_end": float(w["t"][-1])},
-            "bearings": out}
+            "bearings": out, "events": events(out)}
+
+
+def events(bearings: dict) -> list[dict]:
+    """What happened at some time of the run that its end values do not show, one entry per bearing and kind
+    (summary.json ``events``; each is also one ``warning:`` line on stderr): ``"rub"``, the rotor touched its
+    rub ring (rub power above zero) but no longer rubs at the end (a transient rub); ``"plastic_flow"``, a ball
+    contact stress (either race) above the plastic-flow limit at some time. Keys: ``kind``, ``bearing``,
+    ``time_s`` (the first time), ``peak`` and ``unit`` (the run's peak of that quantity), ``limit`` (the
+    plastic-flow limit; 0 W for a rub) and ``message``."""
+    out = []
+    for k, r in bearings.items():
+        if r["rub_first_time_s"] is not None and not r["rub_power_W"]:
+            out.append({"kind": "rub", "bearing": k, "time_s": r["rub_first_time_s"], "peak": r["rub_power_peak_W"],
+                        "limit": 0.0, "unit": "W",
+                        "message": f"bearing {k}: the rotor rubbed its rub ring from t = {r['rub_first_time_s']:.6g} s "
+                                   f"(peak rub power {r['rub_power_peak_W']:.5g} W), though not at the end of the "
+                                   "run (rub_power_W 0)"})
+        stress = max(r["max_contact_stress_peak_MPa"], r["max_contact_stress_outer_peak_MPa"])
+        if r["plastic_flow_first_time_s"] is not None:
+            out.append({"kind": "plastic_flow", "bearing": k, "time_s": r["plastic_flow_first_time_s"],
+                        "peak": stress, "limit": PLASTIC_FLOW_MPA, "unit": "MPa",
+                        "message": f"bearing {k}: a ball contact stress above the {PLASTIC_FLOW_MPA:.0f} MPa of "
+                                   f"incipient plastic flow from t = {r['plastic_flow_first_time_s']:.6g} s (peak "
+                                   f"{stress:.5g} MPa)"})
+    return out
 
 
 # -- figures ------------------------------------------------------------------------------------------
@@ -218,5 +334,5 @@ def figures(sc, data, out: Path, pool=None, dpi: int | None = None) -> list[str]
 
     F_u, speed = unbalance_force(sc), sc.schedule.get("speed_rpm")
     if pool is not None and pool.usable and isinstance(data, SeriesFile) and len(data["time"]):
-        return pool.draw(fb, fb.JOBS, data.path, out, fb.context(sc, F_u, speed, dpi))
+        return pool.draw(fb, fb.JOBS, data.path, out, fb.context(sc, F_u, speed, dpi, out))
     return fb.figures(sc, data, out, F_u, speed, dpi)

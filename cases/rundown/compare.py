@@ -33,32 +33,23 @@ cut of the spool whose crossings are reported plus :data:`RUNDOWN_S`, the time t
 fuel cut to windmilling (see its comment), plus :data:`WINDMILLING_S`; for ``blade_loss_rundown`` 15.01 + 45 +
 600 = 660.01 s. A scenario without a fuel cut needs ``--duration``.
 
-Under faults it behaves as ``rotorcosim compare`` (cases/blade_loss/compare.py): one comparison at a time
-writes into DIR (a lock); a failed run says what happened and keeps what it recorded in its folder; Ctrl-C
+Under faults it behaves as every comparison (:func:`rotorcosim.master.compare.compare_schemes`): one
+comparison at a time writes into DIR (a lock); a failed run says what happened and keeps what it recorded in its folder; Ctrl-C
 stops the run going on (its folder says ``interrupted``), keeps the complete ones and says which;
 ``--resume`` runs only the runs that are not complete (the complete ones checked to be this comparison's: the
 scenario, its level, the duration and every ``--set`` / ``--swap``).
 """
 from __future__ import annotations
 
-import copy
-import json
 import math
-import sys
-import tempfile
 from pathlib import Path
 
-from rotorcosim.master.api import check_run, load_scenario
-from rotorcosim.master.cli.run import execute
-from rotorcosim.master.run.outputs import check_dpi, write_json
-from rotorcosim.master.run.rundir import LOCK, check_folder, ensure_folder
+from rotorcosim.master.api import load_scenario
+from rotorcosim.master.run.outputs import check_dpi
+from rotorcosim.master.compare import KINDS, Level, compare_schemes, pair
+from rotorcosim.master.compare import within as within_tolerance
 from rotorcosim.master.scenario.build import Scenario, schedule_of
-from rotorcosim.master.schedule import Interval, Timeline, budget
-from rotorcosim.master.sweep import SweepInterrupted
-from rotorcosim.master.sweep.folder import named_os_error
-from rotorcosim.master.sweep.lock import FolderLock
 
-from rotorcosim.cases.blade_loss.compare import _draw, _kept, _load, _quantum
 from rotorcosim.cases.blade_loss.results import RESULT_KEYS, unbalance_force
 
 #: the acceptance: every Table 4 result at the end and every crossing's peaks within 2 %
@@ -71,8 +62,6 @@ WINDMILLING_S = 600.0
 #: torque balancing the bearings' drag; 3 430 at 80, 100 and 120 s): within 5 % of that 32 s after the cut, within
 #: 1 % 45 s after it. Another torque law or level moves it (--set spool_pt.aero_torque=...): give --duration then
 RUNDOWN_S = 45.0
-#: the two runs, in the order they run, and their folders
-KINDS = ("staggered", "monolithic")
 #: the file this comparison writes
 TABLE = "rundown_compare.json"
 #: the crossing peaks judged, per bearing
@@ -100,34 +89,13 @@ def default_duration(sc: Scenario) -> float:
     return cut + RUNDOWN_S + WINDMILLING_S
 
 
-def rel_error_pct(a, b) -> float | None:
-    """``100 |a - b| / |b|`` (0 when both are 0; None when it cannot be formed: a missing value, b = 0 alone)."""
-    if not isinstance(a, (int, float)) or not isinstance(b, (int, float)) or not (math.isfinite(a)
-                                                                                  and math.isfinite(b)):
-        return None
-    if b == 0.0:
-        return 0.0 if a == 0.0 else None
-    return 100.0 * abs(a - b) / abs(b)
-
-
-def _pair(a, b) -> dict:
-    return {"staggered": a, "monolithic": b, "rel_error_pct": rel_error_pct(a, b)}
-
-
-def _within(entries) -> tuple[float | None, bool]:
-    """(largest relative error, all within TOLERANCE_PCT) of ``entries`` (None errors: not within)."""
-    errs = [e["rel_error_pct"] for e in entries]
-    known = [e for e in errs if e is not None]
-    return (max(known) if known else None), (None not in errs and all(e <= TOLERANCE_PCT for e in errs))
-
-
 def table(st: dict, mono: dict) -> dict:
     """The comparison of the staggered summary ``st`` with the monolithic ``mono`` (the module's keys
     ``results``, ``crossings``, ``speeds``, ``largest_error_pct``, ``within_2pct``)."""
     results = {}
     for k in sorted(set(st.get("bearings") or {}) | set(mono.get("bearings") or {})):
         a, b = (st.get("bearings") or {}).get(k, {}), (mono.get("bearings") or {}).get(k, {})
-        results[k] = {key: _pair(a.get(key), b.get(key)) for key in RESULT_KEYS}
+        results[k] = {key: pair(a.get(key), b.get(key)) for key in RESULT_KEYS}
     crossings = []
     by_key = {(c["spool"], c["critical_speed_rpm"]): c for c in st.get("crossings") or []}
     keys = [(c["spool"], c["critical_speed_rpm"]) for c in mono.get("crossings") or []]
@@ -138,15 +106,15 @@ def table(st: dict, mono: dict) -> dict:
         found = {k: c is not None and c.get("peak_found", True) for k, c in zip(KINDS, (a, b))}
         entry = {"spool": key[0], "critical_speed_rpm": key[1], "peak_found": found,
                  "t_s": {"staggered": a and a["t_s"], "monolithic": b and b["t_s"]},
-                 "peak_speed_rpm": _pair(a and a["peak_speed_rpm"], b and b["peak_speed_rpm"]), "bearings": {}}
+                 "peak_speed_rpm": pair(a and a["peak_speed_rpm"], b and b["peak_speed_rpm"]), "bearings": {}}
         for loc in sorted(set((a or {}).get("bearings", {})) | set((b or {}).get("bearings", {}))):
             ra, rb = (a or {}).get("bearings", {}).get(loc, {}), (b or {}).get("bearings", {}).get(loc, {})
-            entry["bearings"][loc] = {p: _pair(ra.get(p), rb.get(p)) for p in PEAKS if p in ra or p in rb}
+            entry["bearings"][loc] = {p: pair(ra.get(p), rb.get(p)) for p in PEAKS if p in ra or p in rb}
         if not any(found.values()):  # both runs agree that the response has no peak there: nothing to compare
             entry["note"] = "no resonance peak in either run"
         crossings.append(entry)
     judged = [c for c in crossings if any(c["peak_found"].values())]
-    speeds = {sp: {"end_rpm": _pair((st.get("speeds") or {}).get(sp, {}).get("end_rpm"), v.get("end_rpm"))}
+    speeds = {sp: {"end_rpm": pair((st.get("speeds") or {}).get(sp, {}).get("end_rpm"), v.get("end_rpm"))}
               for sp, v in (mono.get("speeds") or {}).items()}
     groups = {
         "results": [e for r in results.values() for e in r.values()],
@@ -155,7 +123,7 @@ def table(st: dict, mono: dict) -> dict:
     }
     largest, within = {}, {}
     for name, entries in groups.items():
-        largest[name], within[name] = _within(entries)
+        largest[name], within[name] = within_tolerance(entries, TOLERANCE_PCT)
     # no result at all to judge (no bearings, no crossing) is not a pass
     within["all"] = all(within.values()) and bool(groups["results"]) and bool(judged)
     return {"results": results, "crossings": crossings, "speeds": speeds, "largest_error_pct": largest,
@@ -171,35 +139,6 @@ def phase_totals(summary: dict) -> dict:
         d["intervals"] += 1
         d["steps"] += iv["steps"]
     return out
-
-
-def _changes(edits) -> list | None:
-    """A scenario's edits (provenance.py) without where they came from (the command line, Python), as JSON."""
-    if not isinstance(edits, list):
-        return None
-    return json.loads(json.dumps([{k: v for k, v in dict(e).items() if k != "origin"} for e in edits]))
-
-
-def _plans(sc: Scenario, duration: float) -> dict:
-    """(scenario, schedule) of each run: the scenario's own (automatic) schedule, and one coupled interval."""
-    plans = {}
-    for kind, sched in zip(KINDS, (None, "monolithic")):
-        s = copy.deepcopy(sc)
-        s.name = f"{sc.name}_{kind}"
-        plans[kind] = (s, schedule_of(s, sched, duration))
-    return plans
-
-
-def _warm_up(sc: Scenario, out: Path) -> None:
-    """A few milliseconds of the system through a coupled interval, a thermal-only one and a restart, untimed,
-    so that neither timed run pays the process's one-off costs (kernels loaded, model matrices built, first
-    calls): a few seconds that would weigh on a short comparison's ratio."""
-    s = copy.deepcopy(sc)
-    h = float(s.schedule.get("step", 1e-5))
-    tm = 2 * _quantum(s)
-    with tempfile.TemporaryDirectory(dir=out) as tmp:
-        execute(s, Path(tmp), figures=False, checkpoint_every=None,
-                schedule=Timeline([Interval("TM", tm, h), Interval("TO", 0.1, 0.05), Interval("TM", tm, h)]))
 
 
 def compare_rundown(scenario: Scenario | str | Path = "blade_loss_rundown", duration: float | None = None,
@@ -234,92 +173,23 @@ def compare_rundown(scenario: Scenario | str | Path = "blade_loss_rundown", dura
     duration = float(duration)
     if resume and overwrite:
         raise ValueError("--resume continues the comparison in --out: it excludes --overwrite")
-    out = check_folder(out)
-    held = [k for k in KINDS if (out / k).is_dir() and any(p.name != LOCK for p in (out / k).iterdir())]
-    if held and not overwrite and not resume:
-        raise ValueError(f"--out {out} already holds a comparison ({', '.join(held)}): results are never mixed; "
-                         "give --overwrite to replace it, --resume to continue it, or another folder")
-    if resume and not held:
-        raise ValueError(f"--resume: {out} holds no comparison to continue")
-    plans = _plans(sc, duration)
-    # each run's own checks (schedule, budget) before anything runs; then the two together
-    ests = {kind: check_run(s, sch) for kind, (s, sch) in plans.items()}
-    total = sum(e["wall_s"] for e in ests.values())
-    if total > budget.LIMIT_S:
-        raise budget.BudgetError(f"this comparison would take about {budget.hms(total)} of wall time, above the "
-                                 f"{budget.hms(budget.LIMIT_S)} limit: give a shorter --duration")
     unbalance = unbalance_force(sc)
-    # --resume: the complete runs of this comparison are kept (another scenario, level or duration is an error)
-    kept = {kind: _kept(out / kind, plans[kind][0].name, unbalance, duration) for kind in held} if resume else {}
-    kept = {k: v for k, v in kept.items() if v is not None}
-    for kind, s in kept.items():  # the same --set / --swap / --unbalance too (a fuel cut moved, a part swapped)
-        if _changes((s.get("provenance") or {}).get("edits")) != _changes(sc.edits):
-            raise ValueError(f"--resume: {out / kind} holds a run made with other --set/--swap/--unbalance "
-                             f"({(s.get('provenance') or {}).get('edits')}): give the same command, or another folder")
-    made = not out.exists()
-    ensure_folder(out)
-    try:
-        with FolderLock(out, "comparison"):
-            try:
-                return _compare(out, duration, rule, sc, plans, kept, quiet, figures, overwrite or resume, dpi,
-                                warm_up, unbalance)
-            except KeyboardInterrupt:
-                said = [f"{k} complete (kept in {out / k})" if _kept(out / k, None, None, None) is not None
-                        else f"{k} not complete" for k in KINDS]
-                raise SweepInterrupted(f"interrupted: {', '.join(said)}; continue with --resume") from None
-    except BaseException:
-        # refused at set-up (a bad --set value: the warm-up's components say so first): a folder made here for
-        # nothing goes again, as a run's does (rundir.py)
-        if made and out.is_dir() and not any(out.iterdir()):
-            out.rmdir()
-        raise
 
+    def tabulate(runs: dict, timing: dict) -> dict:
+        st, mono = runs["staggered"], runs["monolithic"]
+        return {"scenario": sc.name, "unbalance_N": unbalance, "duration_s": duration, "duration_rule": rule,
+                "t_fuel_cut_s": fuel_cut(sc), "tolerance_pct": TOLERANCE_PCT,
+                **table(st, mono),
+                "wall_time_s": timing["wall_time_s"], "cpu_time_s": timing["cpu_time_s"],
+                "speedup": timing["speedup"], "speedup_cpu": timing["speedup_cpu"],
+                # the machine's 1-minute load average before and after each run (a shared machine's wall times)
+                "load_average": timing["load_average"],
+                "staggered_phases": phase_totals(st), "hold": st.get("hold")}
 
-def _compare(out, duration, rule, sc, plans, kept, quiet, figures, overwrite, dpi, warm_up, unbalance) -> dict:
-    """The two runs and the table, in the locked folder (:func:`compare_rundown` has checked every input)."""
-    (out / TABLE).unlink(missing_ok=True)  # never left beside runs it does not describe
-    if warm_up and len(kept) < len(KINDS):
-        _warm_up(sc, out)
-    runs, loads, later = {}, {}, {}
-    for i, kind in enumerate(KINDS, 1):
-        s, sch = plans[kind]
-        if kind in kept:
-            runs[kind], loads[kind] = kept[kind], [None, None]
-            if not quiet:
-                print(f"[{i}/2] {kind}: complete in {out / kind}, kept", file=sys.stderr, flush=True)
-            continue
-        # figures from the time series after both runs (no figure worker beside a timed run)
-        draw_later = figures and s.outputs.get("format", "h5") == "h5" and bool(s.outputs.get("record"))
-        if draw_later:
-            later[kind] = s
-        if not quiet:
-            print(f"[{i}/2] {kind}: {duration:g} s simulated", file=sys.stderr, flush=True)
-        load = _load()
-        runs[kind] = execute(s, out / kind, figures=figures and not draw_later, quiet=quiet, schedule=sch,
-                             overwrite=overwrite, checkpoint_every=None, dpi=dpi)
-        loads[kind] = [load, _load()]
-        if not quiet:
-            print(f"[{i}/2] {kind}: done in {runs[kind]['wall_time_s']:.3g} s", file=sys.stderr, flush=True)
-    if later:
-        _draw(out, later, quiet, dpi)
-    st, mono = runs["staggered"], runs["monolithic"]
-    wall = {k: runs[k].get("wall_time_s") for k in KINDS}
-    cpu = {k: runs[k].get("cpu_time_s") for k in KINDS}
-    result = {"scenario": sc.name, "unbalance_N": unbalance, "duration_s": duration, "duration_rule": rule,
-              "t_fuel_cut_s": fuel_cut(sc), "tolerance_pct": TOLERANCE_PCT,
-              **table(st, mono),
-              "wall_time_s": wall, "cpu_time_s": cpu,
-              "speedup": wall["monolithic"] / wall["staggered"] if wall["staggered"] else None,
-              "speedup_cpu": cpu["monolithic"] / cpu["staggered"] if cpu["monolithic"] and cpu["staggered"] else None,
-              # the machine's 1-minute load average before and after each run (a shared machine's wall times)
-              "load_average": loads,
-              "staggered_phases": phase_totals(st), "hold": st.get("hold")}
-    try:
-        write_json(out / TABLE, result)
-    except OSError as exc:  # the runs are complete and kept: a --resume writes the table
-        (out / (TABLE + ".part")).unlink(missing_ok=True)
-        raise named_os_error(exc, out, f"writing {TABLE}") from None
-    return result
+    return compare_schemes(sc, out, schedule_of(sc, None, duration), schedule_of(sc, "monolithic", duration),
+                           tabulate=tabulate, table_name=TABLE, quiet=quiet, figures=figures, overwrite=overwrite,
+                           resume=resume, dpi=dpi, level=Level("unbalance_N", unbalance, "N"), warm_up=warm_up,
+                           same=("bearings",))
 
 
 #: options of ``rotorcosim compare`` that belong to the paper's Table 6 only (dest -> its spelling)

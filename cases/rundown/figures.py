@@ -2,12 +2,15 @@
 
 * ``rundown_speed.png``: each spool's speed against time, the held-phase (thermal-only) intervals shaded: (a) from
   the start to a minute after the last fuel cut, (b) the whole run in minutes;
-* ``rundown_response.png``: the whirl and the transmitted force (film + centering spring) at bearings #0 and #5
-  against the power-turbine speed through the rundown (the coupled samples), the critical speeds and the
+* ``rundown_response.png``: the whirl and the transmitted force (film + centering spring) at each co-simulated
+  bearing (by its id) against the first spool's speed through the rundown (the coupled samples), the critical speeds and the
   crossings' resonance peaks (results.resonance_peaks) marked (a test rotor: its disk's whirl only);
 * ``rundown_campbell.png``: the Campbell diagram of the linear engine (components/rotor/critical.py; a test
   rotor: its critical speeds as constant frequencies) with the run's 1x trajectory and each crossing's resonance peak;
-* ``rundown_temperatures.png``: the bearing temperatures over the whole run (when recorded).
+* ``rundown_temperatures.png``: the bearing temperatures over the whole run (when recorded), a panel per bearing.
+
+The spools are named as the engine file names them (``[spool.NAME] name``: "power turbine", "gas generator" for
+the paper's engine; cases/blade_loss/engine_names.py), the bearings by their ids.
 """
 from __future__ import annotations
 
@@ -17,7 +20,8 @@ from typing import NamedTuple
 
 import numpy as np
 
-from rotorcosim.cases.blade_loss.results import KELVIN, NODES
+from rotorcosim.cases.blade_loss.engine_names import spool_name
+from rotorcosim.cases.blade_loss.results import KELVIN, NODES, bearing_ids
 from rotorcosim.master.run.outputs import check_dpi
 
 RPM = 30.0 / math.pi
@@ -75,11 +79,19 @@ def _spools(sc):
     return list(r.get("spools") or [n for n, c in sc.components.items() if c.implementation == "spool.speed"])
 
 
-def _locations(data):
+def _label(sc, component: str) -> str:
+    """A spool component's legend label: the engine's name of its spool, with the component's name."""
+    name = spool_name(sc, component)
+    return name if name == component else f"{name} ({component})"
+
+
+def _locations(sc, data):
+    """Legend label -> (whirl signal, transmitted-force signal) of each co-simulated bearing recorded; a test
+    rotor without bearings: its disk's whirl."""
     out = {}
-    for k in (0, 5):
-        if _get(data, f"damper{k}.F_journal") is not None:
-            out[f"#{k}"] = (f"rotor.X_brg{k}", f"damper{k}.F_journal")
+    for k in bearing_ids(sc.components):
+        if _get(data, f"damper{k}.F_journal") is not None and _get(data, f"rotor.X_brg{k}") is not None:
+            out[f"bearing #{k}"] = (f"rotor.X_brg{k}", f"damper{k}.F_journal")
     return out or {"disk": ("rotor.X_brg0", None)}
 
 
@@ -98,11 +110,14 @@ def figures(sc, data, out, dpi: int | None = None) -> list[str]:
     names = [_speed(sc, data, t, phase, spools, out)]
     w = _get(data, f"{spools[0]}.Omega").reshape(len(t), -1)[:, 0] * RPM
     coupled = phase == 0 if phase is not None else np.ones(len(t), bool)
-    peaks = _peaks(data, w, coupled, crit)
-    names.append(_response(data, w, coupled, crit, peaks, out))
-    names.append(_campbell(sc, w, crit, peaks, out))
-    if _get(data, "thermal0.T_nodes") is not None:
-        names.append(_temperatures(data, t, phase, out))
+    locs = _locations(sc, data)
+    peaks = _peaks(data, locs, w, coupled, crit)
+    first = spool_name(sc, spools[0])
+    names.append(_response(data, locs, w, coupled, crit, peaks, out, first))
+    names.append(_campbell(sc, w, crit, peaks, out, first))
+    ids = [k for k in bearing_ids(sc.components) if _get(data, f"thermal{k}.T_nodes") is not None]
+    if ids:
+        names.append(_temperatures(data, t, phase, out, ids))
     return names
 
 
@@ -120,7 +135,7 @@ def _speed(sc, data, t, phase, spools, out):
     for ax, scale, xlabel, t_end, title in panels:
         _shade(ax, spans, scale)
         for s in spools:
-            ax.plot(t * scale, _get(data, f"{s}.Omega").reshape(len(t), -1)[:, 0] * RPM, lw=1.2, label=s)
+            ax.plot(t * scale, _get(data, f"{s}.Omega").reshape(len(t), -1)[:, 0] * RPM, lw=1.2, label=_label(sc, s))
         for c in cuts:
             ax.axvline(c * scale, color="tab:red", ls=":", lw=1)
         ax.set_xlim(0, t_end * scale)
@@ -150,13 +165,13 @@ def _radius(a, n):
     return np.hypot(a[:, 0], a[:, 1])
 
 
-def _peaks(data, w, coupled, crit):
+def _peaks(data, locs, w, coupled, crit):
     """(critical speed, speed, whirl) of each critical speed's resonance peak of the whirl at the first location
     over the coupled samples (results.resonance_peaks and assign_peaks, as the summary's crossings); a critical
     speed without a peak is left out."""
     from .results import assign_peaks, resonance_peaks
 
-    ref = next(iter(_locations(data).values()))[0]
+    ref = next(iter(locs.values()))[0]
     r = _radius(_get(data, ref), len(w))
     sel = np.flatnonzero(coupled)
     cs = sorted(crit)
@@ -164,9 +179,8 @@ def _peaks(data, w, coupled, crit):
     return [(c, w[sel][p.index], r[sel][p.index]) for c, p in zip(cs, found) if p is not None]
 
 
-def _response(data, w, coupled, crit, peaks, out):
+def _response(data, locs, w, coupled, crit, peaks, out, spool):
     plt = _plt()
-    locs = _locations(data)
     forces = any(f is not None for _, f in locs.values())
     fig, axes = plt.subplots(2 if forces else 1, 1, figsize=(8, 6.5 if forces else 3.8), sharex=True, squeeze=False)
     n = len(w)
@@ -188,12 +202,12 @@ def _response(data, w, coupled, crit, peaks, out):
         ax.grid(alpha=0.3)
         ax.legend(fontsize=8, loc="upper left")
         ax.set_ylim(bottom=0)
-    axes[-1, 0].set_xlabel("power-turbine speed [rev/min] (dashed: undamped critical speeds)")
+    axes[-1, 0].set_xlabel(f"{spool} speed [rev/min] (dashed: undamped critical speeds)")
     axes[0, 0].set_title("response through the rundown: largest value per 25 rev/min of speed", fontsize=9)
     return _save(fig, out, "rundown_response.png")
 
 
-def _campbell(sc, w, crit, peaks, out):
+def _campbell(sc, w, crit, peaks, out, spool):
     plt = _plt()
     top = 1.1 * float(np.nanmax(w))
     fig, ax = plt.subplots(figsize=(10, 5))
@@ -218,7 +232,7 @@ def _campbell(sc, w, crit, peaks, out):
         for c in crit:
             ax.axhline(c / 60.0, color="tab:blue", lw=1)
     ax.plot([np.nanmin(w), np.nanmax(w)], [np.nanmin(w) / 60.0, np.nanmax(w) / 60.0], color="k", lw=2.5,
-            alpha=0.6, label="the run's trajectory (1x power turbine)")
+            alpha=0.6, label=f"the run's trajectory (1x {spool})")
     for c in crit:
         ax.plot(c, c / 60.0, "o", mfc="none", mec="tab:red", ms=9)
     for c, s, _ in peaks:
@@ -228,7 +242,7 @@ def _campbell(sc, w, crit, peaks, out):
                     fontsize=8, color="tab:red")
     ax.set_xlim(0, top)
     ax.set_ylim(0, 1.3 * top / 60.0)
-    ax.set_xlabel("power-turbine speed [rev/min]")
+    ax.set_xlabel(f"{spool} speed [rev/min]")
     ax.set_ylabel("whirl frequency [Hz]")
     ax.set_title("Campbell diagram (o: critical speeds, x: the resonance peaks of the run's whirl, the crossings)",
                  fontsize=9)
@@ -237,15 +251,16 @@ def _campbell(sc, w, crit, peaks, out):
     return _save(fig, out, "rundown_campbell.png")
 
 
-def _temperatures(data, t, phase, out):
+def _temperatures(data, t, phase, out, ids):
     plt = _plt()
-    fig, axes = plt.subplots(1, 2, figsize=(11, 4), sharey=True)
+    fig, axes = plt.subplots(1, len(ids), figsize=(5.5 * max(len(ids), 2), 4), sharey=True, squeeze=False)
+    axes = axes[0]
     spans = _held_spans(t, phase) if phase is not None else []
-    for ax, k in zip(axes, (0, 5)):
+    for i, (ax, k) in enumerate(zip(axes, ids)):
         T = _get(data, f"thermal{k}.T_nodes")
         if T is None:
             continue
-        _shade(ax, spans, 1.0 / 60.0, label=k == 0)
+        _shade(ax, spans, 1.0 / 60.0, label=i == 0)
         for node in ("inner_race", "ball", "outer_race", "sfd_oil"):
             ax.plot(t / 60.0, T[:, NODES.index(node)] - KELVIN, lw=1.2, label=node.replace("_", " "))
         ax.set_title(f"bearing #{k}", fontsize=9)

@@ -50,7 +50,7 @@ from ..oil_fit import T_MAX_K, T_MIN_K
 from ..speeds import PT_OMEGA
 from ..validity import Check
 from .drag import static_load_rating
-from .geometry import DATA, BEARINGS, build_geometry
+from .geometry import DATA, BEARINGS, DN_LIMIT, build_geometry, speed_limit
 from .kernel import (DRAG, G_EPS_LIMIT, G_F_C, G_Z0, GEO, NUM, O_SIZE, O_SUBSTEPS, BearingParams, BearingState,
                      oil_viscosity, pack, step, tm_step, viscous_power)
 from .oil import WALTHER_A, WALTHER_B, sae30_kinematic_viscosity
@@ -94,7 +94,8 @@ class BallBearing(KernelComponent):
         Variable("bearing", "parameter", start=0, type="Integer",
                  description="which bearing of Table 3 (0 or 5) gives the geometry and defaults"),
         Variable("omega", "parameter", unit="rad/s", start=PT_OMEGA,
-                 description="inner race (power turbine) speed; outer race stationary"),
+                 description="inner race (power turbine) speed; outer race stationary; at most the model's "
+                             f"speed limit, bore x speed <= {DN_LIMIT:.3g} mm rev/min (data/bearings.toml dn_limit)"),
         Variable("groove_curvature_inner", "parameter", start=_DESIGN["groove_curvature_inner"],
                  description="inner groove radius / ball diameter f_i"),
         Variable("groove_curvature_outer", "parameter", start=_DESIGN["groove_curvature_outer"],
@@ -161,6 +162,14 @@ class BallBearing(KernelComponent):
         Variable("P_drag", "output", 1, "W", "drag torque power loss M omega, mean over the step"),
     )
 
+    def speed_range(self) -> tuple[float, float]:
+        """(bore [m], highest inner race speed [rad/s] of the model: geometry.speed_limit) from the parameters
+        as given (the ``bearing`` record's bore when none is), known before set-up: what ``check-engine`` holds
+        against the shaft and the spool's speed."""
+        rec = BEARINGS.get(self.p["bearing"], BEARINGS[0])
+        bore = float(self.p["bore"]) if "bore" in self.explicit else rec["bore_mm"] * 1e-3
+        return bore, speed_limit(bore)
+
     # -- set-up --------------------------------------------------------------------------------------------
     def setup(self, t0=0.0):
         super().setup(t0)
@@ -205,8 +214,18 @@ class BallBearing(KernelComponent):
             raise ContractError(f"{self.name}.m_journal must be > 0 kg, got {p['m_journal']}")
         self.geometry = g
         omega = p["omega"]
+        self.omega_max = speed_limit(p["bore"])
+        if omega > self.omega_max:
+            raise ContractError(f"{self.name}.omega = {omega * 30.0 / math.pi:.0f} rev/min is above the ball bearing "
+                                f"model's speed limit {self.omega_max * 30.0 / math.pi:.0f} rev/min (bore "
+                                f"{p['bore'] * 1e3:g} mm x speed <= {DN_LIMIT:.3g} mm rev/min, data/bearings.toml "
+                                "dn_limit)")
         Fc = g.centrifugal_force(omega)
-        self.z0, st = preload_offset(g, Fc)
+        try:
+            self.z0, st = preload_offset(g, Fc)
+        except (ValueError, RuntimeError) as exc:
+            raise ContractError(f"{self.name}: the preloaded rest state did not solve at omega = "
+                                f"{omega * 30.0 / math.pi:.0f} rev/min with preload = {g.preload:g} N: {exc}") from None
         self.C0 = static_load_rating(g.Z, g.alpha0, max(g.inner.stress_coeff, g.outer.stress_coeff),
                                      _DRAG["static_rating_stress_MPa"] * 1e6, _DRAG["static_rating_stribeck"])
         self._geo = pack(GEO, l_oi=g.l_oi, l_oe=g.l_oe, cos_a0=math.cos(g.alpha0), sin_a0=math.sin(g.alpha0),

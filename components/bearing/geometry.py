@@ -15,6 +15,14 @@ DATA_FILE = Path(__file__).with_name("data") / "bearings.toml"
 with open(DATA_FILE, "rb") as _f:
     DATA = tomllib.load(_f)
 BEARINGS = {int(k): v for k, v in DATA["bearing"].items()}
+#: the model's speed range: bore [mm] x inner race speed [rev/min] at most this (data/bearings.toml [design])
+DN_LIMIT = float(DATA["design"]["dn_limit"])
+
+
+def speed_limit(bore: float) -> float:
+    """The highest inner race speed [rad/s] the model is declared for, a bearing of bore ``bore`` [m]:
+    n_max = DN_LIMIT / (bore in mm) rev/min (bearing 0, 50.8 mm: 49 213 rev/min; bearing 5, 83.8 mm: 29 833)."""
+    return DN_LIMIT / (_positive("bore", bore) * 1e3) * math.pi / 30.0
 
 
 def table3(bearing: int) -> dict:

@@ -120,10 +120,13 @@ class SpinningBearing(BallBearing):
         if not w > 0.0:
             raise ContractError(f"{self.name}.omega must be > 0 rad/s for the speed-following bearing: the preload "
                                 f"offset's table spans 0-{TABLE_TOP:g} x omega, got {w}")
+        # the table ends at the model's speed limit when 1.5 x omega passes it (a speed beyond is refused)
+        self.table_top = min(TABLE_TOP * w, max(w, self.omega_max))
         try:
-            c, h, self.z0_table_error = preload_offset_spline(g, TABLE_TOP * w, TABLE_TOLERANCE)
+            c, h, self.z0_table_error = preload_offset_spline(g, self.table_top, TABLE_TOLERANCE)
         except ValueError as exc:
-            raise ContractError(f"{self.name}: {exc}") from None
+            raise ContractError(f"{self.name}: {exc} (the table spans 0 to {self.table_top * 30.0 / math.pi:.0f} "
+                                f"rev/min: {TABLE_TOP:g} x {self.name}.omega, at most the speed limit)") from None
         self._base_p = self._kernel_p
         self._spin_p = SpinBearingParams(self._kernel_p, spin, c, h)
         self.y["T_drag"] = np.array([self.y["P_drag"][0] / w if w > 0.0 else 0.0])
@@ -154,10 +157,11 @@ class SpinningBearing(BallBearing):
         super().kernel_status(status, t, h)
 
     def _beyond_table(self, w, t):
-        top = TABLE_TOP * self.p["omega"]
+        top = self.table_top
+        why = (f"{TABLE_TOP:g} x {self.name}.omega): set omega nearer the run's speeds" if top < self.omega_max
+               else "the model's speed limit, data/bearings.toml dn_limit)")
         raise ContractError(f"{self.name}: inner race speed {abs(w) * 30.0 / math.pi:.0f} rev/min at t = {t:.9g} s "
-                            f"is beyond the preload offset's table (0-{top * 30.0 / math.pi:.0f} rev/min, "
-                            f"{TABLE_TOP:g} x {self.name}.omega): set omega nearer the run's speeds")
+                            f"is beyond the preload offset's table (0-{top * 30.0 / math.pi:.0f} rev/min, {why}")
 
     def preload_offset(self, w: float | None = None) -> float:
         """The inner race's axial offset z0 [m] at the speed w [rad/s] (None: the present one) as the kernel

@@ -14,6 +14,10 @@ import numpy as np
 from .geometry import BearingGeometry
 
 
+class PreloadSolveError(ValueError):
+    """The preload offset has no solution in the searched range (the message says the preload and the force)."""
+
+
 @dataclass
 class BallState:
     """Contacts of all balls at one configuration (arrays over the balls)."""
@@ -256,11 +260,27 @@ def axisymmetric_preload_offset(g: BearingGeometry, Fc: float, z_guess: float) -
         f1 = excess(z1)
         if abs(z1 - z0) <= 1e-13 * abs(z1):
             return float(z1)
-    # bracket: no axial offset carries nothing of the preload (the balls sit in their clearance), the rest
-    # state's offset at zero speed doubled carries more than it (the centrifugal force only lowers z0)
+    # bracketed: the axial force the balls carry grows with the offset. At a moderate speed no offset carries
+    # nothing of the preload (the balls sit in their clearance) and the rest state's offset doubled carries more
+    # than it; at a high speed z0 falls below zero: the balls' centrifugal force, thrown onto the outer race's
+    # inclined contact, presses them on the inner race axially with no offset at all (bearing 5 above ~33 000
+    # rev/min), so the bracket widens downwards until it holds
     seat[0] = None
-    hi = 2.0 * abs(preload_offset(g, 0.0)[0])
-    return float(brentq(excess, 0.0, hi, xtol=1e-18, rtol=1e-14))
+    step = abs(preload_offset(g, 0.0)[0])
+    lo, hi = 0.0, 2.0 * step
+    f_lo, f_hi = excess(lo), excess(hi)
+    for _ in range(60):
+        if f_lo <= 0.0 <= f_hi:
+            break
+        if f_lo > 0.0:
+            lo, f_lo = lo - step, excess(lo - step)
+        if f_hi < 0.0:
+            hi, f_hi = hi + step, excess(hi + step)
+        step *= 2.0
+    else:
+        raise PreloadSolveError(f"no axial offset of the inner race carries the preload {g.preload:g} N at a ball "
+                                f"centrifugal force of {Fc:.4g} N (searched {lo:.3g} to {hi:.3g} m)")
+    return float(brentq(excess, lo, hi, xtol=1e-18, rtol=1e-14))
 
 
 #: preload_offset_table's tables in this process, by (geometry, top speed, intervals)
@@ -276,7 +296,10 @@ def preload_offset_table(g: BearingGeometry, omega_max: float, intervals: int) -
         z = np.empty_like(w)
         guess = preload_offset(g, 0.0)[0]
         for k, wk in enumerate(w):
-            z[k] = guess = axisymmetric_preload_offset(g, g.centrifugal_force(wk), guess)
+            try:
+                z[k] = guess = axisymmetric_preload_offset(g, g.centrifugal_force(wk), guess)
+            except (ValueError, RuntimeError) as exc:
+                raise PreloadSolveError(f"the preload offset at {wk * 30.0 / math.pi:.0f} rev/min: {exc}") from None
         _TABLES[key] = (w, z)
     w, z = _TABLES[key]
     return w.copy(), z.copy()

@@ -98,3 +98,40 @@ def campbell(model: FullModel, rpm_values, supports: dict | None, n_modes: int =
         freqs.append(f)
         kind.append(d)
     return np.asarray(freqs), np.asarray(kind)
+
+
+def every_synchronous_critical_speed(model: FullModel, supports: dict | None, max_rpm: float, excited: float = 1.0,
+                                     min_share: float = 0.05) -> list[dict]:
+    """Every synchronous critical speed up to ``max_rpm`` with the whirl direction of its mode, ascending:
+    ``[{"rpm", "whirl": "forward" | "backward"}]``. ``excited``: the exciting spool's speed over the first
+    spool's (1: the first spool's unbalance; the speed ratio of the file for another spool's), the speeds in that
+    spool's rev/min. Whirl at the exciting spool's speed w = excited Omega_1 with every spool turning in the
+    file's ratios: K phi = w^2 (M - i G~ / excited) phi (G~ of :func:`synchronous_critical_speeds`), as many
+    eigenpairs taken as reach past ``max_rpm``."""
+    sysm = _system(model, supports)
+    K, Mm = sysm["K"], sysm["M"]
+    B = Mm - 1j * (sysm["G_pt"] + speed_ratio(model) * sysm["G_gg"]) / excited
+    nn = K.shape[0]
+    lat = sysm["rotor_lateral"]
+    Mlat = Mm[np.ix_(lat, lat)]
+    take = min(24, nn)
+    while True:
+        mu, vec = sla.eigh(B, K, subset_by_index=[nn - take, nn - 1])
+        # mu = 1/w^2 descending from the top: the smallest taken is the highest speed reached
+        if take == nn or mu[0] <= 0 or 1.0 / np.sqrt(mu[0]) / RPM > max_rpm:
+            break
+        take = min(2 * take, nn)
+    out = []
+    for m, v in zip(mu, vec.T):
+        if m <= 0:
+            continue
+        rpm = 1.0 / np.sqrt(m) / RPM
+        if rpm > max_rpm:
+            continue
+        share = np.real(v[lat].conj() @ Mlat @ v[lat]) / np.real(v.conj() @ Mm @ v)
+        if share < min_share:
+            continue
+        X, Y = v[lat[0::2]], v[lat[1::2]]
+        forward = np.sum(np.abs(X + 1j * Y) ** 2) >= np.sum(np.abs(X - 1j * Y) ** 2)
+        out.append({"rpm": float(rpm), "whirl": "forward" if forward else "backward"})
+    return sorted(out, key=lambda r: r["rpm"])

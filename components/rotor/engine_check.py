@@ -21,6 +21,7 @@ import numpy as np
 
 from . import attach as attach_layout
 from . import model as fem
+from .engine_shape import shape_problems
 from .spool_inertia import spool_polar_inertia
 
 RESERVED = ("hub", "ground")
@@ -53,7 +54,11 @@ class _Problems:
 
 
 def problems(data: dict) -> list[str]:
-    """One line per problem of the engine description ``data`` (empty: none found)."""
+    """One line per problem of the engine description ``data`` (empty: none found). A value of the wrong TOML
+    shape (:func:`.engine_shape.shape_problems`) is reported alone: the values are judged once the shape holds."""
+    shape = shape_problems(data)
+    if shape:
+        return shape
     p = _Problems(data)
     fmt = data.get("engine", {}).get("format")
     if fmt is None:
@@ -268,3 +273,80 @@ def report(full: fem.FullModel) -> dict:
     out["dof"] = full.n
     out["attach"] = {k: v for k, v in data.get("attach", {}).items()}
     return out
+
+
+#: dimensions an engine written in mm does not have: a shaft section thinner than this [mm] (a 50 mm shaft written
+#: in metres reads 0.05 mm) or a spool longer than this [mm] (1.2 m written in um, or a length in m x 1000 twice)
+MIN_SHAFT_DIAMETER_MM = 5.0
+MAX_SPOOL_LENGTH_MM = 20000.0
+#: the separation margin asked between a synchronous critical speed and an operating speed: the order of API
+#: 684's (API 617's) margins, which grow with the mode's amplification factor to 16 % below the minimum and 26 %
+#: above the maximum continuous speed; a critical speed nearer than this is warned of
+SEPARATION_MARGIN = 0.15
+#: a bearing's bore fits its station when it is within this fraction of the outer diameter of a shaft section
+#: (or layer) that meets at the node: an engine file's diameters are rounded, a press fit is microns
+BORE_FIT = 0.02
+
+
+def implausible(data: dict) -> list[str]:
+    """One warning line per spool whose dimensions are implausible for lengths in mm (a valid file's; see
+    :data:`MIN_SHAFT_DIAMETER_MM`, :data:`MAX_SPOOL_LENGTH_MM`)."""
+    out = []
+    for s, r in data.get("spool", {}).items():
+        z = np.asarray(r["z_mm"], float)
+        d_out = [float(fem._knob(data, v)) for v in r["d_out_mm"]]
+        thin = [e for e, d in enumerate(d_out) if d < MIN_SHAFT_DIAMETER_MM]
+        if thin:
+            out.append(f"spool.{s}.d_out_mm[{thin[0]}] = {d_out[thin[0]]:g} mm: a shaft thinner than "
+                       f"{MIN_SHAFT_DIAMETER_MM:g} mm ({len(thin)} section(s)); lengths are in mm (an engine written "
+                       "in metres?)")
+        length = float(z[-1] - z[0])
+        if length > MAX_SPOOL_LENGTH_MM:
+            out.append(f"spool.{s}.z_mm: a spool {length / 1e3:g} m long (above {MAX_SPOOL_LENGTH_MM / 1e3:g} m); "
+                       "lengths are in mm")
+    return out
+
+
+def seat_diameters_mm(data: dict, spool: str, node: int) -> list[float]:
+    """Outer diameters [mm] of the shaft sections (and layers) of ``spool`` that meet at ``node``: where a
+    bearing attached there sits."""
+    r = data["spool"][spool]
+    ne = len(r["d_out_mm"])
+    elems = [e for e in (node - 1, node) if 0 <= e < ne]
+    out = [float(fem._knob(data, r["d_out_mm"][e])) for e in elems]
+    out += [float(layer["d_out_mm"]) for layer in r.get("layers", []) if layer.get("element") in elems]
+    return out
+
+
+def bore_fit(data: dict, key: str, bore_mm: float) -> str | None:
+    """A warning when the bore [mm] of the bearing ``key`` of [attach] fits no section at its node, else None."""
+    spool, node = data["attach"][key]["node"]
+    seats = seat_diameters_mm(data, spool, node)
+    if any(abs(bore_mm - d) <= BORE_FIT * d for d in seats):
+        return None
+    return (f"attach.{key}: its bore {bore_mm:g} mm does not fit the shaft at node [{spool!r}, {node}] (outer "
+            f"diameter {' / '.join(f'{d:g}' for d in seats)} mm; within {BORE_FIT:.0%} expected)")
+
+
+def operating_speeds(data: dict) -> dict[str, list[float]]:
+    """The operating speeds [rev/min] of each spool (its ``speed_rpm``, unsigned)."""
+    return {s: [abs(float(r["speed_rpm"]))] for s, r in data["spool"].items()}
+
+
+def separation(criticals: list[dict], spool: str, name: str, speeds: list[float]) -> tuple[list[dict], list[str]]:
+    """The separation margin of each synchronous critical speed excited by ``spool`` from each of its operating
+    ``speeds`` [rev/min], (critical - operating) / operating, and a warning line for each nearer than
+    :data:`SEPARATION_MARGIN`: (rows ``{"rpm", "whirl", "spool", "margins": [{"operating_rpm",
+    "margin_percent"}]}``, warnings)."""
+    rows, warn = [], []
+    for c in criticals:
+        margins = []
+        for op in speeds:
+            m = (c["rpm"] - op) / op
+            margins.append({"operating_rpm": op, "margin_percent": 100.0 * m})
+            if abs(m) < SEPARATION_MARGIN:
+                warn.append(f"spool {spool} ({name}): {c['whirl']} critical speed {c['rpm']:.0f} rev/min is "
+                            f"{100 * abs(m):.1f} % {'below' if m < 0 else 'above'} the operating speed {op:.0f} "
+                            f"rev/min; API 684 asks a separation margin of {SEPARATION_MARGIN:.0%}")
+        rows.append({**c, "spool": spool, "margins": margins})
+    return rows, warn

@@ -24,6 +24,7 @@ import numpy as np
 from .. import toml_text
 from ..bounded_read import read_bytes
 from . import attach as attach_layout
+from .engine_shape import shape_problems
 from .beam import disk, shaft_element
 from .hexa import hex8
 
@@ -210,6 +211,10 @@ def build(data: dict, digest: str = "", omega_pt: float | None = None, omega_gg:
     """Assemble the full model from the data (docs/reference/engine-format.md for the meaning of each entry); a missing
     table or key, or a value of the wrong kind, is a ValueError naming the file (``source``) and the key."""
     where = f"rotor model file {source or DEFAULT_FILE}"
+    shape = shape_problems(data)
+    if shape:
+        raise ValueError(f"{where}: {shape[0]}" + (f" (and {len(shape) - 1} more: rotorcosim check-engine FILE)"
+                                                   if len(shape) > 1 else ""))
     try:
         with np.errstate(over="ignore", invalid="ignore", divide="ignore"):  # non-finite matrices refused below
             return _assemble(data, digest, omega_pt, omega_gg)

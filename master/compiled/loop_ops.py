@@ -19,9 +19,11 @@ The loop's arguments are named records (:class:`Chunk`, :class:`Tables`, :class:
   offset, size); ``Tables.index`` (int64) those lists, and the window ports (pairs offset, size) of each windowed
   link; ``Tables.mult`` each component's base steps per step;
 * ``LinkState.rows[j]`` link j's state row and ``LinkState.vectors`` its vectors at ``links[j, L_VOFF]``
-  (links.py's layout, copied from and back to the link's own arrays), ``LinkState.rings`` the hand-off windows'
-  rings (rows of the link's size), ``LinkState.cycles`` their rotor-cycle means (rows: the mean, then the
-  producer's window inputs at the cycle's end);
+  (links.py's layout, copied from and back to the link's own arrays), ``LinkState.windows[j]`` the recording
+  state of link j's hand-off window (a record of master/core/window.py's DTYPE, read by field; copied from and
+  back to the hold's Window), ``LinkState.rings`` the hand-off windows' rings (rows of the link's size),
+  ``LinkState.cycles`` their rotor-cycle means (rows: the mean, then the producer's window inputs at the cycle's
+  end);
 * ``Kernels``: per component the addresses of its trampoline, its packed containers and its kernel.
 """
 from __future__ import annotations
@@ -37,8 +39,8 @@ import numpy as np
 from rotorcosim.components import numba_internals
 from rotorcosim.components.numba_internals import call_trampoline, kernel_jit, loop_jit
 
-from rotorcosim.master.core import links
-from rotorcosim.master.core.links import CMEAN, NOUT, R0, RLEN
+from rotorcosim.master.core import links, window
+from rotorcosim.master.core.links import R0, RLEN
 
 # columns of Tables.links
 (L_SRC, L_DST, L_N, L_TAKE, L_PROD, L_HB, L_WIN, L_VOFF, L_GOFF, L_GNR, L_COFF, L_CW, L_WP0, L_WP1,
@@ -74,6 +76,7 @@ class LinkState(NamedTuple):
     """The links' state (module docstring)."""
     rows: np.ndarray
     vectors: np.ndarray
+    windows: np.ndarray
     rings: np.ndarray
     cycles: np.ndarray
 
@@ -99,7 +102,7 @@ class Results(NamedTuple):
 take = kernel_jit(links.take, inline="always")
 add_restart = kernel_jit(links.add_restart, inline="always")
 produce = kernel_jit(links.produce, inline="always")
-record = kernel_jit(links.record, inline="always")
+record = kernel_jit(window.record, inline="always")
 
 
 # The helpers below are inlined into run_chunk and have no disk cache of their own: numba's disk cache keys a
@@ -136,7 +139,7 @@ def finite(X, tab, i):
 @loop_jit(cache=False, inline="always")
 def produced(i, t, hc, X, tab, st):
     """The bookkeeping of component i's outgoing links after it fired over [t, t + hc] (links.produce;
-    links.record for a hand-off window, whose completed cycles go to the rows of LinkState.cycles with the
+    window.record for a hand-off window, whose completed cycles go to the rows of LinkState.cycles with the
     producer's window inputs)."""
     te = t + hc
     LI, IDX, C = tab.links, tab.index, st.cycles
@@ -148,17 +151,18 @@ def produced(i, t, hc, X, tab, st):
         produce(LI[j, L_PROD], X, y, st.vectors, LI[j, L_VOFF], n, m, hc, te)
         # a window counted in revolutions reads the cycle's angle (its offset in X; -1: counted in samples)
         theta = X[LI[j, L_ANG]] if LI[j, L_ANG] >= 0 else 0.0
-        if LI[j, L_WIN] != 0 and record(X, y, n, m, st.rings, LI[j, L_GOFF], LI[j, L_GNR], te, theta):
+        if LI[j, L_WIN] != 0 and record(X, y, n, st.windows[j], st.rings, LI[j, L_GOFF], LI[j, L_GNR], te, theta):
+            rec = st.windows[j]
             cw = LI[j, L_CW]
-            c0 = LI[j, L_COFF] + int(m[NOUT]) * cw
-            C[c0] = m[CMEAN]
+            c0 = LI[j, L_COFF] + rec.nout * cw
+            C[c0] = rec.cmean
             col = 1
             for w in range(LI[j, L_WP0], LI[j, L_WP1], 2):
                 o = IDX[w]
                 for q in range(IDX[w + 1]):
                     C[c0 + col + q] = X[o + q]
                 col += IDX[w + 1]
-            m[NOUT] += 1.0
+            rec.nout += 1
 
 
 @loop_jit(cache=False, inline="always")
@@ -177,9 +181,10 @@ def end_of_step(k, k0, check_every, X, width, buf):
 
 
 def _sources() -> str:
-    """The sources compiled into run_chunk besides this file: the link semantics and numba's internals."""
+    """The sources compiled into run_chunk besides this file: the link semantics, the window record and numba's
+    internals."""
     h = hashlib.sha256()
-    for mod in (links, numba_internals):
+    for mod in (links, window, numba_internals):
         h.update(Path(mod.__file__).read_bytes())
     return h.hexdigest()[:16]
 
@@ -236,8 +241,9 @@ def _loop(sources: str):
 run_chunk = _loop(_sources())
 
 _I1, _I2, _F1, _F2 = np.zeros(1, np.int64), np.zeros((1, 1), np.int64), np.zeros(1), np.zeros((1, 1))
+_W1 = np.zeros(1, window.DTYPE)
 #: run_chunk's argument types (every system's: compiled.Runner.run); a helper process compiles it ahead on a fresh
 #: machine (master/compiled/ahead.py; tests/master/test_ahead.py checks them against the runner's call)
 RUN_CHUNK_SIG = tuple(numba.typeof(a) for a in (
-    Chunk(0, 0, 0, 0.0, 0.0, 0, 0), _F1, Tables(_I2, _I2, _I1, _I1), LinkState(_F2, _F1, _F1, _F1),
+    Chunk(0, 0, 0, 0.0, 0.0, 0, 0), _F1, Tables(_I2, _I2, _I1, _I1), LinkState(_F2, _F1, _W1, _F1, _F1),
     Kernels(_I1, _I1, _I1), Results(_I1, _F2, _I1)))

@@ -8,9 +8,9 @@ same semantics, operation for operation:
   over [t_end - n_c h, t_end], t_end = t0 + (k + 1) h);
 * each consumer's inputs gathered just before it fires, and each link's bookkeeping after its producer fired
   (averages, extrapolation history, the thermal-only hold's windows and restart offsets; a window counted in
-  turns of the cycle's angle reads that angle from the port array), by the very functions
-  of master/core/links.py the generic loop calls, on the same state layout (each link's state is copied into the
-  loop's tables and back around each chunk);
+  turns of the cycle's angle reads that angle from the port array), by the very functions of master/core/links.py
+  and master/core/window.py the generic loop calls, on the same state layout (each link's state and its hand-off
+  window's record are copied into the loop's tables and back around each chunk);
 * after each firing, as algorithm.Engine._fire: the step count, the finiteness of the outputs other components
   read;
 * every ``check_every`` base steps the finiteness of all outputs;
@@ -47,7 +47,7 @@ from rotorcosim.components.numba_internals import TypingError, compile_for, nati
 
 from rotorcosim.master.compiled import kernel_args
 from rotorcosim.master.compiled import loop_ops as op
-from rotorcosim.master.core import links
+from rotorcosim.master.core import links, window
 from rotorcosim.master.core.algorithm import ComponentFailed, SimulationDiverged, SimulationFailed, step_failure
 
 #: base steps per compiled chunk (rows of the observers' buffer): ~1 ms of wall time between observer calls
@@ -173,12 +173,15 @@ class Plan:
         self.mult_arr = np.array([self.mult[n] for n in self.names], dtype=np.int64)
 
 
-def _link_state(link, m, v):
+def _link_state(link, m, v, w):
     """A link's state (links.py's layout) into its row m of the loop's rows and its slice v of the vectors, with a
-    hand-back's restart offset (links.R0, RLEN, V_DELTA) from the hold's Restart."""
+    hand-back's restart offset (links.R0, RLEN, V_DELTA) from the hold's Restart; its hand-off window's record
+    (window.py) into the record w."""
     m[:] = link.state
     v[:] = link.vectors
-    m[links.NOUT] = 0.0
+    if link.window is not None:
+        link.window.w.to_record(w)
+        w["nout"] = 0
     n = link.n
     ramp = link.ramp
     if ramp is not None:
@@ -188,17 +191,17 @@ def _link_state(link, m, v):
         m[links.R0] = m[links.RLEN] = 0.0
 
 
-def _link_back(link, m, v, cycles):
+def _link_back(link, m, v, w, cycles):
     """The loop's state back into the link's own arrays (the generic loop, the hold and checkpoints read them),
-    and the rotor cycles the loop completed into the link's hand-off window."""
+    its window's record into the hold's Window and the rotor cycles the loop completed into its hand-off window."""
     link.state[:] = m.tolist()
     link.vectors[:] = v.tolist()
     ho = link.window
     if ho is not None:
-        for r in range(int(m[links.NOUT])):
+        for r in range(int(w["nout"])):
             ho.cycles.append((cycles[r, 1:].copy(), float(cycles[r, 0])))
-    m[links.NOUT] = 0.0
-    link.state[links.NOUT] = 0.0
+        w["nout"] = 0
+        ho.w.from_record(w)
 
 
 class Runner:
@@ -281,20 +284,21 @@ class Runner:
         nl = len(plan.links)
         LI = plan.LI.copy()
         M = np.zeros((max(1, nl), links.NM))
+        W = np.zeros(max(1, nl), window.DTYPE)
         V = np.zeros(plan.nv)
         goff, go, co = {}, 0, 0
         for j, link in enumerate(plan.links):
             n = plan.size[j]
             vo = int(LI[j, op.L_VOFF])
-            _link_state(link, M[j], V[vo:vo + links.NV * n])
+            _link_state(link, M[j], V[vo:vo + links.NV * n], W[j])
             if link.window is not None:
                 nr = link.window.ring.shape[0]
                 goff[j] = (go, nr, n)
                 LI[j, op.L_GOFF], LI[j, op.L_GNR] = go, nr
                 go += nr * n
                 LI[j, op.L_COFF] = co
-                # at most one cycle a sample when counted in turns (links.record)
-                per = link.window.n_cycle if link.window.turns is None else 1
+                # at most one cycle a sample when counted in turns (window.record)
+                per = link.window.w.n_cycle if link.window.turns is None else 1
                 co += (CHUNK // per + 2) * int(LI[j, op.L_CW])
         G = np.zeros(max(1, go))
         C = np.zeros(max(1, co))
@@ -306,7 +310,7 @@ class Runner:
         # may be building it (ahead.py)
         compile_for(op.run_chunk, op.RUN_CHUNK_SIG)
         tab = op.Tables(LI, plan.CT, plan.IDX, plan.mult_arr)
-        state = op.LinkState(M, V, G, C)
+        state = op.LinkState(M, V, W, G, C)
         res = op.Results(count, self.buf, self.status)
         # containers packed in an earlier interval of the run (a reused runner) and unchanged keep their block
         PA = np.array([pk.address if pk.kargs is not None else 0 for pk in self.packed], dtype=np.int64)
@@ -334,7 +338,7 @@ class Runner:
                 sim.compiled_done()
             code, kk, i = (int(x) for x in self.status)
             done = kk  # base steps completed
-            self._back(LI, M, V, C, count)
+            self._back(LI, M, V, W, C, count)
             self.k = done
             self._observe(k, done, t_start)
             if stop is not None and done > k:
@@ -395,7 +399,7 @@ class Runner:
             a = cls._ADDR[key] = (ta, ka, ctype)
         return a
 
-    def _back(self, LI, M, V, C, count):
+    def _back(self, LI, M, V, W, C, count):
         plan, eng = self.plan, self.sim.engine
         for j, link in enumerate(plan.links):
             n = plan.size[j]
@@ -404,9 +408,9 @@ class Runner:
             if link.window is not None:
                 cw = int(LI[j, op.L_CW])
                 c0 = int(LI[j, op.L_COFF])
-                nout = int(M[j, links.NOUT])
+                nout = int(W[j]["nout"])
                 cycles = C[c0:c0 + nout * cw].reshape(nout, cw)
-            _link_back(link, M[j], V[vo:vo + links.NV * n], cycles)
+            _link_back(link, M[j], V[vo:vo + links.NV * n], W[j], cycles)
         for i, n in enumerate(plan.names):
             eng.steps_taken[n] += int(count[i])
             count[i] = 0

@@ -169,9 +169,9 @@ class _Link:
         self.real = var.type == "Real"
         #: values carried (the producer's port size)
         self.n = var.size
-        #: the link's state row and vectors (links.py's layout; a hand-off window records into the same row). Lists
-        #: of floats: the generic loop runs links.py's functions in Python, where a list's item costs a third of an
-        #: array's (the compiled loop copies them into its tables and back)
+        #: the link's state row and vectors (links.py's layout; a hand-off window records into the hold's own
+        #: record, master/core/window.py). Lists of floats: the generic loop runs links.py's functions in Python,
+        #: where a list's item costs a third of an array's (the compiled loop copies them into its tables and back)
         self.state = [0.0] * links.NM
         self.vectors = [0.0] * (links.NV * self.n)
         self.frozen = None      # an iteration's override (iterative coupling)

@@ -1,11 +1,12 @@
 """What an input sees of the output it is connected to: the link semantics of both execution paths, in one place.
 
 A link carries a producer's output ``y`` (n values) to a consumer's input ``u``. Between the two it may average
-(fast producer -> slow consumer), extrapolate (slow -> fast, or ``linear-end``), add a hand-back's restart offset
-(master/manipulator/hold.py, Restart) and record a hand-off window (hold.HandOff). Its state is two sequences of
-floats with the layout below, the same for the generic loop (algorithm._Link keeps them as lists: ``link.state``,
-``link.vectors``) and the compiled loop (master/compiled/loop_ops: a row of a float64 table and a slice of another
-per link, copied from and back to the link's lists around each chunk).
+(fast producer -> slow consumer), extrapolate (slow -> fast, or ``linear-end``) and add a hand-back's restart offset
+(master/manipulator/hold.py, Restart); a hand-off window's recording is the hold's own record (master/core/window.py),
+not part of the link's state. Its state is two sequences of floats with the layout below, the same for the generic
+loop (algorithm._Link keeps them as lists: ``link.state``, ``link.vectors``) and the compiled loop
+(master/compiled/loop_ops: a row of a float64 table and a slice of another per link, copied from and back to the
+link's lists around each chunk).
 
 The operations are plain functions over arrays with offsets, written with element loops and no calls, so that the
 compiled loop compiles these very functions (numba) and the generic loop calls them in Python: one source, the
@@ -16,13 +17,6 @@ State row ``m`` (:data:`NM` floats):
 
 * the link's own: ``HAS_ACC`` (the integral A below holds a value), ``WEIGHT`` (W), ``HAS_PREV``, ``PREV_T``
   (t_prev), ``HAS_CUR``, ``CUR_T`` (t_cur);
-* a hand-off window's (hold.HandOff: the ring of the last samples and the rotor-cycle means): ``RPOS`` (next ring
-  row), ``RCOUNT`` (rows filled), ``HAS_RT``, ``RT`` (time of the last sample), ``CSUM``, ``CN`` (sum and count of
-  the cycle being recorded), ``WLAST`` (the last sample's first value), ``NCYC`` (samples per cycle), ``CMEAN``
-  (the mean of the last completed cycle), ``NOUT`` (cycles the compiled loop has written in its chunk), ``LCN``
-  (samples of the last completed cycle); a window counted in revolutions (``NCYC`` = 0) ends a cycle at the
-  sample where the cycle's angle passes ``NEXT`` (the next whole turn from the interval's start), ``DIR`` (+1 or
-  -1) its direction of rotation;
 * a hand-back's restart offset (hold.Restart, copied there by the compiled loop): ``R0`` (t0), ``RLEN`` (its
   length, 0 for none).
 
@@ -35,12 +29,10 @@ from __future__ import annotations
 import math
 
 HAS_ACC, WEIGHT, HAS_PREV, PREV_T, HAS_CUR, CUR_T = range(6)
-RPOS, RCOUNT, HAS_RT, RT, CSUM, CN, WLAST, NCYC, CMEAN, NOUT = range(6, 16)
-R0, RLEN = 16, 17
-LCN, NEXT, DIR = 18, 19, 20
+R0, RLEN = 6, 7
 #: fields of a link's state row
-NM = 21
-#: the link's own fields (reset at each interval; a hand-off window's are its recorder's)
+NM = 8
+#: the link's own fields (reset at each interval)
 OWN = CUR_T + 1
 V_ACC, V_PREV, V_LAST, V_DELTA = range(4)
 #: rows of a link's vectors
@@ -156,39 +148,3 @@ def produce(kind, y, yo, v, vo, n, m, hc, t_end):
         m[CUR_T] = t_end
         m[HAS_CUR] = 1.0
 
-
-def record(y, yo, n, m, ring, ro, nr, t_end, theta):
-    """One sample of a hand-off window (hold.HandOff): y[yo:yo+n] at ``t_end`` into row RPOS of the ring (nr rows
-    of n at ring[ro:]), and its first value into the rotor cycle being recorded. True when the sample completes a
-    cycle: NCYC samples, or (NCYC = 0) the cycle's angle ``theta`` [rad] at ``t_end`` has passed the next whole
-    turn NEXT (which then moves on by whole turns past it); the cycle's mean, CSUM / CN, is then in CMEAN, its
-    count in LCN, and the next cycle starts."""
-    m[HAS_RT] = 1.0
-    m[RT] = t_end
-    pos = int(m[RPOS])
-    for q in range(n):
-        ring[ro + pos * n + q] = y[yo + q]
-    m[RPOS] = (pos + 1) % nr
-    m[RCOUNT] = min(m[RCOUNT] + 1, nr)
-    ys = y[yo]
-    m[WLAST] = ys
-    csum = m[CSUM] + ys
-    cn = m[CN] + 1.0
-    if m[NCYC] > 0.0:
-        done = cn == m[NCYC]
-    else:
-        done = (theta - m[NEXT]) * m[DIR] >= 0.0
-        if done:
-            turn = 2.0 * math.pi * m[DIR]
-            m[NEXT] = m[NEXT] + turn
-            while (theta - m[NEXT]) * m[DIR] >= 0.0:
-                m[NEXT] = m[NEXT] + turn
-    if done:
-        m[CMEAN] = csum / cn
-        m[LCN] = cn
-        m[CSUM] = 0.0
-        m[CN] = 0.0
-        return True
-    m[CSUM] = csum
-    m[CN] = cn
-    return False

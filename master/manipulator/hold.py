@@ -66,7 +66,8 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from rotorcosim.components.contract import COUPLED, HELD, ContractError
-from rotorcosim.master.core import links
+from rotorcosim.master.core import links, window
+from rotorcosim.master.core.window import Window
 from rotorcosim.master.core.cycle import WINDOW_MARGIN, Cycle
 from rotorcosim.master.core.system import HOLDS
 
@@ -119,43 +120,8 @@ class Restart:
         return out
 
 
-class _InState:
-    """A field of a hand-off window kept in its link's state row (master/core/links.py), where the compiled loop
-    records it too; ``flag``: the field is None while that field of the row is 0."""
-
-    def __init__(self, index: int, kind=float, flag: int | None = None):
-        self.index, self.kind, self.flag = index, kind, flag
-
-    def __get__(self, ho, owner=None):
-        if ho is None:
-            return self
-        m = ho.link.state
-        if self.flag is not None and not m[self.flag]:
-            return None
-        return self.kind(m[self.index])
-
-    def __set__(self, ho, value):
-        m = ho.link.state
-        if self.flag is not None:
-            m[self.flag] = value is not None
-            if value is None:
-                return
-        m[self.index] = value
-
-
 class HandOff:
     """One mechanical -> thermal connection: its window, its cycle means, its held value in TO."""
-
-    # the window's position and count, its last sample's time, the cycle being recorded (sum, count, last value)
-    # and its length: fields of the link's state (links.py), shared with the compiled loop
-    pos = _InState(links.RPOS, int)
-    count = _InState(links.RCOUNT, int)
-    t_last = _InState(links.RT, float, flag=links.HAS_RT)
-    csum = _InState(links.CSUM)
-    cn = _InState(links.CN, int)
-    _last = _InState(links.WLAST)
-    n_cycle = _InState(links.NCYC, int)
-    _last_cn = _InState(links.LCN, int)
 
     def __init__(self, link, hold: str, thermal_ports: list[str]):
         self.link = link
@@ -167,7 +133,8 @@ class HandOff:
         self.held = None
         self.error: float | None = None
         self._to_end: np.ndarray | None = None
-        self.count = 0                      # samples in the window (none before the first TM interval)
+        #: the window's recording state (master/core/window.py: both loops record into it)
+        self.w = Window()
         self.turns = None                   # (RevolutionCounter, turns of the window, the angle's component, port)
         self.hs = 0.0                       # the producer's step in the TM interval [s]
 
@@ -180,47 +147,52 @@ class HandOff:
         end at each whole turn of the angle (the first where it passes ``next_turn`` [rad], turning in
         ``direction``), the window being the samples of its last turns."""
         self.ring = np.zeros((max(1, n_window), size))
-        self.pos = self.count = 0
-        self.t_last = None
+        w = self.w
+        w.pos = w.count = 0
+        w.has_t, w.t_last = False, 0.0
         self.hs, self.turns = float(hs), turns
-        self.n_cycle = max(1, n_cycle) if turns is None else 0
-        m = self.link.state
-        m[links.NEXT], m[links.DIR] = (float(next_turn), float(direction)) if turns is not None else (0.0, 0.0)
-        self.csum, self.cn, self._last = 0.0, 0, 0.0     # the rotor cycle being recorded
+        w.n_cycle = max(1, n_cycle) if turns is None else 0
+        w.next_turn, w.direction = (float(next_turn), float(direction)) if turns is not None else (0.0, 0.0)
+        w.csum, w.cn, w.last = 0.0, 0, 0.0     # the rotor cycle being recorded
         self.cycles: list[tuple[np.ndarray, float]] = []
         self.history.append(self.cycles)
         del self.history[:-FIT_INTERVALS]
 
     def record(self, y: np.ndarray, t_end: float) -> None:
         """One sample of the producer's output (every step it takes in a TM interval)."""
-        m = self.link.state
-        if m[links.HAS_RT] and m[links.RT] == t_end:  # a repeated iteration of the same step replaces its sample
-            self.pos = (self.pos - 1) % len(self.ring)
-            self.count -= 1
-            if self.cn == 0 and self.cycles:
+        w = self.w
+        if w.has_t and w.t_last == t_end:  # a repeated iteration of the same step replaces its sample
+            w.pos = (w.pos - 1) % len(self.ring)
+            w.count -= 1
+            if w.cn == 0 and self.cycles:
                 _, mean = self.cycles.pop()
-                self.csum, self.cn = mean * self._last_cn, self._last_cn
+                w.csum, w.cn = mean * w.last_cn, w.last_cn
                 if self.turns is not None:   # the turn it ended at is to be passed again
-                    m[links.NEXT] -= 2.0 * math.pi * m[links.DIR]
-            self.csum -= self._last
-            self.cn -= 1
-        # the sample and the cycle it belongs to (links.record: the compiled loop records with the same function)
+                    w.next_turn -= 2.0 * math.pi * w.direction
+            w.csum -= w.last
+            w.cn -= 1
+        # the sample and the cycle it belongs to (window.record: the compiled loop records with the same function)
         ring = self.ring
         theta = float(self.turns[2].y[self.turns[3]][0]) if self.turns is not None else 0.0
-        if links.record(y, 0, ring.shape[1], m, ring.reshape(-1), 0, ring.shape[0], t_end, theta):
+        if window.record(y, 0, ring.shape[1], w, ring.reshape(-1), 0, ring.shape[0], t_end, theta):
             # a whole rotor cycle: its mean, and the thermal inputs at its end (they change at the thermal step, far
             # slower than the rotor)
-            self.cycles.append((self._thermal_inputs(), float(m[links.CMEAN])))
+            self.cycles.append((self._thermal_inputs(), float(w.cmean)))
 
     def _thermal_inputs(self) -> np.ndarray:
         u = self.link.src.u
         return np.concatenate([np.ravel(u[p]) for p in self.ports]) if self.ports else np.zeros(0)
 
+    @property
+    def count(self) -> int:
+        """Samples in the window (none before the first TM interval)."""
+        return self.w.count
+
     def _data(self):
         if self.turns is None:
             return self.ring if self.count == len(self.ring) else self.ring[: self.count]
         k = self.window_samples()
-        return self.ring[(self.pos - k + np.arange(k)) % len(self.ring)]
+        return self.ring[(self.w.pos - k + np.arange(k)) % len(self.ring)]
 
     def window_samples(self) -> int:
         """The samples of the window: all (up to the ring's size) when counted in samples; counted in turns, those
@@ -229,7 +201,7 @@ class HandOff:
         if self.turns is None or self.count == 0:
             return self.count
         counter, turns = self.turns[0], self.turns[1]
-        t_last = self.t_last
+        t_last = self.w.t_last
         began = counter.began(turns, t_last)
         k = int(math.ceil((t_last - began) / self.hs - 1e-9))
         return min(max(k, 1), self.count)
@@ -239,7 +211,7 @@ class HandOff:
         if self.turns is None or self.count == 0:
             return None
         k = self.window_samples()
-        return self.turns[0].revolutions(self.t_last - k * self.hs, self.t_last)
+        return self.turns[0].revolutions(self.w.t_last - k * self.hs, self.w.t_last)
 
     def statistic(self, how: str) -> np.ndarray:
         """RMS, mean or last of the window (the last ``hold_cycles`` rotor cycles of the TM interval)."""

@@ -21,11 +21,14 @@ import json
 import os
 import subprocess
 import sys
+from pathlib import Path
+from types import SimpleNamespace
 
 import pytest
 
 import rotorcosim
 from rotorcosim.cases.rundown import compare as rc
+from rotorcosim.master.compare import rel_error_pct, schemes
 from rotorcosim.master.cli import main
 from rotorcosim.master.sweep import SweepInterrupted
 
@@ -118,7 +121,7 @@ def test_table_errors_and_verdicts():
     missing = [c for c in t["crossings"] if c["critical_speed_rpm"] == 8500.0][0]
     assert missing["peak_speed_rpm"]["staggered"] is None and missing["peak_speed_rpm"]["rel_error_pct"] is None
     assert not t["within_2pct"]["crossing_speeds"] and not t["within_2pct"]["all"]
-    assert rc.rel_error_pct(1.0, 0.0) is None and rc.rel_error_pct(None, 1.0) is None
+    assert rel_error_pct(1.0, 0.0) is None and rel_error_pct(None, 1.0) is None
     # a critical speed where neither run finds a resonance peak (cases/rundown/results.py: peak_found false, None
     # values) is noted and not judged; one run finding a peak the other does not is not within
     a, b = _summary(1.0, 2.0), _summary(1.0, 2.0)
@@ -142,7 +145,9 @@ def test_default_duration_is_fuel_cut_plus_rundown_plus_ten_minutes():
 
 # -- faults: Ctrl-C and a failed run behave as Table 6's compare (no simulation: the runs are stand-ins) ---------
 def _fake_execute(fail_on: str, error: BaseException):
-    def execute(sc, out, **kw):
+    """A stand-in for api.simulate as the comparison calls it (master/compare/schemes.py)."""
+    def execute(sc, out=None, **kw):
+        out = Path(out)
         kind = "monolithic" if sc.name.endswith("monolithic") else "staggered"
         out.mkdir(parents=True, exist_ok=True)
         status = "complete" if kind != fail_on else ("interrupted" if isinstance(error, KeyboardInterrupt)
@@ -153,12 +158,12 @@ def _fake_execute(fail_on: str, error: BaseException):
         (out / "summary.json").write_text(json.dumps(s))
         if kind == fail_on:
             raise error
-        return s
+        return SimpleNamespace(summary=s)
     return execute
 
 
 def test_ctrl_c_keeps_the_complete_run_and_says_so(tmp_path, monkeypatch):
-    monkeypatch.setattr(rc, "execute", _fake_execute("monolithic", KeyboardInterrupt()))
+    monkeypatch.setattr(schemes, "simulate", _fake_execute("monolithic", KeyboardInterrupt()))
     out = tmp_path / "cmp"
     with pytest.raises(SweepInterrupted) as exc:
         rc.compare_rundown("blade_loss_rundown", 5.0, out, figures=False, warm_up=False)
@@ -168,19 +173,19 @@ def test_ctrl_c_keeps_the_complete_run_and_says_so(tmp_path, monkeypatch):
     # --resume runs only the monolithic run
     ran = []
     done = _fake_execute("none", None)
-    monkeypatch.setattr(rc, "execute", lambda sc, o, **kw: ran.append(sc.name) or done(sc, o, **kw))
+    monkeypatch.setattr(schemes, "simulate", lambda sc, **kw: ran.append(sc.name) or done(sc, **kw))
     t = rc.compare_rundown("blade_loss_rundown", 5.0, out, figures=False, warm_up=False, resume=True)
     assert ran == ["blade_loss_rundown_monolithic"] and t["within_2pct"]["all"]
     # a resume with another --set is refused: the kept runs are not of that scenario
     other = rotorcosim.load_scenario("blade_loss_rundown").set({"spool_pt.t_fuel_cut": 2.01})
-    with pytest.raises(ValueError, match="made with other --set/--swap/--unbalance"):
+    with pytest.raises(ValueError, match="made with other edits"):
         rc.compare_rundown(other, 5.0, out, figures=False, warm_up=False, resume=True)
 
 
 def test_a_failed_run_is_raised_and_its_folder_kept(tmp_path, monkeypatch):
     from rotorcosim.master.core.algorithm import SimulationFailed
 
-    monkeypatch.setattr(rc, "execute", _fake_execute("staggered", SimulationFailed("the rotor diverged")))
+    monkeypatch.setattr(schemes, "simulate", _fake_execute("staggered", SimulationFailed("the rotor diverged")))
     out = tmp_path / "cmp"
     with pytest.raises(SimulationFailed, match="diverged"):
         rc.compare_rundown("blade_loss_rundown", 5.0, out, figures=False, warm_up=False)

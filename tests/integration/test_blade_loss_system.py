@@ -148,26 +148,27 @@ def test_compare_draws_the_figures_after_both_timed_runs(tmp_path, monkeypatch):
     from rotorcosim.master import api
     from rotorcosim.master.cli import main
     from rotorcosim.cases.blade_loss import compare as cmp
+    from rotorcosim.master.compare import schemes
 
     def no_pool(*args, **kwargs):
         pytest.fail("a figure pool was started inside a timed run")
 
     ended, started, folders = [], [], []
-    real_execute, real_pool = cmp.execute, cmp.FigurePool
+    real_simulate, real_pool = schemes.simulate, schemes.FigurePool
 
     def timed(*args, **kwargs):
-        summary = real_execute(*args, **kwargs)
+        result = real_simulate(*args, **kwargs)
         ended.append(time.monotonic())
-        folders.append(Path(args[1]))
-        return summary
+        folders.append(Path(kwargs["out"]))
+        return result
 
     def pool(*args, **kwargs):
         started.append(time.monotonic())
         return real_pool(*args, **kwargs)
 
     monkeypatch.setattr(api, "FigurePool", no_pool)
-    monkeypatch.setattr(cmp, "execute", timed)
-    monkeypatch.setattr(cmp, "FigurePool", pool)
+    monkeypatch.setattr(schemes, "simulate", timed)
+    monkeypatch.setattr(schemes, "FigurePool", pool)
     assert main(["compare", "--duration", "0.1", "--revolutions", "12", "--quiet", "--out", str(tmp_path)]) == 0
     # the warm-up, then the staggered run timed TIMING_RUNS times, half before and half after the monolithic run
     # (the first into staggered/, the others into folders removed afterwards); a figure pool per run folder

@@ -95,8 +95,8 @@ def test_compiled_equals_generic_on_the_blade_loss_system(tmp_path, monkeypatch,
             assert _rel(cobs[2].peak[k][q], pobs[2].peak[k][q]) <= RTOL
     # the thermal-only hold (master/manipulator/hold.py) recorded the same windows and cycle means, hence the same held values
     for ch, ph in zip(cs.hold.handoffs, ps.hold.handoffs):
-        assert (ch.pos, ch.count, ch.cn) == (ph.pos, ph.count, ph.cn)
-        assert _rel(ch.ring, ph.ring) <= RTOL and _rel(ch.csum, ph.csum) <= RTOL
+        assert (ch.w.pos, ch.w.count, ch.w.cn) == (ph.w.pos, ph.w.count, ph.w.cn)
+        assert _rel(ch.ring, ph.ring) <= RTOL and _rel(ch.w.csum, ph.w.csum) <= RTOL
         assert len(ch.history) == len(ph.history) and len(ch.cycles) == len(ph.cycles) > 0
         for ca_, pa_ in zip(sum(ch.history, []), sum(ph.history, [])):
             assert _rel(ca_[0], pa_[0]) <= RTOL and _rel(ca_[1], pa_[1]) <= RTOL
@@ -168,7 +168,7 @@ def test_compiled_equals_generic_with_windows_counted_in_turns(tmp_path):
     assert cs.engines_used == ["compiled", "compiled"] and ps.engines_used == ["python", "python"]
     assert cs.revolutions is not None and cs.engine.steps_taken == ps.engine.steps_taken
     for ch, ph in zip(cs.hold.handoffs, ps.hold.handoffs):
-        assert ch.turns is not None and (ch.pos, ch.count, ch.cn) == (ph.pos, ph.count, ph.cn)
+        assert ch.turns is not None and (ch.w.pos, ch.w.count, ch.w.cn) == (ph.w.pos, ph.w.count, ph.w.cn)
         assert _rel(ch.ring, ph.ring) <= RTOL
         for ca_, pa_ in zip(sum(ch.history, []), sum(ph.history, [])):
             assert _rel(ca_[0], pa_[0]) <= RTOL and _rel(ca_[1], pa_[1]) <= RTOL

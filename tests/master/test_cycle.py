@@ -45,11 +45,11 @@ def test_a_signal_cycle_follows_the_speed_from_one_interval_to_the_next():
                      cycle=SignalCycle("spin.Omega"))
     assert _held_after(sim, 0.2) == pytest.approx(P0, rel=1e-12)       # 3 turns at 50 Hz: 60 samples
     assert sim.hold.period == pytest.approx(0.02, rel=1e-12)
-    assert sim.hold.handoffs[0].n_cycle == 20
+    assert sim.hold.handoffs[0].w.n_cycle == 20
     # the spinner turns at 25 Hz from the second interval on: 3 turns are 120 samples
     assert _held_after(sim, 0.15) == pytest.approx(P0, rel=1e-12)
     assert sim.hold.period == pytest.approx(0.04, rel=1e-12)
-    assert sim.hold.handoffs[0].n_cycle == 40
+    assert sim.hold.handoffs[0].w.n_cycle == 40
 
 
 def test_a_constant_cycle_misses_a_changed_speed():

@@ -7,7 +7,6 @@ from types import SimpleNamespace
 import numpy as np
 import pytest
 
-from rotorcosim.master.core import links
 from rotorcosim.master.manipulator.hold import DRIVER_MIN_SPREAD_K, HandOff, _Driver
 
 
@@ -19,8 +18,7 @@ def _handoff(name, port, unit="K"):
     src = SimpleNamespace(u={port: np.array([300.0])},
                           variable=lambda p, unit=unit: _Var(size=1, unit=unit, type="Real"))
     con = SimpleNamespace(src_component=name, dst_component="th", src=f"{name}.P", dst="th.P")
-    # (a hand-off window records into its link's state row: master/core/links.py)
-    return HandOff(SimpleNamespace(src=src, con=con, sport="P", state=np.zeros(links.NM)), "mean", [port])
+    return HandOff(SimpleNamespace(src=src, con=con, sport="P"), "mean", [port])
 
 
 def _record(ho, temps, means):

@@ -183,7 +183,7 @@ def test_compare_makes_no_folder_before_its_input_is_checked(tmp_path, capsys, a
 
 @pytest.mark.parametrize("text, message", [
     ("", "missing table or key 'spool'"),
-    ('[spool.pt]\nz_mm = "abc"\n[spool.gg]\nz_mm = [1]\n[casing]\n', "could not convert string to float"),
+    ('[spool.pt]\nz_mm = "abc"\n[spool.gg]\nz_mm = [1]\n[casing]\n', "spool.pt.z_mm: must be a list of numbers, got the string 'abc'"),
     ("[spool.pt]\nz_mm = [1, 2]\n", "spool.pt names material 'rotor', which [material] does not define"),
 ])
 def test_rotor_model_file_missing_or_wrong_keys(tmp_path, capsys, text, message):

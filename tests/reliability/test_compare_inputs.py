@@ -5,7 +5,7 @@ import json
 import pytest
 
 from rotorcosim.master.cli import main
-from rotorcosim.cases.blade_loss.compare import KEYS, _reuse
+from rotorcosim.cases.blade_loss.compare import KEYS, reuse_monolithic
 
 NAME = "blade_loss_monolithic"
 
@@ -25,7 +25,7 @@ def _folder(tmp_path, summary):
 
 
 def test_a_matching_monolithic_run_is_reused(tmp_path):
-    assert _reuse(_folder(tmp_path, _summary()), 2850.0, 0.1, NAME, 0)["wall_time_s"] == 1.5
+    assert reuse_monolithic(_folder(tmp_path, _summary()), 2850.0, 0.1, NAME, 0)["wall_time_s"] == 1.5
 
 
 @pytest.mark.parametrize("summary, message", [
@@ -40,11 +40,11 @@ def test_a_matching_monolithic_run_is_reused(tmp_path):
     ("{", "no readable summary.json"),
     (_summary(timeline="TM"), "not a complete monolithic run"),
     (_summary(timeline=["TM"]), "not a complete monolithic run"),
-    (_summary(unbalance_N=712.0), "its unbalance is 712.0 N, not 2850.0 N"),
+    (_summary(unbalance_N=712.0), "unbalance_N is 712.0 N, not 2850.0 N"),
 ])
 def test_a_monolithic_folder_that_does_not_fit_is_refused(tmp_path, summary, message):
     with pytest.raises(ValueError) as err:
-        _reuse(_folder(tmp_path, summary), 2850.0, 0.1, NAME, 0)
+        reuse_monolithic(_folder(tmp_path, summary), 2850.0, 0.1, NAME, 0)
     assert message in str(err.value) and "--monolithic" in str(err.value)
 
 
@@ -73,7 +73,7 @@ def test_an_out_folder_holding_a_comparison_is_refused_before_any_run(tmp_path, 
 def test_an_interrupted_overwrite_leaves_no_previous_table(tmp_path, monkeypatch):
     """compare --overwrite interrupted during its runs: the previous table6.json is gone, not left beside runs it
     does not describe (it was kept, with the new runs' folders half made, before)."""
-    from rotorcosim.cases.blade_loss import compare as cmp
+    from rotorcosim.master.compare import schemes as cmp
 
     out = tmp_path / "cmp"
     out.mkdir()
@@ -83,6 +83,6 @@ def test_an_interrupted_overwrite_leaves_no_previous_table(tmp_path, monkeypatch
         raise KeyboardInterrupt
 
     monkeypatch.setattr(cmp, "_warm_up", lambda *a, **k: None)
-    monkeypatch.setattr(cmp, "execute", interrupted)
+    monkeypatch.setattr(cmp, "simulate", interrupted)
     assert main(["compare", "--duration", "2", "--unbalance", "712", "--out", str(out), "--quiet", "--overwrite"]) == 130
     assert not (out / "table6.json").exists()

@@ -1,0 +1,17 @@
+"""Staggered against monolithic for any scenario: ``compare_schemes`` and the relative errors it is judged by.
+
+- :mod:`.schemes`: :func:`compare_schemes` runs a scenario under a staggered and a monolithic schedule into one
+  folder, times both, writes the table a case makes of them; with the folder rules of every command (a lock,
+  ``--overwrite``, ``--resume``, Ctrl-C keeps the complete runs, a reused monolithic run);
+- :mod:`.errors`: :func:`rel_error_pct`, :func:`pair` (one quantity: staggered, monolithic, relative error) and
+  :func:`within` (a group of quantities against a tolerance).
+
+The cases build their comparisons on it: ``rotorcosim compare`` (the blade-loss case's Table 6,
+cases/blade_loss/compare.py) and the rundown's (cases/rundown/compare.py).
+"""
+from rotorcosim.master.compare.errors import pair, rel_error_pct, within
+from rotorcosim.master.compare.schemes import (KINDS, SAME, Level, compare_schemes, draw, edits_of, kept_run,
+                                               load_average, quantum, reused_monolithic)
+
+__all__ = ["compare_schemes", "Level", "KINDS", "SAME", "pair", "rel_error_pct", "within", "kept_run",
+           "reused_monolithic", "draw", "load_average", "quantum", "edits_of"]

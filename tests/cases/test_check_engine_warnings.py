@@ -1,0 +1,116 @@
+"""``check-engine``: every synchronous critical speed up to 1.5 x each spool's operating speed with its whirl and
+its separation margin, and one warning line each for a critical speed nearer than 15 % (API 684's margins), a
+bearing bore that does not fit the shaft at its node, dimensions implausible for mm, a spool turning a bearing
+beyond its model's speed range."""
+from __future__ import annotations
+
+import json
+import tomllib
+from pathlib import Path
+
+import pytest
+
+from rotorcosim.cases.blade_loss import new_engine
+from rotorcosim.cases.blade_loss.check_engine import check_engine
+from rotorcosim.components.rotor import critical, model as fem
+from rotorcosim.interop.engine_toml import dumps
+from rotorcosim.master.cli import main
+
+DATA = Path(__file__).parents[1] / "interop" / "data"
+
+
+@pytest.fixture(scope="module")
+def textbook(tmp_path_factory):
+    d = tmp_path_factory.mktemp("e")
+    new_engine.new_engine(d / "X")
+    return d / "X" / "engine.toml", d / "X" / "blade_loss.toml"
+
+
+def _variant(tmp_path, engine: Path, change) -> Path:
+    data = tomllib.loads(engine.read_text())
+    change(data)
+    p = tmp_path / "engine.toml"
+    p.write_text(dumps(data))
+    return p
+
+
+def test_every_critical_up_to_1_5x_with_whirl_and_margin(textbook, capsys):
+    engine, scenario = textbook
+    rc = main(["check-engine", str(engine), "--scenario", str(scenario), "--json", "--campbell",
+               str(engine.parent / "c.png")])
+    out = json.loads(capsys.readouterr().out)
+    assert rc == 0 and out["problems"] == []
+    rows = out["separation"]
+    # the same list as the critical speeds' own eigenproblem solved for many modes, split by whirl
+    ref = out["critical_speeds"]
+    from rotorcosim.cases.blade_loss import critical_speeds as cs
+    from rotorcosim.master.api import load_scenario
+
+    m = fem.load(engine)
+    full = critical.synchronous_critical_speeds(m, cs._supports(m, None, load_scenario(scenario)), n=40,
+                                                max_rpm=24000.0)
+    for whirl in ("forward", "backward"):
+        assert [r["rpm"] for r in rows if r["whirl"] == whirl] == pytest.approx(full[f"{whirl}_synchronous_rpm"],
+                                                                                rel=1e-9)
+    assert max(r["rpm"] for r in rows) <= 24000.0 and len(rows) >= 6
+    for r in rows:
+        assert r["margins"] == [{"operating_rpm": 16000.0,
+                                 "margin_percent": pytest.approx(100 * (r["rpm"] / 16000.0 - 1))}]
+    near = [r for r in rows if abs(r["rpm"] / 16000.0 - 1) < 0.15]
+    assert near, "the textbook engine has a backward critical 1.7 % above its speed"
+    sep = [w for w in out["warnings"] if "separation margin" in w]
+    assert len(sep) == len(near)
+    assert all("API 684" in w and "15%" in w and "\n" not in w for w in sep)
+    assert ref["forward_synchronous_rpm"][0] == pytest.approx(rows[[r["whirl"] for r in rows].index("forward")]["rpm"])
+
+
+def test_rosss_coaxial_rotor_forward_critical_2_7_percent_below_is_warned(tmp_path, capsys):
+    out = tmp_path / "coax.toml"
+    assert main(["import-ross", str(DATA / "coaxrotor_example.toml"), "--out", str(out), "--speed", "16000"]) == 0
+    capsys.readouterr()
+    rep = check_engine(str(out))
+    w = [x for x in rep["warnings"] if "forward critical speed 1556" in x]
+    assert w and "2.7 % below the operating speed 16000 rev/min" in w[0]
+
+
+def test_a_bore_that_does_not_fit_the_shaft(tmp_path, textbook):
+    engine, scenario = textbook
+
+    def thick(d):
+        d["spool"]["rotor"]["d_out_mm"][1] = 60.0          # bearing0 (50.8 mm bore) at node 2
+        d["spool"]["rotor"]["d_out_mm"][2] = 60.0
+    rep = check_engine(str(_variant(tmp_path, engine, thick)), str(scenario))
+    bore = [w for w in rep["warnings"] if "bore" in w]
+    assert bore == ["attach.bearing0: its bore 50.8 mm does not fit the shaft at node ['rotor', 2] (outer diameter "
+                    "60 / 60 mm; within 2% expected)"]
+    assert not [w for w in check_engine(str(engine), str(scenario))["warnings"] if "bore" in w]
+
+
+def test_an_engine_written_in_metres_or_micrometres(tmp_path, textbook):
+    engine, scenario = textbook
+
+    def metres(d):
+        r = d["spool"]["rotor"]
+        for k in ("z_mm", "d_out_mm", "d_in_mm"):
+            r[k] = [v / 1000.0 for v in r[k]]
+    rep = check_engine(str(_variant(tmp_path, engine, metres)), str(scenario))
+    assert any(w.startswith("spool.rotor.d_out_mm[0] = 0.06 mm: a shaft thinner than 5 mm") for w in rep["warnings"])
+
+    def micrometres(d):
+        d["spool"]["rotor"]["z_mm"] = [v * 1000.0 for v in d["spool"]["rotor"]["z_mm"]]
+    rep = check_engine(str(_variant(tmp_path, engine, micrometres)), str(scenario))
+    assert any(w.startswith("spool.rotor.z_mm: a spool 960 m long") for w in rep["warnings"])
+
+
+def test_a_spool_beyond_its_bearings_speed_range(tmp_path, textbook, capsys):
+    engine, scenario = textbook
+
+    def fast(d):
+        d["spool"]["rotor"]["speed_rpm"] = 31000.0         # bearing5 (83.8 mm bore): 29 833 rev/min at most
+    p = _variant(tmp_path, engine, fast)
+    rc = main(["check-engine", str(p), "--scenario", str(scenario), "--campbell", str(tmp_path / "c.png")])
+    out = capsys.readouterr().out
+    assert rc == 0
+    lines = [line for line in out.splitlines() if "speed limit" in line]
+    assert lines == ["  warning: attach.bearing5: the bearing turns with spool rotor at 31000 rev/min, above the ball "
+                     "bearing model's speed limit 29833 rev/min (bore 83.8 mm, bore x speed <= 2.5e+06 mm rev/min)"]

@@ -1,0 +1,137 @@
+"""A wrong TOML shape anywhere in an engine file (a number where a table belongs, a list where a number belongs, a
+table where a list belongs...) is one line naming the key and the shape expected, exit status 2, from
+``check-engine``, and a ValueError naming the key from the model builder (``run``, ``critical-speeds``); never
+"unexpected AttributeError ... may be a bug". The whole class: every key of the format that the test engine
+holds (the paper's engine with a pedestal added: every table the format has) gets every wrong kind of value."""
+from __future__ import annotations
+
+import copy
+
+import pytest
+
+from rotorcosim.cases.blade_loss.check_engine import check_engine
+from rotorcosim.components.rotor import engine_shape as es
+from rotorcosim.components.rotor import model as fem
+from rotorcosim.interop.engine_toml import dumps
+from rotorcosim.master.cli import main
+
+#: the values tried, by the TOML kind they are (a bool is not a number)
+CANDIDATES = {"number": 7.5, "string": "x", "list": [1.0, 2.0], "table": {"a": 1.0}, "boolean": True}
+#: what each kind of key accepts (written here, independently of the module under test)
+ACCEPTS = {"number": {"number", "integer"}, "int": {"integer"}, "str": {"string"},
+           "knob": {"number", "integer", "string"}, "node": set(), "end": {"string"}}
+
+
+def _engine() -> dict:
+    data, _ = fem.load_data(None)
+    data = copy.deepcopy(data)
+    data["pedestal"] = {"p1": {"mass": 2.0, "k": 1e8, "c": 100.0, "k_axial": 1e8}}
+    return data
+
+
+def _accepts(kind) -> set:
+    if isinstance(kind, str):
+        return ACCEPTS.get(kind, set())
+    tag = kind[0]
+    if tag == "number|list":
+        return {"number", "integer", "list"}
+    if tag == "list":
+        return {"list"}
+    if tag in ("table", "tables", "attach"):
+        return {"table"}
+    if tag == "array":
+        return set()
+    return set()
+
+
+def _paths(value, kind, path):
+    """(path, kind) of every key of the format present in ``value`` (and its first element of every list)."""
+    yield path, kind
+    if isinstance(kind, str):
+        return
+    tag = kind[0]
+    if tag == "table" and isinstance(value, dict):
+        for k, sub in kind[1].items():
+            if k in value:
+                yield from _paths(value[k], sub, path + (k,))
+    elif tag == "tables" and isinstance(value, dict) and kind[1] != "any":
+        for name, x in value.items():
+            yield from _paths(x, kind[1], path + (name,))
+    elif tag in ("array", "list") and isinstance(value, list) and value:
+        yield from _paths(value[0], kind[1], path + (0,))
+    elif tag == "attach" and isinstance(value, dict):
+        for k, x in value.items():
+            sub = "number" if k == "oil_temperature_C" else es.ATTACH_ENTRY
+            yield from _paths(x, sub, path + (k,))
+
+
+def _name(path) -> str:
+    out = ""
+    for p in path:
+        out += f"[{p}]" if isinstance(p, int) else (f".{p}" if out else p)
+    return out
+
+
+def _cases():
+    data = _engine()
+    out = []
+    for path, kind in _paths(data, es.SHAPE, ()):
+        if not path or kind == "any":
+            continue
+        for label, v in CANDIDATES.items():
+            if label in _accepts(kind) or (label == "list" and kind in ("node", "end")):
+                continue
+            out.append(pytest.param(path, v, id=f"{_name(path)}={label}"))
+    return out
+
+
+CASES = _cases()
+
+
+def test_the_fuzz_covers_every_table_of_the_format():
+    names = {_name(c.values[0]) for c in CASES}
+    for table in ("engine", "calibration", "material.rotor", "damping", "spool.pt", "spool.pt.disks[0]",
+                  "support[0]", "pedestal.p1", "casing", "casing.hubs", "casing.mounts[0]", "attach",
+                  "attach.bearing0", "attach.unbalance"):
+        assert any(n == table or n.startswith(table + ".") or n.startswith(table + "[") for n in names), table
+    assert len(CASES) > 250
+
+
+def _write(tmp_path, path, value):
+    data = _engine()
+    node = data
+    for p in path[:-1]:
+        node = node[p]
+    node[path[-1]] = value
+    f = tmp_path / "engine.toml"
+    f.write_text(dumps(data))
+    return f
+
+
+@pytest.mark.parametrize("path, value", CASES)
+def test_wrong_shape_is_one_line_naming_the_key(tmp_path, path, value):
+    f = _write(tmp_path, path, value)
+    key = _name(path)
+    problems = check_engine(str(f))["problems"]
+    assert any(line.startswith(key) and "must be" in line and "\n" not in line for line in problems), (key, problems)
+    # the model builder (run, critical-speeds) says the same in one line
+    with pytest.raises(ValueError) as exc:
+        fem.load(f)
+    assert key in str(exc.value) and "\n" not in str(exc.value)
+
+
+@pytest.mark.parametrize("path, value, expected", [
+    (("pedestal", "p1"), 3.0, "pedestal.p1: must be a table (mass, k or kxx/kyy"),
+    (("spool", "pt", "disks"), 5, "spool.pt.disks: must be a list of tables"),
+    (("spool", "pt", "speed_rpm"), [16000.0, 17000.0], "spool.pt.speed_rpm: must be a number, got a list of 2"),
+    (("casing",), 5, "casing: must be a table"),
+])
+def test_check_engine_command_on_a_wrong_shape(tmp_path, capsys, path, value, expected):
+    f = _write(tmp_path, path, value)
+    rc = main(["check-engine", str(f), "--campbell", str(tmp_path / "c.png")])
+    out, err = capsys.readouterr()
+    assert rc == 2, (out, err)
+    assert "may be a bug" not in out + err and "Traceback" not in out + err
+    problems = [line.strip() for line in out.splitlines()[1:]]
+    assert len(problems) == 1 and problems[0].startswith(expected), out
+    assert not (tmp_path / "c.png").exists()
