@@ -41,6 +41,10 @@ MAX_ENTRY_BYTES = 64 * MiB
 #: hold 24-32 entries and extract to under 1 MB each (measured), an SSP of many FMUs and other tools' FMUs more
 MAX_ENTRIES = 20_000
 MAX_EXTRACT_BYTES = 512 * MiB
+#: files one scenario may read through its ``extends`` chain, and ids one template may be instantiated for (a
+#: scenario of 16 MiB listing millions of ids would build millions of components before any check)
+MAX_EXTENDS = 64
+MAX_TEMPLATE_IDS = 1000
 #: what a read asks of the operating system at a time
 CHUNK = 1 * MiB
 

@@ -35,7 +35,7 @@ else:  # pragma: no cover
     import tomli as tomllib
 
 from rotorcosim.components import toml_text
-from rotorcosim.components.bounded_read import read_text
+from rotorcosim.components.bounded_read import MAX_EXTENDS, read_text
 from rotorcosim.components.contract import ContractError
 from rotorcosim.master.scenario import templates
 
@@ -216,6 +216,9 @@ def compose(path: str | Path, _seen: tuple = ()) -> tuple[dict, Origins]:
     path = real_path(path)
     if path in _seen:
         raise CompositionError(f"{path}: 'extends' loops back on itself ({' -> '.join(map(str, _seen + (path,)))})")
+    if len(_seen) >= MAX_EXTENDS:
+        raise CompositionError(f"{_seen[0]}: its 'extends' chain reaches {path} after {len(_seen)} files, above the "
+                               f"limit of {MAX_EXTENDS} files a scenario may extend")
     data = _load(path)
     where = str(path)
     head = data.get("scenario", {})

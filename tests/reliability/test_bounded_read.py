@@ -126,3 +126,25 @@ def test_a_device_that_never_ends_is_read_no_further_than_the_cap():
         read_bytes("/dev/zero", "scenario file", limit=MiB)
     assert time.perf_counter() - t < 5.0
     assert resource.getrusage(resource.RUSAGE_SELF).ru_maxrss > 0
+
+
+def test_count_caps_of_a_scenario_are_named(tmp_path, capsys):
+    """An ``extends`` chain of 70 files and a template listed for 1001 ids: each refused naming its limit, before
+    the files are read on or the components built."""
+    from rotorcosim.components.bounded_read import MAX_EXTENDS, MAX_TEMPLATE_IDS
+    from rotorcosim.master.cli import main
+
+    (tmp_path / "s0.toml").write_text((ROOT / "scenarios" / "toy_thermomechanical.toml").read_text())
+    for i in range(1, MAX_EXTENDS + 6):
+        (tmp_path / f"s{i}.toml").write_text(f'[scenario]\nname = "s{i}"\nextends = "s{i - 1}.toml"\n')
+    ids = ", ".join(f'"{i}"' for i in range(MAX_TEMPLATE_IDS + 1))
+    (tmp_path / "many.toml").write_text(f'[scenario]\nname = "many"\nextends = "{ROOT / "scenarios" / "blade_loss.toml"}"'
+                                        f'\n[templates]\nbearing = [{ids}]\n')
+    for name, words in ((f"s{MAX_EXTENDS + 5}.toml", f"above the limit of {MAX_EXTENDS} files a scenario may extend"),
+                        ("many.toml", f"lists {MAX_TEMPLATE_IDS + 1} ids, above the limit of {MAX_TEMPLATE_IDS} ids")):
+        rc = main(["run", str(tmp_path / name), "--duration", "0.01", "--out", str(tmp_path / "out")])
+        err = capsys.readouterr().err
+        assert rc == 2 and words in _one_error_line(subprocess.CompletedProcess([], rc, "", err)), err
+        assert not (tmp_path / "out").exists()
+    assert main(["run", str(tmp_path / f"s{MAX_EXTENDS - 1}.toml"), "--duration", "0.01", "--no-figures", "--quiet",
+                 "--out", str(tmp_path / "ok")]) == 0   # a chain within the limit runs
