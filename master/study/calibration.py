@@ -187,9 +187,9 @@ def calibrate(spec: str | Path | CalibrationSpec, out: str | Path, *, scheduler:
                             "a smaller max_evaluations, fewer cases or a shorter duration in the SPEC, or more "
                             "workers (--workers, --scheduler)", force)
     est["runs_at_most"] = True   # the search may stop long before max_evaluations
-    print(budget.many_line(est, "calibrate"), file=sys.stderr, flush=True)
     resumed = store.open_folder(out, REPORT, TABLE, spec.fingerprint(), {**head, "estimate": est},
                                 spec.definition(), resume)
+    print(budget.many_line(est, "calibrate"), file=sys.stderr, flush=True)   # once the folder is taken
     results = list(dict.fromkeys(t.result for t in targets))
     table = store.RowStore(out / TABLE, ["case", *(p.name for p in spec.parameters), *results, "status",
                                          "wall_time_s", "error"])

@@ -125,9 +125,9 @@ def uq(spec: str | Path | UQSpec, out: str | Path, *, scheduler: str | None = No
                             spec.duration, len(x) - len(done_before), at_once, f"uq {spec.source}",
                             "fewer samples or a shorter duration in the SPEC, or more workers (--workers, "
                             "--scheduler)", force)
-    print(budget.many_line(est, "uq"), file=sys.stderr, flush=True)
     resumed = store.open_folder(out, REPORT, TABLE, spec.fingerprint(), {**head, "estimate": est},
                                 spec.definition(), resume)
+    print(budget.many_line(est, "uq"), file=sys.stderr, flush=True)   # once the folder is taken, before a run
     rows = {int(r["sample"]): r for r in table.read()}
     todo = [i for i in range(len(x)) if i not in rows]
     report = {**head, "estimate": est, "fingerprint": spec.fingerprint(), "definition": spec.definition(),

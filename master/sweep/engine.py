@@ -121,10 +121,10 @@ def run_cases(cases: Sequence[Case], out, *, scheduler: str | None = None, worke
     # fail early: a bad scenario, an unknown component, a duration or schedule no run takes, a sweep too long
     prices = [c.check(force) for c in cases]
     est = _estimate(prices, scheduler, workers, serial, client, connect_timeout, force)
-    if say is not None:
-        say(budget.many_line(est, "sweep"))
     definitions = {c.name: c.definition() for c in cases}
     with SweepFolder(out, overwrite=overwrite, resume=resume, extra_files=extra_files) as folder:
+        if say is not None:   # once the folder is taken (a refusal of it is the only line), before the first case
+            say(budget.many_line(est, "sweep"))
         return _Sweep(cases, folder, definitions, {**(info or {}), "estimate": est}, progress).run(
             scheduler, workers, serial, client, connect_timeout, finish)
 
