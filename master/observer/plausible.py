@@ -1,7 +1,7 @@
 """The plausibility observer: once every component is set up (its parameters passed their own checks), one
 warning line on stderr per parameter its user set outside the plausible range the component declares
 (components/plausibility.py): a value off by a unit factor, where the component can tell; and an event set at or
-after the end of the run (a fuel cut, a blade loss), which then never happens in it.
+after the end of the run (a component's event time, such as a fuel cut), which then never happens in it.
 
 Warned at the start of the run, not when the system is built, so that a value a component refuses (a negative
 stiffness) gets the component's error alone, not a warning beside it.
