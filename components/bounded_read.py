@@ -58,12 +58,13 @@ def size_text(n: int) -> str:
     if n >= MiB and n % MiB == 0:
         return f"{n // MiB} MiB"
     if n >= MiB:
-        return f"{n / MiB:.1f} MiB"
+        return f"{n} bytes ({n / MiB:.1f} MiB)"
     return f"{n} bytes"
 
 
 def _refuse(where: str, size: str, limit: int, what: str) -> TooLarge:
-    return TooLarge(f"{where}: {size}, above the limit of {size_text(limit)} a {what} may have here")
+    article = "an" if what[:1].lower() in "aeiou" else "a"
+    return TooLarge(f"{where}: {size}, above the limit of {size_text(limit)} {article} {what} may have here")
 
 
 def read_bytes(path: str | os.PathLike, what: str, limit: int = MAX_TEXT_BYTES) -> bytes:
