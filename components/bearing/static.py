@@ -131,8 +131,9 @@ def solve_balls(g: BearingGeometry, ur, uz, wr, eps=(0.0, 0.0, 0.0), Fc: float =
         if Fc == 0.0:
             R = np.where((di > 0.0) | (de > 0.0), R, 0.0)
         load = max(float(np.max(Qi)), float(np.max(Qe)), scale)
-        if np.max(np.abs(R)) >= ROUNDING * load:
-            raise RuntimeError(f"ball equilibrium did not converge (residual {np.max(np.abs(R)):.3e} N against "
+        residual = float(np.max(np.abs(R)))
+        if not (math.isfinite(residual) and math.isfinite(load) and residual < ROUNDING * load):
+            raise RuntimeError(f"ball equilibrium did not converge (residual {residual:.3e} N against "
                                f"contact loads up to {load:.3g} N)")
     return v, _contacts(g, p, q, v, eps_b)
 
