@@ -1,4 +1,4 @@
-"""Convergence study of the thermo-mechanical communication step (issue 7, item 5).
+"""Convergence study of the thermo-mechanical communication step.
 
     python bench/bench_convergence.py [--unbalance 2850] [--steps 2e-5 1e-5 5e-6]
 

@@ -114,7 +114,7 @@ def ecos_vs_master(folder: Path):
         print(f"  Ecos: cannot import the helper ({exc})")
         return
     try:
-        import ecospy  # noqa: F401
+        import ecospy  # noqa: F401 - only whether it imports
     except (ImportError, OSError) as exc:
         print(f"  Ecos: not available ({exc})")
         return

@@ -16,7 +16,6 @@ import tempfile
 import time
 from pathlib import Path
 
-import numpy as np
 
 from rotorcosim.components.contract import Component, Variable
 from rotorcosim.master.schedule import Interval, Timeline
@@ -83,7 +82,7 @@ def ecos_vs_master_rate(ssp: Path, n: int) -> tuple[float, float]:
 
 def ecos_comparison(blade_loss: bool, n: int) -> None:
     try:
-        import ecospy  # noqa: F401
+        import ecospy  # noqa: F401 - only whether it imports
     except Exception as exc:  # not installed, or its library does not load (libtbb12 missing)
         print(f"Ecos vs our master: skipped, ecospy unavailable ({exc})")
         return

@@ -26,7 +26,7 @@ def main():
     t0 = time.perf_counter()
     from rotorcosim.components.rotor import model as fem
     from rotorcosim.components.rotor import verification as ver
-    from rotorcosim.components.rotor.component import Rotor, full_model, reduced_model
+    from rotorcosim.components.rotor.component import Rotor, reduced_model
     t_import = time.perf_counter() - t0
 
     t0 = time.perf_counter()

@@ -1,4 +1,4 @@
-"""Why the rotor overshoots a soft rub ring: the linear engine with the ring in contact (issue 17, rubbing branch).
+"""Why the rotor overshoots a soft rub ring: the linear engine with the ring in contact (the rubbing branch).
 
 The co-simulated engine linearised (cases/blade_loss/linear_engine.py: film at 30 C about the centred journal) with the rub
 ring in contact represented as a radial spring k_r between the power-turbine node of the ring and the casing hub
@@ -11,7 +11,7 @@ of bearing #0. Prints
   through 16 000 rev/min between about 1.5e7 and 3e7 N/m and settles near 17 900 rev/min;
 * the same with the film's secant radial stiffness at e ~ 0.96 (3.3e7 N/m, measured in the co-simulation at
   8551 N with the former ring) added to bearing #0's support;
-* (third session) the ring's normal force N estimated on the linear engine (film linearised at 85 C, the film oil
+* the ring's normal force N estimated on the linear engine (film linearised at 85 C, the film oil
   of the rubbing cases) for a circular synchronous orbit held at the clearance: the ring pushes inward on a rotor
   point whose receptance to the hub is mass-controlled (phase near -175 deg), so the only orbit it can hold is the
   one turned in phase with the unbalance, N = |c + N/k_r + H_u F_u| / |H_g| ~ (c + |H_u| F_u) / |H_g|, at least

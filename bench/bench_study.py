@@ -8,7 +8,7 @@ process and then on a local cluster of ``--workers`` processes, and prints the w
 and the parallel efficiency, serial time / (workers x Dask time). Measured in one process, one after the other: on a
 machine shared with other jobs the efficiency also measures the load.
 
-Part 2 (``--truth``): the issue's synthetic truth on the engine: targets made by the engine itself at 2850 N, 2 s
+Part 2 (``--truth``): a synthetic truth on the engine: targets made by the engine itself at 2850 N, 2 s
 runs, with damper #0's O-ring at 5.8e6 N/m and bearing #0's Palmgren factor at 1.4; the calibration starts at
 5.254e6 N/m and 1.0 and must end within 1 % (or within its standard error) of both.
 """

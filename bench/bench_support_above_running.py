@@ -1,5 +1,5 @@
-"""Is there a plausible layout with bearing #0's support mode ABOVE the 16 000 rev/min running speed? (issue 17,
-fourth session: a time-boxed structural study, linear engine only.)
+"""Is there a plausible layout with bearing #0's support mode ABOVE the 16 000 rev/min running speed? (A
+time-boxed structural study, linear engine only.)
 
 The question (docs/results/calibration.md, "A layout with #0's support mode above the running speed"): a layout in which
   (a) the linear engine (master/linear_engine, as ``rotorcosim critical-speeds``) has its two lowest forward
@@ -45,8 +45,8 @@ from rotorcosim.components.rotor import model as fem
 from rotorcosim.cases.blade_loss import linear_engine as le
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-import bench_rub_modes as brm  # noqa: E402
-import bench_support_isolation as bsi  # noqa: E402
+import bench_rub_modes as brm  # noqa: E402 - after the sys.path line above (the bench folder is not a package)
+import bench_support_isolation as bsi  # noqa: E402 - after the sys.path line above (the bench folder is not a package)
 
 RUN_RPM = 16000.0
 #: a design separation margin of 15-20 % between a critical speed and the running speed (the brief's "typical

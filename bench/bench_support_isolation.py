@@ -1,4 +1,4 @@
-"""Why bearing #0's transmissibility is 0.6-0.75 below rub where the paper has 1.02-1.27 (issue 17, third session).
+"""Why bearing #0's transmissibility is 0.6-0.75 below rub where the paper has 1.02-1.27 (the rub study).
 
 Prints, from the paper's Table 5, the shipped comparison (docs/results/paper_comparison.csv) and the linear engine
 (cases/blade_loss/linear_engine.py, film linearised about the centred journal):

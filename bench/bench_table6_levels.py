@@ -4,7 +4,7 @@ relative error of the Table 4 results against the monolithic run, the load avera
 
     python bench/bench_table6_levels.py [--levels paper] [--rounds 1] [--out DIR] [--timing-runs N]
 
-Issue 12's target: every result within 2 % and a speed-up of at least 12 at every level. The machine's speed
+The target: every result within 2 % and a speed-up of at least 12 at every level. The machine's speed
 drifts by 10-20 % over seconds, which is why `compare` times the staggered run before and after the monolithic
 one (cases/blade_loss/compare.py: --timing-runs, default 6, half before and half after, their mean reported);
 --rounds repeats the whole table to show the spread that is left, and the last lines pool every round per level

@@ -1,4 +1,4 @@
-"""Benchmark and plausibility figures of the thermal network and the rub ring (issue 6).
+"""Benchmark and plausibility figures of the thermal network and the rub ring.
 
 Prints: the cost of one do_step of each component (thermal at 1 ms and 0.1 s, rub ring in and out of contact,
 measured within this process), the one-off cost of a new step size (matrix exponential), the cost of these
@@ -16,7 +16,6 @@ from __future__ import annotations
 
 import csv
 import time
-from pathlib import Path
 
 import numpy as np
 

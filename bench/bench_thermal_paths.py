@@ -1,4 +1,4 @@
-"""Where bearing #0's and #5's heat goes (issue 17: the #5 network's temperature rise per watt).
+"""Where bearing #0's and #5's heat goes (the #5 network's temperature rise per watt).
 
 For each bearing, at the paper's below-rub powers (Table 5: #0 348.3 W drag + 30.56 W film at 712 N, #5 624.6 W
 + 0.95 W at 2850 N) and at ours (docs/results/table5.csv, 712 N: #0 312.8 + 35.2 W, #5 499.4 + 0.06 W), the network alone

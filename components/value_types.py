@@ -118,7 +118,7 @@ def check_value(var, value: Any, where: str) -> np.ndarray:
             lo, hi = integer_range(var)
             if not lo <= x <= hi:
                 raise ContractError(f"{where}: {x} is outside the range [{lo}, {hi}] of {var.fmi_type or 'Integer'}"
-                                    + (f" (declared min/max)" if var.min is not None or var.max is not None else ""))
+                                    + (" (declared min/max)" if var.min is not None or var.max is not None else ""))
             if var.choices and x not in var.choices:
                 raise ContractError(f"{where}: {x} is not a value of the enumeration (its values: "
                                     f"{', '.join(map(str, var.choices))})")

@@ -55,6 +55,7 @@ from rotorcosim.components.value_types import KIND_OF, UNCARRIED, check_value, d
 
 from rotorcosim.fmus import extraction_cache
 from rotorcosim.fmus import model_description as mdx
+from rotorcosim.fmus.fmpy_internals import c_function
 from rotorcosim.fmus.flatten import FlattenError, regroup
 from rotorcosim.fmus.units import BASE
 from rotorcosim.fmus.safezip import ArchiveError, check_entries, open_zip
@@ -378,7 +379,7 @@ def _free_state(handle: _Handle, state) -> None:
     fmu = handle.fmu
     if fmu is not None and handle.instantiated:
         try:
-            fmu._functions[_STATE_FUNCTIONS[handle.version][2]](fmu.component, ctypes.byref(state))
+            c_function(fmu, _STATE_FUNCTIONS[handle.version][2])(fmu.component, ctypes.byref(state))
         except Exception:
             pass
 
@@ -386,12 +387,12 @@ def _free_state(handle: _Handle, state) -> None:
 class _Transfer:
     """Preallocated value references and values of one FMI type, for a set of ports (one Get/Set call)."""
 
-    def __init__(self, version: str, fmi_type: str, ports: list[tuple[Variable, list[int]]], functions):
+    def __init__(self, version: str, fmi_type: str, ports: list[tuple[Variable, list[int]]], fmu):
         ctype, suffix = _CTYPES[version][fmi_type]
         self.fmi3 = version == "3"
         self.string = fmi_type == "String"
         self.get_name, self.set_name = f"fmi{version}Get{suffix}", f"fmi{version}Set{suffix}"
-        self.get, self.set = functions[self.get_name], functions[self.set_name]
+        self.get, self.set = c_function(fmu, self.get_name), c_function(fmu, self.set_name)
         self.ports = []
         vrs: list[int] = []
         n = 0
@@ -470,8 +471,7 @@ class FMUComponent(Component):
             if v.causality == causality and v.carried:
                 refs = list(dict.fromkeys(e.valueReference for e in self._scalars[v.name]))
                 by_type.setdefault(v.fmi_type, []).append((v, refs))
-        f = self._handle.fmu._functions
-        return [_Transfer(self._version, t, ports, f) for t, ports in sorted(by_type.items())]
+        return [_Transfer(self._version, t, ports, self._handle.fmu) for t, ports in sorted(by_type.items())]
 
     def _instantiate(self, md, where: str) -> None:
         from fmpy.fmi2 import FMU2Slave
@@ -509,11 +509,11 @@ class FMUComponent(Component):
         except Exception as exc:
             raise FMUError(f"{where}: instantiation failed ({exc}){self._log_text()}") from None
         h.instantiated = True
-        f = h.fmu._functions
         self._c = h.fmu.component
-        self._int_get, self._int_set = f[f"fmi{self._version}GetInt{'eger' if self._version == '2' else '32'}"], \
-            f[f"fmi{self._version}SetInt{'eger' if self._version == '2' else '32'}"]
-        self._do_step = f[f"fmi{self._version}DoStep"]
+        suffix = "eger" if self._version == "2" else "32"
+        self._int_get = c_function(h.fmu, f"fmi{self._version}GetInt{suffix}")
+        self._int_set = c_function(h.fmu, f"fmi{self._version}SetInt{suffix}")
+        self._do_step = c_function(h.fmu, f"fmi{self._version}DoStep")
         if self._version == "3":
             self._flags = [ctypes.c_bool(), ctypes.c_bool(), ctypes.c_bool(), ctypes.c_double()]
             self._flag_refs = [ctypes.byref(x) for x in self._flags]
@@ -737,10 +737,10 @@ class FMUComponent(Component):
         self._pull_outputs()
 
     def _stop2(self, t: float, h: float) -> None:
-        f = self._handle.fmu._functions
+        fmu = self._handle.fmu
         flag = ctypes.c_int(0)
         try:
-            ok = f["fmi2GetBooleanStatus"](self._c, _FMI2_TERMINATED, ctypes.byref(flag)) <= _OK_STATUS
+            ok = c_function(fmu, "fmi2GetBooleanStatus")(self._c, _FMI2_TERMINATED, ctypes.byref(flag)) <= _OK_STATUS
         except Exception:
             ok = False
         if not (ok and flag.value):
@@ -750,7 +750,7 @@ class FMUComponent(Component):
                            + self._log_text())
         last = ctypes.c_double(t)
         try:
-            if f["fmi2GetRealStatus"](self._c, _FMI2_LAST_SUCCESSFUL_TIME, ctypes.byref(last)) > _OK_STATUS:
+            if c_function(fmu, "fmi2GetRealStatus")(self._c, _FMI2_LAST_SUCCESSFUL_TIME, ctypes.byref(last)) > _OK_STATUS:
                 last.value = t
         except Exception:
             last.value = t
@@ -787,7 +787,7 @@ class FMUComponent(Component):
         self._require_state()
         state = ctypes.c_void_p()
         name = _STATE_FUNCTIONS[self._version][0]
-        self._check(self._handle.fmu._functions[name](self._c, ctypes.byref(state)), name)
+        self._check(c_function(self._handle.fmu, name)(self._c, ctypes.byref(state)), name)
         return (self.time, {k: v.copy() for k, v in self.u.items()}, {k: v.copy() for k, v in self.y.items()},
                 _FMUState(self, state))
 
@@ -795,7 +795,7 @@ class FMUComponent(Component):
         self._require_state()
         t, u, y, handle = snapshot
         name = _STATE_FUNCTIONS[self._version][1]
-        self._check(self._handle.fmu._functions[name](self._c, handle.state), name)
+        self._check(c_function(self._handle.fmu, name)(self._c, handle.state), name)
         self.time = t
         self.u = {k: v.copy() for k, v in u.items()}
         self.y = {k: v.copy() for k, v in y.items()}

@@ -34,7 +34,7 @@ from rotorcosim.master import case
 from rotorcosim.master.schedule import budget
 from rotorcosim.master.run import checkpoint
 from rotorcosim.master.run import watchdog
-from rotorcosim.master.core.algorithm import SimulationDiverged
+from rotorcosim.master.core.algorithm import SimulationDiverged  # noqa: F401 - re-exported: rotorcosim.SimulationDiverged
 from rotorcosim.master.compiled.choice import ENGINES
 from rotorcosim.master.run.figure_pool import FigurePool
 from rotorcosim.master.observer.observers import Progress, Recorder, column_names
@@ -428,6 +428,7 @@ def _simulate(sc, duration, schedule, out, record, progress, figures, overwrite,
                 # what the case found at some time of the run that its end values do not show: one line each
                 for event in summary.get("events") or []:
                     print(f"{sc.name}: warning: {event['message']}", file=sys.stderr)
+                _estimate_summary(summary, sc, report.hold)
                 if figures and out is not None and status in ("complete", "stopped"):
                     names = post.figures(sc, data, out, pool=pool, dpi=dpi)
                     summary["figures"] = names
@@ -501,3 +502,21 @@ def _roundtrip(summary: dict) -> dict:
     from rotorcosim.master.run.outputs import _plain
 
     return json.loads(json.dumps(_plain(summary)))
+
+
+def _estimate_summary(summary: dict, sc, hold) -> None:
+    """The run's estimated error in summary.json's ``hold``: the largest of the case's results'
+    (``estimated_error``, if it gives them; else the hold's own over its temperatures) as
+    ``estimated_error_pct``, and ``advice`` (which interval, what to change) where it exceeds the scenario's
+    ``[schedule] tolerance``."""
+    if hold is None or summary.get("hold") is None:
+        return
+    est = summary.get("estimated_error")
+    if est is not None:
+        summary["hold"]["estimated_error_pct"] = est["largest_pct"]
+    largest = summary["hold"].get("estimated_error_pct")
+    tol = sc.schedule.get("tolerance")
+    if largest is not None and tol is not None:
+        note = hold.advice(largest, float(tol))
+        if note is not None:
+            summary["hold"]["advice"] = note

@@ -11,7 +11,7 @@ from __future__ import annotations
 import math
 import threading
 import time as _time
-from typing import Callable, Sequence
+from typing import Sequence
 
 import numpy as np
 
@@ -38,8 +38,7 @@ class Simulation:
     [s] or a declared speed signal) that sets a cycle's length (needed by thermal-only intervals); ``observers``: what watches the run
     (:class:`~rotorcosim.master.observer.observers.Observer`); ``t0``: the start time [s]; ``restart_cycles``:
     cycles [-] over which the thermal inputs of the mechanical components go to their new values when a
-    thermo-mechanical interval restarts; ``temperature_zero`` [K]: the zero of the temperatures in the hold's
-    relative error estimate (0: absolute; a scenario reporting degrees C declares 273.15); ``phases``: the
+    thermo-mechanical interval restarts; ``phases``: the
     scenario's names of its coupled and held phases (:class:`~rotorcosim.master.core.phases.Phases`; default
     "TM" and "TO"). :attr:`phase` is the role of the running interval (``COUPLED`` / ``HELD`` of the component
     contract), :attr:`phase_name` its name.
@@ -65,7 +64,7 @@ class Simulation:
                  settings: EngineSettings | None = None, steps: dict[str, float] | None = None,
                  hold: str = DEFAULT_HOLD, hold_cycles: float = 5.0, cycle: Cycle | float | None = None,
                  observers: Sequence = (), t0: float = 0.0, restart_cycles: float = RESTART_CYCLES,
-                 temperature_zero: float = 0.0, phases: Phases | None = None):
+                 phases: Phases | None = None):
         if hold not in HOLDS:
             raise ContractError(f"hold {hold!r} not in {HOLDS}")
         if not (hold_cycles > 0 and math.isfinite(hold_cycles)):
@@ -86,8 +85,7 @@ class Simulation:
         self.cycle_source = as_cycle(cycle)
         if self.cycle_source is not None:
             self.cycle_source.check(system)
-        self.hold = StaggeredHold(system, self.engine.links, hold, hold_cycles, self.cycle_source, restart_cycles,
-                                  temperature_zero)
+        self.hold = StaggeredHold(system, self.engine.links, hold, hold_cycles, self.cycle_source, restart_cycles)
         #: the turns of the cycle's angle (a cycle source with ``angle``: windows counted in revolutions), or None;
         #: it watches the run as its first observer
         self.revolutions = None
@@ -204,10 +202,10 @@ class Simulation:
         return out
 
     # -- one interval ----------------------------------------------------------------------------------
-    def run_interval(self, phase: str, duration: float, step: float, stop: "_StopTest | None" = None,
+    def run_interval(self, phase: str, duration: float, step: float, stop=None,
                      reason: str = "") -> UsedInterval:
         """Run one interval of the phase called ``phase`` (one of :attr:`phases`' names) for ``duration`` [s] at
-        base step ``step`` [s]; ``stop`` (automatic schedule) may end it early."""
+        base step ``step`` [s]; ``stop`` (the automatic schedule's stop test, schedule/auto.py) may end it early."""
         try:
             role = self.phases.role(phase)
         except ContractError as exc:
@@ -309,6 +307,8 @@ class Simulation:
                 started.append(obs)   # one whose start fails may hold something half-open: it is ended too
                 obs.start(self, schedule)
             schedule.run(self, first)
+            self.hold.finish()
+            self.report.hold = self.hold.report
             self.report.status = "stopped" if self.report.stopped else "complete"
         except BaseException as exc:
             error = exc

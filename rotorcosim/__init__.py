@@ -12,23 +12,30 @@ The Python API (``master/api.py``)::
     rotorcosim.calibrate("spec.toml", "out")                   # model updating (master/study/calibrate.py)
     rotorcosim.uq("uq.toml", "out")                            # uncertainty quantification (master/study/uq.py)
 
-The code lives in the top-level folders fixed by the design card and is installed as sub-packages:
+The code lives in the checkout's top-level folders and is installed as sub-packages:
 ``rotorcosim.components`` (components/), ``rotorcosim.master`` (master/), ``rotorcosim.fmus`` (fmus/).
 """
 import os as _os
 
-__version__ = "0.1.0"
-
-# The model's matrices are small (tens to hundreds of DOF): a multi-threaded BLAS only adds contention, and on a
-# loaded 2-core machine it made the rotor's eigen-solves 10 times slower (measured). Set before numpy loads it;
-# a value the user has set wins.
-_os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
-
 # Running from a source checkout (``python -m pytest`` puts the checkout first on sys.path) this folder
 # shadows the installed package; let the sub-packages resolve to the sibling folders in that case.
 _checkout = _os.path.dirname(_os.path.dirname(_os.path.abspath(__file__)))
-if _os.path.isfile(_os.path.join(_checkout, "components", "contract.py")):
-    __path__.append(_checkout)  # noqa: F821  (module attribute of a package)
+_IN_CHECKOUT = _os.path.isfile(_os.path.join(_checkout, "components", "contract.py"))
+if _IN_CHECKOUT:
+    __path__.append(_checkout)  # noqa: F821 - __path__ is set by the import system on a package, unseen by ruff
+
+
+def _version() -> str:
+    """The version, written once in pyproject.toml: the checkout's own file when running from one (the installed
+    copy may be another), else the installed distribution's metadata (tests/test_version.py: CITATION.cff too)."""
+    if _IN_CHECKOUT:
+        import re
+
+        text = open(_os.path.join(_checkout, "pyproject.toml"), encoding="utf-8").read()
+        return re.search(r'^version = "([^"]+)"', text, re.M).group(1)
+    from importlib.metadata import version
+
+    return version("rotorcosim")
 
 #: the API, imported on first use so that ``rotorcosim --help`` and the light commands start fast
 _API = ("load_scenario", "simulate", "Result", "Scenario", "SimulationDiverged")
@@ -37,6 +44,9 @@ _STUDIES = ("calibrate", "uq")
 
 
 def __getattr__(name):
+    if name == "__version__":
+        globals()["__version__"] = v = _version()
+        return v
     if name in _API:
         from rotorcosim.master import api
 
@@ -49,4 +59,4 @@ def __getattr__(name):
 
 
 def __dir__():
-    return sorted(list(globals()) + list(_API) + list(_STUDIES))
+    return sorted(list(globals()) + ["__version__", *_API, *_STUDIES])

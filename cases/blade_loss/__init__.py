@@ -25,8 +25,8 @@ The generic master runs the case as any other; what its parts measured on this s
 - The restart: stepping the thermal growths into the frozen mechanics at once rings the rotor's axial mode
   (~480 Hz; at 712 N +-3 um at bearing #0 and the ball loads +-10 %, decaying 4 % in 10 cycles); the default
   ramp of 2 rotor cycles (3.6 periods of that mode) keeps ~2 % of it; ``restart_cycles = 0`` is the paper's step.
-- The error estimate takes temperatures relative to their degrees C values (``temperature_zero`` 273.15 K, the
-  scenario layer's default), the convention of the relative errors of Table 4 and ``rotorcosim compare``.
+- The error estimate takes temperatures relative to their rise above the run's initial temperature
+  (results.estimated_errors), not to their degrees C values as Table 6's relative errors do.
 """
 
 #: the result extraction of the scenarios whose ``[results] kind`` is ``"blade_loss"`` (rotorcosim.master.case)

@@ -14,8 +14,6 @@ each refined by a bounded scalar search (scipy.optimize.minimize_scalar) between
 from __future__ import annotations
 
 import numpy as np
-from scipy.optimize import minimize_scalar
-from scipy.signal import find_peaks
 
 from rotorcosim.cases.blade_loss import linear_engine
 
@@ -32,6 +30,10 @@ def damped_critical_speeds(full, sup: dict, min_rpm: float, max_rpm: float, ref_
     """Per co-simulated bearing (the keys of :func:`linear_engine.response`), the speeds [rev/min] between
     ``min_rpm`` and ``max_rpm`` at which the rotor's whirl there peaks under an unbalance growing with the square
     of the speed (its level at ``ref_rpm`` does not matter: the system is linear)."""
+    # scipy.signal imports scipy.stats (~1 s of CPU): at the first call, not with the module
+    from scipy.optimize import minimize_scalar
+    from scipy.signal import find_peaks
+
     if not 0.0 < min_rpm < max_rpm:
         raise ValueError(f"damped critical speeds: need 0 < min_rpm < max_rpm, got {min_rpm:g} and {max_rpm:g}")
     n = max(int(np.ceil(np.log(max_rpm / min_rpm) / np.log1p(STEP))) + 1, 3)

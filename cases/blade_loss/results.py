@@ -32,6 +32,7 @@ from pathlib import Path
 import numpy as np
 
 from rotorcosim.components.contract import COUPLED
+from rotorcosim.master.manipulator.hold import RISE_FLOOR_K
 from rotorcosim.master.observer.observers import Observer, SteadyWindows, sampled_rows
 from rotorcosim.master.scenario.cycle import cycle_of
 
@@ -238,10 +239,38 @@ def unbalance_force(sc) -> float:
     return float(sc.components[comp].parameters.get(param, np.nan))
 
 
+#: the results read over the steady window (the mechanics): their estimated error shares the hand-backs'
+#: (master/manipulator/hold.py, HoldReport.mechanics_fraction)
+WINDOW_KEYS = ("whirl_amplitude_mm", "transmissibility", "max_contact_load_N", "max_contact_stress_MPa",
+               "max_contact_stress_outer_MPa", "rub_power_W", "drag_power_W", "sfd_power_W")
+#: the final temperatures and the thermal network's output each one is
+TEMPERATURES = {"T_inner_race_C": "T_inner_race", "T_ball_C": "T_ball", "T_outer_race_C": "T_outer_race",
+                "T_sfd_oil_C": "T_sfd_oil"}
+
+
+def _window_results(w, k, F_u) -> dict:
+    """The results of bearing ``k`` read over the steady window ``w`` (SteadyWindows' dict)."""
+    X = w[f"rotor.X_brg{k}"]
+    F = w[f"damper{k}.F_journal"]
+    return {
+        "whirl_amplitude_mm": 1e3 * float(np.max(np.hypot(X[:, 0], X[:, 1]))),
+        "transmissibility": float(np.max(np.hypot(F[:, 0], F[:, 1]))) / F_u if F_u > 0 else None,
+        "max_contact_load_N": float(np.max(w[f"bearing{k}.Q_max"])),
+        "max_contact_stress_MPa": 1e-6 * float(np.max(w[f"bearing{k}.sigma_max"][:, INNER])),
+        "max_contact_stress_outer_MPa": 1e-6 * float(np.max(w[f"bearing{k}.sigma_max"][:, OUTER])),
+        # a bearing without a rub ring: no rub power (null)
+        "rub_power_W": float(np.mean(w[f"rubring{k}.P_rub"])) if f"rubring{k}.P_rub" in w else None,
+        "drag_power_W": float(np.mean(w[f"bearing{k}.P_drag"])),
+        "sfd_power_W": float(np.mean(w[f"damper{k}.P_film"])),
+    }
+
+
 def extract(sc, sim, obs, report) -> dict:
-    """The results of a finished run (summary.json's ``unbalance_N``, ``window`` and ``bearings``): for each
-    bearing (by id; #0 and #5 for the paper's engine) the paper's Table 4 quantities over the last steady window (mm, N, MPa, W, degrees C) and the peaks
-    over the run. ``obs``: the :func:`observers` of the run; ``sim``, ``report``: the simulation and its report."""
+    """The results of a finished run (summary.json's ``unbalance_N``, ``window``, ``bearings`` and
+    ``estimated_error``): for each bearing (by id; #0 and #5 for the paper's engine) the paper's Table 4
+    quantities over the last steady window (mm, N, MPa, W, degrees C) and the peaks over the run, and the
+    staggered scheme's estimated error of each (:func:`estimated_errors`). ``obs``: the :func:`observers` of the
+    run; ``sim``, ``report``: the simulation and its report."""
     windows, peaks = obs
     if not windows.windows:
         return {"bearings": {}, "note": "no thermo-mechanical interval completed: no results"}
@@ -250,21 +279,12 @@ def extract(sc, sim, obs, report) -> dict:
     out = {}
     for k in peaks.ids:
         X = w[f"rotor.X_brg{k}"]
-        F = w[f"damper{k}.F_journal"]
         T = sim.value(f"thermal{k}.T_nodes")
         H = w.get(peaks.housing[k]) if k in peaks.housing else None
         whirl = 1e3 * float(np.max(np.hypot(X[:, 0], X[:, 1])))
         pk = peaks.peak[k]
         r = {
-            "whirl_amplitude_mm": whirl,
-            "transmissibility": float(np.max(np.hypot(F[:, 0], F[:, 1]))) / F_u if F_u > 0 else None,
-            "max_contact_load_N": float(np.max(w[f"bearing{k}.Q_max"])),
-            "max_contact_stress_MPa": 1e-6 * float(np.max(w[f"bearing{k}.sigma_max"][:, INNER])),
-            "max_contact_stress_outer_MPa": 1e-6 * float(np.max(w[f"bearing{k}.sigma_max"][:, OUTER])),
-            # a bearing without a rub ring: no rub power (null)
-            "rub_power_W": float(np.mean(w[f"rubring{k}.P_rub"])) if f"rubring{k}.P_rub" in w else None,
-            "drag_power_W": float(np.mean(w[f"bearing{k}.P_drag"])),
-            "sfd_power_W": float(np.mean(w[f"damper{k}.P_film"])),
+            **_window_results(w, k, F_u),
             "T_inner_race_C": float(T[NODES.index("inner_race")]) - KELVIN,
             "T_ball_C": float(T[NODES.index("ball")]) - KELVIN,
             "T_outer_race_C": float(T[NODES.index("outer_race")]) - KELVIN,
@@ -289,8 +309,12 @@ def extract(sc, sim, obs, report) -> dict:
             "plastic_flow_first_time_s": pk["t_plastic"],
         }
         out[str(k)] = r
-    return {"unbalance_N": F_u, "window": {"t_start": float(w["t"][0]), "t_end": float(w["t"][-1])},
-            "bearings": out, "events": events(out)}
+    res = {"unbalance_N": F_u, "window": {"t_start": float(w["t"][0]), "t_end": float(w["t"][-1])},
+           "bearings": out, "events": events(out)}
+    est = estimated_errors(windows.windows, out, report.hold, F_u)
+    if est is not None:
+        res["estimated_error"] = est
+    return res
 
 
 def events(bearings: dict) -> list[dict]:
@@ -316,6 +340,41 @@ def events(bearings: dict) -> list[dict]:
                                    f"incipient plastic flow from t = {r['plastic_flow_first_time_s']:.6g} s (peak "
                                    f"{stress:.5g} MPa)"})
     return out
+
+
+def estimated_errors(windows, bearings, hold, F_u) -> dict | None:
+    """The staggered scheme's estimated error of each Table 4 result [%] (None without a charged thermal-only
+    interval; master/manipulator/hold.py has the estimator): a temperature's is the hold's estimated error of the
+    thermal network's output, percent of its rise above the run's initial temperature (at least the hold's
+    RISE_FLOOR_K); a result read over the steady window takes the share in error of the values its bearing's
+    thermal network hands back to the mechanics (``mechanics_fraction`` of ``thermal<ID>``: its oil temperature
+    and growths) of its own change between the last two thermo-mechanical intervals, percent of its value: the
+    mechanics follow those values quasi-statically, so an error that is a share of their move over the held
+    interval is that share of the result's move. ``largest_pct`` and ``largest`` ("bearing.key") are the run's
+    estimate."""
+    if hold is None or hold.estimated_error_pct is None:
+        return None
+    per: dict[str, dict[str, float]] = {}
+    for k, r in bearings.items():
+        e = {}
+        for key, port in TEMPERATURES.items():
+            ref = f"thermal{k}.{port}"
+            err, rise = hold.output_errors.get(ref), hold.output_rise.get(ref)
+            if err is not None and rise is not None:
+                e[key] = 100.0 * abs(err[0]) / max(abs(rise[0]), RISE_FLOOR_K)
+        f = hold.mechanics_fraction.get(f"thermal{k}")
+        if len(windows) >= 2 and f is not None:
+            prev = _window_results(windows[-2], k, F_u)
+            for key in WINDOW_KEYS:
+                q, q0 = r.get(key), prev.get(key)
+                if q is not None and q0 is not None and q != 0.0:
+                    e[key] = 100.0 * f * abs(q - q0) / abs(q)
+        per[k] = e
+    flat = [(v, f"{k}.{key}") for k, e in per.items() for key, v in e.items()]
+    if not flat:
+        return None
+    largest, which = max(flat)
+    return {"largest_pct": largest, "largest": which, "per_result_pct": per}
 
 
 # -- figures ------------------------------------------------------------------------------------------

@@ -34,7 +34,7 @@ from ..contract import ContractError, Variable
 from ..kernels import PYTHON
 from ..numba_internals import kernel_jit
 from .component import Rotor, full_model
-from .kernel import RotorState, advance, pack
+from .kernel import advance, pack
 from .newmark import initial_acceleration, step_operator
 
 SpinParams = namedtuple("SpinParams", "TB O f s_new xv F_residual F_unbalance unbalance_phase t_blade_loss "

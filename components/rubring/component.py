@@ -15,17 +15,14 @@ data/rubrings.toml, their reasons in docs/explanation/paper-components.md: stiff
 """
 from __future__ import annotations
 
-import math
 import tomllib
 from pathlib import Path
-
-import numpy as np
 
 from ..contract import ContractError, Memoryless, Variable
 from ..kernels import KernelComponent
 from ..speeds import PT_OMEGA
 from ..validity import Check
-from .contact import RubParams, rub_force, tm_step
+from .contact import RubParams, tm_step
 
 DATA = Path(__file__).with_name("data") / "rubrings.toml"
 with open(DATA, "rb") as _f:

@@ -60,19 +60,36 @@ EPILOG = ("A command's options: rotorcosim COMMAND --help. A command that takes 
           "Errors: one line and exit status 2 for a mistake in the input, 1 for a run that failed, 130 for an "
           "interrupted run; --debug (anywhere on the line) shows the traceback.")
 
-#: what argparse takes for a negative number rather than an option: its own pattern knows only -5 and -.5, so
-#: ``--position -1e-5 0`` failed with "expected 2 arguments" and ``--duration -inf`` with "expected one argument"
-#: (no option of rotorcosim starts with a digit, "inf" or "nan")
+#: what the command line takes for a negative number rather than an option: argparse's own pattern knows only -5
+#: and -.5, so ``--position -1e-5 0`` failed with "expected 2 arguments" and ``--duration -inf`` with "expected
+#: one argument" (no option of rotorcosim starts with a digit, "inf" or "nan")
 NEGATIVE_NUMBER = re.compile(r"^-(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?$|^-(inf|infinity|nan)$", re.IGNORECASE)
+#: what a negative number is shielded with from argparse: a word that does not start with "-" is a value, and
+#: float() and int() ignore the leading space (removed again from the values kept as text: :func:`_unshield`)
+_SHIELD = " "
+
+
+def _shield(argv: list[str]) -> list[str]:
+    return [_SHIELD + a if NEGATIVE_NUMBER.match(a) else a for a in argv]
+
+
+def _unshield_value(v):
+    if isinstance(v, str) and v.startswith(_SHIELD) and NEGATIVE_NUMBER.match(v[len(_SHIELD):]):
+        return v[len(_SHIELD):]
+    if isinstance(v, list):
+        return [_unshield_value(x) for x in v]
+    return v
+
+
+def _unshield(args: argparse.Namespace) -> argparse.Namespace:
+    for key, value in vars(args).items():
+        setattr(args, key, _unshield_value(value))
+    return args
 
 
 class _Parser(argparse.ArgumentParser):
     """An option mistake is one line, as every other error (argparse prints the whole usage first); the
     sub-commands' parsers are of this class too (add_subparsers takes the parser's own class)."""
-
-    def __init__(self, *args, **kwargs):
-        super().__init__(*args, **kwargs)
-        self._negative_number_matcher = NEGATIVE_NUMBER   # argparse's own attribute (Python 3.10-3.13)
 
     def error(self, message):
         self.exit(2, f"{self.prog}: error: {' '.join(message.split())} (see: {self.prog} --help)\n")
@@ -147,7 +164,7 @@ def main(argv: list[str] | None = None) -> int:
     argv = [a for a in argv if a != "--debug"]
     sys.argv = [sys.argv[0], *argv]
     parser = build_parser()
-    args = parser.parse_args(argv)
+    args = _unshield(parser.parse_args(_shield(argv)))
     if not args.command:
         parser.print_help()
         return 2

@@ -24,7 +24,7 @@ from rotorcosim.master.compiled.choice import ENGINES
 from rotorcosim.master.scenario.overrides import apply_set, apply_swap, parse_set, parse_swap
 # the level parameter's setter lives with --set (the sweep engine needs it below the command line); imported here
 # for run and the commands that take it from this module
-from rotorcosim.master.scenario.overrides import apply_unbalance  # noqa: F401
+from rotorcosim.master.scenario.overrides import apply_unbalance  # noqa: F401 - re-exported for the tests and benches
 from rotorcosim.master.scenario.build import Scenario
 
 #: where a command-line change is said to come from, in error messages
@@ -45,9 +45,10 @@ def add_arguments(p):
                    help="the ports to record, comma-separated (default: the scenario's [outputs] record; the "
                         "figures need the scenario's own)")
     p.add_argument("--tolerance", type=float, default=None, metavar="PCT",
-                   help="with --schedule auto: the largest error of a reported temperature against the monolithic "
-                        "run that you accept, in percent; the thermal-only intervals follow it and summary.json "
-                        "reports the estimated error achieved (hold.estimated_error_pct)")
+                   help="with --schedule auto: the largest error of a result against the monolithic run that you "
+                        "accept, in percent (a temperature's of its rise above the initial temperature); the "
+                        "thermal-only intervals follow it and summary.json reports the estimated error achieved "
+                        "(hold.estimated_error_pct; hold.advice where it is above)")
     add_out(p, "output folder (empty, or see --overwrite / --resume)")
     p.add_argument("--overwrite", action="store_true", help="replace the results of a previous run in --out")
     p.add_argument("--resume", action="store_true",
@@ -173,9 +174,14 @@ def run(args) -> int:
         print(f"rotorcosim run: {stop['component']} asked to stop the simulation at t = {stop['t_s']:.9g} s; "
               f"the run ended there (status \"stopped\")")
     est = (s.get("hold") or {}).get("estimated_error_pct")
+    which = (s.get("estimated_error") or {}).get("largest")
     print(f"{sc.name}: {s['t_end_s']:.4g} s simulated in {s['wall_time_s']:.3g} s wall time "
           f"({s['engine'] or 'no'} engine)"
-          + (f"; estimated error of the staggered scheme {est:.2f} %" if est is not None else ""))
+          + (f"; estimated error of the staggered scheme {est:.2f} %" + (f" ({which})" if which else "")
+             if est is not None else ""))
+    note = (s.get("hold") or {}).get("advice")
+    if note:
+        print(f"rotorcosim run: {note}")
     # the last line: every file the run wrote
     print("written: " + ", ".join(str(f) for f in res.files))
     return 0

@@ -1,4 +1,4 @@
-"""The compiled path of a thermo-mechanical interval (DESIGN "The master": two execution paths, one semantics).
+"""The compiled path of a thermo-mechanical interval (two execution paths, one semantics: docs/explanation/compiled-path.md).
 
 When every component stepped in an interval offers a compiled kernel (components/kernels.py), the interval's
 base steps run in one numba loop instead of the generic Python loop (algorithm.Engine.base_step), with the

@@ -139,7 +139,7 @@ def link_conversion(out, inp, convert: str | None, unit: str | None, label: str)
             fits = False
         if convert == "clip":
             dtype = dtype_of("Integer", inp.fmi_type)
-            type_fn = lambda x: np.clip(x, lo_i, hi_i).astype(dtype)  # noqa: E731
+            type_fn = lambda x: np.clip(x, lo_i, hi_i).astype(dtype)  # noqa: E731 - one of the conversions of the table
         elif convert is not None:
             raise ConversionError(f"{label}: convert {convert!r} does not apply to Integer -> Integer "
                                   "(only \"clip\")")
@@ -149,7 +149,7 @@ def link_conversion(out, inp, convert: str | None, unit: str | None, label: str)
                                   + ": add convert = \"clip\" to saturate, or connect ports of matching types")
         elif dtype_of("Integer", out.fmi_type) != dtype_of("Integer", inp.fmi_type):
             dtype = dtype_of("Integer", inp.fmi_type)
-            type_fn = lambda x: x.astype(dtype)  # noqa: E731
+            type_fn = lambda x: x.astype(dtype)  # noqa: E731 - one of the conversions of the table
     elif ko == "Integer" and ki == "Real":
         lo, hi = integer_range(out)
         exact = max(abs(lo), abs(hi)) <= EXACT_IN_DOUBLE
@@ -158,7 +158,7 @@ def link_conversion(out, inp, convert: str | None, unit: str | None, label: str)
         if not exact and convert is None:
             raise ConversionError(f"{need}: values beyond 2^53 would be rounded: add convert = \"float\" to "
                                   "accept that")
-        type_fn = lambda x: x.astype(np.float64)  # noqa: E731
+        type_fn = lambda x: x.astype(np.float64)  # noqa: E731 - one of the conversions of the table
     elif ko == "Real" and ki == "Integer":
         if convert not in _ROUNDING:
             raise ConversionError(f"{need} needs an explicit conversion: add convert = \"round\" (or \"floor\", "
@@ -174,21 +174,21 @@ def link_conversion(out, inp, convert: str | None, unit: str | None, label: str)
                                         "enumeration")
                 return v
         else:
-            type_fn = lambda x, rnd=rnd, guard=guard: guard(rnd(x))  # noqa: E731
+            type_fn = lambda x, rnd=rnd, guard=guard: guard(rnd(x))  # noqa: E731 - one of the conversions of the table
     elif ki == "Boolean":
         if convert != "nonzero":
             raise ConversionError(f"{need} needs an explicit conversion: add convert = \"nonzero\" (true where the "
                                   "value is not 0)")
-        type_fn = lambda x: x != 0  # noqa: E731
+        type_fn = lambda x: x != 0  # noqa: E731 - one of the conversions of the table
     elif ko == "Boolean" and ki == "Real":
         if convert != "float":
             raise ConversionError(f"{need} needs an explicit conversion: add convert = \"float\" (true = 1.0)")
-        type_fn = lambda x: x.astype(np.float64)  # noqa: E731
+        type_fn = lambda x: x.astype(np.float64)  # noqa: E731 - one of the conversions of the table
     elif ko == "Boolean" and ki == "Integer":
         if convert != "integer":
             raise ConversionError(f"{need} needs an explicit conversion: add convert = \"integer\" (true = 1)")
         guard = _range_guard(inp, label)
-        type_fn = lambda x, guard=guard: guard(x.astype(np.int64))  # noqa: E731
+        type_fn = lambda x, guard=guard: guard(x.astype(np.int64))  # noqa: E731 - one of the conversions of the table
     else:  # pragma: no cover - every pair of carried kinds is handled above
         raise ConversionError(f"{need}: no conversion")
     scale = None

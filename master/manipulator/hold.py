@@ -39,14 +39,26 @@ libcosim would call it a manipulator: it changes what crosses some connections, 
   on it would extrapolate the same dependence again over a long TO interval. Only for producers with a TO update
   (a hand-off without one stays held). What both rules measured on a real system is in the docstring of the
   shipped case's package (rotorcosim.cases).
-* Every TO interval's hand-off error is measured at the next TM restart: the held value at the end of the TO
-  interval against the window the mechanics produce at the same temperatures. Its effect on the temperatures is
-  estimated by the thermal components themselves (through get_state / do_step / set_state, so any component that
-  can save its state): each one is stepped over the TO interval's length from its present state with and without
-  its hand-off powers in error by the measured amounts; the largest change of a scalar output in K, relative to
-  that output above ``temperature_zero`` (a declared parameter: 0 K by default, the scenario's convention
-  otherwise), is the interval's error estimate (:class:`HoldReport`; the automatic schedule controls it,
-  master/schedule/auto.py).
+* The error estimate (:meth:`StaggeredHold.end`, :meth:`StaggeredHold.finish`). The scheme's only error is the
+  held input of the thermal networks: over a TO interval a hand-off takes its held value (or law) instead of
+  what the mechanics would give at the present temperatures. That error is measured where it can be, at the next
+  TM restart: the held value the TO interval ended with minus the window the mechanics produce at the same
+  temperatures (``delta``, signed, in the power's unit). It is zero where the TO interval starts (the held value
+  is the window's statistic) and grows while the temperatures move away from the window's; it is taken at its
+  end value over the whole interval (a step, not a ramp: for a node slower than the interval the response to a
+  ramp is half the step's, for a fast one the same, so the step bounds the response from above whatever the
+  growth between). Each thermal component then answers, through get_state / set_inputs / do_step / set_state
+  (any component that can save its state), what its outputs would be with those input errors: it replays, from
+  its present state, the time since the pulse began with and without the errors (:func:`replay`; the difference
+  is the response of the input error, for a network linear in its inputs independent of the state it starts
+  from). The interval's own estimate is its pulse's response at the restart; the run's, at its end, the response
+  of all the charged intervals' pulses together (a later interval's error that undoes an earlier one's cancels
+  it: the mechanics restarted at erring temperatures give powers that pull them back). Temperatures are judged
+  against their rise since the run's start (at least ``RISE_FLOOR_K``), not their absolute values; what the
+  thermal components hand back to the mechanics (oil temperatures, growths) is in error by a share of its move
+  over the last charged interval (``mechanics_fraction``), which the mechanical results share. A TO interval
+  that ends at a scheduled change of a component (its ``next_event``: a fuel cut) is not charged: the mechanics
+  after the change are not what its held values stood for.
 * The restart (TO -> TM): the hand-backs are the connections from a thermal component to a mechanical one (the
   thermal growths, the oil temperatures). Over a TO interval they moved while the mechanical state stayed frozen
   on the old ones; stepping them into the frozen mechanics at once is a sudden load (a growth of micrometres is an
@@ -69,7 +81,7 @@ from rotorcosim.components.contract import COUPLED, HELD, ContractError
 from rotorcosim.master.core import links, window
 from rotorcosim.master.core.window import Window
 from rotorcosim.master.core.cycle import WINDOW_MARGIN, Cycle
-from rotorcosim.master.core.system import HOLDS
+from rotorcosim.master.core.system import HOLDS  # noqa: F401 - re-exported: the hold modes beside the hold
 
 #: the default statistic: the mean keeps the energy of a power (the RMS overstates a fluctuating one)
 DEFAULT_HOLD = "mean"
@@ -85,6 +97,9 @@ FIT_INTERVALS = 3
 RESTART_CYCLES = 2.0
 #: least spread (K) of a group temperature over the recorded cycles to drive a hand-off's TO law (_Driver)
 DRIVER_MIN_SPREAD_K = 1.0
+#: least rise [K] a temperature's relative error is taken of (a node that barely warms has no relative error to speak
+#: of: its absolute one is reported in ``output_errors``)
+RISE_FLOOR_K = 1.0
 #: the driver's factor exp(b dT) is bounded to exp(+-DRIVER_MAX_LOG) (a factor 3): a guard against extrapolating
 #: a slope far beyond its data
 DRIVER_MAX_LOG = 1.1
@@ -132,6 +147,7 @@ class HandOff:
         self.history: list[list[tuple[np.ndarray, float]]] = []   # per TM interval: (thermal inputs, cycle mean)
         self.held = None
         self.error: float | None = None
+        self.delta: np.ndarray | None = None
         self._to_end: np.ndarray | None = None
         #: the window's recording state (master/core/window.py: both loops record into it)
         self.w = Window()
@@ -236,9 +252,16 @@ class HandOff:
             return False
         now = self.statistic(self.hold)
         scale = max(float(np.max(np.abs(now))), 1e-300)
-        self.error = float(np.max(np.abs(self._to_end - now))) / scale
+        #: the held value the TO interval ended with minus what the mechanics give at the restart [its unit]
+        self.delta = self._to_end - now
+        self.error = float(np.max(np.abs(self.delta))) / scale
         self._to_end = None
         return True
+
+    def forget_restart(self) -> None:
+        """The TO interval ended at a scheduled change of the system: its held value is not compared with the
+        mechanics after the change."""
+        self._to_end = None
 
     # -- TO: hold -----------------------------------------------------------------------------------------
     def start_to(self, probe, fired, cycles: int, group: list["HandOff"] | None = None) -> None:
@@ -398,8 +421,11 @@ class _Driver:
 @dataclass
 class HoldReport:
     """What the hold measured: per hand-off, the elasticity of its last TO law and its last hand-off error
-    (relative power, at the restart); per TO interval, the estimated error of the temperatures (percent of their
-    values above the hold's ``temperature_zero``); the largest of those is the run's estimate."""
+    (relative power, at the restart); per TO interval (``intervals``) its own estimated error, and for the run the
+    estimated error of every output of the thermal components at the last restart (``output_errors``, in the
+    output's unit) with each output's rise over the run (``output_rise``); ``estimated_error_pct``: the largest
+    estimated error of a reported temperature (a scalar output in K), percent of its rise above its value at the
+    run's start (:data:`RISE_FLOOR_K` at least)."""
 
     elasticity: dict[str, float] = field(default_factory=dict)
     errors: dict[str, float] = field(default_factory=dict)
@@ -410,23 +436,54 @@ class HoldReport:
     #: fell below 1 / WINDOW_MARGIN of its start value within the window); None: windows counted in periods
     revolutions_asked: float | None = None
     window_revolutions: list[float] = field(default_factory=list)
+    #: per TO interval: t_start, t_end [s], its own estimate [%] (None: not charged), ``event`` (the scheduled
+    #: change its end met, if any), ``output`` (the temperature of its largest estimate)
+    intervals: list[dict] = field(default_factory=list)
+    #: "comp.port" -> the estimated error of each element at the last restart [the port's unit], signed
+    output_errors: dict[str, list[float]] = field(default_factory=dict)
+    #: "comp.port" -> each element's change since the run's start [the port's unit]
+    output_rise: dict[str, list[float]] = field(default_factory=dict)
+    #: "comp.port" -> each element's change over the last charged TO interval (a hand-back's move) [its unit]
+    output_move: dict[str, list[float]] = field(default_factory=dict)
+    #: per component that hands values back to the mechanics: the largest, over its hand-backs, of their estimated
+    #: error against their move over the last charged TO interval (norms over the port's elements; a temperature
+    #: that rose less than RISE_FLOOR_K over the run left out): the share of that move the mechanics took in error,
+    #: which the results the mechanics give share
+    mechanics_fraction: dict[str, float] = field(default_factory=dict)
+    #: the run's estimated error [%] (None before a TO interval was charged)
+    estimated_error_pct: float | None = None
+    #: the temperature whose estimate is the run's, "comp.port"
+    estimated_output: str | None = None
 
     @property
     def last_estimate_pct(self) -> float | None:
-        """The last TO interval's estimated error [%], or None before one."""
+        """The last charged TO interval's estimated error [%], or None before one."""
         return self.interval_estimates_pct[-1] if self.interval_estimates_pct else None
 
-    @property
-    def estimated_error_pct(self) -> float | None:
-        """The run's estimated error [%]: the largest of the TO intervals' (None without one)."""
-        return max(self.interval_estimates_pct) if self.interval_estimates_pct else None
+    def advice(self, estimate_pct: float, tolerance_pct: float) -> str | None:
+        """What to change when the run's estimated error ``estimate_pct`` exceeds ``tolerance_pct`` (None when it
+        does not, or no interval was charged): the held interval whose own estimate is the largest, to be held
+        shorter (its length scaled by tolerance / estimate), or a tighter drift tolerance."""
+        charged = [i for i in self.intervals if i["estimate_pct"] is not None]
+        if not charged or not estimate_pct > tolerance_pct:
+            return None
+        worst = max(charged, key=lambda i: i["estimate_pct"])
+        length = worst["t_end"] - worst["t_start"]
+        return (f"estimated error {estimate_pct:.2f} % is above the tolerance {tolerance_pct:g} %; the largest share "
+                f"comes from the held interval {worst['t_start']:.6g}-{worst['t_end']:.6g} s (alone "
+                f"{worst['estimate_pct']:.2f} % on {worst['output']}): hold shorter intervals there (about "
+                f"{length * tolerance_pct / estimate_pct:.3g} s instead of {length:.3g} s), or, with the automatic "
+                f"schedule, set a tighter drift_tolerance")
 
     def as_dict(self) -> dict:
         """The report as summary.json's ``hold`` (hand-off errors in percent)."""
         out = {"elasticity": dict(self.elasticity), "drivers": dict(self.drivers),
                "handoff_error_pct": {k: 100.0 * v for k, v in self.errors.items()},
                "interval_estimates_pct": list(self.interval_estimates_pct),
-               "estimated_error_pct": self.estimated_error_pct}
+               "intervals": [dict(i) for i in self.intervals],
+               "output_errors": dict(self.output_errors), "output_rise": dict(self.output_rise),
+               "output_move": dict(self.output_move), "mechanics_fraction": dict(self.mechanics_fraction),
+               "estimated_error_pct": self.estimated_error_pct, "estimated_output": self.estimated_output}
         if self.revolutions_asked is not None:
             w = self.window_revolutions
             out["window_revolutions"] = {"asked": self.revolutions_asked, "smallest": min(w) if w else None,
@@ -434,11 +491,20 @@ class HoldReport:
         return out
 
 
+class Pulse:
+    """A charged TO interval's hand-off errors: from ``t0`` to ``t1`` [s] the thermal component took, on each
+    port of ``delta``, its held value minus what the mechanics gave at the restart (signed, in the port's unit);
+    ``step`` the interval's step [s]. A class, not a closure: checkpoints pickle the hold."""
+
+    def __init__(self, t0: float, t1: float, step: float, delta: dict[str, np.ndarray]):
+        self.t0, self.t1, self.step, self.delta = float(t0), float(t1), float(step), delta
+
+
 class StaggeredHold:
     """The thermal-only hold of a system's run (see the module docstring)."""
 
     def __init__(self, system, links, hold: str = DEFAULT_HOLD, hold_cycles: float = 5.0,
-                 cycle: Cycle | None = None, restart_cycles: float = RESTART_CYCLES, temperature_zero: float = 0.0):
+                 cycle: Cycle | None = None, restart_cycles: float = RESTART_CYCLES):
         self.system = system
         self.restart_cycles = float(restart_cycles)
         self.handbacks: list = []
@@ -454,12 +520,21 @@ class StaggeredHold:
         #: the run's RevolutionCounter when the cycle has an angle (windows counted in its turns), set by the
         #: simulation; None: windows of hold_cycles periods
         self.revolutions = None
-        #: the temperature (K) the error estimate's relative errors are taken above (0: absolute temperatures)
-        self.temperature_zero = float(temperature_zero)
         self.handoffs: list[HandOff] | None = None
         self.report = HoldReport()
         self._to_start = 0.0
         self._to_length: float | None = None
+        self._to_step = 0.0
+        #: the scheduled change (a component's next_event) the last TO interval ended at, or None
+        self._event: str | None = None
+        #: per thermal component: the charged TO intervals' hand-off errors (the run's estimate replays them)
+        self._pulses: dict[str, list[Pulse]] = {}
+        #: "comp.port" -> the thermal components' outputs at the run's start
+        self._initial: dict[str, np.ndarray] = {}
+        #: "comp.port" -> the thermal components' outputs where the last TO interval started, and where the last
+        #: charged one did
+        self._at_to_start: dict[str, np.ndarray] = {}
+        self._at_last_restart: dict[str, np.ndarray] = {}
 
     def _find_handoffs(self) -> None:
         """After set-up: a component may decide its phases from its parameters (whether it has a TO update)."""
@@ -496,6 +571,7 @@ class StaggeredHold:
         not be longer)."""
         if self.handoffs is None:
             self._find_handoffs()
+            self._initial = self._thermal_outputs()
         under_way = [link.ramp for link in self.handbacks]
         for link in self.links:
             link.held = None
@@ -548,7 +624,8 @@ class StaggeredHold:
         for link in self.links:  # inputs of stepped components from frozen ones: their last value
             if link.con.dst_component in on and link.con.src_component not in on:
                 link.held = _Held(link, link.src.y[link.sport])
-        self._to_start = t
+        self._to_start, self._to_step = t, step
+        self._at_to_start = self._thermal_outputs()
         probe = _Probe(t, step)
         steps_taken = steps_taken if steps_taken is not None else {}
         turns = [r for r in (ho.window_revolutions() for ho in self.handoffs) if r is not None]
@@ -568,7 +645,9 @@ class StaggeredHold:
 
     def end(self, phase: str, t: float) -> None:
         """End of an interval at time t: after the first TM interval that follows a TO interval, the hand-off
-        errors and the estimated temperature error of that TO interval."""
+        errors of that TO interval and the estimates (:meth:`_estimate`). A TO interval that ended at a scheduled
+        change of a component (its ``next_event``: a fuel cut) is not charged: the mechanics after the change
+        are not what the held values stood for, and the change starts a fresh coupled interval."""
         self._last_phase = phase
         if phase == COUPLED:
             self._tm_end = {i: np.array(link.src.y[link.sport], dtype=float) for i, link in enumerate(self.handbacks)}
@@ -576,54 +655,161 @@ class StaggeredHold:
             for ho in self.handoffs:
                 ho.end_to()
             self._to_length = t - self._to_start
+            self._event = self._scheduled_change(self._to_start, t)
+            return
+        if self._to_length is None:
+            return
+        t0, t1 = self._to_start, self._to_start + self._to_length
+        self._to_length = None
+        if self._event is not None:
+            for ho in self.handoffs:
+                ho.forget_restart()
+            self.report.intervals.append({"t_start": t0, "t_end": t1, "estimate_pct": None, "event": self._event,
+                                          "output": None})
+            self._event = None
             return
         fresh = []
         for ho in self.handoffs:
             if ho.measure_restart_error():
                 fresh.append(ho)
                 self.report.errors[f"{ho.link.con.src} -> {ho.link.con.dst}"] = ho.error
-        if fresh and self._to_length:
-            self.report.interval_estimates_pct.append(100.0 * self._temperature_error(fresh, self._to_length))
-            self._to_length = None
+        if fresh:
+            self._estimate(fresh, t0, t1)
 
-    def _temperature_error(self, handoffs: list[HandOff], length: float) -> float:
-        """Largest relative change of a thermal output in K (relative to its value above ``temperature_zero``)
-        when each thermal component runs ``length`` seconds from its present state with its hand-off powers in
-        error by the measured amounts, against the same run without."""
-        by_dst: dict[str, list[HandOff]] = {}
-        for ho in handoffs:
-            by_dst.setdefault(ho.link.con.dst_component, []).append(ho)
-        worst = 0.0
-        for name, hos in by_dst.items():
+    def _scheduled_change(self, t0: float, t1: float) -> str | None:
+        """The component whose scheduled change (``next_event``) falls at the end of the TO interval [t0, t1]
+        (or within it), as "name at t s"; None if there is none."""
+        tol = 1e-9 * max(1.0, abs(t1))
+        for name, comp in self.system.components.items():
+            e = getattr(comp, "next_event", lambda t: None)(t0)
+            if e is not None and t0 - tol <= e <= t1 + tol:
+                return f"{name} at {e:.9g} s"
+        return None
+
+    def _thermal_outputs(self) -> dict[str, np.ndarray]:
+        """The Real outputs of the components that take hand-offs, "comp.port" -> values."""
+        out = {}
+        for name in sorted({ho.link.con.dst_component for ho in self.handoffs or []}):
             comp = self.system.components[name]
-            # its scalar temperatures (a thermal model's reported ones); a vector of every node (recorded for
-            # figures) would let a barely warmed node's relative error rule the estimate
-            outs = [v.name for v in comp.variables if v.causality == "output" and v.unit == "K" and v.size == 1]
-            if not outs:
+            for v in comp.variables:
+                if v.causality == "output" and v.type == "Real":
+                    out[f"{name}.{v.name}"] = np.array(comp.y[v.name], dtype=float).ravel()
+        return out
+
+    def _estimate(self, fresh: list[HandOff], t0: float, t1: float) -> None:
+        """The interval's own estimate after the restart of the TO interval [t0, t1] (module docstring, "The error
+        estimate"): its hand-off errors become a pulse of input errors on each thermal component, whose response
+        now the component gives by a replay (:func:`replay`)."""
+        by_dst: dict[str, dict[str, np.ndarray]] = {}
+        for ho in fresh:
+            d = by_dst.setdefault(ho.link.con.dst_component, {})
+            d[ho.link.dport] = d.get(ho.link.dport, 0.0) + ho.delta
+        own: dict[str, np.ndarray] = {}
+        for name, delta in by_dst.items():
+            pulse = Pulse(t0, t1, self._to_step, delta)
+            self._pulses.setdefault(name, []).append(pulse)
+            comp = self.system.components[name]
+            own.update(replay(comp, name, [pulse], comp.time))
+        worst, which = self._largest(own)
+        self.report.interval_estimates_pct.append(worst)
+        self.report.intervals.append({"t_start": t0, "t_end": t1, "estimate_pct": worst, "event": None,
+                                      "output": which})
+        self._at_last_restart = dict(self._at_to_start)
+
+    def finish(self) -> None:
+        """The run's estimate at its end (the simulation calls it after the last interval): each thermal
+        component's outputs in error by the response now of every charged interval's pulse (one replay of them
+        all: a later interval's error that undoes an earlier one's, as the mechanics at the erring temperatures
+        do, cancels it), their rises since the run's start, their moves over the last charged interval, the
+        share of that move in error of what each component hands back (``mechanics_fraction``) and the largest
+        relative error of a temperature."""
+        if not self._pulses:
+            return
+        errors: dict[str, np.ndarray] = {}
+        for name, pulses in self._pulses.items():
+            comp = self.system.components[name]
+            errors.update(replay(comp, name, pulses, comp.time))
+        present = self._thermal_outputs()
+        rep = self.report
+        rep.output_errors = {k: np.asarray(v, dtype=float).tolist() for k, v in errors.items()}
+        rep.output_rise = {k: (v - self._initial[k]).tolist() for k, v in present.items() if k in self._initial}
+        rep.output_move = {k: (present[k] - v).tolist() for k, v in self._at_last_restart.items() if k in present}
+        rep.estimated_error_pct, rep.estimated_output = self._largest(errors)
+        frac: dict[str, float] = {}
+        for link in self.handbacks:
+            name = link.con.src_component
+            ref = f"{name}.{link.sport}"
+            err, move, rise = rep.output_errors.get(ref), rep.output_move.get(ref), rep.output_rise.get(ref)
+            if err is None or move is None or not float(np.linalg.norm(move)) > 0.0:
                 continue
-            try:
-                snap = comp.get_state()
-            except Exception:  # cannot save its state: no estimate from it
+            if link.src.variable(link.sport).unit == "K" and float(np.max(np.abs(rise))) < RISE_FLOOR_K:
+                continue  # a temperature that barely moved over the run drives nothing (as RISE_FLOOR_K)
+            frac[name] = max(frac.get(name, 0.0), float(np.linalg.norm(err)) / float(np.linalg.norm(move)))
+        rep.mechanics_fraction = frac
+
+    def _largest(self, errors: dict[str, np.ndarray]) -> tuple[float, str | None]:
+        """The largest error [%] of a scalar temperature output (unit K, one element: a thermal model's reported
+        temperatures; a vector of every node would let a barely warmed node rule) relative to its rise since the
+        run's start (at least RISE_FLOOR_K), and its "comp.port"."""
+        worst, which = 0.0, None
+        for ref, err in errors.items():
+            name, _, port = ref.partition(".")
+            var = self.system.components[name].variable(port)
+            if var.unit != "K" or var.size != 1 or ref not in self._initial:
                 continue
-            try:
-                base = _run_thermal(comp, {}, length, outs)
-                comp.set_state(snap)
-                change = np.zeros_like(base)
-                for ho in hos:
-                    u = np.array(comp.u[ho.link.dport], dtype=float) * (1.0 + ho.error)
-                    change += np.abs(_run_thermal(comp, {ho.link.dport: u}, length, outs) - base)
-                    comp.set_state(snap)
-            finally:
-                comp.set_state(snap)
-            worst = max(worst, float(np.max(change / np.maximum(np.abs(base - self.temperature_zero), 1.0))))
-        return worst
+            now = float(np.ravel(self.system.components[name].y[port])[0])
+            rise = max(abs(now - float(self._initial[ref][0])), RISE_FLOOR_K)
+            e = 100.0 * abs(float(err[0])) / rise
+            if e > worst or which is None:
+                worst, which = e, ref
+        return worst, which
 
 
-def _run_thermal(comp, inputs: dict, length: float, outs: list[str]) -> np.ndarray:
-    if inputs:
-        comp.set_inputs(inputs)
-    comp.do_step(comp.time, length)
-    return np.concatenate([np.ravel(np.array(comp.y[o], dtype=float)) for o in outs])
+def replay(comp, name: str, pulses: list[Pulse], now: float) -> dict[str, np.ndarray]:
+    """The change of each Real output of thermal component ``comp`` at the end of a replay of [pulses[0].t0,
+    now] from its present state, with each pulse's input errors added over [t0, t1] (at the pulse's step; the
+    gaps at the next pulse's), against the same replay without: for a network linear in its inputs, the
+    response at ``now`` of the input errors (a response to an input does not depend on the state it starts
+    from). Through get_state / set_inputs / do_step / set_state: any component that can save its state; one
+    that cannot gives no estimate (an empty dict). The state is restored."""
+    outs = [v.name for v in comp.variables if v.causality == "output" and v.type == "Real"]
+    try:
+        snap = comp.get_state()
+    except Exception:  # cannot save its state: no estimate from it
+        return {}
+    ports = sorted({p for q in pulses for p in q.delta})
+    # both replays take the present inputs raised by the errors' magnitude (the same in both: the difference is
+    # the errors' response), so that a negative error never asks for a negative power
+    lift = {p: sum(np.abs(q.delta[p]) for q in pulses if p in q.delta) for p in ports}
+    u0 = {p: np.array(comp.u[p], dtype=float) + lift[p] for p in ports}
+    # the segments: (length, step, input errors or None)
+    segs, t = [], pulses[0].t0
+    for q in pulses:
+        if q.t0 > t:
+            segs.append((q.t0 - t, q.step, None))
+        segs.append((q.t1 - q.t0, q.step, q.delta))
+        t = q.t1
+    if now > t:
+        segs.append((now - t, pulses[-1].step, None))
+
+    def run(perturbed: bool) -> dict[str, np.ndarray]:
+        comp.set_state(snap)
+        for length, step, delta in segs:
+            if length <= 0.0:
+                continue
+            comp.set_inputs({p: u0[p] + (delta[p] if perturbed and delta is not None and p in delta else 0.0)
+                             for p in ports})
+            n = max(1, int(math.ceil(length / step - 1e-9)))
+            for _ in range(n):
+                comp.do_step(comp.time, length / n)
+        return {o: np.array(comp.y[o], dtype=float).ravel() for o in outs}
+
+    try:
+        base = run(False)
+        pert = run(True)
+    finally:
+        comp.set_state(snap)
+    return {f"{name}.{o}": pert[o] - base[o] for o in outs}
 
 
 class _Fired:

@@ -23,7 +23,7 @@ def main() -> int:
 
     matplotlib.use("Agg")
     import h5py  # noqa: F401  (the series file is read with it)
-    import matplotlib.pyplot  # noqa: F401
+    import matplotlib.pyplot  # noqa: F401  (imported ahead: the figures draw with it)
 
     from rotorcosim.master.observer.series import SeriesFile
 

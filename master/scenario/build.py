@@ -39,8 +39,6 @@
     hold_cycles = 5
     restart_cycles = 2                   # TM restart: rotor cycles over which the thermal inputs of the
                                          # mechanical components go from their pre-TO to their new values
-    temperature_zero = 273.15            # K: the hold's error estimate takes relative errors of temperatures
-                                         # above it (default 0 degrees C)
 
     [outputs]
     record = ["m1.x", "m2.x"]
@@ -79,11 +77,6 @@ from rotorcosim.master.scenario.overrides import resolve_file_parameters
 from rotorcosim.master.schedule.timeline import from_spec, phases_of
 from rotorcosim.master.simulation import Simulation
 from rotorcosim.master.core.system import Connection, System, defaulted_line, split_port
-
-#: the hold's error estimate takes temperatures' relative errors above 0 degrees C [K], as temperatures are
-#: reported; ``[schedule] temperature_zero`` declares another zero
-TEMPERATURE_ZERO_K = 273.15
-
 
 @dataclass
 class ComponentSpec:
@@ -401,7 +394,6 @@ def build_simulation(sc: Scenario, observers=(), system: System | None = None) -
                       hold=s.get("hold", DEFAULT_HOLD), hold_cycles=float(s.get("hold_cycles", 5)),
                       cycle=cycle, observers=observers,
                       restart_cycles=float(s.get("restart_cycles", RESTART_CYCLES)),
-                      temperature_zero=float(s.get("temperature_zero", TEMPERATURE_ZERO_K)),
                       phases=phases_of(s))
 
 

@@ -212,7 +212,7 @@ def apply_swap(sc, component: str, implementation: str, parameters: Mapping[str,
     return out
 
 
-def apply_unbalance(sc: Scenario, force: float, settings=()) -> None:
+def apply_unbalance(sc, force: float, settings=()) -> None:
     """Set the scenario's level parameter (``[results] unbalance_parameter``) to ``force``; ``settings`` are the
     ``comp.param`` names the same command sets with ``--set``: naming the level parameter there too is an error
     (one of the two values would be dropped without a word)."""

@@ -174,7 +174,7 @@ TABLES: dict[str, dict[str, Callable | None]] = {
     "inputs": {},       # "component.port" -> number(s)
     "algorithm": {"kind": one_of(*ALGORITHMS), "order": list_of(text), "iterations": count, "tolerance": positive},
     "schedule": {"kind": one_of(*SCHEDULE_KINDS), "duration": positive, "step": positive, "thermal_step": positive,
-                 "speed_rpm": positive, "cycle": None, "temperature_zero": positive, "hold": one_of(*HOLDS),
+                 "speed_rpm": positive, "cycle": None, "hold": one_of(*HOLDS),
                  "hold_cycles": whole_positive, "restart_cycles": not_negative,
                  "intervals": None, "phases": None,
                  "steady_tolerance": positive, "steady_cycles": count, "drift_tolerance": positive,

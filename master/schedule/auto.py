@@ -16,13 +16,12 @@ more than ``drift_tolerance``; a TO interval ends before a component's next sche
 (``Component.next_event``: a fuel cut). With a constant cycle none of this changes a run.
 
 Error control (``tolerance``, percent; ``--tolerance PCT``): every TO interval's error is estimated at the next
-restart by the thermal-only hold (master/manipulator/hold.py: the hand-off error of each held power, carried through
-the thermal components over the interval's length, relative to the temperatures above the hold's
-``temperature_zero``), and the next TO interval's length is scaled by tolerance / estimate (at most halved or
-doubled per interval; the estimate grows with the extrapolation over the interval). The first TO interval is
-``to_min`` long. The run reports the largest estimate of its intervals (``estimated_error_pct``): an estimate of the largest error of a
-reported temperature against the monolithic run, which bounds the others (the mechanical results follow the
-temperatures they are read at).
+restart by the thermal-only hold (master/manipulator/hold.py: the hand-off error of each held power, carried
+through the thermal components over the interval, relative to the temperatures' rise since the run's start), and
+the next TO interval's length is scaled by tolerance / estimate (at most halved or doubled per interval; the
+estimate grows with the extrapolation over the interval). The first TO interval is ``to_min`` long. The run
+reports its estimated error at the end (``estimated_error_pct``: every charged interval's response carried to the
+end, the largest of the results' when the scenario's case gives them, else of the temperatures).
 """
 from __future__ import annotations
 

@@ -73,7 +73,7 @@ SCHEDULES: dict[str, type["Schedule"]] = {}
 #: [schedule] keys every kind accepts (the step defaults, and the Simulation's: its cycle source and hold, which
 #: the scenario layer reads)
 COMMON_KEYS = ("kind", "duration", "step", "thermal_step", "cycle", "hold", "hold_cycles", "restart_cycles",
-               "temperature_zero", "phases")
+               "phases")
 
 
 def phases_of(spec: Mapping[str, Any]) -> Phases:

@@ -170,7 +170,7 @@ def calibrate(spec: str | Path | CalibrationSpec, out: str | Path, *, scheduler:
         spec = read_calibration(spec)
     say = log or (lambda line: print(line, file=sys.stderr, flush=True))
     if quiet:
-        say = lambda line: None  # noqa: E731
+        say = lambda line: None  # noqa: E731 - the quiet twin of the print below
     targets = read_targets(spec.targets, spec.cases, spec.residual)
     out = Path(out)
     head = {"spec": str(spec.source), "scenario": spec.scenario, "duration_s": spec.duration,
@@ -296,7 +296,7 @@ def _report(spec: CalibrationSpec, fit: Fit, targets: list[Target], u, r, J, sta
     fit_t = [t for t in targets if not t.holdout]
     hold_t = [t for t in targets if t.holdout]
     before, after = fit.ours(fit.u0, targets), fit.ours(u, targets)
-    pick = lambda ts, vs: [v for t, v in zip(targets, vs) if t in ts]  # noqa: E731
+    pick = lambda ts, vs: [v for t, v in zip(targets, vs) if t in ts]  # noqa: E731 - a one-line selector, used twice
     r0 = fit.residuals(fit.u0)
     return {
         "status": status, "message": message, "parameters": params,

@@ -46,7 +46,7 @@ from typing import Any, Callable, Sequence
 
 from rotorcosim.master.schedule import budget
 from rotorcosim.master.sweep.case import Case, failed_summary, run_case
-from rotorcosim.master.sweep.folder import STATE, SweepFolder, named_os_error
+from rotorcosim.master.sweep.folder import SweepFolder, named_os_error
 
 #: how long the client waits for a scheduler given by ``scheduler=`` before saying it cannot reach it [s]
 CONNECT_TIMEOUT_S = 20.0

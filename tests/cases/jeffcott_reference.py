@@ -11,7 +11,6 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from scipy.integrate import solve_ivp
 
 
 def rundown(m, k, zeta, u, rpm0, rpm1, duration, samples=200_001):
@@ -31,5 +30,7 @@ def rundown(m, k, zeta, u, rpm0, rpm1, duration, samples=200_001):
     z = u * w0 * w0 / (k - m * w0 * w0 + 1j * c * w0)
     s0 = [z.real, z.imag, (1j * w0 * z).real, (1j * w0 * z).imag]
     t = np.linspace(0.0, duration, samples)
+    from scipy.integrate import solve_ivp   # at the first call, not when the suite is collected
+
     sol = solve_ivp(rhs, (0.0, duration), s0, t_eval=t, method="DOP853", rtol=1e-10, atol=1e-14)
     return t, (w0 + a * t) * 30.0 / math.pi, np.hypot(sol.y[0], sol.y[1])

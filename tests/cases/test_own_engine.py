@@ -3,7 +3,6 @@ set, the bearing's geometry among them."""
 from __future__ import annotations
 
 import json
-import math
 
 import pytest
 
@@ -11,7 +10,7 @@ from rotorcosim.master.cli import main
 
 
 def test_new_engine_check_and_run(tmp_path, capsys):
-    """The issue's "done when": new-engine X, then a run of X/blade_loss.toml writes the usual results and
+    """The walk-through: new-engine X, then a run of X/blade_loss.toml writes the usual results and
     figures. The run's whirl at bearing 0 is checked against the linear engine's (an independent harmonic
     solve of the same rotor with the bearings linearised): the film's nonlinearity and the thermal growth move
     it, by much less than a factor of 2 at this small orbit (the rub ring is not touched)."""
@@ -63,7 +62,7 @@ def test_check_engine_lists_every_problem_and_writes_nothing(tmp_path, capsys):
 
 
 def test_parameters_lists_and_sets_the_bearing_geometry(capsys):
-    """Every parameter with unit, default, value and source; the ball count is one (the issue: "--set
+    """Every parameter with unit, default, value and source; the ball count is one (as documented: "--set
     bearing0.balls=19" was "no parameter 'balls'"). Fewer balls carry the same preload with more load each:
     at rest, Q = P / (Z sin alpha) (Harris, Rolling Bearing Analysis, the axially loaded bearing), so 19 balls
     instead of 21 raise the contact load by a little less than 21/19: each ball's larger load opens its contact

@@ -1,5 +1,5 @@
-"""The staggered scheme in a rundown against the monolithic run (issue 26: "every Table 4 result at the end and
-every crossing's peaks within 2 %"): ``rotorcosim compare blade_loss_rundown`` (cases/rundown/compare.py).
+"""The staggered scheme in a rundown against the monolithic run (every Table 4 result at the end and every
+crossing's peaks within 2 %): ``rotorcosim compare blade_loss_rundown`` (cases/rundown/compare.py).
 
 The independent reference is the monolithic run: the same system through one thermo-mechanical interval, with no
 hold, no restart and no thermal-only interval, so every difference is the staggered scheme's. The suite's version
@@ -12,13 +12,12 @@ cheaper: its gain is the windmilling's, see the slow version). A cut at
 0.51 s, inside the blade-loss transient, is not that case: before [schedule] speed_tolerance the schedule took a
 thermal-only interval there at 9 650 rev/min, in the middle of the rundown, and the peak whirl at #5 at
 8 500 rev/min came out 1.9 % off.
-``ROTORCOSIM_SLOW=1`` runs the command's default, the shipped rundown plus 10 minutes of windmilling (660 s
-simulated; the monolithic run alone took 30 min of CPU time).
+The test marked ``slow`` (``python -m pytest -m slow``) runs the command's default, the shipped rundown plus 10
+minutes of windmilling (660 s simulated; the monolithic run alone took 30 min of CPU time).
 """
 from __future__ import annotations
 
 import json
-import os
 import subprocess
 import sys
 from pathlib import Path
@@ -37,7 +36,7 @@ DURATION = 12.0
 #: the JSON keys the command promises (module docstring of cases/rundown/compare.py)
 KEYS = {"results", "crossings", "speeds", "wall_time_s", "cpu_time_s", "speedup", "speedup_cpu", "load_average",
         "largest_error_pct", "within_2pct", "duration_s", "duration_rule", "t_fuel_cut_s", "staggered_phases",
-        "hold", "scenario", "unbalance_N", "tolerance_pct"}
+        "hold", "scenario", "unbalance_N", "tolerance_pct", "estimated_error"}
 
 
 def _early_cut():
@@ -91,9 +90,9 @@ def test_short_rundown_staggered_within_2pct_of_monolithic(tmp_path):
     assert all(iv["phase"] == "TM" for iv in timeline if CUT - 0.1 < iv["t_end"] and iv["t_start"] < CUT + 3.0)
 
 
-@pytest.mark.skipif(os.environ.get("ROTORCOSIM_SLOW") != "1", reason="~32 min of CPU time: ROTORCOSIM_SLOW=1")
+@pytest.mark.slow   # ~32 min of CPU time
 def test_default_shortened_rundown_within_2pct(tmp_path):
-    """The issue's run: blade_loss_rundown, the rundown plus 10 minutes of windmilling (15.01 + 45 + 600 s)."""
+    """The command's default: blade_loss_rundown, the rundown plus 10 minutes of windmilling (15.01 + 45 + 600 s)."""
     out = tmp_path / "cmp"
     t = rc.compare_rundown("blade_loss_rundown", None, out, figures=False)
     assert t["duration_s"] == pytest.approx(15.01 + rc.RUNDOWN_S + rc.WINDMILLING_S)

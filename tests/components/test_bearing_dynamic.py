@@ -6,7 +6,6 @@ import numpy as np
 import pytest
 
 from rotorcosim.components.bearing.component import BallBearing
-from rotorcosim.components.bearing.drag import palmgren_torque
 from rotorcosim.components.bearing.oil import sae30_kinematic_viscosity
 from rotorcosim.components.bearing.static import ball_state, static_equilibrium
 from rotorcosim.components.contract import ContractError
@@ -50,7 +49,7 @@ def test_rest_state_is_preloaded_equilibrium(bearing):
     run(b, 200, k=5.254e6, c=1e3)
     assert np.max(np.abs(b.y["F_rotor"])) < 1e-6 * g.preload
     assert np.max(np.abs(b.y["X_journal"])) < 1e-15
-    z0, st = b.z0, ball_state(g, [0, 0, b.z0], Fc=g.centrifugal_force(b.p["omega"]))
+    st = ball_state(g, [0, 0, b.z0], Fc=g.centrifugal_force(b.p["omega"]))
     assert b.y["Q_max"][0] == pytest.approx(st.Q_i.max(), rel=1e-9)
     assert b.y["Q_max"][1] == pytest.approx(st.Q_e.max(), rel=1e-9)
     assert np.sum(st.Q_i * np.sin(st.alpha_i)) == pytest.approx(g.preload, rel=1e-9)
@@ -188,7 +187,10 @@ def test_contact_damping_only_dissipates(damping):
 def test_state_snapshot_roundtrip():
     """get_state/set_state (FMI getFMUstate/setFMUstate): replaying from a snapshot repeats the outputs exactly."""
     b = make(bearing=5)
-    X = lambda t: (5e-6 * math.sin(3000 * t), 0.0, 0.0)
+
+    def X(t):
+        return 5e-6 * math.sin(3000 * t), 0.0, 0.0
+
     t = run(b, 20, X=X, k=5.254e6, c=2e3)
     snap = b.get_state()
     rec1 = []

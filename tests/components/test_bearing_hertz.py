@@ -2,7 +2,6 @@
 and textbook values independent of the project."""
 import math
 
-import numpy as np
 import pytest
 
 from rotorcosim.components.bearing.drag import palmgren_torque

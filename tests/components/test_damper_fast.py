@@ -35,7 +35,7 @@ def _eval(d, x, v, T=T_OIL):
 def test_fast_agrees_with_fe_within_1_percent(damper, cav, ps):
     """Over eccentricity ratios 0 to 0.95 (off the table's nodes too), at a position angle that is not a mesh
     angle, and for radial, tangential and mixed velocities, the fast model's film force is within 1 % of the
-    direct FE solve (|F_fast - F_fe| / |F_fe|). The issue's requirement; the measured worst case is printed."""
+    direct FE solve (|F_fast - F_fe| / |F_fe|). The required bound; the measured worst case is printed."""
     fe, fast = _pair(damper, cav, ps)
     worst = 0.0
     ang = 0.7

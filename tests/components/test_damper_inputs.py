@@ -145,7 +145,7 @@ def test_nan_parameter_rejected():
 
 # -- command line ---------------------------------------------------------------------------------------
 def test_cli_json(capsys):
-    """rotorcosim damper-force --json: keys and units as the issue states (film force, spring force, power,
+    """rotorcosim damper-force --json: keys and units as documented (film force, spring force, power,
     viscosity), the same numbers as the component."""
     assert main(["damper-force", "--damper", "0", "--position", "2e-4", "1e-4", "--velocity", "0.1", "-0.2",
                  "--temperature", "70", "--json"]) in (0, None)

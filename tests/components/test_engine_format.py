@@ -64,7 +64,7 @@ def test_anisotropic_supports_and_pedestal():
 
 
 def test_every_problem_of_a_file_is_named():
-    """Item 6 of the issue, all in one file: one line each."""
+    """Every mistake of an engine file, all in one file: one line each."""
     d = _beam(n_el=4)
     sp = d["spool"]["s"]
     sp["z_mm"][2] = sp["z_mm"][1]                     # overlapping stations

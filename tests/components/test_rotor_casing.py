@@ -32,7 +32,10 @@ def test_hex_patch_uniform_tension_exact():
     and lateral contraction -nu sigma b / E (Zienkiewicz & Taylor, vol. 1, ch. 10)."""
     L, b, c, n = 1.0, 0.1, 0.1, 4
     nodes = np.array([[i * L / n, j * b, k * c] for i in range(n + 1) for j in (0, 1) for k in (0, 1)])
-    idx = lambda i, j, k: 4 * i + 2 * j + k
+
+    def idx(i, j, k):
+        return 4 * i + 2 * j + k
+
     N = nodes.shape[0]
     K = np.zeros((3 * N, 3 * N))
     for i in range(n):

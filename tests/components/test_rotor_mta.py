@@ -1,7 +1,6 @@
 """MTA (eqs. 16-22) against the full model and against plain modal truncation of the same size."""
 import numpy as np
 import pytest
-import scipy.linalg as sla
 
 from rotorcosim.components.rotor import verification as ver
 from rotorcosim.components.rotor.component import LOAD_GROUPS, full_model

@@ -52,7 +52,10 @@ def test_step_operator_equals_classical_form():
     Kk = 1e4 * (np.eye(3) * 3 + 0.5 * (A + A.T))
     Cc = 5.0 * np.eye(3) + 20.0 * (A - A.T)
     h, n = 1e-3, 200
-    force = lambda t: np.array([math.sin(50 * t), 0.0, math.cos(30 * t)])
+
+    def force(t):
+        return np.array([math.sin(50 * t), 0.0, math.cos(30 * t)])
+
     ref = integrate(Mm, Cc, Kk, force, np.zeros(3), np.zeros(3), h, n)
     T, B = step_operator(Mm, Cc, Kk, h)
     s = np.concatenate([np.zeros(3), np.zeros(3), np.linalg.solve(Mm, force(0.0))])

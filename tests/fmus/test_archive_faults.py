@@ -146,7 +146,7 @@ def test_duplicate_value_references(mass_fmu, tmp_path):
     with zipfile.ZipFile(mass_fmu) as zf:
         xml = zf.read("modelDescription.xml").decode()
     refs = re.findall(r'name="(\w+)"[^>]*valueReference="(\d+)"', xml)
-    (a, ra), (b, rb) = refs[0], refs[1]
+    (_, ra), (b, _) = refs[0], refs[1]
     new = xml.replace(f'name="{b}"', f'name="{b}"', 1)
     new = re.sub(rf'(name="{b}"[^>]*valueReference=")\d+"', rf'\g<1>{ra}"', new, count=1)
     assert new != xml

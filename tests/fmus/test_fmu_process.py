@@ -10,7 +10,7 @@ import pytest
 
 from rotorcosim.components.contract import Component, Variable
 from rotorcosim.components.registry import create
-from rotorcosim.fmus.importer import FMUError, load_fmu_component
+from rotorcosim.fmus.importer import load_fmu_component
 from rotorcosim.fmus.process import ProcessFMU
 from rotorcosim.master.core.algorithm import ComponentCrashed, SimulationDiverged, StepTimedOut
 from rotorcosim.master.schedule import Interval, Timeline

@@ -10,8 +10,6 @@ import pytest
 
 from rotorcosim.fmus.importer import FMUError, load_fmu_component
 
-pytest.importorskip("pythonfmu3", reason="pythonfmu3 (pip install pythonfmu3) builds the FMI 3.0 test FMU")
-
 MODEL = textwrap.dedent('''
     from pythonfmu3 import Fmi3Slave, Fmi3Causality, Fmi3Variability, Float64
 

@@ -19,8 +19,6 @@ from rotorcosim.master.core.system import SystemError_
 
 from tests.helpers.fmus import CaptureAll, model_description, with_model_description
 
-pytest.importorskip("pythonfmu3", reason="pythonfmu3 builds the FMI 3.0 test FMU")
-
 #: a binary fraction: fmpy passes t_{k+1} - t_k as the step size, rotorcosim the nominal step; they are the same
 #: number only when the step is exact in binary (with 0.1 they differ by an ulp, and so do the results, ~1e-16)
 H = 0.125

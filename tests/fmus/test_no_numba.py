@@ -4,9 +4,6 @@ from __future__ import annotations
 import subprocess
 import sys
 
-import pytest
-
-pytest.importorskip("pythonfmu3", reason="pythonfmu3 builds the FMI 3.0 test FMU")
 
 RUN = """
 import sys

@@ -30,26 +30,26 @@ H = 0.125
 DURATION = 0.5
 
 
-def run_alone(fmu, params=None, scenario=None):
+def run_alone(fmu, params=None, scenario=None, duration=DURATION, h=H):
     """Our run of the FMU as the only component, none of its inputs connected or given: (capture, report)."""
     sc = parse({"scenario": dict(scenario or {}), "components": {"f": {"fmu": str(fmu), "parameters": params or {}}}})
     cap = CaptureAll()
     sim = build_simulation(sc, [cap])
     try:
-        report = sim.run(Timeline([Interval("TM", DURATION, H)]))
+        report = sim.run(Timeline([Interval("TM", duration, h)]))
     finally:
         for c in sim.system.components.values():
             c.terminate()
     return cap, report
 
 
-def fmpy_alone(fmu, params=None):
+def fmpy_alone(fmu, params=None, duration=DURATION, h=H):
     """fmpy's run with no input given (pythonfmu FMUs' modules, imported from fmpy's folder, dropped after)."""
     from fmpy import simulate_fmu
 
     path, modules = list(sys.path), set(sys.modules)
     try:
-        return simulate_fmu(str(fmu), start_time=0.0, stop_time=DURATION, output_interval=H,
+        return simulate_fmu(str(fmu), start_time=0.0, stop_time=duration, output_interval=h,
                             start_values=dict(params or {}))
     finally:
         sys.path[:] = path

@@ -7,7 +7,11 @@ by parameters, each from the simulated time given (s; negative: never):
   code would end it); with ``marker`` (a file path) only the first time, creating the file: the retry succeeds;
 - ``raise_at``: ``do_step`` raises a RuntimeError (a component's own exception);
 - ``nan_at``: its temperature becomes NaN (a real divergence);
-- ``sleep``: wall seconds slept in each step (a slow case, to interrupt or kill mid-way).
+- ``sleep``: wall seconds slept in each step (a slow case, to interrupt or kill mid-way);
+- ``hold`` (a file path): each step waits until that file exists (a case held open until the test releases it,
+  whatever the machine's load);
+- ``started`` (a file path): the first step of each instance appends a line to that file (the test knows how many
+  cases are under way without guessing from the time).
 
 The scenario :func:`scenario` writes is the toy's with this node in place of ``node``.
 """
@@ -38,10 +42,23 @@ class FaultyNode(ThermalNode):
         Variable("nan_at", "parameter", unit="s", start=-1.0),
         Variable("sleep", "parameter", unit="s", start=0.0),
         Variable("marker", "parameter", type="String", start=""),
+        Variable("hold", "parameter", type="String", start=""),
+        Variable("started", "parameter", type="String", start=""),
     )
+
+    #: the longest a held step waits for its file (s): a test that fails never leaves a process behind for good
+    HOLD_LIMIT = 300.0
 
     def do_step(self, t, h):
         p = self.p
+        if p["started"] and not getattr(self, "_announced", False):
+            self._announced = True
+            with open(p["started"], "a") as f:
+                f.write(f"{os.getpid()}\n")
+        if p["hold"]:
+            deadline = time.monotonic() + self.HOLD_LIMIT
+            while not os.path.exists(p["hold"]) and time.monotonic() < deadline:
+                time.sleep(0.01)
         if p["sleep"] > 0:
             time.sleep(p["sleep"])
         if 0 <= p["kill_at"] <= t:

@@ -6,7 +6,7 @@ Kept cheap: a 10 us step (the same in both runs), TM 0.04 s (past the blade loss
 paper's 0.1 s thermal step - TM 0.025 s, against a monolithic run of the same 0.265 s. In the rubbing cases the SFD
 oil node is fast (time constant ~0.25 s) and its film power falls steeply as it warms: holding the cold-oil power
 over the TO interval overheats it, and the restart then cools it by several K in the first cycles (the 43-70 K
-jumps of issue 12 over the paper's 24 s TO intervals)."""
+jumps over the paper's 24 s TO intervals)."""
 import numpy as np
 import pytest
 

@@ -1,6 +1,8 @@
 """Writes tests/interop/data (run with ROSS installed: python tests/interop/make_ross_reference.py): ROSS 2.3's own
 example rotors saved by Rotor.save, and ROSS's results for them (critical speeds, unbalance responses)."""
-import json, numpy as np, ross as rs
+import json
+import numpy as np
+import ross as rs
 out = {}
 D = str(__import__("pathlib").Path(__file__).with_name("data"))
 for name, mk, fname in (("rotor_example", rs.rotor_example, "rotor_example.toml"),

@@ -27,7 +27,7 @@ def _engine(tmp_path, name):
 
 @pytest.mark.parametrize("name", sorted(REF))
 def test_forward_critical_speeds_equal_ross_within_0_1_percent(tmp_path, name):
-    """The issue's bound is 0.1 %; the elements are the same Timoshenko beams, so they agree far closer."""
+    """The bound is 0.1 %; the elements are the same Timoshenko beams, so they agree far closer."""
     _, m = _engine(tmp_path, name)
     ours = critical.synchronous_critical_speeds(m, None, n=4, max_rpm=1e6)["forward_synchronous_rpm"]
     ref = REF[name]["forward_synchronous_rpm"]

@@ -1,7 +1,7 @@
 """ROSS itself (the test extra installs ross-rotordynamics): its example rotors, live, to rotorcosim and back.
 
 Peer code as the reference: ROSS's own run_critical_speed (tight rtol) and run_unbalance_response on the same
-rotor. The issue's bounds: forward synchronous critical speeds within 0.1 %, unbalance response within 0.5 %."""
+rotor. The bounds: forward synchronous critical speeds within 0.1 %, unbalance response within 0.5 %."""
 from __future__ import annotations
 
 import math
@@ -10,13 +10,19 @@ import warnings
 import numpy as np
 import pytest
 
-with warnings.catch_warnings():
-    warnings.simplefilter("ignore")     # ROSS's dependency ccp warns that it finds no REFPROP library
-    import ross as rs
-
 from rotorcosim.components.rotor import critical, model as fem, response
 from rotorcosim.interop import from_ross, to_ross, write_engine
 from rotorcosim.interop.ross_import import RossImportError
+
+
+@pytest.fixture(scope="module")
+def rs():
+    """ROSS, imported when a test of this module runs, not when the suite is collected (~7 s of CPU)."""
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")     # ROSS's dependency ccp warns that it finds no REFPROP library
+        import ross
+
+    return ross
 
 
 def _ross_forward_rpm(rotor) -> list[float]:
@@ -27,7 +33,7 @@ def _ross_forward_rpm(rotor) -> list[float]:
 
 
 @pytest.mark.parametrize("example", ["rotor_example", "coaxrotor_example"])
-def test_ross_example_round_trip(tmp_path, example):
+def test_ross_example_round_trip(tmp_path, example, rs):
     rotor = getattr(rs, example)()
     engine = from_ross(rotor)
     write_engine(engine, tmp_path / "engine.toml")
@@ -48,7 +54,7 @@ def test_ross_example_round_trip(tmp_path, example):
 
 
 @pytest.mark.parametrize("example", ["rotor_example", "coaxrotor_example"])
-def test_ross_to_rotorcosim_and_back_to_ross(example):
+def test_ross_to_rotorcosim_and_back_to_ross(example, rs):
     """The way back: to_ross of the imported engine (a Rotor, or a CoAxialRotor for two spools) has ROSS's own
     forward critical speeds of the original rotor, by ROSS's computation on both."""
     rotor = getattr(rs, example)()
@@ -57,7 +63,7 @@ def test_ross_to_rotorcosim_and_back_to_ross(example):
     assert np.allclose(_ross_forward_rpm(back), _ross_forward_rpm(rotor), rtol=1e-6)
 
 
-def test_compressor_example_is_refused_by_name():
+def test_compressor_example_is_refused_by_name(rs):
     """Its seals and bearings are speed-dependent and cross-coupled, and it has layered shaft sections: the
     engine format carries none of them (format 1), so the import says which element stops it."""
     with pytest.raises(RossImportError, match="layered section|cross-coupled|depends on speed"):

@@ -8,7 +8,7 @@ import pytest
 from rotorcosim.components.contract import ContractError, Variable
 from rotorcosim.components.registry import create
 from rotorcosim.master.core.algorithm import SimulationDiverged
-from rotorcosim.master.scenario.build import ScenarioError, build_simulation, build_system, load_scenario, parse, schedule_of
+from rotorcosim.master.scenario.build import build_simulation, load_scenario, schedule_of
 from rotorcosim.master.schedule import Interval, ScheduleError, Timeline, from_spec
 from rotorcosim.master.simulation import Simulation
 from rotorcosim.master.core.system import Connection, System, SystemError_
@@ -120,7 +120,7 @@ def test_diverging_run_stops_with_clear_error_and_keeps_record(tmp_path):
     with pytest.raises(SimulationDiverged, match=r"m1\.\w+ is not finite at t = "):
         sim.run(Timeline([Interval("TM", 10.0, 1e-3)]))
     with h5py.File(tmp_path / "ts.h5") as f:
-        assert f.attrs["complete"] == False  # noqa: E712
+        assert f.attrs["complete"] == False  # noqa: E712 - a numpy bool: `is` would not match
         assert f["time"].shape[0] > 10
         assert np.all(np.isfinite(f["m1.x"][:10]))
     assert sim.report.error and "diverged" in sim.report.error

@@ -1,4 +1,4 @@
-"""The one engine model (issue 17): the linear engine behind ``critical-speeds`` and the calibration is the
+"""The one engine model: the linear engine behind ``critical-speeds`` and the calibration is the
 co-simulated system linearised, and its forced response is the co-simulation's."""
 import math
 

@@ -4,8 +4,7 @@ import numpy as np
 import pytest
 
 from rotorcosim.components.registry import create
-from rotorcosim.master.core.algorithm import EngineSettings
-from rotorcosim.master.schedule import Interval, Timeline, from_spec, AutoSchedule
+from rotorcosim.master.schedule import Interval, Timeline, AutoSchedule
 from rotorcosim.master.simulation import Simulation
 from rotorcosim.master.core.system import Connection, System
 
@@ -49,8 +48,10 @@ def test_hold_linear_extrapolation_slow_to_fast():
     link = _Link(Connection("node.T", "osc.T", extrapolation="linear"), s.components["node"], s.components["osc"])
     link.mode = _Link.SLOW_TO_FAST
     node = s.components["node"]
-    node.y["T"] = np.array([300.0]); link.produced(0.05, 0.05)
-    node.y["T"] = np.array([301.0]); link.produced(0.05, 0.10)
+    node.y["T"] = np.array([300.0])
+    link.produced(0.05, 0.05)
+    node.y["T"] = np.array([301.0])
+    link.produced(0.05, 0.10)
     assert link.value(0.1005)[0] == pytest.approx(301.0 + 0.0005 / 0.05)
 
 

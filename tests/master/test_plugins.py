@@ -60,7 +60,7 @@ def test_plugin_class_that_breaks_the_contract(tmp_path):
 
 
 def test_inherited_parameter_not_removed_is_named(tmp_path):
-    """The failure the issue reports (a plug-in damper failing on the base's `damper = 0`) now says where."""
+    """A plug-in damper failing on the base's `damper = 0` (a plug-in damper failing on the base's `damper = 0`) now says where."""
     (tmp_path / "linear_damper.py").write_text((EXAMPLE.parent / "linear_damper.py").read_text())
     p = tmp_path / "s.toml"
     p.write_text('[scenario]\nextends = "blade_loss_2850"\n[components.damper0]\n'

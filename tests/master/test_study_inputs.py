@@ -1,5 +1,5 @@
 """Bad input to ``rotorcosim calibrate`` and ``rotorcosim uq``: one line naming the mistake, exit status 2, nothing
-run and no result written (issue's item 5)."""
+run and no result written."""
 import shutil
 from pathlib import Path
 

@@ -1,4 +1,4 @@
-"""The master's side of typed ports, unit conversions, stop requests and the first recorded sample (issue 15),
+"""The master's side of typed ports, unit conversions, stop requests and the first recorded sample,
 on small native components (the FMU side is in tests/fmus/test_import_types.py)."""
 from __future__ import annotations
 

@@ -1,5 +1,4 @@
 """The command line: no traceback for a user's mistake or an environment fault; exit 2 (input), 1 (run)."""
-import os
 
 import pytest
 

@@ -1,7 +1,7 @@
 """The same scenario gives the same numbers bit for bit, whatever the calling program imported first.
 
-A program that imports numpy before rotorcosim gets OpenBLAS with one thread per core (rotorcosim's
-OPENBLAS_NUM_THREADS=1 comes too late); multi-threaded BLAS sums in another order. master/core/threads.py limits the
+A program's OpenBLAS has one thread per core (importing rotorcosim changes no setting of the process);
+multi-threaded BLAS sums in another order. master/core/threads.py limits the
 pools to one thread around every run. Without it the API run below differed from the command line's by up to
 1e-5 relative (measured on 2 cores)."""
 import os
@@ -29,7 +29,7 @@ assert all(p['num_threads'] == 4 for p in threadpool_info() if p['user_api'] == 
 
 def _env():
     env = dict(os.environ)
-    env.pop("OPENBLAS_NUM_THREADS", None)   # this process's rotorcosim set it; the programs below start clean
+    env.pop("OPENBLAS_NUM_THREADS", None)   # the programs below start with a BLAS pool per core, as a plain program
     env.pop("OMP_NUM_THREADS", None)
     return env
 
@@ -72,3 +72,13 @@ def test_a_dask_worker_gives_the_command_lines_numbers(tmp_path):
     assert sorted(a) == sorted(b) and len(a) > 2
     for name in a:
         assert np.array_equal(a[name], b[name]), f"{name}: max difference {np.max(np.abs(a[name] - b[name]))}"
+
+
+def test_importing_rotorcosim_sets_nothing_in_the_environment():
+    """The thread limit is applied inside a run, not at import: a program that imports rotorcosim keeps its own
+    environment (no OPENBLAS_NUM_THREADS) and its own BLAS threads."""
+    code = ("import os, json; before = dict(os.environ); import rotorcosim, rotorcosim.master.api; "
+            "print(json.dumps({k: v for k, v in os.environ.items() if before.get(k) != v}))")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, env=_env(), timeout=120)
+    assert out.returncode == 0, out.stderr
+    assert out.stdout.strip() == "{}", out.stdout

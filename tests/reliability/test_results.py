@@ -10,7 +10,7 @@ from rotorcosim import scenarios
 from rotorcosim.master.run import checkpoint
 from rotorcosim.master.cli.run import execute
 from rotorcosim.master.observer.observers import Recorder
-from rotorcosim.master.run.rundir import LOCK, OutputFolderError, RunFolder
+from rotorcosim.master.run.rundir import OutputFolderError, RunFolder
 from rotorcosim.master.scenario.build import load_scenario
 
 
@@ -97,7 +97,7 @@ def test_sigint_ends_with_readable_series_and_summary(tmp_path, sigint_at):
     s = summary(out)
     assert s["status"] == "interrupted" and "SIGINT" in s["error"]
     with h5py.File(out / "timeseries.h5") as f:
-        assert f.attrs["complete"] == False  # noqa: E712
+        assert f.attrs["complete"] == False  # noqa: E712 - a numpy bool: `is` would not match
         t = f["time"][...]
         assert len(t) > 100 and np.all(np.diff(t) > 0) and np.all(np.isfinite(f["osc.x"][...]))
 
@@ -148,7 +148,7 @@ def test_disk_full_keeps_what_was_flushed(tmp_path, monkeypatch):
         n = f["time"].shape[0]
         assert n == 600  # the two chunks flushed before the disk filled
         assert np.all(np.isfinite(f["time"][...])) and np.all(np.diff(f["time"][...]) > 0)
-        assert f.attrs["complete"] == False  # noqa: E712
+        assert f.attrs["complete"] == False  # noqa: E712 - a numpy bool: `is` would not match
 
 
 def test_disk_nearly_full_is_refused_before_hdf5_breaks(tmp_path, monkeypatch):
@@ -179,7 +179,7 @@ def test_disk_nearly_full_is_refused_before_hdf5_breaks(tmp_path, monkeypatch):
         execute(toy(), out, duration=20.0, figures=False)
     assert summary(out)["status"] == "failed"
     with h5py.File(out / "timeseries.h5") as f:
-        assert f["time"].shape[0] >= 300 and f.attrs["complete"] == False  # noqa: E712
+        assert f["time"].shape[0] >= 300 and f.attrs["complete"] == False  # noqa: E712 - a numpy bool: `is` would not match
         assert "No space left" in f.attrs["error"]
 
 

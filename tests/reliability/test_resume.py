@@ -41,7 +41,7 @@ def test_interrupt_then_resume_is_bit_identical(tmp_path, reference, sigint_at, 
     assert s["status"] == "interrupted" and s["checkpoint"] == "checkpoint.pkl"
     assert s["t_end_s"] < DURATION
     data, attrs = series(out)  # readable, marked incomplete
-    assert attrs["complete"] == False  # noqa: E712
+    assert attrs["complete"] == False  # noqa: E712 - a numpy bool: `is` would not match
     assert data["time"][-1] <= s["t_end_s"] + 1e-12
     # the same command with resume
     summary = execute(toy(), out, duration=DURATION, figures=False, resume=True)
@@ -50,7 +50,7 @@ def test_interrupt_then_resume_is_bit_identical(tmp_path, reference, sigint_at, 
     assert not (out / "checkpoint.pkl").exists()
     got, attrs = series(out)
     want, _ = series(ref_out)
-    assert attrs["complete"] == True  # noqa: E712
+    assert attrs["complete"] == True  # noqa: E712 - a numpy bool: `is` would not match
     assert set(got) == set(want)
     for k in want:
         assert got[k].shape == want[k].shape, k
@@ -114,7 +114,7 @@ def test_command_line_interrupt_and_resume(tmp_path, reference, sigint_at, capsy
     assert main(args + ["--resume"]) == 0
     got, attrs = series(tmp_path / "o")
     want, _ = series(ref_out)
-    assert attrs["complete"] == True and all(np.array_equal(got[k], want[k]) for k in want)  # noqa: E712
+    assert attrs["complete"] == True and all(np.array_equal(got[k], want[k]) for k in want)  # noqa: E712 - a numpy bool: `is` would not match
 
 
 @pytest.fixture(scope="module")

@@ -28,8 +28,6 @@ from rotorcosim.master.run.rundir import LOCK
 from rotorcosim.master.sweep import Case, DiskFullError, SweepFolder, run_cases
 from tests.helpers import faulty
 
-pytest.importorskip("distributed")
-
 ROOT = Path(__file__).resolve().parents[2]
 _spec = importlib.util.spec_from_file_location("same_results", ROOT / "bench" / "same_results.py")
 same_results = importlib.util.module_from_spec(_spec)
@@ -254,13 +252,18 @@ def test_a_second_sweep_into_the_same_folder_is_refused_and_no_lock_is_left(tmp_
 
 
 def test_a_second_sweep_at_once_from_another_process(tmp_path):
-    """Two ``rotorcosim sweep`` processes into one folder: the second is refused naming the first's process."""
-    sc = faulty.scenario(tmp_path, sleep=0.01)
+    """Two ``rotorcosim sweep`` processes into one folder: the second is refused naming the first's process. The
+    first is held open (its node waits for a file) until the second has been refused, whatever the load."""
+    release = tmp_path / "release"
+    sc = faulty.scenario(tmp_path, hold=str(release), started=str(tmp_path / "started"))
     out = tmp_path / "out"
     argv = ["sweep", sc, "--unbalance", "1,2", "--duration", "0.05", "--serial", "--quiet", "--out", out]
     first = start(*argv)
-    wait_for(lambda: (out / "sweep.json").exists(), what="the first sweep to start")
-    r = cli(*argv)
+    try:
+        wait_for(lambda: (tmp_path / "started").exists(), what="the first sweep's first case to step")
+        r = cli(*argv)
+    finally:
+        release.write_text("")
     first.communicate(timeout=120)
     assert r.returncode == 2
     assert f"another sweep is writing into this folder (process {first.pid})" in r.stderr.splitlines()[0]
@@ -278,11 +281,12 @@ def test_a_serial_sweep_stops_at_a_signal_during_a_case(tmp_path, sig):
     """``--serial``: the case running takes the signal over (a run stops at its next checkpoint, or completes when
     none comes, as these 0.05 s cases do); the sweep still stops after it, exit status 130, the cases not started
     ``pending`` (it went on to the next case before)."""
-    sc = faulty.scenario(tmp_path, sleep=0.02)
+    started = tmp_path / "started"
+    sc = faulty.scenario(tmp_path, sleep=0.02, started=str(started))
     out = tmp_path / "out"
     p = start("sweep", sc, "--unbalance", "1,2,3", "--duration", "0.05", "--serial", "--quiet", "--out", out)
-    wait_for(lambda: (out / "F_1").is_dir(), what="the first case")
-    time.sleep(0.3)   # the second case under way (each takes ~1 s)
+    # the second case has taken its first step (each takes ~1 s of sleeping steps: the signal comes within it)
+    wait_for(lambda: started.exists() and len(started.read_text().splitlines()) >= 2, what="the second case")
     os.killpg(p.pid, sig)
     _, err = p.communicate(timeout=120)
     assert p.returncode == 130, err

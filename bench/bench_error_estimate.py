@@ -1,0 +1,65 @@
+"""The staggered scheme's estimated error against its true error, result by result (master/manipulator/hold.py,
+cases/blade_loss/results.estimated_errors, cases/blade_loss/error_check.py).
+
+    python bench/bench_error_estimate.py [--levels paper] [--duration 2] [--out DIR]
+    python bench/bench_error_estimate.py --pair STAGGERED_DIR MONOLITHIC_DIR [--pair ...]
+
+The first form runs `rotorcosim compare --duration D --unbalance F` (Table 6 protocol: 3 TM + 2 TO intervals
+against one monolithic interval) at each level, the second reads pairs of run folders made before (the 2-minute
+main job: `rotorcosim run --out A` and `rotorcosim run --schedule monolithic --out B`; a rundown comparison's
+staggered/ and monolithic/ folders). Prints per run and result the estimate, the true error in the same terms
+(temperatures: percent of the rise above the initial temperature) and their ratio (both floored at 0.05 %), then
+per run the largest estimate against the largest true error. The target: every ratio of a run's largest in
+[1, 3].
+"""
+from __future__ import annotations
+
+import argparse
+import json
+import tempfile
+from pathlib import Path
+
+from rotorcosim.cases.blade_loss import LEVELS
+from rotorcosim.cases.blade_loss import error_check
+from rotorcosim.cases.blade_loss.compare import compare
+from rotorcosim.master.cli.sweep import parse_levels
+
+
+def table(label: str, staggered: dict, monolithic: dict) -> dict:
+    rows = error_check.rows(staggered, monolithic)
+    for r in rows:
+        print(f"{label} | #{r['bearing']} {r['key']} | {r['estimated_pct']:.3f} | {r['true_pct']:.3f} | "
+              f"{r['ratio']:.2f}")
+    big = error_check.largest(rows)
+    return big
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--levels", default="paper")
+    ap.add_argument("--duration", type=float, default=2.0)
+    ap.add_argument("--out", default=None, help="keep the comparisons here (default: a temporary folder)")
+    ap.add_argument("--pair", nargs=2, action="append", metavar=("STAGGERED", "MONOLITHIC"), default=[])
+    a = ap.parse_args()
+    print("run | result | estimated % | true % | ratio")
+    big = {}
+    if a.pair:
+        for s, m in a.pair:
+            load = [json.loads((Path(d) / "summary.json").read_text()) for d in (s, m)]
+            big[s] = table(s, *load)
+    else:
+        levels = parse_levels(a.levels, LEVELS)
+        with tempfile.TemporaryDirectory() as tmp:
+            base = Path(a.out) if a.out else Path(tmp)
+            for f in levels:
+                d = base / f"{f:g}N"
+                compare(d, duration=a.duration, unbalance=f, figures=False, overwrite=True, timing_runs=1)
+                load = [json.loads((d / run / "summary.json").read_text()) for run in ("staggered", "monolithic")]
+                big[f"{f:g} N"] = table(f"{f:g} N", *load)
+    print("\nrun | largest estimate % | largest true % | ratio")
+    for label, b in big.items():
+        print(f"{label} | {b['estimated_pct']:.3f} | {b['true_pct']:.3f} | {b['ratio']:.2f}")
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,72 @@
+"""The staggered scheme's error estimate (master/manipulator/hold.py): the replay that carries a held interval's
+input errors through a thermal component, against the analytic response of a lumped node; a held interval that ends
+at a component's scheduled change is not charged; the advice when the estimate exceeds the tolerance.
+(tests/cases/test_error_estimate.py holds the estimate against monolithic runs.)"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+import rotorcosim
+from rotorcosim.master.manipulator.hold import HoldReport, Pulse, replay
+from rotorcosim.master.scenario.build import build_simulation, schedule_of
+
+
+def _node():
+    sim = build_simulation(rotorcosim.load_scenario("toy_thermomechanical"), [])
+    sim.initialise()
+    return sim.system.components["node"]
+
+
+def test_replay_gives_the_analytic_response_of_a_lumped_node():
+    """testing.thermal_node: C dT/dt = P - (T - T_inf) / R, tau = R C = 10 s (scenario's C = 10, R = 1). An input
+    error dP over [t0, t1] leaves dT = dP R (1 - exp(-(t1 - t0) / tau)) exp(-(now - t1) / tau) at ``now``; two
+    pulses add (the network is linear in its inputs). The node's own step is exact for a constant input."""
+    node = _node()
+    tau = node.p["R"] * node.p["C"]
+    T_before = float(node.y["T"][0])
+    one = Pulse(0.0, 4.0, 0.05, {"P": np.array([2.0])})
+    two = Pulse(5.0, 7.0, 0.05, {"P": np.array([-1.0])})
+    now = 9.0
+    got = replay(node, "node", [one, two], node.time + now)   # ``now`` only sets the replay's length after t0
+    exact = (2.0 * node.p["R"] * (1 - math.exp(-4.0 / tau)) * math.exp(-(now - 4.0) / tau)
+             - 1.0 * node.p["R"] * (1 - math.exp(-2.0 / tau)) * math.exp(-(now - 7.0) / tau))
+    assert got["node.T"][0] == pytest.approx(exact, rel=1e-9)
+    assert float(node.y["T"][0]) == T_before   # the component's state is restored
+
+
+def test_a_negative_input_error_larger_than_the_input_is_replayed():
+    """An error larger than the present power (held far below the mechanics) asks for no negative input: both
+    replays are lifted by the same amount."""
+    node = _node()
+    big = Pulse(0.0, 1.0, 0.05, {"P": np.array([-10.0 * float(node.u["P"][0]) - 5.0])})
+    got = replay(node, "node", [big], node.time + 1.0)
+    assert got["node.T"][0] < 0.0
+
+
+def test_a_held_interval_ending_at_a_scheduled_change_is_not_charged():
+    """A component declaring a scheduled change (next_event) at the end of the first TO interval (5 s): that
+    interval's hand-off error is not measured across the change, the next one is charged as usual."""
+    sc = rotorcosim.load_scenario("toy_thermomechanical")
+    sim = build_simulation(sc, [])
+    sim.initialise()
+    osc = sim.system.components["osc"]
+    osc.next_event = lambda t: 5.0 if t <= 5.0 else None
+    sim.run(schedule_of(sc, "timeline", 10.3))
+    first, second = sim.report.hold.intervals
+    assert first["event"] == "osc at 5 s" and first["estimate_pct"] is None
+    assert second["event"] is None and second["estimate_pct"] > 0.0
+    assert [q.t0 for q in sim.hold._pulses["node"]] == [pytest.approx(5.3)]
+
+
+def test_the_advice_names_the_interval_and_what_to_change():
+    rep = HoldReport(intervals=[{"t_start": 0.3, "t_end": 5.0, "estimate_pct": 4.0, "event": None,
+                                 "output": "node.T"},
+                                {"t_start": 5.3, "t_end": 10.0, "estimate_pct": 1.0, "event": None,
+                                 "output": "node.T"}])
+    assert rep.advice(1.5, 2.0) is None
+    note = rep.advice(4.0, 2.0)
+    assert "0.3-5 s" in note and "node.T" in note and "2.35 s instead of 4.7 s" in note
+    assert "drift_tolerance" in note
