@@ -5,6 +5,10 @@ file of rotorcosim's format (docs/reference/engine-format.md); no ROSS needed.
 bearings at those nodes the co-simulated ball bearings #ID
 (their linear coefficients become the housings' pedestals), so that ``blade_loss.toml`` scenarios can run the
 rotor; without it the file has the ROSS bearings as linear supports (critical speeds, check-engine, to_ross).
+What each co-simulated part is (ball bearing, squeeze film damper, rub ring, thermal network: ROSS describes none of
+them) comes from ``--parts FILE``: a TOML file of the engine format's part tables (``[bearing.ID]``,
+``[damper.ID]``, ``[rubring.ID]``, ``[thermal.ID]``, ``[unbalance]``), checked and copied into the engine file,
+which ``--attach`` needs.
 """
 from __future__ import annotations
 
@@ -32,11 +36,43 @@ def _attach(text: str | None) -> dict:
     return out
 
 
+#: the engine format's part tables an import takes from --parts
+PART_TABLES = ("bearing", "damper", "rubring", "thermal", "unbalance")
+
+
+def _parts(path: str | None, engine: dict) -> dict:
+    """The part tables of the file ``path`` (--parts), checked against the engine's [attach]; {} for None."""
+    if path is None:
+        if engine.get("attach"):
+            raise ValueError("--attach needs --parts FILE: what each co-simulated bearing is ([bearing.ID], "
+                             "[damper.ID], [rubring.ID] of the engine format: docs/reference/engine-format.md); "
+                             "ROSS files describe no ball bearing, damper or rub ring")
+        return {}
+    import tomllib
+
+    from rotorcosim.components.rotor import engine_parts
+
+    p = Path(path)
+    if not p.is_file():
+        raise FileNotFoundError(f"--parts {path}: no such file")
+    try:
+        data = tomllib.loads(p.read_text())
+    except (tomllib.TOMLDecodeError, UnicodeDecodeError) as exc:
+        raise ValueError(f"--parts {path}: not valid TOML ({exc})") from None
+    other = sorted(set(data) - set(PART_TABLES))
+    if other:
+        raise ValueError(f"--parts {path}: [{other[0]}] is not a part table (they are: {', '.join(PART_TABLES)})")
+    bad = engine_parts.problems({**data, "attach": engine.get("attach", {})})
+    if bad:
+        raise ValueError(f"--parts {path}: {bad[0]}")
+    return data
+
+
 def import_ross(rotor_file: str, out: str, *, speed_rpm: float | None = None, coefficients_at: float | None = None,
                 attach: str | None = None, unbalance_node: int | None = None,
-                hub_mass_kg: float = DEFAULT_HUB_MASS_KG) -> dict:
+                hub_mass_kg: float = DEFAULT_HUB_MASS_KG, parts: str | None = None) -> dict:
     """Read ``rotor_file`` (ROSS TOML), write the engine file ``out`` (not overwritten; written whole or not at
-    all) and return the engine description."""
+    all) with the part tables of the file ``parts`` and return the engine description."""
     o = Path(out)
     if o.exists():
         raise FileExistsError(f"--out {out}: already exists; choose a new file name")
@@ -44,6 +80,7 @@ def import_ross(rotor_file: str, out: str, *, speed_rpm: float | None = None, co
         raise FileNotFoundError(f"--out {out}: the folder {o.parent} does not exist")
     engine = from_ross(rotor_file, speed_rpm=speed_rpm, speed_rpm_coefficients=coefficients_at,
                        attach=_attach(attach), unbalance_node=unbalance_node, hub_mass_kg=hub_mass_kg)
+    engine.update(_parts(parts, engine))
     write(engine, o, header=f"Imported by rotorcosim import-ross from {Path(rotor_file).name}.\n"
                             "The engine format: docs/reference/engine-format.md. Check it: rotorcosim check-engine "
                             f"{o.name}")
@@ -64,6 +101,9 @@ def add_arguments(parser):
                              "0=NODE,5=NODE for a scenario that extends the shipped blade_loss)")
     parser.add_argument("--unbalance-node", type=int, default=None, metavar="NODE",
                         help="ROSS node of the blade loss (with --attach; default: the first disk's)")
+    parser.add_argument("--parts", default=None, metavar="FILE",
+                        help="a TOML file of the attached parts ([bearing.ID], [damper.ID], [rubring.ID], "
+                             "[thermal.ID], [unbalance]) copied into the engine file (--attach needs it)")
     parser.add_argument("--hub-mass", type=float, default=DEFAULT_HUB_MASS_KG, metavar="KG",
                         help=f"housing mass of each co-simulated bearing (default {DEFAULT_HUB_MASS_KG:g})")
 
@@ -71,7 +111,8 @@ def add_arguments(parser):
 def run(args) -> int:
     """Run the command ``args`` (parsed); returns the exit status."""
     engine = import_ross(args.rotor, args.out, speed_rpm=args.speed, coefficients_at=args.coefficients_at,
-                         attach=args.attach, unbalance_node=args.unbalance_node, hub_mass_kg=args.hub_mass)
+                         attach=args.attach, unbalance_node=args.unbalance_node, hub_mass_kg=args.hub_mass,
+                         parts=args.parts)
     spools = ", ".join(f"{k} ({len(v['z_mm'])} nodes, {len(v['disks'])} disks)" for k, v in engine["spool"].items())
     print(f"spools: {spools}; supports: {len(engine.get('support', []))}; pedestals: "
           f"{len(engine.get('pedestal', {}))}; attached: "

@@ -38,7 +38,7 @@ COMMANDS = {
     "critical-speeds": ("rotorcosim.cases.blade_loss.critical_speeds",
                         "synchronous critical speeds and Campbell diagram of the rotor"),
     "new-engine": ("rotorcosim.cases.blade_loss.new_engine",
-                   "write a small engine of your own and a blade-loss scenario of it into a folder"),
+                   "write a small engine of your own and its blade-loss and rundown scenarios into a folder"),
     "check-engine": ("rotorcosim.cases.blade_loss.check_engine",
                      "an engine file's problems, or its nodes, masses, inertias, critical speeds with their "
                      "separation margins, warnings and Campbell diagram"),

@@ -25,7 +25,9 @@ from rotorcosim import scenarios
 from rotorcosim.components.rotor import attach, calibration, critical
 from rotorcosim.components.rotor import model as fem
 
+from rotorcosim.components import registry
 from rotorcosim.master.scenario.build import create_component, load_scenario
+from rotorcosim.master.scenario.engine import part_parameters
 
 KELVIN = 273.15
 
@@ -38,6 +40,7 @@ def supports(sc=None, oil_temperature_C: float | None = None, data: dict | None 
     """{"h<ID>": {...}} for every bearing<ID> of the rotor data's [attach] (in its order; "h0", "h5" for the paper's
     engine): node, hub and k_contact, m_journal, k_spring, c_film, oil_temperature_C taken from the scenario's
     bearing<ID> and damper<ID> components (a scenario without them is an error naming the id)."""
+    own = sc is None    # no scenario: the engine file's own parts ([bearing.ID], [damper.ID])
     sc = _scenario(sc)
     if data is None:
         data, _ = fem.load_data(sc.components["rotor"].parameters.get("model_file") or None)
@@ -51,13 +54,22 @@ def supports(sc=None, oil_temperature_C: float | None = None, data: dict | None 
         raise ValueError("rotor model data: [attach] has no bearing<ID> entry (node, housing)")
     for k in ids:
         key = f"h{k}"
-        missing = [c for c in (f"bearing{k}", f"damper{k}") if c not in sc.components]
-        if missing:
-            raise ValueError(f"scenario {sc.name!r} has no {' or '.join(missing)} for the engine's [attach] "
-                             f"bearing{k}: give the engine's own blade-loss scenario (--scenario FILE)")
-        brg = create_component(sc.components[f"bearing{k}"])
+        if own:
+            lacks = [t for t in (f"bearing.{k}", f"damper.{k}")
+                     if not isinstance(data.get(t.split(".")[0], {}).get(k), dict)]
+            if lacks:
+                raise ValueError(f"the engine file has no [{'] or ['.join(lacks)}] for its [attach] bearing{k}: give "
+                                 "them (docs/reference/engine-format.md) or a scenario that does (--scenario FILE)")
+            brg = registry.create("bearing.hertz", f"bearing{k}", part_parameters(f"bearing{k}", data=data))
+            dmp = registry.create("damper.fast", f"damper{k}", part_parameters(f"damper{k}", data=data))
+        else:
+            missing = [c for c in (f"bearing{k}", f"damper{k}") if c not in sc.components]
+            if missing:
+                raise ValueError(f"scenario {sc.name!r} has no {' or '.join(missing)} for the engine's [attach] "
+                                 f"bearing{k}: give the engine's own blade-loss scenario (--scenario FILE)")
+            brg = create_component(sc.components[f"bearing{k}"])
+            dmp = create_component(sc.components[f"damper{k}"])
         brg.setup(0.0)
-        dmp = create_component(sc.components[f"damper{k}"])
         dmp.setup(0.0)
         at = ls[f"bearing{k}"]
         out[key] = {"node": tuple(at["node"]), "hub": at["housing"],

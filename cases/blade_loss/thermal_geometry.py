@@ -1,12 +1,14 @@
 """Before a run: each thermal network has the geometry of the bearing, damper and rub ring whose heat it takes.
 
 The thermal network (components/thermal) derives its Table 1 resistances and heat masses from a bearing's and a
-damper's geometry, which it takes as its own parameters, as an FMU would: the scenario sets them (the paper's
-records by ``bearing = 0 | 5``, or ``bore``, ``balls``, ``damper_radius`` ... one by one). No component reads
-another's; this check, the case's, compares the values the components run with (:meth:`Scenario.parameters`),
-through the connections that feed the network's power inputs (``bearingK.P_drag -> thermalK.P_drag``,
-``damperK.P_film -> thermalK.P_sfd``, ``rubringK.P_rub -> thermalK.P_rub``), and names every pair that differs.
-A component that lacks one of the parameters (an FMU, a user's implementation) is not compared.
+damper's geometry, which it takes as its own parameters, as an FMU would. A scenario takes both from the same
+records of its engine file ([bearing.ID], [damper.ID], [rubring.ID]: master/scenario/engine.py), so they agree by
+construction, and a change by name moves both; a scenario file that writes a plain value into one of them, or a
+component that is not bound to the engine, can still make them differ. No component reads another's; this
+check, the case's, compares the values the components run with (:meth:`Scenario.parameters`), through the
+connections that feed the network's power inputs (``bearingK.P_drag -> thermalK.P_drag``, ``damperK.P_film ->
+thermalK.P_sfd``, ``rubringK.P_rub -> thermalK.P_rub``), and names every pair that differs. A component that
+lacks one of the parameters (an FMU, a user's implementation) is not compared.
 """
 from __future__ import annotations
 

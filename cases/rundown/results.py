@@ -54,9 +54,13 @@ FIGURES_MODULE = "rotorcosim.cases.rundown.figures"
 
 
 def _locations(components) -> dict[str, dict[str, str]]:
-    if all(f"bearing{k}" in components for k in (0, 5)):
+    """Per co-simulated bearing (every component bearing<ID> with its damper<ID>, in the system's order) the ports
+    read; else the rotor's first bearing port alone (a test rotor's disk)."""
+    ids = [n[len("bearing"):] for n in components if n.startswith("bearing") and f"damper{n[len('bearing'):]}" in
+           components]
+    if ids:
         out = {}
-        for k in (0, 5):
+        for k in ids:
             b = components[f"bearing{k}"]
             q = "Q_max_step" if "Q_max_step" in b.y else "Q_max"
             s = "sigma_max_step" if "sigma_max_step" in b.y else "sigma_max"
@@ -286,7 +290,8 @@ def extract(sc, sim, obs, report) -> dict:
     for i, sp in enumerate(track.spools):
         c = comps[sp]
         cut = c.p.get("t_fuel_cut", -1.0)
-        speeds[sp] = {"start_rpm": track.start_energy[sp][5] * RPM, "end_rpm": float(c.y["Omega"][0]) * RPM,
+        speeds[sp] = {"inertia_kgm2": float(c.J), "start_rpm": track.start_energy[sp][5] * RPM,
+                      "end_rpm": float(c.y["Omega"][0]) * RPM,
                       "t_fuel_cut_s": float(cut) if c.p.get("profile") == "torque" and cut >= 0.0 else None,
                       # a stopped spool is a legal end state (friction, or a profile to 0 rev/min)
                       "stopped": float(c.y["Omega"][0]) == 0.0}

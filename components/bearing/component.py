@@ -62,7 +62,10 @@ INNER_MOTION = ("step_end", "step_start")
 #: the geometry parameters: (parameter, Table 3 key, SI per table unit)
 GEOMETRY = (("balls", "balls", 1), ("ball_diameter", "ball_diameter_mm", 1e-3), ("bore", "bore_mm", 1e-3),
             ("outside_diameter", "outside_diameter_mm", 1e-3), ("width", "width_mm", 1e-3),
-            ("contact_angle", "contact_angle_deg", math.pi / 180.0))
+            ("contact_angle", "contact_angle_deg", math.pi / 180.0), ("journal_radius", "journal_radius_mm", 1e-3),
+            ("journal_length", "journal_length_mm", 1e-3))
+#: ``bearing`` = NO_RECORD: no record of the paper's Table 3; every geometry parameter and the preload are given
+NO_RECORD = -1
 #: contact stress above which Hertz's elastic theory no longer describes a ball contact: ISO 76 sets the static
 #: load rating of ball bearings at 4200 MPa at the centre of the most loaded contact, where the permanent
 #: deformation of ball and race reaches 1e-4 of the ball diameter (data/bearings.toml [drag], the same value
@@ -89,10 +92,11 @@ class BallBearing(KernelComponent):
     preferred_step = 1e-5
     phases = frozenset({"TM"})
     step_cost_s, kernel_step_cost_s, setup_cost_s = 13e-6, 2.5e-6, 0.1  # bench/bench_estimate.py
-    required_parameters = ("bearing",)  # which of Table 3's gives the data: never a silent default
     variables = (
-        Variable("bearing", "parameter", start=0, type="Integer",
-                 description="which bearing of Table 3 (0 or 5) gives the geometry and defaults"),
+        Variable("bearing", "parameter", start=NO_RECORD, type="Integer",
+                 description="which bearing of the paper's Table 3 (0 or 5) gives the geometry and preload not set "
+                             "explicitly; -1 (default): none, every one is given (a scenario takes them from its "
+                             "engine file's [bearing.ID] and [damper.ID])"),
         Variable("omega", "parameter", unit="rad/s", start=PT_OMEGA,
                  description="inner race (power turbine) speed; outer race stationary; at most the model's "
                              f"speed limit, bore x speed <= {DN_LIMIT:.3g} mm rev/min (data/bearings.toml dn_limit)"),
@@ -124,6 +128,12 @@ class BallBearing(KernelComponent):
                  description="bearing width (outer race mass; default: Table 3 of `bearing`)"),
         Variable("contact_angle", "parameter", unit="rad", start=math.radians(BEARINGS[0]["contact_angle_deg"]),
                  description="initial (unloaded) contact angle (default: Table 3 of `bearing`)"),
+        Variable("journal_radius", "parameter", unit="m", start=BEARINGS[0]["journal_radius_mm"] * 1e-3,
+                 description="squeeze film damper journal radius: the journal's mass of eq. (5) (default: Table 3 "
+                             "of `bearing`; a scenario gives its damper's radius)"),
+        Variable("journal_length", "parameter", unit="m", start=BEARINGS[0]["journal_length_mm"] * 1e-3,
+                 description="squeeze film damper journal length: the journal's mass (default: Table 3 of "
+                             "`bearing`; a scenario gives its damper's length)"),
         Variable("f0", "parameter", start=_DRAG["f0"], description="Palmgren lubrication factor of the drag torque"),
         Variable("inner_motion", "parameter", start="step_end", type="String",
                  description="X_inner/V_inner are the rotor state at the 'step_end' (Gauss-Seidel, rotor first) "
@@ -175,11 +185,16 @@ class BallBearing(KernelComponent):
         super().setup(t0)
         p = self.p
         explicit = self.explicit
-        if p["bearing"] not in BEARINGS:
+        record = p["bearing"] != NO_RECORD
+        if record and p["bearing"] not in BEARINGS:
             raise ContractError(f"{self.name}.bearing: unknown bearing number {p['bearing']!r}; Table 3 has "
-                                f"{sorted(BEARINGS)} (the record of defaults: pick one and set the geometry "
-                                "parameters balls, ball_diameter, bore, outside_diameter, width, contact_angle, "
-                                "preload for another bearing)")
+                                f"{sorted(BEARINGS)}, or -1 for none (then set the geometry parameters "
+                                f"{', '.join(n for n, _, _ in GEOMETRY)} and preload)")
+        if not record:
+            missing = [n for n in [g for g, _, _ in GEOMETRY] + ["preload"] if n not in explicit]
+            if missing:
+                raise ContractError(f"{self.name}: no Table 3 record (bearing = -1) and no {', '.join(missing)} "
+                                    "given (a scenario takes them from its engine file's [bearing.ID], [damper.ID])")
         if "preload" not in explicit:
             p["preload"] = float(BEARINGS[p["bearing"]]["preload_N"])
         for key, lo in (("omega", 0.0), ("preload", 0.0), ("contact_damping", 0.0), ("ball_damping", 0.0),
@@ -193,7 +208,7 @@ class BallBearing(KernelComponent):
         if p["substeps"] < 0 or not p["cfl"] > 0.0 or p["cfl"] >= 2.0:
             raise ContractError(f"{self.name}: substeps must be >= 0 (0 = automatic) and 0 < cfl < 2, "
                                 f"got substeps={p['substeps']}, cfl={p['cfl']}")
-        raw = BEARINGS[p["bearing"]]
+        raw = BEARINGS.get(p["bearing"], {})
         for name, key, scale in GEOMETRY:
             if name in explicit:
                 v = p[name]
@@ -204,7 +219,7 @@ class BallBearing(KernelComponent):
         table = {key: (p[name] / scale if name != "balls" else int(p[name]))
                  for name, key, scale in GEOMETRY if name in explicit}
         try:
-            g = build_geometry(p["bearing"], f_i=p["groove_curvature_inner"], f_o=p["groove_curvature_outer"],
+            g = build_geometry(p["bearing"] if record else None, f_i=p["groove_curvature_inner"], f_o=p["groove_curvature_outer"],
                                preload=p["preload"], table=table)
         except ValueError as exc:
             raise ContractError(f"{self.name}: {exc}") from None

@@ -1,4 +1,7 @@
-"""``rotorcosim damper-force``: the squeeze film damper force at one journal position and velocity."""
+"""``rotorcosim damper-force``: the squeeze film damper force at one journal position and velocity.
+
+The damper is any damper of an engine (``--engine FILE --damper ID``: its ``[damper.ID]``; ``--scenario SCENARIO
+--damper ID``: the scenario's component ``damper<ID>``), or the paper's Table 3 damper #0 or #5 by number alone."""
 from __future__ import annotations
 
 import json
@@ -11,8 +14,13 @@ from .viscosity import _oil, sae30_viscosity
 
 
 def add_arguments(parser):
-    parser.add_argument("--damper", type=int, choices=sorted(DAMPERS), required=True,
-                        help="damper under bearing 0 or 5 (Table 3 geometry)")
+    parser.add_argument("--damper", required=True, metavar="ID",
+                        help="the damper's id in the engine (--engine or --scenario); alone, 0 or 5: the paper's "
+                             "Table 3 damper")
+    parser.add_argument("--engine", metavar="FILE", help="the engine file whose [damper.ID] gives the damper")
+    parser.add_argument("--scenario", dest="part_scenario", metavar="SCENARIO",
+                        help="a scenario whose component damper<ID> gives the damper")
+    parser.set_defaults(part=("damper", "damper"))
     parser.add_argument("--position", type=float, nargs=2, metavar=("X", "Y"), required=True,
                         help="journal position relative to the housing, m")
     parser.add_argument("--velocity", type=float, nargs=2, metavar=("VX", "VY"), required=True,
@@ -25,14 +33,26 @@ def add_arguments(parser):
     parser.add_argument("--json", action="store_true", help="print a JSON object")
 
 
-def evaluate(damper: int, position, velocity, temperature_C: float, model: str = "fast",
-             cavitation: bool = True) -> dict:
-    """The film force, spring force, power loss and viscosity (SI) for the CLI and scripts."""
+
+def _id(text: str):
+    """A part's id: an integer when it is one (the paper's 0 and 5), else the text."""
+    return int(text) if text.isdigit() else text
+
+
+def evaluate(damper, position, velocity, temperature_C: float, model: str = "fast",
+             cavitation: bool = True, parameters: dict | None = None) -> dict:
+    """The film force, spring force, power loss and viscosity (SI) for the CLI and scripts; ``parameters``: the
+    damper component's (an engine's, a scenario's), else the paper's Table 3 damper of that number."""
+    damper = _id(str(damper))
+    if parameters is None and damper not in DAMPERS:
+        raise ValueError(f"--damper {damper}: the paper's Table 3 has dampers {sorted(DAMPERS)}; for another damper "
+                         "give its engine (--engine FILE) or a scenario (--scenario)")
     values = [*position, *velocity, temperature_C]
     if not all(math.isfinite(v) for v in values):
         raise ValueError(f"position, velocity and temperature must be finite numbers, got {values}")
     cls = FEDamper if model == "fe" else FastDamper
-    d = cls(f"damper{damper}", {"damper": damper, "cavitation": cavitation})
+    d = cls(f"damper{damper}", {**(parameters if parameters is not None else {"damper": damper}),
+                                "cavitation": cavitation})
     d.setup(0.0)
     T = temperature_C + 273.15
     try:
@@ -70,7 +90,8 @@ def evaluate(damper: int, position, velocity, temperature_C: float, model: str =
 
 
 def run(args) -> int:
-    out = evaluate(args.damper, args.position, args.velocity, args.temperature, args.model, not args.no_cavitation)
+    out = evaluate(args.damper, args.position, args.velocity, args.temperature, args.model, not args.no_cavitation,
+                   getattr(args, "parameters", None))
     for entry in out["validity"]:
         print(warning_line("rotorcosim damper-force", entry), file=sys.stderr)
     if args.json:

@@ -44,6 +44,8 @@ DAMPERS = {int(k): v for k, v in _DATA["damper"].items()}
 FILM = _DATA["film"]
 #: parameters that follow the ``damper`` selection (Table 3) unless set explicitly
 GEOMETRY = ("radius", "length", "clearance", "supply_pressure", "k_spring")
+#: ``damper`` = NO_RECORD: no record of the paper's Table 3; every one of GEOMETRY is given
+NO_RECORD = -1
 #: the largest radial clearance over journal radius the film model accepts: the Reynolds equation (eq. 7) is the
 #: thin-film limit, its neglected terms of order c/R (Szeri, Fluid Film Lubrication, ch. 2); squeeze film dampers
 #: run at c/R ~ 1e-3 (Table 3: 0.635 mm / 80 mm = 0.008), so 0.05 refuses only what is not a film (or is mm read
@@ -75,10 +77,11 @@ def table3(damper: int) -> dict:
 class _Damper(Memoryless, Component):
     """Common ports, parameters, spring, viscosity and checks; subclasses provide :meth:`film_force`."""
 
-    required_parameters = ("damper",)  # which of Table 3's gives the data: never a silent default
     variables = (
-        Variable("damper", "parameter", unit="1", start=0, type="Integer",
-                 description="which damper of Table 3 (0 or 5) gives the geometry not set explicitly"),
+        Variable("damper", "parameter", unit="1", start=NO_RECORD, type="Integer",
+                 description="which damper of the paper's Table 3 (0 or 5) gives the geometry not set explicitly; "
+                             "-1 (default): none, radius, length, clearance, supply_pressure and k_spring are all "
+                             "given (a scenario takes them from its engine file's [damper.ID])"),
         # plausible ranges (a wider band around aircraft-engine practice: San Andres, "Squeeze film dampers:
         # operation, models and technical issues", Texas A&M Turbomachinery Laboratory notes, 2010: radial
         # clearances 0.1-0.5 mm, journal diameters 50-300 mm, L/D 0.1-0.5, centering springs 1-50 MN/m,
@@ -139,9 +142,15 @@ class _Damper(Memoryless, Component):
         super().setup(t0)
         p = self.p
         explicit = self.explicit
-        if p["damper"] not in DAMPERS:
-            raise ContractError(f"{self.name}.damper must be one of {sorted(DAMPERS)} (Table 3), got {p['damper']}")
-        data = table3(p["damper"])
+        if p["damper"] == NO_RECORD:
+            missing = [key for key in GEOMETRY if key not in explicit]
+            if missing:
+                raise ContractError(f"{self.name}: no Table 3 record (damper = -1) and no {', '.join(missing)} given "
+                                    "(a scenario takes them from its engine file's [damper.ID])")
+        elif p["damper"] not in DAMPERS:
+            raise ContractError(f"{self.name}.damper must be one of {sorted(DAMPERS)} (Table 3) or -1 (none), got "
+                                f"{p['damper']}")
+        data = table3(p["damper"]) if p["damper"] != NO_RECORD else {}
         for key in GEOMETRY:
             if key not in explicit:
                 p[key] = float(data[key])

@@ -20,6 +20,7 @@ import math
 import numpy as np
 
 from . import attach as attach_layout
+from . import engine_parts
 from . import model as fem
 from .engine_shape import shape_problems
 from .spool_inertia import spool_polar_inertia
@@ -236,7 +237,7 @@ def problems(data: dict) -> list[str]:
         if key.startswith("rubring") and f"bearing{key[len('rubring'):]}" not in attach:
             p.add(f"attach.{key}", f"no bearing{key[len('rubring'):]} in [attach] (a rub ring's ring is on the "
                                    "housing of the bearing of the same id)")
-    return p.out
+    return p.out + engine_parts.problems(data)
 
 
 def _node_ok(n, count: int) -> bool:

@@ -31,6 +31,8 @@ RINGS = {int(k): v for k, v in _DATA["ring"].items()}
 CONTACT = _DATA["contact"]
 #: parameters that follow the ``bearing`` selection unless set explicitly
 GEOMETRY = {"clearance": "clearance_mm", "radius": "radius_mm"}
+#: ``bearing`` = NO_RECORD: no ring of the paper's; clearance and radius are given
+NO_RECORD = -1
 #: the largest normal force the shipped contact stiffness describes: data/rubrings.toml [contact] estimates it from
 #: Johnson's conformal line contact (Contact Mechanics, sec. 5.6) as 2.7-3.3e8 N/m over 5-50 kN, so a constant
 #: 3e8 N/m is within 10 % of that law up to 50 kN; beyond it the law (stiffening with load) is not the one used
@@ -45,10 +47,11 @@ class RubRing(Memoryless, KernelComponent):
     """Rotor / rub-ring contact at bearing #0 or #5."""
 
     description = "Rub ring: penalty contact with damping, Coulomb friction (spin + whirl), friction power eq. (11)"
-    required_parameters = ("bearing",)  # which of Table 3's gives the data: never a silent default
     variables = (
-        Variable("bearing", "parameter", unit="1", start=0, type="Integer",
-                 description="which ring (at bearing 0 or 5) gives the clearance and radius not set explicitly"),
+        Variable("bearing", "parameter", unit="1", start=NO_RECORD, type="Integer",
+                 description="which ring of the paper's (at bearing 0 or 5) gives the clearance and radius not set "
+                             "explicitly; -1 (default): none, both are given (a scenario takes them from its engine "
+                             "file's [rubring.ID])"),
         Variable("clearance", "parameter", unit="m", start=RINGS[0]["clearance_mm"] * 1e-3,
                  description="radial clearance between the rotor and the ring",
                  plausible=(1e-5, 5e-3)),  # seal and rub-ring clearances: tens of um to a few mm
@@ -81,9 +84,14 @@ class RubRing(Memoryless, KernelComponent):
     def setup(self, t0=0.0):
         super().setup(t0)
         p = self.p
-        if p["bearing"] not in RINGS:
-            raise ContractError(f"{self.name}.bearing must be one of {sorted(RINGS)}, got {p['bearing']}")
         explicit = self.explicit
+        if p["bearing"] == NO_RECORD:
+            missing = [key for key in GEOMETRY if key not in explicit]
+            if missing:
+                raise ContractError(f"{self.name}: no ring record (bearing = -1) and no {', '.join(missing)} given (a "
+                                    "scenario takes them from its engine file's [rubring.ID])")
+        elif p["bearing"] not in RINGS:
+            raise ContractError(f"{self.name}.bearing must be one of {sorted(RINGS)} or -1 (none), got {p['bearing']}")
         for key, data_key in GEOMETRY.items():
             if key not in explicit:
                 p[key] = RINGS[p["bearing"]][data_key] * 1e-3

@@ -61,7 +61,8 @@ class Spool(KernelComponent):
         Variable("inertia", "parameter", unit="kg.m2", start=0.0,
                  description="polar moment of inertia J (0: from the rotor model file's spool)"),
         Variable("model_file", "parameter", unit="1", start="", type="String",
-                 description="rotor model file for J ('' = the shipped engine)"),
+                 description="the engine file whose spool `spool` this is, for J when inertia is 0 (a scenario "
+                             "gives its engine)"),
         Variable("spool", "parameter", unit="1", start="pt", type="String",
                  description="the spool of the model file ([spool.NAME]) this one is (for J)"),
         Variable("t_fuel_cut", "parameter", unit="s", start=-1.0,
@@ -140,6 +141,9 @@ class Spool(KernelComponent):
         return float(cut) if self.p["profile"] == "torque" and cut >= 0.0 and cut >= t - EVENT_TOL else None
 
     def _model_inertia(self) -> float:
+        if not self.p["model_file"]:
+            raise ValueError("inertia not given and no model_file to compute it from (give the spool's polar inertia "
+                             "[kg m^2] or the engine file; a scenario takes both from its engine)")
         from ..rotor.spool_inertia import polar_inertia
         return polar_inertia(self.p["model_file"], self.p["spool"])
 

@@ -1,4 +1,8 @@
-"""``rotorcosim thermal-steady``: the steady state of a bearing's thermal network under constant powers."""
+"""``rotorcosim thermal-steady``: the steady state of a bearing's thermal network under constant powers.
+
+The network is that of any bearing of an engine (``--engine FILE --bearing ID``: its bearing's, damper's, rub
+ring's and thermal tables, the values a run of that engine gives it; ``--scenario SCENARIO --bearing ID``: the
+scenario's component ``thermal<ID>``), or of the paper's Table 3 bearing #0 or #5 by number alone."""
 from __future__ import annotations
 
 import json
@@ -14,8 +18,13 @@ KELVIN = 273.15
 
 
 def add_arguments(parser):
-    parser.add_argument("--bearing", type=int, choices=sorted(BEARINGS), required=True,
-                        help="bearing #0 or #5 (Table 3 geometry)")
+    parser.add_argument("--bearing", required=True, metavar="ID",
+                        help="the bearing's id in the engine (--engine or --scenario); alone, 0 or 5: the paper's "
+                             "Table 3 bearing")
+    parser.add_argument("--engine", metavar="FILE", help="the engine file whose parts at bearing ID give the network")
+    parser.add_argument("--scenario", dest="part_scenario", metavar="SCENARIO",
+                        help="a scenario whose component thermal<ID> gives the network")
+    parser.set_defaults(part=("thermal", "bearing"))
     parser.add_argument("--drag-power", type=float, required=True, metavar="W", help="bearing drag-torque power, W")
     parser.add_argument("--sfd-power", type=float, required=True, metavar="W", help="damper film viscous power, W")
     parser.add_argument("--rub-power", type=float, default=0.0, metavar="W", help="rub friction power, W (default 0)")
@@ -24,9 +33,20 @@ def add_arguments(parser):
     parser.add_argument("--json", action="store_true", help="print a JSON object")
 
 
-def steady(bearing: int, drag_power: float, sfd_power: float, rub_power: float = 0.0,
-           ambient_C: float = 30.0) -> dict:
-    """Steady node temperatures (C) and growths (m) of bearing 0 or 5 under constant powers (W)."""
+
+def _id(text: str):
+    """A part's id: an integer when it is one (the paper's 0 and 5), else the text."""
+    return int(text) if text.isdigit() else text
+
+
+def steady(bearing, drag_power: float, sfd_power: float, rub_power: float = 0.0,
+           ambient_C: float = 30.0, parameters: dict | None = None) -> dict:
+    """Steady node temperatures (C) and growths (m) of a bearing's network under constant powers (W); ``parameters``:
+    the network component's (an engine's, a scenario's), else the paper's Table 3 bearing of that number."""
+    bearing = _id(str(bearing))
+    if parameters is None and bearing not in BEARINGS:
+        raise ValueError(f"--bearing {bearing}: the paper's Table 3 has bearings {sorted(BEARINGS)}; for another "
+                         "bearing give its engine (--engine FILE) or a scenario (--scenario)")
     values = {"drag power": drag_power, "sfd power": sfd_power, "rub power": rub_power, "ambient": ambient_C}
     for name, v in values.items():
         if not math.isfinite(v):
@@ -42,7 +62,8 @@ def steady(bearing: int, drag_power: float, sfd_power: float, rub_power: float =
     except ValueError as exc:
         raise ValueError(f"--ambient {ambient_C:g} C is also the oil supply temperature: {exc} (temperatures are "
                          "in degrees C)") from None
-    net = ThermalNetwork(f"thermal{bearing}", {"bearing": bearing, "T_ambient": Ta, "T_initial": Ta, "T_supply": Ta})
+    own = parameters if parameters is not None else {"bearing": bearing}
+    net = ThermalNetwork(f"thermal{bearing}", {**own, "T_ambient": Ta, "T_initial": Ta, "T_supply": Ta})
     net.setup(0.0)
     T = net.steady_state(drag_power, sfd_power, rub_power)
     for name, Tk in (("bearing oil", 0.5 * (T[LI] + T[LE])), ("squeeze-film oil", T[SFD])):
@@ -67,7 +88,8 @@ def steady(bearing: int, drag_power: float, sfd_power: float, rub_power: float =
 
 
 def run(args) -> int:
-    out = steady(args.bearing, args.drag_power, args.sfd_power, args.rub_power, args.ambient)
+    out = steady(args.bearing, args.drag_power, args.sfd_power, args.rub_power, args.ambient,
+                 getattr(args, "parameters", None))
     for entry in out["validity"]:
         print(warning_line("rotorcosim thermal-steady", entry), file=sys.stderr)
     if args.json:

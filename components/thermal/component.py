@@ -46,7 +46,7 @@ from ..kernels import KernelComponent
 from ..oil_fit import SOURCE, T_FLASH_K, T_POUR_K, check_oil_temperature
 from ..speeds import PT_OMEGA
 from ..validity import Check
-from .geometry import (BEARINGS, BALL, IR, JOURNAL, LE, LI, NODES, OR, SFD, SHAFT, _DATA, bearing_data,
+from .geometry import (BEARINGS, BALL, IR, JOURNAL, LE, LI, NODES, OR, REQUIRED, SFD, SHAFT, _DATA, bearing_data,
                        build_network, default_sources, radii)
 from .growth import growths
 from .kernel import ThermalParams, ThermalState, tm_step
@@ -75,7 +75,9 @@ GEOMETRY = (("bore", "bore_diameter_mm", 1e-3), ("outside_diameter", "outside_di
             ("damper_clearance", "damper_clearance_mm", 1e-3), ("shaft_length", "shaft_length_mm", 1e-3),
             ("housing_wall", "housing_wall_mm", 1e-3), ("housing_length", "housing_length_mm", 1e-3),
             ("rub_radius", "rub_ring_radius_mm", 1e-3))
-_REC0 = bearing_data(0)      # the start values: bearing #0's record, its defaults filled in
+_REC0 = bearing_data(0)
+#: ``bearing`` = NO_RECORD: no record of the paper's Table 3; the geometry is given
+NO_RECORD = -1      # the start values: bearing #0's record, its defaults filled in
 _DFLT = _DATA["defaults"]
 _DOC = "docs/explanation/paper-components.md"
 
@@ -88,10 +90,11 @@ class ThermalNetwork(KernelComponent):
     """Bearing thermal network of bearing #0 or #5 (nine nodes, eqs. 12-15)."""
 
     description = "Bearing thermal network (9 lumped nodes, Table 1 resistances) and thermal growths eqs. (13)-(15)"
-    required_parameters = ("bearing",)  # which of Table 3's gives the data: never a silent default
     variables = (
-        Variable("bearing", "parameter", unit="1", start=0, type="Integer",
-                 description="which bearing of Table 3 (0 or 5) gives the geometry parameters' defaults"),
+        Variable("bearing", "parameter", unit="1", start=NO_RECORD, type="Integer",
+                 description="which bearing of the paper's Table 3 (0 or 5) gives the geometry parameters' "
+                             "defaults; -1 (default): none, the bearing's, damper's and rub ring's geometry is given "
+                             "(a scenario takes it from its engine file)"),
         Variable("T_ambient", "parameter", unit="K", start=303.15, description="ambient temperature (30 C)"),
         Variable("T_initial", "parameter", unit="K", start=303.15,
                  description="initial temperature of all nodes, and the zero-growth reference of eqs. (13)-(15)"),
@@ -170,8 +173,14 @@ class ThermalNetwork(KernelComponent):
     def setup(self, t0=0.0):
         super().setup(t0)
         p = self.p
-        if p["bearing"] not in BEARINGS:
-            raise ContractError(f"{self.name}.bearing must be one of {sorted(BEARINGS)}, got {p['bearing']}")
+        if p["bearing"] == NO_RECORD:
+            missing = [name for name, key, _ in GEOMETRY if key in REQUIRED and name not in self.explicit]
+            if missing:
+                raise ContractError(f"{self.name}: no Table 3 record (bearing = -1) and no {', '.join(missing)} given "
+                                    "(a scenario takes them from its engine file's [bearing.ID], [damper.ID])")
+        elif p["bearing"] not in BEARINGS:
+            raise ContractError(f"{self.name}.bearing must be one of {sorted(BEARINGS)} or -1 (none), got "
+                                f"{p['bearing']}")
         if p["method"] not in METHODS:
             raise ContractError(f"{self.name}.method must be one of {METHODS}, got {p['method']!r}")
         for key in ("T_ambient", "T_initial", "T_supply"):
@@ -198,7 +207,10 @@ class ThermalNetwork(KernelComponent):
         # values (the defaults that follow the geometry, housing_length and rub_radius, follow the set values)
         over = {key: (p[name] / scale if name != "balls" else int(p[name]))
                 for name, key, scale in GEOMETRY if name in self.explicit}
-        bearing = {**BEARINGS[p["bearing"]], **over} if over else p["bearing"]
+        if p["bearing"] == NO_RECORD:
+            bearing = over
+        else:
+            bearing = {**BEARINGS[p["bearing"]], **over} if over else p["bearing"]
         try:
             full = bearing_data(bearing)
             self.network = build_network(

@@ -155,6 +155,9 @@ def _table(title: str, keys: dict, notes: dict, table: str = "") -> str:
 #: what a key means, where its name does not say it (the schema knows types, not meanings)
 NOTES = {
     "extends": "base scenario(s): a file path or a shipped name",
+    "engine": "the engine file the scenario takes the machine from (relative to the file that names it): a "
+              "parameter or `[schedule] speed_rpm` written `\"engine:NAME\"` takes its quantity NAME "
+              "(engine-format.md, master/scenario/engine.py)",
     "unconnected_inputs": "an input no connection or `[inputs]` constant drives: `start` keeps the start value it "
     "declares (every FMU input with a start value; a native input only where its component declares a default; "
     "one stderr line lists them), `error` refuses it (default `start`)",

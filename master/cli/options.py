@@ -109,3 +109,31 @@ def add_dpi(p: argparse.ArgumentParser) -> None:
     p.add_argument("--dpi", type=float, default=None, metavar="N",
                    help=f"resolution of the PNG figures in dots per inch (default {FIGURE_DPI}; "
                         f"{DPI_RANGE[0]}-{DPI_RANGE[1]})")
+
+
+def finish_part(args: argparse.Namespace) -> argparse.Namespace:
+    """``args.parameters`` of the commands that evaluate one part of an engine (``bearing-static``,
+    ``damper-force``, ``thermal-steady``): the parameters component ``<part><ID>`` takes from ``--engine FILE``
+    or ``--scenario SCENARIO`` (master/scenario/engine.py), None when neither is given (the paper's records by
+    number). A namespace of another command is returned as it is."""
+    part = getattr(args, "part", None)
+    if part is None:
+        return args
+    kind, attr = part
+    pid = str(getattr(args, attr))
+    engine, scenario = getattr(args, "engine", None), getattr(args, "part_scenario", None)
+    if engine and scenario:
+        raise ValueError("give --engine FILE or --scenario SCENARIO, not both")
+    from rotorcosim.master.scenario.engine import part_parameters
+
+    if scenario:
+        from rotorcosim.master.api import load_scenario
+
+        args.parameters = part_parameters(f"{kind}{pid}", scenario=load_scenario(scenario))
+    elif engine:
+        if not Path(engine).is_file():
+            raise FileNotFoundError(f"--engine {engine}: no such file")
+        args.parameters = part_parameters(f"{kind}{pid}", engine=engine)
+    else:
+        args.parameters = None
+    return args

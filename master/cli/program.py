@@ -169,9 +169,10 @@ def main(argv: list[str] | None = None) -> int:
         parser.print_help()
         return 2
     try:
-        from rotorcosim.master.cli.options import finish
+        from rotorcosim.master.cli.options import finish, finish_part
 
         finish(args)   # SCENARIO / --scenario and the output's spellings (cli/options.py)
+        finish_part(args)   # an engine part's parameters: --engine FILE or --scenario with --bearing ID
         module = importlib.import_module(commands()[args.command][0])
         from rotorcosim.master.core.threads import one_thread
 

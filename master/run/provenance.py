@@ -11,7 +11,13 @@ and the whole record as JSON in ``provenance``), so that either file alone says 
   (``--set``, :meth:`Scenario.set`), ``{"swap": "comp", "implementation", "origin"}`` (``--swap``,
   :meth:`Scenario.swap`), ``{"unbalance": value, "parameter", "origin"}`` (``--unbalance``);
 * ``parameters``: per component its implementation (a registry name, ``module:Class`` or an FMU file) and the
-  value of every parameter it ran with, those the scenario left at their defaults included.
+  value of every parameter it ran with, those the scenario left at their defaults included;
+* ``engine``: the engine file the scenario takes the machine from (master/scenario/engine.py), the quantities
+  changed by name (``overrides``) and, per bound parameter, where its value came from (``bound``); None for a
+  scenario without an engine;
+* ``defaults``: every default the run used, with its source: ``{"parameter": "comp.param", "value",
+  "source"}`` for each parameter neither the scenario nor its engine gave (the engine format's documented default,
+  or the implementation's declared default and its description).
 
 >>> import rotorcosim
 >>> p = provenance(rotorcosim.load_scenario("toy_thermomechanical").set({"node.C": 20.0}))
@@ -50,11 +56,42 @@ def provenance(sc, system=None) -> dict:
             values = spec.parameters
         params[name] = {"implementation": spec.fmu or spec.implementation,
                         "parameters": {k: _value(v) for k, v in values.items()}}
+    binding = getattr(sc, "engine", None)
     return {"rotorcosim_version": __version__,
             "scenario_file": str(sc.source) if sc.source else None,
             "scenario_name": sc.loaded_name or sc.name,
             "edits": [dict(e) for e in sc.edits],
-            "parameters": params}
+            "parameters": params,
+            "engine": binding.provenance() if binding is not None else None,
+            "defaults": defaults(sc, params)}
+
+
+def defaults(sc, params: dict) -> list[dict]:
+    """The parameters a run took from a default (module docstring), from ``params`` (:func:`provenance`'s)."""
+    from rotorcosim.components import registry
+
+    binding = getattr(sc, "engine", None)
+    engine_src = {t: s for t, s in (binding.sources.items() if binding is not None else ())
+                  if s.startswith("default")}
+    out = []
+    for name, spec in sc.components.items():
+        if spec.implementation is None:
+            continue
+        try:
+            declared = registry.lookup(spec.implementation, spec.folder).variables
+        except Exception:  # noqa: BLE001 - a record of what ran: an implementation it cannot look up has no defaults
+            continue
+        for v in declared:
+            ref = f"{name}.{v.name}"
+            if v.causality != "parameter" or (v.name in spec.parameters and ref not in engine_src):
+                continue
+            src = engine_src.get(ref) or f"{spec.implementation} default: {v.description}"
+            out.append({"parameter": ref, "value": params[name]["parameters"].get(v.name, _value(v.start)),
+                        "source": src})
+    for ref, src in engine_src.items():
+        if ref.startswith("schedule."):
+            out.append({"parameter": ref, "value": sc.schedule.get(ref.partition(".")[2]), "source": src})
+    return out
 
 
 def h5_attributes(record: dict) -> dict[str, str]:

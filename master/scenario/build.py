@@ -68,6 +68,7 @@ from typing import Any, Mapping
 from rotorcosim.components import registry
 from rotorcosim.components.contract import Component, ContractError
 
+from rotorcosim.master.scenario import engine as engine_binding
 from rotorcosim.master.scenario import schema
 from rotorcosim.master.scenario.cycle import constant_period, cycle_of, without_source
 from rotorcosim.master.core.algorithm import EngineSettings
@@ -155,6 +156,8 @@ class Scenario:
     unconnected_inputs: str = "start"
     loaded_name: str | None = None
     edits: list[dict] = field(default_factory=list)
+    #: the engine file and what the scenario takes from it (master/scenario/engine.py), or None
+    engine: Any = None
 
     def __post_init__(self):
         if self.loaded_name is None:
@@ -305,7 +308,10 @@ def load_scenario(path: str | Path) -> Scenario:
     :func:`rotorcosim.load_scenario`."""
     path = real_path(path)
     data, origins = compose(path)
-    return parse(data, path, origins)
+    binding = engine_binding.bind(data, origins, str(path))
+    sc = parse(data, path, origins)
+    sc.engine = binding
+    return sc
 
 
 def create_component(spec: ComponentSpec) -> Component:

@@ -225,6 +225,9 @@ def compose(path: str | Path, _seen: tuple = ()) -> tuple[dict, Origins]:
     if not isinstance(head, Mapping):
         raise CompositionError(f"{where}: [scenario] must be a table")
     head = dict(head)
+    if isinstance(head.get("engine"), str) and head["engine"]:
+        # the engine file is named relative to the file that names it
+        head["engine"] = str(real_path(path.parent / head["engine"]))
     base_ref = head.pop("extends", None)
     removes = _str_list(head.pop("remove_connections", []), f"{where}: [scenario]", "remove_connections")
     remove_keys = _str_list(head.pop("remove_keys", []), f"{where}: [scenario]", "remove_keys")

@@ -23,6 +23,7 @@ from rotorcosim.components.contract import ContractError
 from rotorcosim.components.value_types import check_value
 
 from rotorcosim.master.scenario.compose import ScenarioError, real_path
+from rotorcosim.master.scenario.engine import set_bound
 
 #: where a change made by the API or the command line is said to come from, in error messages
 API_ORIGIN = "Scenario.set/swap"
@@ -173,6 +174,16 @@ def apply_set(sc, values: Mapping[str, Any], origin: str = API_ORIGIN):
                 check_value(known[param], value, f"set {ref}")
             except ContractError as exc:
                 raise ScenarioError(str(exc)) from None
+        if getattr(out, "engine", None) is not None and ref in out.engine.targets:
+            if spec.implementation is not None and isinstance(value, str) and value:
+                tmp = {param: value}   # a file parameter (the engine file itself) from the working folder
+                resolve_file_parameters(spec.implementation, tmp, lambda p: Path.cwd(), spec.folder, (param,))
+                value = tmp[param]
+            set_bound(out, ref, value, origin)
+            spec.parameters[param] = _plain(value)     # the value as given (a speed's rev/min round trip aside)
+            out.edits.append({"set": ref, "value": _plain(value), "origin": origin,
+                              "engine_quantity": out.engine.targets[ref]})
+            continue
         spec.parameters[param] = _plain(value)
         spec.param_origins[param] = origin
         out.edits.append({"set": f"{comp}.{param}", "value": spec.parameters[param], "origin": origin})

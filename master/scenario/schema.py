@@ -167,7 +167,7 @@ def parameter_value(v: Any) -> str | None:
 TABLES: dict[str, dict[str, Callable | None]] = {
     # unconnected_inputs: a policy of the whole system's wiring (every component, every file it extends), so
     # it sits with the scenario's name rather than in one component's table
-    "scenario": {"name": text, "description": text, "extends": text_or_texts,
+    "scenario": {"name": text, "description": text, "extends": text_or_texts, "engine": text,
                  "unconnected_inputs": one_of(*UNCONNECTED_INPUTS)},
     "components": {},   # one sub-table per component: COMPONENT
     "connections": {},  # a list of CONNECTION tables

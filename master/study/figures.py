@@ -88,8 +88,19 @@ def calibration_figure(path: Path, report: dict) -> None:
     _save(fig, path)
 
 
-def histograms(path: Path, results: list[str], columns: dict[str, list[float]], stats: dict) -> None:
-    """One histogram per result of the UQ's successful samples, its mean and 5th / 95th percentiles marked."""
+def _failed_note(failed: dict | None, total: int | None) -> str:
+    """The line the figures' titles add when samples failed, or ''."""
+    n = (failed or {}).get("count", 0)
+    if not n:
+        return ""
+    of = f" of {total}" if total else ""
+    return f"\n{n}{of} samples failed and are left out (their errors: uq.json \"failed\")"
+
+
+def histograms(path: Path, results: list[str], columns: dict[str, list[float]], stats: dict,
+               failed: dict | None = None, total: int | None = None) -> None:
+    """One histogram per result of the UQ's successful samples, its mean and 5th / 95th percentiles marked; the
+    failed samples counted in the title, and a result without any successful sample says so in its panel."""
     plt = _plt()
     n = max(1, len(results))
     ncol = min(3, n)
@@ -103,16 +114,24 @@ def histograms(path: Path, results: list[str], columns: dict[str, list[float]], 
             for key, style in (("mean", "-"), ("p5", ":"), ("p95", ":")):
                 if s.get(key) is not None:
                     ax.axvline(s[key], color="k", ls=style, lw=1)
+        else:
+            ax.text(0.5, 0.5, "no successful sample:\nnothing to draw", ha="center", va="center", fontsize=9,
+                    color="tab:red", transform=ax.transAxes)
+            ax.set_xticks([])
+            ax.set_yticks([])
         ax.set_title(r, fontsize=8)
         ax.tick_params(labelsize=7)
     for ax in list(axes.flat)[len(results):]:
         ax.axis("off")
-    fig.suptitle("UQ: distribution of each result (line: mean; dotted: 5th / 95th percentiles)", fontsize=9)
-    fig.tight_layout(rect=(0, 0, 1, 0.96))
+    note = _failed_note(failed, total)
+    fig.suptitle("UQ: distribution of each result (line: mean; dotted: 5th / 95th percentiles)" + note, fontsize=9,
+                 color="tab:red" if note else "k")
+    fig.tight_layout(rect=(0, 0, 1, 0.93 if note else 0.96))
     _save(fig, path)
 
 
-def tornado(path: Path, results: list[str], names: list[str], bars: dict[str, list], base: dict[str, float]) -> None:
+def tornado(path: Path, results: list[str], names: list[str], bars: dict[str, list], base: dict[str, float],
+            failed: dict | None = None, total: int | None = None) -> None:
     """One tornado chart per result: the result at each parameter's 5th and 95th percentile, the others at
     their means (``bars[result][j] = (low, high)``), widest bar on top, around ``base[result]``."""
     plt = _plt()
@@ -125,6 +144,8 @@ def tornado(path: Path, results: list[str], names: list[str], bars: dict[str, li
         b = bars.get(r)
         if not b:
             ax.set_title(f"{r}: no sensitivities", fontsize=8)
+            ax.text(0.5, 0.5, "too few successful samples" if (failed or {}).get("count") else "no sensitivities",
+                    ha="center", va="center", fontsize=9, color="tab:red", transform=ax.transAxes)
             ax.axis("off")
             continue
         order = sorted(range(len(names)), key=lambda j: abs(b[j][1] - b[j][0]))
@@ -140,7 +161,8 @@ def tornado(path: Path, results: list[str], names: list[str], bars: dict[str, li
         ax.tick_params(axis="x", labelsize=7)
     for ax in list(axes.flat)[len(results):]:
         ax.axis("off")
+    note = _failed_note(failed, total)
     fig.suptitle("UQ tornado: each parameter at its 5th (blue) / 95th (orange) percentile, others at their means "
-                 "(linear regression on the samples)", fontsize=8)
-    fig.tight_layout(rect=(0, 0, 1, 0.97))
+                 "(linear regression on the samples)" + note, fontsize=8, color="tab:red" if note else "k")
+    fig.tight_layout(rect=(0, 0, 1, 0.93 if note else 0.97))
     _save(fig, path)

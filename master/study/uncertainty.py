@@ -9,7 +9,9 @@ as it finishes: run again with the same SPEC and ``--out``, a UQ runs only the m
 It writes into ``out``:
 
 - ``samples.csv``: one row per sample: ``sample``, each parameter, each result, ``status``, ``wall_time_s``,
-  ``error``;
+  ``error``, and ``recorded <comp.param>``: the value the run recorded of each sampled parameter and of every
+  component parameter bound to the same engine quantity (``damper0.clearance`` and
+  ``thermal0.damper_clearance`` together: master/scenario/engine.py);
 - ``uq.json``: per result (``results``): ``mean``, ``std``, ``p5``, ``p50``, ``p95``, each with its 95 %
   interval (``mean_ci``...; :func:`.statistics.summarize`), ``n``; ``sobol`` (first-order ``S1`` and, with the
   sobol sampler, total ``ST`` indices with their confidence half-widths: SALib), ``rank_correlation`` (Spearman)
@@ -37,7 +39,9 @@ from typing import Callable
 import numpy as np
 
 from rotorcosim.components.bounded_read import read_json
+from rotorcosim.master.api import load_scenario
 from rotorcosim.master.run.outputs import write_json
+from rotorcosim.master.scenario.engine import bound_together
 from rotorcosim.master.schedule import budget
 from rotorcosim.master.study import evaluate, statistics, store
 from rotorcosim.master.study.spec import Distribution, UQSpec, read_uq
@@ -46,6 +50,8 @@ from rotorcosim.master.study.targets import value_of
 REPORT = "uq.json"
 TABLE = "samples.csv"
 HISTOGRAMS = "uq_histograms.png"
+#: the prefix of the columns of what a run recorded of a parameter
+RECORDED = "recorded "
 TORNADO = "uq_tornado.png"
 #: unit-hypercube values are kept this far from 0 and 1 (an unbounded distribution's inverse CDF is infinite there)
 EDGE = 1e-12
@@ -117,7 +123,11 @@ def uq(spec: str | Path | UQSpec, out: str | Path, *, scheduler: str | None = No
             "sampler": spec.sampler, "seed": spec.seed, "samples": len(x),
             "parameters": {p.name: {"distribution": p.distribution, **p.values} for p in spec.parameters}}
     at_once = evaluate.slots(scheduler, workers, serial)   # the scheduler checked before the folder is touched
-    table = store.RowStore(out / TABLE, ["sample", *names, *spec.results, "status", "wall_time_s", "error"])
+    # what each run recorded of every component parameter a sampled one moves (the engine's quantity: a damper's
+    # clearance is its thermal network's too, master/scenario/engine.py)
+    recorded = bound_together(load_scenario(spec.scenario), names)
+    table = store.RowStore(out / TABLE, ["sample", *names, *spec.results, "status", "wall_time_s", "error",
+                                         *(RECORDED + t for t in recorded)])
     stored = table.read() if (out / REPORT).is_file() and _same_study(out / REPORT, spec) else []
     done_before = {int(r["sample"]) for r in stored}
     first = next((i for i in range(len(x)) if i not in done_before), 0)
@@ -141,7 +151,8 @@ def uq(spec: str | Path | UQSpec, out: str | Path, *, scheduler: str | None = No
         row = {"sample": i, **{n: float(x[i, j]) for j, n in enumerate(names)},
                **{r: value_of(summary, r) for r in spec.results},
                "status": "failed" if evaluate.failed(summary) else summary.get("status"),
-               "wall_time_s": summary.get("wall_time_s"), "error": summary.get("error")}
+               "wall_time_s": summary.get("wall_time_s"), "error": summary.get("error"),
+               **{RECORDED + t: recorded_value(summary, t) for t in recorded}}
         if row["status"] != "failed" and any(row[r] is None for r in spec.results):
             missing = [r for r in spec.results if row[r] is None]
             row.update(status="failed", error=f"no number at {', '.join(missing)} in the run's summary")
@@ -170,10 +181,11 @@ def uq(spec: str | Path | UQSpec, out: str | Path, *, scheduler: str | None = No
     from rotorcosim.master.study import figures
 
     cols = {r: [row[r] if row["status"] != "failed" else None for row in ordered] for r in spec.results}
-    figures.histograms(out / HISTOGRAMS, spec.results, cols, report["results"])
+    figures.histograms(out / HISTOGRAMS, spec.results, cols, report["results"], report["failed"], len(ordered))
     figures.tornado(out / TORNADO, spec.results, names,
                     {r: report["results"][r].get("tornado") for r in spec.results},
-                    {r: report["results"][r].get("mean", 0.0) for r in spec.results})
+                    {r: report["results"][r].get("mean", 0.0) or 0.0 for r in spec.results},
+                    report["failed"], len(ordered))
     write_json(out / REPORT, report)
     return report
 
@@ -189,7 +201,6 @@ def _same_study(report: Path, spec: UQSpec) -> bool:
 def check_results(spec: UQSpec) -> None:
     """Every result the SPEC names is one a run of its scenario reports (:mod:`.declared`): a SpecError naming
     the first that is not, before anything runs."""
-    from rotorcosim.master.api import load_scenario
     from rotorcosim.master.study import declared
     from rotorcosim.master.study.spec import SpecError
 
@@ -205,7 +216,6 @@ def check_samples(spec: UQSpec, x: np.ndarray) -> None:
     past a parameter's range, a normal stiffness drawn negative, would fail those samples' runs;
     :func:`.spec.check_values`): a SpecError naming the parameter, the value and its distribution, before
     anything runs."""
-    from rotorcosim.master.api import load_scenario
     from rotorcosim.master.study.spec import SpecError, check_values
 
     sc = load_scenario(spec.scenario)
@@ -219,6 +229,13 @@ def check_samples(spec: UQSpec, x: np.ndarray) -> None:
             vals = ", ".join(f"{k} {val:g}" for k, val in p.values.items())
             raise SpecError(f"{exc} (a sample of its {p.distribution} distribution, {vals}: narrow it or "
                             "truncate it, truncnormal)") from None
+
+
+def recorded_value(summary: dict, ref: str):
+    """The value run ``summary`` recorded of parameter ``ref`` (``"comp.param"``), or None."""
+    comp, _, param = ref.partition(".")
+    params = summary.get("provenance", {}).get("parameters", {}).get(comp, {}).get("parameters", {})
+    return params.get(param)
 
 
 def analyse(spec: UQSpec, u: np.ndarray, rows: list[dict]) -> dict:

@@ -71,9 +71,9 @@ def test_parameters_lists_and_sets_the_bearing_geometry(capsys):
 
     sc = rotorcosim.load_scenario("blade_loss_2850")
     rows = {r["name"]: r for r in sc.parameters("bearing5")}
-    assert rows["balls"]["value"] == 27 and rows["balls"]["source"] == "set-up"
-    # the Table 3 number comes from the bearing template the scenario instantiates for id "5"
-    assert rows["bearing"]["source"].endswith("templates/bearing.toml") and rows["preload"]["unit"] == "N"
+    # every value of the bearing comes from the engine file's record of bearing 5
+    assert rows["balls"]["value"] == 27 and rows["balls"]["source"].endswith("engine.toml [bearing.5] balls")
+    assert rows["preload"]["source"].endswith("engine.toml [bearing.5] preload_N") and rows["preload"]["unit"] == "N"
     assert main(["parameters", "bearing0", "--json"]) == 0
     assert {r["name"] for r in json.loads(capsys.readouterr().out)} >= {"balls", "ball_diameter", "contact_angle"}
 
@@ -92,7 +92,9 @@ def test_parameters_lists_and_sets_the_bearing_geometry(capsys):
     ("bearing0.ball_diameter=0.03", "a ball of 30 mm does not fit between the races"),
     ("bearing0.bore=nan", "'nan' is not a finite number"),
     ("bearing0.bore=-0.05", "bearing0.bore must be a finite number > 0"),
-    ("thermal0.damper_radius=-0.1", "thermal0.damper_radius must be a finite number > 0"),
+    # one quantity: the damper's radius is also the journal's and the thermal network's
+    ("thermal0.damper_radius=-0.1", "thermal0.damper_radius must be a finite number > 0 (m), got -0.1 (the engine's "
+                                    "damper.0.radius"),
 ])
 def test_bad_geometry_is_one_line(tmp_path, capsys, setting, message):
     rc = main(["run", "--set", setting, "--duration", "0.001", "--no-figures", "--out", str(tmp_path / "o")])

@@ -100,8 +100,8 @@ def test_ring_5_and_explicit_parameters():
 
 
 @pytest.mark.parametrize("params, message", [
-    ({"clearance": -1e-4}, "clearance must be > 0"),
-    ({"stiffness": 0.0}, "stiffness must be > 0"),
+    ({"bearing": 0, "clearance": -1e-4}, "clearance must be > 0"),
+    ({"bearing": 0, "stiffness": 0.0}, "stiffness must be > 0"),
     ({"friction": -0.1}, r"friction: -0.1 is outside the declared range \[0, 2\]"),
     # 50 was accepted: no dry metal pair comes near (handbooks: at most ~1.4)
     ({"friction": 50.0}, r"friction: 50.0 is outside the declared range \[0, 2\]"),

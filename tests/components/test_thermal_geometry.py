@@ -146,8 +146,9 @@ def test_parameters_list_the_geometry_with_unit_default_and_source(capsys):
 
 def test_a_users_engine_passes_its_geometry_to_the_thermal_network(tmp_path):
     """The textbook engine (new-engine): its thermal networks run with its bearings', dampers' and rub rings'
-    geometry (the case's check finds no difference); a bearing changed alone is refused naming both values, and
-    changed in both it gives the network of the new geometry (19 balls: 19/21 of the balls' heat mass)."""
+    geometry, taken from the same records of the engine file (the case's check finds no difference); a bearing
+    changed by name changes its network with it (19 balls: 19/21 of the balls' heat mass), and a scenario file
+    that writes a different value into the network alone is refused naming both values."""
     from rotorcosim.cases.blade_loss import thermal_geometry
     from rotorcosim.cases.blade_loss.new_engine import new_engine
     from rotorcosim.master.api import load_scenario
@@ -158,16 +159,20 @@ def test_a_users_engine_passes_its_geometry_to_the_thermal_network(tmp_path):
     assert thermal_geometry.mismatches(sc, build_simulation(sc, []).system) == []
     rows = {r["name"]: r["value"] for r in sc.parameters("thermal0")}
     assert rows["rub_radius"] == sc.components["rubring0"].parameters["radius"] == 0.030
-    bad = sc.set({"bearing0.balls": 19})
-    with pytest.raises(ValueError, match="thermal0.balls = 21 but bearing0.balls = 19"):
-        thermal_geometry.check(bad, build_simulation(bad, []).system)
-    good = sc.set({"bearing0.balls": 19, "thermal0.balls": 19})
+    good = sc.set({"bearing0.balls": 19})
+    assert good.components["thermal0"].parameters["balls"] == 19
     thermal_geometry.check(good, build_simulation(good, []).system)
     th = create_component(good.components["thermal0"])
     th.setup(0.0)
     ref = create_component(sc.components["thermal0"])
     ref.setup(0.0)
     assert th.network.C[BALL] / ref.network.C[BALL] == pytest.approx(19 / 21, rel=1e-12)
+    (tmp_path / "X" / "own.toml").write_text('[scenario]\nextends = "blade_loss.toml"\n'
+                                             '[components.thermal0]\nparameters = { balls = 19 }\n')
+    bad = load_scenario(tmp_path / "X" / "own.toml")
+    with pytest.raises(ValueError, match="thermal0.balls = 19 but bearing0.balls = 21"):
+        thermal_geometry.check(bad, build_simulation(bad, []).system)
+
 
 
 def test_the_speed_following_network_rebuilds_with_its_own_geometry():

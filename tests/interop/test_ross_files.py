@@ -115,7 +115,7 @@ def test_attach_makes_two_ross_bearings_the_cosimulated_ones(tmp_path):
     fem.require_ports(m, ("brg0", "brg5", "housing0", "housing5", "rub0", "rub5", "unbalance"))
 
 
-def test_attach_takes_any_bearing_ids(tmp_path, capsys):
+def test_attach_takes_any_bearing_ids(tmp_path, capsys, monkeypatch):
     """--attach with one id of another name: that ROSS bearing becomes pedestal h<ID> under bearing<ID> (and its
     rub ring), the other stays a linear support; the rotor component's ports follow (attach.py). A bad id is one
     line."""
@@ -129,9 +129,23 @@ def test_attach_takes_any_bearing_ids(tmp_path, capsys):
     rotor = Rotor("rotor", {"model_file": str(tmp_path / "e.toml")})
     ports = {v.name for v in rotor.variables if v.causality == "input"}
     assert ports == {"F_brgfront", "F_sfd_housingfront", "F_rub_housingfront", "F_rubfront"}
+    # what each attached part is comes from --parts (ROSS describes no ball bearing): the file check-engine accepts
+    assert main(["import-ross", str(DATA / "rotor_example.toml"), "--out", str(tmp_path / "n.toml"),
+                 "--attach", "1=0,2=6"]) == 2
+    assert "--attach needs --parts FILE" in capsys.readouterr().err and not (tmp_path / "n.toml").exists()
+    parts = tmp_path / "parts.toml"
+    parts.write_text("".join(f"[bearing.{i}]\nballs = 21\nball_diameter_mm = 8.73\nbore_mm = 50.8\n"
+                             f"outside_diameter_mm = 90.0\nwidth_mm = 20.0\ncontact_angle_deg = 15.0\n"
+                             f"preload_N = 800.0\n[damper.{i}]\nradius_mm = 80.0\nlength_mm = 32.0\n"
+                             f"clearance_mm = 0.635\nsupply_pressure_MPa = 0.2\nk_spring = 5.254e6\n"
+                             f"[rubring.{i}]\nclearance_mm = 0.508\n" for i in (1, 2)))
     assert main(["import-ross", str(DATA / "rotor_example.toml"), "--out", str(tmp_path / "x.toml"),
-                 "--attach", "1=0,2=6"]) == 0
+                 "--attach", "1=0,2=6", "--parts", str(parts)]) == 0
     assert [k for k in fem.load_data(tmp_path / "x.toml")[0]["attach"] if k.startswith("b")] == ["bearing1", "bearing2"]
+    assert fem.load_data(tmp_path / "x.toml")[0]["damper"]["2"]["clearance_mm"] == 0.635
+    capsys.readouterr()
+    monkeypatch.chdir(tmp_path)
+    assert main(["check-engine", str(tmp_path / "x.toml")]) == 0
     capsys.readouterr()
     assert main(["import-ross", str(DATA / "rotor_example.toml"), "--out", str(tmp_path / "y.toml"),
                  "--attach", "a-b=0"]) == 2

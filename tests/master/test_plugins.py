@@ -43,7 +43,7 @@ def test_worked_example_runs_and_follows_the_linear_law(tmp_path):
 def test_plugin_module_missing_names_the_file_and_folder(tmp_path):
     p = tmp_path / "s.toml"
     p.write_text('[scenario]\nextends = "blade_loss_2850"\n[components.damper0]\n'
-                 'implementation = "no_such_plugin:Damper"\nremove_parameters = ["damper"]\n')
+                 'implementation = "no_such_plugin:Damper"\n')
     with pytest.raises(ContractError, match=rf"{p}:\d+: \[components.damper0\] implementation: plug-in "
                                             rf"'no_such_plugin:Damper': no module 'no_such_plugin' in the scenario's "
                                             rf"folder {tmp_path}"):
@@ -54,18 +54,23 @@ def test_plugin_class_that_breaks_the_contract(tmp_path):
     (tmp_path / "bad_plugin.py").write_text("class NotAComponent:\n    pass\n")
     p = tmp_path / "s.toml"
     p.write_text('[scenario]\nextends = "blade_loss_2850"\n[components.damper0]\n'
-                 'implementation = "bad_plugin:NotAComponent"\nremove_parameters = ["damper"]\n')
+                 'implementation = "bad_plugin:NotAComponent"\n')
     with pytest.raises(ContractError, match="does not follow the component contract"):
         rotorcosim.load_scenario(p)
 
 
 def test_inherited_parameter_not_removed_is_named(tmp_path):
-    """A plug-in damper failing on the base's `damper = 0` (a plug-in damper failing on the base's `damper = 0`) now says where."""
+    """A plug-in in a templated component's place drops the values the component took from the engine (the
+    plug-in declares none of them); a plain parameter a file gave the component before is named with its file."""
     (tmp_path / "linear_damper.py").write_text((EXAMPLE.parent / "linear_damper.py").read_text())
     p = tmp_path / "s.toml"
     p.write_text('[scenario]\nextends = "blade_loss_2850"\n[components.damper0]\n'
                  'implementation = "linear_damper:LinearDamper"\n')
-    # the inherited `damper = 0` comes from the bearing template blade_loss.toml instantiates
-    with pytest.raises(ContractError, match=r"templates/bearing.toml:\d+: \[components.damper0\] parameters.damper: "
-                                            r"linear_damper:LinearDamper has no parameter 'damper'"):
+    assert rotorcosim.load_scenario(p).components["damper0"].parameters == {}
+    base = tmp_path / "b.toml"
+    base.write_text('[scenario]\nextends = "blade_loss_2850"\n[components.damper0]\nparameters = { n_theta = 64 }\n')
+    p.write_text('[scenario]\nextends = "b.toml"\n[components.damper0]\n'
+                 'implementation = "linear_damper:LinearDamper"\n')
+    with pytest.raises(ContractError, match=r"b.toml:\d+: \[components.damper0\] parameters.n_theta: "
+                                            r"linear_damper:LinearDamper has no parameter 'n_theta'"):
         rotorcosim.load_scenario(p)

@@ -28,7 +28,8 @@ def test_summary_and_time_series_say_what_made_the_run(tmp_path, capsys):
     assert p["scenario_file"].endswith("scenarios/blade_loss_5700.toml")
     assert p["scenario_name"] == "blade_loss_5700"
     assert [{k: e[k] for k in e if k != "origin"} for e in p["edits"]] == [
-        {"set": "damper0.k_spring", "value": 7e6}, {"unbalance": 2850.0, "parameter": "rotor.F_unbalance"}]
+        {"set": "damper0.k_spring", "value": 7e6, "engine_quantity": "damper.0.k_spring"},
+        {"unbalance": 2850.0, "parameter": "rotor.F_unbalance"}]
     assert p["parameters"]["damper0"]["parameters"]["k_spring"] == 7e6
     assert p["parameters"]["damper5"]["parameters"]["k_spring"] != 7e6  # only the one that was set
     assert p["parameters"]["rotor"]["parameters"]["F_unbalance"] == 2850.0

@@ -62,10 +62,12 @@ def test_paper_system_expands_to_its_46_connections():
     assert len(got) == 46 and set(got) == _expected(("0", "5"))
     assert list(sc.components) == ["rotor", "bearing0", "bearing5", "damper0", "damper5", "thermal0", "thermal5",
                                    "rubring0", "rubring5"]
-    for k in (0, 5):   # the Table 3 numbers from the ids
-        assert sc.components[f"bearing{k}"].parameters == {"bearing": k}
-        assert sc.components[f"damper{k}"].parameters == {"damper": k}
-        assert sc.components[f"thermal{k}"].parameters == {"bearing": k} and sc.components[f"thermal{k}"].step == 1e-3
+    for k in (0, 5):   # every value from the engine's records of that id
+        assert sc.components[f"bearing{k}"].parameters["balls"] == (21 if k == 0 else 27)
+        assert sc.components[f"bearing{k}"].param_origins["balls"].endswith(f"engine.toml [bearing.{k}] balls")
+        assert sc.components[f"damper{k}"].parameters["radius"] == (0.08 if k == 0 else 0.1)
+        assert sc.components[f"thermal{k}"].parameters["damper_radius"] == sc.components[f"damper{k}"].parameters[
+            "radius"] and sc.components[f"thermal{k}"].step == 1e-3
     assert sc.algorithm["order"] == ["rotor", "bearing0", "bearing5", "damper0", "damper5", "rubring0", "rubring5",
                                      "thermal0", "thermal5"]
     assert sc.outputs["record"][:6] == ["rotor.X_brg0", "rotor.X_brg5", "rotor.X_housing0", "rotor.X_housing5",
@@ -79,7 +81,8 @@ def test_a_scenario_that_extends_it_with_other_ids():
     names = list(sc.components)
     assert "bearing0" not in names and "rubring5" not in names
     assert [n for n in names if n.startswith("bearing")] == ["bearing1", "bearing2", "bearing3"]
-    assert sc.components["bearing3"].parameters == {"bearing": 5, "preload": 1100.0}
+    assert sc.components["bearing3"].parameters["preload"] == 1100.0                 # engine.toml's [bearing.3]
+    assert sc.components["bearing3"].parameters["bore"] == 0.0838
     assert sc.components["bearing3"].origin.endswith("templates/bearing.toml")
     assert len(sc.connections) == 3 * 16 + 7
     assert not any("rubring2" in c.src or "rubring2" in c.dst for c in sc.connections)
@@ -89,7 +92,7 @@ def test_a_scenario_that_extends_it_with_other_ids():
 def test_template_components_can_be_changed_like_inherited_ones(tmp_path):
     """remove_parameters and remove_connections reach the instantiated components (the plug-in example)."""
     sc = rotorcosim.load_scenario(ROOT / "docs/examples/linear_damper/linear_damper.toml")
-    assert "damper" not in sc.components["damper0"].parameters
+    assert set(sc.components["damper0"].parameters) == {"k", "c"}    # the film damper's engine values dropped
     assert not any(c.dst == "damper0.T_oil" for c in sc.connections) and len(sc.connections) == 45
 
 
@@ -119,7 +122,7 @@ def test_a_template_of_its_own_file(tmp_path):
 
     data, origins = compose(p)
     assert list(data["components"]) == ["rotor", "bearing7", "damper7", "thermal7"]
-    assert data["components"]["bearing7"]["parameters"] == {"bearing": 5}
-    assert data["components"]["damper7"]["parameters"] == {"damper": 7}    # "{id}" -> 7 (then refused by name)
+    assert data["components"]["bearing7"]["parameters"]["bearing"] == 5
+    assert data["components"]["damper7"]["parameters"]["radius"] == "engine:damper.7.radius"   # "{id}" -> 7
     assert len(data["connections"]) == 16 and "templates" not in data
     assert origins.parameter("bearing7", "bearing") == str(p.resolve())
