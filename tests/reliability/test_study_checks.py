@@ -134,12 +134,12 @@ def test_a_sweep_prints_its_estimate_and_keeps_it(tmp_path, capsys):
     ("uq", UQ.replace('name = "m1.x0"', 'name = "m9.x0"'), None, "m9"),
     # a distribution reaching past what the parameter takes: a film's spring stiffness drawn negative fails its
     # run (its component refuses it at set-up); was "2 of 8 samples failed"
-    ("uq", BL_UQ, None, "damper0.k_spring must be >= 0, got -7251034.591191405 (a sample of its normal "
+    ("uq", BL_UQ, None, "got -7251034.591191405 (the engine's damper.0.k_spring) (a sample of its normal "
      "distribution, mean 5.254e+06, std 5e+06: narrow it or truncate it, truncnormal)"),
     ("uq", UQ.replace("std = 0.02", "std = -1"), None, "std must be > 0"),
     ("calibrate", CAL.replace("lower = 0.05", "lower = 0.3"), None, "lower 0.3 must be below upper 0.2"),
     ("calibrate", BL_CAL, ",bearings.0.whirl_amplitude_mm,0.1\n",
-     "parameter damper0.k_spring: damper0.k_spring must be >= 0, got -1"),
+     "parameter damper0.k_spring: set damper0.k_spring: damper0.k_spring must be >= 0 (N/m), got -1"),
 ])
 def test_spec_mistakes_refused_before_the_first_run(tmp_path, capsys, command, text, targets, message):
     rc, _, err = call(capsys, command, spec(tmp_path, text, targets=targets or ",final_outputs.m1.x,0.05\n"),
