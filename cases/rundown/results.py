@@ -316,7 +316,8 @@ def result_paths(sc) -> list[str]:
     ending in a dot: any path below it, the crossings found being known only after the run)."""
     out = []
     for sp in _spools(sc):
-        out += [f"speeds.{sp}.{k}" for k in ("start_rpm", "end_rpm", "t_fuel_cut_s", "stopped")]
+        out += [f"speeds.{sp}.{k}" for k in ("start_rpm", "end_rpm", "t_fuel_cut_s", "stopped",
+                                                             "inertia_kgm2")]
         out += [f"energy.{sp}.{k}" for k in ("inertia_kg_m2", "kinetic_energy_lost_J", "residual_pct")]
         out += [f"energy.{sp}.work_J.{k}" for k in ("drive", "drag", "rub", "aero")]
     out.append("crossings.")
