@@ -13,7 +13,8 @@ import tempfile
 import time
 from pathlib import Path
 
-from rotorcosim.master.cli.run import apply_unbalance, execute, resolve
+from rotorcosim.master.cli.run import execute, resolve
+from rotorcosim.cases.blade_loss.results import apply_unbalance
 from rotorcosim.master.run.profiling import StepTimer
 from rotorcosim.master.scenario.build import build_simulation
 from rotorcosim.master.schedule import Interval, Timeline

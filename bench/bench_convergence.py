@@ -13,7 +13,8 @@ import argparse
 import tempfile
 from pathlib import Path
 
-from rotorcosim.master.cli.run import apply_unbalance, execute, resolve
+from rotorcosim.master.cli.run import execute, resolve
+from rotorcosim.cases.blade_loss.results import apply_unbalance
 from rotorcosim.cases.blade_loss.results import RESULT_KEYS as KEYS
 from rotorcosim.master.schedule import Interval, Timeline
 

@@ -129,6 +129,11 @@ class Component:
     #: frozen components are held at their last value, and the held window of each of those outputs follows its
     #: TO update). It keeps no window or average of its own: those are the master's.
     holds_state_in_TO: bool = False
+    #: True for a component whose set-up reads its inputs (FMI: initial values that depend on inputs): before its
+    #: :meth:`setup` the master hands it the outputs of the components set up before it in the run's order (the
+    #: spinning rotor starts on the synchronous orbit of its spool's start speed). False: inputs at set-up are the
+    #: scenario's constants and the start values only
+    inputs_at_setup: bool = False
     #: parameters a scenario must give: no default is right for all uses (the bearing, damper or ring number
     #: picks that one's Table 3 data; a forgotten ``bearing = 5`` must not silently give bearing #0's)
     required_parameters: tuple[str, ...] = ()

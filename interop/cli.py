@@ -94,8 +94,8 @@ def add_arguments(parser):
     parser.add_argument("--speed", type=float, default=None, metavar="RPM",
                         help=f"the spools' running speed (ROSS files carry none; default {DEFAULT_SPEED_RPM:g})")
     parser.add_argument("--coefficients-at", type=float, default=None, metavar="RPM",
-                        help="take speed-dependent bearing coefficients at this speed (default: such a bearing "
-                             "is an error)")
+                        help="take speed-dependent bearing and seal coefficients at this speed (default: they are "
+                             "carried as coefficient tables over speed_rpm)")
     parser.add_argument("--attach", default=None, metavar="ID=NODE,...",
                         help="the ROSS nodes of the bearings to co-simulate as ball bearings #ID (any number, e.g. "
                              "0=NODE,5=NODE for a scenario that extends the shipped blade_loss)")

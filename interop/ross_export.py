@@ -79,9 +79,24 @@ def to_ross(engine, *, scenario=None, damped: bool = True):
         d_out, d_in = fem.rotor_diameters(data, sname)
         z = [v * 1e-3 for v in sp["z_mm"]]
         first[sname] = n_next
-        shafts.append([rs.ShaftElement(L=z[e + 1] - z[e], idl=d_in[e], odl=d_out[e], material=material,
-                                       alpha=alpha, beta=beta, tag=f"{sname} section {e}")
-                       for e in range(len(z) - 1)])
+        layers = sp.get("layers", [])
+        if layers and len(spools) > 1:
+            raise ValueError(f"{where}: spool.{sname}.layers: to_ross carries layered sections on a single spool "
+                             "only (ROSS's CoAxialRotor numbers its elements itself)")
+        elems = []
+        for e in range(len(z) - 1):
+            # a layered section: ROSS's further ShaftElement between the same two nodes (n given)
+            elems.append(rs.ShaftElement(L=z[e + 1] - z[e], idl=d_in[e], odl=d_out[e], material=material,
+                                         alpha=alpha, beta=beta, tag=f"{sname} section {e}",
+                                         **({"n": e} if layers else {})))
+            for i, layer in enumerate(x for x in layers if x["element"] == e):
+                lm = data["material"][layer.get("material", sp.get("material", "rotor"))]
+                lmat = rs.Material(name=layer.get("material", "layer"), rho=lm["rho"], E=lm["E"],
+                                   G_s=lm["G"] if "G" in lm else lm["E"] / (2.0 * (1.0 + lm["nu"])))
+                elems.append(rs.ShaftElement(L=z[e + 1] - z[e], idl=layer["d_in_mm"] * 1e-3,
+                                             odl=layer["d_out_mm"] * 1e-3, material=lmat, alpha=alpha, beta=beta,
+                                             n=e, tag=f"{sname} section {e} layer {i}"))
+        shafts.append(elems)
         n_next += len(z)
 
     def gnode(ref) -> int:
@@ -122,8 +137,16 @@ def to_ross(engine, *, scenario=None, damped: bool = True):
             link = hub(b[1])
         else:
             link = gnode(b)
-        bearings.append(rs.BearingElement(n=gnode(a), n_link=link, kxx=kx, kyy=ky, cxx=c(cx), cyy=c(cy),
-                                          kzz=s.get("k_axial", 0.0), tag=str(s.get("name", "support"))))
+        # cross-coupled coefficients, and coefficient tables over speed (ROSS's frequency, rad/s)
+        extra = {k: s[k] if k.startswith("k") else (s[k] if damped else 0.0)
+                 for k in ("kxy", "kyx", "cxy", "cyx") if k in s}
+        if "speed_rpm" in s:
+            extra["frequency"] = [v * math.pi / 30.0 for v in s["speed_rpm"]]
+            cx, cy = (v if damped else 0.0 for v in (cx, cy))
+        else:
+            cx, cy = c(cx), c(cy)
+        bearings.append(rs.BearingElement(n=gnode(a), n_link=link, kxx=kx, kyy=ky, cxx=cx, cyy=cy,
+                                          kzz=s.get("k_axial", 0.0), tag=str(s.get("name", "support")), **extra))
     sup = linear_supports(data, scenario)
     for key, v in (sup or {}).items():
         node = v["node"]

@@ -5,21 +5,26 @@
 :func:`rotorcosim.interop.write_engine`):
 
 * shaft elements -> spools: a chain of elements whose nodes follow each other is one spool (a coaxial rotor
-  gives two); each element one section (uniform only: a tapered element is an error naming it; several
-  elements between the same two nodes, ROSS's layered sections, too); their materials keep ROSS's E, G_s, rho;
+  gives two); each element one section (uniform only: a tapered element is an error naming it); a further
+  element between the same two nodes (ROSS's layered sections) a layer of that element (``layers``); their
+  materials keep ROSS's E, G_s, rho;
 * disks -> disks (m, Ip, Id);
-* bearings and seals -> linear supports (kxx, kyy, cxx, cyy, kzz as k_axial) to ground, to another spool's node
-  (``n_link``) or to a pedestal (a ROSS node on no shaft, whose point mass and ground bearing make it one);
-  speed-dependent coefficients are an error unless ``speed_rpm_coefficients`` names the speed to take them at
-  (linear interpolation over ROSS's ``frequency``); cross-coupled or mass coefficients are errors;
+* bearings and seals -> linear supports (kxx, kyy, cxx, cyy, the cross-coupled kxy, kyx, cxy, cyx, kzz as
+  k_axial) to ground, to another spool's node (``n_link``) or to a pedestal (a ROSS node on no shaft, whose
+  point mass and ground bearing make it one); speed-dependent coefficients become coefficient tables over
+  ``speed_rpm`` (ROSS's ``frequency``), or, when ``speed_rpm_coefficients`` names a speed, their values there
+  (linear interpolation); mass coefficients are errors;
 * each spool turns at ``speed_rpm`` (ROSS's files carry no operating speed); its torsion and axial motion are
   held at its first node (ROSS leaves them free: rigid modes that no lateral result depends on);
 * no structural damping ([damping] zeta = 0, as ROSS's shaft elements with alpha = beta = 0; other values are
   an error).
 
-``attach`` makes ROSS bearings the co-simulated ball bearings ("bearing<ID>": any number, any ids): each such
-bearing's linear coefficients become a pedestal (the housing, ``hub_mass_kg``) on which the ball bearing and
-its squeeze film damper sit; the rub rings go to the same nodes and the unbalance to ``unbalance_node``.
+``attach`` makes ROSS bearings the co-simulated ball bearings ("bearing<ID>": any number, any ids): a bearing to
+ground has its linear coefficients become a pedestal (the housing, ``hub_mass_kg``) on which the ball bearing and
+its squeeze film damper sit; a bearing linked to a pedestal (a ROSS point mass on its own bearing to ground, as
+in ROSS's coaxial rotor) is replaced by the ball bearing and its damper, the pedestal being their housing; an
+intershaft bearing (linked to another shaft's node) is refused, the ball bearing's outer race sitting still in a
+damper on a housing. The rub rings go to the same nodes and the unbalance to ``unbalance_node``.
 
 Example::
 
@@ -81,6 +86,36 @@ def _live(rotor) -> dict:
     return out
 
 
+def _values(b: dict, key: str) -> list[float]:
+    v = b.get(key, [0.0])
+    return [float(x) for x in np.atleast_1d(v)] if v is not None else [0.0]
+
+
+def _table(b: dict, what: str) -> dict | None:
+    """The support entry's coefficients of a ROSS bearing or seal whose coefficients depend on speed: speed_rpm
+    (ROSS's ``frequency``) and per coefficient its values there (one value when it is constant; cross-coupled
+    ones only when not zero); None for a bearing of constant coefficients."""
+    keys = ("kxx", "kyy", "kxy", "kyx", "cxx", "cyy", "cxy", "cyx")
+    vals = {k: _values(b, k) for k in keys + ("kzz",)}
+    if all(len(v) == 1 for v in vals.values()):
+        return None
+    freq = b.get("frequency")
+    n = max(len(v) for v in vals.values())
+    if freq is None or len(freq) != n:
+        raise RossImportError(f"ROSS {what}: coefficients of {n} values but no matching frequency")
+    if len(set(vals["kzz"])) > 1:
+        raise RossImportError(f"ROSS {what}: a speed-dependent kzz is not carried")
+    out = {"speed_rpm": [float(f) / RPM for f in freq]}
+    for k in keys:
+        v = vals[k]
+        if k in ("kxy", "kyx", "cxy", "cyx") and not any(v):
+            continue
+        out[k] = v if len(v) > 1 else v[0]
+    if vals["kzz"][0] > 0:
+        out["k_axial"] = vals["kzz"][0]
+    return out
+
+
 def _coefficient(b: dict, key: str, speed_rpm: float | None) -> float:
     v = b.get(key, [0.0])
     v = [float(x) for x in np.atleast_1d(v)] if v is not None else [0.0]
@@ -122,13 +157,7 @@ def from_ross(rotor, *, speed_rpm: float | None = None, speed_rpm_coefficients: 
 
     # spools: chains of shaft elements
     shafts = sorted(el["shafts"], key=lambda e: int(e["n"]))
-    seen = set()
     for e in shafts:
-        n = int(e["n"])
-        if n in seen:
-            raise RossImportError(f"ROSS shaft element {e['tag']!r}: a second element between nodes {n} and "
-                                  f"{n + 1} (a layered section), which the engine format does not carry")
-        seen.add(n)
         if e.get("idr", e["idl"]) != e["idl"] or e.get("odr", e["odl"]) != e["odl"]:
             raise RossImportError(f"ROSS shaft element {e['tag']!r} is tapered (odl {e['odl']}, odr {e['odr']}, idl "
                                   f"{e['idl']}, idr {e['idr']} m); the engine format has uniform sections: split it "
@@ -140,6 +169,15 @@ def from_ross(rotor, *, speed_rpm: float | None = None, speed_rpm_coefficients: 
             if e.get(flag, True) is False:
                 raise RossImportError(f"ROSS shaft element {e['tag']!r}: {flag} = false is not carried (rotorcosim's "
                                       "elements are Timoshenko beams with rotary inertia and gyroscopic terms)")
+    # layered sections: a second (third...) element between the same two nodes becomes a layer of the first
+    layered: dict[int, list[dict]] = {}
+    main = []
+    for e in shafts:
+        if main and int(main[-1]["n"]) == int(e["n"]):
+            layered.setdefault(int(e["n"]), []).append(e)
+        else:
+            main.append(e)
+    shafts = main
     chains: list[list[dict]] = []
     for e in shafts:
         if chains and int(chains[-1][-1]["n"]) + 1 == int(e["n"]):
@@ -165,9 +203,7 @@ def from_ross(rotor, *, speed_rpm: float | None = None, speed_rpm_coefficients: 
             z.append(z[-1] + float(e["L"]))
         for k in range(len(chain) + 1):
             where[first + k] = (s, k)
-        mats = []
-        for e in chain:
-            m = e["material"]
+        def material(m):
             key = (float(m["E"]), float(m["G_s"]), float(m["rho"]))
             if key not in materials:
                 label = "".join(c if c.isalnum() else "_" for c in str(m.get("name", "material"))) or "material"
@@ -175,7 +211,12 @@ def from_ross(rotor, *, speed_rpm: float | None = None, speed_rpm_coefficients: 
                     label = f"{label}_{len(materials)}"
                 materials[key] = label
                 engine["material"][label] = {"E": key[0], "G": key[1], "rho": key[2]}
-            mats.append(materials[key])
+            return materials[key]
+
+        mats = [material(e["material"]) for e in chain]
+        layers = [{"element": k, "d_out_mm": float(x["odl"]) * 1e3, "d_in_mm": float(x["idl"]) * 1e3,
+                   "material": material(x["material"])}
+                  for k, e in enumerate(chain) for x in layered.get(int(e["n"]), [])]
         if len(set(mats)) > 1:
             raise RossImportError(f"ROSS shaft {s}: elements of {len(set(mats))} materials; the engine format has "
                                   "one material per spool")
@@ -184,6 +225,8 @@ def from_ross(rotor, *, speed_rpm: float | None = None, speed_rpm_coefficients: 
                               "d_out_mm": [float(e["odl"]) * 1e3 for e in chain],
                               "d_in_mm": [float(e["idl"]) * 1e3 for e in chain],
                               "drive_node": 0, "axial_node": 0, "disks": []}
+        if layers:
+            engine["spool"][s]["layers"] = layers
 
     def node(n, what):
         if n not in where:
@@ -208,6 +251,7 @@ def from_ross(rotor, *, speed_rpm: float | None = None, speed_rpm_coefficients: 
             raise RossImportError(f"ROSS point mass {pm['tag']!r}: mx != my is not carried")
         pedestals.setdefault(n, {"mass": 0.0})["mass"] += mx
     supports = []
+    pedestal_nodes = {int(pm["n"]) for pm in el["point_masses"]}
     attach = dict(attach or {})
     for key in attach:
         if not (key.startswith("bearing") and ID.match(key[len("bearing"):])):
@@ -215,15 +259,22 @@ def from_ross(rotor, *, speed_rpm: float | None = None, speed_rpm_coefficients: 
     attached: dict[str, dict] = {}
     for b in el["bearings"]:
         what = f"{b['kind']} {b['tag']!r}"
-        for k in ("kxy", "kyx", "cxy", "cyx"):
-            if _coefficient(b, k, speed_rpm_coefficients) != 0.0:
-                raise RossImportError(f"ROSS {what}: cross-coupled {k} is not carried (engine format 1)")
         for k in ("mxx", "myy", "mxy", "myx"):
-            if k in b and _coefficient(b, k, speed_rpm_coefficients) != 0.0:
+            if k in b and any(v != 0.0 for v in _values(b, k)):
                 raise RossImportError(f"ROSS {what}: added mass {k} is not carried")
-        co = {k: _coefficient(b, k, speed_rpm_coefficients) for k in ("kxx", "kyy", "cxx", "cyy", "kzz")}
+        table = _table(b, what) if speed_rpm_coefficients is None else None
+        if table is None:
+            co = {k: _coefficient(b, k, speed_rpm_coefficients) for k in ("kxx", "kyy", "cxx", "cyy", "kzz", "kxy",
+                                                                          "kyx", "cxy", "cyx")}
         n, link = int(b["n"]), b.get("n_link")
         link = None if link is None or link == "None" else int(link)
+        cross = table is not None or any(co[k] != 0.0 for k in ("kxy", "kyx", "cxy", "cyx"))
+        if cross and (n not in where or n in attach.values()):
+            kind = "speed-dependent" if table is not None else "cross-coupled"
+            raise RossImportError(f"ROSS {what}: {kind} coefficients at node {n}, "
+                                  + ("a pedestal's bearing to ground: not carried (give --coefficients-at RPM)"
+                                     if n not in where else "which a co-simulated bearing's pedestal cannot carry "
+                                     "(leave it a linear support, or give --coefficients-at RPM)"))
         if n not in where:                     # a pedestal's own bearing to ground
             if link is not None:
                 raise RossImportError(f"ROSS {what}: links node {n} (on no shaft) to node {link}: not carried")
@@ -234,9 +285,18 @@ def from_ross(rotor, *, speed_rpm: float | None = None, speed_rpm_coefficients: 
             continue
         key = next((a for a, v in attach.items() if int(v) == n), None)
         if key is not None:
-            if link is not None:
-                raise RossImportError(f"ROSS {what}: a linked bearing cannot become co-simulated bearing {key}")
-            attached[key] = {"node": node(n, what), "co": co, "tag": b["tag"]}
+            if link is not None and link in where:
+                grounded = sorted(int(x["n"]) for x in el["bearings"] if int(x["n"]) in where
+                                  and x.get("n_link") in (None, "None", *pedestal_nodes))
+                raise RossImportError(
+                    f"ROSS {what} links node {n} to node {link} of a shaft (an intershaft bearing), which the "
+                    f"co-simulated ball bearing {key} cannot be (its outer race sits still in a damper on a housing): "
+                    f"attach a bearing to ground or to a pedestal instead (ROSS nodes {', '.join(map(str, grounded))}"
+                    ") or leave it a linear support")
+            # to ground: its coefficients become the housing's pedestal; to a pedestal node (a ROSS point mass on
+            # its own bearing to ground): that pedestal is the housing, and the ball bearing and its damper take
+            # the place of the ROSS bearing between shaft and housing
+            attached[key] = {"node": node(n, what), "co": co, "tag": b["tag"], "housing": link}
             continue
         sup = {"name": str(b["tag"]), "a": node(n, what)}
         if link is None:
@@ -246,9 +306,13 @@ def from_ross(rotor, *, speed_rpm: float | None = None, speed_rpm_coefficients: 
         else:
             sup["b"] = ["hub", f"n{link}"]
             pedestals.setdefault(link, {"mass": 0.0})
-        sup.update({"kxx": co["kxx"], "kyy": co["kyy"], "cxx": co["cxx"], "cyy": co["cyy"]})
-        if co["kzz"] > 0:
-            sup["k_axial"] = co["kzz"]
+        if table is not None:
+            sup.update(table)
+        else:
+            sup.update({"kxx": co["kxx"], "kyy": co["kyy"], "cxx": co["cxx"], "cyy": co["cyy"]})
+            sup.update({k: co[k] for k in ("kxy", "kyx", "cxy", "cyx") if co[k] != 0.0})
+            if co["kzz"] > 0:
+                sup["k_axial"] = co["kzz"]
         supports.append(sup)
     missing = sorted(set(attach) - set(attached))
     if attached:
@@ -266,7 +330,13 @@ def from_ross(rotor, *, speed_rpm: float | None = None, speed_rpm_coefficients: 
             raise RossImportError(f"ROSS node {n} (on no shaft) has no bearing to ground: not carried")
         peds[f"n{n}"] = _pedestal(p, f"ROSS node {n}")
     for key, a in sorted(attached.items(), key=lambda kv: natural_key(kv[0])):
-        hub = f"h{key[len('bearing'):]}"
+        if a["housing"] is not None:
+            hub = f"n{a['housing']}"
+            if peds[hub]["mass"] == 0.0:
+                peds[hub]["mass"] = float(hub_mass_kg)       # a massless ROSS pedestal: the housing's mass
+            a["hub"] = hub
+            continue
+        hub = a["hub"] = f"h{key[len('bearing'):]}"
         peds[hub] = _pedestal({**a["co"], "mass": hub_mass_kg}, f"ROSS bearing {a['tag']!r}")
     if supports:
         engine["support"] = supports
@@ -279,7 +349,8 @@ def from_ross(rotor, *, speed_rpm: float | None = None, speed_rpm_coefficients: 
             unbalance_node = int(el["disks"][0]["n"])
         ids = sorted((k[len("bearing"):] for k in attached), key=natural_key)
         engine["attach"] = {
-            **{f"bearing{i}": {"node": attached[f"bearing{i}"]["node"], "housing": f"h{i}"} for i in ids},
+            **{f"bearing{i}": {"node": attached[f"bearing{i}"]["node"], "housing": attached[f"bearing{i}"]["hub"]}
+               for i in ids},
             **{f"rubring{i}": {"node": attached[f"bearing{i}"]["node"]} for i in ids},
             "unbalance": {"node": node(int(unbalance_node), "unbalance")},
             "oil_temperature_C": 30.0}

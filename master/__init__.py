@@ -31,13 +31,13 @@ the import-linter contract in ``pyproject.toml``, run by ``tests/test_architectu
 
 Below the master: ``rotorcosim.components`` (the physics; it imports nothing of the master) and
 ``rotorcosim.fmus`` (the FMI boundary: FMUs as components, components as FMUs). Above it: ``rotorcosim.cases``
-(the paper's blade-loss case, :mod:`rotorcosim.cases.blade_loss`), which plugs in as a user's case would.
+(the shipped cases), which plug in as a user's case would (``master.case``).
 
 The public names, importable from here (loaded on first use)::
 
     from rotorcosim.master import load_scenario, simulate
-    res = simulate(load_scenario("blade_loss_2850"), duration=0.05)
-    res["bearing0.P_drag"], res.summary
+    res = simulate(load_scenario("toy_thermomechanical"), duration=0.05)
+    res["node.T"], res.summary
 """
 _PUBLIC = {
     "load_scenario": "rotorcosim.master.api",

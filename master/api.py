@@ -3,11 +3,11 @@
 ::
 
     import rotorcosim
-    sc = rotorcosim.load_scenario("blade_loss_2850")          # shipped name or path (TOML or .ssp)
-    sc = sc.set({"rotor.F_unbalance": 5700.0})                 # returns a new scenario
-    sc = sc.swap("damper0", "damper.fe")                       # registry name, "module:Class", or a .fmu path
+    sc = rotorcosim.load_scenario("toy_thermomechanical")     # shipped name or path (TOML or .ssp)
+    sc = sc.set({"osc.F0": 20.0})                              # returns a new scenario
+    sc = sc.swap("node", "mypkg.thermal:Node")                 # registry name, "module:Class", or a .fmu path
     res = rotorcosim.simulate(sc, duration=0.05)               # schedule=..., out=DIR writes the CLI's files
-    res.time, res.phase, res["bearing0.P_drag"], res.summary   # numpy arrays; summary as in summary.json
+    res.time, res.phase, res["node.T"], res.summary            # numpy arrays; summary as in summary.json
     df = res.to_dataframe()                                    # labelled columns with units (needs pandas)
 
 ``rotorcosim run`` is :func:`simulate` with ``out=DIR``. Without ``out`` (or with the CSV format) the run is
@@ -55,8 +55,6 @@ from rotorcosim.master.core.threads import one_thread
 DEFAULT_SCENARIO = scenarios.DEFAULT
 #: ``schedule=`` names: the scenario's own schedule (its timeline), automatic, one TM interval
 SCHEDULES = {"scenario": None, "auto": "auto", "monolithic": "monolithic"}
-#: other names accepted for those: "paper" is the scenario's own schedule (the shipped case's: the paper's timeline)
-SCHEDULE_ALIASES = {"paper": "scenario"}
 
 
 def peak_memory_mb() -> float | None:
@@ -73,8 +71,15 @@ def peak_memory_mb() -> float | None:
 
 
 def load_scenario(name_or_path: str | Path | None = None) -> Scenario:
-    """A scenario: a shipped name (``"blade_loss_2850"``, see ``rotorcosim scenarios``), a TOML file, or an SSP
-    archive (``.ssp``). None gives the default, :data:`DEFAULT_SCENARIO`."""
+    """A scenario: a shipped name (see ``rotorcosim scenarios``), a TOML file, or an SSP archive (``.ssp``). None
+    gives the default, :data:`DEFAULT_SCENARIO`. Its ``[results]`` keys are checked (the schema's, then its
+    case's, master/case.py)."""
+    sc = _load(name_or_path)
+    case.check_results(sc)
+    return sc
+
+
+def _load(name_or_path: str | Path | None) -> Scenario:
     if name_or_path is None:
         return _load_file(scenarios.path(scenarios.DEFAULT))
     if isinstance(name_or_path, str) and not name_or_path.strip():  # Path("") is the current folder
@@ -126,7 +131,8 @@ def _schedule(sc: Scenario, schedule, duration: float | None):
         if duration is not None:
             raise ValueError("give duration or a schedule object, not both")
         return schedule, None
-    schedule = SCHEDULE_ALIASES.get(schedule, schedule) if isinstance(schedule, str) else schedule
+    aliases = case.schedule_aliases()
+    schedule = aliases.get(schedule, schedule) if isinstance(schedule, str) else schedule
     if schedule is not None and schedule not in SCHEDULES:
         raise ValueError(f"schedule {schedule!r}: use one of {sorted(SCHEDULES)} or a Timeline/AutoSchedule")
     kind = SCHEDULES.get(schedule) if schedule is not None else None
@@ -201,7 +207,7 @@ class Result:
 
     def to_dataframe(self):
         """A pandas DataFrame: ``time (s)``, ``phase`` and one column per recorded element, labelled with its
-        unit (``rotor.X_brg0[x] (m)``, ``bearing0.P_drag (W)``). pandas is not a dependency of rotorcosim (the
+        unit (``osc.x[0] (m)``, ``node.T (K)``). pandas is not a dependency of rotorcosim (the
         arrays need none); install it to use this."""
         try:
             import pandas as pd
@@ -228,8 +234,8 @@ def simulate(sc: Scenario | str | Path, duration: float | None = None, schedule=
              dpi: float | None = None) -> Result:
     """Run scenario ``sc`` (a :class:`Scenario`, or a name or path for :func:`load_scenario`).
 
-    ``duration`` [s] cuts the schedule; ``schedule`` is ``"scenario"`` (the scenario's own; also ``"paper"``),
-    ``"auto"``, ``"monolithic"`` or a :class:`~rotorcosim.master.schedule.timeline.Timeline` / ``AutoSchedule``;
+    ``duration`` [s] cuts the schedule; ``schedule`` is ``"scenario"`` (the scenario's own; also an alias a case
+    declares, ``SCHEDULE_ALIASES``), ``"auto"``, ``"monolithic"`` or a :class:`~rotorcosim.master.schedule.timeline.Timeline` / ``AutoSchedule``;
     ``record`` the ports to record (default: the scenario's ``[outputs] record``); ``progress`` shows a progress bar.
 
     ``out``: a folder that receives what ``rotorcosim run`` writes (summary.json, the time series, the figures
@@ -338,7 +344,7 @@ def _simulate(sc, duration, schedule, out, record, progress, figures, overwrite,
                 "schedule": kind or sc.schedule.get("kind", "monolithic"), "duration_s": sch.duration,
                 "estimate": estimate,
                 # what made the run: the code's version, the scenario file and name as loaded, every --set /
-                # --swap / --unbalance, the parameters each component ran with (master/run/provenance.py)
+                # --swap / level, the parameters each component ran with (master/run/provenance.py)
                 "provenance": made["by"]}
         if out is not None:
             write_json(out / "summary.json", {**head, "status": "running", "pid": os.getpid(),
@@ -436,6 +442,7 @@ def _simulate(sc, duration, schedule, out, record, progress, figures, overwrite,
             else:
                 summary["final_outputs"] = {f"{n}.{k}": v for n, c in sim.system.components.items()
                                             for k, v in c.y.items()}
+                _estimate_summary(summary, sc, report.hold)
         except Exception as exc:
             if error is None:
                 raise

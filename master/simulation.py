@@ -3,8 +3,8 @@
 The staggered scheme alternates intervals of the coupled phase (every component steps) and of the held phase
 (only the components that declare it step); what is frozen and held in a held interval is the hold's
 (master/manipulator/hold.py). The next coupled interval resumes from the frozen state with the new values. The
-scenario names its phases (master/core/phases.py; the blade-loss paper's thermo-mechanical "TM" and thermal-only
-"TO" by default).
+scenario names its phases (master/core/phases.py; the staggered scheme's thermo-mechanical "TM" and
+thermal-only "TO" by default).
 """
 from __future__ import annotations
 
@@ -131,8 +131,9 @@ class Simulation:
         return [n for n in self.engine.order if role in self.system.components[n].phases]
 
     def initialise(self) -> None:
-        """Set the constant inputs and set up every component at the start time (once; :meth:`run` calls it).
-        A component that cannot start from its parameters raises a ContractError naming it."""
+        """Set the constant inputs and set up every component at the start time, in the run's order (once; :meth:`run`
+        calls it); a component that reads its inputs at set-up (``inputs_at_setup``) first gets the outputs of those
+        set up before it. A component that cannot start from its parameters raises a ContractError naming it."""
         if self._initialised:
             return
         by_comp: dict[str, dict] = {}
@@ -144,9 +145,14 @@ class Simulation:
         self._ahead = ahead.start(comps, self.engine_choice != "python")
         if self._ahead is None:
             self.first_compiled.set()
+        ready: set[str] = set()
         for name, comp in zip(self.engine.order, comps):
             if name in by_comp:
                 comp.set_inputs(by_comp[name])
+            if getattr(comp, "inputs_at_setup", False):
+                # FMI's initialisation mode: the initial outputs of the producers already set up
+                comp.set_inputs({link.dport: link.value(self.t) for link in self.engine.links
+                                 if link.con.dst_component == name and link.con.src_component in ready})
             try:
                 comp.setup(self.t)
             except (ContractError, SimulationFailed, KeyboardInterrupt, MemoryError, OSError):
@@ -157,6 +163,7 @@ class Simulation:
                 raise ContractError(f"{name} could not be set up with its parameters: {exc}") from exc
             if name in by_comp:  # setup may reset inputs to their start values
                 comp.set_inputs(by_comp[name])
+            ready.add(name)
         if self.engine_choice == "python":
             self.compiled_done()
         self._initialised = True

@@ -29,6 +29,8 @@ The generic master runs the case as any other; what its parts measured on this s
   (results.estimated_errors), not to their degrees C values as Table 6's relative errors do.
 """
 
+from rotorcosim.master.scenario import schema
+
 #: the result extraction of the scenarios whose ``[results] kind`` is ``"blade_loss"`` (rotorcosim.master.case)
 RESULTS = "rotorcosim.cases.blade_loss.results"
 #: the case's own commands of the ``rotorcosim`` program
@@ -43,8 +45,22 @@ COMMANDS = {
                      "an engine file's problems, or its nodes, masses, inertias, critical speeds with their "
                      "separation margins, warnings and Campbell diagram"),
 }
+#: the level the case sweeps (master/case.py ``Level``): the blade-loss force, held by the component parameter its
+#: scenarios name in ``[results] unbalance_parameter``; ``--unbalance`` on ``run`` and ``sweep``, ``unbalance_N``
+#: in a run's summary, ``levels_N`` in sweep.json, one sweep case folder ``F_<level>`` per level
+LEVEL = {"results_key": "unbalance_parameter", "name": "unbalance", "option": "--unbalance", "unit": "N",
+         "label": "blade-loss unbalance force", "summary_key": "unbalance_N", "sweep_key": "levels_N",
+         "folder_prefix": "F_"}
 #: ``rotorcosim sweep --unbalance paper``: the seven levels of the paper's Table 5 [N]
 LEVELS = {"paper": (712.0, 1425.0, 2850.0, 5700.0, 8551.0, 11401.0, 14252.0)}
+#: the scenario ``sweep`` and ``export-ssp`` start from: the levels' base file (F_u = 2850 N as in blade_loss_2850)
+DEFAULT_SCENARIO = "blade_loss"
+#: ``--schedule paper`` (and ``simulate(schedule="paper")``): the scenario's own timeline, the paper's
+SCHEDULE_ALIASES = {"paper": "scenario"}
+#: the case's own ``[results]`` keys (master/case.py checks them when a scenario of the case is loaded)
+RESULTS_KEYS = {"unbalance_parameter": schema.port_ref}
+#: the key of sweep.json the score of SWEEP_TABLES is written under
+SCORE_KEY = "paper_score"
 #: what a sweep with one case per level writes besides its own files (Table 5, the paper comparison)
 SWEEP_TABLES = "rotorcosim.cases.blade_loss.paper_comparison:sweep_tables"
 #: the files SWEEP_TABLES writes (``sweep --overwrite`` may clear them)

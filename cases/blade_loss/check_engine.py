@@ -20,7 +20,7 @@ from pathlib import Path
 
 from rotorcosim.cases.blade_loss import critical_speeds as cs
 from rotorcosim.cases.blade_loss import linear_engine
-from rotorcosim.components.bearing.geometry import DN_LIMIT
+from rotorcosim.components.bearing.geometry import DN_LIMIT, speed_limit
 from rotorcosim.components.rotor import attach, critical, engine_check
 from rotorcosim.components.rotor import model as fem
 from rotorcosim.master.scenario.build import create_component
@@ -89,6 +89,10 @@ def warnings(data: dict, sc=None) -> list[str]:
         if not hasattr(comp, "speed_range"):
             continue            # a bearing of another model (a plug-in, an FMU): its range is its own
         bore, w_max = comp.speed_range()
+        own = data.get("bearing", {}).get(b, {}) if isinstance(data.get("bearing"), dict) else {}
+        if isinstance(own, dict) and isinstance(own.get("bore_mm"), (int, float)) and own["bore_mm"] > 0:
+            bore = float(own["bore_mm"]) * 1e-3         # the engine's own record of the bearing, when it has one
+            w_max = speed_limit(bore)
         key = f"bearing{b}"
         line = engine_check.bore_fit(data, key, bore * 1e3)
         if line:

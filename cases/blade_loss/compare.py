@@ -34,17 +34,18 @@ from __future__ import annotations
 import math
 from pathlib import Path
 
-from rotorcosim.master.compare import Level, compare_schemes, pair, quantum, reused_monolithic
+from rotorcosim.master.compare import LevelValue, compare_schemes, pair, quantum, reused_monolithic
 from rotorcosim.master.run.outputs import check_dpi
 from rotorcosim.master.run.rundir import check_folder
 from rotorcosim.master.schedule import Interval, Timeline, from_spec
 from rotorcosim.master.scenario.cycle import constant_period, without_source
 
 from rotorcosim.master.cli.options import add_dpi, add_out, add_scenario
-from rotorcosim.master.cli.run import add_edit_arguments, apply_edits, apply_unbalance, parse_set, resolve
+from rotorcosim.master.cli.run import add_edit_arguments, apply_edits, parse_set, resolve
 from rotorcosim.master import case
 
 from . import error_check
+from .results import apply_unbalance
 
 #: Table 6's rows (no rub power: there is no rub at 2850 N)
 KEYS = ("whirl_amplitude_mm", "transmissibility", "max_contact_load_N", "max_contact_stress_MPa", "drag_power_W",
@@ -212,7 +213,7 @@ def compare(out: Path, duration=2.0, unbalance=2850.0, scenario="blade_loss", re
                            figures=figures, overwrite=overwrite, resume=resume, dpi=dpi,
                            timing_runs=(timing_runs or TIMING_RUNS) if schedule == "paper" else 1,
                            reuse=monolithic, reuse_check=lambda summary, f: _check_results(summary, f, bearing),
-                           level=Level(LEVEL_KEY, float(unbalance), "N"), same=("bearings",))
+                           level=LevelValue(LEVEL_KEY, float(unbalance), "N"), same=("bearings",))
 
 
 def _check_results(summary: dict, f: Path, bearing: int) -> None:
@@ -228,7 +229,7 @@ def reuse_monolithic(folder: Path, unbalance: float, duration: float, name: str 
     """A previous monolithic run's summary in ``folder``, checked to be the one this comparison needs (``name``:
     the monolithic run's scenario name this comparison would give it; its ``unbalance`` [N], ``duration`` [s]
     and the results of ``bearing``)."""
-    return reused_monolithic(Path(folder), duration, name, Level(LEVEL_KEY, float(unbalance), "N"),
+    return reused_monolithic(Path(folder), duration, name, LevelValue(LEVEL_KEY, float(unbalance), "N"),
                              lambda summary, f: _check_results(summary, f, bearing))
 
 

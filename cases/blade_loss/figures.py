@@ -81,6 +81,7 @@ class Context:
         return name[:1].upper() + name[1:]
 
     def rub_clearance_mm(self, k) -> float | None:
+        """The run's rub-ring clearance at bearing ``k`` [mm] (None: no rub ring there, or not known)."""
         return dict(self.rub_clearances_mm).get(str(k))
 
 
@@ -115,10 +116,20 @@ def is_paper_case(sc, F_u: float) -> bool:
     """A shipped blade-loss scenario at one of Table 5's levels, every component and parameter as shipped."""
     from rotorcosim import scenarios
 
-    folders = (Path(scenarios.FOLDER).resolve(), Path(scenarios.FOLDER).resolve() / "templates")
+    from rotorcosim.components.rotor.model import DEFAULT_FILE
 
-    def shipped(f) -> bool:   # a shipped scenario or template
+    folders = (Path(scenarios.FOLDER).resolve(), Path(scenarios.FOLDER).resolve() / "templates")
+    engine = Path(DEFAULT_FILE).resolve()
+    rotor = sc.components.get("rotor")
+    model = rotor.parameters.get("model_file") if rotor is not None else None
+    shipped_engine = not model or Path(str(model)).resolve() == engine
+
+    def shipped(f) -> bool:   # a shipped scenario or template, or a value of the shipped engine file
+        if f == "the engine":  # the rotor's engine file itself (master/scenario/engine.py)
+            return shipped_engine
         try:
+            if f is not None and Path(str(f).split(" [", 1)[0]).resolve() == engine:
+                return True   # "<engine.toml> [damper.0] clearance_mm": a record of the shipped engine
             return f is not None and Path(f).resolve().parent in folders
         except (OSError, TypeError):
             return False

@@ -116,10 +116,11 @@ def critical_speeds(full: fem.FullModel, sup: dict, n: int = 6, max_rpm: float =
     return critical.synchronous_critical_speeds(full, sup, n=n, max_rpm=max_rpm)
 
 
-def response(full: fem.FullModel, sup: dict, F_u: float, rpm: float | None = None) -> dict:
+def response(full: fem.FullModel, sup: dict, F_u: float, rpm: float | None = None, system: dict | None = None) -> dict:
     """Steady synchronous response of the linear engine (:func:`rotorcosim.components.rotor.calibration.
-    coupled_response`): per bearing id ("0", "5" for the paper's engine) whirl_mm, journal_mm, transmissibility (eq. 23)."""
-    return calibration.coupled_response(full, sup, F_u, rpm)
+    coupled_response`): per bearing id ("0", "5" for the paper's engine) whirl_mm, journal_mm, transmissibility (eq. 23).
+    ``system``: ``full.coupled(sup)``, built once by a caller that scans speeds."""
+    return calibration.coupled_response(full, sup, F_u, rpm, system)
 
 
 def main(argv=None) -> int:

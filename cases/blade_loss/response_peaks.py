@@ -39,8 +39,10 @@ def damped_critical_speeds(full, sup: dict, min_rpm: float, max_rpm: float, ref_
     n = max(int(np.ceil(np.log(max_rpm / min_rpm) / np.log1p(STEP))) + 1, 3)
     grid = np.geomspace(min_rpm, max_rpm, n)
 
+    system = full.coupled(sup)
+
     def whirl(rpm: float) -> dict[str, float]:
-        r = linear_engine.response(full, sup, (rpm / ref_rpm) ** 2, rpm)
+        r = linear_engine.response(full, sup, (rpm / ref_rpm) ** 2, rpm, system)
         return {b: float(v["whirl_mm"]) for b, v in r.items()}
 
     table = [whirl(float(w)) for w in grid]

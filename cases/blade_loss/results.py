@@ -32,6 +32,7 @@ from pathlib import Path
 import numpy as np
 
 from rotorcosim.components.contract import COUPLED
+from rotorcosim.master import case
 from rotorcosim.master.manipulator.hold import RISE_FLOOR_K
 from rotorcosim.master.observer.observers import Observer, SteadyWindows, sampled_rows
 from rotorcosim.master.scenario.cycle import cycle_of
@@ -231,6 +232,12 @@ def check(sc, sim) -> None:
                          f"give them the same speed")
 
 
+def apply_unbalance(sc, force: float, settings=()) -> None:
+    """Set the blade-loss force of ``sc`` to ``force`` [N] (in place; the case's level, ``--unbalance``):
+    :func:`rotorcosim.master.case.apply_level`."""
+    case.apply_level(sc, force, settings)
+
+
 def unbalance_force(sc) -> float:
     """The blade-loss force F_u [N] of ``sc``: the parameter its ``[results] unbalance_parameter`` names (NaN
     when the component does not set it)."""
@@ -350,7 +357,8 @@ def estimated_errors(windows, bearings, hold, F_u) -> dict | None:
     thermal network hands back to the mechanics (``mechanics_fraction`` of ``thermal<ID>``: its oil temperature
     and growths) of its own change between the last two thermo-mechanical intervals, percent of its value: the
     mechanics follow those values quasi-statically, so an error that is a share of their move over the held
-    interval is that share of the result's move. ``largest_pct`` and ``largest`` ("bearing.key") are the run's
+    interval is that share of the result's move (not estimated where the speed changed between those intervals:
+    the hold gives no fraction then). ``largest_pct`` and ``largest`` ("bearing.key") are the run's
     estimate."""
     if hold is None or hold.estimated_error_pct is None:
         return None

@@ -4,6 +4,8 @@ the response peaks, the peak whirl, contact load, contact stress and transmitted
 spools' energy balance, and for the blade-loss engine the Table 4 results at the end (cases/blade_loss).
 
 - :mod:`.results`: ``summary.json`` keys ``speeds``, ``crossings``, ``energy`` (and ``bearings`` for the engine);
+- :mod:`.modes`: the critical speeds a crossing is labelled with (the linearised engine's, per film temperature);
+- :mod:`.energy`: the spools' energy balance from the torques the components report;
 - :mod:`.figures`: speed against time with the thermal-only intervals shaded, whirl and transmitted force against
   speed, the Campbell diagram with the run's trajectory, the temperatures;
 - :mod:`.compare`: ``rotorcosim compare blade_loss_rundown``, the staggered scheme against the monolithic run
@@ -12,7 +14,17 @@ spools' energy balance, and for the blade-loss engine the Table 4 results at the
 Scenarios: ``jeffcott_rundown`` (the check case against an independent integration) and ``blade_loss_rundown``.
 """
 
+from rotorcosim.cases import blade_loss
+from rotorcosim.master.scenario import schema
+
 #: the result extraction of the scenarios whose ``[results] kind`` is ``"rundown"`` (rotorcosim.master.case)
 RESULTS = "rotorcosim.cases.rundown.results"
 #: ``rotorcosim compare`` for the scenarios of this case (master/case.py ``COMPARE``)
 COMPARE = "rotorcosim.cases.rundown.compare:run"
+#: the level: the blade-loss engine's unbalance force (``[results] unbalance_parameter``, ``--unbalance``), as the
+#: blade-loss case's; a rundown of a scenario without that key (a test rotor) has no level to set
+LEVEL = blade_loss.LEVEL
+#: the case's own ``[results]`` keys: the spool components whose speeds and crossings it reports, the critical
+#: speeds whose crossings it reports [rev/min]; and the blade-loss engine's level when it runs that engine
+RESULTS_KEYS = {"spools": schema.list_of(schema.text), "critical_speeds_rpm": schema.list_of(schema.positive),
+                "unbalance_parameter": schema.port_ref}

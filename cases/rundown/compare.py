@@ -48,7 +48,7 @@ from pathlib import Path
 
 from rotorcosim.master.api import load_scenario
 from rotorcosim.master.run.outputs import check_dpi
-from rotorcosim.master.compare import KINDS, Level, compare_schemes, pair
+from rotorcosim.master.compare import KINDS, LevelValue, compare_schemes, pair
 from rotorcosim.master.compare import within as within_tolerance
 from rotorcosim.master.scenario.build import Scenario, schedule_of
 
@@ -194,7 +194,7 @@ def compare_rundown(scenario: Scenario | str | Path = "blade_loss_rundown", dura
 
     return compare_schemes(sc, out, schedule_of(sc, None, duration), schedule_of(sc, "monolithic", duration),
                            tabulate=tabulate, table_name=TABLE, quiet=quiet, figures=figures, overwrite=overwrite,
-                           resume=resume, dpi=dpi, level=Level("unbalance_N", unbalance, "N"), warm_up=warm_up,
+                           resume=resume, dpi=dpi, level=LevelValue("unbalance_N", unbalance, "N"), warm_up=warm_up,
                            same=("bearings",))
 
 

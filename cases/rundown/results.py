@@ -1,30 +1,36 @@
 """The results of a rundown: ``speeds``, ``crossings`` and ``energy`` of ``summary.json``.
 
-The scenario's ``[results]`` (kind ``"rundown"``) names ``spools`` (the spool components, components/spool; the
-first is the one whose crossings are reported) and ``critical_speeds_rpm`` (the forward synchronous critical
-speeds of the linear rotor, e.g. from ``rotorcosim critical-speeds``). The locations read are the engine's
-bearings #0 and #5 (``rotor.X_brg{k}`` whirl, ``bearing{k}.Q_max_step`` / ``sigma_max_step`` contact load and
-inner-race stress, ``damper{k}.F_journal`` transmitted force: film + centering spring, eq. (23)'s numerator)
-when the system has them, else the rotor's ``X_brg0`` port alone (a test rotor's disk: ``"disk"``, whirl only).
+The scenario's ``[results]`` (kind ``"rundown"``) names ``spools`` (the spool components, components/spool). The
+crossings are those of the spool that turns the unbalance (the one driving ``rotor.Omega_pt``; else the first).
+The locations read are the engine's co-simulated bearings, every id of the rotor's ``X_brg<ID>`` ports with a
+``bearing<ID>`` component (``rotor.X_brg<ID>`` whirl, ``bearing<ID>.Q_max_step`` / ``sigma_max_step`` contact
+load and inner-race stress, ``damper<ID>.F_journal`` transmitted force: film + centering spring, eq. (23)'s
+numerator, and the film temperature the damper is fed), else the rotor's ``X_brg0`` port alone (a test rotor's
+disk: ``"disk"``, whirl only).
 
-* ``speeds``: per spool ``start_rpm``, ``end_rpm``, ``t_fuel_cut_s`` (None: a prescribed profile or no cut),
+* ``speeds``: per spool ``inertia_kgm2``, ``start_rpm``, ``end_rpm``, ``t_fuel_cut_s`` (None: a prescribed profile or no cut),
   ``stopped`` (it ended at 0 rev/min);
-* ``crossings``: per critical speed, the resonance peak of the response against speed (:func:`resonance_peaks`
-  over the thermo-mechanical samples: the largest whirl at the first location per speed bin of ``SPEED_BIN``,
-  the local maxima that stand out by ``PROMINENCE`` of the largest whirl) assigned to it (:func:`assign_peaks`: one
-  peak per critical speed, the nearest, at most ``MAX_SHIFT`` away): ``spool``, ``critical_speed_rpm``,
-  ``peak_found``, ``t_s`` and ``peak_speed_rpm`` of the peak's largest sample, ``direction`` (``"down"`` /
-  ``"up"``), ``speed_range_rpm`` (the peak's width at half its prominence) and per location ``peak_whirl_mm``,
-  ``peak_contact_load_N``, ``peak_contact_stress_MPa``, ``peak_transmitted_force_N`` (keys without a signal are
-  left out), the maxima over the width of that location's own whirl peak assigned to the critical speed, or over
-  the first location's where it has none, and that ``speed_range_rpm``. A critical speed within the run's speeds
-  that has no peak gets ``peak_found`` false, a ``note`` and None for the speed, the time and the peaks (not the
-  edge of a band around it); one outside the run's speeds and without a peak has no entry;
-* ``energy``: per spool its ``inertia_kg_m2``, ``kinetic_energy_lost_J``, the work of each torque
-  ``work_J`` (drive, drag, rub, aero: the spool's own bookkeeping, components/spool/kernel.py) and
-  ``residual_pct``: (kinetic energy lost - (drag + rub + aero - drive)) / kinetic energy lost, in percent.
+* ``crossings``: every resonance peak of the whirl against speed at any location (:func:`resonance_peaks` over the
+  thermo-mechanical samples: the largest whirl per speed bin of ``SPEED_BIN``, the local maxima standing out by
+  ``PROMINENCE`` of that location's largest whirl), labelled with the nearest critical speed of the linearised
+  engine (:mod:`.modes`: the engine's damped critical speeds at that location at the film temperatures the run had
+  at the peak, each the response peak of one mode; a test rotor: the scenario's ``critical_speeds_rpm``). No band
+  around a critical speed decides whether a peak exists. One entry per mode, lowest first: ``spool`` (and
+  ``spool_name``, the engine file's name of the spool it turns, cases/blade_loss/engine_names.py),
+  ``critical_speed_rpm`` (the mode's undamped critical speed), ``damped_critical_speed_rpm`` (its damped one at
+  ``film_temperature_C``, per bearing id; None for a test rotor), ``location`` (whose peak it is: the first
+  location with a peak of that mode), ``peak_found``, ``t_s`` and ``peak_speed_rpm`` of the peak's largest sample,
+  ``direction`` (``"down"`` / ``"up"``), ``speed_range_rpm`` (the peak's width at half its prominence),
+  ``other_peaks_rpm`` (smaller peaks at that location labelled to the same mode: the beats after a fast passage),
+  and per location ``peak_whirl_mm``, ``peak_contact_load_N``, ``peak_contact_stress_MPa``,
+  ``peak_transmitted_force_N`` (keys without a signal are left out): the maxima over the width of that location's
+  own peak of the mode, or over the defining peak's where it has none, and that ``speed_range_rpm``. A mode within
+  the run's speeds without a peak anywhere gets ``peak_found`` false, a ``note`` and None for the speed, the time
+  and the peaks;
+* ``energy``: the spools' energy balance from the torques the components report (:mod:`.energy`).
 
-The response is kept as maxima over bins of ``BIN_S`` of thermo-mechanical time (``RundownTrack``).
+The response is kept as maxima over bins of ``BIN_S`` of thermo-mechanical time, with the time and the speed of
+each bin's largest whirl sample (``RundownTrack``).
 """
 from __future__ import annotations
 
@@ -39,101 +45,149 @@ from scipy.signal import find_peaks, peak_widths
 from rotorcosim.components.contract import COUPLED
 from rotorcosim.master.observer.observers import Observer
 
+from .energy import SpoolEnergy
+
 #: time bins of the response track [s]: many per crossing (a crossing lasts ~0.1-1 s), few per hour of run
 BIN_S = 2e-3
 RPM = 30.0 / math.pi
+KELVIN = 273.15
 #: the resonance search: relative width of its speed bins (the response's maximum per bin, at least a turn of the
-#: rotor per bin at a rundown's rates), the prominence of a peak relative to the largest response (ripple of the
-#: per-bin maximum and contact noise stay below it), the largest distance of a damped peak from its undamped
-#: critical speed (the squeeze-film dampers put the engine's 7-12 % above: docs/explanation/rundown.md)
+#: rotor per bin at a rundown's rates), the prominence of a peak relative to the location's largest response
+#: (ripple of the per-bin maximum and contact noise stay below it)
 SPEED_BIN = 2e-3
 PROMINENCE = 0.01
+#: the figures' marking of the peaks (assign_peaks): the largest distance of a peak from its critical speed
 MAX_SHIFT = 0.25
 #: the module that draws the figures (imported by name)
 FIGURES_MODULE = "rotorcosim.cases.rundown.figures"
+#: the kinds of a location's columns in the track, in order: the whirl's maximum, the time and the crossing spool's
+#: speed at that sample, the other maxima, the film temperature at the bin's end
+KINDS = ("whirl", "t_at", "w_at", "load", "stress", "force", "film")
 
 
-def _locations(components) -> dict[str, dict[str, str]]:
-    """Per co-simulated bearing (every component bearing<ID> with its damper<ID>, in the system's order) the ports
-    read; else the rotor's first bearing port alone (a test rotor's disk)."""
-    ids = [n[len("bearing"):] for n in components if n.startswith("bearing") and f"damper{n[len('bearing'):]}" in
-           components]
-    if ids:
-        out = {}
-        for k in ids:
-            b = components[f"bearing{k}"]
-            q = "Q_max_step" if "Q_max_step" in b.y else "Q_max"
-            s = "sigma_max_step" if "sigma_max_step" in b.y else "sigma_max"
-            out[str(k)] = {"whirl": f"rotor.X_brg{k}", "load": f"bearing{k}.{q}", "stress": f"bearing{k}.{s}",
-                           "force": f"damper{k}.F_journal"}
-        return out
-    return {"disk": {"whirl": "rotor.X_brg0"}}
+def _locations(sim) -> dict[str, dict[str, str]]:
+    """Per location (bearing id, or "disk"), kind -> the output read (module docstring)."""
+    comps = sim.system.components
+    rotor = comps.get("rotor")
+    ids = [n[len("X_brg"):] for n in (rotor.y if rotor is not None else ()) if n.startswith("X_brg")]
+    ids = [k for k in ids if f"bearing{k}" in comps]
+    if not ids:
+        return {"disk": {"whirl": "rotor.X_brg0"}}
+    by_dst = {c.dst: c.src for c in sim.system.connections}
+    out = {}
+    for k in ids:
+        b = comps[f"bearing{k}"]
+        d = {"whirl": f"rotor.X_brg{k}"}
+        for kind, names in (("load", ("Q_max_step", "Q_max")), ("stress", ("sigma_max_step", "sigma_max"))):
+            port = next((n for n in names if n in b.y), None)
+            if port is not None:
+                d[kind] = f"bearing{k}.{port}"
+        if f"damper{k}" in comps and "F_journal" in comps[f"damper{k}"].y:
+            d["force"] = f"damper{k}.F_journal"
+        film = by_dst.get(f"damper{k}.T_oil")
+        if film is not None:
+            d["film"] = film
+        out[k] = d
+    return out
+
+
+def _layout(locations) -> list[tuple[str, str, str | None]]:
+    """The track's location columns: (location, kind, output read; None for t_at / w_at), in KINDS order."""
+    cols = []
+    for loc, d in locations.items():
+        for kind in KINDS:
+            if kind in ("t_at", "w_at"):
+                cols.append((loc, kind, None))
+            elif kind in d:
+                cols.append((loc, kind, d[kind]))
+    return cols
+
+
+def fold(a: np.ndarray, n_spools: int, cols) -> np.ndarray:
+    """Rows of per-step (or already folded) samples into one row per bin of BIN_S: the time and the spools' speeds
+    at the bin's end, per location the largest whirl with the time and speed of its sample, the largest load,
+    stress and force, the film temperature at the bin's end."""
+    if not len(a):
+        return a
+    b = np.floor(a[:, 0] / BIN_S).astype(np.int64)
+    starts = np.concatenate([[0], np.flatnonzero(np.diff(b)) + 1])
+    if len(starts) == len(a):
+        return a
+    ends = np.concatenate([starts[1:], [len(a)]])
+    out = np.maximum.reduceat(a, starts)
+    out[:, :1 + n_spools] = a[ends - 1, :1 + n_spools]
+    idx = np.arange(len(a))
+    seg = np.repeat(np.arange(len(starts)), np.diff(np.concatenate([starts, [len(a)]])))
+    for c, (_, kind, _) in enumerate(cols, start=1 + n_spools):
+        if kind == "whirl":
+            at = np.minimum.reduceat(np.where(a[:, c] == out[seg, c], idx, len(a)), starts)
+            out[:, c + 1] = a[at, c + 1]
+            out[:, c + 2] = a[at, c + 2]
+        elif kind == "film":
+            out[:, c] = a[ends - 1, c]
+    return out
 
 
 class RundownTrack(Observer):
     """Per bin of BIN_S of thermo-mechanical time: its end time, each spool's speed, and per location the largest
-    whirl radius, contact load, inner-race stress and transmitted force."""
+    whirl radius (with the time and the crossing spool's speed of that sample), contact load, inner-race stress
+    and transmitted force, and the film temperature (:func:`fold`)."""
 
-    def __init__(self, spools):
+    def __init__(self, spools, crossing_spool: str | None = None):
         self.spools = list(spools)
+        self.crossing_spool = crossing_spool or (self.spools[0] if self.spools else None)
         self.rows: list[np.ndarray] = []
-        self.start_energy: dict[str, list[float]] = {}
+        self.start_speed: dict[str, float] = {}
 
     def start(self, sim, schedule):
-        self.locations = _locations(sim.system.components)
-        self.cols = [(loc, kind, ref) for loc, d in self.locations.items() for kind, ref in d.items()]
+        self.locations = _locations(sim)
+        self.cols = _layout(self.locations)
         for sp in self.spools:
-            self.start_energy[sp] = [float(x) for x in sim.value(f"{sp}.energy")]
-            self.start_energy[sp].append(float(sim.value(f"{sp}.Omega")[0]))
+            self.start_speed[sp] = float(sim.value(f"{sp}.Omega")[0])
 
     def interval_start(self, sim, phase, step):
         self.active = phase == COUPLED
 
     def block_signals(self, sim):
-        return [f"{sp}.Omega" for sp in self.spools] + [ref for _, _, ref in self.cols]
+        refs = [f"{sp}.Omega" for sp in self.spools] + [ref for _, _, ref in self.cols if ref is not None]
+        return list(dict.fromkeys(refs))
+
+    def _rows(self, ts, value) -> np.ndarray:
+        """Per-step rows (columns as :meth:`table`'s) from ``value(ref)``: one row per step of ``ts``."""
+        n = len(ts)
+        cols = [np.asarray(ts, dtype=float)]
+        cols += [np.asarray(value(f"{sp}.Omega")).reshape(n, -1)[:, 0] for sp in self.spools]
+        w = cols[1 + self.spools.index(self.crossing_spool)] if self.spools else np.zeros(n)
+        for _, kind, ref in self.cols:
+            if kind == "t_at":
+                cols.append(cols[0])
+            elif kind == "w_at":
+                cols.append(w)
+            else:
+                v = np.asarray(value(ref)).reshape(n, -1)
+                if kind in ("whirl", "force"):
+                    cols.append(np.hypot(v[:, 0], v[:, 1]))
+                else:
+                    cols.append(v[:, 0])    # load: inner race of [inner, outer]; stress: the inner race; film
+        return np.column_stack(cols)
 
     def step_block(self, sim, ks, ts, data):
         if not self.active or not len(ts):
             return
-        bins = np.floor(np.asarray(ts) / BIN_S).astype(np.int64)
-        edges = np.flatnonzero(np.diff(bins)) + 1
-        starts = np.concatenate([[0], edges])
-        ends = np.concatenate([edges, [len(ts)]])
-        cols = [np.asarray(ts)[ends - 1]]
-        cols += [np.asarray(data[f"{sp}.Omega"])[ends - 1, 0] for sp in self.spools]
-        for _, kind, ref in self.cols:
-            v = np.asarray(data[ref])
-            if kind in ("whirl", "force"):
-                v = np.hypot(v[:, 0], v[:, 1])
-            else:
-                v = v[:, 0]                     # load: inner race of [inner, outer]; stress: the inner race
-            cols.append(np.maximum.reduceat(v, starts))
-        self.rows.append(np.column_stack(cols))
+        self.rows.append(fold(self._rows(ts, lambda ref: data[ref]), len(self.spools), self.cols))
 
     def step(self, sim, t):
         if not getattr(self, "active", False):
             return
-        row = [t] + [float(sim.value(f"{sp}.Omega")[0]) for sp in self.spools]
-        for _, kind, ref in self.cols:
-            v = np.asarray(sim.value(ref))
-            row.append(float(np.hypot(v[0], v[1])) if kind in ("whirl", "force") else float(v[0]))
-        self.rows.append(np.array([row]))
+        self.rows.append(self._rows([t], lambda ref: np.asarray(sim.value(ref))[None, :]))
 
     def table(self) -> np.ndarray:
-        """All bins: columns t, the spools' speeds [rad/s], then per location its (whirl, load, stress, force)."""
+        """All bins: columns t, the spools' speeds [rad/s], then per location its columns in KINDS order (whirl [m],
+        t_at [s], w_at [rad/s], load [N], stress [Pa], force [N], film [K]; those it has)."""
         n = 1 + len(self.spools) + len(self.cols)
         if not self.rows:
             return np.zeros((0, n))
-        a = np.vstack(self.rows)
-        # the step() path gives one row per step: fold it into bins like step_block's
-        b = np.floor(a[:, 0] / BIN_S).astype(np.int64)
-        if len(np.unique(b)) == len(b):
-            return a
-        starts = np.concatenate([[0], np.flatnonzero(np.diff(b)) + 1])
-        ends = np.concatenate([starts[1:], [len(b)]])
-        out = np.maximum.reduceat(a, starts)
-        out[:, :1 + len(self.spools)] = a[ends - 1, :1 + len(self.spools)]
-        return out
+        return fold(np.vstack(self.rows), len(self.spools), self.cols)
 
 
 def _spools(sc) -> list[str]:
@@ -142,12 +196,22 @@ def _spools(sc) -> list[str]:
     return list(spools)
 
 
+def _crossing_spool(sc, spools) -> str | None:
+    """The spool that turns the unbalance: the one connected to ``rotor.Omega_pt`` (else the first)."""
+    for c in sc.connections:
+        if c.dst == "rotor.Omega_pt" and c.src.partition(".")[0] in spools:
+            return c.src.partition(".")[0]
+    return spools[0] if spools else None
+
+
 def _case_blade_loss(sc) -> bool:
-    return all(f"bearing{k}" in sc.components for k in (0, 5))
+    from rotorcosim.cases.blade_loss.results import bearing_ids
+    return bool(bearing_ids(sc.components))
 
 
 def observers(sc, cycle):
-    obs = [RundownTrack(_spools(sc))]
+    spools = _spools(sc)
+    obs = [RundownTrack(spools, _crossing_spool(sc, spools)), SpoolEnergy(spools)]
     if _case_blade_loss(sc):
         from rotorcosim.cases.blade_loss import results as bl
         obs += bl.observers(sc, cycle)
@@ -234,80 +298,136 @@ def assign_peaks(criticals, peaks: list[Peak], max_shift: float = MAX_SHIFT) -> 
     return out
 
 
-def crossings(table: np.ndarray, spool: str, criticals_rpm, locations: dict, n_spools: int) -> list[dict]:
-    """The crossings of the first spool's speed through each critical speed (module docstring): the resonance
-    peaks of the whirl at the first location over the rows of ``table`` (RundownTrack.table); each location's
-    values over its own whirl's peak for that critical speed, or over the first location's peak where it has none
-    (its ``speed_range_rpm`` says which)."""
-    out = []
-    if not len(table):
-        return out
-    crit = sorted(float(c) for c in criticals_rpm)
-    w = table[:, 1] * RPM
+class Candidate(NamedTuple):
+    """A resonance peak at one location labelled with a mode: its location, the peak, its row in the table, the
+    mode's undamped and damped critical speeds [rev/min] and the film temperatures [C] at its sample."""
+    location: str
+    peak: Peak
+    row: int
+    undamped: float
+    damped: float | None
+    film_C: dict
+
+
+def _nearest(x: float, values) -> int:
+    return int(np.argmin([abs(math.log(x / v)) for v in values]))
+
+
+def label(loc: str, speed_rpm: float, temps: dict, modes) -> tuple[float, float | None]:
+    """The mode of a peak at ``loc`` and ``speed_rpm``: the nearest of the damped critical speeds the linearised
+    engine has at that location at the film temperatures ``temps`` ((damped, undamped) pairs of
+    ``modes.damped``), or, where it has none there, the nearest undamped critical speed. (undamped, damped)."""
+    pairs = modes.damped(temps).get(loc) or []
+    if pairs:
+        d, u = pairs[_nearest(speed_rpm, [p[0] for p in pairs])]
+        return u, d
+    und = modes.undamped
+    return und[_nearest(speed_rpm, und)], None
+
+
+def crossings(table: np.ndarray, spool: str, modes, locations: dict, n_spools: int) -> list[dict]:
+    """The crossings of ``spool``'s speed through the critical speeds (module docstring) over the rows of
+    ``table`` (RundownTrack.table, its location columns as :func:`_layout` of ``locations``). ``modes``: the
+    critical speeds (:mod:`.modes`: ``undamped`` [rev/min] and ``damped(temperatures)``; ``prepare(lo, hi)``
+    with the speed range [rev/min] of the peaks found is called first)."""
+    if not len(table) or not modes.undamped:
+        return []
+    cols, c = {}, 1 + n_spools
+    for loc, kind, _ in _layout(locations):
+        cols.setdefault(loc, {})[kind] = c
+        c += 1
     names = {"whirl": ("peak_whirl_mm", 1e3), "load": ("peak_contact_load_N", 1.0),
              "stress": ("peak_contact_stress_MPa", 1e-6), "force": ("peak_transmitted_force_N", 1.0)}
-    cols, col = {}, 1 + n_spools
-    for loc, d in locations.items():
-        cols[loc] = col                     # its whirl first, then the other kinds in d's order
-        col += len(d)
-    own = {loc: assign_peaks(crit, resonance_peaks(w, table[:, c])) for loc, c in cols.items()}
-    first = next(iter(locations))
-    running = w[w > 0.0]
-    w_lo, w_hi = (float(running.min()), float(running.max())) if len(running) else (math.nan, math.nan)
-    dw = np.gradient(w) if len(w) > 1 else np.zeros(len(w))
-    for i, c in enumerate(crit):
-        pk = own[first][i]
-        if pk is None and not w_lo <= c <= w_hi:
-            continue                        # never reached
-        entry = {"spool": spool, "critical_speed_rpm": c, "peak_found": pk is not None}
-        if pk is None:
-            entry.update(t_s=None, peak_speed_rpm=None, direction=None, speed_range_rpm=None,
-                         note=f"no resonance peak of the whirl at {first} within {MAX_SHIFT:.0%} of this critical "
-                              f"speed (the whirl against speed has no local maximum standing out by "
-                              f"{PROMINENCE:.0%} of its largest value there)")
-            entry["bearings"] = {loc: {names[kind][0]: None for kind in d} for loc, d in locations.items()}
+    found = {loc: resonance_peaks(table[:, cc["w_at"]] * RPM, table[:, cc["whirl"]]) for loc, cc in cols.items()}
+    speeds = [p.speed for pk in found.values() for p in pk]
+    if speeds:
+        modes.prepare(min(speeds), max(speeds))
+
+    def temps(j):
+        return {loc: float(table[j, cc["film"]]) - KELVIN for loc, cc in cols.items() if "film" in cc}
+
+    cands: list[Candidate] = []
+    for loc, pk in found.items():
+        for p in pk:
+            j = p.index
+            T = temps(j)
+            u, d = label(loc, p.speed, T, modes)
+            cands.append(Candidate(loc, p, j, u, d, T))
+    order = list(cols)
+    w_run = table[:, cols[order[0]]["w_at"]] * RPM
+    w_run = w_run[w_run > 0.0]
+    w_lo, w_hi = (float(w_run.min()), float(w_run.max())) if len(w_run) else (math.nan, math.nan)
+    out = []
+    for u in sorted(set(modes.undamped) | {cd.undamped for cd in cands}):
+        mine = [cd for cd in cands if cd.undamped == u]
+        if not mine:
+            if not w_lo <= u <= w_hi:
+                continue                    # never reached
+            entry = {"spool": spool, "critical_speed_rpm": u, "damped_critical_speed_rpm": None,
+                     "film_temperature_C": None, "location": None, "peak_found": False, "t_s": None,
+                     "peak_speed_rpm": None, "direction": None, "speed_range_rpm": None,
+                     "note": f"no resonance peak of the whirl at any location labelled with this mode (no local "
+                             f"maximum of the whirl against speed standing out by {PROMINENCE:.0%} of its largest "
+                             "value nearer to it than to another mode)"}
+            entry["bearings"] = {loc: {names[k][0]: None for k in d if k in names} for loc, d in locations.items()}
             out.append(entry)
             continue
-        j = pk.index
-        entry.update(t_s=float(table[j, 0]), peak_speed_rpm=float(w[j]), direction="up" if dw[j] > 0 else "down",
-                     speed_range_rpm=[pk.lo, pk.hi])
+        # the defining peak: at the first location (in the engine's order) with one, its largest there
+        loc = min({cd.location for cd in mine}, key=order.index)
+        at = sorted((cd for cd in mine if cd.location == loc), key=lambda cd: -cd.peak.amplitude)
+        best = at[0]
+        cc = cols[loc]
+        j = best.row
+        t_j = float(table[j, cc["t_at"]])
+        # the direction: the crossing spool's speed over the bins around the sample
+        w_loc = table[:, cc["w_at"]]
+        dw = float(w_loc[min(j + 1, len(w_loc) - 1)] - w_loc[max(j - 1, 0)])
+        entry = {"spool": spool, "critical_speed_rpm": u, "damped_critical_speed_rpm": best.damped,
+                 "film_temperature_C": best.film_C or None, "location": loc, "peak_found": True,
+                 "t_s": t_j, "peak_speed_rpm": best.peak.speed, "direction": "up" if dw > 0 else "down",
+                 "speed_range_rpm": [best.peak.lo, best.peak.hi]}
+        if len(at) > 1:
+            entry["other_peaks_rpm"] = sorted(cd.peak.speed for cd in at[1:])
         entry["bearings"] = {}
-        for loc, d in locations.items():
-            p = own[loc][i] or pk
-            sel = np.flatnonzero((w >= p.lo) & (w <= p.hi))
-            r = {names[kind][0]: float(table[sel, cols[loc] + k].max()) * names[kind][1] for k, kind in enumerate(d)}
+        for l2, d in locations.items():
+            own = sorted((cd for cd in mine if cd.location == l2), key=lambda cd: -cd.peak.amplitude)
+            p = own[0].peak if own else best.peak
+            w2 = table[:, cols[l2]["w_at"]] * RPM
+            sel = np.flatnonzero((w2 >= p.lo) & (w2 <= p.hi))
+            r = {names[k][0]: float(table[sel, cols[l2][k]].max()) * names[k][1] if len(sel) else None
+                 for k in KINDS if k in names and k in cols[l2]}
             r["speed_range_rpm"] = [p.lo, p.hi]
-            entry["bearings"][loc] = r
+            entry["bearings"][l2] = r
         out.append(entry)
     return out
 
 
 def extract(sc, sim, obs, report) -> dict:
-    track = obs[0]
+    from .modes import modes_of
+
+    track, energy = obs[0], obs[1]
     table = track.table()
     comps = sim.system.components
-    speeds, energy = {}, {}
-    for i, sp in enumerate(track.spools):
+    speeds = {}
+    for sp in track.spools:
         c = comps[sp]
         cut = c.p.get("t_fuel_cut", -1.0)
-        speeds[sp] = {"inertia_kgm2": float(c.J), "start_rpm": track.start_energy[sp][5] * RPM,
+        speeds[sp] = {"inertia_kgm2": float(c.J), "start_rpm": track.start_speed[sp] * RPM,
                       "end_rpm": float(c.y["Omega"][0]) * RPM,
                       "t_fuel_cut_s": float(cut) if c.p.get("profile") == "torque" and cut >= 0.0 else None,
                       # a stopped spool is a legal end state (friction, or a profile to 0 rev/min)
                       "stopped": float(c.y["Omega"][0]) == 0.0}
-        e0, e1 = track.start_energy[sp][:5], [float(x) for x in c.y["energy"]]
-        lost = e0[0] - e1[0]
-        work = {k: e1[n] - e0[n] for n, k in enumerate(("drive", "drag", "rub", "aero"), start=1)}
-        balance = work["drag"] + work["rub"] + work["aero"] - work["drive"]
-        energy[sp] = {"inertia_kg_m2": float(c.J), "kinetic_energy_lost_J": lost, "work_J": work,
-                      "residual_pct": 100.0 * (lost - balance) / lost if lost else 0.0}
-    crit = sc.extra.get("results", {}).get("critical_speeds_rpm", [])
-    out = {"speeds": speeds, "energy": energy,
-           "crossings": crossings(table, track.spools[0], crit, track.locations, len(track.spools))
-           if track.spools else []}
+    out = {"speeds": speeds, "energy": energy.summary(sim), "crossings": []}
+    if track.crossing_spool is not None and len(table):
+        modes = modes_of(sc, sim, track.locations)
+        out["crossings"] = crossings(table, track.crossing_spool, modes, track.locations, len(track.spools))
+        from rotorcosim.cases.blade_loss.engine_names import spool_name
+        name = spool_name(sc, track.crossing_spool)
+        for c in out["crossings"]:
+            c["spool_name"] = name
     if _case_blade_loss(sc):
         from rotorcosim.cases.blade_loss import results as bl
-        out.update(bl.extract(sc, sim, obs[1:], report))
+        out.update(bl.extract(sc, sim, obs[2:], report))
     return out
 
 

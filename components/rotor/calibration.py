@@ -68,15 +68,16 @@ def calibrate(data: dict, tol_rpm: float = 1.0, max_iter: int = 10, sup: dict | 
     return x, f
 
 
-def coupled_response(full: model.FullModel, sup: dict, F_u: float, rpm: float | None = None) -> dict:
+def coupled_response(full: model.FullModel, sup: dict, F_u: float, rpm: float | None = None,
+                     system: dict | None = None) -> dict:
     """Steady synchronous response of the linear engine (supports ``sup``, :meth:`model.FullModel.coupled`) to F_u
     rotating at the PT speed at the blade-loss node (direct harmonic solve, damping and gyroscopic terms
     included). Per bearing "0"/"5": ``whirl_mm`` (major semi-axis |a_f| + |a_b| of the PT node's orbit),
     ``journal_mm`` (orbit of the journal relative to the hub) and ``transmissibility`` |F_spring + F_film| / F_u
-    (eq. 23) of the linear support."""
+    (eq. 23) of the linear support. ``system``: ``full.coupled(sup)`` when the caller has it (a speed scan)."""
     W = full.omega_pt if rpm is None else rpm * model.RPM
     r = full.omega_gg / full.omega_pt
-    s = full.coupled(sup)
+    s = full.coupled(sup) if system is None else system
     A = s["K"] - W ** 2 * s["M"] + 1j * W * (s["C"] + W * s["G_pt"] + W * r * s["G_gg"])
     f = np.zeros(A.shape[0], complex)
     ux, uy = full.ports["unbalance"]

@@ -105,6 +105,11 @@ def reduced_model(model_file: str, n_modes: int, omega_pt: float, omega_gg: floa
     """MTA-reduced matrices (eqs. 20-22) and the port rows of the basis, in the order of attach.py's groups and
     ports for the model's bearings and rub rings (``layout``); cached per process."""
     full = full_model(model_file, omega_pt, omega_gg)
+    tables = full.info.get("speed_supports")
+    if tables:
+        raise ValueError(f"rotor model file {model_file}: support {tables[0]['name']!r} has coefficients over speed "
+                         "or cross-coupled ones, which the co-simulated rotor does not take (constant, direct "
+                         "coefficients only); its critical speeds: rotorcosim critical-speeds --model FILE")
     lay = attach.layout_of_ports(full.ports)
     fem.require_ports(full, attach.load_groups(lay))
     key = (full.digest, int(n_modes), float(omega_pt), float(omega_gg))

@@ -19,7 +19,7 @@ from __future__ import annotations
 import numpy as np
 import scipy.linalg as sla
 
-from .model import RPM, FullModel
+from .model import RPM, FullModel, speed_support_delta
 
 
 def speed_ratio(model: FullModel) -> float:
@@ -39,6 +39,10 @@ def synchronous_critical_speeds(model: FullModel, supports: dict | None, n: int 
                                 max_rpm: float = 60000.0, min_share: float = 0.05) -> dict:
     """Forward and backward synchronous critical speeds (rev/min of the power turbine), ascending, of the model
     with the supports of :meth:`FullModel.coupled` (None: without bearings #0/#5)."""
+    if model.info.get("speed_supports"):
+        rows = speed_dependent_critical_speeds(model, supports, max_rpm, min_share=min_share)
+        return {k: sorted(r["rpm"] for r in rows if r["whirl"] == w)[:n]
+                for k, w in (("forward_synchronous_rpm", "forward"), ("backward_synchronous_rpm", "backward"))}
     sysm = _system(model, supports)
     K, Mm = sysm["K"], sysm["M"]
     Gt = sysm["G_pt"] + speed_ratio(model) * sysm["G_gg"]
@@ -73,14 +77,19 @@ def campbell(model: FullModel, rpm_values, supports: dict | None, n_modes: int =
     with a flag per frequency: +1 forward, -1 backward, 0 not a rotor whirl (lateral rotor share < min_share)."""
     sysm = _system(model, supports)
     K, Mm = sysm["K"], sysm["M"]
-    w2, Phi = sla.eigh(K, Mm, subset_by_index=[0, n_modes - 1])
+    tables = bool(model.info.get("speed_supports"))
+    # a basis of the non-spinning modes (of the symmetric part, for supports with cross-coupled coefficients)
+    w2, Phi = sla.eigh(0.5 * (K + K.T) if tables else K, Mm, subset_by_index=[0, n_modes - 1])
     Gt = Phi.T @ (sysm["G_pt"] + speed_ratio(model) * sysm["G_gg"]) @ Phi
     lat = sysm["rotor_lateral"]
     Mlat = Mm[np.ix_(lat, lat)]
     freqs, kind = [], []
     for rpm in rpm_values:
         Om = rpm * RPM
-        A = np.block([[np.zeros((n_modes, n_modes)), np.eye(n_modes)], [-np.diag(w2), -Om * Gt]])
+        Kr = np.diag(w2)
+        if tables:       # the supports' coefficients at this speed, cross-coupled terms included
+            Kr = Phi.T @ (K + speed_support_delta(model, Om, K.shape[0])[0]) @ Phi
+        A = np.block([[np.zeros((n_modes, n_modes)), np.eye(n_modes)], [-Kr, -Om * Gt]])
         lam, V = np.linalg.eig(A)
         keep = lam.imag > 1e-6
         lam, V = lam[keep], V[:n_modes, keep]
@@ -108,6 +117,8 @@ def every_synchronous_critical_speed(model: FullModel, supports: dict | None, ma
     spool's rev/min. Whirl at the exciting spool's speed w = excited Omega_1 with every spool turning in the
     file's ratios: K phi = w^2 (M - i G~ / excited) phi (G~ of :func:`synchronous_critical_speeds`), as many
     eigenpairs taken as reach past ``max_rpm``."""
+    if model.info.get("speed_supports"):
+        return speed_dependent_critical_speeds(model, supports, max_rpm, excited, min_share)
     sysm = _system(model, supports)
     K, Mm = sysm["K"], sysm["M"]
     B = Mm - 1j * (sysm["G_pt"] + speed_ratio(model) * sysm["G_gg"]) / excited
@@ -134,4 +145,106 @@ def every_synchronous_critical_speed(model: FullModel, supports: dict | None, ma
         X, Y = v[lat[0::2]], v[lat[1::2]]
         forward = np.sum(np.abs(X + 1j * Y) ** 2) >= np.sum(np.abs(X - 1j * Y) ** 2)
         out.append({"rpm": float(rpm), "whirl": "forward" if forward else "backward"})
+    return sorted(out, key=lambda r: r["rpm"])
+
+
+def _whirl_dofs(sysm: dict, model: FullModel) -> tuple[np.ndarray, np.ndarray]:
+    """The DOFs coupled to the rotor's lateral ones (by M, K, C, G or a support at any speed) and, among them,
+    the positions of the rotor's lateral DOFs: the beams' axial and torsional DOFs drop out (uncoupled from
+    whirl), a casing's shell stays."""
+    pattern = sum(np.abs(sysm[k]) for k in ("M", "K", "C", "G_pt", "G_gg")) != 0
+    for t in model.info.get("speed_supports", []):
+        d = [i for i in t["dofs"] if i is not None]
+        pattern[np.ix_(d, d)] = True
+    reach = np.zeros(pattern.shape[0], bool)
+    reach[sysm["rotor_lateral"]] = True
+    while True:
+        grown = reach | pattern[reach].any(axis=0)
+        if grown.sum() == reach.sum():
+            break
+        reach = grown
+    keep = np.nonzero(reach)[0]
+    pos = np.searchsorted(keep, sysm["rotor_lateral"])
+    return keep, pos
+
+
+def _damped_modes(sysm: dict, model: FullModel, w: float, min_share: float):
+    """Eigenvalues (Im > 0, ascending in Im, as ROSS sorts them) and whirl of the rotor whirl modes of the damped
+    engine at the first spool's speed w [rad/s], the speed-dependent supports' coefficients at w:
+    lambda [I 0; 0 M] x = [0 I; -K(w) -(C(w) + w G~)] x."""
+    keep, lat = sysm["whirl_dofs"]
+    K, Mm, C = (sysm[k][np.ix_(keep, keep)] for k in ("K", "M", "C"))
+    n = K.shape[0]
+    dK, dC = (A[np.ix_(keep, keep)] for A in speed_support_delta(model, w, sysm["K"].shape[0]))
+    Gt = (sysm["G_pt"] + speed_ratio(model) * sysm["G_gg"])[np.ix_(keep, keep)]
+    D = C + dC + w * Gt
+    try:                 # M positive definite: the standard eigenproblem of M^-1 [K D], ~5 x faster than QZ
+        cf = sla.cho_factor(Mm)
+        A = np.block([[np.zeros((n, n)), np.eye(n)], [-sla.cho_solve(cf, K + dK), -sla.cho_solve(cf, D)]])
+        lam, vec = sla.eig(A)
+    except np.linalg.LinAlgError:          # a massless hub: the generalized problem
+        A = np.block([[np.zeros((n, n)), np.eye(n)], [-(K + dK), -D]])
+        B = np.block([[np.eye(n), np.zeros((n, n))], [np.zeros((n, n)), Mm]])
+        lam, vec = sla.eig(A, B)
+    Mlat = Mm[np.ix_(lat, lat)]
+    out = []
+    for k in np.nonzero(lam.imag > 1e-6)[0]:
+        v = vec[:n, k]
+        share = np.real(v[lat].conj() @ Mlat @ v[lat]) / np.real(v.conj() @ Mm @ v)
+        if share < min_share:
+            continue
+        X, Y = v[lat[0::2]], v[lat[1::2]]
+        forward = np.sum(np.abs(X + 1j * Y) ** 2) >= np.sum(np.abs(X - 1j * Y) ** 2)
+        out.append((lam[k], "forward" if forward else "backward"))
+    out.sort(key=lambda t: (t[0].imag, abs(t[0])))
+    return out
+
+
+def speed_dependent_critical_speeds(model: FullModel, supports: dict | None, max_rpm: float, excited: float = 1.0,
+                                    min_share: float = 0.05, natural: str = "wn", rtol: float = 1e-10) -> list[dict]:
+    """Critical speeds of an engine whose supports have coefficients over speed or cross-coupled ones (ROSS's
+    bearing and seal tables), as ROSS's ``run_critical_speed`` defines them: the speeds w at which a natural
+    frequency of the damped engine, its supports' coefficients taken at w, equals w. For the mode of rank i
+    (ascending damped frequency Im lambda among the rotor whirl modes) the fixed point
+    w = |lambda_i(w)| (``natural`` "wn") or w = Im lambda_i(w) ("wd"), solved by secant iterations from the
+    non-spinning frequency, as ROSS does (scipy's newton). ``excited``: the exciting spool's speed over the
+    first spool's (the fixed point in its speed). Ascending ``[{"rpm", "whirl", "damping_ratio"}]`` up to
+    ``max_rpm`` (rev/min of the exciting spool)."""
+    from scipy.optimize import newton
+
+    sysm = _system(model, supports)
+    if "C" not in sysm:
+        sysm = {**sysm, "C": model.C}
+    sysm["whirl_dofs"] = _whirl_dofs(sysm, model)
+    cache: dict = {}
+
+    def modes(w):
+        key = float(w)
+        if key not in cache:
+            cache[key] = _damped_modes(sysm, model, key / excited, min_share)
+        return cache[key]
+
+    def freq(lam):
+        return abs(lam) if natural == "wn" else lam.imag
+
+    start = modes(0.0)
+    top = max_rpm * RPM
+    out = []
+    for i, (lam0, _) in enumerate(start):
+        if freq(lam0) > 2.0 * top:
+            break
+
+        def f(w, i=i):
+            m = modes(w)
+            return w - freq(m[i][0]) if i < len(m) else w
+
+        try:
+            w = float(newton(f, freq(lam0), rtol=rtol, maxiter=100))
+        except RuntimeError:
+            continue           # no fixed point for this rank (a mode that leaves the whirl modes' list)
+        m = modes(w)
+        if i >= len(m) or not 0.0 < w <= top:
+            continue
+        lam, whirl = m[i]
+        out.append({"rpm": w / RPM, "whirl": whirl, "damping_ratio": float(-lam.real / abs(lam))})
     return sorted(out, key=lambda r: r["rpm"])

@@ -137,6 +137,7 @@ def problems(data: dict) -> list[str]:
                 p.add(f"{w}.{key}", f"node {r[key]!r} out of range 0-{len(z) - 1}")
         if "drive_node" not in r:
             p.add(w, "drive_node missing (the node whose torsion is held: the spool turns at constant speed)")
+        _layers(p, w, r, len(z), mats)
         for i, dk in enumerate(r.get("disks", [])):
             dw = f"{w}.disks[{i}] ({dk.get('name', '')!r})" if isinstance(dk, dict) else f"{w}.disks[{i}]"
             if not isinstance(dk, dict):
@@ -210,13 +211,13 @@ def problems(data: dict) -> list[str]:
         w = f"support[{i}] ({s.get('name', '')!r})"
         ref(f"{w}.a", s.get("a"), hub_ok=False)
         ref(f"{w}.b", s.get("b"), ground_ok=True)
+        if fem.is_speed_dependent(s):
+            _speed_table(p, w, s)
+            continue
         for k in ("kxx", "kyy"):
             p.value(f"{w}.{k if k in s else 'k'}", s.get(k, s.get("k")))
         for k in ("cxx", "cyy"):
             p.value(f"{w}.{k if k in s else 'c'}", s.get(k, s.get("c", 0.0)), positive=False)
-        for k in ("kxy", "kyx", "cxy", "cyx"):
-            if s.get(k, 0.0) != 0.0:
-                p.add(f"{w}.{k}", "cross-coupled coefficients are not carried (format 1)")
     attach = data.get("attach", {})
     if not isinstance(attach, dict):
         attach = {}
@@ -238,6 +239,57 @@ def problems(data: dict) -> list[str]:
             p.add(f"attach.{key}", f"no bearing{key[len('rubring'):]} in [attach] (a rub ring's ring is on the "
                                    "housing of the bearing of the same id)")
     return p.out + engine_parts.problems(data)
+
+
+def _layers(p: _Problems, w: str, r: dict, nodes: int, mats: dict) -> None:
+    """The problems of a spool's ``layers`` (a second element between the nodes of an element)."""
+    for i, layer in enumerate(r.get("layers", [])):
+        lw = f"{w}.layers[{i}]"
+        if not _node_ok(layer.get("element"), nodes - 1):
+            p.add(f"{lw}.element", f"{layer.get('element')!r} out of range 0-{nodes - 2} (the element between nodes "
+                                   "element and element + 1)")
+        m = layer.get("material", r.get("material", "rotor"))
+        if m not in mats:
+            p.add(f"{lw}.material", f"{m!r} is not a [material] table")
+        a = p.value(f"{lw}.d_out_mm", layer.get("d_out_mm"))
+        b = p.value(f"{lw}.d_in_mm", layer.get("d_in_mm"), positive=False)
+        if a is not None and b is not None and not b < a:
+            p.add(lw, f"inner diameter {b:g} mm is not smaller than the outer {a:g} mm")
+
+
+def _speed_table(p: _Problems, w: str, s: dict) -> None:
+    """The problems of a support with coefficient tables over ``speed_rpm`` or cross-coupled coefficients."""
+    speeds = s.get("speed_rpm")
+    n = None
+    if speeds is not None:
+        if not (isinstance(speeds, list) and speeds):
+            p.add(f"{w}.speed_rpm", "must be a list of speeds (rev/min) at which the coefficients are given")
+            return
+        for k, v in enumerate(speeds):
+            p.value(f"{w}.speed_rpm[{k}]", v, positive=False)
+        if all(_num(v) for v in speeds) and not all(b > a for a, b in zip(speeds, speeds[1:])):
+            p.add(f"{w}.speed_rpm", "must increase strictly")
+        n = len(speeds)
+    for k in fem.COEFFICIENTS:
+        base = "k" if k in ("kxx", "kyy") else "c" if k in ("cxx", "cyy") else None
+        key = k if k in s or base is None or base not in s else base
+        if key not in s:
+            if k in ("kxx", "kyy"):
+                p.add(w, f"{k} (or k) missing")
+            continue
+        v = s[key]
+        vals = v if isinstance(v, list) else [v]
+        if isinstance(v, list) and len(v) != (n or 0):
+            p.add(f"{w}.{key}", f"has {len(v)} values; give one per speed_rpm ({n or 0})")
+            continue
+        for j, x in enumerate(vals):
+            where = f"{w}.{key}[{j}]" if isinstance(v, list) else f"{w}.{key}"
+            if k in ("kxx", "kyy"):
+                p.value(where, x)
+            elif k in ("cxx", "cyy"):
+                p.value(where, x, positive=False)
+            elif not (_num(x) and math.isfinite(x)):
+                p.add(where, f"must be a finite number, got {x!r}")
 
 
 def _node_ok(n, count: int) -> bool:

@@ -341,6 +341,7 @@ def _assemble(data: dict, digest: str, omega_pt: float | None, omega_gg: float |
             K[np.ix_(idx, idx)] += ke
             M[np.ix_(idx, idx)] += me
             G[s][np.ix_(idx, idx)] += ge
+        _add_layers(data, s, z[s], base[s], K, M, G[s])
         for dk in r.get("disks", []):
             m_d, Ip, Id = disk_inertia(data, dk)
             for k, v in (("mass", m_d), ("Ip", Ip), ("Id", Id)):
@@ -430,9 +431,21 @@ def _assemble(data: dict, digest: str, omega_pt: float | None, omega_gg: float |
         _couple(C, i, None, _nonneg(f"casing.mounts[{m_i}].c", mt["c"]))
 
     # linear supports and intermediate bearings (Table 2 for the paper's engine)
-    for s in data.get("support", []):
+    tables = []
+    w_first = abs(float(spools[names[0]]["speed_rpm"])) * RPM
+    for s_i, s in enumerate(data.get("support", [])):
         a, b = s["a"], s["b"]
         label = f"support {s.get('name', '')!r}"
+        if is_speed_dependent(s):
+            tables.append(_support_table(s, s_i, label, gdof(a[0], a[1], 0), gdof(a[0], a[1], 1),
+                                         None if b == "ground" else (gdof(b[0], b[1], 0), gdof(b[0], b[1], 1))))
+            kt, ct = support_matrices(tables[-1], w_first)
+            _couple_2x2(K, tables[-1]["dofs"], kt)
+            _couple_2x2(C, tables[-1]["dofs"], ct)
+            if "k_axial" in s:
+                j = None if b == "ground" else gdof(b[0], b[1], 2)
+                _couple(K, gdof(a[0], a[1], 2), j, _positive("k_axial", s["k_axial"]))
+            continue
         kxy = [_positive(f"{label} {k}", s[k] if k in s else s["k"]) for k in ("kxx", "kyy")]
         cxy = [_nonneg(f"{label} {k}", s[k] if k in s else s.get("c", 0.0)) for k in ("cxx", "cyy")]
         for d in range(2):
@@ -487,7 +500,10 @@ def _assemble(data: dict, digest: str, omega_pt: float | None, omega_gg: float |
             raise ValueError(f"rotor model: the assembled {name} matrix is not finite: a length, modulus or mass "
                              "of the file is too large (lengths are in mm)")
     xs = base_sh + 3 * np.arange(n_shell_nodes)          # the shell's x DOFs: its translational mass
-    info = {"dof": dof, "rayleigh": (alpha, beta), "n_shell_dof": 3 * n_shell_nodes, "n_hub_dof": 3 * len(hubs),
+    for t in tables:
+        t["dofs"] = tuple(None if i is None else int(newidx[i]) for i in t["dofs"])
+        t["speed_rad_s"] = w_first
+    info = {"speed_supports": tables, "dof": dof, "rayleigh": (alpha, beta), "n_shell_dof": 3 * n_shell_nodes, "n_hub_dof": 3 * len(hubs),
             "casing_mass_kg": float(M[np.ix_(xs, xs)].sum()) if n_shell_nodes else 0.0,
             "spools": {s: len(z[s]) for s in names}, "hubs": hubs,
             "pt_lateral": np.array([dof(names[0], n, d) for n in range(len(z[names[0]])) for d in range(2)])}
@@ -499,6 +515,109 @@ def _assemble(data: dict, digest: str, omega_pt: float | None, omega_gg: float |
     return FullModel(M=M[sub], K=K[sub], C=C[sub], G_pt=G[names[0]][sub], G_gg=G_gg,
                      ports=ports, rotor_lateral=np.asarray(lateral),
                      omega_pt=w_pt, omega_gg=w_gg, data=data, digest=digest, info=info)
+
+
+def _add_layers(data: dict, s: str, z, base: int, K, M, G) -> None:
+    """The spool's ``layers``: a second (third...) shaft element between the nodes of an element, of its own
+    section and material (a sleeve, a shrunk-on hub, ROSS's layered sections), added to the element's matrices
+    (the beam's stiffness, mass and gyroscopic terms are additive over concentric tubes)."""
+    ne = len(z) - 1
+    for i, layer in enumerate(data["spool"][s].get("layers", [])):
+        where = f"spool.{s}.layers[{i}]"
+        e = layer["element"]
+        if isinstance(e, bool) or not isinstance(e, int) or not 0 <= e < ne:
+            raise ValueError(f"rotor model: {where}.element {e!r} out of range 0-{ne - 1}")
+        E, Gmod, rho, _ = _material(data, layer.get("material", data["spool"][s].get("material", "rotor")), where)
+        d_out = _positive(f"{where}.d_out_mm", layer["d_out_mm"]) * 1e-3
+        d_in = _nonneg(f"{where}.d_in_mm", layer["d_in_mm"]) * 1e-3
+        if not d_in < d_out:
+            raise ValueError(f"rotor model: {where}: inner diameter {d_in * 1e3:g} mm is not smaller than the outer "
+                             f"{d_out * 1e3:g} mm")
+        ke, me, ge = shaft_element(z[e + 1] - z[e], E, Gmod, rho, d_out, d_in)
+        idx = np.arange(base + 6 * e, base + 6 * e + 12)
+        K[np.ix_(idx, idx)] += ke
+        M[np.ix_(idx, idx)] += me
+        G[np.ix_(idx, idx)] += ge
+
+
+#: the coefficients of a support, x y direct and cross-coupled
+COEFFICIENTS = ("kxx", "kxy", "kyx", "kyy", "cxx", "cxy", "cyx", "cyy")
+
+
+def is_speed_dependent(support: dict) -> bool:
+    """A [[support]] with coefficient tables over ``speed_rpm`` or cross-coupled coefficients: the linear
+    engine takes its coefficients at each speed (:func:`support_matrices`)."""
+    return "speed_rpm" in support or any(k in support for k in ("kxy", "kyx", "cxy", "cyx"))
+
+
+def _support_table(s: dict, s_i: int, label: str, ix: int, iy: int, far) -> dict:
+    """A speed-dependent support as data: its coefficients (arrays over ``speed_rpm``, or one value) and DOFs."""
+    speeds = s.get("speed_rpm")
+    if speeds is not None:
+        speeds = np.asarray([_nonneg(f"{label} speed_rpm[{k}]", v) for k, v in enumerate(speeds)]) * RPM
+        if speeds.size < 1 or not np.all(np.diff(speeds) > 0):
+            raise ValueError(f"rotor model: {label} speed_rpm must increase strictly")
+    out = {"name": s.get("name", f"support[{s_i}]"), "speeds": speeds, "dofs": (ix, iy) + (far or (None, None))}
+    for k in COEFFICIENTS:
+        default = s.get("k" if k in ("kxx", "kyy") else "c" if k in ("cxx", "cyy") else "", 0.0)
+        v = s.get(k, default)
+        vals = np.atleast_1d(np.asarray(v, float))
+        if not np.all(np.isfinite(vals)):
+            raise ValueError(f"rotor model: {label} {k} must be finite numbers, got {v!r}")
+        if vals.size > 1 and (speeds is None or vals.size != speeds.size):
+            raise ValueError(f"rotor model: {label} {k} has {vals.size} values; give one per speed_rpm "
+                             f"({0 if speeds is None else speeds.size})")
+        if k in ("kxx", "kyy") and not np.all(vals > 0):
+            raise ValueError(f"rotor model: {label} {k} must be > 0, got {v!r}")
+        out[k] = vals
+    return out
+
+
+def coefficient_at(speeds, values, w: float) -> float:
+    """A support coefficient at the speed w [rad/s]: the one value, or the table through its speeds as ROSS
+    (BearingElement) interpolates it, so that an imported ROSS rotor has ROSS's coefficients at every speed:
+    scipy's UnivariateSpline (cubic, smoothing factor the number of points, extrapolated) for 4 values or more,
+    a polynomial through 2 or 3."""
+    if values.size == 1:
+        return float(values[0])
+    from scipy import interpolate
+
+    if values.size >= 4:
+        return float(interpolate.UnivariateSpline(speeds, values)(w))
+    return float(interpolate.interp1d(speeds, values, kind=values.size - 1, fill_value="extrapolate")(w))
+
+
+def support_matrices(table: dict, w: float) -> tuple[np.ndarray, np.ndarray]:
+    """The 2x2 stiffness and damping of a speed-dependent support at the speed w [rad/s]:
+    [[kxx, kxy], [kyx, kyy]] (force on node a = -K (u_a - u_b))."""
+    v = {k: coefficient_at(table["speeds"], table[k], w) for k in COEFFICIENTS}
+    return (np.array([[v["kxx"], v["kxy"]], [v["kyx"], v["kyy"]]]),
+            np.array([[v["cxx"], v["cxy"]], [v["cyx"], v["cyy"]]]))
+
+
+def _couple_2x2(A, dofs, k2) -> None:
+    """Add a 2x2 (possibly unsymmetric) coupling k2 between (x, y) of node a and (x, y) of b (None: ground)."""
+    a = [i for i in dofs[:2]]
+    b = None if dofs[2] is None else list(dofs[2:])
+    A[np.ix_(a, a)] += k2
+    if b is not None:
+        A[np.ix_(b, b)] += k2
+        A[np.ix_(a, b)] -= k2
+        A[np.ix_(b, a)] -= k2
+
+
+def speed_support_delta(full: "FullModel", w: float, n: int | None = None) -> tuple[np.ndarray, np.ndarray]:
+    """(dK, dC): what the speed-dependent supports add at the speed w [rad/s] of the first spool beyond what the
+    assembled K and C hold (their coefficients at the file's speed); ``n`` the size of the matrices (the model's,
+    or a larger one whose first DOFs are the model's)."""
+    n = full.n if n is None else n
+    dK, dC = np.zeros((n, n)), np.zeros((n, n))
+    for t in full.info.get("speed_supports", []):
+        k1, c1 = support_matrices(t, w)
+        k0, c0 = support_matrices(t, t["speed_rad_s"])
+        _couple_2x2(dK, t["dofs"], k1 - k0)
+        _couple_2x2(dC, t["dofs"], c1 - c0)
+    return dK, dC
 
 
 def _ports(attach: dict, dof) -> dict:

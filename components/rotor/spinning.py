@@ -8,11 +8,16 @@ inputs (``Omega_pt``, ``dOmega_pt``, ``Omega_gg``, from the spools, components/s
   projected once, scaled per step. The Newmark step map is rebuilt whenever a speed has left the one it was
   built for by more than ``gyro_tolerance`` of its reference speed (the kernel hands that step to Python, status
   PYTHON), so the gyroscopic terms lag the speed by at most that fraction (default 1e-3);
-* unbalance: ``m e Omega^2`` at the rotor's angle plus the tangential ``m e dOmega/dt`` (90 deg ahead, in the
-  sense of rotation), ``m e = F / W_pt^2`` for each of ``F_residual`` and ``F_unbalance`` (the levels stay given
-  as forces at the reference speed). The angle is the rotor's own: the integral of the speed over the steps the
-  rotor has taken (its mechanical time), so that a thermal-only interval, which freezes the rotor, does not turn
-  the unbalance against the frozen orbit (component.Rotor._unbalance).
+* unbalance: the force of a mass ``m e`` at the rotor's angle ``theta`` on the shaft is the reaction to the mass's
+  acceleration, ``-m e d^2(e^{i theta})/dt^2 / e = m e (Omega^2 - i dOmega/dt) e^{i theta}``: ``m e Omega^2``
+  outwards and the tangential ``m e dOmega/dt`` 90 deg behind, against the sense of rotation, while the speed
+  rises (ahead of it in a rundown); ``m e = F / W_pt^2`` for each of ``F_residual`` and ``F_unbalance`` (the
+  levels stay given as forces at the reference speed). The angle is the rotor's own: the integral of the speed
+  over the steps the rotor has taken (its mechanical time), so that a thermal-only interval, which freezes the
+  rotor, does not turn the unbalance against the frozen orbit (component.Rotor._unbalance);
+* start: at rest, or (``start_synchronous = 1``) on the steady synchronous orbit of the linear model under the
+  unbalance at the speed inputs' values at set-up, the spools' start speeds (the master hands them over before the
+  set-up when the spools come first in the run's order: ``inputs_at_setup``).
 
 At Omega_pt = W_pt and Omega_gg = W_gg throughout, every number is the constant-speed rotor's, bit for bit
 (the angle is W tau, the scale factor 1.0, no tangential term, the same step map).
@@ -72,13 +77,14 @@ def spinning_step(s, p, u, y, t, h):
         fx += fb * math.cos(ph)
         fy += fb * math.sin(ph)
     if dw != 0.0:
+        # -i dOmega/dt (m e) e^{i angle}: the tangential part, behind the radial one while the speed rises
         tr = p.F_residual * dw / (p.W_ref * p.W_ref)
-        fx -= tr * math.sin(a)
-        fy += tr * math.cos(a)
+        fx += tr * math.sin(a)
+        fy -= tr * math.cos(a)
         if blade:
             tb = p.F_unbalance * dw / (p.W_ref * p.W_ref)
-            fx -= tb * math.sin(ph)
-            fy += tb * math.cos(ph)
+            fx += tb * math.sin(ph)
+            fy -= tb * math.cos(ph)
     return advance(s, p, u, y, fx, fy, tau)
 
 
@@ -92,17 +98,21 @@ class SpinningRotor(Rotor):
                  description="relative speed change that rebuilds the Newmark map (gyroscopic terms)"),
         Variable("start_synchronous", "parameter", unit="1", start=0, type="Integer",
                  description="1: start from the synchronous steady state of the linear model under the unbalance "
-                             "at the reference speeds (no port forces; a linear rotor's check case); 0: at rest"),
+                             "at the spools' start speeds (the speed inputs at set-up; no port forces: a linear "
+                             "rotor's check case); 0: at rest"),
         Variable("Omega_pt", "input", 1, "rad/s", "power-turbine speed"),
         Variable("dOmega_pt", "input", 1, "rad/s2", "power-turbine angular acceleration (tangential unbalance)"),
         Variable("Omega_gg", "input", 1, "rad/s", "gas-generator speed"),
     )
+
+    inputs_at_setup = True
 
     def setup(self, t0=0.0):
         p = self.p
         if not (math.isfinite(p["gyro_tolerance"]) and p["gyro_tolerance"] > 0.0):
             raise ContractError(f"{self.name}.gyro_tolerance must be > 0, got {p['gyro_tolerance']}")
         self._op = (float(p["omega_pt"]), float(p["omega_gg"]))
+        self.state = {}                 # no angle of an earlier set-up: _unbalance is the constant-speed one until set
         super().setup(t0)
         red = self._red
         full = full_model(p["model_file"], p["omega_pt"], p["omega_gg"])
@@ -116,22 +126,50 @@ class SpinningRotor(Rotor):
                               for g, w in zip(self._G, self._op)])
         self.state["ang"] = np.array([0.0, 0.0, float(p["omega_pt"])])
         if p["start_synchronous"]:
-            self._start_synchronous(float(t0))
+            w, wg = float(self.u["Omega_pt"][0]), float(self.u["Omega_gg"][0])
+            if not (math.isfinite(w) and math.isfinite(wg) and w >= 0.0):
+                raise ContractError(f"{self.name}.start_synchronous: the speed inputs at set-up (Omega_pt = {w}, "
+                                    f"Omega_gg = {wg} rad/s) are no start speed")
+            self.state["ang"][2] = w
+            self._start_synchronous(float(t0), w, wg)
 
-    def _start_synchronous(self, t0):
-        """x, v of the steady synchronous orbit X e^(i W t) of M x'' + C x' + K x = B f_u (the unbalance alone), at t0."""
+    def _start_synchronous(self, t0, w, wg):
+        """x, v of the steady synchronous orbit X e^(i w t) of M x'' + C(w) x' + K x = B f_u (the unbalance alone,
+        ``(w / W_pt)^2`` of its level at the reference speed) at the speeds ``w`` (power turbine) and ``wg`` [rad/s],
+        at t0: the rotor's angle there is w t0."""
         red, p = self._red, self.p
         W = float(p["omega_pt"])
         Fh = p["F_residual"] * np.array([1.0, -1.0j])
         if t0 >= p["t_blade_loss"]:
             Fh = Fh + p["F_unbalance"] * np.exp(1j * p["unbalance_phase"]) * np.array([1.0, -1.0j])
+        Fh = Fh * (w / W) ** 2
+        C = red["C"] + (w - W) * self._G[0] + (wg - float(p["omega_gg"])) * self._G[1]
         B_u = red["B_in"][:, -2:]
-        X = np.linalg.solve(red["K"] - W * W * red["M"] + 1j * W * red["C"], B_u @ Fh) * np.exp(1j * W * t0)
-        x0, v0 = X.real.copy(), (1j * W * X).real.copy()
+        X = np.linalg.solve(red["K"] - w * w * red["M"] + 1j * w * C, B_u @ Fh) * np.exp(1j * w * t0)
+        x0, v0 = X.real.copy(), (1j * w * X).real.copy()
         f0 = red["B_in"] @ self._input_vector(t0)
-        a0 = initial_acceleration(red["M"], red["C"], red["K"], x0, v0, f0)
+        a0 = initial_acceleration(red["M"], C, red["K"], x0, v0, f0)
         self.state["s"] = np.concatenate([x0, v0, a0])
         self._write_outputs(self.state["s"], t0)
+
+    def _unbalance(self, t, tau=None):
+        """The rotating unbalance force at time t at the rotor's angle and speed (its state ``ang``: the angle at
+        a reference mechanical time and the speed since) scaled to that speed; the constant-speed rotor's before
+        the angle is set up. The set-up's outputs and initial acceleration (the kernel computes it at every step)."""
+        ang = self.state.get("ang")
+        if ang is None:
+            return super()._unbalance(t, tau)
+        p = self.p
+        tau = t if tau is None else float(np.asarray(tau).reshape(-1)[0])
+        a = ang[0] + ang[2] * (tau - ang[1])
+        scale = (ang[2] / p["omega_pt"]) ** 2
+        fx = p["F_residual"] * scale * math.cos(a)
+        fy = p["F_residual"] * scale * math.sin(a)
+        if t >= p["t_blade_loss"]:
+            ph = a + p["unbalance_phase"]
+            fx += p["F_unbalance"] * scale * math.cos(ph)
+            fy += p["F_unbalance"] * scale * math.sin(ph)
+        return fx, fy
 
     def _operators(self, h):
         key = (float(f"{h:.12g}"), self._op)

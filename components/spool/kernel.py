@@ -8,8 +8,11 @@ step, whatever the step size.
 
 Torque-driven (mode 2): governed at the start speed until ``t_cut`` (the drive torque balances the others), then
 ``J dOmega/dt = -T_drag - T_rub - T_aero(Omega)`` with the aerodynamic torque and the spool's own viscous drag
-linearised about Omega0 (linearly implicit Euler: stable at a thermal-only interval's 0.1 s step). A spool that
-would turn backwards stops (Omega = 0): what the ring's and bearings' friction would do.
+linearised about Omega0 (linearly implicit Euler: stable at a thermal-only interval's 0.1 s step), the drag and
+rub torques those its inputs report. A spool that would turn backwards stops (Omega = 0): what the ring's and
+bearings' friction would do; on that step the torques act for the fraction ``J Omega0 / (h sum T)`` of it, and
+their work is booked so. The run's energy balance is not this bookkeeping (an identity of the step) but the
+rundown case's (cases/rundown/energy.py), from the torques the components report.
 """
 from __future__ import annotations
 
@@ -66,11 +69,19 @@ def tm_step(s, p, u, y, t, h):
         else:
             t_drive = 0.0
             w1 = w0 - h * (t_drag + p.c_visc * w0 + t_rub + ta) / (p.J + h * (dta + p.c_visc))
-            if w1 < 0.0:
+            stop = w1 < 0.0
+            if stop:
                 w1 = 0.0
+            # the aerodynamic torque and the viscous drag at the step's end (linearly implicit)
             ta += dta * (w1 - w0)
-            # the viscous drag at the step's end (implicit), or what holds a stopped spool
-            t_drag = -p.J * (w1 - w0) / h - t_rub - ta
+            t_drag += p.c_visc * w1
+            if stop:
+                # friction stops the spool within the step: the torques act for that fraction of it
+                total = t_drag + t_rub + ta
+                f = p.J * w0 / (h * total) if total > 0.0 else 0.0
+                t_drag *= f
+                t_rub *= f
+                ta *= f
         x[X_THETA] += 0.5 * (w0 + w1) * h
         x[X_DOMEGA] = (w1 - w0) / h if h > 0.0 else 0.0
     else:

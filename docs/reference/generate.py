@@ -179,10 +179,15 @@ NOTES = {
     "more than this fraction over `to_min` (default `drift_tolerance`)",
     "tm_min": "s", "tm_max": "s", "to_min": "s", "to_max": "s", "tracked": "auto: outputs watched",
     "record": "signals written to the time series", "record_step": "s", "format": "time series file format",
-    "unbalance_parameter": "parameter holding the unbalance force (results plug-in)",
+    "level_parameter": "parameter holding the level `run --level` / `sweep --level` set (any scenario; a case names "
+    "its own, below)",
     "speed_parameter": "parameter holding the rotor speed (results plug-in)",
-    "spools": "rundown case: the spool components (the first: the crossings' spool)",
-    "critical_speeds_rpm": "rundown case: the critical speeds whose crossings are reported [rev/min]",
+    "blade_loss.unbalance_parameter": "the case's level: the parameter holding the blade-loss unbalance force [N] "
+    "(`--unbalance`)",
+    "rundown.unbalance_parameter": "the blade-loss engine's level, as the blade-loss case's (`--unbalance`)",
+    "rundown.spools": "the spool components (the first: the crossings' spool)",
+    "rundown.critical_speeds_rpm": "the undamped critical speeds [rev/min] the figures mark and a test rotor's "
+                                   "crossings are labelled with (an engine's: its linearised engine's)",
     "results.cycles": "rotor cycles the results are taken over", "intervals.cycles": "length in rotor cycles "
     "(needs `schedule.speed_rpm`)",
     "implementation": "registry name, `\"module:Class\"` or entry point", "fmu": "path of an FMU (instead of "
@@ -226,6 +231,8 @@ def scenario_page() -> str:
                        "unconnected_inputs`).\n")
         else:
             out.append(_table(f"[{table}]", keys, NOTES, table))
+        if table == "results":
+            out.append(_case_keys())
     out.append("\n## [templates]\n\n`NAME = [\"ID\", ...]`: instantiate the shipped template "
                "`scenarios/templates/NAME.toml` (`bearing`: ball bearing + damper + thermal network and their 16 "
                "connections; `rubring`: a rub ring and its 7) once per id, as a base the file's own tables change; "
@@ -235,6 +242,22 @@ def scenario_page() -> str:
     out.append(_table("[schedule.phases]", {role: schema.text for role in schema.ROLES}, NOTES, "phases"))
     out.append(_table("schedule.cycle = { ... }", schema.CYCLE, NOTES, "cycle"))
     return "".join(out)
+
+
+def _case_keys() -> str:
+    """The ``[results]`` keys each shipped case adds (its ``RESULTS_KEYS``, checked by master/case.py when a
+    scenario of the case is loaded), and its level (``LEVEL``)."""
+    case = importlib.import_module("rotorcosim.master.case")
+    rows = []
+    for kind, obj in sorted(case.all_cases().items()):
+        for key, check in (getattr(obj, "RESULTS_KEYS", None) or {}).items():
+            rows.append(f"| `{kind}` | `{key}` | {_values(check)} | {NOTES.get(f'{kind}.{key}', '')} |\n")
+    if not rows:
+        return ""
+    return ("\nA scenario with a case (`kind`) may give that case's own keys too (a case's `RESULTS_KEYS`, "
+            "`master/case.py`), checked when it is loaded; its level (`LEVEL`) says which key names its level "
+            "parameter and the option that sets it:\n\n| case | key | value | note |\n|---|---|---|---|\n"
+            + "".join(rows))
 
 
 PAGES = {"cli.md": cli_page, "components.md": components_page, "scenario.md": scenario_page}

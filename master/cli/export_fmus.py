@@ -15,7 +15,7 @@ from rotorcosim.master.cli.options import add_out, add_scenario
 
 def add_arguments(parser):
     """The command's options on ``parser``."""
-    # the default as `run`'s: the FMUs of blade_loss and of blade_loss_2850 are the same bytes (same parameters)
+    # the default as `run`'s: a level's scenario and its base file give the same FMU bytes (same parameters)
     add_scenario(parser, None, shown=DEFAULT_SCENARIO, output_first=True)
     add_out(parser, "output folder (created if missing)", positional_alias="DIR")
     parser.add_argument("--component", default=None, metavar="NAME",

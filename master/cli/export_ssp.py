@@ -8,17 +8,15 @@ from __future__ import annotations
 
 from pathlib import Path
 
+from rotorcosim.master import case
 from rotorcosim.master.cli.options import add_out, add_scenario
-
-#: the archive names its system after the scenario, so the default stays the levels' base file
-DEFAULT_SCENARIO = "blade_loss"
 
 
 def add_arguments(parser):
-    """The command's options on ``parser``."""
-    add_scenario(parser, DEFAULT_SCENARIO, output_first=True,
-                 note="the levels' base file, F_u = 2850 N as in blade_loss_2850 that run uses; the archive "
-                      "carries its name")
+    """The command's options on ``parser``. The archive names its system after the scenario, so the default is
+    the base file a case declares for its levels (:func:`rotorcosim.master.case.default_scenario`)."""
+    add_scenario(parser, case.default_scenario(), output_first=True,
+                 note="the base file of the levels a case declares; the archive carries its name")
     add_out(parser, "the SSP archive to write (FILE.ssp)", positional_alias="FILE.ssp")
 
 

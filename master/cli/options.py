@@ -12,10 +12,11 @@
 Example (the export command's older form and its current one give the same ``args``):
 
 >>> p = argparse.ArgumentParser(prog="rotorcosim export-fmus")
->>> add_scenario(p, "blade_loss", output_first=True)
+>>> add_scenario(p, "toy_thermomechanical", output_first=True)
 >>> add_out(p, "output folder", positional_alias="DIR")
->>> old, new = (finish(p.parse_args(argv)) for argv in (["fmus_out"], ["blade_loss", "--out", "fmus_out"]))
->>> (old.scenario, old.out) == (new.scenario, new.out) == ("blade_loss", "fmus_out")
+>>> argvs = (["fmus_out"], ["toy_thermomechanical", "--out", "fmus_out"])
+>>> old, new = (finish(p.parse_args(argv)) for argv in argvs)
+>>> (old.scenario, old.out) == (new.scenario, new.out) == ("toy_thermomechanical", "fmus_out")
 True
 """
 from __future__ import annotations
@@ -24,8 +25,8 @@ import argparse
 from pathlib import Path
 
 #: ``--schedule`` of every command that runs a scenario
-SCHEDULE_HELP = ("scenario (alias paper): the scenario's own schedule; auto: switch TM/TO automatically; "
-                 "monolithic: one TM interval")
+SCHEDULE_HELP = ("scenario: the scenario's own schedule (a case may add aliases of it, master/case.py); auto: "
+                 "switch TM/TO automatically; monolithic: one TM interval")
 
 #: what a SCENARIO may be
 SCENARIO_KINDS = 'scenario TOML file, shipped scenario name or .ssp archive ("rotorcosim scenarios" lists them)'
@@ -114,7 +115,7 @@ def add_dpi(p: argparse.ArgumentParser) -> None:
 def finish_part(args: argparse.Namespace) -> argparse.Namespace:
     """``args.parameters`` of the commands that evaluate one part of an engine (``bearing-static``,
     ``damper-force``, ``thermal-steady``): the parameters component ``<part><ID>`` takes from ``--engine FILE``
-    or ``--scenario SCENARIO`` (master/scenario/engine.py), None when neither is given (the paper's records by
+    or ``--scenario SCENARIO`` (master/scenario/engine.py), None when neither is given (the shipped engine's records by
     number). A namespace of another command is returned as it is."""
     part = getattr(args, "part", None)
     if part is None:

@@ -2,7 +2,7 @@
 source (:meth:`rotorcosim.master.scenario.build.Scenario.parameters`); the listing of one component or
 implementation adds each parameter's description (where its default comes from).
 
-WHAT is a component of the scenario (``bearing0``), an implementation (``bearing.hertz``: its declared
+WHAT is a component of the scenario (``osc``), an implementation (``bearing.hertz``: its declared
 parameters and defaults) or a scenario (a shipped name or a TOML file: all its components); none lists the
 default scenario's. Any listed parameter is set with ``--set COMP.NAME=VALUE`` or in the scenario file.
 """

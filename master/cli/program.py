@@ -25,7 +25,7 @@ COMMANDS: dict[str, tuple[str, str]] = {
                                                      "squares, runs on Dask, resumable)"),
     "uq": ("rotorcosim.master.cli.uq", "uncertainty of the results over parameter distributions (Monte Carlo, "
                                        "Latin hypercube, Sobol' indices; runs on Dask, resumable)"),
-    "bearing-static": ("rotorcosim.components.bearing.cli", "static load distribution of bearing #0 or #5"),
+    "bearing-static": ("rotorcosim.components.bearing.cli", "static load distribution of a ball bearing"),
     "damper-force": ("rotorcosim.components.damper.cli", "squeeze film damper force at a journal position and velocity"),
     "thermal-steady": ("rotorcosim.components.thermal.cli", "steady state of a bearing's thermal network"),
     "export-fmus": ("rotorcosim.master.cli.export_fmus", "export components as FMI 2.0 co-simulation FMUs"),
@@ -48,7 +48,7 @@ def commands() -> dict[str, tuple[str, str]]:
 
 
 #: the top-level ``--help``: what the program does (plain text, one paragraph)
-DESCRIPTION = ("Co-simulation of a dual-rotor gas turbine engine during and long after a blade-loss event: a rotor, "
+DESCRIPTION = ("Co-simulation of a dual-rotor gas turbine engine through a transient and long after it: a rotor, "
                "ball bearings, squeeze film dampers, rub rings and the bearings' thermal networks coupled by a "
                "master that alternates thermo-mechanical and thermal-only intervals. Run a scenario (a shipped "
                "name, a TOML file or an SSP archive) and get its results, time series and figures in an output "

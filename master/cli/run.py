@@ -1,4 +1,4 @@
-"""``rotorcosim run [SCENARIO] [--unbalance N] [--duration S] [--schedule scenario|auto|monolithic]
+"""``rotorcosim run [SCENARIO] [--level VALUE] [--duration S] [--schedule scenario|auto|monolithic]
 [--set COMP.PARAM=VALUE]... [--swap COMP=IMPL|FILE.fmu]... [--record COMP.PORT,...] --out DIR``.
 
 A thin layer over :func:`rotorcosim.simulate` (``master/api.py``).
@@ -18,13 +18,11 @@ from rotorcosim.master.schedule import budget
 from rotorcosim.master.run import checkpoint
 from rotorcosim.master.run import watchdog
 from rotorcosim.master.core.algorithm import SimulationFailed
-from rotorcosim.master.api import DEFAULT_SCENARIO, SCHEDULE_ALIASES, SCHEDULES, load_scenario, simulate
+from rotorcosim.master import case
+from rotorcosim.master.api import DEFAULT_SCENARIO, SCHEDULES, load_scenario, simulate
 from rotorcosim.master.cli.options import SCHEDULE_HELP, add_dpi, add_out, add_scenario
 from rotorcosim.master.compiled.choice import ENGINES
 from rotorcosim.master.scenario.overrides import apply_set, apply_swap, parse_set, parse_swap
-# the level parameter's setter lives with --set (the sweep engine needs it below the command line); imported here
-# for run and the commands that take it from this module
-from rotorcosim.master.scenario.overrides import apply_unbalance  # noqa: F401 - re-exported for the tests and benches
 from rotorcosim.master.scenario.build import Scenario
 
 #: where a command-line change is said to come from, in error messages
@@ -34,11 +32,9 @@ CLI_ORIGIN = "the command line (--set/--swap)"
 def add_arguments(p):
     """The options of ``rotorcosim run`` on the parser ``p``."""
     add_scenario(p, None, shown=DEFAULT_SCENARIO)
-    p.add_argument("--unbalance", type=float, default=None, metavar="VALUE",
-                   help="the value of the scenario's level parameter, [results] unbalance_parameter (SI; e.g. "
-                        "an unbalance force in N)")
+    case.add_level_option(p)
     p.add_argument("--duration", type=float, default=None, help="simulated duration [s] (cuts the timeline)")
-    p.add_argument("--schedule", choices=sorted([*SCHEDULES, *SCHEDULE_ALIASES]), default="scenario",
+    p.add_argument("--schedule", choices=sorted([*SCHEDULES, *case.schedule_aliases()]), default="scenario",
                    help=SCHEDULE_HELP)
     add_edit_arguments(p)
     p.add_argument("--record", default=None, metavar="COMP.PORT,...",
@@ -75,7 +71,7 @@ def add_arguments(p):
 def add_edit_arguments(p):
     """``--set`` and ``--swap``, for every command that runs a scenario."""
     p.add_argument("--set", action="append", default=[], metavar="COMP.PARAM=VALUE", dest="set_values",
-                   help="set a component parameter (SI; repeatable), e.g. --set rotor.F_unbalance=5700")
+                   help="set a component parameter (SI; repeatable), e.g. --set node.C=20")
     p.add_argument("--swap", action="append", default=[], metavar="COMP=IMPL|FILE.fmu",
                    help="give a component another implementation: a registry name (damper.fe), module:Class "
                         "or an FMU file (repeatable)")
@@ -121,6 +117,13 @@ def execute(sc: Scenario, out: Path, schedule_kind: str | None = None, duration:
     return res.summary
 
 
+def apply_level(sc: Scenario, args) -> None:
+    """The command's level option (``args.level``, in the spelling ``args.level_option`` the user gave) applied
+    to ``sc``, checked against its ``--set`` values (master/case.py)."""
+    case.apply_level(sc, args.level, [parse_set(text)[0] for text in getattr(args, "set_values", None) or []],
+                     getattr(args, "level_option", None))
+
+
 def parse_record(text: str | None) -> list[str] | None:
     """``--record "a.x, b.y"`` -> ``["a.x", "b.y"]`` (None: not given)."""
     if text is None:
@@ -136,8 +139,8 @@ def run(args) -> int:
     if args.duration is not None and not (args.duration > 0 and args.duration < float("inf")):
         raise ValueError(f"--duration must be a positive number of seconds, got {args.duration}")
     sc = apply_edits(resolve(args.scenario), args)
-    if args.unbalance is not None:
-        apply_unbalance(sc, args.unbalance, [parse_set(text)[0] for text in args.set_values or []])
+    if args.level is not None:
+        apply_level(sc, args)
     if not (0 <= args.step_timeout < float("inf")):
         raise ValueError(f"--step-timeout must be a number of seconds >= 0 (0: no limit), got {args.step_timeout}")
     for spec in sc.components.values():

@@ -11,8 +11,8 @@ def add_arguments(p):
 
 
 def listing() -> list[tuple[str, str]]:
-    """(name, description) of each shipped scenario, in natural order (blade_loss_1425 before
-    blade_loss_11401)."""
+    """(name, description) of each shipped scenario, in natural order (case_9 before
+    case_10)."""
     out = []
     for name in scenarios.names():
         sc = load_scenario(scenarios.path(name))

@@ -6,12 +6,11 @@
 - :mod:`.errors`: :func:`rel_error_pct`, :func:`pair` (one quantity: staggered, monolithic, relative error) and
   :func:`within` (a group of quantities against a tolerance).
 
-The cases build their comparisons on it: ``rotorcosim compare`` (the blade-loss case's Table 6,
-cases/blade_loss/compare.py) and the rundown's (cases/rundown/compare.py).
+The shipped cases build their ``rotorcosim compare`` on it, each with its own schedules and table.
 """
 from rotorcosim.master.compare.errors import pair, rel_error_pct, within
-from rotorcosim.master.compare.schemes import (KINDS, SAME, Level, compare_schemes, draw, edits_of, kept_run,
+from rotorcosim.master.compare.schemes import (KINDS, SAME, LevelValue, compare_schemes, draw, edits_of, kept_run,
                                                load_average, quantum, reused_monolithic)
 
-__all__ = ["compare_schemes", "Level", "KINDS", "SAME", "pair", "rel_error_pct", "within", "kept_run",
+__all__ = ["compare_schemes", "LevelValue", "KINDS", "SAME", "pair", "rel_error_pct", "within", "kept_run",
            "reused_monolithic", "draw", "load_average", "quantum", "edits_of"]

@@ -68,9 +68,9 @@ SAME = ("hold", "timeline", "component_steps")
 
 
 @dataclass(frozen=True)
-class Level:
+class LevelValue:
     """The level a comparison is made at, as the runs' summaries record it: ``key`` in summary.json (e.g.
-    ``"unbalance_N"``), its ``value`` and ``unit`` (for messages). A kept or reused run at another level is
+    the case's level key), its ``value`` and ``unit`` (for messages). A kept or reused run at another level is
     refused."""
 
     key: str
@@ -82,9 +82,11 @@ class Level:
         return f" at {summary.get(self.key)} {self.unit}".rstrip()
 
     def says(self) -> str:
+        """`` at VALUE UNIT`` of this level, for a message."""
         return f" at {self.value} {self.unit}".rstrip()
 
     def holds(self, summary: dict) -> bool:
+        """Whether ``summary`` was run at this level."""
         return _close(summary.get(self.key), self.value)
 
 
@@ -125,7 +127,7 @@ def edits_of(edits) -> list | None:
     return json.loads(json.dumps([{k: v for k, v in dict(e).items() if k != "origin"} for e in edits]))
 
 
-def kept_run(folder: Path, name: str | None = None, duration: float | None = None, level: Level | None = None,
+def kept_run(folder: Path, name: str | None = None, duration: float | None = None, level: LevelValue | None = None,
              edits: list | None = None) -> dict | None:
     """The summary of a complete run in ``folder``, else None (absent, damaged, interrupted, failed). With
     ``name``, a complete run of another scenario, ``level``, ``duration`` or ``edits`` (a scenario's edits) is an
@@ -152,7 +154,7 @@ def kept_run(folder: Path, name: str | None = None, duration: float | None = Non
     return summary
 
 
-def reused_monolithic(folder: Path, duration: float, name: str | None = None, level: Level | None = None,
+def reused_monolithic(folder: Path, duration: float, name: str | None = None, level: LevelValue | None = None,
                       check: Callable[[dict, Path], None] | None = None, coupled: str = Phases().coupled) -> dict:
     """A previous monolithic run's summary in ``folder``, checked to be the one a comparison needs: complete,
     one ``coupled`` interval over ``duration`` [s], at ``level``, of the scenario ``name`` (the monolithic run's
@@ -188,7 +190,7 @@ def compare_schemes(sc: Scenario, out: str | Path, staggered, monolithic, *,
                     tabulate: Callable[[dict, dict], dict], table_name: str, quiet: bool = True,
                     figures: bool = True, overwrite: bool = False, resume: bool = False, dpi: float | None = None,
                     timing_runs: int = 1, reuse: str | Path | None = None,
-                    reuse_check: Callable[[dict, Path], None] | None = None, level: Level | None = None,
+                    reuse_check: Callable[[dict, Path], None] | None = None, level: LevelValue | None = None,
                     check_edits: bool = True, warm_up: bool = True, same: tuple = ()) -> dict:
     """Run ``sc`` under the schedule ``staggered`` and under ``monolithic`` (Timeline, AutoSchedule or
     Monolithic objects over the same simulated time) into ``out``; write ``tabulate(runs, timing)`` (``runs``:

@@ -10,7 +10,7 @@ A scenario declares where the period comes from; the master reads it when a wind
   with ``angle`` (an output in rad, the shaft's angle), the windows are counted in revolutions of that angle
   instead: a window of N cycles starts where the angle was 2 pi N below its value at the window's end
   (:class:`RevolutionCounter`), so that it spans N turns even while the speed changes within the interval (a
-  rundown). The period read at the interval's start then only sizes the buffers and sets how often the automatic
+  run-down). The period read at the interval's start then only sizes the buffers and sets how often the automatic
   schedule looks at its steadiness test.
 
 Without an angle the windows are N periods long: for a constant speed, the same as N revolutions of

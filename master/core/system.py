@@ -92,8 +92,8 @@ class Connection:
 def split_port(ref: str) -> tuple[str, str]:
     """``"component.port"`` -> ``("component", "port")`` (the port may contain dots); an error otherwise.
 
-    >>> split_port("damper0.F_journal")
-    ('damper0', 'F_journal')
+    >>> split_port("damperA.F_journal")
+    ('damperA', 'F_journal')
     """
     comp, dot, port = str(ref).partition(".")
     if not dot or not comp or not port:

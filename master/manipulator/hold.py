@@ -12,7 +12,7 @@ libcosim would call it a manipulator: it changes what crosses some connections, 
   start of each TM interval). A cycle source with an angle counts both in revolutions instead: the window is the
   samples since the time the last ``hold_cycles`` turns of the angle began (the run's RevolutionCounter), and a
   cycle mean ends at each whole turn of the angle from the interval's start, so that a window spans
-  ``hold_cycles`` turns while the speed changes within the interval (a rundown); the turns each TO interval's
+  ``hold_cycles`` turns while the speed changes within the interval (a speed that falls); the turns each TO interval's
   windows spanned are reported (``HoldReport.window_revolutions``).
 * The held value over a TO interval: the window's statistic, per connection (``hold`` of the connection, else the
   schedule's): ``mean`` by default (it keeps the energy of a power), ``rms``, or ``last``.
@@ -448,7 +448,8 @@ class HoldReport:
     #: per component that hands values back to the mechanics: the largest, over its hand-backs, of their estimated
     #: error against their move over the last charged TO interval (norms over the port's elements; a temperature
     #: that rose less than RISE_FLOOR_K over the run left out): the share of that move the mechanics took in error,
-    #: which the results the mechanics give share
+    #: which the results the mechanics give share; empty where the cycle's speed differed between the last two TM
+    #: intervals (the mechanics then moved with the speed too)
     mechanics_fraction: dict[str, float] = field(default_factory=dict)
     #: the run's estimated error [%] (None before a TO interval was charged)
     estimated_error_pct: float | None = None
@@ -463,7 +464,8 @@ class HoldReport:
     def advice(self, estimate_pct: float, tolerance_pct: float) -> str | None:
         """What to change when the run's estimated error ``estimate_pct`` exceeds ``tolerance_pct`` (None when it
         does not, or no interval was charged): the held interval whose own estimate is the largest, to be held
-        shorter (its length scaled by tolerance / estimate), or a tighter drift tolerance."""
+        shorter (its length scaled by tolerance / estimate; the automatic schedule's shortest, ``to_min``), or a
+        tighter drift tolerance."""
         charged = [i for i in self.intervals if i["estimate_pct"] is not None]
         if not charged or not estimate_pct > tolerance_pct:
             return None
@@ -472,8 +474,8 @@ class HoldReport:
         return (f"estimated error {estimate_pct:.2f} % is above the tolerance {tolerance_pct:g} %; the largest share "
                 f"comes from the held interval {worst['t_start']:.6g}-{worst['t_end']:.6g} s (alone "
                 f"{worst['estimate_pct']:.2f} % on {worst['output']}): hold shorter intervals there (about "
-                f"{length * tolerance_pct / estimate_pct:.3g} s instead of {length:.3g} s), or, with the automatic "
-                f"schedule, set a tighter drift_tolerance")
+                f"{length * tolerance_pct / estimate_pct:.3g} s instead of {length:.3g} s; with the automatic "
+                f"schedule a smaller to_min, or a tighter drift_tolerance)")
 
     def as_dict(self) -> dict:
         """The report as summary.json's ``hold`` (hand-off errors in percent)."""
@@ -535,6 +537,8 @@ class StaggeredHold:
         #: charged one did
         self._at_to_start: dict[str, np.ndarray] = {}
         self._at_last_restart: dict[str, np.ndarray] = {}
+        #: the cycle's period at the starts of the last two TM intervals
+        self._tm_periods: list = []
 
     def _find_handoffs(self) -> None:
         """After set-up: a component may decide its phases from its parameters (whether it has a TO update)."""
@@ -580,6 +584,7 @@ class StaggeredHold:
         if phase == COUPLED:
             # one period for the whole interval, read where it starts (a speed signal's value there)
             cycle = self.period = self.cycle
+            self._tm_periods = self._tm_periods[-1:] + [cycle]
             length = self.restart_cycles * cycle if cycle else 0.0
             if self._last_phase == HELD and length > 0.0:
                 for i, link in enumerate(self.handbacks):
@@ -736,6 +741,12 @@ class StaggeredHold:
         rep.output_move = {k: (present[k] - v).tolist() for k, v in self._at_last_restart.items() if k in present}
         rep.estimated_error_pct, rep.estimated_output = self._largest(errors)
         frac: dict[str, float] = {}
+        periods = self._tm_periods
+        if len(periods) == 2 and periods[0] != periods[1]:
+            # the speed changed between the last two TM intervals (a rundown): their results differ by more than
+            # the hand-backs' move, and no share of that difference is the hold's
+            rep.mechanics_fraction = {}
+            return
         for link in self.handbacks:
             name = link.con.src_component
             ref = f"{name}.{link.sport}"

@@ -18,7 +18,7 @@ from rotorcosim.master.observer.observers import Observer
 
 
 class EnergyResidual(Observer):
-    """``bonds``: pairs ("A.force_input", "A.velocity_output"), e.g. ("rotor.F_brg0", "rotor.V_brg0")."""
+    """``bonds``: pairs ("A.force_input", "A.velocity_output"), e.g. ("rotor.F_brgA", "rotor.V_brgA")."""
 
     def __init__(self, bonds: Sequence[tuple[str, str]]):
         self.bonds = [tuple(b) for b in bonds]

@@ -471,7 +471,7 @@ def _csv_text(x) -> str:
 
 
 def column_names(signals: Sequence[str], variables: dict) -> list[str]:
-    """Flat column names with units, one per vector element: ``rotor.X_brg0[x] (m)``, ``node.T (K)``."""
+    """Flat column names with units, one per vector element: ``osc.x[0] (m)``, ``node.T (K)``."""
     out = []
     for ref in signals:
         v = variables[ref]
@@ -623,7 +623,7 @@ class SteadyWindows(Observer):
     began, plus the one at or before that time, as a window of ``cycles`` periods has; the window's dict then has
     ``revolutions``, the turns it spans (fewer than ``cycles`` where the interval was shorter); its ring, sized for
     the turns at 1 / WINDOW_MARGIN of the speed at the interval's start, grows where the speed falls further (a
-    monolithic rundown)."""
+    monolithic run of a falling speed)."""
 
     def __init__(self, signals: Sequence[str], cycle: Cycle | float, cycles: float = 5.0,
                  sample_step: float | None = None):

@@ -382,7 +382,7 @@ def load(path: str | os.PathLike, key: str) -> ResumePoint:
         raise CheckpointError(f"--resume: {path} was written by another version of rotorcosim")
     if data.get("key") != key:
         raise CheckpointError(f"--resume: {path} was written by a run of another scenario or with other options "
-                              "(unbalance, duration, schedule, outputs, --record): resume with the same command")
+                              "(level, duration, schedule, outputs, --record): resume with the same command")
     return ResumePoint(raw, data)
 
 

@@ -1,6 +1,6 @@
 """The figures of a run drawn in worker processes, a few figures each.
 
-Drawing the six blade-loss figures takes a few seconds of matplotlib, about as long as the compiled 2-minute
+Drawing a case's figures takes a few seconds of matplotlib, about as long as the compiled 2-minute
 simulation itself, which uses one core. So the workers start (and import matplotlib) while the run goes, on the
 other cores, and draw the figures from the time series file in parallel once it is closed.
 

@@ -5,11 +5,11 @@ and the whole record as JSON in ``provenance``), so that either file alone says 
 
 * ``rotorcosim_version``: the version of the code that ran;
 * ``scenario_file``: the scenario file (absolute path) or SSP archive it was loaded from (None: built in Python);
-* ``scenario_name``: the scenario's name as loaded (``run NAME_<level> --unbalance L`` ran ``NAME_<level>``,
+* ``scenario_name``: the scenario's name as loaded (``run NAME_<level> --level L`` ran ``NAME_<level>``,
   while the summary's ``scenario`` names the run ``NAME_L``);
 * ``edits``: every change made to it after loading, in order: ``{"set": "comp.param", "value", "origin"}``
   (``--set``, :meth:`Scenario.set`), ``{"swap": "comp", "implementation", "origin"}`` (``--swap``,
-  :meth:`Scenario.swap`), ``{"unbalance": value, "parameter", "origin"}`` (``--unbalance``);
+  :meth:`Scenario.swap`), ``{<level name>: value, "parameter", "origin"}`` (the level option; its name is its case's, master/case.py);
 * ``parameters``: per component its implementation (a registry name, ``module:Class`` or an FMU file) and the
   value of every parameter it ran with, those the scenario left at their defaults included;
 * ``engine``: the engine file the scenario takes the machine from (master/scenario/engine.py), the quantities

@@ -9,7 +9,7 @@
 ::
 
     from rotorcosim.master.scenario import load_scenario
-    sc = load_scenario("scenarios/blade_loss_2850.toml").set({"rotor.F_unbalance": 5700.0})
+    sc = load_scenario("scenarios/toy_thermomechanical.toml").set({"osc.F0": 20.0})
 """
 from rotorcosim.master.scenario.build import (ComponentSpec, ConnectionSpec, Scenario, ScenarioError, build_simulation,
                                               build_system, create_component, load_scenario, schedule_of)

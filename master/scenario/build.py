@@ -126,11 +126,14 @@ class Scenario:
     ``schedule`` and ``outputs``: the ``[algorithm]``, ``[schedule]`` and ``[outputs]`` tables as dicts;
     ``source``: the file it was read from (relative paths resolve against its folder); ``description``;
     ``extra``: the other top-level tables (``[results]``, read by the scenario's case); ``loaded_name``: the
-    name it was loaded under (``name`` may change: ``run --unbalance`` renames a run); ``edits``: each change
+    name it was loaded under (``name`` may change: setting the level renames a run); ``edits``: each change
     made since it was loaded, in order (``{"set": "comp.param", "value": ...}``, ``{"swap": "comp",
-    "implementation": ...}``, ``{"unbalance": value, "parameter": "comp.param"}``, each with its ``origin``),
+    "implementation": ...}``, ``{<level name>: value, "parameter": "comp.param"}`` (the level, named by its case: master/case.py), each
+    with its ``origin``),
     which a run records in its summary (master/run/provenance.py); ``unconnected_inputs``:
-    ``"start"`` (an input nothing drives keeps the start value it declares) or ``"error"`` (refused).
+    ``"start"`` (an input nothing drives keeps the start value it declares) or ``"error"`` (refused); ``engine``:
+    the engine file the scenario takes the machine from and the parameters bound to its quantities
+    (:class:`~rotorcosim.master.scenario.engine.EngineBinding`; None: no engine).
 
     :meth:`set` and :meth:`swap` return changed copies; :func:`build_system` and :func:`build_simulation` make
     it runnable; :func:`rotorcosim.simulate` runs it.
@@ -168,7 +171,7 @@ class Scenario:
         return copy.deepcopy(self)
 
     def set(self, values: Mapping[str, Any]) -> "Scenario":
-        """A new scenario with component parameters changed: ``sc.set({"rotor.F_unbalance": 5700.0})``.
+        """A new scenario with component parameters changed: ``sc.set({"osc.F0": 20.0})``.
 
         Keys are ``"component.parameter"`` (SI values; numbers, booleans, strings or lists). This scenario is
         left unchanged. An unknown component, or a parameter the component's implementation does not declare,
@@ -190,7 +193,7 @@ class Scenario:
         """Every parameter of the components (or of ``component``): dicts with ``component``, ``name``,
         ``unit``, ``default``, ``value`` (what a run uses, after the component's set-up), ``source`` (the file
         that set it, "default" or "set-up") and ``description``. Example:
-        ``rotorcosim.load_scenario("blade_loss_2850").parameters("bearing0")``."""
+        ``rotorcosim.load_scenario("toy_thermomechanical").parameters("osc")``."""
         from rotorcosim.master.scenario.parameters import scenario_parameters
 
         return scenario_parameters(self, component)

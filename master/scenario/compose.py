@@ -1,7 +1,7 @@
 """Scenario composition: a scenario file that ``extends`` another one, and where each entry came from.
 
 ``[scenario] extends`` names a file (relative to the extending file) or a shipped scenario by name
-(``extends = "blade_loss_2850"``). The rules, applied from the base outwards (a chain of ``extends`` is composed base first):
+(``extends = "toy_thermomechanical"``). The rules, applied from the base outwards (a chain of ``extends`` is composed base first):
 
 * **components**: a child's ``[components.NAME]`` merges into the base's. ``implementation`` and ``fmu`` replace
   each other (a child giving one drops the base's other, and an inherited FMU's ``start`` values); ``parameters`` merge key by key; ``step`` is replaced;
@@ -9,7 +9,7 @@
 * **connections**: a child's ``[[connections]]`` are added to the base's, not a replacement of the list; an
   entry whose ``to`` port the base already drives replaces the base's entry (an input has one source).
   ``[scenario] remove_connections = [...]`` removes inherited connections by name before the child's are
-  added: a name is the driven input (``"bearing0.K_journal"``) or ``"src -> dst"``; each must match one.
+  added: a name is the driven input (``"node.P_in"``) or ``"src -> dst"``; each must match one.
 * every other table (``scenario``, ``inputs``, ``algorithm``, ``schedule``, ``outputs``, ``results``) merges key
   by key, and any other value, lists included (``intervals``, ``record``, ``order``), is replaced.
   ``[scenario] remove_keys = ["table.key", ...]`` removes inherited keys of those tables (each must exist), e.g.
@@ -185,7 +185,7 @@ def _connections(base: list, child: list, removes: list[str], origins: Origins, 
         hits = [i for i, c in enumerate(out) if key in (str(c.get("to")), connection_name(c).replace(" ", ""))]
         if not hits:
             raise CompositionError(f"{where}: remove_connections: no inherited connection {name!r} (name one by "
-                                   f"its driven input, e.g. 'bearing0.K_journal', or as 'src -> dst')")
+                                   f"its driven input, e.g. 'node.P_in', or as 'src -> dst')")
         for i in reversed(hits):
             del out[i], src[i]
     for con in child:

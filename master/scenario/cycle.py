@@ -10,7 +10,7 @@ the automatic schedule and intervals given in ``cycles`` count in (master/core/c
                                                          # the start of each thermo-mechanical interval
     cycle = { signal = "shaft.Omega", angle = "shaft.theta" }   # and the windows counted in turns of an angle
                                                                 # output [rad] (a speed that changes within an
-                                                                # interval: a rundown)
+                                                                # interval: a speed that falls)
 
 At most one of them; none: the run has no cycle (no thermal-only intervals, no automatic schedule). ``speed_rpm``
 is the edge spelling of a constant speed (a quantity at the edge carries its unit in its name); the master itself

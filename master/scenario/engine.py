@@ -5,14 +5,14 @@ component parameter or a ``[schedule]`` value written ``"engine:NAME"`` takes th
 (components/rotor/engine_parts.py: ``"damper.0.clearance"``, ``"bearing.0.omega"``, ``"spool#1.omega"``,
 ``"spool.pt.inertia"``, ``"file"``...)::
 
-    [components.damper0]
-    parameters = { clearance = "engine:damper.0.clearance" }
-    [components.thermal0]
-    parameters = { damper_clearance = "engine:damper.0.clearance" }
+    [components.damperA]
+    parameters = { clearance = "engine:damper.A.clearance" }
+    [components.thermalA]
+    parameters = { damper_clearance = "engine:damper.A.clearance" }
 
 Every parameter bound to one quantity takes the same value: the machine is described once. Changing a bound
-parameter by name (``--set damper0.clearance=...``, a sweep's, a calibration's or a UQ's parameter:
-:func:`set_bound`) changes the quantity, and every parameter built from it follows (``thermal0.damper_clearance``
+parameter by name (``--set damperA.clearance=...``, a sweep's, a calibration's or a UQ's parameter:
+:func:`set_bound`) changes the quantity, and every parameter built from it follows (``thermalA.damper_clearance``
 with it; ``rotor.omega_pt`` moves every speed of that spool and ``[schedule] speed_rpm``). A file further down
 an ``extends`` chain that writes a plain value replaces the binding of that one parameter.
 
@@ -40,6 +40,7 @@ SCHEDULE_KEYS = ("speed_rpm",)
 
 
 def is_ref(value: Any) -> bool:
+    """Whether ``value`` takes an engine quantity (``"engine:NAME"``)."""
     return isinstance(value, str) and value.startswith(PREFIX)
 
 
@@ -54,6 +55,7 @@ class EngineBinding:
     sources: dict[str, str] = field(default_factory=dict)
 
     def view(self) -> EngineView:
+        """The engine's quantities with this binding's overrides (components/rotor/engine_parts.py)."""
         return EngineView(self.file, self.overrides)
 
     def provenance(self) -> dict:
@@ -199,7 +201,7 @@ def part_parameters(component: str, *, engine: str | None = None, scenario=None,
 
 def bound_together(sc, refs) -> list[str]:
     """Every component parameter (``"comp.param"``) bound to the same engine quantity as one of ``refs``, each once,
-    in the order of ``refs`` (``"damper0.clearance"`` -> ``["damper0.clearance", "thermal0.damper_clearance"]``);
+    in the order of ``refs`` (``"damperA.clearance"`` -> ``["damperA.clearance", "thermalA.damper_clearance"]``);
     a ref bound to nothing stands alone."""
     binding = getattr(sc, "engine", None)
     out: list[str] = []

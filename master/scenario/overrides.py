@@ -30,7 +30,7 @@ API_ORIGIN = "Scenario.set/swap"
 
 
 def _literal(text: str, what: str) -> Any:
-    """A value written as in TOML (``5700``, ``1e-5``, ``true``, ``"a"``, ``[1, 2]``); a bare word is a string."""
+    """A value written as in TOML (``42``, ``1e-5``, ``true``, ``"a"``, ``[1, 2]``); a bare word is a string."""
     text = text.strip()
     if not text:
         raise ValueError(f"{what}: an empty value")
@@ -55,7 +55,7 @@ def _literal(text: str, what: str) -> Any:
 
 def parse_set(text: str, values: bool = False) -> tuple[str, Any]:
     """``"comp.param=value"`` -> (``"comp.param"``, value). With ``values=True`` the right-hand side is a
-    comma-separated list (``"rotor.F_unbalance=712,1425"`` -> (``"rotor.F_unbalance"``, [712, 1425])), a
+    comma-separated list (``"osc.F0=10,20"`` -> (``"osc.F0"``, [10, 20])), a
     bracketed ``[...]`` staying one value."""
     key, eq, rhs = str(text).partition("=")
     key = key.strip()
@@ -223,24 +223,28 @@ def apply_swap(sc, component: str, implementation: str, parameters: Mapping[str,
     return out
 
 
-def apply_unbalance(sc, force: float, settings=()) -> None:
-    """Set the scenario's level parameter (``[results] unbalance_parameter``) to ``force``; ``settings`` are the
-    ``comp.param`` names the same command sets with ``--set``: naming the level parameter there too is an error
-    (one of the two values would be dropped without a word)."""
-    if not (force >= 0.0) or force != force or force == float("inf"):
-        raise ValueError(f"--unbalance must be a finite force >= 0 N, got {force}")
-    ref = sc.extra.get("results", {}).get("unbalance_parameter")
+def set_level(sc, value: float, ref: str | None, *, name: str = "level", option: str = "--level",
+              unit: str = "", label: str = "level", key: str = "level_parameter", settings=()) -> None:
+    """Set the scenario's level parameter ``ref`` (``comp.param``, named by its ``[results] key``) to ``value``
+    (SI, finite, >= 0) and record it in its edits as ``{name: value, "parameter": ref, "origin": option}``;
+    ``settings`` are the ``comp.param`` names the same command sets with ``--set``: naming the level parameter
+    there too is an error (one of the two values would be dropped without a word). The case's own words
+    (``name``, ``option``, ``unit``, ``label``) come from its level (master/case.py)."""
+    u = f" {unit}" if unit else ""
+    if isinstance(value, bool) or not isinstance(value, (int, float)) or not (value >= 0.0) \
+            or value == float("inf"):
+        raise ValueError(f"{option} must be a finite {label} >= 0{u}, got {value}")
     if not ref:
-        raise ValueError(f"scenario {sc.name!r} has no [results] unbalance_parameter: --unbalance does not apply")
+        raise ValueError(f"scenario {sc.name!r} has no [results] {key}: {option} does not apply")
     if ref in settings:
-        raise ValueError(f"--unbalance and --set {ref}=... both give the unbalance force ({ref}, the scenario's "
-                         "[results] unbalance_parameter): give one of them")
+        raise ValueError(f"{option} and --set {ref}=... both give the {label} ({ref}, the scenario's [results] "
+                         f"{key}): give one of them")
     comp, _, param = ref.partition(".")
     if comp not in sc.components:
-        raise ValueError(f"[results] unbalance_parameter {ref!r}: no component {comp!r}")
+        raise ValueError(f"[results] {key} {ref!r}: no component {comp!r}")
     old = sc.components[comp].parameters.get(param)
-    sc.components[comp].parameters[param] = float(force)
-    sc.edits.append({"unbalance": float(force), "parameter": ref, "origin": "--unbalance"})
-    if old is None or float(old) != float(force):
+    sc.components[comp].parameters[param] = float(value)
+    sc.edits.append({name: float(value), "parameter": ref, "origin": option})
+    if old is None or float(old) != float(value):
         # the run's name says what was run (a scenario named NAME_<level> becomes NAME_<new level>)
-        sc.name = f"{sc.name.rsplit('_', 1)[0] if sc.name.rsplit('_', 1)[-1].isdigit() else sc.name}_{force:g}"
+        sc.name = f"{sc.name.rsplit('_', 1)[0] if sc.name.rsplit('_', 1)[-1].isdigit() else sc.name}_{value:g}"

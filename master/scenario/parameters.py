@@ -9,7 +9,7 @@ is what a run uses.
 Example::
 
     import rotorcosim
-    for row in rotorcosim.load_scenario("blade_loss_2850").parameters("damper0"):
+    for row in rotorcosim.load_scenario("toy_thermomechanical").parameters("osc"):
         print(row["name"], row["value"], row["unit"], row["source"])
 """
 from __future__ import annotations

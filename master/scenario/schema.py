@@ -182,9 +182,9 @@ TABLES: dict[str, dict[str, Callable | None]] = {
                  "tm_min": positive, "tm_max": positive, "to_min": positive, "to_max": positive,
                  "tracked": list_of(port_ref), "tolerance": positive},
     "outputs": {"record": list_of(port_ref), "record_step": positive, "format": one_of(*OUTPUT_FORMATS)},
-    "results": {"kind": text, "unbalance_parameter": port_ref, "speed_parameter": port_ref, "cycles": whole_positive,
-                # a case's own keys (cases/rundown: the spool components, the critical speeds of its crossings)
-                "spools": list_of(text), "critical_speeds_rpm": list_of(positive)},
+    # the generic keys; a scenario with a case (kind) may give the case's own keys too, which its case checks
+    # when the scenario is loaded (master/case.py check_results, the case's RESULTS_KEYS)
+    "results": {"kind": text, "level_parameter": port_ref, "speed_parameter": port_ref, "cycles": whole_positive},
 }
 COMPONENT = {"implementation": text, "fmu": text, "parameters": None, "step": positive,
              # FMUs only: start values of states / initial = "exact" variables (fmus/importer.py)
@@ -198,6 +198,11 @@ CONNECTION = {"from": port_ref, "to": port_ref, "average": one_of(*AVERAGES),
 INTERVAL = {"phase": text, "duration": positive, "cycles": positive, "step": positive}
 #: ``[schedule] cycle``: a constant period [s], or a speed / frequency output and its unit (master/scenario/cycle.py)
 CYCLE = {"period": positive, "signal": port_ref, "unit": text, "angle": port_ref}
+
+
+def did_you_mean(word: Any, known) -> str:
+    """`` (did you mean 'x'?)`` for the closest of ``known`` to ``word``, or an empty string."""
+    return _did_you_mean(word, known)
 
 
 def _did_you_mean(word: Any, known) -> str:
@@ -318,7 +323,11 @@ def check(data: Mapping[str, Any], source: str | Path | None = None, origins=Non
             raise c.fail(name, None, f"unknown table{_did_you_mean(name, TABLES)}; known: {', '.join(TABLES)}")
     for name in ("scenario", "algorithm", "schedule", "outputs", "results"):
         if name in data:
-            c.table(name, data[name], TABLES[name])
+            spec = TABLES[name]
+            if name == "results" and isinstance(data[name], Mapping) and data[name].get("kind"):
+                # the case's own keys are its case's to check (master/case.py): the generic ones are checked here
+                spec = {**spec, **{k: None for k in data[name] if k not in spec}}
+            c.table(name, data[name], spec)
     comps = data.get("components")
     if not comps:
         raise c.fail("components", None, "no components: a scenario needs at least one [components.NAME] table")
@@ -353,7 +362,7 @@ def check(data: Mapping[str, Any], source: str | Path | None = None, origins=Non
         _known_component(c, "outputs", "record", ref, names)
         if ref in data["outputs"]["record"][:i]:  # one dataset per signal: a second would collide in the file
             raise c.fail("outputs", "record", f"{ref!r} is listed twice")
-    for key in ("unbalance_parameter", "speed_parameter"):
+    for key in ("level_parameter", "speed_parameter"):
         ref = data.get("results", {}).get(key)
         if ref:
             _known_component(c, "results", key, ref, names)

@@ -4,7 +4,7 @@ A scenario's ``[templates]`` table names shipped templates (``scenarios/template
 instantiate each for::
 
     [templates]
-    bearing = ["0", "5"]      # bearing0 + damper0 + thermal0 and their connections, then the same for 5
+    bearing = ["A", "B"]      # bearingA + damperA + thermalA and their connections, then the same for B
     rubring = ["0", "5"]
 
 A template file holds ``[components.*]`` tables and a ``connections`` list whose names and string values carry
@@ -17,7 +17,7 @@ in the ids' order: ``"bearing{bearing}"``, ``"rotor.X_brg{bearing}"``.
 A scenario with ``[templates]`` reads the instantiated templates as a base of its own (one virtual file per
 template, read after its ``extends`` base: master/scenario/compose.py), so its own tables and the
 files that extend it change an instantiated component or connection as they would an inherited one
-(``[components.bearing5]``, ``remove_parameters``, ``remove_connections``). A file that gives ``[templates]``
+(``[components.bearingB]``, ``remove_parameters``, ``remove_connections``). A file that gives ``[templates]``
 again (``extends`` merges the table key by key, a list replaced) drops what its base's templates made and
 instantiates its own ids. The ``{NAME}`` entries are expanded last, with the composed ``[templates]``. A template
 name that is not shipped, an id that is not a string of letters, digits or ``_``, or a ``{NAME}`` of no template
@@ -100,7 +100,7 @@ def ids_of(templates: Any, where: str) -> dict[str, list[str]]:
 
 def instances(templates: Any, where: str) -> list[tuple[str, dict]]:
     """(template file, its components and connections for all its ids) per template of ``[templates]``: the
-    files a scenario with templates extends. Components kind by kind (bearing0, bearing5, damper0, damper5...),
+    files a scenario with templates extends. Components kind by kind (bearingA, bearingB, damperA, damperB...),
     connections id by id."""
     out = []
     made: dict[str, str] = {}

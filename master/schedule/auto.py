@@ -6,10 +6,10 @@ temperatures); TO intervals run until the thermal outputs that feed the mechanic
 ``drift_tolerance``, within min/max durations. The last stretch is one TM interval, where results are read.
 
 Non-stationary runs (a cycle that follows a speed signal, [schedule] cycle): a TM interval is not steady while
-the cycle's speed changes by more than ``speed_tolerance`` (default ``drift_tolerance``) over ``to_min`` (a rundown:
+the cycle's speed changes by more than ``speed_tolerance`` (default ``drift_tolerance``) over ``to_min`` (a spool running down:
 a held interval would skip that much of it; a steadiness test counted in turns of the cycle's angle sees a response
 that changes little from one turn to the next even through a critical speed, so this is the test that keeps a
-rundown coupled), and one that ends at ``tm_max`` without having become steady while the speed moved by more
+run-down coupled), and one that ends at ``tm_max`` without having become steady while the speed moved by more
 than half that tolerance over it is followed by another TM interval, not a TO one; a spool's
 speed is an output of a component stepped in TO intervals, so the drift test returns to TM when it has drifted by
 more than ``drift_tolerance``; a TO interval ends before a component's next scheduled event
@@ -122,7 +122,7 @@ class AutoSchedule(Schedule):
                     break
                 if not test.ended_steady and test.speed_change(sim) > 0.5 * self.speed_limit:
                     # not steady, and the cycle's speed moved by more than half the speed tolerance over the
-                    # interval (a rundown): no held interval yet, coupled again (a constant cycle never does)
+                    # interval (a spool running down): no held interval yet, coupled again (a constant cycle never does)
                     state["next"] = COUPLED
                 continue
             if state.pop("adjust", False):
@@ -191,7 +191,7 @@ class _SteadyTest(_StopTest):
         self.last = None
         self.steady = 0
         # the cycle's speed (a speed signal's): not steady while it changes by more than speed_tolerance over a
-        # minimal held interval (to_min), which would skip that much of a rundown; a constant cycle never does
+        # minimal held interval (to_min), which would skip that much of a speed change; a constant cycle never does
         self.speed_changing = False
         self.ended_steady = False
         self._period = (sim.t, sim.hold.cycle)

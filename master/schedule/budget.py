@@ -22,7 +22,7 @@ schedule is priced as all TM (an upper bound).
 
 A run estimated above ``LIMIT_S`` of wall time is refused unless forced (a run on the automatic schedule is not:
 its estimate, every step thermo-mechanical, is only an upper bound, often by a factor of a hundred where the
-thermal-only intervals carry the hours: a rundown's hour of windmilling); a schedule with a thermo-mechanical
+thermal-only intervals carry the hours: an hour of a slowly turning rotor); a schedule with a thermo-mechanical
 interval shorter than one communication step of a component, or than one base step, is refused always (the
 interval would be silently stretched to a step: a 1e-13 s "run" would report results of a millisecond).
 """

@@ -3,7 +3,7 @@
 A calibration SPEC (paths relative to the SPEC's folder)::
 
     [calibrate]
-    scenario = "blade_loss_2850"          # a shipped name or a path
+    scenario = "my_engine.toml"           # a shipped name or a path
     duration = 2.0                        # optional: the runs' duration in s (default: the scenario's)
     targets = "targets.csv"               # columns: case, result, value[, weight][, uncertainty][, holdout]
     residual = "log"                      # optional: "log" (log of ours / target) or "linear" ((ours - target) w)
@@ -11,9 +11,9 @@ A calibration SPEC (paths relative to the SPEC's folder)::
     diff_step = 0.02                      # optional: finite-difference step, a fraction of each parameter's range
     tolerance = 1e-4                      # optional: stop when the cost changes by less than this fraction
     [calibrate.cases.low]                 # optional named cases: --set style overrides; case "" = the scenario as is
-    "rotor.F_unbalance" = 712.0
+    "rotor.F_load" = 700.0
     [[calibrate.parameter]]
-    name = "damper0.k_spring"             # comp.param, as --set takes it
+    name = "damperA.k_spring"             # comp.param, as --set takes it
     lower = 3.0e6
     upper = 1.0e7
     start = 5.254e6                       # optional: default the scenario's value
@@ -22,14 +22,14 @@ A calibration SPEC (paths relative to the SPEC's folder)::
 A UQ SPEC::
 
     [uq]
-    scenario = "blade_loss_2850"
+    scenario = "my_engine.toml"
     duration = 2.0
     samples = 64
     sampler = "lhs"                       # "mc", "lhs" or "sobol" (Saltelli's scheme: samples x (2 D + 2) runs)
     seed = 1
-    results = ["bearings.0.whirl_amplitude_mm"]
+    results = ["bearings.A.whirl_amplitude_mm"]
     [[uq.parameter]]
-    name = "damper0.k_spring"
+    name = "damperA.k_spring"
     distribution = "normal"               # "uniform" (lower, upper), "normal" / "lognormal" (mean, std),
     mean = 5.254e6                        # "truncnormal" (mean, std, lower, upper)
     std = 2.6e5

@@ -10,8 +10,8 @@ It writes into ``out``:
 
 - ``samples.csv``: one row per sample: ``sample``, each parameter, each result, ``status``, ``wall_time_s``,
   ``error``, and ``recorded <comp.param>``: the value the run recorded of each sampled parameter and of every
-  component parameter bound to the same engine quantity (``damper0.clearance`` and
-  ``thermal0.damper_clearance`` together: master/scenario/engine.py);
+  component parameter bound to the same engine quantity (``damperA.clearance`` and
+  ``thermalA.damper_clearance`` together: master/scenario/engine.py);
 - ``uq.json``: per result (``results``): ``mean``, ``std``, ``p5``, ``p50``, ``p95``, each with its 95 %
   interval (``mean_ci``...; :func:`.statistics.summarize`), ``n``; ``sobol`` (first-order ``S1`` and, with the
   sobol sampler, total ``ST`` indices with their confidence half-widths: SALib), ``rank_correlation`` (Spearman)

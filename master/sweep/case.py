@@ -1,7 +1,7 @@
 """One case of a sweep: what it runs (:class:`Case`) and running it where it is sent (:func:`run_case`).
 
 A case is a scenario (a shipped name, a file or a :class:`~rotorcosim.master.scenario.build.Scenario`), the
-value of its level parameter (``[results] unbalance_parameter``; ``rotorcosim sweep --unbalance``), parameter
+value of its level parameter (its case's level, master/case.py; ``rotorcosim sweep --level``), parameter
 overrides (``comp.param`` -> value, checked as ``--set``'s), a duration and a schedule. :func:`run_case` runs it
 in a temporary folder of its own and returns its files as bytes, so that the process running it (a Dask worker,
 possibly on another machine) needs no access to the folder the results go to.
@@ -25,7 +25,8 @@ from typing import Any
 from rotorcosim.components.bounded_read import read_json
 from rotorcosim.master.api import check_run, load_scenario, simulate
 from rotorcosim.master.scenario.build import Scenario
-from rotorcosim.master.scenario.overrides import apply_set, apply_unbalance
+from rotorcosim.master import case as cases
+from rotorcosim.master.scenario.overrides import apply_set
 
 
 @dataclass
@@ -33,13 +34,14 @@ class Case:
     """One run of a sweep.
 
     ``name``: its folder's name under the sweep's folder (also the key of its results); ``scenario``: a shipped
-    name, a TOML/SSP file, or a Scenario; ``level``: the value of the scenario's level parameter (SI; None: the
+    name, a TOML/SSP file, or a Scenario (None: the default, :func:`rotorcosim.master.case.default_scenario`);
+    ``level``: the value of the scenario's level parameter (SI; None: the
     scenario's own); ``settings``: ``{"comp.param": value}`` overrides (a case with any is named
     ``<scenario>_<case name>`` in its results); ``duration`` [s] cuts the schedule (None: the scenario's);
     ``schedule``: ``"scenario"``/None, ``"auto"``, ``"monolithic"`` or a Timeline / AutoSchedule; ``dpi``: its
     figures' resolution (None: the default; not part of what the case computes)."""
     name: str
-    scenario: Any = "blade_loss"
+    scenario: Any = None
     settings: dict[str, Any] = field(default_factory=dict)
     level: float | None = None
     duration: float | None = None
@@ -49,11 +51,12 @@ class Case:
     def scenario_of(self) -> Scenario:
         """The scenario this case runs: its level, then its overrides, applied (each checked, as on the command
         line)."""
-        sc = self.scenario if isinstance(self.scenario, Scenario) else load_scenario(self.scenario)
+        sc = self.scenario if isinstance(self.scenario, Scenario) else load_scenario(
+            cases.default_scenario() if self.scenario is None else self.scenario)
         if self.level is not None:
             if isinstance(self.scenario, Scenario):
                 sc = sc.copy()   # the caller's scenario is left as it was
-            apply_unbalance(sc, self.level, self.settings)
+            cases.apply_level(sc, self.level, self.settings)
         if self.settings:
             sc = apply_set(sc, self.settings, origin="--set")
             sc.name = f"{sc.name}_{self.name}"
@@ -68,7 +71,8 @@ class Case:
     def definition(self) -> dict:
         """What the case runs, as JSON values (``sweep.json``'s ``definitions``): a ``--resume`` checks that the
         sweep it continues ran the same cases."""
-        sc = self.scenario.name if isinstance(self.scenario, Scenario) else str(self.scenario)
+        sc = self.scenario.name if isinstance(self.scenario, Scenario) else str(
+            cases.default_scenario() if self.scenario is None else self.scenario)
         return {"scenario": sc, "level": self.level, "settings": {k: _plain(v) for k, v in self.settings.items()},
                 "duration_s": self.duration, "schedule": self.schedule if isinstance(self.schedule, (str, type(None)))
                 else repr(self.schedule)}

@@ -44,6 +44,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any, Callable, Sequence
 
+from rotorcosim.master import case as case_
 from rotorcosim.master.schedule import budget
 from rotorcosim.master.sweep.case import Case, failed_summary, run_case
 from rotorcosim.master.sweep.folder import SweepFolder, named_os_error
@@ -122,11 +123,15 @@ def run_cases(cases: Sequence[Case], out, *, scheduler: str | None = None, worke
     prices = [c.check(force) for c in cases]
     est = _estimate(prices, scheduler, workers, serial, client, connect_timeout, force)
     definitions = {c.name: c.definition() for c in cases}
+    # sweep.csv's column of the level: the key its case's summaries report it under (master/case.py)
+    leveled = [c for c in cases if c.level is not None]
+    column = case_.scenario_level(leveled[0].scenario_of())[0].summary_key if leveled else case_.GENERIC.summary_key
     with SweepFolder(out, overwrite=overwrite, resume=resume, extra_files=extra_files) as folder:
         if say is not None:   # once the folder is taken (a refusal of it is the only line), before the first case
             say(budget.many_line(est, "sweep"))
-        return _Sweep(cases, folder, definitions, {**(info or {}), "estimate": est}, progress).run(
-            scheduler, workers, serial, client, connect_timeout, finish)
+        sweep = _Sweep(cases, folder, definitions, {**(info or {}), "estimate": est}, progress)
+        sweep.level_column = column
+        return sweep.run(scheduler, workers, serial, client, connect_timeout, finish)
 
 
 def _estimate(prices: list[dict], scheduler, workers, serial, client, connect_timeout, force) -> dict:
@@ -155,6 +160,7 @@ class _Sweep:
 
     def __init__(self, cases, folder: SweepFolder, definitions, info, progress):
         self.cases, self.folder, self.definitions, self.info, self.progress = cases, folder, definitions, info, progress
+        self.level_column = case_.GENERIC.summary_key
         self.summaries: dict[str, dict] = folder.complete_cases(definitions)
         self.status = {c.name: "complete" if c.name in self.summaries else "pending" for c in cases}
         self.hosts: dict[str, Any] = {c.name: None for c in cases}
@@ -232,7 +238,7 @@ class _Sweep:
                 raise
         try:
             extra = finish(self.folder.path, self.ordered()) if finish is not None else {}
-            _write_csv(self.folder.path / "sweep.csv", self.cases, self.ordered())
+            _write_csv(self.folder.path / "sweep.csv", self.cases, self.ordered(), self.level_column)
         except OSError as exc:   # every case is stored: a --resume writes the tables
             self.save("failed")
             raise named_os_error(exc, self.folder.path, "writing the sweep's tables") from None
@@ -474,10 +480,11 @@ def _raise_interrupt(signum, frame):
     raise KeyboardInterrupt(signal.Signals(signum).name)
 
 
-def _write_csv(path: Path, cases: list[Case], summaries: dict[str, dict]) -> None:
-    """One row per case: its parameters, then ``<result>_<group>`` for every numeric result of its summary's
-    ``bearings`` groups (a case's results by group), then its error."""
-    params = list(dict.fromkeys(["unbalance_N"] * any(c.level is not None for c in cases)
+def _write_csv(path: Path, cases: list[Case], summaries: dict[str, dict], level_column: str = "level") -> None:
+    """One row per case: its parameters (its level first, in the column ``level_column``), then
+    ``<result>_<group>`` for every numeric result of its summary's ``bearings`` groups (a case's results by
+    group), then its error."""
+    params = list(dict.fromkeys([level_column] * any(c.level is not None for c in cases)
                                 + [r for c in cases for r in c.settings]))
     results = list(dict.fromkeys(f"{key}_{brg}" for s in summaries.values()
                                  for brg, vals in s.get("bearings", {}).items() for key in vals
@@ -488,7 +495,7 @@ def _write_csv(path: Path, cases: list[Case], summaries: dict[str, dict]) -> Non
         w.writerow(["case", *params, *results, "error"])
         for c in cases:
             s = summaries[c.name]
-            row = [c.name] + [c.level if p == "unbalance_N" else c.settings.get(p, "") for p in params]
+            row = [c.name] + [c.level if p == level_column else c.settings.get(p, "") for p in params]
             flat = {f"{k}_{b}": v for b, vals in s.get("bearings", {}).items() for k, v in vals.items()}
             row += [flat.get(r, "") for r in results] + [s.get("error") or ""]
             w.writerow(row)

@@ -200,7 +200,7 @@ class SweepFolder:
 
 def named_os_error(exc: OSError, folder: Path, doing: str) -> OSError:
     """A full disk as :class:`DiskFullError` naming ``folder`` and what was being done (``doing``, e.g. "writing
-    table6.json"), telling to continue with --resume; any other error as an OSError saying ``doing`` too."""
+    summary.json"), telling to continue with --resume; any other error as an OSError saying ``doing`` too."""
     if exc.errno in (errno.ENOSPC, errno.EDQUOT):
         return DiskFullError(exc.errno, f"the disk holding {folder} is full ({doing}); free space and continue "
                                         "with --resume")

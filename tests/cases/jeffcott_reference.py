@@ -3,9 +3,11 @@ solve_ivp, RK45 at tight tolerances), written from the textbook equations, not f
 
     m x'' + c x' + k x = u (W^2 cos th + W' sin th),   m y'' + c y' + k y = u (W^2 sin th - W' cos th)
 
-with W(t) = W0 + a t, th(t) = W0 t + a t^2 / 2 (Genta, Dynamics of Rotating Systems, sec. 4.2: the unbalance
-u = m_u e turning at the angle th; its tangential force u W' is 90 deg ahead of the radial one when W' > 0).
-The run starts on the synchronous steady state at W0: x + i y = u W0^2 / (k - m W0^2 + i c W0) e^(i W0 t)."""
+with W(t) = W0 + a t, th(t) = W0 t + a t^2 / 2: the unbalance u = m_u e at the angle th, whose position
+e e^(i th) accelerates at e (i th'' - th'^2) e^(i th), pushes the shaft with u (W^2 - i W') e^(i th) (Genta, Dynamics
+of Rotating Systems, sec. 4.2): its tangential part u W' is 90 deg behind the radial one when W' > 0 (a run-up),
+ahead of it in a rundown. The run starts on the synchronous steady state at W0:
+x + i y = u W0^2 / (k - m W0^2 + i c W0) e^(i W0 t)."""
 from __future__ import annotations
 
 import math
@@ -14,7 +16,8 @@ import numpy as np
 
 
 def rundown(m, k, zeta, u, rpm0, rpm1, duration, samples=200_001):
-    """(t, speed [rev/min], orbit radius [m]) of the Jeffcott rotor along the linear ramp rpm0 -> rpm1."""
+    """(t, speed [rev/min], orbit radius [m]) of the Jeffcott rotor along the linear ramp rpm0 -> rpm1 (a rundown or
+    a run-up)."""
     c = 2.0 * zeta * math.sqrt(k * m)
     w0, w1 = rpm0 * math.pi / 30.0, rpm1 * math.pi / 30.0
     a = (w1 - w0) / duration

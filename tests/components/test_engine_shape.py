@@ -26,7 +26,17 @@ def _engine() -> dict:
     data, _ = fem.load_data(None)
     data = copy.deepcopy(data)
     data["pedestal"] = {"p1": {"mass": 2.0, "k": 1e8, "c": 100.0, "k_axial": 1e8}}
+    data["spool"]["pt"]["layers"] = [{"element": 5, "d_out_mm": 70.0, "d_in_mm": 66.0, "material": "rotor"}]
+    data["support"].append({"name": "seal", "a": ["pt", 10], "b": "ground", "speed_rpm": [5000.0, 10000.0],
+                            "kxx": [1e5, 2e5], "kyy": [1e5, 2e5], "kxy": [3e5, 4e5], "kyx": [-3e5, -4e5],
+                            "cxx": 500.0, "cyy": 500.0, "cxy": 10.0, "cyx": -10.0})
     return data
+
+
+def test_the_fuzzed_engine_itself_is_valid():
+    from rotorcosim.components.rotor.engine_check import problems
+
+    assert problems(_engine()) == []
 
 
 def _accepts(kind) -> set:
@@ -57,8 +67,13 @@ def _paths(value, kind, path):
     elif tag == "tables" and isinstance(value, dict) and kind[1] != "any":
         for name, x in value.items():
             yield from _paths(x, kind[1], path + (name,))
-    elif tag in ("array", "list") and isinstance(value, list) and value:
+    elif tag == "list" and isinstance(value, list) and value:
         yield from _paths(value[0], kind[1], path + (0,))
+    elif tag == "number|list" and isinstance(value, list) and value:
+        yield from _paths(value[0], kind[1], path + (0,))
+    elif tag == "array" and isinstance(value, list) and value:
+        for i in sorted({0, len(value) - 1}):           # the first and the last entry (the seal's table)
+            yield from _paths(value[i], kind[1], path + (i,))
     elif tag == "attach" and isinstance(value, dict):
         for k, x in value.items():
             sub = "number" if k == "oil_temperature_C" else es.ATTACH_ENTRY
@@ -91,7 +106,7 @@ CASES = _cases()
 def test_the_fuzz_covers_every_table_of_the_format():
     names = {_name(c.values[0]) for c in CASES}
     for table in ("engine", "calibration", "material.rotor", "damping", "spool.pt", "spool.pt.disks[0]",
-                  "support[0]", "pedestal.p1", "casing", "casing.hubs", "casing.mounts[0]", "attach",
+                  "spool.pt.layers[0]", "support[0]", "support[6].speed_rpm", "support[6].kxy", "pedestal.p1", "casing", "casing.hubs", "casing.mounts[0]", "attach",
                   "attach.bearing0", "attach.unbalance"):
         assert any(n == table or n.startswith(table + ".") or n.startswith(table + "[") for n in names), table
     assert len(CASES) > 250

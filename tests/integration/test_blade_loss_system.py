@@ -10,7 +10,8 @@ import h5py
 import numpy as np
 import pytest
 
-from rotorcosim.master.cli.run import apply_unbalance, execute, resolve
+from rotorcosim.master.cli.run import execute, resolve
+from rotorcosim.cases.blade_loss.results import apply_unbalance
 from rotorcosim.cases.blade_loss.results import RESULT_KEYS
 from rotorcosim.master.schedule import Interval, Timeline
 

@@ -10,7 +10,8 @@ jumps over the paper's 24 s TO intervals)."""
 import numpy as np
 import pytest
 
-from rotorcosim.master.cli.run import apply_unbalance, resolve
+from rotorcosim.master.cli.run import resolve
+from rotorcosim.cases.blade_loss.results import apply_unbalance
 from rotorcosim.master.scenario.build import build_simulation
 
 STEP = 1e-5

@@ -72,9 +72,8 @@ def _variant(tmp_path, old, new, source="rotor_example.toml"):
     ('["DiskElement_Disk 0"]', '["MagneticBearingElement_Disk 0"]', RossFileError,
      "is a MagneticBearingElement, which rotorcosim does not carry"),
     ("odr = 0.05", "odr = 0.06", RossImportError, "is tapered"),
-    ("kxx = [ 1000000.0,]", "kxx = [ 1000000.0, 2000000.0,]\nfrequency = [ 0.0, 1000.0,]", RossImportError,
-     "kxx depends on speed"),
-    ("kxy = [ 0,]", "kxy = [ 1000.0,]", RossImportError, "cross-coupled kxy is not carried"),
+    ("kxx = [ 1000000.0,]", "kxx = [ 1000000.0, 2000000.0,]", RossImportError, "but no matching frequency"),
+    ("mxx = [ 0,]", "mxx = [ 5.0,]", RossImportError, "added mass mxx is not carried"),
 ])
 def test_files_that_cannot_be_carried_are_named(tmp_path, old, new, error, message):
     with pytest.raises(error, match=message.replace("(", r"\(").replace(")", r"\)")):
@@ -86,6 +85,23 @@ def test_speed_dependent_coefficients_at_a_named_speed(tmp_path):
     p = _variant(tmp_path, "kxx = [ 1000000.0,]", "kxx = [ 1000000.0, 2000000.0,]\nfrequency = [ 0.0, 1000.0,]")
     e = from_ross(p, speed_rpm_coefficients=500.0 * 30 / 3.141592653589793)
     assert e["support"][0]["kxx"] == pytest.approx(1.5e6, rel=1e-12)
+
+
+def test_speed_dependent_and_cross_coupled_coefficients_are_carried(tmp_path):
+    """A bearing of coefficients over ROSS's frequency becomes a support with a table over speed_rpm (0 and
+    1000 rad/s = 9549.3 rev/min), and a cross-coupled one keeps its kxy; at a table's speed the engine has the
+    table's value."""
+    p = _variant(tmp_path, "kxx = [ 1000000.0,]", "kxx = [ 1000000.0, 2000000.0,]\nfrequency = [ 0.0, 1000.0,]")
+    e = from_ross(p)
+    s = e["support"][0]
+    assert s["speed_rpm"] == pytest.approx([0.0, 1000.0 * 30 / 3.141592653589793])
+    assert s["kxx"] == [1e6, 2e6] and s["kyy"] == 8e5
+    write_engine(e, tmp_path / "e.toml")
+    m = fem.load(tmp_path / "e.toml")
+    t = m.info["speed_supports"][0]
+    assert fem.support_matrices(t, 1000.0)[0][0, 0] == pytest.approx(2e6)
+    e = from_ross(_variant(tmp_path, "kxy = [ 0,]", "kxy = [ 1000.0,]"))
+    assert e["support"][0]["kxy"] == 1000.0 and "speed_rpm" not in e["support"][0]
 
 
 def test_import_ross_command(tmp_path, capsys):

@@ -12,7 +12,6 @@ import pytest
 
 from rotorcosim.components.rotor import critical, model as fem, response
 from rotorcosim.interop import from_ross, to_ross, write_engine
-from rotorcosim.interop.ross_import import RossImportError
 
 
 @pytest.fixture(scope="module")
@@ -63,11 +62,18 @@ def test_ross_to_rotorcosim_and_back_to_ross(example, rs):
     assert np.allclose(_ross_forward_rpm(back), _ross_forward_rpm(rotor), rtol=1e-6)
 
 
-def test_compressor_example_is_refused_by_name(rs):
-    """Its seals and bearings are speed-dependent and cross-coupled, and it has layered shaft sections: the
-    engine format carries none of them (format 1), so the import says which element stops it."""
-    with pytest.raises(RossImportError, match="layered section|cross-coupled|depends on speed"):
-        from_ross(rs.compressor_example())
+def test_compressor_example_live_imports_as_its_saved_file(rs):
+    """ROSS's compressor_example (layered sections, seals and a bearing with speed-dependent, cross-coupled
+    coefficients), live, gives the engine its saved file gives (whose critical speeds equal ROSS's:
+    test_ross_compressor.py)."""
+    from pathlib import Path
+
+    live = from_ross(rs.compressor_example())
+    saved = from_ross(Path(__file__).with_name("data") / "compressor_example.toml")
+    for e in (live, saved):
+        e["engine"].pop("name"), e["engine"].pop("source")
+    assert live["spool"]["shaft"]["layers"] == saved["spool"]["shaft"]["layers"]
+    assert live == saved
 
 
 def test_to_ross_gives_rosss_critical_speeds_of_the_linearised_engine(tmp_path):
@@ -88,3 +94,17 @@ def test_to_ross_gives_rosss_critical_speeds_of_the_linearised_engine(tmp_path):
 def test_to_ross_refuses_a_casing_by_name():
     with pytest.raises(ValueError, match="casing shell"):
         to_ross(fem.DEFAULT_FILE)
+
+
+def test_compressor_example_back_to_ross_has_rosss_matrices_at_every_speed(rs):
+    """The way back for layered sections and coefficient tables: to_ross of the imported compressor has ROSS's
+    own mass, gyroscopic, stiffness and damping matrices of the original, the bearings' and seals' coefficients
+    taken at several speeds (ROSS's assembly on both sides)."""
+    r = rs.compressor_example()
+    b = to_ross(from_ross(r))
+    assert b.ndof == r.ndof and len(b.shaft_elements) == len(r.shaft_elements)
+    for A, B in ((b.M(), r.M()), (b.G(), r.G())):
+        assert np.allclose(A, B, rtol=0, atol=1e-12 * np.abs(B).max())
+    for w in (300.0, 1000.0, 1500.0, 2200.0):                 # rad/s, within and beyond the tables' speeds
+        for A, B in ((b.K(w), r.K(w)), (b.C(w), r.C(w))):
+            assert np.allclose(A, B, rtol=0, atol=1e-10 * np.abs(B).max())

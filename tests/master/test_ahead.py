@@ -15,7 +15,8 @@ from rotorcosim.components.damper import fast, table_cache
 from rotorcosim.components.damper.component import FastDamper
 from rotorcosim.master.compiled import ahead
 from rotorcosim.master.compiled import loop_ops
-from rotorcosim.master.cli.run import apply_unbalance, resolve
+from rotorcosim.master.cli.run import resolve
+from rotorcosim.cases.blade_loss.results import apply_unbalance
 from rotorcosim.master.scenario.build import build_simulation
 from rotorcosim.master.schedule import Interval, Timeline
 

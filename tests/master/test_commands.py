@@ -70,8 +70,8 @@ def test_sweep_on_local_dask_cluster_matches_serial(tmp_path):
     b = sweep([50.0, 100.0], tmp_path / "serial", "toy_thermomechanical", duration=5.0, serial=True)
     assert not a["errors"] and not b["errors"]
     for f in ("50", "100"):
-        sa = json.loads((tmp_path / "dask" / f"F_{f}" / "summary.json").read_text())
-        sb = json.loads((tmp_path / "serial" / f"F_{f}" / "summary.json").read_text())
+        sa = json.loads((tmp_path / "dask" / f"level_{f}" / "summary.json").read_text())
+        sb = json.loads((tmp_path / "serial" / f"level_{f}" / "summary.json").read_text())
         assert sa["final_outputs"] == sb["final_outputs"]
     assert (tmp_path / "dask" / "sweep.csv").exists()
     # the toy scenario has no case: the paper's Table 5 is not written for it (the blade-loss sweeps' is checked in

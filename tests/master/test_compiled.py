@@ -8,7 +8,8 @@ import numpy as np
 import pytest
 
 from rotorcosim.components.bearing.component import BallBearing
-from rotorcosim.master.cli.run import apply_unbalance, resolve
+from rotorcosim.master.cli.run import resolve
+from rotorcosim.cases.blade_loss.results import apply_unbalance
 from rotorcosim.master.compiled.choice import CompiledUnavailable
 from rotorcosim.master.observer.observers import Recorder
 from rotorcosim.cases.blade_loss.results import observers as result_observers

@@ -70,3 +70,20 @@ def test_the_advice_names_the_interval_and_what_to_change():
     note = rep.advice(4.0, 2.0)
     assert "0.3-5 s" in note and "node.T" in note and "2.35 s instead of 4.7 s" in note
     assert "drift_tolerance" in note
+
+
+def test_a_run_above_its_tolerance_says_which_interval_and_what_to_change():
+    """The toy under the automatic schedule with a tolerance below what its first held interval (to_min long)
+    can reach: summary.json's hold.advice names that interval and the settings to change (a scenario without a
+    case: the hold's own estimate); at a tolerance above the estimate there is none."""
+    sc = rotorcosim.load_scenario("toy_thermomechanical")
+    sc.schedule["tolerance"] = 0.5
+    s = rotorcosim.simulate(sc, schedule="auto", duration=12.0, figures=False).summary
+    hold = s["hold"]
+    assert hold["estimated_error_pct"] > 0.5
+    first = hold["intervals"][0]
+    assert f"{first['t_start']:.6g}-{first['t_end']:.6g} s" in hold["advice"]
+    assert "to_min" in hold["advice"] and "drift_tolerance" in hold["advice"]
+    sc.schedule["tolerance"] = 99.0
+    again = rotorcosim.simulate(sc, schedule="auto", duration=12.0, figures=False).summary["hold"]
+    assert again["estimated_error_pct"] < 99.0 and "advice" not in again

@@ -6,7 +6,8 @@ import pytest
 
 from rotorcosim.components.rotor import model as fem
 from rotorcosim.cases.blade_loss import linear_engine
-from rotorcosim.master.cli.run import apply_unbalance, execute, resolve
+from rotorcosim.master.cli.run import execute, resolve
+from rotorcosim.cases.blade_loss.results import apply_unbalance
 
 
 @pytest.fixture(scope="module")

@@ -8,7 +8,8 @@ import numpy as np
 import pytest
 
 from rotorcosim.master.compiled import runner as compiled
-from rotorcosim.master.cli.run import apply_unbalance, resolve
+from rotorcosim.master.cli.run import resolve
+from rotorcosim.cases.blade_loss.results import apply_unbalance
 from rotorcosim.master.observer.observers import Recorder
 from rotorcosim.cases.blade_loss.results import observers as result_observers
 from rotorcosim.master.scenario.cycle import cycle_of

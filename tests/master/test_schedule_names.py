@@ -61,6 +61,7 @@ def test_a_sweep_lists_the_files_it_wrote(tmp_path, capsys, monkeypatch):
     lines = capsys.readouterr().out.splitlines()
     assert lines[0].endswith(f"; levels.csv, sweep.csv and sweep.json written in {out}"), lines
     assert lines[1] == f"score 1 in {out}"
-    assert json.loads((out / "sweep.json").read_text())["paper_score"] == {"cells": 1}
+    # a case that declares no SCORE_KEY: the score under "score" (the blade-loss case's: "paper_score")
+    assert json.loads((out / "sweep.json").read_text())["score"] == {"cells": 1}
     # the case's files are a sweep's: --overwrite clears them
     assert main([*argv, "--out", str(out), "--overwrite"]) == 0

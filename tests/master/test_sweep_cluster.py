@@ -81,16 +81,16 @@ def test_sweep_on_separate_scheduler_and_workers(dask_cluster, tmp_path):
     for name in info["cases"]:
         folder = out / name
         assert (folder / "summary.json").exists() and (folder / "timeseries.h5").exists(), name
-    a = json.loads((out / "F_50_node.C=20" / "summary.json").read_text())
-    b = json.loads((tmp_path / "serial" / "F_50_node.C=20" / "summary.json").read_text())
+    a = json.loads((out / "level_50_node.C=20" / "summary.json").read_text())
+    b = json.loads((tmp_path / "serial" / "level_50_node.C=20" / "summary.json").read_text())
     assert a["final_outputs"] == b["final_outputs"]
-    assert ref["cases"] == ["F_50_node.C=20"]
+    assert ref["cases"] == ["level_50_node.C=20"]
     # the workers ran in their own folders and left no case files there or in the client's working folder
     for i in range(2):
         leftovers = [p for p in (root / f"worker{i}").rglob("rotorcosim-case-*")]
         assert not leftovers, leftovers
     rows = (out / "sweep.csv").read_text().splitlines()
-    assert rows[0].startswith("case,unbalance_N,node.C,") and len(rows) == 5
+    assert rows[0].startswith("case,level,node.C,") and len(rows) == 5   # the toy's generic level column
 
 
 def test_unreachable_scheduler_is_a_clear_error(tmp_path):

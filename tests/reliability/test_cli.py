@@ -30,7 +30,7 @@ def one_line_error(err: str) -> str:
     (["--out", "{dir}/o", "--checkpoint-every", "0"], 2, "--checkpoint-every must be a positive"),
     (["--out", "{dir}/o", "--step-timeout", "-1"], 2, "--step-timeout must be a number of seconds >= 0"),
     (["--out", "{dir}/o", "--overwrite", "--resume"], 2, "exclude each other"),
-    (["--out", "{dir}/o", "--unbalance", "nan"], 2, "--unbalance must be a finite force"),
+    (["--out", "{dir}/o", "--unbalance", "nan"], 2, "--unbalance must be a finite level >= 0"),
     # was "unexpected OverflowError: cannot convert float infinity to integer" (exit 1)
     (["--out", "{dir}/o", "--duration", "1e308"], 2, "the schedule asks for inf steps, beyond the 9.01e+15"),
     (["--out", "{dir}/o", "--schedule", "monolithic", "--duration", "1e14", "--force"], 2, "asks for 1e+17 steps"),
@@ -300,7 +300,7 @@ def test_negative_numbers_in_any_notation_are_values(capsys):
     rc, _, err = call(capsys, "run", "toy_thermomechanical", "--duration", "-inf", "--out", "x")
     assert rc == 2 and "--duration must be a positive number of seconds, got -inf" in one_line_error(err)
     rc, _, err = call(capsys, "run", "toy_thermomechanical", "--unbalance", "-1E3", "--out", "x")
-    assert rc == 2 and "--unbalance must be a finite force >= 0 N, got -1000.0" in one_line_error(err)
+    assert rc == 2 and "--unbalance must be a finite level >= 0, got -1000.0" in one_line_error(err)   # the toy's
 
 
 # -- one convention: SCENARIO positional (--scenario its alias), output --out (the export commands' older
@@ -393,7 +393,7 @@ def test_sweep_takes_the_scenario_as_positional(tmp_path, capsys):
     assert rc == 0, err
     import json
 
-    summary = json.loads((tmp_path / "s" / "F_1" / "summary.json").read_text())
+    summary = json.loads((tmp_path / "s" / "level_1" / "summary.json").read_text())
     assert summary["scenario"] == "toy_thermomechanical_1"   # the toy at the level 1 N, not the default
 
 

@@ -701,7 +701,7 @@ def test_the_unbalance_given_twice(tmp, command):
             ["sweep", "--scenario", "toy_thermomechanical", "--serial", "--quiet", "--duration", "0.05",
              "--unbalance", "10", "--set", "osc.F0=5,6"]) + ["--out", str(out)]
     line = refused(tmp, argv)
-    assert "--unbalance and --set osc.F0=... both give the unbalance force" in line, line
+    assert "--unbalance and --set osc.F0=... both give the level (osc.F0" in line, line
     assert not out.exists()
 
 
@@ -806,15 +806,15 @@ def test_a_sweep_is_never_mixed_with_a_previous_one(tmp):
     assert cli([*SWEEP, "--unbalance", "1,2", "--out", str(out)])[0] == 0
     before = sorted(p.name for p in out.iterdir())
     line = refused(tmp, [*SWEEP, "--unbalance", "3", "--out", str(out)])
-    assert "is not empty (F_1, F_2, sweep.csv, sweep.json): results are never mixed" in line, line
+    assert "is not empty (level_1, level_2, sweep.csv, sweep.json): results are never mixed" in line, line
     assert sorted(p.name for p in out.iterdir()) == before
     assert cli([*SWEEP, "--unbalance", "3", "--out", str(out), "--overwrite"])[0] == 0
     # the toy has no case: no case tables beside the sweep's own files
-    assert sorted(p.name for p in out.iterdir()) == ["F_3", "sweep.csv", "sweep.json"]
-    (out / "F_3" / "notes.txt").write_text("mine")
+    assert sorted(p.name for p in out.iterdir()) == ["level_3", "sweep.csv", "sweep.json"]
+    (out / "level_3" / "notes.txt").write_text("mine")
     line = refused(tmp, [*SWEEP, "--unbalance", "4", "--out", str(out), "--overwrite"])
-    assert "holds files that are not a sweep's results (F_3): not clearing it" in line, line
-    assert (out / "F_3" / "notes.txt").read_text() == "mine"
+    assert "holds files that are not a sweep's results (level_3): not clearing it" in line, line
+    assert (out / "level_3" / "notes.txt").read_text() == "mine"
 
 
 @pytest.mark.parametrize("case", ["annotation phases unknown", "model identifier climbing out", "default step zero",

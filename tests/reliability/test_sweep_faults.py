@@ -162,7 +162,7 @@ def test_ctrl_c_stops_cleanly_and_resume_reruns_only_the_rest_bit_identical(tmp_
     out, ref = tmp_path / "out", tmp_path / "ref"
     args = ["sweep", sc, "--unbalance", "1,2,3,4", "--duration", "0.05", "--quiet"]
     p = start(*args, "--workers", "2", "--out", out)
-    wait_for(lambda: any(out.glob("F_*")), what="the first case")
+    wait_for(lambda: any(out.glob("level_*")), what="the first case")
     os.killpg(p.pid, signal.SIGINT)
     _, err = p.communicate(timeout=120)
     assert p.returncode == 130, err
@@ -182,10 +182,10 @@ def test_ctrl_c_stops_cleanly_and_resume_reruns_only_the_rest_bit_identical(tmp_
     assert cli(*args, "--serial", "--out", ref).returncode == 0
     assert {n: (out / n / "timeseries.h5").stat().st_mtime_ns for n in kept} == stamps   # not run again
     assert state(out)["status"] == "complete"
-    for n in ("F_1", "F_2", "F_3", "F_4"):
+    for n in ("level_1", "level_2", "level_3", "level_4"):
         assert same_results.differences(out / n, ref / n) == [], n
     assert (out / "sweep.csv").read_text() == (ref / "sweep.csv").read_text()
-    assert_kept(out, ["F_1", "F_2", "F_3", "F_4"])
+    assert_kept(out, ["level_1", "level_2", "level_3", "level_4"])
 
 
 def test_resume_refuses_another_sweep(tmp_path, capsys):
@@ -194,7 +194,7 @@ def test_resume_refuses_another_sweep(tmp_path, capsys):
     base = ["sweep", str(sc), "--duration", "0.05", "--serial", "--quiet", "--out", str(out)]
     assert main([*base, "--unbalance", "1,2"]) == 0
     assert main([*base, "--unbalance", "1,3", "--resume"]) == 2
-    assert "holds a sweep of other cases (F_1, F_2): give the same levels" in capsys.readouterr().err
+    assert "holds a sweep of other cases (level_1, level_2): give the same levels" in capsys.readouterr().err
     assert main([*base[:2], "--duration", "0.04", *base[4:], "--unbalance", "1,2", "--resume"]) == 2
     assert "give the same scenario, duration and schedule" in capsys.readouterr().err
     assert main([*base, "--unbalance", "1,2", "--resume"]) == 0   # nothing left to run: complete at once
@@ -209,7 +209,7 @@ def test_full_disk_is_named_and_the_stored_cases_kept(tmp_path, monkeypatch, cap
     real = pathlib.Path.write_bytes
 
     def full(self, data):
-        if ".F_2.part" in str(self):
+        if ".level_2.part" in str(self):
             raise OSError(errno.ENOSPC, "No space left on device", str(self))
         return real(self, data)
 
@@ -217,14 +217,14 @@ def test_full_disk_is_named_and_the_stored_cases_kept(tmp_path, monkeypatch, cap
     argv = ["sweep", str(sc), "--unbalance", "1,2,3", "--duration", "0.05", "--serial", "--quiet", "--out", str(out)]
     assert main(argv) == 1
     err = capsys.readouterr().err
-    assert err.splitlines()[0] == (f"rotorcosim sweep: error: the disk holding {out} is full (storing case F_2); "
+    assert err.splitlines()[0] == (f"rotorcosim sweep: error: the disk holding {out} is full (storing case level_2); "
                                    "free space and continue with --resume"), err
-    assert_kept(out, ["F_1"])
-    assert not (out / "F_2").exists() and not (out / "F_3").exists()
-    assert state(out)["case_status"] == {"F_1": "complete", "F_2": "interrupted", "F_3": "pending"}
+    assert_kept(out, ["level_1"])
+    assert not (out / "level_2").exists() and not (out / "level_3").exists()
+    assert state(out)["case_status"] == {"level_1": "complete", "level_2": "interrupted", "level_3": "pending"}
     monkeypatch.setattr(pathlib.Path, "write_bytes", real)
     assert main([*argv, "--resume"]) == 0
-    assert_kept(out, ["F_1", "F_2", "F_3"])
+    assert_kept(out, ["level_1", "level_2", "level_3"])
 
 
 def test_full_disk_from_the_api_is_a_disk_full_error(tmp_path, monkeypatch):
@@ -248,7 +248,7 @@ def test_a_second_sweep_into_the_same_folder_is_refused_and_no_lock_is_left(tmp_
         assert (out / LOCK).exists()   # the refused sweep left the holder's lock alone
     assert not out.exists() or [p.name for p in out.iterdir()] == []
     assert main(argv) == 0
-    assert sorted(p.name for p in out.iterdir()) == ["F_1", "sweep.csv", "sweep.json"]   # no lock file left
+    assert sorted(p.name for p in out.iterdir()) == ["level_1", "sweep.csv", "sweep.json"]   # no lock file left
 
 
 def test_a_second_sweep_at_once_from_another_process(tmp_path):
@@ -268,7 +268,7 @@ def test_a_second_sweep_at_once_from_another_process(tmp_path):
     assert r.returncode == 2
     assert f"another sweep is writing into this folder (process {first.pid})" in r.stderr.splitlines()[0]
     assert first.returncode == 0
-    assert_kept(out, ["F_1", "F_2"])
+    assert_kept(out, ["level_1", "level_2"])
 
 
 def _dir(root: Path, name: str) -> Path:
@@ -292,6 +292,6 @@ def test_a_serial_sweep_stops_at_a_signal_during_a_case(tmp_path, sig):
     assert p.returncode == 130, err
     assert err.splitlines()[0].startswith("rotorcosim sweep: interrupted: "), err
     s = state(out)
-    assert s["status"] == "interrupted" and s["case_status"]["F_3"] == "pending", s["case_status"]
-    assert s["case_status"]["F_2"] in ("complete", "interrupted")
+    assert s["status"] == "interrupted" and s["case_status"]["level_3"] == "pending", s["case_status"]
+    assert s["case_status"]["level_2"] in ("complete", "interrupted")
     assert_kept(out, [n for n, st in s["case_status"].items() if st == "complete"])

@@ -1,0 +1,116 @@
+"""The critical speeds a rundown's resonance peaks are labelled with.
+
+For an engine with co-simulated bearings, the linearised engine of the run (cases/blade_loss/linear_engine.py:
+the ball contacts at the preloaded rest, the journal body, the O-ring, the film linearised about the centred
+journal): its forward synchronous critical speeds (undamped, rotorcosim.components.rotor.critical) and, at given
+film temperatures, its damped critical speeds (cases/blade_loss/response_peaks.py: the speeds at which its
+unbalance response peaks, per bearing id). Each damped critical speed is one mode's: the one whose undamped
+critical speed is nearest to it (the films move the engine's peaks 5-12 %, less than half the distance between
+its modes). The film's damping follows the oil's viscosity, so the damped speeds are computed per set of film
+temperatures (each bearing's damper its own, rounded to ``TEMPERATURE_STEP_C``), once each per run; the search
+covers the speeds of the peaks found (``prepare``) widened by ``SEARCH_MARGIN``. All of it is kept per process
+(the runs of a sweep or of a comparison share it).
+
+A test rotor without co-simulated bearings (the Jeffcott check case) has the scenario's ``[results]
+critical_speeds_rpm`` (undamped; no damped speeds).
+"""
+from __future__ import annotations
+
+import math
+
+#: film temperatures [C] are rounded to this before the damped critical speeds are computed (and cached): the
+#: paper engine's damped speeds move by ~40 rev/min per C (docs/explanation/rundown.md), 10 per 0.25 C
+TEMPERATURE_STEP_C = 0.25
+#: the damped search spans the peaks' speeds divided and multiplied by this (a peak's mode lies within it)
+SEARCH_MARGIN = 1.3
+#: how many forward critical speeds of the linear engine are listed
+COUNT = 8
+#: the damped search's range is widened to multiples of this [rev/min]
+RANGE_STEP_RPM = 500.0
+#: per process: (model digest, reference speed, bearing and damper specifications, top speed) -> (supports,
+#: undamped critical speeds, damped ones per (range, film temperatures))
+_ENGINES: dict[tuple, tuple] = {}
+KELVIN = 273.15
+
+
+class ScenarioModes:
+    """The scenario's critical speeds, undamped only."""
+
+    def __init__(self, undamped):
+        self.undamped = sorted(float(c) for c in undamped)
+
+    def prepare(self, lo_rpm: float, hi_rpm: float) -> None:
+        """Nothing to prepare."""
+
+    def damped(self, temps: dict) -> dict:
+        """No damped critical speeds."""
+        return {}
+
+
+class EngineModes:
+    """The linearised engine's critical speeds (module docstring): ``undamped`` [rev/min], ``damped(temps)``: per
+    bearing id, (damped, undamped) pairs [rev/min] at the film temperatures ``temps`` (bearing id -> C)."""
+
+    def __init__(self, sc, rotor, dampers: dict, max_rpm: float):
+        from rotorcosim.cases.blade_loss import linear_engine
+        from rotorcosim.components.rotor import critical
+
+        self.full = rotor.full_model()
+        self.dampers = dampers
+        self.ref_rpm = float(rotor.p["omega_pt"]) * 30.0 / math.pi
+        # per process, the linear engine of a model and of the bearings' and dampers' specifications (a sweep's
+        # or a comparison's runs share it)
+        specs = repr(sorted((n, c.implementation, sorted(c.parameters.items())) for n, c in sc.components.items()
+                            if n.startswith(("bearing", "damper"))))
+        self._key = (self.full.digest, self.ref_rpm, specs, max_rpm)
+        if self._key not in _ENGINES:
+            sup = linear_engine.supports(sc, data=self.full.data)
+            crit = critical.synchronous_critical_speeds(self.full, sup, n=COUNT, max_rpm=max_rpm)
+            _ENGINES[self._key] = (sup, [float(c) for c in crit["forward_synchronous_rpm"]], {})
+        self.sup, self.undamped, self._cache = _ENGINES[self._key]
+        self.range = None
+
+    def prepare(self, lo_rpm: float, hi_rpm: float) -> None:
+        """Search the damped critical speeds over [lo / SEARCH_MARGIN, hi * SEARCH_MARGIN] [rev/min], widened to
+        whole RANGE_STEP_RPM (runs whose peaks differ a little share the search)."""
+        self.range = (math.floor(lo_rpm / SEARCH_MARGIN / RANGE_STEP_RPM) * RANGE_STEP_RPM,
+                      math.ceil(hi_rpm * SEARCH_MARGIN / RANGE_STEP_RPM) * RANGE_STEP_RPM)
+
+    def damped(self, temps: dict) -> dict:
+        from rotorcosim.cases.blade_loss import linear_engine, response_peaks
+
+        step = TEMPERATURE_STEP_C
+        rounded = {k: round(float(t) / step) * step for k, t in temps.items() if math.isfinite(t)}
+        key = (self.range, tuple(sorted(rounded.items())))
+        out = self._cache.get(key)
+        if out is None:
+            sup = {}
+            for h, s in self.sup.items():
+                k = h[1:]
+                s = dict(s)
+                if k in rounded and k in self.dampers:
+                    s["c_film"] = linear_engine.film_damping(self.dampers[k], rounded[k])
+                    s["oil_temperature_C"] = rounded[k]
+                sup[h] = s
+            lo, hi = self.range or (0.5 * self.undamped[0], 1.5 * self.undamped[-1])
+            peaks = response_peaks.damped_critical_speeds(self.full, sup, lo, hi, self.ref_rpm)
+            out = {k: [(d, min(self.undamped, key=lambda u: abs(math.log(d / u)))) for d in v]
+                   for k, v in peaks.items()}
+            self._cache[key] = out
+        return out
+
+
+def modes_of(sc, sim, locations: dict):
+    """The critical speeds of a run: the linearised engine's when the run has co-simulated bearings the engine
+    file attaches (``locations`` keyed by bearing id), else the scenario's ``critical_speeds_rpm``."""
+    comps = sim.system.components
+    given = sc.extra.get("results", {}).get("critical_speeds_rpm", [])
+    if "disk" in locations or "rotor" not in comps:
+        return ScenarioModes(given)
+    dampers = {k: comps[f"damper{k}"] for k in locations if f"damper{k}" in comps}
+    top = float(comps["rotor"].p["omega_pt"]) * 30.0 / math.pi
+    try:
+        return EngineModes(sc, comps["rotor"], dampers, 2.0 * top)
+    except ValueError:
+        # an engine the linear engine cannot take (no damper for an attached bearing): the scenario's speeds
+        return ScenarioModes(given)
