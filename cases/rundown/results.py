@@ -436,9 +436,11 @@ def result_paths(sc) -> list[str]:
     ending in a dot: any path below it, the crossings found being known only after the run)."""
     out = []
     for sp in _spools(sc):
-        out += [f"speeds.{sp}.{k}" for k in ("start_rpm", "end_rpm", "t_fuel_cut_s", "stopped",
-                                                             "inertia_kgm2")]
-        out += [f"energy.{sp}.{k}" for k in ("inertia_kg_m2", "kinetic_energy_lost_J", "residual_pct")]
+        out += [f"speeds.{sp}.{k}" for k in ("inertia_kgm2", "start_rpm", "end_rpm", "t_fuel_cut_s", "stopped")]
+        # energy.py's summary, held equal to it by tests/cases/test_result_paths.py
+        out += [f"energy.{sp}.{k}" for k in ("inertia_kg_m2", "kinetic_energy_lost_J", "residual_J", "residual_pct",
+                                             "residual_of_lost_pct", "rub_dissipated_J", "rub_whirl_share_J",
+                                             "drag_dissipated_J")]
         out += [f"energy.{sp}.work_J.{k}" for k in ("drive", "drag", "rub", "aero")]
     out.append("crossings.")
     if _case_blade_loss(sc):
