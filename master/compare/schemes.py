@@ -282,7 +282,9 @@ def _compare(out, sc, plans, runs, kept, repeats, tabulate, table_name, quiet, f
         s, sch = plans[kind]
         # figures from the time series after both timed runs; a run recorded otherwise (CSV, nothing recorded)
         # draws its own in process, after its timing and without workers (api.simulate)
-        draw_later = figures and s.outputs.get("format", "h5") == "h5" and bool(s.outputs.get("record"))
+        # (a scenario without a case draws none)
+        draw_later = figures and s.outputs.get("format", "h5") == "h5" and bool(s.outputs.get("record")) \
+            and bool(s.extra.get("results", {}).get("kind"))
         if draw_later and not (kind in kept and kept[kind].get("figures")):
             later[kind] = s
         if kind in kept:
