@@ -281,6 +281,7 @@ def axisymmetric_preload_offset(g: BearingGeometry, Fc: float, z_guess: float) -
     else:
         raise PreloadSolveError(f"no axial offset of the inner race carries the preload {g.preload:g} N at a ball "
                                 f"centrifugal force of {Fc:.4g} N (searched {lo:.3g} to {hi:.3g} m)")
+    seat[0] = None           # brentq's own first evaluations start cold, as they always have (same bits)
     return float(brentq(excess, lo, hi, xtol=1e-18, rtol=1e-14))
 
 
