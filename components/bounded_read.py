@@ -11,7 +11,7 @@ naming the file, the size met and the limit.
 The caps lie far above anything the project reads legitimately (measured: the shipped scenario files 0.4-7 kB,
 the shipped engine file 5 kB, the paper study's SPECs 2 kB and its targets 6 kB, a run's summary.json 9-28 kB, an
 exported FMU's modelDescription.xml 21 kB) and low enough that a refusal costs little (an FMU declaring a 2 GiB
-modelDescription.xml: refused in under 3 s at ~60 MB of memory, tests/reliability/test_bounded_read.py):
+modelDescription.xml: refused in 3-5 s at ~60 MB of memory, tests/reliability/test_bounded_read.py):
 
 >>> import tempfile, pathlib
 >>> p = pathlib.Path(tempfile.mkdtemp()) / "big.toml"
@@ -35,6 +35,9 @@ MAX_TEXT_BYTES = 16 * MiB
 MAX_TABLE_BYTES = 64 * MiB
 #: a run's checkpoint, read back on --resume
 MAX_CHECKPOINT_BYTES = 256 * MiB
+#: a dataset of a run's time series read back whole (a 2-minute monolithic run records ~1.2 million rows, ~0.5 GB
+#: over all its datasets, the largest ~90 MB): a file made to declare more is refused before the read
+MAX_DATASET_BYTES = 1024 * MiB
 #: an archive entry read into memory (an FMU's modelDescription.xml, an SSP's SystemStructure.ssd)
 MAX_ENTRY_BYTES = 64 * MiB
 #: entries an archive may hold, and bytes it may extract in all (a zip bomb must not fill the disk): our FMUs
@@ -65,6 +68,13 @@ def size_text(n: int) -> str:
 def _refuse(where: str, size: str, limit: int, what: str) -> TooLarge:
     article = "an" if what[:1].lower() in "aeiou" else "a"
     return TooLarge(f"{where}: {size}, above the limit of {size_text(limit)} {article} {what} may have here")
+
+
+def check_size(size: int, where: str, what: str, limit: int) -> None:
+    """Refuse ``size`` bytes of ``what`` at ``where`` beyond ``limit``, for a reader that knows the size before
+    it reads (an HDF5 dataset's shape)."""
+    if size > limit:
+        raise _refuse(where, size_text(int(size)), limit, what)
 
 
 def read_bytes(path: str | os.PathLike, what: str, limit: int = MAX_TEXT_BYTES) -> bytes:

@@ -27,10 +27,11 @@ class Plausibility(Observer):
     def start(self, sim, schedule) -> None:
         if self.lines:  # a resumed run warned when it started
             return
-        t_end = sim.t + schedule.duration
+        duration = getattr(schedule, "duration", None)   # every schedule of the master has one; a caller's may not
         for comp in sim.system.components.values():
             self.lines += plausibility.warnings_of(comp)
-            self.lines += plausibility.event_warnings(comp, t_end)
+            if duration is not None:
+                self.lines += plausibility.event_warnings(comp, sim.t + duration)
         for line in self.lines:
             print(f"{self.label}: warning: {line}", file=sys.stderr)
 

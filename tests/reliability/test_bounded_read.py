@@ -148,3 +148,23 @@ def test_count_caps_of_a_scenario_are_named(tmp_path, capsys):
         assert not (tmp_path / "out").exists()
     assert main(["run", str(tmp_path / f"s{MAX_EXTENDS - 1}.toml"), "--duration", "0.01", "--no-figures", "--quiet",
                  "--out", str(tmp_path / "ok")]) == 0   # a chain within the limit runs
+
+
+def test_a_time_series_declaring_a_huge_dataset_is_refused_before_the_read(tmp_path):
+    """An HDF5 file of 2 kB may declare a dataset of 18 GiB (chunked, nothing written): reading it back whole
+    would allocate all of it. The reader of a run's series refuses it by its declared size."""
+    import h5py
+
+    from rotorcosim.components.bounded_read import MAX_DATASET_BYTES
+    from rotorcosim.master.observer.series import SeriesFile
+
+    p = tmp_path / "timeseries.h5"
+    with h5py.File(p, "w") as f:
+        f.create_dataset("time", data=[0.0, 1.0])
+        f.create_dataset("rotor.X", shape=(2 ** 28, 9), dtype="f8", chunks=(1024, 9))
+    assert p.stat().st_size < 4096
+    s = SeriesFile(p)
+    assert list(s["time"]) == [0.0, 1.0]
+    with pytest.raises(TooLarge, match=r"dataset 'rotor.X': 18432 MiB, above the limit of 1024 MiB"):
+        s["rotor.X"]
+    assert MAX_DATASET_BYTES == 1024 * MiB
