@@ -59,12 +59,43 @@ def run_job(scenario: str, overrides: dict[str, Any], duration: float | None) ->
     return summary
 
 
-def check_scheduler(scheduler: str | None, connect_timeout: float = CONNECT_TIMEOUT_S) -> None:
+def check_scheduler(scheduler: str | None, connect_timeout: float = CONNECT_TIMEOUT_S) -> int | None:
     """A scheduler address that cannot be reached is an error (ValueError, one line) now, before a study writes
-    anything; None (a local cluster or serial) passes."""
+    anything; None (a local cluster or serial) passes. Returns the threads the scheduler's workers offer (None
+    without a scheduler)."""
     if scheduler:
         client, cluster, _ = sweep_client(scheduler, None, connect_timeout, 1)
-        close_client(client, cluster)
+        try:
+            return max(1, sum(w.get("nthreads", 1) for w in client.scheduler_info().get("workers", {}).values()))
+        finally:
+            close_client(client, cluster)
+    return None
+
+
+def slots(scheduler: str | None, workers: int | None, serial: bool) -> int:
+    """How many runs a study runs at once: 1 serial, the scheduler's threads, or the local cluster's workers
+    (``workers``, default the cores). Checks the scheduler (:func:`check_scheduler`)."""
+    if serial:
+        return 1
+    threads = check_scheduler(scheduler)
+    return threads if threads is not None else (workers or os.cpu_count() or 1)
+
+
+def estimate(scenario: str, overrides: list[dict], duration: float | None, runs: int, at_once: int, what: str,
+             shorten: str, force: bool) -> dict:
+    """The wall time of a study of ``runs`` runs of ``scenario`` for ``duration``, ``at_once`` at a time, each
+    priced as ``rotorcosim run`` prices a run (budget.py) at the mean of ``overrides`` (a study's cases, or its
+    first sample); refused beyond 24 h unless ``force`` (:func:`rotorcosim.master.schedule.budget.check_many`)."""
+    from rotorcosim.master.api import check_run, load_scenario
+    from rotorcosim.master.schedule import budget
+
+    base = load_scenario(scenario)
+    costs, bound = [], False
+    for over in overrides or [{}]:
+        est = check_run(base.set(over) if over else base, None, duration, force=force)
+        costs.append(est["wall_s"])
+        bound = bound or bool(est.get("upper_bound"))
+    return budget.check_many(sum(costs) / len(costs), runs, at_once, what, shorten, force, bound)
 
 
 class Evaluator:
@@ -170,8 +201,9 @@ class Progress:
     """A line per finished job on ``stream``: how many are done of how many, the elapsed time and the time left
     (from the mean time per job so far and the jobs still to run). ``quiet``: no lines."""
 
-    def __init__(self, total: int, what: str = "runs", stream=sys.stderr, quiet: bool = False):
-        self.total, self.what, self.stream, self.quiet = total, what, stream, quiet
+    def __init__(self, total: int, what: str = "runs", stream=None, quiet: bool = False):
+        # sys.stderr as it is now (a default argument would keep the stream of the time of import)
+        self.total, self.what, self.stream, self.quiet = total, what, stream or sys.stderr, quiet
         self.done = 0
         self.t0 = time.perf_counter()
 
