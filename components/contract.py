@@ -65,6 +65,9 @@ class Variable:
     #: O-ring given in N/mm where N/m is meant), which a run warns about (components/plausibility.py); unlike
     #: ``min``/``max``, which are hard limits
     plausible: tuple[float, float] | None = None
+    #: a parameter that is the time of an event (``"the fuel cut"``): set at or after the end of a run, the event
+    #: never happens in it, which the run warns about (components/plausibility.py); a negative time means never
+    event: str | None = None
 
     def __post_init__(self):
         if self.causality not in CAUSALITIES:

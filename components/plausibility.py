@@ -59,3 +59,21 @@ def warnings_of(comp) -> list[str]:
             if w is not None:
                 out.append(w)
     return out
+
+
+def event_warnings(comp, t_end: float) -> list[str]:
+    """One line per event parameter of component ``comp`` (``Variable(..., event="the fuel cut")``) whose time is
+    at or after ``t_end``, the end of the run [s]: the event never happens in it, and the results mean a run
+    without it."""
+    out = []
+    for v in comp.variables:
+        if v.causality != "parameter" or not v.event:
+            continue
+        try:
+            t = float(comp.p.get(v.name))
+        except (TypeError, ValueError):
+            continue
+        if math.isfinite(t) and t >= 0.0 and t >= t_end:
+            out.append(f"{comp.name}.{v.name} = {t:.6g} s is at or after the end of the run (t = {t_end:.6g} s): "
+                       f"{v.event} never happens in it")
+    return out

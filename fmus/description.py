@@ -18,6 +18,7 @@ from typing import Any, Mapping
 
 import numpy as np
 
+from rotorcosim.components.bounded_read import TooLarge, read_entry
 from rotorcosim.components.contract import ContractError, Variable
 from rotorcosim.components.value_types import KIND_OF, UNCARRIED
 
@@ -77,10 +78,10 @@ def describe(path: str | Path):
             if "modelDescription.xml" not in zf.namelist():
                 raise FMUError(f"{path}: no modelDescription.xml at the top of the archive: not an FMU")
             try:
-                xml = zf.read("modelDescription.xml")
+                xml = read_entry(zf, "modelDescription.xml", str(path))
             except (zipfile.BadZipFile, zlib.error, EOFError, NotImplementedError, RuntimeError) as exc:
                 raise FMUError(f"{path}: modelDescription.xml is damaged in the archive ({exc})") from None
-    except ArchiveError as exc:
+    except (ArchiveError, TooLarge) as exc:
         raise FMUError(str(exc)) from None
     _check_description_text(path, xml)
     try:

@@ -27,6 +27,8 @@ from rotorcosim.components import registry
 from rotorcosim.components.contract import Component, ContractError
 
 from rotorcosim.fmus import bundle, model_description
+from rotorcosim.fmus.safezip import check_entries, open_zip
+from rotorcosim.components.bounded_read import read_entry
 
 TEMPLATE = Path(__file__).with_name("slave_template.py")
 #: the schedule phase in, and the phases a component takes part in out (slave_template.py explains)
@@ -194,5 +196,7 @@ def export_component(implementation: str, dest: str | Path, *, instance_name: st
 
 
 def _entries(path: Path) -> dict[str, bytes]:
-    with zipfile.ZipFile(path) as zf:
-        return {i.filename: zf.read(i) for i in zf.infolist() if not i.is_dir()}
+    """The entries of the FMU ``path``, each read through the caps of an archive (safezip, bounded_read)."""
+    with open_zip(path, "FMU") as zf:
+        check_entries(zf, str(path))
+        return {i.filename: read_entry(zf, i, str(path)) for i in zf.infolist() if not i.is_dir()}

@@ -24,12 +24,14 @@ import zipfile
 import zlib
 from pathlib import Path, PurePosixPath
 
+from rotorcosim.components.bounded_read import MAX_ENTRIES, MAX_EXTRACT_BYTES, same_entries
 
-#: caps on what an archive may extract. Our FMUs extract to under 1 MB each (measured: the bearing, damper and
-#: toy FMUs of the tests, 24-32 entries, 0.70-0.77 MB, deflate ratio at most 6): the caps leave a wide margin for
-#: an SSP of many FMUs and for other tools' FMUs, and stop a bomb long before the disk fills
-MAX_TOTAL_BYTES = 512 * 1024 ** 2
-MAX_ENTRIES = 20_000
+
+#: caps on what an archive may extract (one place for them: components/bounded_read.py). Our FMUs extract to
+#: under 1 MB each (measured: the bearing, damper and toy FMUs of the tests, 24-32 entries, 0.70-0.77 MB, deflate
+#: ratio at most 6): the caps leave a wide margin for an SSP of many FMUs and for other tools' FMUs, and stop a
+#: bomb long before the disk fills
+MAX_TOTAL_BYTES = MAX_EXTRACT_BYTES
 #: deflate reaches ~5-10x on code and text, ~1000x on zeros (the bomb's filling)
 MAX_RATIO = 200.0
 RATIO_FLOOR_BYTES = 1024 ** 2
@@ -62,7 +64,8 @@ def check_entries(zf: zipfile.ZipFile, source: str) -> None:
     :class:`ArchiveError` for an archive beyond the caps or with clashing names."""
     infos = zf.infolist()
     if len(infos) > MAX_ENTRIES:
-        raise ArchiveError(f"{source}: {len(infos)} entries, more than the {MAX_ENTRIES} an archive may hold here")
+        raise ArchiveError(f"{source}: {len(infos)} entries, more than the {MAX_ENTRIES} an archive may hold here "
+                           "(the limit of entries)")
     total = 0
     files: dict[str, zipfile.ZipInfo] = {}
     folders: set[str] = set()
@@ -109,7 +112,7 @@ def _check_duplicate(zf: zipfile.ZipFile, first: zipfile.ZipInfo, again: zipfile
     same = first.file_size == again.file_size and first.CRC == again.CRC
     if same:
         try:
-            same = zf.read(first) == zf.read(again)
+            same = same_entries(zf, first, again)   # chunk by chunk: two entries of 512 MiB are not read whole
         except (zipfile.BadZipFile, zlib.error, EOFError, NotImplementedError, RuntimeError) as exc:
             raise ArchiveError(f"{source}: entry {again.filename!r} is damaged ({exc})") from None
     if not same:

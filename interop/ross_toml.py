@@ -17,6 +17,7 @@ import tomllib
 from pathlib import Path
 
 from rotorcosim.components import toml_text
+from rotorcosim.components.bounded_read import read_text
 
 #: the ROSS major versions whose files this reader knows
 MAJOR_VERSIONS = ("2",)
@@ -36,7 +37,7 @@ def read(path: str | Path) -> dict:
     if not p.is_file():
         raise FileNotFoundError(f"ROSS rotor file not found: {p}")
     try:
-        data = toml_text.loads(p.read_text(encoding="utf-8"))
+        data = toml_text.loads(read_text(p, "ROSS rotor file"))
     except (tomllib.TOMLDecodeError, UnicodeDecodeError) as exc:
         raise RossFileError(f"ROSS rotor file {p}: not TOML ({exc})") from None
     version = data.get("ross_version")

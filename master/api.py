@@ -28,6 +28,7 @@ from typing import Any, Mapping, Sequence
 import numpy as np
 
 from rotorcosim import scenarios
+from rotorcosim.components.bounded_read import read_json
 from rotorcosim.master import case
 
 from rotorcosim.master.schedule import budget
@@ -381,9 +382,10 @@ def _simulate(sc, duration, schedule, out, record, progress, figures, overwrite,
             error, status = exc, "interrupted"
         except BaseException as exc:  # diverged, disk full, a component's failure: summary first, then raise
             error, status = exc, ("interrupted" if isinstance(exc, KeyboardInterrupt) else "failed")
-        if status == "failed" and out is not None and point is None and not sim.initialised:
-            # refused at set-up (a bad --set value, a missing model file): nothing was computed, so the folder is
-            # left as it was found (rundir.py takes back the lock and the folders it made) and the error raised
+        if status == "failed" and out is not None and point is None and not sim.computed:
+            # refused at its start (a bad --set value, a missing model file, a file that cannot be opened, a cycle
+            # with no period at t0): nothing was computed, so the folder is left as it was found (rundir.py takes
+            # back the lock and the folders it made) and the error raised alone
             for f in (out / "summary.json", series, series and series.with_name(series.name + ".part")):
                 if f is not None:
                     f.unlink(missing_ok=True)
@@ -427,7 +429,7 @@ def _simulate(sc, duration, schedule, out, record, progress, figures, overwrite,
             data = SeriesFile(series) if series.exists() else _nothing_recorded(recorder)
         files = [series] if series is not None and series.exists() else []
         try:
-            if post is not None:
+            if post is not None and (error is None or sim.computed):   # a run that computed nothing has no results
                 summary.update(post.extract(sc, sim, post_obs, report))
                 # what the case found at some time of the run that its end values do not show: one line each
                 for event in summary.get("events") or []:
@@ -481,7 +483,7 @@ def draw_figures(sc: Scenario | str | Path, out: str | Path, pool: FigurePool | 
         raise ValueError(f"scenario {sc.name!r} has no [results] kind: it draws no figures")
     f = out / "summary.json"
     try:
-        summary = json.loads(f.read_text())
+        summary = read_json(f, "summary")
     except (OSError, ValueError) as exc:
         raise ValueError(f"{out}: no readable summary.json of a finished run ({exc})") from None
     if summary.get("status") not in ("complete", "stopped"):

@@ -169,6 +169,12 @@ class Simulation:
         self._initialised = True
 
     @property
+    def computed(self) -> bool:
+        """True once a component has taken a step: a run that failed before computed nothing (refused at its
+        start: set-up, an observer that could not open its file, a cycle with no period at the start time)."""
+        return any(self.engine.steps_taken.values())
+
+    @property
     def initialised(self) -> bool:
         """True once every component is set up (:meth:`initialise` returned): a run that failed before is one
         refused at set-up (a parameter no component starts from), with nothing computed."""
@@ -297,6 +303,7 @@ class Simulation:
         ``report.status`` is then ``"stopped"`` and ``report.stopped`` names the component and the time."""
         t_wall, t_cpu = _time.perf_counter(), _time.process_time()
         error = None
+        started: list = []
         try:
             self.initialise()
             first = 0
@@ -304,6 +311,7 @@ class Simulation:
                 self.resume_point.restore(self)
                 first = self.resume_point.interval
             for obs in self.observers:
+                started.append(obs)   # one whose start fails may hold something half-open: it is ended too
                 obs.start(self, schedule)
             schedule.run(self, first)
             self.hold.finish()
@@ -319,7 +327,9 @@ class Simulation:
             self.report.wall_time_s = _time.perf_counter() - t_wall
             self.report.cpu_time_s = _time.process_time() - t_cpu
             failure = None
-            for obs in self.observers:  # every observer closes what it holds, even when one of them fails
+            # every observer started closes what it holds, even when one of them fails; one never started holds
+            # nothing (ending it would report a second, meaningless error after a failure at set-up)
+            for obs in started:
                 try:
                     obs.end(self, error)
                 except Exception as exc:

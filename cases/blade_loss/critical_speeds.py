@@ -170,6 +170,8 @@ def run(args) -> int:
             print("synchronous critical speeds, rev/min:")
         print("  forward :", ", ".join(f"{v:.0f}" for v in out["forward_synchronous_rpm"]))
         print("  backward:", ", ".join(f"{v:.0f}" for v in out["backward_synchronous_rpm"]))
+        if "definition" in out:
+            print(f"  (coefficients over speed: {out['definition']})")
         if out["target_rpm"]:
             print("  paper (lowest two forward):", ", ".join(f"{v:.0f}" for v in out["target_rpm"]))
         sm = out["support_model"]

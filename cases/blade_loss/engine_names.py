@@ -12,9 +12,9 @@ A figure of a run names what that run simulated, never the paper's engine by def
 """
 from __future__ import annotations
 
-import json
 from pathlib import Path
 
+from rotorcosim.components.bounded_read import read_json
 from rotorcosim.components.rotor import model as fem
 
 #: what a part is called when its engine file does not name it
@@ -66,7 +66,7 @@ def rub_clearances_mm(sc, ids, out: str | Path | None = None) -> dict[str, float
     ran = {}
     if out is not None:
         try:
-            ran = json.loads((Path(out) / "summary.json").read_text())["provenance"]["parameters"]
+            ran = read_json(Path(out) / "summary.json", "summary")["provenance"]["parameters"]
         except (OSError, ValueError, KeyError, TypeError):
             ran = {}
     result = {}

@@ -16,6 +16,7 @@ from pathlib import Path
 
 from rotorcosim.cases.blade_loss.table5 import paper_table5, write_table5
 from rotorcosim.cases.blade_loss.results import BEARINGS, RESULT_KEYS
+from rotorcosim.components.bounded_read import read_text
 
 COLUMNS = ("result", "bearing", "unbalance_N", "paper", "ours", "ratio")
 RUB_ZERO_W = 1.0
@@ -152,8 +153,8 @@ def write(out: Path, by_level: dict) -> dict | None:
 
 def read_table5(path: Path) -> dict:
     """A table5.csv of ours (``rotorcosim sweep``'s) as ``by_level`` summaries, to score a finished sweep."""
-    with open(path) as f:
-        rows = [r for r in csv.reader(line for line in f if not line.startswith("#"))]
+    text = read_text(path, "Table 5 file")
+    rows = [r for r in csv.reader(line for line in text.splitlines() if not line.startswith("#"))]
     levels = [float(x) for x in rows[0][2:]]
     out = {lv: {"bearings": {"0": {}, "5": {}}} for lv in levels}
     for r in rows[1:]:

@@ -46,6 +46,14 @@ INNER, OUTER = 0, 1
 RESULT_KEYS = ("whirl_amplitude_mm", "transmissibility", "max_contact_load_N", "max_contact_stress_MPa",
                "rub_power_W", "drag_power_W", "sfd_power_W", "T_inner_race_C", "T_ball_C", "T_outer_race_C",
                "T_sfd_oil_C")
+#: every key of a bearing's entry in ``bearings``: the paper's results, the outer race's stress, the whirl by its
+#: reference, the peaks and the first times (:func:`result_paths`; held equal to what :func:`extract` reports by
+#: tests/cases/test_result_paths.py)
+BEARING_KEYS = (*RESULT_KEYS, "max_contact_stress_outer_MPa", "max_contact_load_peak_N",
+                "max_contact_stress_peak_MPa", "whirl_amplitude_peak_mm", "whirl_amplitude_absolute_mm",
+                "whirl_amplitude_relative_mm", "whirl_amplitude_absolute_peak_mm", "whirl_amplitude_relative_peak_mm",
+                "max_contact_stress_outer_peak_MPa", "transmitted_force_peak_N", "rub_power_peak_W",
+                "rub_first_time_s", "plastic_flow_limit_MPa", "plastic_flow_first_time_s")
 KELVIN = 273.15
 #: the paper's damage criterion of a ball/race contact: incipient plastic flow at 3200 MPa (its ref. [13]; the
 #: line of its Fig. 12). Not the end of the model (the bearing's own envelope is ISO 76's 4200 MPa,
@@ -378,6 +386,13 @@ def estimated_errors(windows, bearings, hold, F_u) -> dict | None:
 
 
 # -- figures ------------------------------------------------------------------------------------------
+def result_paths(sc) -> list[str]:
+    """The results :func:`extract` reports for scenario ``sc``, as dotted paths into summary.json (a study's
+    SPEC is checked against them before its first run)."""
+    return ["unbalance_N", "window.t_start", "window.t_end", "events.",
+            *(f"bearings.{k}.{key}" for k in bearing_ids(sc.components) for key in BEARING_KEYS)]
+
+
 def figures(sc, data, out: Path, pool=None, dpi: int | None = None) -> list[str]:
     """PNG figures like the paper's Figs. 9-14 from the recorded time series (``data``: ``time``, ``phase`` and
     one array per recorded port, as :meth:`Recorder.data` gives them, or the run's

@@ -431,6 +431,24 @@ def extract(sc, sim, obs, report) -> dict:
     return out
 
 
+def result_paths(sc) -> list[str]:
+    """The results :func:`extract` reports for scenario ``sc``, as dotted paths into summary.json (``crossings.``
+    ending in a dot: any path below it, the crossings found being known only after the run)."""
+    out = []
+    for sp in _spools(sc):
+        out += [f"speeds.{sp}.{k}" for k in ("inertia_kgm2", "start_rpm", "end_rpm", "t_fuel_cut_s", "stopped")]
+        # energy.py's summary, held equal to it by tests/cases/test_result_paths.py
+        out += [f"energy.{sp}.{k}" for k in ("inertia_kg_m2", "kinetic_energy_lost_J", "residual_J", "residual_pct",
+                                             "residual_of_lost_pct", "rub_dissipated_J", "rub_whirl_share_J",
+                                             "drag_dissipated_J")]
+        out += [f"energy.{sp}.work_J.{k}" for k in ("drive", "drag", "rub", "aero")]
+    out.append("crossings.")
+    if _case_blade_loss(sc):
+        from rotorcosim.cases.blade_loss import results as bl
+        out += bl.result_paths(sc)
+    return out
+
+
 def figures(sc, data, out, pool=None, dpi: int | None = None) -> list[str]:
     """The rundown figures (:mod:`rotorcosim.cases.rundown.figures`) from the run's series, drawn here at ``dpi``
     (None: the default)."""

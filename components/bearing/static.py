@@ -68,6 +68,11 @@ def _contacts(g: BearingGeometry, p, q, v, eps_b):
     return A, B, Li, Le, di, de, Qi, Qe
 
 
+#: a ball's force residual, relative to its contact loads, below which its equilibrium holds to the precision of
+#: float64 sums of forces of that size (a few hundred ulps): the test once the iterations are spent
+ROUNDING = 1e-12
+
+
 def solve_balls(g: BearingGeometry, ur, uz, wr, eps=(0.0, 0.0, 0.0), Fc: float = 0.0, v0=None,
                 tol: float = 1e-10, max_iter: int = 200) -> tuple[np.ndarray, tuple]:
     """Ball centre displacements (2, n) in equilibrium for inner groove displacements (ur, uz) and outer groove
@@ -118,7 +123,18 @@ def solve_balls(g: BearingGeometry, ur, uz, wr, eps=(0.0, 0.0, 0.0), Fc: float =
         dv *= np.minimum(1.0, cap / np.maximum(mag, 1e-300))
         v = v + dv
     else:
-        raise RuntimeError(f"ball equilibrium did not converge (residual {np.max(np.abs(R)):.3e} N)")
+        # under loads of 1e8 N the contact forces carry a rounding error of ~1e-8 N that no iteration removes: a
+        # residual that small against the balls' own loads is converged (at the precision of the numbers)
+        A, B, Li, Le, di, de, Qi, Qe = _contacts(g, p, q, v, eps_b)
+        R = Qi * A / Li - Qe * B / Le
+        R[0] += Fc
+        if Fc == 0.0:
+            R = np.where((di > 0.0) | (de > 0.0), R, 0.0)
+        load = max(float(np.max(Qi)), float(np.max(Qe)), scale)
+        residual = float(np.max(np.abs(R)))
+        if not (math.isfinite(residual) and math.isfinite(load) and residual < ROUNDING * load):
+            raise RuntimeError(f"ball equilibrium did not converge (residual {residual:.3e} N against "
+                               f"contact loads up to {load:.3g} N)")
     return v, _contacts(g, p, q, v, eps_b)
 
 
@@ -177,7 +193,8 @@ def static_equilibrium(g: BearingGeometry, F, Xe=(0.0, 0.0), eps=(0.0, 0.0, 0.0)
                 break
             lam *= 0.5
         X, st, G = Xn, stn, Gn
-    raise RuntimeError(f"static equilibrium did not converge (residual {np.max(np.abs(G)):.3e} N)")
+    raise RuntimeError(f"static equilibrium did not converge (residual {np.max(np.abs(G)):.3e} N against a load of "
+                       f"{scale:.3g} N)")
 
 
 def stiffness(g: BearingGeometry, X, Xe=(0.0, 0.0), eps=(0.0, 0.0, 0.0), Fc: float = 0.0,
@@ -264,6 +281,7 @@ def axisymmetric_preload_offset(g: BearingGeometry, Fc: float, z_guess: float) -
     else:
         raise PreloadSolveError(f"no axial offset of the inner race carries the preload {g.preload:g} N at a ball "
                                 f"centrifugal force of {Fc:.4g} N (searched {lo:.3g} to {hi:.3g} m)")
+    seat[0] = None           # brentq's own first evaluations start cold, as they always have (same bits)
     return float(brentq(excess, lo, hi, xtol=1e-18, rtol=1e-14))
 
 

@@ -142,7 +142,8 @@ class Rotor(KernelComponent):
         Variable("unbalance_phase", "parameter", unit="rad", start=0.5 * math.pi,
                  description="angle of the lost blade relative to the residual unbalance (default 90 deg: the "
                              "residual adds in quadrature; see the module docstring)"),
-        Variable("t_blade_loss", "parameter", unit="s", start=0.01, description="blade-loss time (step onset)"),
+        Variable("t_blade_loss", "parameter", unit="s", start=0.01, description="blade-loss time (step onset)",
+                 event="the blade loss"),
         Variable("omega_pt", "parameter", unit="rad/s", start=PT_OMEGA, description="power-turbine speed"),
         Variable("omega_gg", "parameter", unit="rad/s", start=GG_OMEGA, description="gas-generator speed"),
         Variable("n_modes", "parameter", unit="1", start=30, type="Integer",

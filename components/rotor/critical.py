@@ -22,6 +22,11 @@ import scipy.linalg as sla
 from .model import RPM, FullModel, speed_support_delta
 
 
+#: what the critical speeds of an engine with speed-dependent or cross-coupled supports are
+DAMPED_DEFINITION = ("the speeds at which a natural frequency |lambda| of the damped engine, its supports' "
+                     "coefficients taken at that speed, equals the speed (ROSS's run_critical_speed)")
+
+
 def speed_ratio(model: FullModel) -> float:
     return model.omega_gg / model.omega_pt
 
@@ -41,8 +46,10 @@ def synchronous_critical_speeds(model: FullModel, supports: dict | None, n: int 
     with the supports of :meth:`FullModel.coupled` (None: without bearings #0/#5)."""
     if model.info.get("speed_supports"):
         rows = speed_dependent_critical_speeds(model, supports, max_rpm, min_share=min_share)
-        return {k: sorted(r["rpm"] for r in rows if r["whirl"] == w)[:n]
-                for k, w in (("forward_synchronous_rpm", "forward"), ("backward_synchronous_rpm", "backward"))}
+        out = {k: sorted(r["rpm"] for r in rows if r["whirl"] == w)[:n]
+               for k, w in (("forward_synchronous_rpm", "forward"), ("backward_synchronous_rpm", "backward"))}
+        out["definition"] = DAMPED_DEFINITION
+        return out
     sysm = _system(model, supports)
     K, Mm = sysm["K"], sysm["M"]
     Gt = sysm["G_pt"] + speed_ratio(model) * sysm["G_gg"]

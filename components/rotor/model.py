@@ -22,6 +22,7 @@ from pathlib import Path
 import numpy as np
 
 from .. import toml_text
+from ..bounded_read import read_bytes
 from . import attach as attach_layout
 from .engine_shape import shape_problems
 from .beam import disk, shaft_element
@@ -42,7 +43,7 @@ def _read(path: str | Path | None) -> tuple[Path, bytes]:
         raise IsADirectoryError(f"rotor model file {p} is a folder, not a TOML file")
     if not p.is_file():
         raise FileNotFoundError(f"rotor model file not found: {p}")
-    return p, p.read_bytes()
+    return p, read_bytes(p, "rotor model file")
 
 
 def file_digest(path: str | Path | None = None) -> str:

@@ -20,6 +20,10 @@ def add_study_options(p, what: str) -> None:
     p.add_argument("--workers", type=int, default=None, help="local cluster size (default: number of cores)")
     p.add_argument("--serial", action="store_true", help="run in this process, one run after another, without Dask")
     p.add_argument("--quiet", action="store_true", help="no progress lines")
+    p.add_argument("--force", action="store_true", help="run a study estimated above 24 h of wall time")
+    p.add_argument("--resume", action="store_true",
+                   help="continue the study in --out (it must hold this SPEC's study; without --resume such a "
+                        "folder is continued too)")
 
 
 def add_arguments(p):
@@ -32,7 +36,7 @@ def run(args) -> int:
     from rotorcosim.master.study.calibration import calibrate
 
     rep = calibrate(args.spec, args.out, scheduler=args.scheduler, workers=args.workers, serial=args.serial,
-                    quiet=args.quiet)
+                    quiet=args.quiet, force=args.force, resume=args.resume)
     print(f"calibration {rep['status']} after {rep['evaluations']} runs ({rep['evaluations_this_session']} this "
           f"time) in {rep['wall_time_s']:.4g} s; {args.out}/calibration.json, evaluations.csv, calibration.png")
     for name, p in rep["parameters"].items():

@@ -59,6 +59,7 @@ def add_arguments(p):
     p.add_argument("--resume", action="store_true",
                    help="continue the sweep in --out (interrupted, or with failed cases): rerun only the cases "
                         "its sweep.json does not list as complete (same command otherwise)")
+    p.add_argument("--force", action="store_true", help="run a sweep estimated above 24 h of wall time")
 
 
 def parse_levels(text: str, named: dict | None = None, option: str = "--level", unit: str = "") -> list[float]:
@@ -164,11 +165,12 @@ def cases_of(levels: list[float] | None, grid: dict[str, list[Any]], scenario=No
 def sweep(levels=None, out: Path = Path("sweep"), scenario=None, scheduler=None, schedule=None,
           duration=None, workers=None, serial=False, grid: dict[str, list[Any]] | None = None,
           progress=None, connect_timeout: float = CONNECT_TIMEOUT_S, overwrite: bool = False,
-          resume: bool = False, dpi=None) -> dict:
+          resume: bool = False, dpi=None, force: bool = False, say=None) -> dict:
     """Run the grid of ``levels`` (values of the scenario's level parameter, SI) x ``grid``
     (``{"comp.param": [values]}``) into ``out`` (:func:`rotorcosim.master.sweep.run_cases`, which says what
     happens under faults; ``resume`` reruns only the cases a previous sweep into ``out`` did not complete);
-    ``dpi``: the cases' figures' resolution (None: the default).
+    ``dpi``: the cases' figures' resolution (None: the default); ``force``: run a sweep estimated above 24 h;
+    ``say``: a function of one line, given the sweep's estimate before the first case.
 
     ``progress(done, total, case, result)`` is called as each case finishes. Returns the contents of
     ``sweep.json``."""
@@ -190,7 +192,8 @@ def sweep(levels=None, out: Path = Path("sweep"), scenario=None, scheduler=None,
     info = {level.sweep_key: list(levels or []), "parameters": {r: vs for r, vs in grid.items()}}
     done = run_cases(cases, out, scheduler=scheduler, workers=workers, serial=serial, progress=progress,
                      overwrite=overwrite, resume=resume, info=info, finish=finish,
-                     extra_files=cases_.attribute(kind, "SWEEP_FILES", ()), connect_timeout=connect_timeout)
+                     extra_files=cases_.attribute(kind, "SWEEP_FILES", ()), connect_timeout=connect_timeout,
+                     force=force, say=say)
     return done.state
 
 
@@ -210,11 +213,15 @@ def run(args) -> int:
         err = res["summary"].get("error")
         wall = res["summary"].get("wall_time_s")
         state = f"failed: {err}" if err else (f"done in {wall:.3g} s" if wall else "done")
+        retry = res.get("retry")
+        if retry:
+            state += (f" (attempt {retry['attempt']}, on {retry['worker']}: its worker "
+                      f"{', '.join(retry['died_on'])} died)")
         print(f"[{done}/{total}] {case.name}: {state}", file=sys.stderr, flush=True)
 
     info = sweep(levels, Path(args.out), args.scenario, args.scheduler, kind, args.duration, args.workers,
                  args.serial, grid, None if args.quiet else progress, overwrite=args.overwrite, resume=args.resume,
-                 dpi=args.dpi)
+                 dpi=args.dpi, force=args.force, say=lambda line: print(line, file=sys.stderr, flush=True))
     # the files at the top of the folder are this sweep's (a previous sweep's were refused or cleared)
     tables = sorted(p.name for p in Path(args.out).iterdir() if p.is_file() and p.name not in SWEEP_FILES[:2])
     print(f"{len(info['cases'])} cases in {info['wall_time_s']:.3g} s ({info['executed_on']});"
@@ -223,6 +230,9 @@ def run(args) -> int:
     line = cases_.attribute(kind_of_case, "SWEEP_SCORE")
     if score and line is not None:
         print(line(score, args.out))
+    for name, r in info.get("retries", {}).items():
+        print(f"  case {name} was run again on {r['worker']} after its worker {', '.join(r['died_on'])} died: "
+              f"{r['result']}", file=sys.stderr)
     for name, e in info["errors"].items():
         print(f"  case {name} failed: {e}", file=sys.stderr)
     return 1 if info["errors"] else 0

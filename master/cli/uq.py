@@ -22,7 +22,7 @@ def run(args) -> int:
     from rotorcosim.master.study.uncertainty import uq
 
     rep = uq(args.spec, args.out, scheduler=args.scheduler, workers=args.workers, serial=args.serial,
-             quiet=args.quiet)
+             quiet=args.quiet, force=args.force, resume=args.resume)
     print(f"uq: {rep['samples']} samples ({rep['samples_this_session']} run this time) in "
           f"{rep['wall_time_s']:.4g} s; {args.out}/uq.json, samples.csv, uq_histograms.png, uq_tornado.png")
     for name, r in rep["results"].items():

@@ -48,6 +48,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Callable
 
+from rotorcosim.components.bounded_read import read_json
 from rotorcosim.master.api import check_run, draw_figures, simulate
 from rotorcosim.master.core.phases import Phases
 from rotorcosim.master.run.figure_pool import FigurePool
@@ -132,7 +133,7 @@ def kept_run(folder: Path, name: str | None = None, duration: float | None = Non
     ``name``, a complete run of another scenario, ``level``, ``duration`` or ``edits`` (a scenario's edits) is an
     error: ``--resume`` continues the same comparison."""
     try:
-        summary = json.loads((folder / "summary.json").read_text())
+        summary = read_json(folder / "summary.json", "summary")
     except (OSError, ValueError):
         return None
     if not isinstance(summary, dict) or summary.get("status") != "complete":
@@ -161,7 +162,7 @@ def reused_monolithic(folder: Path, duration: float, name: str | None = None, le
     besides (its results)."""
     f = folder / "summary.json"
     try:
-        summary = json.loads(f.read_text())
+        summary = read_json(f, "summary")
     except (OSError, ValueError) as exc:
         raise ValueError(f"--monolithic {folder}: no readable summary.json ({exc})") from None
     if not isinstance(summary, dict):
@@ -282,7 +283,9 @@ def _compare(out, sc, plans, runs, kept, repeats, tabulate, table_name, quiet, f
         s, sch = plans[kind]
         # figures from the time series after both timed runs; a run recorded otherwise (CSV, nothing recorded)
         # draws its own in process, after its timing and without workers (api.simulate)
-        draw_later = figures and s.outputs.get("format", "h5") == "h5" and bool(s.outputs.get("record"))
+        # (a scenario without a case draws none)
+        draw_later = figures and s.outputs.get("format", "h5") == "h5" and bool(s.outputs.get("record")) \
+            and bool(s.extra.get("results", {}).get("kind"))
         if draw_later and not (kind in kept and kept[kind].get("figures")):
             later[kind] = s
         if kind in kept:

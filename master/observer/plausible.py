@@ -1,6 +1,7 @@
 """The plausibility observer: once every component is set up (its parameters passed their own checks), one
 warning line on stderr per parameter its user set outside the plausible range the component declares
-(components/plausibility.py): a value off by a unit factor, where the component can tell.
+(components/plausibility.py): a value off by a unit factor, where the component can tell; and an event set at or
+after the end of the run (a component's event time, such as a fuel cut), which then never happens in it.
 
 Warned at the start of the run, not when the system is built, so that a value a component refuses (a negative
 stiffness) gets the component's error alone, not a warning beside it.
@@ -26,8 +27,11 @@ class Plausibility(Observer):
     def start(self, sim, schedule) -> None:
         if self.lines:  # a resumed run warned when it started
             return
+        duration = getattr(schedule, "duration", None)   # every schedule of the master has one; a caller's may not
         for comp in sim.system.components.values():
             self.lines += plausibility.warnings_of(comp)
+            if duration is not None:
+                self.lines += plausibility.event_warnings(comp, sim.t + duration)
         for line in self.lines:
             print(f"{self.label}: warning: {line}", file=sys.stderr)
 

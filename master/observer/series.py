@@ -10,6 +10,8 @@ from pathlib import Path
 
 import numpy as np
 
+from rotorcosim.components.bounded_read import MAX_DATASET_BYTES, check_size
+
 
 class SeriesFile(Mapping):
     """``time``, ``phase`` and one (n, size) array per recorded port, as :meth:`Recorder.data` gives them, read
@@ -39,7 +41,10 @@ class SeriesFile(Mapping):
             if key not in self._keys():
                 raise KeyError(key)
             with self._open() as f:
-                self._cache[key] = f[key][()]
+                ds = f[key]
+                check_size(ds.size * ds.dtype.itemsize, f"the time series {self.path}: dataset {key!r}",
+                           "time series dataset", MAX_DATASET_BYTES)
+                self._cache[key] = ds[()]
         return self._cache[key]
 
     def __iter__(self):

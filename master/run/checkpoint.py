@@ -44,6 +44,7 @@ from pathlib import Path
 import numpy as np
 
 from rotorcosim.components.contract import HELD, Component
+from rotorcosim.components.bounded_read import MAX_CHECKPOINT_BYTES, read_bytes
 
 from rotorcosim.master.observer.observers import DISK_RESERVE_BYTES, Observer
 from rotorcosim.master.schedule.timeline import Timeline
@@ -366,7 +367,7 @@ def load(path: str | os.PathLike, key: str) -> ResumePoint:
     path = Path(path)
     raw = None
     try:
-        raw = path.read_bytes()
+        raw = read_bytes(path, "checkpoint", MAX_CHECKPOINT_BYTES)
         data = _peek(raw)
     except FileNotFoundError:
         raise CheckpointError(f"--resume: no checkpoint {path}") from None

@@ -19,10 +19,11 @@ from __future__ import annotations
 
 import fcntl
 import fnmatch
-import json
 import os
 import sys
 from pathlib import Path
+
+from rotorcosim.components.bounded_read import read_json
 
 LOCK = ".rotorcosim.lock"
 #: what a run writes into its folder (a folder holding only these may be cleared by --overwrite)
@@ -160,7 +161,7 @@ class RunFolder:
         if present != ["summary.json"]:
             return False
         try:
-            s = json.loads((self.path / "summary.json").read_text())
+            s = read_json(self.path / "summary.json", "summary")
         except (OSError, ValueError):
             return False
         return (isinstance(s, dict) and s.get("status") == "failed" and not s.get("timeline")

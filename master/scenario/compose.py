@@ -35,6 +35,7 @@ else:  # pragma: no cover
     import tomli as tomllib
 
 from rotorcosim.components import toml_text
+from rotorcosim.components.bounded_read import MAX_EXTENDS, read_text
 from rotorcosim.components.contract import ContractError
 from rotorcosim.master.scenario import templates
 
@@ -96,7 +97,7 @@ def _load(path: Path) -> dict:
         raise FileNotFoundError(f"scenario file {path} " + ("is a symbolic link to nothing (dangling, or a loop)"
                                                             if path.is_symlink() else "not found"))
     try:
-        return toml_text.loads(path.read_text())
+        return toml_text.loads(read_text(path, "scenario file"))
     except tomllib.TOMLDecodeError as exc:
         m = re.search(r"\(at line (\d+), column \d+\)", str(exc))
         where = f"{path}:{m.group(1)}" if m else str(path)
@@ -215,6 +216,9 @@ def compose(path: str | Path, _seen: tuple = ()) -> tuple[dict, Origins]:
     path = real_path(path)
     if path in _seen:
         raise CompositionError(f"{path}: 'extends' loops back on itself ({' -> '.join(map(str, _seen + (path,)))})")
+    if len(_seen) >= MAX_EXTENDS:
+        raise CompositionError(f"{_seen[0]}: its 'extends' chain reaches {path} after {len(_seen)} files, above the "
+                               f"limit of {MAX_EXTENDS} files a scenario may extend")
     data = _load(path)
     where = str(path)
     head = data.get("scenario", {})

@@ -33,6 +33,7 @@ import tempfile
 import xml.etree.ElementTree as ET
 from pathlib import Path
 
+from rotorcosim.components.bounded_read import MAX_ENTRY_BYTES, read_bytes
 from rotorcosim.master.core.system import Connection
 from rotorcosim.master.scenario.build import ComponentSpec, Scenario, ScenarioError, schedule_of
 
@@ -249,7 +250,7 @@ def parse_xml(path: Path, what: str) -> ET.Element:
     """An XML file of the archive, refusing DTDs (entity bombs, external entities) and reporting malformed XML
     with the file's name."""
     try:
-        data = path.read_bytes()
+        data = read_bytes(path, what, MAX_ENTRY_BYTES)
     except OSError as exc:
         raise SSPError(f"{what}: cannot be read ({exc.strerror or exc})") from None
     if b"<!DOCTYPE" in data or b"<!ENTITY" in data:

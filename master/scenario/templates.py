@@ -31,6 +31,7 @@ from typing import Any, Mapping
 
 from rotorcosim import scenarios
 from rotorcosim.components import toml_text
+from rotorcosim.components.bounded_read import MAX_TEMPLATE_IDS, read_text
 from rotorcosim.components.contract import ContractError
 
 #: the shipped templates
@@ -59,7 +60,7 @@ def _template(name: str, where: str) -> tuple[dict, str]:
     path = FOLDER / f"{name}.toml"
     if not ID.match(name) or not path.is_file():
         raise TemplateError(f"{where}: [templates] {name!r} is not a template (shipped: {', '.join(shipped())})")
-    tpl = toml_text.loads(path.read_text())
+    tpl = toml_text.loads(read_text(path, "template file"))
     unknown = set(tpl) - {"components", "connections"}
     if unknown:
         raise TemplateError(f"{path}: a template holds [components.*] and connections only, not "
@@ -88,6 +89,9 @@ def ids_of(templates: Any, where: str) -> dict[str, list[str]]:
         if not isinstance(ids, list) or not all(isinstance(i, str) and ID.match(i) for i in ids):
             raise TemplateError(f"{where}: [templates] {name} must be a list of ids (strings of letters, digits "
                                 f"or _), got {ids!r}")
+        if len(ids) > MAX_TEMPLATE_IDS:
+            raise TemplateError(f"{where}: [templates] {name} lists {len(ids)} ids, above the limit of "
+                                f"{MAX_TEMPLATE_IDS} ids a template may be instantiated for")
         if len(set(ids)) != len(ids):
             raise TemplateError(f"{where}: [templates] {name} lists an id twice: {ids!r}")
         out[name] = ids

@@ -29,7 +29,6 @@ interval would be silently stretched to a step: a 1e-13 s "run" would report res
 from __future__ import annotations
 
 import math
-import zipfile
 
 from rotorcosim.components.contract import COUPLED, HELD
 from rotorcosim.master.schedule.auto import AutoSchedule
@@ -85,15 +84,21 @@ def hms(s: float) -> str:
 
 
 def _fmu_inner(path: str):
-    """The component class a rotorcosim-exported FMU runs (its vendor annotation), or None."""
+    """The component class a rotorcosim-exported FMU runs (its vendor annotation), or None. The archive is read
+    through the caps of every archive (an entry beyond them is refused here, as the build would refuse it)."""
     from rotorcosim.components import registry
+    from rotorcosim.components.bounded_read import TooLarge, read_entry
     from rotorcosim.fmus.model_description import read_annotation
+    from rotorcosim.fmus.safezip import ArchiveError, check_entries, open_zip
 
     try:
-        with zipfile.ZipFile(path) as z:
-            impl = read_annotation(z.read("modelDescription.xml")).implementation
+        with open_zip(path) as z:
+            check_entries(z, str(path))
+            impl = read_annotation(read_entry(z, "modelDescription.xml", str(path))).implementation
         return registry.lookup(impl) if impl else None
-    except Exception:  # noqa: BLE001 - any FMU the estimate cannot read is priced as an unknown one
+    except (TooLarge, ArchiveError):
+        raise
+    except Exception:  # noqa: BLE001 - any other FMU the estimate cannot read is priced as an unknown one
         return None
 
 
@@ -197,3 +202,40 @@ def check(sc, schedule, force: bool = False, engine: str = "auto") -> dict:
                           f"(estimated at {cost:.0f} us per step), above the {hms(LIMIT_S)} limit: give --force "
                           "to run it anyway, or a shorter --duration")
     return est
+
+
+def check_many(run_s: float, runs: int, workers: int, what: str, shorten: str, force: bool = False,
+               upper_bound: bool = False) -> dict:
+    """The wall time of ``runs`` runs of about ``run_s`` [s] each (:func:`check`'s estimate of one), ``workers``
+    at a time, in whole waves: ``{"runs", "run_s", "workers", "wall_s", "wall", "upper_bound"}``. Beyond
+    ``LIMIT_S`` it is refused unless ``force`` (or ``upper_bound``: a run on the automatic schedule, priced all
+    thermo-mechanical), the refusal saying the estimate and how to shorten it (``shorten``: "fewer samples..."). A
+    study or sweep prints :func:`many_line` before its first run.
+
+    >>> check_many(10.0, 64, 2, "uq", "fewer samples")["wall"]
+    '5 min'
+    """
+    workers = max(1, int(workers))
+    wall = math.ceil(runs / workers) * run_s
+    est = {"runs": runs, "run_s": run_s, "workers": workers, "wall_s": wall, "wall": hms(wall),
+           "upper_bound": upper_bound}
+    if wall > LIMIT_S and not force and not upper_bound:
+        raise BudgetError(f"{what}: {runs} runs of about {_each(run_s)} each, {workers} at a time, would take "
+                          f"about {hms(wall)} of wall time, above the {hms(LIMIT_S)} limit: give --force to run it "
+                          f"anyway, or {shorten}")
+    return est
+
+
+def many_line(est: dict, what: str) -> str:
+    """The line a study or sweep prints before its first run: its estimate (:func:`check_many`; ``runs_at_most``
+    in it: the run count is a bound, as a calibration's)."""
+    runs = "at most " if est.get("runs_at_most") else ""    # a search that may stop early
+    each = "at most " if est["upper_bound"] else "about "   # a run on the automatic schedule
+    total = "at most " if runs or est["upper_bound"] else "about "
+    return (f"{what}: {runs}{est['runs']} runs of {each}{_each(est['run_s'])} each, {est['workers']} at a time: "
+            f"{total}{est['wall']} of wall time (estimated)")
+
+
+def _each(s: float) -> str:
+    """One run's price in words: ``hms``, with two digits below 10 s (a study's runs are often under a second)."""
+    return f"{s:.2g} s" if s < 10 else hms(s)

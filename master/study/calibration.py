@@ -40,6 +40,7 @@ from typing import Callable
 import numpy as np
 
 from rotorcosim.master.run.outputs import write_json
+from rotorcosim.master.schedule import budget
 from rotorcosim.master.study import evaluate, statistics, store
 from rotorcosim.master.study.spec import CalibrationSpec, read_calibration
 from rotorcosim.master.study.targets import Target, TargetError, read_targets, residual, score, value_of
@@ -149,7 +150,8 @@ class Fit:
 
 def calibrate(spec: str | Path | CalibrationSpec, out: str | Path, *, scheduler: str | None = None,
               workers: int | None = None, serial: bool = False, quiet: bool = False,
-              log: Callable[[str], None] | None = None, task: Callable = evaluate.run_job) -> dict:
+              log: Callable[[str], None] | None = None, task: Callable = evaluate.run_job, force: bool = False,
+              resume: bool = False) -> dict:
     """Fit the parameters of the SPEC ``spec`` (a file or a read :class:`~.spec.CalibrationSpec`) to its targets
     and write the results into the folder ``out`` (see the module's docstring); returns calibration.json's dict.
 
@@ -157,7 +159,10 @@ def calibrate(spec: str | Path | CalibrationSpec, out: str | Path, *, scheduler:
     ``serial``: run in this process; ``quiet``: no progress lines (else one per run on stderr, and ``log`` (a
     function of one line, default: print to stderr) for the search's steps); ``task``: what a run is (default
     :func:`.evaluate.run_job`). The folder must be new, empty, or hold this SPEC's interrupted calibration (then
-    it resumes, rerunning no stored run)."""
+    it resumes, rerunning no stored run; ``resume``: it must). Every target's result is checked against what a
+    run of its case reports before anything runs; the study's wall time (at most ``max_evaluations`` points of the
+    search, each a run per parameter and fit case) is estimated from the price of one run of each case (as
+    ``rotorcosim run`` prices it), printed before the first run and refused beyond 24 h unless ``force``."""
     from scipy.optimize import least_squares
 
     t_wall = time.perf_counter()
@@ -170,8 +175,21 @@ def calibrate(spec: str | Path | CalibrationSpec, out: str | Path, *, scheduler:
     out = Path(out)
     head = {"spec": str(spec.source), "scenario": spec.scenario, "duration_s": spec.duration,
             "residual": spec.residual}
-    evaluate.check_scheduler(scheduler)   # before the folder is touched
-    resumed = store.open_folder(out, REPORT, TABLE, spec.fingerprint(), head)
+    if task is evaluate.run_job:   # what a run of the scenario reports (a stand-in task has its own)
+        check_target_results(spec, targets)
+    at_once = evaluate.slots(scheduler, workers, serial)   # the scheduler checked before the folder is touched
+    fit_cases = list(dict.fromkeys(t.case for t in targets if not t.holdout))
+    all_cases = list(dict.fromkeys(t.case for t in targets))
+    runs = spec.max_evaluations * (1 + len(spec.parameters)) * len(fit_cases) + 2 * len(all_cases)
+    start = {p.name: p.start for p in spec.parameters}
+    est = evaluate.estimate(spec.scenario, [{**spec.cases.get(c, {}), **start} for c in all_cases], spec.duration,
+                            runs, at_once, f"calibrate {spec.source} (at most)",
+                            "a smaller max_evaluations, fewer cases or a shorter duration in the SPEC, or more "
+                            "workers (--workers, --scheduler)", force)
+    est["runs_at_most"] = True   # the search may stop long before max_evaluations
+    resumed = store.open_folder(out, REPORT, TABLE, spec.fingerprint(), {**head, "estimate": est},
+                                spec.definition(), resume)
+    print(budget.many_line(est, "calibrate"), file=sys.stderr, flush=True)   # once the folder is taken
     results = list(dict.fromkeys(t.result for t in targets))
     table = store.RowStore(out / TABLE, ["case", *(p.name for p in spec.parameters), *results, "status",
                                          "wall_time_s", "error"])
@@ -180,7 +198,8 @@ def calibrate(spec: str | Path | CalibrationSpec, out: str | Path, *, scheduler:
         fit = Fit(spec, targets, ev, table, say, quiet)
         if resumed:
             say(f"resuming: {len(fit.known)} runs read from {out / TABLE}")
-        report = {**head, "fingerprint": spec.fingerprint(), "status": "running"}
+        report = {**head, "estimate": est, "fingerprint": spec.fingerprint(), "definition": spec.definition(),
+                  "status": "running"}
         try:
             # the start, every case (fit and holdout): the scores before, and a check that every target exists
             fit.run([fit.u0], fit.all_cases)
@@ -223,6 +242,21 @@ def calibrate(spec: str | Path | CalibrationSpec, out: str | Path, *, scheduler:
     report["figure"] = FIGURE
     write_json(out / REPORT, report)
     return report
+
+
+def check_target_results(spec: CalibrationSpec, targets: list[Target]) -> None:
+    """Every target's result is one a run of its case reports (:mod:`.declared`): a TargetError naming the first
+    that is not, before anything runs."""
+    from rotorcosim.master.api import load_scenario
+    from rotorcosim.master.study import declared
+
+    base = load_scenario(spec.scenario)
+    for case in dict.fromkeys(t.case for t in targets):
+        sc = base.set(spec.cases[case]) if spec.cases.get(case) else base
+        bad = declared.refusal(sc, [t.result for t in targets if t.case == case],
+                               f"targets file {spec.targets}" + (f" case {case!r}" if case else ""))
+        if bad:
+            raise TargetError(bad)
 
 
 def _check_results(fit: Fit, targets: list[Target]) -> None:

@@ -27,8 +27,7 @@ from typing import Any, Callable, Sequence
 
 # one place for these: the sweep engine's connection timeout [s], retries of a job whose worker died, its Dask
 # client (local cluster or scheduler address), its closing and its SIGTERM-as-Ctrl-C (module-private there)
-from rotorcosim.master.sweep.attempts import RETRIES
-from rotorcosim.master.sweep.engine import CONNECT_TIMEOUT_S
+from rotorcosim.master.sweep.engine import CONNECT_TIMEOUT_S, RETRIES
 from rotorcosim.master.sweep.engine import close_client, dask_client as sweep_client
 from rotorcosim.master.sweep.engine import sigterm_as_interrupt as terminate_as_interrupt  # noqa: F401 - used as evaluate.terminate_as_interrupt
 

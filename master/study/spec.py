@@ -68,6 +68,8 @@ else:  # pragma: no cover
     import tomli as tomllib
 
 from rotorcosim import scenarios
+from rotorcosim.components import toml_text
+from rotorcosim.components.bounded_read import read_bytes, read_text
 from rotorcosim.master.api import load_scenario
 from rotorcosim.master.scenario.build import Scenario
 
@@ -139,11 +141,18 @@ class CalibrationSpec:
     diff_step: float = DIFF_STEP
     tolerance: float = TOLERANCE
 
+    def definition(self) -> dict:
+        """Everything the SPEC says, as JSON values: a folder holding a calibration of another definition is
+        refused, naming the keys that differ (the targets by their file's digest)."""
+        digest = (hashlib.sha256(read_bytes(self.targets, "targets file")).hexdigest()[:16]
+                  if self.targets.is_file() else None)
+        return {"scenario": self.scenario, "duration": self.duration, "cases": self.cases,
+                "parameters": [asdict(p) for p in self.parameters], "targets": digest, "residual": self.residual,
+                "max_evaluations": self.max_evaluations, "diff_step": self.diff_step, "tolerance": self.tolerance}
+
     def fingerprint(self) -> str:
-        """What an evaluation depends on (the scenario, duration, cases and parameter names): evaluations stored
-        under another fingerprint are not reused."""
-        return _digest({"scenario": self.scenario, "duration": self.duration, "cases": self.cases,
-                        "parameters": [p.name for p in self.parameters]})
+        """The digest of :meth:`definition`: evaluations stored under another fingerprint are not reused."""
+        return _digest(self.definition())
 
 
 @dataclass
@@ -159,11 +168,16 @@ class UQSpec:
     parameters: list[Distribution]
     overrides: dict[str, Any] = field(default_factory=dict)
 
+    def definition(self) -> dict:
+        """Everything the SPEC says, as JSON values: a folder holding a UQ of another definition is refused,
+        naming the keys that differ."""
+        return {"scenario": self.scenario, "duration": self.duration, "samples": self.samples,
+                "sampler": self.sampler, "seed": self.seed, "overrides": self.overrides, "results": self.results,
+                "parameters": [asdict(p) for p in self.parameters]}
+
     def fingerprint(self) -> str:
-        """What the samples depend on: samples stored under another fingerprint are not reused."""
-        return _digest({"scenario": self.scenario, "duration": self.duration, "samples": self.samples,
-                        "sampler": self.sampler, "seed": self.seed, "overrides": self.overrides,
-                        "parameters": [asdict(p) for p in self.parameters]})
+        """The digest of :meth:`definition`: samples stored under another fingerprint are not reused."""
+        return _digest(self.definition())
 
 
 def _digest(obj) -> str:
@@ -175,15 +189,28 @@ def _read(path: Path, table: str) -> dict:
     if not path.is_file():
         raise FileNotFoundError(f"SPEC {path}: no such file")
     try:
-        data = tomllib.loads(path.read_text())
+        data = toml_text.loads(read_text(path, "SPEC"))
     except (tomllib.TOMLDecodeError, UnicodeDecodeError) as exc:
         raise SpecError(f"SPEC {path}: not valid TOML: {exc}") from None
-    if table not in data or not isinstance(data[table], dict):
+    if table not in data:
         raise SpecError(f"SPEC {path}: no [{table}] table")
+    if not isinstance(data[table], dict):
+        raise SpecError(f"SPEC {path}: [{table}] must be a table, got {_shape(data[table])}")
     return data[table]
 
 
+def _shape(value) -> str:
+    """What a TOML value is, in a refusal's words: "a list ([1])", "a table", "int (5)"."""
+    if isinstance(value, dict):
+        return "a table"
+    if isinstance(value, list):
+        return f"a list ({value!r:.40})"
+    return f"{type(value).__name__} ({value!r:.40})"
+
+
 def _number(where: str, value, *, positive: bool = False) -> float:
+    if isinstance(value, (dict, list)):
+        raise SpecError(f"{where}: must be a number, got {_shape(value)}")
     if isinstance(value, bool) or not isinstance(value, numbers.Real) or not math.isfinite(value):
         raise SpecError(f"{where}: {value!r} is not a finite number")
     if positive and value <= 0:
@@ -241,6 +268,33 @@ def check_parameters(sc: Scenario, values: dict[str, Any], where: str) -> None:
         raise SpecError(f"{where}: {' '.join(str(exc).split())}") from None
 
 
+def check_values(sc: Scenario, name: str, values, where: str) -> None:
+    """Each of ``values`` of the parameter ``name`` (``comp.param``) is one its component takes: its declared range
+    (:func:`check_parameters`), and the component built and set up alone with it, where it sets up alone with the
+    scenario's own values (an FMU's parameters are checked by its runs). A SpecError naming the first that is
+    not."""
+    from rotorcosim.master.scenario.build import create_component
+
+    comp = name.partition(".")[0]
+    for v in values:
+        check_parameters(sc, {name: v}, where)
+    if sc.components[comp].fmu is not None or _sets_up(create_component, sc.components[comp]) is not None:
+        return
+    for v in values:
+        why = _sets_up(create_component, sc.set({name: v}).components[comp])
+        if why is not None:
+            raise SpecError(f"{where}: {' '.join(why.split())}")
+
+
+def _sets_up(create, component_spec) -> str | None:
+    """Why the component of ``component_spec`` cannot be built and set up alone, or None when it can."""
+    try:
+        create(component_spec).setup(0.0)
+    except (ValueError, TypeError, ArithmeticError, RuntimeError, LookupError) as exc:
+        return str(exc)
+    return None
+
+
 def read_calibration(path: str | Path) -> CalibrationSpec:
     """Read and check the calibration SPEC ``path`` (see the module's docstring): the scenario loads, every
     parameter exists with bounds lower < start < upper (log: all > 0), every case's overrides apply. The targets
@@ -267,7 +321,7 @@ def read_calibration(path: str | Path) -> CalibrationSpec:
             if name in over:
                 raise SpecError(f"{pw}: case {c!r} sets it too (a parameter to update cannot be a case's setting)")
         scale = p.get("scale", "linear")
-        if scale not in SCALES:
+        if not isinstance(scale, str) or scale not in SCALES:
             raise SpecError(f"{pw}: scale {scale!r} not in {SCALES}")
         for key in ("lower", "upper"):
             if key not in p:
@@ -277,14 +331,14 @@ def read_calibration(path: str | Path) -> CalibrationSpec:
             raise SpecError(f"{pw}: lower {lower:g} must be below upper {upper:g}")
         if scale == "log" and lower <= 0:
             raise SpecError(f"{pw}: a log scale needs lower > 0, got {lower:g}")
-        check_parameters(sc, {name: (lower + upper) / 2}, pw)
+        check_values(sc, name, (lower, upper), pw)   # every point of the search lies between them
         start = p["start"] if "start" in p else _default_value(sc, name, pw)
         start = _number(f"{pw} start", start)
         if not lower <= start <= upper:
             raise SpecError(f"{pw}: start {start:g} is outside the bounds [{lower:g}, {upper:g}]")
         out.append(Parameter(name, lower, upper, start, scale))
     residual = t.get("residual", "log")
-    if residual not in RESIDUALS:
+    if not isinstance(residual, str) or residual not in RESIDUALS:
         raise SpecError(f"{w}: residual {residual!r} not in {RESIDUALS}")
     nmax = t.get("max_evaluations", MAX_EVALUATIONS)
     if isinstance(nmax, bool) or not isinstance(nmax, int) or nmax < 1:
@@ -333,7 +387,7 @@ def read_uq(path: str | Path) -> UQSpec:
     if isinstance(n, bool) or not isinstance(n, int) or n < 1:
         raise SpecError(f"{w}: samples must be an integer >= 1, got {n!r}")
     sampler = t.get("sampler", "lhs")
-    if sampler not in SAMPLERS:
+    if not isinstance(sampler, str) or sampler not in SAMPLERS:
         raise SpecError(f"{w}: sampler {sampler!r} not in {SAMPLERS}")
     seed = t.get("seed", 0)
     if isinstance(seed, bool) or not isinstance(seed, int) or seed < 0:
@@ -350,7 +404,7 @@ def read_uq(path: str | Path) -> UQSpec:
     out = []
     for pw, name, p in _parameter_tables(w, t, "uq", taken=overrides):
         kind = p.get("distribution")
-        if kind not in DISTRIBUTIONS:
+        if not isinstance(kind, str) or kind not in DISTRIBUTIONS:
             raise SpecError(f"{pw}: distribution {kind!r} not in {tuple(DISTRIBUTIONS)}")
         vals = {}
         for key in DISTRIBUTIONS[kind]:

@@ -24,6 +24,7 @@ from pathlib import Path
 from typing import Any, Sequence
 
 from rotorcosim.master.run.outputs import write_json
+from rotorcosim.components.bounded_read import MAX_TABLE_BYTES, read_json, read_text
 
 
 class StoreError(ValueError):
@@ -59,8 +60,7 @@ class RowStore:
         """The stored rows (none when the file does not exist); a file with other columns is an error."""
         if not self.path.exists():
             return []
-        with open(self.path, newline="") as fh:
-            rows = list(csv.reader(fh))
+        rows = list(csv.reader(read_text(self.path, "study table", MAX_TABLE_BYTES).splitlines()))
         if not rows:
             return []
         if rows[0] != self.columns:
@@ -91,26 +91,49 @@ class RowStore:
         os.replace(tmp, self.path)
 
 
-def open_folder(out: str | Path, report: str, table: str, fingerprint: str, head: dict) -> bool:
+def open_folder(out: str | Path, report: str, table: str, fingerprint: str, head: dict,
+                definition: dict | None = None, resume: bool = False) -> bool:
     """Make ``out`` ready for a study whose JSON report is ``report`` and table ``table``: a new or empty folder
-    starts afresh, a folder holding the same SPEC's report resumes (returns True); anything else is refused.
-    Writes the report with ``status`` "running", the ``fingerprint`` and ``head``."""
+    starts afresh, a folder holding the same SPEC's report resumes (returns True); anything else is refused, a
+    study of another SPEC naming the keys of ``definition`` (what the SPEC says) that differ. ``resume``: the
+    folder must hold this SPEC's study. Writes the report with ``status`` "running", the ``fingerprint``,
+    ``definition`` and ``head``."""
     out = Path(out)
     if out.exists() and not out.is_dir():
         raise StoreError(f"--out {out} is a file, not a folder")
-    resume = False
+    resumed = False
     if out.is_dir() and any(out.iterdir()):
         f = out / report
         try:
-            old = json.loads(f.read_text())
+            old = read_json(f, report)
         except (OSError, ValueError):
             names = ", ".join(sorted(p.name for p in out.iterdir())[:4])
             raise StoreError(f"--out {out} is not empty and holds no {report} of a study ({names}): use an empty "
                              f"or new folder") from None
-        if old.get("fingerprint") != fingerprint:
-            raise StoreError(f"--out {out} holds a study of another SPEC (its {report} has another scenario, "
-                             f"duration, cases or parameters): use another folder")
-        resume = (out / table).exists()
+        if not isinstance(old, dict) or old.get("fingerprint") != fingerprint:
+            raise StoreError(f"--out {out} holds a study of another SPEC ({_differences(old, definition)}): use "
+                             "another folder, or the SPEC that made it")
+        resumed = (out / table).exists()
+    elif resume:
+        raise StoreError(f"--resume: --out {out} holds no study to resume (run without --resume to start one)")
     out.mkdir(parents=True, exist_ok=True)
-    write_json(out / report, {**head, "status": "running", "fingerprint": fingerprint})
-    return resume
+    write_json(out / report, {**head, "status": "running", "fingerprint": fingerprint,
+                              **({"definition": definition} if definition is not None else {})})
+    return resumed
+
+
+def _differences(old, definition: dict | None) -> str:
+    """Which keys of a SPEC's definition differ from the one a folder's report holds, in words."""
+    was = old.get("definition") if isinstance(old, dict) else None
+    if not isinstance(was, dict) or definition is None:
+        return "its report predates the record of what its SPEC said"
+    new = json.loads(json.dumps(definition, default=str))
+    keys = [k for k in sorted(set(was) | set(new)) if was.get(k) != new.get(k)]
+    if not keys:
+        return "its report has another fingerprint"
+    shown = []
+    for k in keys[:4]:
+        a, b = was.get(k), new.get(k)
+        short = isinstance(a, (int, float, str, type(None))) and isinstance(b, (int, float, str, type(None)))
+        shown.append(f"{k} {a!r} there, {b!r} here" if short else k)
+    return "differs in " + "; ".join(shown) + (f" and {len(keys) - 4} more" if len(keys) > 4 else "")

@@ -38,9 +38,11 @@ from typing import Callable
 
 import numpy as np
 
+from rotorcosim.components.bounded_read import read_json
 from rotorcosim.master.api import load_scenario
 from rotorcosim.master.run.outputs import write_json
 from rotorcosim.master.scenario.engine import bound_together
+from rotorcosim.master.schedule import budget
 from rotorcosim.master.study import evaluate, statistics, store
 from rotorcosim.master.study.spec import Distribution, UQSpec, read_uq
 from rotorcosim.master.study.targets import value_of
@@ -97,33 +99,49 @@ def design(spec: UQSpec) -> tuple[np.ndarray, np.ndarray]:
 
 
 def uq(spec: str | Path | UQSpec, out: str | Path, *, scheduler: str | None = None, workers: int | None = None,
-       serial: bool = False, quiet: bool = False, task: Callable = evaluate.run_job) -> dict:
+       serial: bool = False, quiet: bool = False, task: Callable = evaluate.run_job, force: bool = False,
+       resume: bool = False) -> dict:
     """Run the UQ of the SPEC ``spec`` (a file or a read :class:`~.spec.UQSpec`) and write its results into the
     folder ``out`` (see the module's docstring); returns uq.json's dict.
 
     ``scheduler``: a running Dask scheduler's address (default: a local cluster of ``workers`` processes);
     ``serial``: run in this process; ``quiet``: no progress lines (else one per sample on stderr); ``task``:
     what a run is (default :func:`.evaluate.run_job`). The folder must be new, empty, or hold this SPEC's
-    interrupted UQ (then it resumes, rerunning no stored sample)."""
+    interrupted UQ (then it resumes, rerunning no stored sample; ``resume``: it must). The study's wall time is
+    estimated from the price of one run (as ``rotorcosim run`` prices it) and printed before the first sample;
+    beyond 24 h it is refused unless ``force``."""
     t_wall = time.perf_counter()
     if not isinstance(spec, UQSpec):
         spec = read_uq(spec)
     out = Path(out)
     names = [p.name for p in spec.parameters]
     u, x = design(spec)
+    if task is evaluate.run_job:   # what a run of the scenario reports and takes (a stand-in task has its own)
+        check_results(spec)
+        check_samples(spec, x)
     head = {"spec": str(spec.source), "scenario": spec.scenario, "duration_s": spec.duration,
             "sampler": spec.sampler, "seed": spec.seed, "samples": len(x),
             "parameters": {p.name: {"distribution": p.distribution, **p.values} for p in spec.parameters}}
-    evaluate.check_scheduler(scheduler)   # before the folder is touched
-    resumed = store.open_folder(out, REPORT, TABLE, spec.fingerprint(), head)
+    at_once = evaluate.slots(scheduler, workers, serial)   # the scheduler checked before the folder is touched
     # what each run recorded of every component parameter a sampled one moves (the engine's quantity: a damper's
     # clearance is its thermal network's too, master/scenario/engine.py)
     recorded = bound_together(load_scenario(spec.scenario), names)
     table = store.RowStore(out / TABLE, ["sample", *names, *spec.results, "status", "wall_time_s", "error",
                                          *(RECORDED + t for t in recorded)])
+    stored = table.read() if (out / REPORT).is_file() and _same_study(out / REPORT, spec) else []
+    done_before = {int(r["sample"]) for r in stored}
+    first = next((i for i in range(len(x)) if i not in done_before), 0)
+    est = evaluate.estimate(spec.scenario, [{**spec.overrides, **{n: float(x[first, j]) for j, n in enumerate(names)}}],
+                            spec.duration, len(x) - len(done_before), at_once, f"uq {spec.source}",
+                            "fewer samples or a shorter duration in the SPEC, or more workers (--workers, "
+                            "--scheduler)", force)
+    resumed = store.open_folder(out, REPORT, TABLE, spec.fingerprint(), {**head, "estimate": est},
+                                spec.definition(), resume)
+    print(budget.many_line(est, "uq"), file=sys.stderr, flush=True)   # once the folder is taken, before a run
     rows = {int(r["sample"]): r for r in table.read()}
     todo = [i for i in range(len(x)) if i not in rows]
-    report = {**head, "fingerprint": spec.fingerprint(), "status": "running"}
+    report = {**head, "estimate": est, "fingerprint": spec.fingerprint(), "definition": spec.definition(),
+              "status": "running"}
     progress = evaluate.Progress(len(todo), "samples", quiet=quiet)
     if resumed and not quiet:
         print(f"resuming: {len(rows)} samples read from {out / TABLE}, {len(todo)} to run", file=sys.stderr)
@@ -170,6 +188,47 @@ def uq(spec: str | Path | UQSpec, out: str | Path, *, scheduler: str | None = No
                     report["failed"], len(ordered))
     write_json(out / REPORT, report)
     return report
+
+
+def _same_study(report: Path, spec: UQSpec) -> bool:
+    """Whether the folder's report is this SPEC's (its stored samples are then not run again)."""
+    try:
+        return read_json(report, REPORT).get("fingerprint") == spec.fingerprint()
+    except (OSError, ValueError, AttributeError):
+        return False
+
+
+def check_results(spec: UQSpec) -> None:
+    """Every result the SPEC names is one a run of its scenario reports (:mod:`.declared`): a SpecError naming
+    the first that is not, before anything runs."""
+    from rotorcosim.master.study import declared
+    from rotorcosim.master.study.spec import SpecError
+
+    sc = load_scenario(spec.scenario)
+    bad = declared.refusal(sc.set(spec.overrides) if spec.overrides else sc, spec.results,
+                           f"SPEC {spec.source} [uq] results")
+    if bad:
+        raise SpecError(bad)
+
+
+def check_samples(spec: UQSpec, x: np.ndarray) -> None:
+    """Every parameter's smallest and largest sampled value is one its component takes (a distribution reaching
+    past a parameter's range, a normal stiffness drawn negative, would fail those samples' runs;
+    :func:`.spec.check_values`): a SpecError naming the parameter, the value and its distribution, before
+    anything runs."""
+    from rotorcosim.master.study.spec import SpecError, check_values
+
+    sc = load_scenario(spec.scenario)
+    if spec.overrides:
+        sc = sc.set(spec.overrides)
+    for j, p in enumerate(spec.parameters):
+        try:
+            check_values(sc, p.name, (float(x[:, j].min()), float(x[:, j].max())),
+                         f"SPEC {spec.source} [uq] parameter {p.name}")
+        except SpecError as exc:
+            vals = ", ".join(f"{k} {val:g}" for k, val in p.values.items())
+            raise SpecError(f"{exc} (a sample of its {p.distribution} distribution, {vals}: narrow it or "
+                            "truncate it, truncnormal)") from None
 
 
 def recorded_value(summary: dict, ref: str):

@@ -16,9 +16,8 @@
     done.summaries["soft"], done.errors
 """
 from rotorcosim.master.sweep.case import Case, run_case
-from rotorcosim.master.sweep.attempts import RETRIES, WorkerDied
-from rotorcosim.master.sweep.engine import (CONNECT_TIMEOUT_S, SchedulerLost, SweepError, SweepInterrupted, SweepRun,
-                                            run_cases)
+from rotorcosim.master.sweep.engine import (CONNECT_TIMEOUT_S, RETRIES, SchedulerLost, SweepError, SweepInterrupted,
+                                            SweepRun, WorkerDied, run_cases)
 from rotorcosim.master.sweep.folder import SWEEP_FILES, DiskFullError, SweepFolder, named_os_error
 
 __all__ = ["Case", "run_case", "run_cases", "SweepRun", "SweepError", "SweepInterrupted", "SchedulerLost", "WorkerDied",

@@ -14,7 +14,6 @@ possibly on another machine) needs no access to the folder the results go to.
 """
 from __future__ import annotations
 
-import json
 import math
 import shutil
 import socket
@@ -23,6 +22,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
+from rotorcosim.components.bounded_read import read_json
 from rotorcosim.master.api import check_run, load_scenario, simulate
 from rotorcosim.master.scenario.build import Scenario
 from rotorcosim.master import case as cases
@@ -62,10 +62,11 @@ class Case:
             sc.name = f"{sc.name}_{self.name}"
         return sc
 
-    def check(self) -> dict:
+    def check(self, force: bool = False) -> dict:
         """The run's own checks before it is sent anywhere (the scenario, its overrides, the duration, the
-        schedule, the wall-time budget); returns the run's estimate (``budget.check``)."""
-        return check_run(self.scenario_of(), self.schedule, self.duration)
+        schedule, the wall-time budget: ``force`` lifts its 24 h limit); returns the run's estimate
+        (``budget.check``)."""
+        return check_run(self.scenario_of(), self.schedule, self.duration, force=force)
 
     def definition(self) -> dict:
         """What the case runs, as JSON values (``sweep.json``'s ``definitions``): a ``--resume`` checks that the
@@ -108,7 +109,7 @@ def run_case(case: Case) -> dict:
             summary = failed_summary(case, f"{type(exc).__name__}: {exc}")
             written = work / "summary.json"
             if written.exists():  # a failed run wrote its summary (with its status) and what it recorded
-                summary = {**json.loads(written.read_text()), "error": summary["error"]}
+                summary = {**read_json(written, "summary"), "error": summary["error"]}
         files = {str(p.relative_to(work)): p.read_bytes() for p in sorted(work.rglob("*")) if p.is_file()}
         return {"summary": summary, "files": files, "host": socket.gethostname()}
     finally:

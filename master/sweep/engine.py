@@ -10,7 +10,9 @@ unlocked):
 
 * a case that fails (a bad value, a divergence, a crashed FMU): its summary's ``error``, the others go on;
 * the worker running a case dies (killed, out of memory, a crash in native code): the case is run once more
-  (attempts.py, the retry of studies too), then reported failed by name ("its worker died ..."), the others go on;
+  (:data:`RETRIES`), then reported failed by name ("its worker died ..."), the others go on; a case run again
+  is reported (sweep.json ``retries``: the workers that died under it, the one that ran it again, its result;
+  and the progress callback's ``result["retry"]``);
 * the scheduler goes away: the sweep ends with :class:`SchedulerLost` naming it and how many cases are kept;
 * Ctrl-C or SIGTERM: the sweep stops (on Dask at once; ``serial`` once the case running, which takes the
   signal over, has stopped or ended), the cases still running marked ``interrupted`` in sweep.json, the others
@@ -43,12 +45,16 @@ from pathlib import Path
 from typing import Any, Callable, Sequence
 
 from rotorcosim.master import case as case_
-from rotorcosim.master.sweep import attempts
+from rotorcosim.master.schedule import budget
 from rotorcosim.master.sweep.case import Case, failed_summary, run_case
 from rotorcosim.master.sweep.folder import SweepFolder, named_os_error
 
 #: how long the client waits for a scheduler given by ``scheduler=`` before saying it cannot reach it [s]
 CONNECT_TIMEOUT_S = 20.0
+#: how often a case whose worker died is run again before it is reported failed
+RETRIES = 1
+#: the Dask metadata key under which a case's attempts are counted (on the scheduler, under it per sweep and case)
+ATTEMPTS = "rotorcosim-sweep-attempts"
 
 
 class SweepError(RuntimeError):
@@ -57,6 +63,10 @@ class SweepError(RuntimeError):
 
 class SchedulerLost(SweepError):
     """The Dask scheduler went away during the sweep."""
+
+
+class WorkerDied(SweepError):
+    """A case whose worker died on every attempt."""
 
 
 class SweepInterrupted(KeyboardInterrupt):
@@ -85,7 +95,8 @@ class SweepRun:
 def run_cases(cases: Sequence[Case], out, *, scheduler: str | None = None, workers: int | None = None,
               serial: bool = False, client=None, progress: Callable | None = None, overwrite: bool = False,
               resume: bool = False, info: dict | None = None, finish: Callable | None = None, extra_files=(),
-              connect_timeout: float = CONNECT_TIMEOUT_S) -> SweepRun:
+              connect_timeout: float = CONNECT_TIMEOUT_S, force: bool = False,
+              say: Callable[[str], None] | None = None) -> SweepRun:
     """Run ``cases`` into the folder ``out`` and return their summaries (:class:`SweepRun`).
 
     Where: ``serial`` in this process, one after another; else on ``client`` (a ``dask.distributed.Client`` the
@@ -97,7 +108,9 @@ def run_cases(cases: Sequence[Case], out, *, scheduler: str | None = None, worke
     complete or failed, returns more entries of it (a case's tables). ``extra_files``: name patterns of the files
     ``finish`` writes, which ``overwrite`` may clear.
 
-    Every case is checked (:meth:`Case.check`) before any runs. See the module's docstring for faults."""
+    Every case is checked (:meth:`Case.check`) before any runs, and the sweep's wall time estimated from their
+    prices (as ``rotorcosim run`` prices a run), given to ``say`` (a function of one line) and kept in sweep.json
+    (``estimate``); beyond 24 h the sweep is refused unless ``force``. See the module's docstring for faults."""
     cases = list(cases)
     if not cases:
         raise ValueError("run_cases: no case to run")
@@ -106,16 +119,40 @@ def run_cases(cases: Sequence[Case], out, *, scheduler: str | None = None, worke
         raise ValueError(f"run_cases: two cases are named {next(n for n in names if names.count(n) > 1)!r}")
     if workers is not None and workers < 1:
         raise ValueError(f"--workers must be at least 1, got {workers}")
-    for c in cases:  # fail early: a bad scenario, an unknown component, a duration or schedule no run takes
-        c.check()
+    # fail early: a bad scenario, an unknown component, a duration or schedule no run takes, a sweep too long
+    prices = [c.check(force) for c in cases]
+    est = _estimate(prices, scheduler, workers, serial, client, connect_timeout, force)
     definitions = {c.name: c.definition() for c in cases}
     # sweep.csv's column of the level: the key its case's summaries report it under (master/case.py)
     leveled = [c for c in cases if c.level is not None]
     column = case_.scenario_level(leveled[0].scenario_of())[0].summary_key if leveled else case_.GENERIC.summary_key
     with SweepFolder(out, overwrite=overwrite, resume=resume, extra_files=extra_files) as folder:
-        sweep = _Sweep(cases, folder, definitions, dict(info or {}), progress)
+        if say is not None:   # once the folder is taken (a refusal of it is the only line), before the first case
+            say(budget.many_line(est, "sweep"))
+        sweep = _Sweep(cases, folder, definitions, {**(info or {}), "estimate": est}, progress)
         sweep.level_column = column
         return sweep.run(scheduler, workers, serial, client, connect_timeout, finish)
+
+
+def _estimate(prices: list[dict], scheduler, workers, serial, client, connect_timeout, force) -> dict:
+    """The sweep's wall time from its cases' estimates, as many at a time as it will run (budget.check_many)."""
+    if serial:
+        at_once = 1
+    elif client is not None or scheduler:
+        own = client is None
+        if own:   # an unreachable scheduler is named here, before the folder is touched
+            client, cluster, _ = dask_client(scheduler, None, connect_timeout, 1)
+        try:
+            at_once = sum(w.get("nthreads", 1) for w in client.scheduler_info().get("workers", {}).values())
+        finally:
+            if own:
+                close_client(client, cluster)
+    else:
+        at_once = min(workers or os.cpu_count() or 1, len(prices))
+    run_s = max(p["wall_s"] for p in prices)   # whole waves of the dearest case: an upper bound of a mixed sweep
+    return budget.check_many(run_s, len(prices), at_once, "sweep", "fewer levels or --set values, a shorter "
+                             "--duration, or more workers (--workers, --scheduler)", force,
+                             any(p.get("upper_bound") for p in prices))
 
 
 class _Sweep:
@@ -127,6 +164,7 @@ class _Sweep:
         self.summaries: dict[str, dict] = folder.complete_cases(definitions)
         self.status = {c.name: "complete" if c.name in self.summaries else "pending" for c in cases}
         self.hosts: dict[str, Any] = {c.name: None for c in cases}
+        self.retries: dict[str, dict] = {}
         self.where = ""
         self.t0 = time.perf_counter()
 
@@ -139,6 +177,7 @@ class _Sweep:
                 "case_hosts": dict(self.hosts),
                 "case_wall_time_s": {n: (sums.get(n) or {}).get("wall_time_s") for n in self.status},
                 "errors": {n: sums[n]["error"] for n in self.status if n in sums and sums[n].get("error")},
+                "retries": dict(self.retries),
                 "status": status, "case_status": dict(self.status), "definitions": self.definitions}
 
     def save(self, status: str = "running") -> None:
@@ -154,6 +193,8 @@ class _Sweep:
         self.summaries[case.name] = summary
         self.hosts[case.name] = res.get("host")
         self.status[case.name] = "failed" if summary.get("error") else "complete"
+        if res.get("retry"):
+            self.retries[case.name] = {**res["retry"], "result": self.status[case.name], "error": summary.get("error")}
         self.save()
         if self.progress:
             done = sum(s in ("complete", "failed") for s in self.status.values())
@@ -223,7 +264,7 @@ class _Sweep:
         lost = False
         try:
             try:
-                futures = {client.submit(_attempt, c, [attempts.KEY, self.token, c.name], pure=False): c for c in todo}
+                futures = {client.submit(_attempt, c, [ATTEMPTS, self.token, c.name], pure=False): c for c in todo}
             except (OSError, TimeoutError):
                 lost = True
                 raise SchedulerLost(self._lost(address)) from None
@@ -238,7 +279,7 @@ class _Sweep:
                     if _scheduler_gone(client, exc):
                         lost = True
                         raise SchedulerLost(self._lost(address)) from None
-                    res = {"summary": failed_summary(c, attempts.task_error(exc)), "files": {}, "host": None}
+                    res = {"summary": failed_summary(c, _task_error(exc)), "files": {}, "host": None}
                 self.finished(c, res)
         except KeyboardInterrupt:
             self._not_started(client, futures)
@@ -253,7 +294,7 @@ class _Sweep:
         """At an interrupt: the cases sent but not yet taken by a worker back to ``pending`` (only those a worker
         runs are ``interrupted``); when the scheduler cannot say, all stay ``running``."""
         try:
-            started = attempts.started(client, [attempts.KEY, self.token])
+            started = client.get_metadata([ATTEMPTS, self.token], {})
         except Exception:
             return
         for c in futures.values():
@@ -267,13 +308,38 @@ class _Sweep:
 
 
 def _attempt(case: Case, key: list) -> dict:
-    """The task a worker runs: the case, unless its workers died too often already (attempts.py)."""
-    error = attempts.gave_up(key)
-    if error is not None:
+    """The task a worker runs: count the attempt on the scheduler (a worker that dies while running the case
+    makes the scheduler run it again on another), fail it on a third, else run the case."""
+    from dask.distributed import get_client
+
+    from dask.distributed import get_worker
+
+    client = get_client()
+    n = client.get_metadata(key, 0)
+    client.set_metadata(key, n + 1)
+    # the workers of the earlier attempts (each died under the case) and this one, for the report of a retry
+    where = [f"{ATTEMPTS}-workers", *key[1:]]
+    died_on = client.get_metadata(where, [])
+    me = get_worker().address
+    client.set_metadata(where, [*died_on, me])
+    retry = {"attempt": n + 1, "died_on": died_on, "worker": me} if n else None
+    if n > RETRIES:   # returned, not raised: the workers would log a raised one as an error with its traceback
         import socket
 
-        return {"summary": failed_summary(case, error), "files": {}, "host": socket.gethostname()}
-    return run_case(case)
+        error = f"{WorkerDied.__name__}: its worker died while running it, {n} times (retried {RETRIES} time(s))"
+        return {"summary": failed_summary(case, error), "files": {}, "host": socket.gethostname(), "retry": retry}
+    res = run_case(case)
+    if retry:
+        res["retry"] = retry
+    return res
+
+
+def _task_error(exc: BaseException) -> str:
+    """A failed task's error, as a case's summary says it."""
+    name = type(exc).__name__
+    if name == "KilledWorker":   # the scheduler gave up on the task after its own limit of worker deaths
+        return f"WorkerDied: its worker died while running it ({exc})"
+    return f"{name}: {exc}"
 
 
 def _scheduler_gone(client, exc: BaseException) -> bool:
@@ -283,7 +349,7 @@ def _scheduler_gone(client, exc: BaseException) -> bool:
 
     if client.status not in ("running", "connecting"):
         return True
-    if isinstance(exc, (CancelledError, asyncio.CancelledError)):   # distributed's FutureCancelledError too
+    if isinstance(exc, (CancelledError, asyncio.CancelledError)) or type(exc).__name__ == "FutureCancelledError":
         return True
     return False
 
@@ -322,10 +388,22 @@ def dask_client(scheduler: str | None, workers: int | None, connect_timeout: flo
         if main:
             signal.signal(signal.SIGINT, old)
     client = Client(cluster)
-    from rotorcosim.master.sweep.worker_plugin import IgnoreInterrupt   # Dask's, loaded with the cluster only
-
-    client.register_plugin(IgnoreInterrupt(), name="rotorcosim-ignore-sigint")
+    client.register_plugin(_IgnoreInterrupt(), name="rotorcosim-ignore-sigint")
     return client, cluster, f"local cluster, {n} workers"
+
+
+try:
+    from distributed.diagnostics.plugin import WorkerPlugin as _WorkerPlugin
+except ImportError:  # pragma: no cover  (Dask is needed only off --serial)
+    _WorkerPlugin = object
+
+
+class _IgnoreInterrupt(_WorkerPlugin):
+    """A local worker ignores SIGINT: the sweep's own process ends it (see :func:`dask_client`)."""
+
+    def setup(self, worker):
+        if threading.current_thread() is threading.main_thread():
+            signal.signal(signal.SIGINT, signal.SIG_IGN)
 
 
 def close_client(client, cluster, quiet: bool = False) -> None:

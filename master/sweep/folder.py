@@ -24,6 +24,7 @@ import os
 import shutil
 from pathlib import Path
 
+from rotorcosim.components.bounded_read import read_json
 from rotorcosim.master.run.rundir import LOCK, OutputFolderError, check_folder, ensure_folder, is_run_file
 from rotorcosim.master.sweep.lock import FolderLock
 
@@ -135,7 +136,7 @@ class SweepFolder:
             return {}
         f = self.path / STATE
         try:
-            state = json.loads(f.read_text())
+            state = read_json(f, "sweep state")
         except (OSError, ValueError) as exc:
             raise OutputFolderError(f"--resume: {f} is not readable ({exc})") from None
         old = state.get("definitions") if isinstance(state, dict) else None
@@ -156,7 +157,7 @@ class SweepFolder:
             summary = self.path / name / "summary.json"
             if status.get(name) == "complete" and summary.is_file():
                 try:
-                    done[name] = json.loads(summary.read_text())
+                    done[name] = read_json(summary, "summary")
                 except (OSError, ValueError):
                     continue    # a damaged case is run again
         # the folders an interrupted sweep left half-written (.<case>.part): the cases run again rewrite theirs

@@ -128,5 +128,6 @@ def test_bearing_static_command_rejects_bad_input(capsys):
     assert main(["bearing-static", "--bearing", "0", "--radial-load", "-1"]) == 2
     assert "radial load" in capsys.readouterr().err
     assert main(["bearing-static", "--bearing", "0", "--radial-load", "nan"]) == 2
-    with pytest.raises(ValueError, match="unknown bearing"):
+    with pytest.raises(ValueError, match=r"--bearing 3: the paper's Table 3 has bearings \[0, 5\]; for another "
+                                         r"bearing give its engine \(--engine FILE\)"):
         evaluate(3, 100.0)

@@ -122,11 +122,13 @@ def test_bad_oil_temperature(fast0, T):
 
 @pytest.mark.parametrize("params,match", [
     ({"damper": 3}, r"damper must be one of \[0, 5\]"),
-    ({"clearance": -1e-4}, r"clearance must be > 0"),
-    ({"length": 0.0}, r"length must be > 0"),
-    ({"k_spring": -1.0}, r"k_spring must be >= 0"),
-    ({"k_wall": -1.0}, r"k_wall must be >= 0"),
-    ({"n_theta": 4}, r"mesh n_theta=4"),
+    ({"damper": 0, "clearance": -1e-4}, r"clearance must be > 0"),
+    ({"damper": 0, "length": 0.0}, r"length must be > 0"),
+    ({"damper": 0, "k_spring": -1.0}, r"k_spring must be >= 0"),
+    ({"damper": 0, "k_wall": -1.0}, r"k_wall must be >= 0"),
+    ({"damper": 0, "n_theta": 4}, r"mesh n_theta=4"),
+    # neither a record of the paper's nor its own values: the missing ones named
+    ({}, r"no Table 3 record \(damper = -1\) and no radius, length, clearance, supply_pressure, k_spring given"),
     # a clearance in mm where metres are meant (Table 3: 0.635 mm): refused, with the conversion
     ({"damper": 0, "clearance": 0.635}, r"dmp\.clearance = 0\.635 m is not a thin film against the journal "
      r"radius 0\.08 m .*: 0\.635 mm = 0\.000635 m"),

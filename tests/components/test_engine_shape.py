@@ -150,3 +150,35 @@ def test_check_engine_command_on_a_wrong_shape(tmp_path, capsys, path, value, ex
     problems = [line.strip() for line in out.splitlines()[1:]]
     assert len(problems) == 1 and problems[0].startswith(expected), out
     assert not (tmp_path / "c.png").exists()
+
+
+def _part_cases():
+    data, _ = fem.load_data(None)
+    out = []
+    for table in ("bearing", "damper", "rubring", "thermal", "unbalance"):
+        entries = data.get(table, {})
+        rows = [((table,), entries)] if table == "unbalance" else [((table, i), e) for i, e in entries.items()]
+        for path, entry in rows:
+            for key, v in entry.items():
+                for label, bad in CANDIDATES.items():
+                    if type(bad) is type(v) or (label == "number" and isinstance(v, (int, float))
+                                                and not isinstance(v, bool)):
+                        continue
+                    out.append(pytest.param(path + (key,), bad, id=f"{_name(path + (key,))}={label}"))
+    return out
+
+
+@pytest.mark.parametrize("path, value", _part_cases())
+def test_wrong_shape_in_a_part_table_is_one_line_naming_the_key(tmp_path, path, value):
+    """The part tables ([bearing.ID], [damper.ID], [rubring.ID], [thermal.ID], [unbalance]) of the paper's
+    engine, every key of them given every wrong kind of value: a problem line naming the table, the id and the
+    key, never a crash."""
+    data, _ = fem.load_data(None)
+    node = data
+    for p in path[:-1]:
+        node = node[p]
+    node[path[-1]] = value
+    f = tmp_path / "engine.toml"
+    f.write_text(dumps(data))
+    problems = check_engine(str(f))["problems"]
+    assert any(all(str(p) in line for p in path) and "\n" not in line for line in problems), (path, problems)

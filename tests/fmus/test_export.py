@@ -17,8 +17,13 @@ from rotorcosim.fmus.export import ExportError, export_component
 from rotorcosim.fmus.description import describe, ports_of
 from rotorcosim.fmus.model_description import read_annotation
 
-#: parameters that keep the export tests quick (a coarse damper mesh); everything else at its defaults
-QUICK = {"damper.fast": {"n_theta": 32, "n_z": 8}, "damper.fe": {"n_theta": 32, "n_z": 8}}
+#: parameters that keep the export tests quick (a coarse damper mesh) and the machine's values a component has no
+#: default for (a bearing's, damper's, ring's, network's: the paper's Table 3 record #0; a spool's inertia, the
+#: paper's power turbine's); everything else at its defaults
+QUICK = {"damper.fast": {"damper": 0, "n_theta": 32, "n_z": 8}, "damper.fe": {"damper": 0, "n_theta": 32, "n_z": 8},
+         **{k: {"bearing": 0} for k in ("bearing.hertz", "bearing.hertz_spinning", "rubring.contact",
+                                         "rubring.contact_spinning", "thermal.network", "thermal.network_spinning")},
+         "spool.speed": {"inertia": 0.0396}}
 #: inputs held at typical non-zero values where the start values would leave the component idle
 TYPICAL = {"damper.fast": {"X_journal[1]": 1e-4, "V_journal[2]": 0.05},
            "damper.fe": {"X_journal[1]": 1e-4, "V_journal[2]": 0.05},

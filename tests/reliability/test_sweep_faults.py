@@ -102,6 +102,12 @@ def test_a_case_whose_worker_dies_is_retried_once_then_named(cluster, tmp_path):
     s = state(out)
     assert s["status"] == "complete" and s["errors"] == done.errors and s["case_status"] == done.status
     assert "always" in (out / "sweep.csv").read_text().splitlines()[1]
+    # the retries are reported: which case, the workers that died under it, the one that ran it again, its result
+    assert set(s["retries"]) == {"always", "once"}, s["retries"]
+    once_ = s["retries"]["once"]
+    assert once_["result"] == "complete" and once_["attempt"] == 2 and len(once_["died_on"]) == 1
+    assert once_["worker"].startswith("tcp://") and once_["died_on"][0].startswith("tcp://")
+    assert s["retries"]["always"]["result"] == "failed" and len(s["retries"]["always"]["died_on"]) == 2
 
 
 def test_worker_death_on_the_local_cluster_from_the_command_line(tmp_path):
@@ -111,8 +117,12 @@ def test_worker_death_on_the_local_cluster_from_the_command_line(tmp_path):
     r = cli("sweep", sc, "--set", "node.kill_at=-1,0.01", "--duration", "0.05", "--workers", "2", "--quiet",
             "--out", tmp_path / "out")
     assert r.returncode == 1, r.stderr
-    assert r.stderr.splitlines()[0].startswith("  case node.kill_at=0.01 failed: WorkerDied: its worker died "
-                                               "while running it, 2 times (retried 1 time(s))"), r.stderr
+    lines = r.stderr.splitlines()
+    assert lines[0].startswith("sweep: 2 runs of about "), r.stderr       # the estimate, before the first case
+    assert lines[1].startswith("  case node.kill_at=0.01 was run again on tcp://") and \
+        lines[1].endswith(" died: failed"), r.stderr                        # the retry, named
+    assert lines[2].startswith("  case node.kill_at=0.01 failed: WorkerDied: its worker died "
+                               "while running it, 2 times (retried 1 time(s))"), r.stderr
     assert "Traceback" not in r.stderr
     assert_kept(tmp_path / "out", ["node.kill_at=-1"])
 
