@@ -17,6 +17,7 @@ import sys
 import time
 
 import h5py
+import pytest
 
 from rotorcosim.master.cli import main
 from rotorcosim.master.run.rundir import LOCK
@@ -43,6 +44,7 @@ def complete(folder) -> bool:
         return False
 
 
+@pytest.mark.slow   # ~12 s of CPU time (measured): three comparisons
 def test_ctrl_c_keeps_the_complete_run_and_resume_runs_only_the_other(tmp_path):
     """Ctrl-C (SIGINT to the command's process group) while the monolithic run goes: exit status 130, one line
     saying which run is kept, the staggered run whole, the monolithic one ``interrupted``; ``--resume`` runs the
