@@ -181,8 +181,10 @@ def main(argv: list[str] | None = None) -> int:
     except KeyboardInterrupt as exc:
         if debug:
             traceback.print_exc()
-        # a command that says what its interruption kept (a sweep: its cases) raises its own subclass
-        said = str(exc) if type(exc).__name__ == "SweepInterrupted" else ""
+        # a command that says what its interruption kept (a sweep: its cases) raises its own subclass; the sweep's
+        # module is looked up, not imported (a command that ran no sweep does not load Dask to say so)
+        sweep = sys.modules.get("rotorcosim.master.sweep.engine")
+        said = str(exc) if sweep is not None and isinstance(exc, sweep.SweepInterrupted) else ""
         print(f"rotorcosim {args.command}: {said or 'interrupted'}", file=sys.stderr)
         return 130
     except Exception as exc:

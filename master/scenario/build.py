@@ -61,7 +61,7 @@ from __future__ import annotations
 import copy
 import math
 import sys
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Any, Mapping
 
@@ -102,19 +102,10 @@ class ComponentSpec:
     fmu_label: str | None = None
 
 
-@dataclass
-class ConnectionSpec:
-    """One ``[[connections]]`` entry: from the output ``src`` to the input ``dst`` (``"component.port"``), with
-    how the input sees the output (``average``, ``extrapolation``, the thermal-only ``hold``, a type ``convert``,
-    the ``unit`` of a unit-less side) and the file that brought it (``origin``)."""
-    src: str
-    dst: str
-    average: str = "mean"
-    extrapolation: str = "hold"
-    hold: str | None = None
-    convert: str | None = None
-    unit: str | None = None
-    origin: str | None = None  #: the file that brought this connection
+#: one ``[[connections]]`` entry is the system's own connection record (master/core/system.py): from the output
+#: ``src`` to the input ``dst``, how the input sees the output, and the file that brought it (``origin``); the
+#: scenario API's name for it
+ConnectionSpec = Connection
 
 
 @dataclass
@@ -122,7 +113,7 @@ class Scenario:
     """A scenario: what to simulate, as read from its TOML file (or an SSP archive), not yet built.
 
     Parameters: ``name``; ``components`` (name -> :class:`ComponentSpec`); ``connections``
-    (:class:`ConnectionSpec`); ``inputs`` (``"component.port"`` -> constant value, SI); ``algorithm``,
+    (:class:`~rotorcosim.master.core.system.Connection`); ``inputs`` (``"component.port"`` -> constant value, SI); ``algorithm``,
     ``schedule`` and ``outputs``: the ``[algorithm]``, ``[schedule]`` and ``[outputs]`` tables as dicts;
     ``source``: the file it was read from (relative paths resolve against its folder); ``description``;
     ``extra``: the other top-level tables (``[results]``, read by the scenario's case); ``loaded_name``: the
@@ -290,9 +281,9 @@ def parse(data: Mapping[str, Any], source: Path | None = None, origins: Origins 
         for key in ("convert", "unit"):
             if key in spec and not isinstance(spec[key], str):
                 raise _fail(w, f"{key} must be a string, got {spec[key]!r}")
-        connections.append(ConnectionSpec(spec["from"], spec["to"], spec.get("average", "mean"),
-                                          spec.get("extrapolation", "hold"), spec.get("hold"),
-                                          spec.get("convert"), spec.get("unit"), origin=came))
+        connections.append(Connection(spec["from"], spec["to"], spec.get("average", "mean"),
+                                      spec.get("extrapolation", "hold"), spec.get("hold"),
+                                      spec.get("convert"), spec.get("unit"), origin=came))
     inputs = {}
     for ref, value in data.get("inputs", {}).items():
         split_port(ref)
@@ -348,8 +339,7 @@ def build_system(sc: Scenario) -> System:
     try:
         for name, spec in sc.components.items():
             comps[name] = create_component(spec)
-        cons = [Connection(c.src, c.dst, c.average, c.extrapolation, c.hold, c.convert, c.unit, c.origin)
-                for c in sc.connections]
+        cons = [replace(c) for c in sc.connections]   # the system's own copies
         system = System(comps, cons, {k: v for k, v in sc.inputs.items()},
                         origins={n: c.origin for n, c in sc.components.items() if c.origin},
                         unconnected_inputs=sc.unconnected_inputs)

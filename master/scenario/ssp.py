@@ -34,12 +34,13 @@ import xml.etree.ElementTree as ET
 from pathlib import Path
 
 from rotorcosim.components.bounded_read import MAX_ENTRY_BYTES, read_bytes
-from rotorcosim.master.scenario.build import ComponentSpec, ConnectionSpec, Scenario, ScenarioError, schedule_of
+from rotorcosim.master.core.system import Connection
+from rotorcosim.master.scenario.build import ComponentSpec, Scenario, ScenarioError, schedule_of
 
 from rotorcosim.fmus import export
 from rotorcosim.master.scenario.export import export_scenario
 from rotorcosim.fmus.flatten import scalar_names
-from rotorcosim.fmus.importer import FMUError, describe, ports_of
+from rotorcosim.fmus.description import FMUError, describe, ports_of
 from rotorcosim.fmus.model_description import AnnotationError, _unit_element, read_annotation
 from rotorcosim.fmus.safezip import ArchiveError, open_zip, safe_extract
 from rotorcosim.fmus.units import definition, is_dimensionless
@@ -512,6 +513,8 @@ def _scenario_of(path: Path, folder: Path) -> Scenario:
                                f"its FMU")
         (sv, si), (dv, di) = scalars[se][sc_], scalars[ee][ec]
         grouped.setdefault((se, sv.name, ee, dv.name), []).append((si, di, sv.size, dv.size))
+    # the settings through the schema first: a connection record refuses a bad value when it is made
+    _check_payload(payload, where, components)
     settings = {(c["from"], c["to"]): c for c in payload.get("connections", [])}
     connections = []
     for (se, sp, ee, dp), pairs in grouped.items():
@@ -521,13 +524,12 @@ def _scenario_of(path: Path, folder: Path) -> Scenario:
             raise SSPError(f"{where}: the scalar connections from {src} to {dst} do not connect the two "
                            f"ports element by element (sizes {ssize} and {dsize})")
         s = settings.pop((src, dst), {})
-        connections.append(ConnectionSpec(src, dst, s.get("average", "mean"), s.get("extrapolation", "hold"),
-                                          s.get("hold"), s.get("convert"), s.get("unit")))
+        connections.append(Connection(src, dst, s.get("average", "mean"), s.get("extrapolation", "hold"),
+                                      s.get("hold"), s.get("convert"), s.get("unit")))
     if settings:  # settings (averaging, conversion, unit) for a connection the system does not have: not applied
         src, dst = next(iter(settings))
         raise SSPError(f"{where}: SystemStructure.ssd: annotation {ANNOTATION}: connection {src} -> {dst} has "
                        "settings but no ssd:Connection")
-    _check_payload(payload, where, components)
     schedule = payload.get("schedule")
     if not schedule:
         de = root.find("ssd:DefaultExperiment", NS)

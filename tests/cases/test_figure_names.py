@@ -94,6 +94,7 @@ def test_the_rundown_names_the_engines_spools():
         == ["bearing #0", "bearing #5"]
 
 
+@pytest.mark.slow   # ~44 s of CPU time (measured): a rundown run and its figures
 def test_the_rundown_figures_are_drawn_per_bearing_id(tmp_path):
     """The four rundown figures of a made-up rundown of the shipped engine (16 000 -> 4 000 rev/min): one
     temperature panel per bearing id, the spools by the engine's names."""

@@ -72,6 +72,7 @@ def test_three_bearings_summary_has_every_bearing(tmp_path):
     assert (out / "fig09_response_bearing1.png").is_file() and (out / "fig10_response_bearing3.png").is_file()
 
 
+@pytest.mark.slow   # ~23 s of CPU time (measured; ROSS's import and its critical-speed search)
 def test_three_bearings_critical_speeds_equal_rosss_of_to_ross():
     """The linearised three-bearing engine handed to ROSS (to_ross): ROSS's own forward critical speeds (its
     Newton search, rtol 1e-12) equal check-engine's (our eigen-solve) to 1e-9 (measured ~1e-12)."""

@@ -69,6 +69,7 @@ def test_damped_critical_speeds_are_the_linear_response_peaks():
         assert got == pytest.approx(ref[b], abs=10.0), (b, got, ref[b])
 
 
+@pytest.mark.slow   # ~30 s of CPU time: the whole shipped ramp (blade_loss_ramp_712)
 def test_slow_rundown_peaks_at_the_damped_critical_speeds():
     """Every whirl peak of the rundown within 2 % of the damped critical speed that ``rotorcosim critical-speeds``
     reports at that bearing (two at bearing #0, one at #5). The undamped ones (8 500 / 10 200 rev/min) are 7-12 %

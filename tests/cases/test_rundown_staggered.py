@@ -79,6 +79,7 @@ def _check(t: dict, out):
     assert t["speedup_cpu"] == pytest.approx(t["cpu_time_s"]["monolithic"] / t["cpu_time_s"]["staggered"])
 
 
+@pytest.mark.slow   # ~75 s of CPU time (both runs and the warm-up)
 def test_short_rundown_staggered_within_2pct_of_monolithic(tmp_path):
     out = tmp_path / "cmp"
     t = rc.compare_rundown(_early_cut(), DURATION, out, figures=False)

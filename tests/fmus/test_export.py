@@ -14,7 +14,7 @@ import pytest
 from rotorcosim.components import registry
 from rotorcosim.components.contract import ContractError
 from rotorcosim.fmus.export import ExportError, export_component
-from rotorcosim.fmus.importer import describe, ports_of
+from rotorcosim.fmus.description import describe, ports_of
 from rotorcosim.fmus.model_description import read_annotation
 
 #: parameters that keep the export tests quick (a coarse damper mesh) and the machine's values a component has no

@@ -239,7 +239,7 @@ def test_a_regrouped_fmi2_input_keeps_its_start_only_when_every_element_declares
 
     from fmpy import read_model_description
 
-    from rotorcosim.fmus.importer import _zip_of, ports_of
+    from rotorcosim.fmus.description import _zip_of, ports_of
 
     def port(second: str):
         xml = f'''<?xml version="1.0" encoding="UTF-8"?>

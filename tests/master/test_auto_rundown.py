@@ -69,6 +69,7 @@ def test_a_held_interval_ends_when_the_speed_drifts_and_coupled_ones_follow():
     assert any(iv["reason"] == "steady" for iv in tl if iv["phase"] == "TM"), tl
 
 
+@pytest.mark.slow   # ~24 s of CPU time (measured): both loops through the automatic schedule
 def test_the_compiled_loop_decides_in_turns_as_the_generic_loop():
     """The steadiness test counted in turns gets each chunk's rows cut at the samples that end a turn: both loops
     end the intervals at the same steps for the same reasons."""

@@ -17,6 +17,7 @@ import sys
 import time
 
 import h5py
+import pytest
 
 from rotorcosim.master.cli import main
 from rotorcosim.master.run.rundir import LOCK
@@ -29,6 +30,13 @@ def summary(folder) -> dict:
     return json.loads((folder / "summary.json").read_text())
 
 
+def running(folder) -> bool:
+    try:
+        return summary(folder)["status"] == "running"
+    except (OSError, ValueError, KeyError):
+        return False
+
+
 def complete(folder) -> bool:
     try:
         return summary(folder)["status"] == "complete"
@@ -36,6 +44,7 @@ def complete(folder) -> bool:
         return False
 
 
+@pytest.mark.slow   # ~12 s of CPU time (measured): three comparisons
 def test_ctrl_c_keeps_the_complete_run_and_resume_runs_only_the_other(tmp_path):
     """Ctrl-C (SIGINT to the command's process group) while the monolithic run goes: exit status 130, one line
     saying which run is kept, the staggered run whole, the monolithic one ``interrupted``; ``--resume`` runs the
@@ -47,7 +56,9 @@ def test_ctrl_c_keeps_the_complete_run_and_resume_runs_only_the_other(tmp_path):
     while not complete(out / "staggered"):
         assert time.monotonic() < deadline and p.poll() is None, "the staggered run did not complete"
         time.sleep(0.05)
-    time.sleep(0.3)   # the monolithic run (~2 s) under way
+    while not running(out / "monolithic"):   # the monolithic run (~2 s) under way: its summary says so
+        assert time.monotonic() < deadline and p.poll() is None, "the monolithic run did not start"
+        time.sleep(0.05)
     os.killpg(p.pid, signal.SIGINT)
     _, err = p.communicate(timeout=120)
     assert p.returncode == 130, err

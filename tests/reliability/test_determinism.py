@@ -10,6 +10,7 @@ import sys
 
 import h5py
 import numpy as np
+import pytest
 
 #: a 2 ms blade-loss run: the rotor's eigen-solves (components/rotor/mta.py) and a few hundred steps
 ARGS = ["blade_loss_2850", "--duration", "0.002", "--no-figures", "--quiet"]
@@ -55,6 +56,7 @@ def test_numpy_imported_first_with_threads_gives_the_command_lines_numbers(tmp_p
         assert np.array_equal(a[name], b[name]), f"{name}: max difference {np.max(np.abs(a[name] - b[name]))}"
 
 
+@pytest.mark.slow   # ~14 s of CPU time (measured): a local Dask cluster and two runs
 def test_a_dask_worker_gives_the_command_lines_numbers(tmp_path):
     """The blade-loss case of a sweep, run in a Dask worker process, gives the command line's numbers bit for bit:
     the sweep runs the same model (scenario resolution, unbalance setting, engine) in another process. (Dask's

@@ -16,7 +16,8 @@ bench_memory = importlib.util.module_from_spec(_spec)
 _spec.loader.exec_module(bench_memory)
 
 
-@pytest.mark.parametrize("command", list(bench_memory.COMMANDS))
+@pytest.mark.parametrize("command", [pytest.param(c, marks=pytest.mark.slow) if c == "sweep" else c   # sweep: ~33 s of CPU
+                                     for c in bench_memory.COMMANDS])
 def test_ten_times_longer_peaks_within_ten_percent(command, tmp_path):
     f = bench_memory.measure(0.05, tmp_path, [command])[command]
     assert f["short_MB"] > 50.0   # a real measure (the process with the blade-loss system loaded)

@@ -3,7 +3,6 @@ after the end of a run is warned; a static load past a bearing's validity is war
 said only when the residual says so."""
 from __future__ import annotations
 
-from pathlib import Path
 
 import pytest
 
