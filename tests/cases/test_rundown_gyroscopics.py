@@ -48,6 +48,7 @@ def _rundown_peaks(res):
     return out
 
 
+@pytest.mark.slow   # ~69 s of CPU time (measured): the linear response scanned over the whole speed range
 def test_undamped_linear_peaks_at_the_critical_speeds():
     """Without the film the linear engine's response peaks at bearing #0 are the forward critical speeds
     (within 1 %)."""
