@@ -26,10 +26,10 @@ name = "spin_constant"
 "spool_gg.T_rub2" = 0.0
 [components.spool_pt]
 implementation = "spool.speed"
-parameters = { profile = "constant", speed_rpm = 16000.0 }
+parameters = { profile = "constant", speed_rpm = "engine:spool.pt.speed_rpm", inertia = "engine:spool.pt.inertia" }
 [components.spool_gg]
 implementation = "spool.speed"
-parameters = { profile = "constant", speed_rpm = 15000.0, spool = "gg" }
+parameters = { profile = "constant", speed_rpm = "engine:spool.gg.speed_rpm", inertia = "engine:spool.gg.inertia", spool = "gg" }
 [components.rotor]
 implementation = "rotor.mta_spinning"
 [components.bearing0]
