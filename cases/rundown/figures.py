@@ -111,7 +111,7 @@ def figures(sc, data, out, dpi: int | None = None) -> list[str]:
     w = _get(data, f"{spools[0]}.Omega").reshape(len(t), -1)[:, 0] * RPM
     coupled = phase == 0 if phase is not None else np.ones(len(t), bool)
     locs = _locations(sc, data)
-    peaks = _peaks(data, locs, w, coupled, crit)
+    peaks = _peaks(data, locs, w, coupled)
     first = spool_name(sc, spools[0])
     names.append(_response(data, locs, w, coupled, crit, peaks, out, first))
     names.append(_campbell(sc, w, crit, peaks, out, first))
@@ -165,18 +165,18 @@ def _radius(a, n):
     return np.hypot(a[:, 0], a[:, 1])
 
 
-def _peaks(data, locs, w, coupled, crit):
-    """(critical speed, speed, whirl) of each critical speed's resonance peak of the whirl at the first location
-    over the coupled samples (results.resonance_peaks and assign_peaks, as the summary's crossings); a critical
-    speed without a peak is left out."""
-    from .results import assign_peaks, resonance_peaks
+def _peaks(data, locs, w, coupled):
+    """(speed, whirl) of every resonance peak of the whirl at each location over the coupled samples: the peaks
+    the summary's crossings are labelled from (results.resonance_peaks), with no window around a critical speed
+    deciding which are drawn."""
+    from .results import resonance_peaks
 
-    ref = next(iter(locs.values()))[0]
-    r = _radius(_get(data, ref), len(w))
     sel = np.flatnonzero(coupled)
-    cs = sorted(crit)
-    found = assign_peaks(cs, resonance_peaks(w[sel], r[sel]))
-    return [(c, w[sel][p.index], r[sel][p.index]) for c, p in zip(cs, found) if p is not None]
+    out = []
+    for xref, _ in locs.values():
+        r = _radius(_get(data, xref), len(w))
+        out += [(w[sel][p.index], r[sel][p.index]) for p in resonance_peaks(w[sel], r[sel])]
+    return out
 
 
 def _response(data, locs, w, coupled, crit, peaks, out, spool):
@@ -190,9 +190,9 @@ def _response(data, locs, w, coupled, crit, peaks, out, spool):
         if fref is not None:
             s, y = _binned(w, _radius(_get(data, fref), n), coupled)
             axes[1, 0].plot(s, y, lw=1.2, label=f"{name}")
-    for i, (c, s_pk, r_pk) in enumerate(peaks):
+    for i, (s_pk, r_pk) in enumerate(peaks):
         axes[0, 0].plot(s_pk, r_pk * 1e3, "x", color="tab:red", ms=8, mew=2,
-                        label="resonance peaks (the crossings)" if i == 0 else None)
+                        label="resonance peaks (every location)" if i == 0 else None)
     axes[0, 0].set_ylabel("whirl (largest radius) [mm]")
     if forces:
         axes[1, 0].set_ylabel("transmitted force [N]")
@@ -213,15 +213,15 @@ def _campbell(sc, w, crit, peaks, out, spool):
     fig, ax = plt.subplots(figsize=(10, 5))
     rpm = np.linspace(0.0, top, 41)
     drawn = False
-    model_file = sc.components["rotor"].parameters.get("model_file", "") if "rotor" in sc.components else ""
-    if not model_file:
+    if "rotor" in sc.components:
         try:
             from rotorcosim.cases.blade_loss import linear_engine
             from rotorcosim.components.rotor import critical
             from rotorcosim.components.rotor import model as fem
 
-            m = fem.load(None)
-            f, kind = critical.campbell(m, rpm, linear_engine.supports(data=m.data))
+            # the run's own engine ("" for a rotor component without one: the shipped engine)
+            m = fem.load(sc.components["rotor"].parameters.get("model_file") or None)
+            f, kind = critical.campbell(m, rpm, linear_engine.supports(sc, data=m.data))
             for code, colour, label in ((1, "tab:blue", "forward whirl"), (-1, "tab:orange", "backward whirl")):
                 sel = kind == code
                 ax.scatter(np.broadcast_to(rpm[:, None], f.shape)[sel], f[sel], s=5, c=colour, label=label)
@@ -235,10 +235,12 @@ def _campbell(sc, w, crit, peaks, out, spool):
             alpha=0.6, label=f"the run's trajectory (1x {spool})")
     for c in crit:
         ax.plot(c, c / 60.0, "o", mfc="none", mec="tab:red", ms=9)
-    for c, s, _ in peaks:
+    for i, s in enumerate(sorted(s for s, _ in peaks)):
         ax.plot(s, s / 60.0, "x", color="tab:red", ms=9, mew=2)
-        # above-left of the mark: the trajectory runs up-right from it, the mode lines run flat beside it
-        ax.annotate(f"peak {s:.0f}", (s, s / 60.0), textcoords="offset points", xytext=(-8, 6), ha="right",
+        # above-left of the mark: the trajectory runs up-right from it, the mode lines run flat beside it;
+        # neighbouring peaks' labels alternate below-right so that two peaks of one crossing stay readable
+        off, ha = ((-8, 6), "right") if i % 2 == 0 else ((8, -12), "left")
+        ax.annotate(f"peak {s:.0f}", (s, s / 60.0), textcoords="offset points", xytext=off, ha=ha,
                     fontsize=8, color="tab:red")
     ax.set_xlim(0, top)
     ax.set_ylim(0, 1.3 * top / 60.0)

@@ -39,7 +39,6 @@ import math
 from typing import NamedTuple
 
 import numpy as np
-from scipy.optimize import linear_sum_assignment
 from scipy.signal import find_peaks, peak_widths
 
 from rotorcosim.components.contract import COUPLED
@@ -56,8 +55,6 @@ KELVIN = 273.15
 #: (ripple of the per-bin maximum and contact noise stay below it)
 SPEED_BIN = 2e-3
 PROMINENCE = 0.01
-#: the figures' marking of the peaks (assign_peaks): the largest distance of a peak from its critical speed
-MAX_SHIFT = 0.25
 #: the module that draws the figures (imported by name)
 FIGURES_MODULE = "rotorcosim.cases.rundown.figures"
 #: the kinds of a location's columns in the track, in order: the whirl's maximum, the time and the crossing spool's
@@ -274,28 +271,6 @@ def resonance_peaks(speed, amplitude, bin_rel: float = SPEED_BIN, prominence: fl
     grid = np.arange(len(ws))
     return [Peak(int(best[j]), float(ws[j]), float(y[j]), float(np.interp(lo, grid, ws)),
                  float(np.interp(hi, grid, ws))) for j, lo, hi in zip(pk, left, right)]
-
-
-def assign_peaks(criticals, peaks: list[Peak], max_shift: float = MAX_SHIFT) -> list[Peak | None]:
-    """Each critical speed's resonance peak (None: none), one peak per critical speed and one critical speed per
-    peak, the nearest in |ln(peak / critical)| and at most ``max_shift`` (relative) away; where peaks compete
-    the assignment with the most pairs, then the least total distance (scipy.optimize.linear_sum_assignment).
-
-    The nearest peak of each critical speed on its own is not enough: the engine's damped peaks at bearing #0 lie
-    at 9 100 and 11 400 rev/min, its critical speeds at 8 500 and 10 200, and 9 100 is the nearer of the two to
-    10 200 as well."""
-    crit = [float(c) for c in criticals]
-    out: list[Peak | None] = [None] * len(crit)
-    if not crit or not peaks:
-        return out
-    lim = math.log1p(max_shift)
-    d = np.abs(np.log(np.array([p.speed for p in peaks])[None, :] / np.array(crit)[:, None]))
-    # a pair beyond the limit costs more than any set of allowed pairs: the most pairs within it win
-    cost = np.where(d <= lim, d, lim * (len(crit) + len(peaks) + 1))
-    for i, j in zip(*linear_sum_assignment(cost)):
-        if d[i, j] <= lim:
-            out[i] = peaks[j]
-    return out
 
 
 class Candidate(NamedTuple):

@@ -14,7 +14,7 @@ import pytest
 from scipy.optimize import minimize_scalar
 
 from rotorcosim.cases.rundown.modes import ScenarioModes
-from rotorcosim.cases.rundown.results import (BIN_S, SPEED_BIN, assign_peaks, crossings, fold, resonance_peaks,
+from rotorcosim.cases.rundown.results import (BIN_S, SPEED_BIN, crossings, fold, resonance_peaks,
                                               _layout)
 
 RPM = 30.0 / math.pi
@@ -231,15 +231,8 @@ def test_samples_in_any_order_and_stopped_samples():
     assert perm[got[0].index] == ref[0].index or w[perm][got[0].index] == w[ref[0].index]
 
 
-def test_assignment_limits():
-    """No peak further than MAX_SHIFT from a critical speed is assigned to it; one critical speed, two peaks: the
-    nearer; bad shapes are a clear error."""
-    from rotorcosim.cases.rundown.results import Peak
-
-    pk = [Peak(0, 5000.0, 1.0, 4900.0, 5100.0), Peak(1, 9000.0, 1.0, 8800.0, 9200.0)]
-    assert assign_peaks([8500.0], pk) == [pk[1]]
-    assert assign_peaks([13000.0], pk) == [None]
-    assert assign_peaks([], pk) == [] and assign_peaks([8500.0], []) == [None]
+def test_bad_shapes_are_a_clear_error():
+    """Speed and amplitude of different lengths: a clear error, not an index error."""
     with pytest.raises(ValueError, match="differ in length"):
         resonance_peaks([1.0, 2.0], [1.0])
 
