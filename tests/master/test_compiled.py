@@ -93,7 +93,9 @@ def test_compiled_equals_generic_on_the_blade_loss_system(tmp_path, monkeypatch,
             assert _rel(a[key], b[key]) <= RTOL, key
     for k in cobs[2].peak:
         for q in cobs[2].peak[k]:
-            assert _rel(cobs[2].peak[k][q], pobs[2].peak[k][q]) <= RTOL
+            a, b = cobs[2].peak[k][q], pobs[2].peak[k][q]
+            # None: never happened in the run (no rub, no plastic flow), in both loops alike
+            assert (a is None and b is None) or _rel(a, b) <= RTOL, (k, q, a, b)
     # the thermal-only hold (master/manipulator/hold.py) recorded the same windows and cycle means, hence the same held values
     for ch, ph in zip(cs.hold.handoffs, ps.hold.handoffs):
         assert (ch.w.pos, ch.w.count, ch.w.cn) == (ph.w.pos, ph.w.count, ph.w.cn)
