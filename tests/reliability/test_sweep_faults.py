@@ -83,6 +83,14 @@ def cluster(tmp_path_factory):
     c.stop()
 
 
+def error_line(err: str) -> str:
+    """The sweep's one-line error: the line after its wall-time estimate, which it prints once the folder is
+    taken, before the first case."""
+    lines = err.splitlines()
+    assert len(lines) >= 2 and lines[0].startswith("sweep: ") and lines[0].endswith("(estimated)"), err
+    return lines[1]
+
+
 def test_a_case_whose_worker_dies_is_retried_once_then_named(cluster, tmp_path):
     """Three cases on the separate cluster: one kills its worker every time (reported failed by name after one
     retry), one kills it the first time only (its retry completes), one runs plainly. The workers' nannies
@@ -143,7 +151,7 @@ def test_scheduler_gone_ends_the_sweep_and_keeps_the_finished_cases(tmp_path):
     finally:
         c.stop()
     assert p.returncode == 1, err
-    first = err.splitlines()[0]
+    first = error_line(err)
     assert first == (f"rotorcosim sweep: error: the Dask scheduler {c.address} went away: the sweep stopped "
                      f"with 1 of 3 cases complete and kept in {out}; start a scheduler and continue with --resume")
     assert_kept(out, ["node.sleep=0"])
@@ -168,7 +176,7 @@ def test_ctrl_c_stops_cleanly_and_resume_reruns_only_the_rest_bit_identical(tmp_
     assert p.returncode == 130, err
     s = state(out)
     kept = [n for n, st in s["case_status"].items() if st == "complete"]
-    assert err.splitlines()[0] == (f"rotorcosim sweep: interrupted: {len(kept)} of 4 cases complete and kept in "
+    assert error_line(err) == (f"rotorcosim sweep: interrupted: {len(kept)} of 4 cases complete and kept in "
                                    f"{out} (sweep.json: case_status); continue with --resume"), err
     assert "Traceback" not in err
     assert s["status"] == "interrupted" and 1 <= len(kept) < 4
@@ -217,7 +225,7 @@ def test_full_disk_is_named_and_the_stored_cases_kept(tmp_path, monkeypatch, cap
     argv = ["sweep", str(sc), "--unbalance", "1,2,3", "--duration", "0.05", "--serial", "--quiet", "--out", str(out)]
     assert main(argv) == 1
     err = capsys.readouterr().err
-    assert err.splitlines()[0] == (f"rotorcosim sweep: error: the disk holding {out} is full (storing case level_2); "
+    assert error_line(err) == (f"rotorcosim sweep: error: the disk holding {out} is full (storing case level_2); "
                                    "free space and continue with --resume"), err
     assert_kept(out, ["level_1"])
     assert not (out / "level_2").exists() and not (out / "level_3").exists()
@@ -290,7 +298,7 @@ def test_a_serial_sweep_stops_at_a_signal_during_a_case(tmp_path, sig):
     os.killpg(p.pid, sig)
     _, err = p.communicate(timeout=120)
     assert p.returncode == 130, err
-    assert err.splitlines()[0].startswith("rotorcosim sweep: interrupted: "), err
+    assert error_line(err).startswith("rotorcosim sweep: interrupted: "), err
     s = state(out)
     assert s["status"] == "interrupted" and s["case_status"]["level_3"] == "pending", s["case_status"]
     assert s["case_status"]["level_2"] in ("complete", "interrupted")
