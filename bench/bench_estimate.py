@@ -6,7 +6,7 @@
 Part 1: CPU seconds per ``do_step`` of each component of the blade-loss system and of the toy system in the
 generic Python loop (each component's own time; the rest of the run is the master's, per step and component
 step), the FE damper at two meshes. Part 2: the compiled loop's CPU per base step (the slope between a 0.1 s
-and a 0.2 s monolithic run). Part 3: the estimate of the runs of tests/master/test_estimate.py against their CPU
+and a 0.2 s monolithic run). Part 3: the estimate of runs like tests/master/test_estimate.py's against their CPU
 time, in this process (warm: the set-up of a fresh process, which the estimate includes, is not paid here, so the
 shortest runs read high). CPU time, not wall time: on a loaded machine the wall time of a run is up to 2.5 times
 its CPU time; the estimate is for an unloaded machine.

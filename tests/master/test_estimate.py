@@ -1,19 +1,17 @@
-"""The up-front estimate of a run's cost (master/schedule/budget.py) against measured runs, the progress bar's first
-time left on a fresh machine, and the warnings a run gives before it starts.
+"""The up-front estimate of a run's cost (master/schedule/budget.py): what it prices against what the run does,
+the progress bar's first time left on a fresh machine, and the warnings a run gives before it starts.
 
-The estimate prices a run on an unloaded machine, so each case is compared with the CPU time its run measured
-(summary.json ``cpu_time_s``; the shared test machine's wall time is up to 2.5 times that): each case runs in a
-fresh process through the command line, as a user's run does (its set-up included), and must land within a
-factor 2 of the estimate. The cases are those the estimate used to get wrong by 4 to 70 times: the FE damper
-(``--swap damper0=damper.fe``, its cost growing with its mesh), FMUs in process and out of process, an SSP
-archive, the monolithic schedule, the staggered one (the main job's timeline, cut), the compiled and the Python
-loop. Short runs (0.2-3 s of CPU each).
+The estimate is the run's base steps times a price per step of each phase (plus set-up). Its prices are measured
+by ``bench/bench_estimate.py`` (part 3 compares the estimate with the CPU time of the runs below: within a factor
+2 on a quiet machine); a test here asserts no time, since a loaded machine decides that and nothing else would.
+What the suite checks is what the estimate can get wrong whatever the machine: the steps it prices are the steps
+the run takes, and the loop it prices is the loop the run took. The cases are those the estimate used to get
+wrong: the FE damper (``--swap damper0=damper.fe``, its cost growing with its mesh), FMUs in process and out of
+process, an SSP archive, the monolithic schedule, the staggered one (the main job's timeline, cut), the compiled
+and the Python loop.
 """
 import json
-import subprocess
-import sys
 import threading
-from pathlib import Path
 
 import pytest
 
@@ -23,15 +21,6 @@ from rotorcosim.master.core.phases import Phases
 from rotorcosim.master.observer.observers import Progress
 from rotorcosim.master.schedule import budget
 from rotorcosim.master.schedule.timeline import Interval, Timeline
-
-ROOT = Path(__file__).resolve().parents[2]
-RUN = "import sys\nfrom rotorcosim.master.cli import main\nsys.exit(main(sys.argv[1:]))\n"
-#: the same, then the CPU time [s] of the processes it started (an FMU's process, reaped once the run's objects
-#: are collected), as its last line on stderr
-RUN_CHILDREN = ("import gc, os, sys\nfrom rotorcosim.master.cli import main\ncode = main(sys.argv[1:])\ngc.collect()\n"
-                "t = os.times()\nprint(f'children_cpu_s={t.children_user + t.children_system}', file=sys.stderr)\n"
-                "sys.exit(code)\n")
-
 
 @pytest.fixture(scope="module")
 def toy_fmus(tmp_path_factory):
@@ -63,19 +52,17 @@ CASES = {
 
 
 @pytest.mark.parametrize("case", list(CASES))
-def test_estimate_within_a_factor_2_of_the_run(case, toy_fmus, tmp_path):
+def test_estimate_prices_the_steps_and_the_loop_of_the_run(case, toy_fmus, tmp_path):
+    from rotorcosim.master.cli import main
+
     args = [a.format(**toy_fmus) for a in CASES[case]]
     out = tmp_path / "run"
-    res = subprocess.run([sys.executable, "-c", RUN_CHILDREN if "out of process" in case else RUN, "run", *args, "--no-figures", "--quiet", "--out", str(out)],
-                         capture_output=True, text=True, timeout=600, cwd=ROOT)
-    assert res.returncode == 0, res.stderr
+    assert main(["run", *args, "--no-figures", "--quiet", "--out", str(out)]) == 0
     s = json.loads((out / "summary.json").read_text())
-    est, cpu = s["estimate"]["wall_s"], s["cpu_time_s"]
-    if "out of process" in case:
-        # cpu_time_s is the run's own process; the FMU's process works while the run waits: its CPU counts too
-        cpu += float(res.stderr.strip().splitlines()[-1].split("=")[1])
-    assert s["estimate"]["engine"] == s["engine"]  # it priced the loop the run took
-    assert 0.5 <= est / cpu <= 2.0, f"{case}: estimated {est:.3g} s, the run took {cpu:.3g} s"
+    assert s["estimate"]["steps"] == sum(iv["steps"] for iv in s["timeline"]) > 0, case
+    assert s["estimate"]["engine"] == s["engine"], case
+    # the price of a base step of each phase the run held
+    assert set(s["estimate"]["step_cost_us"]) == {iv["phase"] for iv in s["timeline"]}, case
 
 
 def test_fe_damper_cost_follows_its_mesh():
