@@ -250,6 +250,13 @@ def unbalance_force(sc) -> float:
 #: (master/manipulator/hold.py, HoldReport.mechanics_fraction)
 WINDOW_KEYS = ("whirl_amplitude_mm", "transmissibility", "max_contact_load_N", "max_contact_stress_MPa",
                "max_contact_stress_outer_MPa", "rub_power_W", "drag_power_W", "sfd_power_W")
+#: what a user reads for each result that has an estimate (the run's printed estimate names its result so)
+LABELS = {"whirl_amplitude_mm": "whirl amplitude", "transmissibility": "transmissibility",
+          "max_contact_load_N": "contact load", "max_contact_stress_MPa": "inner-race contact stress",
+          "max_contact_stress_outer_MPa": "outer-race contact stress", "rub_power_W": "rub power",
+          "drag_power_W": "drag power", "sfd_power_W": "squeeze-film power",
+          "T_inner_race_C": "inner-race temperature", "T_ball_C": "ball temperature",
+          "T_outer_race_C": "outer-race temperature", "T_sfd_oil_C": "squeeze-film oil temperature"}
 #: the final temperatures and the thermal network's output each one is
 TEMPERATURES = {"T_inner_race_C": "T_inner_race", "T_ball_C": "T_ball", "T_outer_race_C": "T_outer_race",
                 "T_sfd_oil_C": "T_sfd_oil"}
@@ -359,7 +366,7 @@ def estimated_errors(windows, bearings, hold, F_u) -> dict | None:
     mechanics follow those values quasi-statically, so an error that is a share of their move over the held
     interval is that share of the result's move (not estimated where the speed changed between those intervals:
     the hold gives no fraction then). ``largest_pct`` and ``largest`` ("bearing.key") are the run's
-    estimate."""
+    estimate, ``largest_label`` names its result for a reader ("bearing #0 drag power")."""
     if hold is None or hold.estimated_error_pct is None:
         return None
     per: dict[str, dict[str, float]] = {}
@@ -382,7 +389,9 @@ def estimated_errors(windows, bearings, hold, F_u) -> dict | None:
     if not flat:
         return None
     largest, which = max(flat)
-    return {"largest_pct": largest, "largest": which, "per_result_pct": per}
+    k, _, key = which.partition(".")
+    return {"largest_pct": largest, "largest": which, "largest_label": f"bearing #{k} {LABELS.get(key, key)}",
+            "per_result_pct": per}
 
 
 # -- figures ------------------------------------------------------------------------------------------
