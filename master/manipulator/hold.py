@@ -100,6 +100,9 @@ DRIVER_MIN_SPREAD_K = 1.0
 #: least rise [K] a temperature's relative error is taken of (a node that barely warms has no relative error to speak
 #: of: its absolute one is reported in ``output_errors``)
 RISE_FLOOR_K = 1.0
+#: the relative step of an input at which a TO law's sensitivity is probed (HandOff._gains; an input at zero is
+#: not probed)
+GAIN_STEP = 1e-3
 #: the driver's factor exp(b dT) is bounded to exp(+-DRIVER_MAX_LOG) (a factor 3): a guard against extrapolating
 #: a slope far beyond its data
 DRIVER_MAX_LOG = 1.1
@@ -153,6 +156,9 @@ class HandOff:
         self.w = Window()
         self.turns = None                   # (RevolutionCounter, turns of the window, the angle's component, port)
         self.hs = 0.0                       # the producer's step in the TM interval [s]
+        #: the power's sensitivity to the thermal values it follows, from its last TO law: (component whose input
+        #: it is, its port, element, dP/du [W per the input's unit]); the error estimate's feedback (:func:`replay`)
+        self.gains: list[tuple[str, str, int, float]] = []
 
     # -- TM: record -------------------------------------------------------------------------------------
     def start_tm(self, n_window: int, n_cycle: int, size: int, hs: float = 0.0, turns=None,
@@ -288,6 +294,28 @@ class HandOff:
         if e is not None:
             self.elasticity = e
         self.held = _HeldLaw(self.link, S, ref, 1.0 if self.elasticity is None else self.elasticity, fired, drive)
+        self.gains = self._gains(probe, self.window_inputs(cycles), ref, self.held)
+
+    def _gains(self, probe, u, ref: float, law: "_HeldLaw") -> list[tuple[str, str, int, float]]:
+        """The law's sensitivity to each thermal input at the window's inputs ``u`` (``ref`` its own TO output
+        there): dP/du_i = S e d ln y_TO / du_i (a one-sided difference over ``GAIN_STEP`` of the input, probed
+        through the frozen state), and S b to the driver's temperature. What the mechanics would give at other
+        temperatures, as far as the law knows it."""
+        S = float(law.S[0])
+        out, i = [], 0
+        for p in self.ports:
+            for k in range(np.asarray(self.link.src.u[p]).size):
+                du = GAIN_STEP * abs(float(u[i]))
+                v = np.array(u, dtype=float)
+                v[i] += du
+                y = probe(self.link.src, self.ports, v, self.link.sport) if law.e > 0.0 and du > 0.0 else None
+                if y is not None and y > 0.0 and y != ref:
+                    out.append((self.link.con.src_component, p, k, S * law.e * math.log(y / ref) / du))
+                i += 1
+        d = law.drive
+        if d is not None:
+            out.append((d.owner.link.con.src_component, d.port, d.k, S * d.b))
+        return out
 
     def _settled_points(self, probe) -> list[tuple[float | None, float]]:
         """The fits' points, one per settled cycle of the recorded TM intervals: (ln of the producer's own TO
@@ -681,6 +709,22 @@ class StaggeredHold:
         if fresh:
             self._estimate(fresh, t0, t1)
 
+    def feedback(self, name: str) -> list[tuple[str, str, int, float]]:
+        """How thermal component ``name``'s inputs follow its own outputs through the mechanics, as the last TO
+        laws measured it: (input port, output port, output element, dP/du) for each hand-off into it whose
+        producer takes that output back (HandOff.gains); the error estimate's feedback (:func:`replay`)."""
+        fed = {(l.con.dst_component, l.con.dst_port): l.sport for l in self.handbacks if l.con.src_component == name}
+        out: dict[tuple[str, str, int], float] = {}
+        for ho in self.handoffs or []:
+            if ho.link.con.dst_component != name:
+                continue
+            for comp, port, k, g in ho.gains:
+                o = fed.get((comp, port))
+                if o is not None:
+                    key = (ho.link.dport, o, k)
+                    out[key] = out.get(key, 0.0) + g
+        return [(*key, g) for key, g in out.items()]
+
     def _scheduled_change(self, t0: float, t1: float) -> str | None:
         """The component whose scheduled change (``next_event``) falls at the end of the TO interval [t0, t1]
         (or within it), as "name at t s"; None if there is none."""
@@ -714,7 +758,7 @@ class StaggeredHold:
             pulse = Pulse(t0, t1, self._to_step, delta)
             self._pulses.setdefault(name, []).append(pulse)
             comp = self.system.components[name]
-            own.update(replay(comp, name, [pulse], comp.time))
+            own.update(replay(comp, name, [pulse], comp.time, self.feedback(name)))
         worst, which = self._largest(own)
         self.report.interval_estimates_pct.append(worst)
         self.report.intervals.append({"t_start": t0, "t_end": t1, "estimate_pct": worst, "event": None,
@@ -733,7 +777,7 @@ class StaggeredHold:
         errors: dict[str, np.ndarray] = {}
         for name, pulses in self._pulses.items():
             comp = self.system.components[name]
-            errors.update(replay(comp, name, pulses, comp.time))
+            errors.update(replay(comp, name, pulses, comp.time, self.feedback(name)))
         present = self._thermal_outputs()
         rep = self.report
         rep.output_errors = {k: np.asarray(v, dtype=float).tolist() for k, v in errors.items()}
@@ -776,19 +820,37 @@ class StaggeredHold:
         return worst, which
 
 
-def replay(comp, name: str, pulses: list[Pulse], now: float) -> dict[str, np.ndarray]:
+def replay(comp, name: str, pulses: list[Pulse], now: float,
+           feedback: list[tuple[str, str, int, float]] = ()) -> dict[str, np.ndarray]:
     """The change of each Real output of thermal component ``comp`` at the end of a replay of [pulses[0].t0,
     now] from its present state, with each pulse's input errors added over [t0, t1] (at the pulse's step; the
     gaps at the next pulse's), against the same replay without: for a network linear in its inputs, the
     response at ``now`` of the input errors (a response to an input does not depend on the state it starts
     from). Through get_state / set_inputs / do_step / set_state: any component that can save its state; one
-    that cannot gives no estimate (an empty dict). The state is restored."""
+    that cannot gives no estimate (an empty dict). The state is restored.
+
+    ``feedback``: (input port, output port, output element, g) entries: the input follows that output's error
+    with the gain g (the mechanics, or a TO law, give another power at erring temperatures: a film power that
+    falls as its oil warms pulls the oil back). The errors of the inputs are then closed-loop,
+
+        du(t) = delta(t) + G dy(t),
+
+    delta the pulses' errors and dy the outputs' errors at the end of each step, solved step by step implicitly:
+    a step of a network linear in its inputs gives dy = dy0 + B c for an added input c (B measured once per
+    segment, one step per input), so c = (I - G B)^-1 G (dy0 - 0) with dy0 the error the step would leave
+    without it."""
     outs = [v.name for v in comp.variables if v.causality == "output" and v.type == "Real"]
     try:
         snap = comp.get_state()
     except Exception:  # cannot save its state: no estimate from it
         return {}
-    ports = sorted({p for q in pulses for p in q.delta})
+    fb = [(i, o, k, float(g)) for i, o, k, g in feedback if i in comp.u and o in comp.y and g != 0.0]
+    ins = sorted({i for i, _, _, _ in fb})
+    taps = sorted({(o, k) for _, o, k, _ in fb})
+    G = np.zeros((len(ins), len(taps)))
+    for i, o, k, g in fb:
+        G[ins.index(i), taps.index((o, k))] += g
+    ports = sorted({p for q in pulses for p in q.delta} | set(ins))
     # both replays take the present inputs raised by the errors' magnitude (the same in both: the difference is
     # the errors' response), so that a negative error never asks for a negative power
     lift = {p: sum(np.abs(q.delta[p]) for q in pulses if p in q.delta) for p in ports}
@@ -803,21 +865,58 @@ def replay(comp, name: str, pulses: list[Pulse], now: float) -> dict[str, np.nda
     if now > t:
         segs.append((now - t, pulses[-1].step, None))
 
-    def run(perturbed: bool) -> dict[str, np.ndarray]:
+    def tap() -> np.ndarray:
+        return np.array([float(np.ravel(comp.y[o])[k]) for o, k in taps])
+
+    def inputs(delta, c=None) -> dict:
+        u = {p: u0[p] + (delta[p] if delta is not None and p in delta else 0.0) for p in ports}
+        for n, p in enumerate(ins if c is not None else ()):
+            u[p] = u[p] + c[n]
+        return u
+
+    def run(perturbed: bool, base: list | None) -> tuple[dict[str, np.ndarray], list]:
         comp.set_state(snap)
+        taken, n_step = [], 0
         for length, step, delta in segs:
             if length <= 0.0:
                 continue
-            comp.set_inputs({p: u0[p] + (delta[p] if perturbed and delta is not None and p in delta else 0.0)
-                             for p in ports})
             n = max(1, int(math.ceil(length / step - 1e-9)))
+            h = length / n
+            d = delta if perturbed else None
+            B = None
             for _ in range(n):
-                comp.do_step(comp.time, length / n)
-        return {o: np.array(comp.y[o], dtype=float).ravel() for o in outs}
+                if perturbed and ins:
+                    s0 = comp.get_state()
+                    if B is None:   # the step's response to each added input (linear: once per segment)
+                        comp.set_inputs(inputs(d))
+                        comp.do_step(comp.time, h)
+                        y0 = tap()
+                        B = np.zeros((len(taps), len(ins)))
+                        for m in range(len(ins)):
+                            comp.set_state(s0)
+                            e = np.zeros(len(ins))
+                            e[m] = 1.0
+                            comp.set_inputs(inputs(d, e))
+                            comp.do_step(comp.time, h)
+                            B[:, m] = tap() - y0
+                        comp.set_state(s0)
+                    comp.set_inputs(inputs(d))
+                    comp.do_step(comp.time, h)
+                    dy0 = tap() - base[n_step]
+                    comp.set_state(s0)
+                    c = np.linalg.solve(np.eye(len(ins)) - G @ B, G @ dy0)
+                    comp.set_inputs(inputs(d, c))
+                else:
+                    comp.set_inputs(inputs(d))
+                comp.do_step(comp.time, h)
+                if not perturbed:
+                    taken.append(tap())
+                n_step += 1
+        return {o: np.array(comp.y[o], dtype=float).ravel() for o in outs}, taken
 
     try:
-        base = run(False)
-        pert = run(True)
+        base, path = run(False, None)
+        pert, _ = run(True, path)
     finally:
         comp.set_state(snap)
     return {f"{name}.{o}": pert[o] - base[o] for o in outs}
