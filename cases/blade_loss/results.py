@@ -257,6 +257,9 @@ LABELS = {"whirl_amplitude_mm": "whirl amplitude", "transmissibility": "transmis
           "drag_power_W": "drag power", "sfd_power_W": "squeeze-film power",
           "T_inner_race_C": "inner-race temperature", "T_ball_C": "ball temperature",
           "T_outer_race_C": "outer-race temperature", "T_sfd_oil_C": "squeeze-film oil temperature"}
+#: the powers read over the steady window and the hand-off each one is (its estimate: the hold's
+#: ``handoff_errors_end``, where the hold follows it with a law)
+POWERS = {"drag_power_W": "bearing{}.P_drag", "sfd_power_W": "damper{}.P_film"}
 #: the final temperatures and the thermal network's output each one is
 TEMPERATURES = {"T_inner_race_C": "T_inner_race", "T_ball_C": "T_ball", "T_outer_race_C": "T_outer_race",
                 "T_sfd_oil_C": "T_sfd_oil"}
@@ -384,6 +387,11 @@ def estimated_errors(windows, bearings, hold, F_u) -> dict | None:
                 q, q0 = r.get(key), prev.get(key)
                 if q is not None and q0 is not None and q != 0.0:
                     e[key] = 100.0 * f * abs(q - q0) / abs(q)
+        # a power the hold follows with a law: that law's own sensitivity to the erring temperatures and growths
+        for key, ref in POWERS.items():
+            d, q = hold.handoff_errors_end.get(ref.format(k)), r.get(key)
+            if d is not None and q:
+                e[key] = 100.0 * abs(d) / abs(q)
         per[k] = e
     flat = [(v, f"{k}.{key}") for k, e in per.items() for key, v in e.items()]
     if not flat:

@@ -42,8 +42,8 @@ libcosim would call it a manipulator: it changes what crosses some connections, 
 * The error estimate (:meth:`StaggeredHold.end`, :meth:`StaggeredHold.finish`). The scheme's only error is the
   held input of the thermal networks: over a TO interval a hand-off takes its held value (or law) instead of
   what the mechanics would give at the present temperatures. That error is measured where it can be, at the next
-  TM restart: the held value the TO interval ended with minus the window the mechanics produce at the same
-  temperatures (``delta``, signed, in the power's unit). It is zero where the TO interval starts (the held value
+  TM restart: the held value the TO interval ended with minus the first window the mechanics produce after the
+  restart's ramp, at the same temperatures and speed (``delta``, signed, in the power's unit). It is zero where the TO interval starts (the held value
   is the window's statistic) and grows while the temperatures move away from the window's; it is taken at its
   end value over the whole interval (a step, not a ramp: for a node slower than the interval the response to a
   ramp is half the step's, for a fast one the same, so the step bounds the response from above whatever the
@@ -51,7 +51,12 @@ libcosim would call it a manipulator: it changes what crosses some connections, 
   (any component that can save its state), what its outputs would be with those input errors: it replays, from
   its present state, the time since the pulse began with and without the errors (:func:`replay`; the difference
   is the response of the input error, for a network linear in its inputs independent of the state it starts
-  from). The interval's own estimate is its pulse's response at the restart; the run's, at its end, the response
+  from). The errors are not fixed inputs: where the staggered run's temperatures err, its mechanics (and its TO
+  laws) give other powers than the monolithic run's, and those differences are input errors too. The replay
+  closes that loop with the sensitivity of each hand-off's TO law to the values its producer takes back from the
+  same thermal component (``HandOff.gains``: elasticity times the frozen law's slope, and the driver's slope): a
+  film power that falls as its oil warms pulls a too warm oil back. The interval's own estimate is its pulse's
+  response at the restart; the run's, at its end, the response
   of all the charged intervals' pulses together (a later interval's error that undoes an earlier one's cancels
   it: the mechanics restarted at erring temperatures give powers that pull them back). Temperatures are judged
   against their rise since the run's start (at least ``RISE_FLOOR_K``), not their absolute values; what the
@@ -251,12 +256,20 @@ class HandOff:
         last = self.cycles[-cycles:] if self.cycles else []
         return np.mean([u for u, _ in last], axis=0) if last else self._thermal_inputs()
 
-    def measure_restart_error(self) -> bool:
+    def measure_restart_error(self, skip: int = 0, cycles: int = 0) -> bool:
         """At the end of the first TM interval after a TO interval: the held value the TO interval ended with
-        against the window the mechanics now produce (the hand-off error of that TO interval). True if measured."""
+        against the first window the mechanics produced after the restart (the hand-off error of that TO interval,
+        at the speed and temperatures it ended with: in a long TM interval, a rundown, the window at its end is
+        at another speed). The first window: the mean of the ``cycles`` cycle means after the first ``skip``
+        (the restart's ramp), for a mean hold of a scalar with that many cycles recorded; else the interval's
+        last window. True if measured."""
         if self._to_end is None or self.count == 0:
             return False
-        now = self.statistic(self.hold)
+        first = self.cycles[skip: skip + cycles]
+        if self.hold == "mean" and cycles > 0 and len(first) == cycles and self._to_end.size == 1:
+            now = np.array([np.mean([m for _, m in first])])
+        else:
+            now = self.statistic(self.hold)
         scale = max(float(np.max(np.abs(now))), 1e-300)
         #: the held value the TO interval ended with minus what the mechanics give at the restart [its unit]
         self.delta = self._to_end - now
@@ -479,6 +492,9 @@ class HoldReport:
     #: which the results the mechanics give share; empty where the cycle's speed differed between the last two TM
     #: intervals (the mechanics then moved with the speed too)
     mechanics_fraction: dict[str, float] = field(default_factory=dict)
+    #: "producer.port" -> the hand-off's power in error at the run's end [its unit], from its TO law's
+    #: sensitivity to the estimated errors of the values its producer takes back (hand-offs with a law only)
+    handoff_errors_end: dict[str, float] = field(default_factory=dict)
     #: the run's estimated error [%] (None before a TO interval was charged)
     estimated_error_pct: float | None = None
     #: the temperature whose estimate is the run's, "comp.port"
@@ -513,6 +529,7 @@ class HoldReport:
                "intervals": [dict(i) for i in self.intervals],
                "output_errors": dict(self.output_errors), "output_rise": dict(self.output_rise),
                "output_move": dict(self.output_move), "mechanics_fraction": dict(self.mechanics_fraction),
+               "handoff_errors_end": dict(self.handoff_errors_end),
                "estimated_error_pct": self.estimated_error_pct, "estimated_output": self.estimated_output}
         if self.revolutions_asked is not None:
             w = self.window_revolutions
@@ -702,8 +719,9 @@ class StaggeredHold:
             self._event = None
             return
         fresh = []
+        skip, n = int(math.ceil(self.restart_cycles - 1e-9)), max(1, int(round(self.hold_cycles)))
         for ho in self.handoffs:
-            if ho.measure_restart_error():
+            if ho.measure_restart_error(skip, n):
                 fresh.append(ho)
                 self.report.errors[f"{ho.link.con.src} -> {ho.link.con.dst}"] = ho.error
         if fresh:
@@ -784,6 +802,7 @@ class StaggeredHold:
         rep.output_rise = {k: (v - self._initial[k]).tolist() for k, v in present.items() if k in self._initial}
         rep.output_move = {k: (present[k] - v).tolist() for k, v in self._at_last_restart.items() if k in present}
         rep.estimated_error_pct, rep.estimated_output = self._largest(errors)
+        rep.handoff_errors_end = self._handoff_errors(errors)
         frac: dict[str, float] = {}
         periods = self._tm_periods
         if len(periods) == 2 and periods[0] != periods[1]:
@@ -801,6 +820,23 @@ class StaggeredHold:
                 continue  # a temperature that barely moved over the run drives nothing (as RISE_FLOOR_K)
             frac[name] = max(frac.get(name, 0.0), float(np.linalg.norm(err)) / float(np.linalg.norm(move)))
         rep.mechanics_fraction = frac
+
+    def _handoff_errors(self, errors: dict[str, np.ndarray]) -> dict[str, float]:
+        """Each hand-off's power in error at the run's end by what its TO law says the erring values its producer
+        takes back do to it (HandOff.gains times their estimated errors ``errors``, "comp.port" -> values): the
+        mechanics' own power at the end, "producer.port" -> error [its unit]; only hand-offs with a law."""
+        feeds = {(l.con.dst_component, l.con.dst_port): f"{l.con.src_component}.{l.sport}" for l in self.handbacks}
+        out = {}
+        for ho in self.handoffs or []:
+            if not ho.gains:
+                continue
+            d = 0.0
+            for comp, port, k, g in ho.gains:
+                err = errors.get(feeds.get((comp, port), ""))
+                if err is not None:
+                    d += g * float(np.ravel(err)[k])
+            out[f"{ho.link.con.src_component}.{ho.link.sport}"] = d
+        return out
 
     def _largest(self, errors: dict[str, np.ndarray]) -> tuple[float, str | None]:
         """The largest error [%] of a scalar temperature output (unit K, one element: a thermal model's reported
