@@ -506,9 +506,9 @@ def _nothing_recorded(recorder: Recorder) -> dict[str, np.ndarray]:
 
 def _roundtrip(summary: dict) -> dict:
     """The summary exactly as summary.json holds it (plain numbers and lists, None for NaN)."""
-    from rotorcosim.master.run.outputs import _plain
+    from rotorcosim.master.run.outputs import plain_json
 
-    return json.loads(json.dumps(_plain(summary)))
+    return json.loads(json.dumps(plain_json(summary)))
 
 
 def _estimate_summary(summary: dict, sc, hold) -> None:
