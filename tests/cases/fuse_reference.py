@@ -48,25 +48,28 @@ def fuse_run(m, k_intact, c, break_load, k_broken, u_r, u_b, t_b, rpm0, rpm1, t_
     z = u_r * w0 * w0 / (k_intact - m * w0 * w0 + 1j * c * w0)
     s0 = [z.real, z.imag, (1j * w0 * z).real, (1j * w0 * z).imag]
     t = np.linspace(0.0, t_end, samples)
-    opts = dict(method="DOP853", rtol=1e-10, atol=1e-14)
+    # steps of at most 0.1 ms (a tenth of the intact support's period): the event function is checked at each
+    # step, and a crossing up and back within one long step would go unseen
+    opts = dict(method="DOP853", rtol=1e-10, atol=1e-14, max_step=1e-4)
     # the piecewise forcing (the blade loss at t_b, the ramp's corners) integrated piece by piece
     cuts = sorted({0.0, t_b, t_ramp, t_ramp + ramp, t_end})
     cuts = [x for x in cuts if x <= t_end]
     out, k, t_break, state = [], k_intact, None, s0
     for lo, hi in zip(cuts[:-1], cuts[1:]):
         while True:
-            sel = t[(t >= lo) & (t <= hi)]
-            sol = solve_ivp(rhs_of(k), (lo, hi), state, t_eval=sel, events=None if t_break is not None else breaks,
+            sol = solve_ivp(rhs_of(k), (lo, hi), state, events=None if t_break is not None else breaks,
                             dense_output=True, **opts)
+            end = hi
             if t_break is None and sol.t_events[0].size:
-                tb = float(sol.t_events[0][0])
-                keep = sel[sel < tb]
-                if keep.size:
-                    out.append(np.vstack([keep, sol.sol(keep)]))
-                t_break, k, state, lo = tb, k_broken, sol.y_events[0][0], tb
+                # the break: the integration stopped there (terminal event); on from it on the soft path
+                end = t_break = float(sol.t_events[0][0])
+            sel = t[(t >= lo) & (t < end)] if end < hi else t[(t >= lo) & (t <= hi)]
+            if sel.size:
+                out.append(np.vstack([sel, sol.sol(sel)]))
+            state = sol.y[:, -1]    # at the segment's end, or the break's (t_eval unused: the last step's end)
+            if end < hi:
+                k, lo = k_broken, end
                 continue
-            out.append(np.vstack([sol.t, sol.y]))
-            state = sol.y[:, -1]
             break
     data = np.hstack(out)
     _, idx = np.unique(data[0], return_index=True)
