@@ -4,8 +4,6 @@ the break time, the support force after the transient, the rundown's peak and it
 the break; the fuse's bad inputs as one-line errors."""
 from __future__ import annotations
 
-import json
-import math
 import subprocess
 import sys
 
@@ -40,6 +38,9 @@ def test_break_time_and_energy_over_the_break(tmp_path):
     assert ev["t_s"] == pytest.approx(t_break, abs=10e-6)
     assert ev["values"]["F_elastic_N"] == pytest.approx(F_BREAK, rel=1e-4)
     assert res.summary["engine_note"].startswith("component fuse declares event indicators")
+    # the time series holds the events too (what the time-history figures mark)
+    from rotorcosim.master.observer.series import SeriesFile
+    assert SeriesFile(tmp_path / "run" / "timeseries.h5").events() == res.summary["events"]
     t = res.time
     x, v, fu = res["rotor.X_brg0"][:, :2], res["rotor.V_brg0"][:, :2], res["rotor.F_u"]
     broken = np.asarray(res["fuse.broken"]).reshape(len(t), -1)[:, 0]
