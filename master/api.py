@@ -37,7 +37,9 @@ from rotorcosim.master.run import watchdog
 from rotorcosim.master.core.algorithm import SimulationDiverged  # noqa: F401 - re-exported: rotorcosim.SimulationDiverged
 from rotorcosim.master.compiled.choice import ENGINES
 from rotorcosim.master.run.figure_pool import FigurePool
-from rotorcosim.master.observer.observers import Progress, Recorder, column_names
+from rotorcosim.master.observer.progress import Progress
+from rotorcosim.master.observer.recorder import Recorder
+from rotorcosim.master.observer.recorder_csv import column_names
 from rotorcosim.master.run.outputs import check_dpi, write_json
 from rotorcosim.master.run.provenance import h5_attributes, provenance
 from rotorcosim.master.observer.plausible import Plausibility

@@ -34,7 +34,8 @@ import numpy as np
 from rotorcosim.components.contract import COUPLED
 from rotorcosim.master import case
 from rotorcosim.master.manipulator.hold import RISE_FLOOR_K
-from rotorcosim.master.observer.observers import Observer, SteadyWindows, sampled_rows
+from rotorcosim.master.observer.observer import Observer, sampled_rows
+from rotorcosim.master.observer.steady_windows import SteadyWindows
 from rotorcosim.master.scenario.cycle import cycle_of
 
 from . import thermal_geometry

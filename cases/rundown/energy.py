@@ -34,7 +34,7 @@ from __future__ import annotations
 import numpy as np
 
 from rotorcosim.components.contract import HELD
-from rotorcosim.master.observer.observers import Observer
+from rotorcosim.master.observer.observer import Observer
 
 #: the spool's torque inputs by kind (components/spool/component.py)
 TORQUE_INPUTS = {"T_drag1": "drag", "T_drag2": "drag", "T_rub1": "rub", "T_rub2": "rub"}
