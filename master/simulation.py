@@ -22,7 +22,9 @@ from rotorcosim.master.compiled import choice as compiled
 from rotorcosim.master.core.algorithm import Engine, EngineSettings, SimulationFailed
 from rotorcosim.master.core.cycle import Cycle, RevolutionCounter, as_cycle
 from rotorcosim.master.core.phases import Phases
-from rotorcosim.master.manipulator.hold import DEFAULT_HOLD, HOLDS, RESTART_CYCLES, StaggeredHold
+from rotorcosim.master.core.system import HOLDS
+from rotorcosim.master.manipulator.hold import DEFAULT_HOLD, StaggeredHold
+from rotorcosim.master.manipulator.restart import RESTART_CYCLES
 from rotorcosim.master.schedule.timeline import RunReport, Schedule, ScheduleError, UsedInterval
 from rotorcosim.master.core.system import System
 

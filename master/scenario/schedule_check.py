@@ -7,7 +7,7 @@ from typing import Mapping
 
 from rotorcosim.components.contract import COUPLED, HELD, ContractError
 from rotorcosim.master.core.phases import Phases
-from rotorcosim.master.manipulator.hold import RESTART_CYCLES
+from rotorcosim.master.manipulator.restart import RESTART_CYCLES
 from rotorcosim.master.scenario.checkers import did_you_mean
 from rotorcosim.master.scenario.tables import CYCLE, INTERVAL, PHASES
 
@@ -131,7 +131,7 @@ def check_schedule(c, s: Mapping, comps: Mapping) -> None:
 
 
 def _restart(c, s: Mapping, raw, period: float | None, per: str, phases: Phases) -> None:
-    """restart_cycles against the thermo-mechanical time a restart's ramp has (master/manipulator/hold.py, Restart): it starts
+    """restart_cycles against the thermo-mechanical time a restart's ramp has (master/manipulator/restart.py): it starts
     at a TO -> TM change and goes on through the TM intervals that follow, until the next TO interval. A ramp
     longer than the shortest such run never ends: the hand-backs would stay a blend of held and live values for
     the whole run. Under the automatic schedule a TM interval after a TO one lasts at
