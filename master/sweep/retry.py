@@ -7,12 +7,13 @@ gives each one's :class:`Outcome` as it ends. A task whose worker died while run
 Who died under whom is known from two records, neither of which is ever read and written back:
 
 * each start of a call on a worker writes its own entry on the scheduler (``Client.set_metadata`` under
-  ``[ATTEMPTS, run, call, a fresh id]``: the worker's address), before the call runs; so the starts of a call are
-  the entries under it, in the order they arrived, whichever scheduler reran it;
+  ``[ATTEMPTS, run, call, a fresh id]``: the worker's address and False) before the call runs, and the same entry
+  again (True) when the call ends, returning or raising; so the entries of a call are its starts, in the order
+  they arrived whichever scheduler reran it, and the starts that never ended are the workers that died under it;
 * a worker's death reaches the client as Dask's :class:`distributed.KilledWorker`; the client then reads the
-  call's starts: each one is a worker that died under it (the call never ended). A task that was only waiting on
-  the dead worker (it never started: a restarting worker leaves its neighbours' tasks on the one still up) is
-  sent again without being charged.
+  call's entries. A task that was only waiting on the dead worker (it never started: a restarting worker leaves
+  its neighbours' tasks on the one still up) is sent again without being charged; a call that ended on a worker
+  that died before its value was fetched is rerun by Dask itself, and charged nothing either.
 
 The local clusters the project starts (:func:`rotorcosim.master.sweep.engine.dask_client`) let the scheduler rerun
 no task itself (``distributed.scheduler.allowed-failures`` :data:`ALLOWED_FAILURES`): each death reaches the
@@ -60,13 +61,16 @@ class Outcome:
 
 
 def on_worker(key: list, fn: Callable, *args) -> tuple[str, Any]:
-    """What a worker runs: record this start under ``key`` on the scheduler, then ``fn(*args)``; returns the
-    worker's address and the call's value."""
+    """What a worker runs: record this start under ``key`` on the scheduler, run ``fn(*args)``, record its end;
+    returns the worker's address and the call's value."""
     from distributed import get_client, get_worker
 
-    me = get_worker().address
-    get_client().set_metadata([*key, uuid.uuid4().hex], me)
-    return me, fn(*args)
+    me, entry, client = get_worker().address, [*key, uuid.uuid4().hex], get_client()
+    client.set_metadata(entry, [me, False])
+    try:
+        return me, fn(*args)
+    finally:
+        client.set_metadata(entry, [me, True])
 
 
 def cluster_slots(client) -> int:
@@ -95,8 +99,9 @@ def run_retried(client, fn: Callable, calls: Sequence[tuple], done: Callable[[in
             submitted.add(i)
         running.add(fut)
 
-    def starts(i: int) -> list[str]:
-        return list(client.get_metadata([ATTEMPTS, run, str(i)], {}).values())
+    def died_on(i: int) -> list[str]:
+        """The workers that started call i and died before it ended, in order."""
+        return [w for w, ended in client.get_metadata([ATTEMPTS, run, str(i)], {}).values() if not ended]
 
     try:
         for _ in range(min(cluster_slots(client), len(waiting))):
@@ -106,16 +111,16 @@ def run_retried(client, fn: Callable, calls: Sequence[tuple], done: Callable[[in
             out = Outcome()
             try:
                 out.worker, out.value = fut.result()
-                out.died_on = starts(i)[:-1]   # the last start is the one that ended: none can follow it
+                out.died_on = died_on(i)
             except KilledWorker as exc:
                 out.error = exc
-                out.died_on = starts(i)
+                out.died_on = died_on(i)
                 out.worker = out.died_on[-1] if out.died_on else exc.last_worker.address
                 if len(out.died_on) <= retries:
                     submit(i)   # into the slot the dead worker's task left
                     continue
-            except Exception as exc:  # the call raised, or could not be run or fetched (the scheduler gone)
-                out.error = exc
+            except Exception as exc:  # the call raised, or could not be run or fetched (the scheduler gone: asked
+                out.error = exc       # nothing more, the client would wait for it to come back)
             if waiting:
                 submit(waiting.pop(0))
             done(i, out)
