@@ -53,6 +53,9 @@ ELASTICITY_RANGE = (0.0, 2.0)
 FIT_INTERVALS = 3
 #: least spread (K) of a group temperature over the recorded cycles to drive a hand-off's TO law (Driver)
 DRIVER_MIN_SPREAD_K = 1.0
+#: the relative step of an input at which a TO law's sensitivity is probed (HandOff._gains; an input at zero is
+#: not probed)
+GAIN_STEP = 1e-3
 #: the driver's factor exp(b dT) is bounded to exp(+-DRIVER_MAX_LOG) (a factor 3): a guard against extrapolating
 #: a slope far beyond its data
 DRIVER_MAX_LOG = 1.1
@@ -76,6 +79,9 @@ class HandOff:
         self.w = Window()
         self.turns = None                   # (RevolutionCounter, turns of the window, the angle's component, port)
         self.hs = 0.0                       # the producer's step in the TM interval [s]
+        #: the power's sensitivity to the thermal values it follows, from its last TO law: (component whose input
+        #: it is, its port, element, dP/du [W per the input's unit]); the error estimate's feedback (error_estimate.replay)
+        self.gains: list[tuple[str, str, int, float]] = []
 
     # -- TM: record -------------------------------------------------------------------------------------
     def start_tm(self, n_window: int, n_cycle: int, size: int, hs: float = 0.0, turns=None,
@@ -168,12 +174,20 @@ class HandOff:
         last = self.cycles[-cycles:] if self.cycles else []
         return np.mean([u for u, _ in last], axis=0) if last else self._thermal_inputs()
 
-    def measure_restart_error(self) -> bool:
+    def measure_restart_error(self, skip: int = 0, cycles: int = 0) -> bool:
         """At the end of the first TM interval after a TO interval: the held value the TO interval ended with
-        against the window the mechanics now produce (the hand-off error of that TO interval). True if measured."""
+        against the first window the mechanics produced after the restart (the hand-off error of that TO interval,
+        at the speed and temperatures it ended with: in a long TM interval, a rundown, the window at its end is
+        at another speed). The first window: the mean of the ``cycles`` cycle means after the first ``skip``
+        (the restart's ramp), for a mean hold of a scalar with that many cycles recorded; else the interval's
+        last window. True if measured."""
         if self._to_end is None or self.count == 0:
             return False
-        now = self.statistic(self.hold)
+        first = self.cycles[skip: skip + cycles]
+        if self.hold == "mean" and cycles > 0 and len(first) == cycles and self._to_end.size == 1:
+            now = np.array([np.mean([m for _, m in first])])
+        else:
+            now = self.statistic(self.hold)
         scale = max(float(np.max(np.abs(now))), 1e-300)
         #: the held value the TO interval ended with minus what the mechanics give at the restart [its unit]
         self.delta = self._to_end - now
@@ -211,6 +225,28 @@ class HandOff:
         if e is not None:
             self.elasticity = e
         self.held = HeldLaw(self.link, S, ref, 1.0 if self.elasticity is None else self.elasticity, fired, drive)
+        self.gains = self._gains(probe, self.window_inputs(cycles), ref, self.held)
+
+    def _gains(self, probe, u, ref: float, law: "HeldLaw") -> list[tuple[str, str, int, float]]:
+        """The law's sensitivity to each thermal input at the window's inputs ``u`` (``ref`` its own TO output
+        there): dP/du_i = S e d ln y_TO / du_i (a one-sided difference over ``GAIN_STEP`` of the input, probed
+        through the frozen state), and S b to the driver's temperature. What the mechanics would give at other
+        temperatures, as far as the law knows it."""
+        S = float(law.S[0])
+        out, i = [], 0
+        for p in self.ports:
+            for k in range(np.asarray(self.link.src.u[p]).size):
+                du = GAIN_STEP * abs(float(u[i]))
+                v = np.array(u, dtype=float)
+                v[i] += du
+                y = probe(self.link.src, self.ports, v, self.link.sport) if law.e > 0.0 and du > 0.0 else None
+                if y is not None and y > 0.0 and y != ref:
+                    out.append((self.link.con.src_component, p, k, S * law.e * math.log(y / ref) / du))
+                i += 1
+        d = law.drive
+        if d is not None:
+            out.append((d.owner.link.con.src_component, d.port, d.k, S * d.b))
+        return out
 
     def _settled_points(self, probe) -> list[tuple[float | None, float]]:
         """The fits' points, one per settled cycle of the recorded TM intervals: (ln of the producer's own TO

@@ -215,12 +215,29 @@ class StaggeredHold:
             self._event = None
             return
         fresh = []
+        skip, n = int(math.ceil(self.restart_cycles - 1e-9)), max(1, int(round(self.hold_cycles)))
         for ho in self.handoffs:
-            if ho.measure_restart_error():
+            if ho.measure_restart_error(skip, n):
                 fresh.append(ho)
                 self.report.errors[f"{ho.link.con.src} -> {ho.link.con.dst}"] = ho.error
         if fresh:
             self._estimate(fresh, t0, t1)
+
+    def feedback(self, name: str) -> list[tuple[str, str, int, float]]:
+        """How thermal component ``name``'s inputs follow its own outputs through the mechanics, as the last TO
+        laws measured it: (input port, output port, output element, dP/du) for each hand-off into it whose
+        producer takes that output back (HandOff.gains); the error estimate's feedback (:func:`replay`)."""
+        fed = {(l.con.dst_component, l.con.dst_port): l.sport for l in self.handbacks if l.con.src_component == name}
+        out: dict[tuple[str, str, int], float] = {}
+        for ho in self.handoffs or []:
+            if ho.link.con.dst_component != name:
+                continue
+            for comp, port, k, g in ho.gains:
+                o = fed.get((comp, port))
+                if o is not None:
+                    key = (ho.link.dport, o, k)
+                    out[key] = out.get(key, 0.0) + g
+        return [(*key, g) for key, g in out.items()]
 
     def _scheduled_change(self, t0: float, t1: float) -> str | None:
         """The component whose scheduled change (``next_event``) falls at the end of the TO interval [t0, t1]
@@ -255,7 +272,7 @@ class StaggeredHold:
             pulse = Pulse(t0, t1, self._to_step, delta)
             self._pulses.setdefault(name, []).append(pulse)
             comp = self.system.components[name]
-            own.update(replay(comp, name, [pulse], comp.time))
+            own.update(replay(comp, name, [pulse], comp.time, self.feedback(name)))
         worst, which = self._largest(own)
         self.report.interval_estimates_pct.append(worst)
         self.report.intervals.append({"t_start": t0, "t_end": t1, "estimate_pct": worst, "event": None,
@@ -274,13 +291,14 @@ class StaggeredHold:
         errors: dict[str, np.ndarray] = {}
         for name, pulses in self._pulses.items():
             comp = self.system.components[name]
-            errors.update(replay(comp, name, pulses, comp.time))
+            errors.update(replay(comp, name, pulses, comp.time, self.feedback(name)))
         present = self._thermal_outputs()
         rep = self.report
         rep.output_errors = {k: np.asarray(v, dtype=float).tolist() for k, v in errors.items()}
         rep.output_rise = {k: (v - self._initial[k]).tolist() for k, v in present.items() if k in self._initial}
         rep.output_move = {k: (present[k] - v).tolist() for k, v in self._at_last_restart.items() if k in present}
         rep.estimated_error_pct, rep.estimated_output = self._largest(errors)
+        rep.handoff_errors_end = self._handoff_errors(errors)
         frac: dict[str, float] = {}
         periods = self._tm_periods
         if len(periods) == 2 and periods[0] != periods[1]:
@@ -298,6 +316,23 @@ class StaggeredHold:
                 continue  # a temperature that barely moved over the run drives nothing (as RISE_FLOOR_K)
             frac[name] = max(frac.get(name, 0.0), float(np.linalg.norm(err)) / float(np.linalg.norm(move)))
         rep.mechanics_fraction = frac
+
+    def _handoff_errors(self, errors: dict[str, np.ndarray]) -> dict[str, float]:
+        """Each hand-off's power in error at the run's end by what its TO law says the erring values its producer
+        takes back do to it (HandOff.gains times their estimated errors ``errors``, "comp.port" -> values): the
+        mechanics' own power at the end, "producer.port" -> error [its unit]; only hand-offs with a law."""
+        feeds = {(l.con.dst_component, l.con.dst_port): f"{l.con.src_component}.{l.sport}" for l in self.handbacks}
+        out = {}
+        for ho in self.handoffs or []:
+            if not ho.gains:
+                continue
+            d = 0.0
+            for comp, port, k, g in ho.gains:
+                err = errors.get(feeds.get((comp, port), ""))
+                if err is not None:
+                    d += g * float(np.ravel(err)[k])
+            out[f"{ho.link.con.src_component}.{ho.link.sport}"] = d
+        return out
 
     def _largest(self, errors: dict[str, np.ndarray]) -> tuple[float, str | None]:
         """The largest error [%] of a scalar temperature output (unit K, one element: a thermal model's reported
