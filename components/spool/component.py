@@ -69,7 +69,8 @@ class Spool(KernelComponent):
                  description="the engine file whose spool `spool` this is: J when inertia is 0, one torque "
                              "input per bearing and rub ring on the spool (a scenario gives \"engine:file\")"),
         Variable("spool", "parameter", unit="1", start="pt", type="String",
-                 description="the spool of the model file ([spool.NAME]) this one is (for J)"),
+                 description="the spool of the model file ([spool.NAME]) this one is (for J and its torque "
+                             "inputs)"),
         Variable("t_fuel_cut", "parameter", unit="s", start=-1.0,
                  description="torque law: the turbine drives (holds the speed) until this time (< 0: never cut)",
                  event="the fuel cut"),

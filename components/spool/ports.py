@@ -40,15 +40,25 @@ def torque_layout(data: dict, spool: str) -> attach.Layout | None:
 def torque_variables(lay: attach.Layout | None) -> tuple[Variable, ...]:
     """The input variables of the drag and friction torques for the parts ``lay`` on the spool (module
     docstring); ``None``: the two of each kind a spool without an engine has."""
-    bearings, rings = (lay.bearings, lay.rubrings) if lay is not None else ((), ())
+    if lay is None:
+        drag = [Variable(f"{DRAG}{i + 1}", "input", 1, "N.m",
+                         "drag torque of a co-simulated bearing on the spool (opposing its spin): one input "
+                         "T_drag1..T_dragN per bearing of model_file on the spool, at least two")
+                for i in range(MIN_PORTS)]
+        rub = [Variable(f"{RUB}{i + 1}", "input", 1, "N.m",
+                        "friction torque of a rub ring on the spool (opposing the spin): one input T_rub1..T_rubM "
+                        "per rub ring of model_file on the spool, at least two")
+               for i in range(MIN_PORTS)]
+        return tuple(drag + rub)
+    spare = "no further {} of the engine on this spool: set it to 0"
     drag = [Variable(f"{DRAG}{i + 1}", "input", 1, "N.m",
-                     f"drag torque of bearing{bearings[i]} on the spool (opposing its spin)" if i < len(bearings)
-                     else "a bearing's drag torque on the spool (opposing its spin; 0 when none)")
-            for i in range(max(MIN_PORTS, len(bearings)))]
+                     f"drag torque of bearing{lay.bearings[i]} on the spool (opposing its spin)"
+                     if i < len(lay.bearings) else spare.format("bearing"))
+            for i in range(max(MIN_PORTS, len(lay.bearings)))]
     rub = [Variable(f"{RUB}{i + 1}", "input", 1, "N.m",
-                    f"friction torque of rubring{rings[i]} on the spool (opposing the spin)" if i < len(rings)
-                    else "a rub ring's friction torque (opposing the spin; 0 when none)")
-           for i in range(max(MIN_PORTS, len(rings)))]
+                    f"friction torque of rubring{lay.rubrings[i]} on the spool (opposing the spin)"
+                    if i < len(lay.rubrings) else spare.format("rub ring"))
+           for i in range(max(MIN_PORTS, len(lay.rubrings)))]
     return tuple(drag + rub)
 
 
