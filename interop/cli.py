@@ -110,7 +110,9 @@ def add_arguments(parser):
                         help="ROSS node of the blade loss (with --attach; default: the first disk's)")
     parser.add_argument("--parts", default=None, metavar="FILE",
                         help="a TOML file of the attached parts ([bearing.ID], [damper.ID], [rubring.ID], "
-                             "[thermal.ID], [unbalance]) copied into the engine file (--attach needs it)")
+                             "[thermal.ID], [unbalance]) copied into the engine file (--attach needs it: without "
+                             "it, or with a required key left out, the import names every missing table and key "
+                             "and writes nothing)")
     parser.add_argument("--hub-mass", type=float, default=DEFAULT_HUB_MASS_KG, metavar="KG",
                         help=f"housing mass of each co-simulated bearing (default {DEFAULT_HUB_MASS_KG:g})")
 
