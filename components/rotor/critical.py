@@ -224,17 +224,23 @@ def _modes_near(sysm: dict, model: FullModel, w: float, target: float, min_share
     k = min(NEAR_MODES, 2 * n - 2)
     # nu = 1 / (lambda - sigma); a search that has not converged in MAX_ITER restarts is handed to the full solve
     nu, vec = eigs(op, k=k, which="LM", v0=np.ones(2 * n, complex), maxiter=MAX_ITER)
-    lam = sigma + 1.0 / nu
+    return _whirl_modes(sigma + 1.0 / nu, vec[:n], Mm, lat, min_share)
+
+
+def _whirl_modes(lam, vec, Mm, lat, min_share: float) -> list:
+    """(eigenvalue, "forward" | "backward") of the eigenpairs (``vec``: the displacement part, one column each)
+    with Im lambda > 0 that are rotor whirl modes: lateral rotor share of the kinetic energy at least
+    ``min_share``, the whirl from the rotor nodes' orbit (the module docstring)."""
     Mlat = Mm[np.ix_(lat, lat)]
     out = []
-    for j in np.nonzero(lam.imag > 1e-6)[0]:
-        v = vec[:n, j]
+    for k in np.nonzero(lam.imag > 1e-6)[0]:
+        v = vec[:, k]
         share = np.real(v[lat].conj() @ Mlat @ v[lat]) / np.real(v.conj() @ Mm @ v)
         if share < min_share:
             continue
         X, Y = v[lat[0::2]], v[lat[1::2]]
         forward = np.sum(np.abs(X + 1j * Y) ** 2) >= np.sum(np.abs(X - 1j * Y) ** 2)
-        out.append((lam[j], "forward" if forward else "backward"))
+        out.append((lam[k], "forward" if forward else "backward"))
     return out
 
 
@@ -276,16 +282,7 @@ def _damped_modes(sysm: dict, model: FullModel, w: float, min_share: float):
         A = np.block([[np.zeros((n, n)), np.eye(n)], [-(K + dK), -D]])
         B = np.block([[np.eye(n), np.zeros((n, n))], [np.zeros((n, n)), Mm]])
         lam, vec = sla.eig(A, B)
-    Mlat = Mm[np.ix_(lat, lat)]
-    out = []
-    for k in np.nonzero(lam.imag > 1e-6)[0]:
-        v = vec[:n, k]
-        share = np.real(v[lat].conj() @ Mlat @ v[lat]) / np.real(v.conj() @ Mm @ v)
-        if share < min_share:
-            continue
-        X, Y = v[lat[0::2]], v[lat[1::2]]
-        forward = np.sum(np.abs(X + 1j * Y) ** 2) >= np.sum(np.abs(X - 1j * Y) ** 2)
-        out.append((lam[k], "forward" if forward else "backward"))
+    out = _whirl_modes(lam, vec[:n], Mm, lat, min_share)
     out.sort(key=lambda t: (t[0].imag, abs(t[0])))
     return out
 
