@@ -103,7 +103,13 @@ class Spool(KernelComponent):
             except (ValueError, OSError):
                 pass
         if self._model is not None:
-            lay = torque_layout(self._model, str(params.get("spool", "pt")))
+            spool, spools = str(params.get("spool", "pt")), self._model.get("spool") or {}
+            if "shaft" not in self._model and spool not in spools:
+                # refused here, before its ports are connected: a connection to a port it would have had would
+                # otherwise name the port, not the cause
+                raise ContractError(f"{name}.spool = {spool!r} is not a spool of model_file "
+                                    f"{params['model_file']} (its spools: {', '.join(spools) or 'none'})")
+            lay = torque_layout(self._model, spool)
             if lay is not None:
                 own = [v for v in type(self).variables if kind_of(v.name) is None]
                 at = next(i for i, v in enumerate(type(self).variables) if kind_of(v.name) is not None)

@@ -129,7 +129,16 @@ def test_one_drag_input_per_bearing_on_the_spool_and_their_sum_drives_it():
     assert [v.name for v in Spool("s", {}).variables if v.causality == "input"] == list(TORQUES)
 
 
-def test_a_spool_the_engine_file_does_not_have_is_named():
-    s = Spool("spool", {"model_file": str(THREE), "spool": "pt", "inertia": 1.0})
-    with pytest.raises(ContractError, match=r"spool\.spool = 'pt' is not a spool of model_file .*\(its spools: rotor\)"):
+def test_a_spool_the_engine_file_does_not_have_is_named(tmp_path):
+    """Refused when made (before its ports are connected) and, set later, at set-up; an unreadable model file at
+    set-up, by its parameter."""
+    msg = r"spool\.spool = 'pt' is not a spool of model_file .*\(its spools: rotor\)"
+    with pytest.raises(ContractError, match=msg):
+        Spool("spool", {"model_file": str(THREE), "spool": "pt", "inertia": 1.0})
+    s = Spool("spool", {"model_file": str(THREE), "spool": "rotor", "inertia": 1.0})
+    s.set_parameter("spool", "pt")
+    with pytest.raises(ContractError, match=msg):
+        s.setup(0.0)
+    s = Spool("spool", {"model_file": str(tmp_path / "none.toml"), "inertia": 1.0})
+    with pytest.raises(ContractError, match=r"spool\.model_file: .*none\.toml"):
         s.setup(0.0)
