@@ -31,6 +31,9 @@ def table(label: str, staggered: dict, monolithic: dict) -> dict:
         print(f"{label} | #{r['bearing']} {r['key']} | {r['estimated_pct']:.3f} | {r['true_pct']:.3f} | "
               f"{r['ratio']:.2f}")
     big = error_check.largest(rows)
+    big["within"] = sum(1.0 <= r["ratio"] <= 3.0 for r in rows)
+    big["below"] = sum(r["ratio"] < 1.0 for r in rows)
+    big["results"] = len(rows)
     return big
 
 
@@ -56,9 +59,10 @@ def main() -> None:
                 compare(d, duration=a.duration, unbalance=f, figures=False, overwrite=True, timing_runs=1)
                 load = [json.loads((d / run / "summary.json").read_text()) for run in ("staggered", "monolithic")]
                 big[f"{f:g} N"] = table(f"{f:g} N", *load)
-    print("\nrun | largest estimate % | largest true % | ratio")
+    print("\nrun | largest estimate % | largest true % | ratio | results within 1-3x / below / all")
     for label, b in big.items():
-        print(f"{label} | {b['estimated_pct']:.3f} | {b['true_pct']:.3f} | {b['ratio']:.2f}")
+        print(f"{label} | {b['estimated_pct']:.3f} | {b['true_pct']:.3f} | {b['ratio']:.2f} | {b['within']} / "
+              f"{b['below']} / {b['results']}")
 
 
 if __name__ == "__main__":

@@ -44,21 +44,21 @@ PAPER_T = {0: (68.2, 68.9, 67.1, 33.0), 5: (86.1, 86.2, 83.0, 36.7)}   # inner r
 @contextlib.contextmanager
 def data(changes):
     """The data file's values with ``changes`` {(table, ..., key): factor or ('=', value)} applied."""
-    saved = copy.deepcopy(geo._DATA)
+    saved = copy.deepcopy(geo.THERMAL_DATA)
     try:
         for path, f in changes.items():
-            d = geo._DATA
+            d = geo.THERMAL_DATA
             for k in path[:-1]:
                 d = d[k]
             d[path[-1]] = f[1] if isinstance(f, tuple) else d[path[-1]] * f
         geo.BEARINGS.clear()
-        geo.BEARINGS.update({int(k): v for k, v in geo._DATA["bearing"].items()})
+        geo.BEARINGS.update({int(k): v for k, v in geo.THERMAL_DATA["bearing"].items()})
         yield
     finally:
-        geo._DATA.clear()
-        geo._DATA.update(saved)
+        geo.THERMAL_DATA.clear()
+        geo.THERMAL_DATA.update(saved)
         geo.BEARINGS.clear()
-        geo.BEARINGS.update({int(k): v for k, v in geo._DATA["bearing"].items()})
+        geo.BEARINGS.update({int(k): v for k, v in geo.THERMAL_DATA["bearing"].items()})
 
 
 def run(bearing, P, t=120.0, h=0.1):
@@ -155,7 +155,7 @@ def table6():
 def shaft_grid(r_out, r_in, W, L, nr=30, nz=150):
     """Finite volumes of an axisymmetric shaft r_in..r_out, |z| < L/2 (adiabatic outside the band): conductance
     matrix, heat masses, and the surface cells under the race (|z| < W/2)."""
-    st = geo._DATA["steel"]
+    st = geo.THERMAL_DATA["steel"]
     k, rc = st["conductivity"], st["density"] * st["specific_heat"]
     dr, dz = (r_out - r_in) / nr, L / nz
     r = r_in + (np.arange(nr) + 0.5) * dr
@@ -174,7 +174,7 @@ def shaft_grid(r_out, r_in, W, L, nr=30, nz=150):
 
 
 def shaft_reference():
-    st = geo._DATA["steel"]
+    st = geo.THERMAL_DATA["steel"]
     k, rc = st["conductivity"], st["density"] * st["specific_heat"]
     print("\nthe shaft under the inner race: band rise per watt Z(t), K/W (resolved 2-D shaft / Table 1's"
           " R_sr + t / C_shaft):")

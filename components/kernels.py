@@ -30,7 +30,8 @@ from .contract import Component
 #: kernel status codes: 0 done; PYTHON: nothing changed, run the step through kernel_status; >= 2: component errors
 OK, PYTHON = 0, 1
 
-_PORT_TUPLES: dict[tuple, type] = {}
+#: every port tuple type made so far, (class name, kind, port names) -> type (sent to the ahead-of-time compiler)
+PORT_TUPLES: dict[tuple, type] = {}
 
 
 def port_tuple(cls_name: str, kind: str, names: tuple[str, ...]) -> type:
@@ -39,7 +40,7 @@ def port_tuple(cls_name: str, kind: str, names: tuple[str, ...]) -> type:
     Made a global of this module, so that it pickles by reference: numba's on-disk cache compares the types of a
     new call with the pickled ones, and a class pickled by value would never match (a recompilation every run)."""
     key = (cls_name, kind, names)
-    t = _PORT_TUPLES.get(key)
+    t = PORT_TUPLES.get(key)
     if t is None:
         name = f"{cls_name}{kind}"
         if name in globals():  # another class of that name with other ports
@@ -47,7 +48,7 @@ def port_tuple(cls_name: str, kind: str, names: tuple[str, ...]) -> type:
         t = namedtuple(name, names)
         t.__module__ = __name__
         globals()[name] = t
-        _PORT_TUPLES[key] = t
+        PORT_TUPLES[key] = t
     return t
 
 

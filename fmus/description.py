@@ -32,7 +32,8 @@ class FMUError(ContractError):
     """An FMU that cannot be used as a component; the message names the file and the problem."""
 
 
-def _number(text, integer: bool):
+def parse_number(text, integer: bool):
+    """A declared attribute's text (``min``, ``max``) as an int or a float, None if not declared."""
     if text is None or text == "":
         return None
     return int(text) if integer else float(text)
@@ -174,7 +175,8 @@ def _unit_definitions(md) -> dict[str, tuple]:
     return out
 
 
-def _declared(e, attr: str):
+def declared_attribute(e, attr: str):
+    """A variable's attribute ``attr`` (``unit``, ``min``, ``max``), or its declared type's when it gives none."""
     value = getattr(e, attr, None)
     if value is None and e.declaredType is not None:
         value = getattr(e.declaredType, attr, None)
@@ -214,7 +216,7 @@ def ports_of(md, where: str, hidden=frozenset(), defaults=None) -> tuple[list[Va
                 problems.append(f"the elements of {port!r} differ in {attr} ({sorted(values)}): they cannot "
                                 "form one port")
                 bad = True
-        unit_names = {_declared(e, "unit") or "1" for e in elems}
+        unit_names = {declared_attribute(e, "unit") or "1" for e in elems}
         if len(unit_names) > 1:
             problems.append(f"the elements of {port!r} have different units {sorted(unit_names)}")
             bad = True
@@ -237,8 +239,8 @@ def ports_of(md, where: str, hidden=frozenset(), defaults=None) -> tuple[list[Va
         if first.type == "Enumeration" and first.declaredType is not None and first.declaredType.items:
             choices = tuple(sorted(int(i.value) for i in first.declaredType.items))
         integer = kind == "Integer"
-        lo = _number(_declared(first, "min"), integer) if kind in ("Real", "Integer") else None
-        hi = _number(_declared(first, "max"), integer) if kind in ("Real", "Integer") else None
+        lo = parse_number(declared_attribute(first, "min"), integer) if kind in ("Real", "Integer") else None
+        hi = parse_number(declared_attribute(first, "max"), integer) if kind in ("Real", "Integer") else None
         if choices and lo is None:
             lo, hi = min(choices), max(choices)
         shell = Variable(port, first.causality, size, unit, first.description or "", None, kind, first.type,

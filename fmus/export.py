@@ -195,7 +195,7 @@ def export_component(implementation: str, dest: str | Path, *, instance_name: st
     return write_deterministic_zip(entries, dest)
 
 
-def _entries(path: Path) -> dict[str, bytes]:
+def fmu_entries(path: Path) -> dict[str, bytes]:
     """The entries of the FMU ``path``, each read through the caps of an archive (safezip, bounded_read)."""
     with open_zip(path, "FMU") as zf:
         check_entries(zf, str(path))

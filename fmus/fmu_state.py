@@ -7,11 +7,11 @@ import weakref
 from rotorcosim.fmus.fmpy_internals import c_function
 
 #: the state functions per FMI version: get, set, free
-_STATE_FUNCTIONS = {"2": ("fmi2GetFMUstate", "fmi2SetFMUstate", "fmi2FreeFMUstate"),
+STATE_FUNCTIONS = {"2": ("fmi2GetFMUstate", "fmi2SetFMUstate", "fmi2FreeFMUstate"),
                     "3": ("fmi3GetFMUState", "fmi3SetFMUState", "fmi3FreeFMUState")}
 
 
-class _FMUState:
+class FMUState:
     """An FMU state pointer, freed with the FMU when it is no longer referenced."""
 
     def __init__(self, comp, state):
@@ -23,6 +23,6 @@ def _free_state(handle, state) -> None:
     fmu = handle.fmu
     if fmu is not None and handle.instantiated:
         try:
-            c_function(fmu, _STATE_FUNCTIONS[handle.version][2])(fmu.component, ctypes.byref(state))
+            c_function(fmu, STATE_FUNCTIONS[handle.version][2])(fmu.component, ctypes.byref(state))
         except Exception:
             pass

@@ -50,9 +50,9 @@ from rotorcosim.components.value_types import KIND_OF, check_value, dtype_of
 
 from rotorcosim.fmus import extraction_cache
 from rotorcosim.fmus import model_description as mdx
-from rotorcosim.fmus.description import FMUError, _declared, _number, describe, ports_of
+from rotorcosim.fmus.description import FMUError, declared_attribute, describe, parse_number, ports_of
 from rotorcosim.fmus.fmpy_internals import c_function
-from rotorcosim.fmus.fmu_state import _STATE_FUNCTIONS, _FMUState
+from rotorcosim.fmus.fmu_state import STATE_FUNCTIONS, FMUState
 from rotorcosim.fmus.flatten import FlattenError, regroup
 from rotorcosim.fmus.safezip import ArchiveError
 
@@ -377,8 +377,8 @@ class FMUComponent(Component):
                 if first.type == "Enumeration" and first.declaredType is not None and first.declaredType.items \
                 else None
             var = Variable(name, "parameter", size, type=kind or "Real", fmi_type=first.type,
-                           min=_number(_declared(first, "min"), integer) if kind in ("Real", "Integer") else None,
-                           max=_number(_declared(first, "max"), integer) if kind in ("Real", "Integer") else None,
+                           min=parse_number(declared_attribute(first, "min"), integer) if kind in ("Real", "Integer") else None,
+                           max=parse_number(declared_attribute(first, "max"), integer) if kind in ("Real", "Integer") else None,
                            choices=choices)
             try:
                 arr = check_value(var, value, f"{self._where}: start value of {name!r}")
@@ -527,15 +527,15 @@ class FMUComponent(Component):
     def get_state(self) -> Any:
         self._require_state()
         state = ctypes.c_void_p()
-        name = _STATE_FUNCTIONS[self._version][0]
+        name = STATE_FUNCTIONS[self._version][0]
         self._check(c_function(self._handle.fmu, name)(self._c, ctypes.byref(state)), name)
         return (self.time, {k: v.copy() for k, v in self.u.items()}, {k: v.copy() for k, v in self.y.items()},
-                _FMUState(self, state))
+                FMUState(self, state))
 
     def set_state(self, snapshot: Any) -> None:
         self._require_state()
         t, u, y, handle = snapshot
-        name = _STATE_FUNCTIONS[self._version][1]
+        name = STATE_FUNCTIONS[self._version][1]
         self._check(c_function(self._handle.fmu, name)(self._c, handle.state), name)
         self.time = t
         self.u = {k: v.copy() for k, v in u.items()}

@@ -38,7 +38,8 @@ def _fmt(x: float) -> str:
     return repr(float(x))
 
 
-def _unit_element(name: str) -> ET.Element:
+def unit_element(name: str) -> ET.Element:
+    """The ``<Unit>`` element of the unit ``name``, with its SI base-unit exponents and factor where they are known."""
     unit = ET.Element("Unit", {"name": name})
     parsed = base_units(name)
     if parsed is not None:
@@ -88,7 +89,7 @@ def finish(xml: bytes, variables: list[dict], *, implementation: str, phases: li
     if units:
         ud = ET.Element("UnitDefinitions")
         for u in sorted(units):
-            ud.append(_unit_element(u))
+            ud.append(unit_element(u))
         new["UnitDefinitions"] = ud
     new["DefaultExperiment"] = ET.Element("DefaultExperiment", {"startTime": "0.0", "stepSize": _fmt(preferred_step)})
     va = ET.Element("VendorAnnotations")

@@ -122,7 +122,7 @@ def to_ross(engine, *, scenario=None, damped: bool = True):
             n_next += 1
             if pv["mass"] > 0:
                 masses.append(rs.PointMass(n=n, m=float(pv["mass"]), tag=f"hub {h}"))
-            kx, ky = (fem._knob(data, pv.get(k, pv.get("k"))) for k in ("kxx", "kyy"))
+            kx, ky = (fem.knob_value(data, pv.get(k, pv.get("k"))) for k in ("kxx", "kyy"))
             cx, cy = (pv.get(k, pv.get("c", 0.0)) for k in ("cxx", "cyy"))
             bearings.append(rs.BearingElement(n=n, kxx=kx, kyy=ky, cxx=c(cx), cyy=c(cy), tag=f"pedestal {h}"))
         return hub_node[h]

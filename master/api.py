@@ -16,58 +16,37 @@ recorded in memory; with ``out`` and HDF5, the result's arrays are read from ``t
 """
 from __future__ import annotations
 
-import contextlib
-import json
 import numbers
 import os
 import sys
-import time
 from pathlib import Path
-from typing import Any, Mapping, Sequence
+from typing import Mapping, Sequence
 
 import numpy as np
 
 from rotorcosim import scenarios
 from rotorcosim.components.bounded_read import read_json
 from rotorcosim.master import case
-
-from rotorcosim.master.schedule import budget
-from rotorcosim.master.run import checkpoint
-from rotorcosim.master.run import watchdog
 from rotorcosim.master.core.algorithm import SimulationDiverged  # noqa: F401 - re-exported: rotorcosim.SimulationDiverged
-from rotorcosim.master.compiled.choice import ENGINES
-from rotorcosim.master.run.figure_pool import FigurePool
-from rotorcosim.master.observer.observers import Progress, Recorder, column_names
-from rotorcosim.master.run.outputs import check_dpi, write_json
-from rotorcosim.master.run.provenance import h5_attributes, provenance
-from rotorcosim.master.observer.plausible import Plausibility
-from rotorcosim.master.run.rundir import RunFolder
-from rotorcosim.master.scenario.build import Scenario, build_simulation, load_scenario as _load_file, schedule_of
-from rotorcosim.master.scenario.cycle import cycle_of
-from rotorcosim.master.schedule.timeline import Schedule
-from rotorcosim.master.observer.series import SeriesFile
-from rotorcosim.master.observer.validity import Validity
-from rotorcosim.master.simulation import engine_summary
 from rotorcosim.master.core.phases import Phases
 from rotorcosim.master.core.threads import one_thread
+from rotorcosim.master.observer.observers import column_names
+from rotorcosim.master.observer.series import SeriesFile
+from rotorcosim.master.run import checkpoint
+from rotorcosim.master.run import summary as summaries
+from rotorcosim.master.run.figure_pool import FigurePool
+from rotorcosim.master.run.options import RunOptions
+from rotorcosim.master.run.outputs import check_dpi, write_json
+from rotorcosim.master.run.session import RunSession
+from rotorcosim.master.scenario.build import Scenario, build_simulation, load_scenario as _load_file, schedule_of
+from rotorcosim.master.scenario.cycle import cycle_of
+from rotorcosim.master.schedule import budget
+from rotorcosim.master.schedule.timeline import Schedule
 
 #: the scenario run when none is named (declared with the shipped scenarios, ``scenarios.DEFAULT``)
 DEFAULT_SCENARIO = scenarios.DEFAULT
 #: ``schedule=`` names: the scenario's own schedule (its timeline), automatic, one TM interval
 SCHEDULES = {"scenario": None, "auto": "auto", "monolithic": "monolithic"}
-
-
-def peak_memory_mb() -> float | None:
-    """This process's peak resident memory so far [MB] (``getrusage``'s high-water mark), None where unknown.
-
-    >>> peak_memory_mb() > 0    # doctest: +SKIP
-    True"""
-    try:
-        import resource
-    except ImportError:  # not on this system (Windows)
-        return None
-    peak = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss
-    return peak / (1 << 20) if sys.platform == "darwin" else peak / 1024   # bytes on macOS, KiB on Linux
 
 
 def load_scenario(name_or_path: str | Path | None = None) -> Scenario:
@@ -259,210 +238,90 @@ def simulate(sc: Scenario | str | Path, duration: float | None = None, schedule=
     import scipy.linalg  # noqa: F401  (loads scipy's own BLAS now, so that the limit below covers it too)
 
     with one_thread():
-        return _simulate(sc, duration, schedule, out, record, progress, figures, overwrite, resume, force,
-                         checkpoint_every, step_timeout, engine, dpi)
+        if not isinstance(sc, (Scenario, str, os.PathLike)):
+            raise TypeError(f"simulate: give a Scenario, a shipped scenario's name or a file, got {type(sc).__name__}")
+        if not isinstance(sc, Scenario):
+            sc = load_scenario(sc)
+        opts = RunOptions(out=out, record=record, figures=figures, progress=progress, overwrite=overwrite,
+                          resume=resume, force=force, checkpoint_every=checkpoint_every, step_timeout=step_timeout,
+                          engine=engine, dpi=dpi)
+        return _run(sc, schedule, duration, opts)
 
 
-def _simulate(sc, duration, schedule, out, record, progress, figures, overwrite, resume, force, checkpoint_every,
-              step_timeout, engine, dpi) -> Result:
-    if not isinstance(sc, (Scenario, str, os.PathLike)):
-        raise TypeError(f"simulate: give a Scenario, a shipped scenario's name or a file, got {type(sc).__name__}")
-    if not isinstance(sc, Scenario):
-        sc = load_scenario(sc)
-    if isinstance(record, (str, bytes)):  # a lone name would be read letter by letter
-        raise TypeError(f"record: give a list of 'component.port' names, e.g. record=[{record!r}]")
-    if engine not in ENGINES:
-        raise ValueError(f"engine {engine!r} not in {ENGINES}")
-    dpi = check_dpi(dpi)
-    if not (isinstance(step_timeout, numbers.Real) and 0 <= step_timeout < float("inf")):
-        raise ValueError(f"step_timeout must be a number of seconds >= 0 (0: no limit), got {step_timeout!r}")
-    if checkpoint_every is not None and not (isinstance(checkpoint_every, numbers.Real) and checkpoint_every > 0):
-        raise ValueError(f"checkpoint_every must be a positive number of seconds (or None: no checkpoints), got "
-                         f"{checkpoint_every!r}")
+def _run(sc: Scenario, schedule, duration: float | None, opts: RunOptions) -> Result:
+    """The run :func:`simulate` makes once its options are checked: the scenario's own checks, then the run in a
+    :class:`~rotorcosim.master.run.session.RunSession`, then the case's results and figures."""
     sch, kind = _schedule(sc, schedule, duration)
-    estimate = budget.check(sc, sch, force, engine)
+    estimate = budget.check(sc, sch, opts.force, opts.engine)
     if estimate["wall_s"] > budget.WARN_S:
         # from Python as from the command line: a long run does not start silently
         print(f"{sc.name}: {estimate['steps']:,} steps, estimated {estimate['wall']} of wall time "
               f"({estimate['engine']} engine)", file=sys.stderr)
     post = _postprocessor(sc)
-    o = sc.outputs
-    signals = list(o.get("record", []) if record is None else record)
-    for i, ref in enumerate(signals):
-        if not isinstance(ref, str) or "." not in ref:
-            raise ValueError(f"record: {ref!r} must be written 'component.port'")
-        if ref in signals[:i]:
-            raise ValueError(f"record: {ref!r} is listed twice")
-    fmt = o.get("format", "h5")
+    signals = opts.signals(sc.outputs)
+    fmt = sc.outputs.get("format", "h5")
     if fmt not in ("h5", "csv"):
         raise ValueError(f"[outputs] format {fmt!r} not in ('h5', 'csv')")
     cycle = cycle_of(sc.schedule)
     if post is not None and cycle is None:
         raise ValueError(f"scenario {sc.name!r}: [results] needs a cycle, [schedule] speed_rpm or cycle (steady "
                          "windows in cycles)")
-    with contextlib.ExitStack() as stack:
-        point = saver = series = None
-        if out is not None:
-            # the recorded signals too: a resume with another --record continued some datasets and not others
-            # (a file whose osc.x had 301 rows and node.T 257, beside a 301-row time)
-            key = checkpoint.fingerprint(sc.name, sc.components, sc.connections, sc.inputs, sc.algorithm,
-                                         sc.schedule, sc.outputs, sc.extra, sch, signals)
-            folder = stack.enter_context(RunFolder(out, overwrite=overwrite, resume=resume))
-            stop = stack.enter_context(checkpoint.StopRequest())
-            out = folder.path
-            point = checkpoint.load(out / checkpoint.CHECKPOINT, key) if resume else None
-            series = out / f"timeseries.{fmt}" if signals else None
-        # a file run keeps nothing in memory: the result and the figures read the HDF5 file (CSV is not read back)
-        keep = series is None or fmt != "h5"
-        made = {"by": provenance(sc)}  # completed with the components' resolved parameters once they are built
-        recorder = Recorder(series, signals, float(o.get("record_step", 1e-4)), keep=keep,
-                            attributes=lambda: h5_attributes(made["by"]))
+    with RunSession(sc, sch, signals, fmt, opts) as run:
         post_obs = post.observers(sc, cycle) if post is not None else []
-        # where the components' models stop holding: after the progress bar, so that its lines follow the bar's
-        validity = Validity(recorder.record_step, sc.name)
-        prior = {ph: 1e-6 * us for ph, us in estimate["step_cost_us"].items()}
-        # a parameter off by a unit factor: warned once the components are set up (after their own checks)
-        observers = [recorder, *post_obs, Progress(sch.duration, disable=not progress, desc=sc.name, prior=prior),
-                     validity, Plausibility(sc.name)]
-        if out is not None:
-            # checkpoint_every=None: no checkpoints (a timing comparison is run again, not resumed)
-            saver = checkpoint.Checkpointer(out / checkpoint.CHECKPOINT if checkpoint_every is not None else None,
-                                            stop, checkpoint_every or checkpoint.EVERY_S, key)
-            observers.append(saver)  # last: it sees every other observer done with the step
-        sim = build_simulation(sc, observers)
-        made["by"] = provenance(sc, sim.system)
+        sim = build_simulation(sc, run.observers(post_obs, estimate))
+        run.built(sim)
         if post is not None and hasattr(post, "check"):
             post.check(sc, sim)  # the scenario's own consistency checks before anything runs
-        sim.engine_choice = engine
+        sim.engine_choice = opts.engine
         pool = None
-        if figures and out is not None and post is not None and not keep:
+        if opts.figures and run.out is not None and post is not None and not run.keep:
             # its workers start now, one after the other, and import matplotlib and the figures while the run goes
             pool = FigurePool(preload=[m for m in [getattr(post, "FIGURES_MODULE", None)] if m],
                               after=sim.first_compiled)
-            stack.callback(pool.close)
-        head = {"scenario": sc.name, "source": str(sc.source) if sc.source else None,
-                "schedule": kind or sc.schedule.get("kind", "monolithic"), "duration_s": sch.duration,
-                "estimate": estimate,
-                # what made the run: the code's version, the scenario file and name as loaded, every --set /
-                # --swap / level, the parameters each component ran with (master/run/provenance.py)
-                "provenance": made["by"]}
-        if out is not None:
-            write_json(out / "summary.json", {**head, "status": "running", "pid": os.getpid(),
-                                              "resumed_from_t_s": point.t if point else None})
-            folder.started = True   # from here the folder holds this run's summary, whatever happens
-        t_wall = time.perf_counter()
-        error = None
-
-        def hung(msg: str) -> None:  # the watchdog's last act before it ends the process
-            if out is None:
-                return
-            closed = None
-            if series is not None:
-                # the rows still buffered (up to a flush's worth: all of a short run's) written and the file
-                # closed, marked incomplete, under its final name (not left as timeseries.h5.part). The run's thread
-                # is inside the hung component's step, not in the recorder.
-                try:
-                    recorder.end(sim, TimeoutError(msg))
-                    closed = series.name
-                except Exception:  # noqa: BLE001 - the process ends now whatever happens: the .part file stays
-                    pass
-            write_json(out / "summary.json", {**head, "status": "failed", "error": msg, "t_end_s": sim.t,
-                                              "timeseries": closed,
-                                              "checkpoint": checkpoint.CHECKPOINT if saver.saved else None})
-
-        guard = watchdog.Watchdog(step_timeout, hung, "rotorcosim run") if step_timeout > 0 else contextlib.nullcontext()
+            run.on_exit(pool.close)
+        run.start(summaries.head(sc, kind, sch.duration, estimate, run.provenance))
+        run.execute()
+        if run.refused():
+            raise run.error
+        summary = run.summary()
+        data, files = run.recorded()
         try:
-            # numpy's floating-point warnings (overflow, invalid) off during the steps: the engine checks every
-            # output another component reads after each step and stops with SimulationDiverged naming the port and
-            # the time (algorithm.py), so a warning would only add a stray line of source text before that error
-            with guard, np.errstate(over="ignore", invalid="ignore", divide="ignore"):
-                report = checkpoint.resume(sim, sch, point) if point else sim.run(sch)
-            status = report.status  # "complete", or "stopped" (a component asked to stop)
-        except checkpoint.RunInterrupted as exc:
-            error, status = exc, "interrupted"
-        except BaseException as exc:  # diverged, disk full, a component's failure: summary first, then raise
-            error, status = exc, ("interrupted" if isinstance(exc, KeyboardInterrupt) else "failed")
-        if status == "failed" and out is not None and point is None and not sim.computed:
-            # refused at its start (a bad --set value, a missing model file, a file that cannot be opened, a cycle
-            # with no period at t0): nothing was computed, so the folder is left as it was found (rundir.py takes
-            # back the lock and the folders it made) and the error raised alone
-            for f in (out / "summary.json", series, series and series.with_name(series.name + ".part")):
-                if f is not None:
-                    f.unlink(missing_ok=True)
-            folder.started = False
-            raise error
-        report = sim.report
-        summary: dict[str, Any] = {
-            **head,
-            "status": status,
-            "t_end_s": report.t_end,
-            "timeline": [u.as_dict() for u in report.timeline],
-            "hold": report.hold.as_dict() if report.hold is not None else None,
-            "wall_time_s": time.perf_counter() - t_wall,
-            # the process's CPU time over the run (Simulation.run): beside the wall time on a loaded machine
-            "cpu_time_s": report.cpu_time_s,
-            # the process's peak resident memory so far (its high-water mark: this run's peak in a process of its
-            # own, e.g. one command or one sweep worker's cases); None where the system does not say
-            "peak_memory_MB": peak_memory_mb(),
-            "resumed_from_t_s": point.t if point else None,
-            # wall time per base step of this run, beside the estimate's (budget.py): how far the declared
-            # step cost is from this machine and scenario
-            "step_cost_us": (None if point else
-                             1e6 * (time.perf_counter() - t_wall) / max(1, sum(u.steps for u in report.timeline))),
-            "component_steps": report.component_steps,
-            **engine_summary(sim),
-            "timeseries": series.name if series is not None else None,
-            # "complete", "stopped" (a component asked to stop: "stopped" names it and the time), "interrupted"
-            # (SIGINT/SIGTERM: resume continues it) or "failed"
-            "stopped": report.stopped,
-            "checkpoint": (checkpoint.CHECKPOINT if saver is not None and status in ("interrupted", "failed")
-                           and saver.saved else None),
-            "checkpoint_note": saver.disabled if saver is not None else None,
-            "error": None if error is None else f"{type(error).__name__}: {error}",
-            # each check of a component's validity envelope the run left: worst value, first time, limit, source
-            "validity": validity.entries(),
-        }
-        if keep:
-            # a resumed run holds in memory only what it computed itself (CSV is not read back)
-            data = {} if point is not None and series is not None else recorder.data()
-        else:
-            data = SeriesFile(series) if series.exists() else _nothing_recorded(recorder)
-        files = [series] if series is not None and series.exists() else []
-        try:
-            if post is not None and (error is None or sim.computed):   # a run that computed nothing has no results
-                summary.update(post.extract(sc, sim, post_obs, report))
-                # what the case found at some time of the run that its end values do not show: one line each
-                for event in summary.get("events") or []:
-                    print(f"{sc.name}: warning: {event['message']}", file=sys.stderr)
-                _estimate_summary(summary, sc, report.hold)
-                if figures and out is not None and status in ("complete", "stopped"):
-                    names = post.figures(sc, data, out, pool=pool, dpi=dpi)
-                    summary["figures"] = names
-                    files += [out / n for n in names]
-            else:
-                summary["final_outputs"] = {f"{n}.{k}": v for n, c in sim.system.components.items()
-                                            for k, v in c.y.items()}
-                _estimate_summary(summary, sc, report.hold)
+            files += _results(run, post, post_obs, summary, data, pool)
         except Exception as exc:
-            if error is None:
+            if run.error is None:
                 raise
             summary["results_error"] = f"{type(exc).__name__}: {exc}"
-        if out is not None:
+        run.finish(summary, files)
+        result = Result(data, dict(run.recorder.variables), summaries.as_written(summary), files, sim.phases)
+        if run.error is not None:
             try:
-                files.insert(0, write_json(out / "summary.json", summary))
-            except OSError:
-                if error is None:
-                    raise
-            if status in ("complete", "stopped"):
-                (out / checkpoint.CHECKPOINT).unlink(missing_ok=True)
-        result = Result(data, dict(recorder.variables), _roundtrip(summary), files, sim.phases)
-        if error is not None:
-            try:
-                error.result = result
+                run.error.result = result
             except AttributeError:  # an exception type without a __dict__
                 pass
-            raise error
+            raise run.error
     return result
+
+
+def _results(run: RunSession, post, post_obs: list, summary: dict, data, pool: FigurePool | None) -> list[Path]:
+    """The case's results (``post``, its observers ``post_obs``) added to ``summary``, or the components' final
+    outputs for a scenario without a case or a run that computed nothing; the estimated error; the case's figures
+    of a run that ended by itself, drawn from ``data`` (in ``pool``). Returns the figure files."""
+    sc, sim = run.sc, run.sim
+    hold = sim.report.hold
+    if post is None or (run.error is not None and not sim.computed):
+        summary["final_outputs"] = summaries.final_outputs(sim.system)
+        summaries.add_estimated_error(summary, sc, hold)
+        return []
+    summary.update(post.extract(sc, sim, post_obs, sim.report))
+    # what the case found at some time of the run that its end values do not show: one line each
+    for event in summary.get("events") or []:
+        print(f"{sc.name}: warning: {event['message']}", file=sys.stderr)
+    summaries.add_estimated_error(summary, sc, hold)
+    if not (run.opts.figures and run.out is not None and run.status in summaries.ENDED):
+        return []
+    names = post.figures(sc, data, run.out, pool=pool, dpi=run.opts.dpi)
+    summary["figures"] = names
+    return [run.out / n for n in names]
 
 
 def draw_figures(sc: Scenario | str | Path, out: str | Path, pool: FigurePool | None = None,
@@ -496,34 +355,3 @@ def draw_figures(sc: Scenario | str | Path, out: str | Path, pool: FigurePool | 
     names = post.figures(sc, SeriesFile(out / name), out, pool=pool, dpi=check_dpi(dpi))
     write_json(f, {**summary, "figures": names})
     return names
-
-
-def _nothing_recorded(recorder: Recorder) -> dict[str, np.ndarray]:
-    """The arrays of a run that ended before its time series file was written."""
-    return {"time": np.zeros(0), "phase": np.zeros(0, dtype=np.int8),
-            **{ref: np.zeros((0, size)) for ref, size in recorder.sizes.items()}}
-
-
-def _roundtrip(summary: dict) -> dict:
-    """The summary exactly as summary.json holds it (plain numbers and lists, None for NaN)."""
-    from rotorcosim.master.run.outputs import _plain
-
-    return json.loads(json.dumps(_plain(summary)))
-
-
-def _estimate_summary(summary: dict, sc, hold) -> None:
-    """The run's estimated error in summary.json's ``hold``: the largest of the case's results'
-    (``estimated_error``, if it gives them; else the hold's own over its temperatures) as
-    ``estimated_error_pct``, and ``advice`` (which interval, what to change) where it exceeds the scenario's
-    ``[schedule] tolerance``."""
-    if hold is None or summary.get("hold") is None:
-        return
-    est = summary.get("estimated_error")
-    if est is not None:
-        summary["hold"]["estimated_error_pct"] = est["largest_pct"]
-    largest = summary["hold"].get("estimated_error_pct")
-    tol = sc.schedule.get("tolerance")
-    if largest is not None and tol is not None:
-        note = hold.advice(largest, float(tol))
-        if note is not None:
-            summary["hold"]["advice"] = note

@@ -52,7 +52,7 @@ def check_engine(path: str, scenario: str | None = None, campbell: str | None = 
         max_rpm = 2.0 * abs(next(iter(out["spools"].values()))["speed_rpm"])
     crit = cs.critical_speeds(str(path), count=count, max_rpm=max_rpm, scenario=sc)
     out["critical_speeds"] = crit
-    sup = cs._supports(full, None, sc)
+    sup = cs.linearised_supports(full, None, sc)
     ops = engine_check.operating_speeds(data)
     first = next(iter(ops.values()))[0]
     out["operating_speeds_rpm"] = ops
@@ -66,7 +66,7 @@ def check_engine(path: str, scenario: str | None = None, campbell: str | None = 
         warn += w
     out["warnings"] = warn + warnings(data, sc)
     if campbell:
-        cs._check_figure_path(campbell)
+        cs.check_figure_path(campbell)
         cs.draw_campbell(campbell, str(path), max_rpm, crit, scenario=sc)
         out["campbell"] = str(campbell)
     return out
@@ -85,7 +85,7 @@ def warnings(data: dict, sc=None) -> list[str]:
     ids = attach.layout(data.get("attach", {})).bearings
     if not ids:
         return out
-    sc = linear_engine._scenario(sc)
+    sc = linear_engine.scenario_or_default(sc)
     for b in ids:
         spec = sc.components.get(f"bearing{b}")
         if spec is None:

@@ -36,7 +36,7 @@ def add_arguments(parser):
                              "[attach] oil_temperature_C); the undamped critical speeds do not depend on it")
 
 
-def _supports(m, oil_temperature, scenario=None):
+def linearised_supports(m, oil_temperature, scenario=None):
     """The co-simulated bearings linearised where the engine attaches them (every [attach] bearing<ID>), or None
     for an engine that attaches none (its [[support]] entries are all its supports, e.g. a ROSS rotor)."""
     if not attach.layout(m.data.get("attach", {})).bearings:
@@ -61,7 +61,7 @@ def critical_speeds(model_file: str = "", count: int = 6, max_rpm: float = 30000
     if not (np.isfinite(max_rpm) and max_rpm > 0):
         raise ValueError(f"--max-rpm must be > 0, got {max_rpm}")
     m = fem.load(model_file or None)
-    sup = _supports(m, oil_temperature, scenario)
+    sup = linearised_supports(m, oil_temperature, scenario)
     out = critical.synchronous_critical_speeds(m, sup, n=count, max_rpm=max_rpm)
     out["speed_ratio_gg_pt"] = critical.speed_ratio(m)
     out["spools"] = list(m.info["spools"])
@@ -89,7 +89,7 @@ def draw_campbell(path: str, model_file: str = "", max_rpm: float = 30000.0, cri
 
     m = fem.load(model_file or None)
     rpm = np.linspace(0.0, max_rpm, 61)
-    f, kind = critical.campbell(m, rpm, _supports(m, oil_temperature, scenario), n_modes=min(80, m.n))
+    f, kind = critical.campbell(m, rpm, linearised_supports(m, oil_temperature, scenario), n_modes=min(80, m.n))
     ratio = critical.speed_ratio(m)
     fig, ax = plt.subplots(figsize=(10, 5))
     styles = ((1, "tab:blue", "forward whirl"), (-1, "tab:orange", "backward whirl"),
@@ -126,7 +126,7 @@ def draw_campbell(path: str, model_file: str = "", max_rpm: float = 30000.0, cri
     plt.close(fig)
 
 
-def _check_figure_path(path: str) -> None:
+def check_figure_path(path: str) -> None:
     """--campbell names a file we can write, checked before the (slow) eigenvalue scan."""
     p = Path(path)
     if p.is_dir():
@@ -149,7 +149,7 @@ def _check_figure_path(path: str) -> None:
 def run(args) -> int:
     """Run the command ``args`` (parsed); returns the exit status."""
     if args.campbell:
-        _check_figure_path(args.campbell)
+        check_figure_path(args.campbell)
     sc = None
     if args.scenario:
         from rotorcosim.master.scenario.build import load_scenario

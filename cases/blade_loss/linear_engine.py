@@ -32,7 +32,8 @@ from rotorcosim.master.scenario.engine import part_parameters
 KELVIN = 273.15
 
 
-def _scenario(sc):
+def scenario_or_default(sc):
+    """``sc``, or the shipped blade-loss scenario when it is None."""
     return load_scenario(scenarios.path("blade_loss")) if sc is None else sc
 
 
@@ -41,7 +42,7 @@ def supports(sc=None, oil_temperature_C: float | None = None, data: dict | None 
     engine): node, hub and k_contact, m_journal, k_spring, c_film, oil_temperature_C taken from the scenario's
     bearing<ID> and damper<ID> components (a scenario without them is an error naming the id)."""
     own = sc is None    # no scenario: the engine file's own parts ([bearing.ID], [damper.ID])
-    sc = _scenario(sc)
+    sc = scenario_or_default(sc)
     if data is None:
         data, _ = fem.load_data(sc.components["rotor"].parameters.get("model_file") or None)
     ls = data.get("attach", {})

@@ -250,6 +250,16 @@ def unbalance_force(sc) -> float:
 #: (master/manipulator/hold.py, HoldReport.mechanics_fraction)
 WINDOW_KEYS = ("whirl_amplitude_mm", "transmissibility", "max_contact_load_N", "max_contact_stress_MPa",
                "max_contact_stress_outer_MPa", "rub_power_W", "drag_power_W", "sfd_power_W")
+#: what a user reads for each result that has an estimate (the run's printed estimate names its result so)
+LABELS = {"whirl_amplitude_mm": "whirl amplitude", "transmissibility": "transmissibility",
+          "max_contact_load_N": "contact load", "max_contact_stress_MPa": "inner-race contact stress",
+          "max_contact_stress_outer_MPa": "outer-race contact stress", "rub_power_W": "rub power",
+          "drag_power_W": "drag power", "sfd_power_W": "squeeze-film power",
+          "T_inner_race_C": "inner-race temperature", "T_ball_C": "ball temperature",
+          "T_outer_race_C": "outer-race temperature", "T_sfd_oil_C": "squeeze-film oil temperature"}
+#: the powers read over the steady window and the hand-off each one is (its estimate: the hold's
+#: ``handoff_errors_end``, where the hold follows it with a law)
+POWERS = {"drag_power_W": "bearing{}.P_drag", "sfd_power_W": "damper{}.P_film"}
 #: the final temperatures and the thermal network's output each one is
 TEMPERATURES = {"T_inner_race_C": "T_inner_race", "T_ball_C": "T_ball", "T_outer_race_C": "T_outer_race",
                 "T_sfd_oil_C": "T_sfd_oil"}
@@ -359,7 +369,7 @@ def estimated_errors(windows, bearings, hold, F_u) -> dict | None:
     mechanics follow those values quasi-statically, so an error that is a share of their move over the held
     interval is that share of the result's move (not estimated where the speed changed between those intervals:
     the hold gives no fraction then). ``largest_pct`` and ``largest`` ("bearing.key") are the run's
-    estimate."""
+    estimate, ``largest_label`` names its result for a reader ("bearing #0 drag power")."""
     if hold is None or hold.estimated_error_pct is None:
         return None
     per: dict[str, dict[str, float]] = {}
@@ -377,12 +387,19 @@ def estimated_errors(windows, bearings, hold, F_u) -> dict | None:
                 q, q0 = r.get(key), prev.get(key)
                 if q is not None and q0 is not None and q != 0.0:
                     e[key] = 100.0 * f * abs(q - q0) / abs(q)
+        # a power the hold follows with a law: that law's own sensitivity to the erring temperatures and growths
+        for key, ref in POWERS.items():
+            d, q = hold.handoff_errors_end.get(ref.format(k)), r.get(key)
+            if d is not None and q:
+                e[key] = 100.0 * abs(d) / abs(q)
         per[k] = e
     flat = [(v, f"{k}.{key}") for k, e in per.items() for key, v in e.items()]
     if not flat:
         return None
     largest, which = max(flat)
-    return {"largest_pct": largest, "largest": which, "per_result_pct": per}
+    k, _, key = which.partition(".")
+    return {"largest_pct": largest, "largest": which, "largest_label": f"bearing #{k} {LABELS.get(key, key)}",
+            "per_result_pct": per}
 
 
 # -- figures ------------------------------------------------------------------------------------------

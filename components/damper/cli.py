@@ -10,7 +10,7 @@ import sys
 
 from .component import DAMPERS, LAMINAR_FILM_RE, FastDamper, FEDamper
 from ..validity import once, warning_line
-from .viscosity import _oil, sae30_viscosity
+from .viscosity import oil_constants, sae30_viscosity
 
 
 def add_arguments(parser):
@@ -59,7 +59,7 @@ def evaluate(damper, position, velocity, temperature_C: float, model: str = "fas
         mu = sae30_viscosity(T)
     except ValueError as exc:
         raise ValueError(f"--temperature {temperature_C:g} C: {exc}") from None
-    A, B, rho300, drho = _oil()
+    A, B, rho300, drho = oil_constants()
     speed = math.hypot(*velocity)
     re = (rho300 + drho * (T - 300.0)) * speed * d.p["clearance"] / mu
     if re > LAMINAR_FILM_RE:

@@ -35,7 +35,7 @@ from . import table_cache
 from .fast import (EPS_MAX, FAST_STEP_SIG, N_TABLE, DamperParams, fast_step, fast_step_address, film_table,
                    tm_step)
 from .reynolds_fe import EPS_FILM_MAX, build_mesh, fe_film_eval
-from .viscosity import _oil, sae30_viscosity
+from .viscosity import oil_constants, sae30_viscosity
 
 DATA = Path(__file__).with_name("data") / "dampers.toml"
 with open(DATA, "rb") as _f:
@@ -279,7 +279,7 @@ class _Damper(Memoryless, Component):
         theory's forces at 10): a limit of the model at every load of the paper, not of a result, and the damper
         knows no whirl frequency to compute it from."""
         c, k = self.p["clearance"], self.p["k_spring"]
-        _, _, rho300, drho = _oil()
+        _, _, rho300, drho = oil_constants()
 
         def eccentricity(y):
             f = y["F_spring"]
@@ -348,7 +348,7 @@ class FastDamper(KernelComponent, _Damper):
         self._table = film_table(p["radius"], p["length"], p["clearance"], int(p["n_theta"]), int(p["n_z"]))
         t = self._table
         prm = np.array([t.u0, t.du, t.n, t.eps_max, t.clearance, self._floor, float(self._cav), self._k, self._kw])
-        A, B, rho300, drho = _oil()
+        A, B, rho300, drho = oil_constants()
         self._kernel_p = DamperParams(t.NT, t.G, t.TW, t.toff, t.ftab, t.bounds, t.Wc, t.Ws, prm, np.zeros(self.N_OUT),
                                       np.full(2, np.nan), float(A), float(B), float(rho300), float(drho),
                                       T_MIN_K, T_MAX_K, fast_step_address())

@@ -21,7 +21,8 @@ DATA = Path(__file__).with_name("data") / "dampers.toml"
 
 
 @lru_cache(maxsize=1)
-def _oil() -> tuple[float, float, float, float]:
+def oil_constants() -> tuple[float, float, float, float]:
+    """The oil's Walther constants A, B, density at 300 K [kg/m3] and its temperature slope, from dampers.toml."""
     with open(DATA, "rb") as f:
         oil = tomllib.load(f)["oil"]
     rho300, drho = float(oil["rho_300K"]), float(oil["drho_dT"])
@@ -39,13 +40,13 @@ def _oil() -> tuple[float, float, float, float]:
 
 def walther_constants() -> tuple[float, float]:
     """(A, B) of log10 log10(nu + 0.7) = A - B log10(T_K) for SAE 30 (nu in cSt)."""
-    A, B, _, _ = _oil()
+    A, B, _, _ = oil_constants()
     return A, B
 
 
 def sae30_viscosity(T_kelvin: float) -> float:
     """Dynamic viscosity of SAE 30 in Pa s at ``T_kelvin`` (ASTM D341 / Walther, see module docstring)."""
     T = check_oil_temperature(T_kelvin)
-    A, B, rho300, drho = _oil()
+    A, B, rho300, drho = oil_constants()
     nu_cst = 10.0 ** (10.0 ** (A - B * math.log10(T))) - 0.7
     return nu_cst * 1e-6 * (rho300 + drho * (T - 300.0))

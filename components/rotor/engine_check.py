@@ -372,7 +372,7 @@ def implausible(data: dict) -> list[str]:
     out = []
     for s, r in data.get("spool", {}).items():
         z = np.asarray(r["z_mm"], float)
-        d_out = [float(fem._knob(data, v)) for v in r["d_out_mm"]]
+        d_out = [float(fem.knob_value(data, v)) for v in r["d_out_mm"]]
         thin = [e for e, d in enumerate(d_out) if d < MIN_SHAFT_DIAMETER_MM]
         if thin:
             out.append(f"spool.{s}.d_out_mm[{thin[0]}] = {d_out[thin[0]]:g} mm: a shaft thinner than "
@@ -391,7 +391,7 @@ def seat_diameters_mm(data: dict, spool: str, node: int) -> list[float]:
     r = data["spool"][spool]
     ne = len(r["d_out_mm"])
     elems = [e for e in (node - 1, node) if 0 <= e < ne]
-    out = [float(fem._knob(data, r["d_out_mm"][e])) for e in elems]
+    out = [float(fem.knob_value(data, r["d_out_mm"][e])) for e in elems]
     out += [float(layer["d_out_mm"]) for layer in r.get("layers", []) if layer.get("element") in elems]
     return out
 

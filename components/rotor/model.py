@@ -178,12 +178,12 @@ def _nonneg(name, value):
 def rotor_diameters(data: dict, rotor: str) -> tuple[list[float], list[float]]:
     """Element outer/inner diameters (m)."""
     r = data["spool"][rotor]
-    d_out = [_positive(f"spool.{rotor}.d_out_mm[{k}]", _knob(data, v)) * 1e-3 for k, v in enumerate(r["d_out_mm"])]
-    d_in = [_nonneg(f"spool.{rotor}.d_in_mm[{k}]", _knob(data, v)) * 1e-3 for k, v in enumerate(r["d_in_mm"])]
+    d_out = [_positive(f"spool.{rotor}.d_out_mm[{k}]", knob_value(data, v)) * 1e-3 for k, v in enumerate(r["d_out_mm"])]
+    d_in = [_nonneg(f"spool.{rotor}.d_in_mm[{k}]", knob_value(data, v)) * 1e-3 for k, v in enumerate(r["d_in_mm"])]
     return d_out, d_in
 
 
-def _knob(data: dict, value):
+def knob_value(data: dict, value):
     """A number, or the name of a [calibration] knob whose value is used."""
     if isinstance(value, str):
         cal = data.get("calibration", {})
@@ -409,11 +409,11 @@ def _assemble(data: dict, digest: str, omega_pt: float | None, omega_gg: float |
     # pedestals: hubs on springs to ground (no casing needed); a massless one (a ROSS support node) is allowed
     for h, pv in peds.items():
         mh = _nonneg(f"pedestal.{h}.mass", pv["mass"])
-        kxy = [_positive(f"pedestal.{h}.{k if k in pv else 'k'}", _knob(data, pv[k] if k in pv else pv["k"]))
+        kxy = [_positive(f"pedestal.{h}.{k if k in pv else 'k'}", knob_value(data, pv[k] if k in pv else pv["k"]))
                for k in ("kxx", "kyy")]
         cxy = [_nonneg(f"pedestal.{h}.{k if k in pv else 'c'}", pv[k] if k in pv else pv.get("c", 0.0))
                for k in ("cxx", "cyy")]
-        ka = _positive(f"pedestal.{h}.k_axial", _knob(data, pv.get("k_axial", kxy[0])))
+        ka = _positive(f"pedestal.{h}.k_axial", knob_value(data, pv.get("k_axial", kxy[0])))
         for d, kd in ((0, kxy[0]), (1, kxy[1]), (2, ka)):
             i = gdof("hub", h, d)
             M[i, i] += mh
@@ -427,7 +427,7 @@ def _assemble(data: dict, digest: str, omega_pt: float | None, omega_gg: float |
         if not (0 <= ring < len(rings) and 0 <= node < nc and 0 <= d < 3):
             raise ValueError(f"rotor model: casing mount {m_i} ({mt}) out of range")
         i = base_sh + 3 * shell_node(ring, node, 1) + d
-        _couple(K, i, None, _positive(f"casing.mounts[{m_i}].k", _knob(data, mt["k"])))
+        _couple(K, i, None, _positive(f"casing.mounts[{m_i}].k", knob_value(data, mt["k"])))
         _couple(C, i, None, _nonneg(f"casing.mounts[{m_i}].c", mt["c"]))
 
     # linear supports and intermediate bearings (Table 2 for the paper's engine)

@@ -46,7 +46,7 @@ from ..kernels import KernelComponent
 from ..oil_fit import SOURCE, T_FLASH_K, T_POUR_K, check_oil_temperature
 from ..speeds import PT_OMEGA
 from ..validity import Check
-from .geometry import (BEARINGS, BALL, IR, JOURNAL, LE, LI, NODES, OR, REQUIRED, SFD, SHAFT, _DATA, bearing_data,
+from .geometry import (BEARINGS, BALL, IR, JOURNAL, LE, LI, NODES, OR, REQUIRED, SFD, SHAFT, THERMAL_DATA, bearing_data,
                        build_network, default_sources, radii)
 from .growth import growths
 from .kernel import ThermalParams, ThermalState, tm_step
@@ -78,7 +78,7 @@ GEOMETRY = (("bore", "bore_diameter_mm", 1e-3), ("outside_diameter", "outside_di
 _REC0 = bearing_data(0)
 #: ``bearing`` = NO_RECORD: no record of the paper's Table 3; the geometry is given
 NO_RECORD = -1      # the start values: bearing #0's record, its defaults filled in
-_DFLT = _DATA["defaults"]
+_DFLT = THERMAL_DATA["defaults"]
 _DOC = "docs/explanation/paper-components.md"
 
 
@@ -116,7 +116,7 @@ class ThermalNetwork(KernelComponent):
                  description="oil-jet flow through the bearing (renewal of the lubricant nodes); < 0: data/thermal.toml"
                              " [defaults] jet_L_per_min, 0 (none, as Table 1's network; the jet option's 2 L/min at"
                              f" #0 and 3 L/min at #5: {_DOC})"),
-        Variable("sfd_oil_flow", "parameter", unit="m3/s", start=_DATA["oil_flow"]["sfd_L_per_min"] * _LMIN,
+        Variable("sfd_oil_flow", "parameter", unit="m3/s", start=THERMAL_DATA["oil_flow"]["sfd_L_per_min"] * _LMIN,
                  description="squeeze-film damper oil flow (renewal of the SFD oil node)"),
         # the geometry of Table 1's network: by default the record of ``bearing`` (data/thermal.toml, the paper's
         # Table 3); each one set replaces that record's value (SI here; the record is in mm and degrees)
@@ -224,7 +224,7 @@ class ThermalNetwork(KernelComponent):
                 p[name] = full[key] * scale if name != "balls" else int(full[key])
         self._bearing = bearing
         g = radii(bearing)
-        st = _DATA["steel"]
+        st = THERMAL_DATA["steel"]
         self._growth_args = (p["T_initial"], st["expansion"], st["poisson"], g["r_i"], g["r_e"], g["r_j"], g["r_b"])
         self._method = p["method"]
         self.state = {"T": np.full(self.network.n, p["T_initial"])}

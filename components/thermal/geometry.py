@@ -78,8 +78,8 @@ from .network import LinearNetwork
 
 DATA = Path(__file__).with_name("data") / "thermal.toml"
 with open(DATA, "rb") as _f:
-    _DATA = tomllib.load(_f)
-BEARINGS = {int(k): v for k, v in _DATA["bearing"].items()}
+    THERMAL_DATA = tomllib.load(_f)   # the whole of thermal.toml, read once
+BEARINGS = {int(k): v for k, v in THERMAL_DATA["bearing"].items()}
 #: the keys of a bearing record that have no default (the paper's Table 3 gives them for #0 and #5)
 REQUIRED = ("bore_diameter_mm", "outside_diameter_mm", "width_mm", "n_balls", "ball_diameter_mm",
             "contact_angle_deg", "damper_radius_mm", "damper_length_mm", "damper_clearance_mm")
@@ -105,7 +105,7 @@ def bearing_data(bearing: int | dict) -> dict:
     missing = [key for key in REQUIRED if key not in d]
     if missing:
         raise ValueError(f"bearing record lacks {', '.join(missing)}")
-    dflt = _DATA["defaults"]
+    dflt = THERMAL_DATA["defaults"]
     for key in ("shaft_length_mm", "housing_wall_mm", "jet_L_per_min"):
         d.setdefault(key, dflt[key])
     d.setdefault("housing_length_mm", dflt["housing_length_per_damper_length"] * d["damper_length_mm"])
@@ -141,13 +141,13 @@ def radii(bearing: int | dict) -> dict:
 
 def shaft_convection(omega: float, r: float) -> float:
     """h of a rotating cylinder in air, W/(m^2 K) (data/thermal.toml [convection])."""
-    c = _DATA["convection"]
+    c = THERMAL_DATA["convection"]
     return c["shaft_a"] * abs(omega) ** c["shaft_b"] * r ** c["shaft_c"]
 
 
 def oil_viscosity(T: float) -> float:
     """Kinematic viscosity (m^2/s) of the SAE 30 oil at T (K): Walther / ASTM D341 fit of data/thermal.toml."""
-    c = _DATA["convection"]
+    c = THERMAL_DATA["convection"]
     return (10.0 ** (10.0 ** (c["walther_A"] - c["walther_B"] * math.log10(T))) - 0.7) * 1e-6
 
 
@@ -155,7 +155,7 @@ def oil_convection(bearing: int, omega: float) -> dict:
     """Harris's film coefficients (W/(m^2 K)) of the inner race, outer race and balls in the bearing oil at shaft
     speed omega (rad/s), at the oil film temperature of data/thermal.toml, and the wetted areas (m^2)."""
     g, d = radii(bearing), bearing_data(bearing)
-    c, oil = _DATA["convection"], _DATA["oil"]
+    c, oil = THERMAL_DATA["convection"], THERMAL_DATA["oil"]
     nu = oil_viscosity(c["oil_film_temperature_C"] + 273.15)
     k = oil["conductivity"]
     pr = nu * oil["density"] * oil["specific_heat"] / k
@@ -178,8 +178,8 @@ def rub_partition(bearing: int, omega: float) -> float:
 
     Rotor: stationary uniform disk source of radius a (synchronous whirl), mean rise per flux R_1 = 8 a/(3 pi k);
     ring: fast-moving source at V = omega R_r, R_2 = (4/3) sqrt(2 kappa a/(pi V)) / k; f = R_2 / (R_1 + R_2)."""
-    d, st = bearing_data(bearing), _DATA["steel"]
-    a = _DATA["rub"]["contact_half_width_mm"] * 1e-3
+    d, st = bearing_data(bearing), THERMAL_DATA["steel"]
+    a = THERMAL_DATA["rub"]["contact_half_width_mm"] * 1e-3
     V = abs(omega) * d["rub_ring_radius_mm"] * 1e-3
     if not V > 0.0:
         return 1.0          # no sliding speed: no moving source, nothing to partition by speed (and no rub heat)
@@ -198,12 +198,12 @@ def jet_flow(bearing: int) -> float:
 def resistances(bearing: int, omega: float) -> dict:
     """The Table 1 resistances (K/W) of bearing 0 or 5 at shaft speed omega (rad/s)."""
     g = radii(bearing)
-    st, oil = _DATA["steel"], _DATA["oil"]
+    st, oil = THERMAL_DATA["steel"], THERMAL_DATA["oil"]
     k, kl = st["conductivity"], oil["conductivity"]
     r_s, r_i, r_e, r_o, r_b, W, n = g["r_s"], g["r_i"], g["r_e"], g["r_o"], g["r_b"], g["W"], g["n"]
     r_j, L_j, c_sf, r_hi, r_h, L_h, L_s = g["r_j"], g["L_j"], g["c_sf"], g["r_hi"], g["r_h"], g["L_h"], g["L_s"]
     h_s = shaft_convection(omega, r_s)
-    h_h = _DATA["convection"]["housing"]
+    h_h = THERMAL_DATA["convection"]["housing"]
     a_i = 2 * math.pi * r_i * W - math.pi * n * r_b ** 2
     a_e = 2 * math.pi * r_e * W - math.pi * n * r_b ** 2
     if a_i <= 0 or a_e <= 0:
@@ -229,7 +229,7 @@ def resistances(bearing: int, omega: float) -> dict:
 
 def journal_shells() -> int:
     """N, the journal sleeve's radial shells (data/thermal.toml [lumping]); 1 is the paper's single node."""
-    n = _DATA["lumping"]["journal_shells"]
+    n = THERMAL_DATA["lumping"]["journal_shells"]
     if isinstance(n, bool) or not isinstance(n, int) or not 1 <= n <= 64:
         raise ValueError(f"{DATA}: [lumping] journal_shells must be an integer in [1, 64], got {n!r}")
     return n
@@ -250,7 +250,7 @@ def shell_nodes() -> list:
 def heat_masses(bearing: int) -> np.ndarray:
     """m c_p of the nine named nodes, then the journal's inner shells (see the module docstring), J/K."""
     g = radii(bearing)
-    st, oil = _DATA["steel"], _DATA["oil"]
+    st, oil = THERMAL_DATA["steel"], THERMAL_DATA["oil"]
     rc_s, rc_o = st["density"] * st["specific_heat"], oil["density"] * oil["specific_heat"]
     pi = math.pi
     v_balls = g["n"] * 4.0 / 3.0 * pi * g["r_b"] ** 3
@@ -259,7 +259,7 @@ def heat_masses(bearing: int) -> np.ndarray:
     C = np.empty(9 + N - 1)
     C[SHAFT] = rc_s * pi * g["r_s"] ** 2 * g["L_s"]
     C[IR] = rc_s * pi * (g["r_i"] ** 2 - g["r_s"] ** 2) * g["W"]
-    C[LI] = C[LE] = rc_o * 0.5 * v_free * _DATA["oil_flow"]["lubricant_fill_fraction"]
+    C[LI] = C[LE] = rc_o * 0.5 * v_free * THERMAL_DATA["oil_flow"]["lubricant_fill_fraction"]
     C[BALL] = rc_s * v_balls
     C[OR] = rc_s * pi * (g["r_o"] ** 2 - g["r_e"] ** 2) * g["W"]
     rr = shell_radii(bearing)
@@ -294,7 +294,7 @@ def source_map(drag_inner_fraction: float, contact_race_fraction: float, rub_sha
 
 def default_sources() -> dict:
     """drag_inner_fraction, contact_race_fraction from the data file; rub_shaft_fraction -1 (= rub_partition)."""
-    return {**_DATA["sources"], "rub_shaft_fraction": -1.0}
+    return {**THERMAL_DATA["sources"], "rub_shaft_fraction": -1.0}
 
 
 def build_network(bearing: int, omega: float, T_ambient: float, T_supply: float,
@@ -304,13 +304,13 @@ def build_network(bearing: int, omega: float, T_ambient: float, T_supply: float,
     """The network of bearing 0 or 5 (flows in m^3/s; None or < 0: the data-file value; rub_shaft_fraction None or
     < 0: the Blok partition of :func:`rub_partition`)."""
     src = default_sources()
-    flows = _DATA["oil_flow"]
+    flows = THERMAL_DATA["oil_flow"]
     Lmin = 1e-3 / 60.0
     q_b = jet_flow(bearing) if bearing_oil_flow is None or bearing_oil_flow < 0.0 else bearing_oil_flow
     if rub_shaft_fraction is None or rub_shaft_fraction < 0.0:
         rub_shaft_fraction = rub_partition(bearing, omega)
     if rub_ring_housing_fraction is None or rub_ring_housing_fraction < 0.0:
-        rub_ring_housing_fraction = _DATA["rub"]["ring_housing_fraction"]
+        rub_ring_housing_fraction = THERMAL_DATA["rub"]["ring_housing_fraction"]
     q_s = flows["sfd_L_per_min"] * Lmin if sfd_oil_flow is None else sfd_oil_flow
     for name, v in (("bearing_oil_flow", q_b), ("sfd_oil_flow", q_s), ("T_ambient", T_ambient),
                     ("T_supply", T_supply)):
@@ -319,7 +319,7 @@ def build_network(bearing: int, omega: float, T_ambient: float, T_supply: float,
     if T_ambient <= 0 or T_supply <= 0:
         raise ValueError(f"temperatures must be > 0 K, got T_ambient={T_ambient}, T_supply={T_supply}")
     R = resistances(bearing, omega)
-    oil = _DATA["oil"]
+    oil = THERMAL_DATA["oil"]
     rc_o = oil["density"] * oil["specific_heat"]
     branches = [
         (SHAFT, IR, R["R_sr"] + R["R_i"]),
@@ -330,7 +330,7 @@ def build_network(bearing: int, omega: float, T_ambient: float, T_supply: float,
     ]
     # outer race - journal (R_e + R_j), the journal sleeve in shells (module docstring; one branch for N = 1)
     rr, shells = shell_radii(bearing), shell_nodes()
-    k_j = _DATA["steel"]["conductivity"]
+    k_j = THERMAL_DATA["steel"]["conductivity"]
     seg = [math.log(rr[m + 1] / rr[m]) / (2 * math.pi * k_j * radii(bearing)["W"]) for m in range(len(shells))]
     seg[-1] = R["R_j"] - sum(seg[:-1])     # the segments sum to R_j to round-off
     branches.append((OR, shells[0], R["R_e"] + seg[0]))

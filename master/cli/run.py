@@ -177,7 +177,9 @@ def run(args) -> int:
         print(f"rotorcosim run: {stop['component']} asked to stop the simulation at t = {stop['t_s']:.9g} s; "
               f"the run ended there (status \"stopped\")")
     est = (s.get("hold") or {}).get("estimated_error_pct")
-    which = (s.get("estimated_error") or {}).get("largest")
+    # the result the estimate is largest on, as its case names it for a reader (else its key path)
+    e = s.get("estimated_error") or {}
+    which = e.get("largest_label") or e.get("largest")
     print(f"{sc.name}: {s['t_end_s']:.4g} s simulated in {s['wall_time_s']:.3g} s wall time "
           f"({s['engine'] or 'no'} engine)"
           + (f"; estimated error of the staggered scheme {est:.2f} %" + (f" ({which})" if which else "")

@@ -108,7 +108,7 @@ class Ahead:
         if not spec:
             return
         try:  # the port tuples first: the signatures name them (components/kernels.port_tuple)
-            self.proc.stdin.write(pickle.dumps(list(kernels._PORT_TUPLES)) + pickle.dumps(spec))
+            self.proc.stdin.write(pickle.dumps(list(kernels.PORT_TUPLES)) + pickle.dumps(spec))
             self.proc.stdin.flush()
         except (OSError, pickle.PicklingError, TypeError, AttributeError):
             pass

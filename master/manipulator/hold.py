@@ -42,8 +42,8 @@ libcosim would call it a manipulator: it changes what crosses some connections, 
 * The error estimate (:meth:`StaggeredHold.end`, :meth:`StaggeredHold.finish`). The scheme's only error is the
   held input of the thermal networks: over a TO interval a hand-off takes its held value (or law) instead of
   what the mechanics would give at the present temperatures. That error is measured where it can be, at the next
-  TM restart: the held value the TO interval ended with minus the window the mechanics produce at the same
-  temperatures (``delta``, signed, in the power's unit). It is zero where the TO interval starts (the held value
+  TM restart: the held value the TO interval ended with minus the first window the mechanics produce after the
+  restart's ramp, at the same temperatures and speed (``delta``, signed, in the power's unit). It is zero where the TO interval starts (the held value
   is the window's statistic) and grows while the temperatures move away from the window's; it is taken at its
   end value over the whole interval (a step, not a ramp: for a node slower than the interval the response to a
   ramp is half the step's, for a fast one the same, so the step bounds the response from above whatever the
@@ -51,7 +51,12 @@ libcosim would call it a manipulator: it changes what crosses some connections, 
   (any component that can save its state), what its outputs would be with those input errors: it replays, from
   its present state, the time since the pulse began with and without the errors (:func:`replay`; the difference
   is the response of the input error, for a network linear in its inputs independent of the state it starts
-  from). The interval's own estimate is its pulse's response at the restart; the run's, at its end, the response
+  from). The errors are not fixed inputs: where the staggered run's temperatures err, its mechanics (and its TO
+  laws) give other powers than the monolithic run's, and those differences are input errors too. The replay
+  closes that loop with the sensitivity of each hand-off's TO law to the values its producer takes back from the
+  same thermal component (``HandOff.gains``: elasticity times the frozen law's slope, and the driver's slope): a
+  film power that falls as its oil warms pulls a too warm oil back. The interval's own estimate is its pulse's
+  response at the restart; the run's, at its end, the response
   of all the charged intervals' pulses together (a later interval's error that undoes an earlier one's cancels
   it: the mechanics restarted at erring temperatures give powers that pull them back). Temperatures are judged
   against their rise since the run's start (at least ``RISE_FLOOR_K``), not their absolute values; what the
@@ -100,6 +105,9 @@ DRIVER_MIN_SPREAD_K = 1.0
 #: least rise [K] a temperature's relative error is taken of (a node that barely warms has no relative error to speak
 #: of: its absolute one is reported in ``output_errors``)
 RISE_FLOOR_K = 1.0
+#: the relative step of an input at which a TO law's sensitivity is probed (HandOff._gains; an input at zero is
+#: not probed)
+GAIN_STEP = 1e-3
 #: the driver's factor exp(b dT) is bounded to exp(+-DRIVER_MAX_LOG) (a factor 3): a guard against extrapolating
 #: a slope far beyond its data
 DRIVER_MAX_LOG = 1.1
@@ -153,6 +161,9 @@ class HandOff:
         self.w = Window()
         self.turns = None                   # (RevolutionCounter, turns of the window, the angle's component, port)
         self.hs = 0.0                       # the producer's step in the TM interval [s]
+        #: the power's sensitivity to the thermal values it follows, from its last TO law: (component whose input
+        #: it is, its port, element, dP/du [W per the input's unit]); the error estimate's feedback (:func:`replay`)
+        self.gains: list[tuple[str, str, int, float]] = []
 
     # -- TM: record -------------------------------------------------------------------------------------
     def start_tm(self, n_window: int, n_cycle: int, size: int, hs: float = 0.0, turns=None,
@@ -245,12 +256,20 @@ class HandOff:
         last = self.cycles[-cycles:] if self.cycles else []
         return np.mean([u for u, _ in last], axis=0) if last else self._thermal_inputs()
 
-    def measure_restart_error(self) -> bool:
+    def measure_restart_error(self, skip: int = 0, cycles: int = 0) -> bool:
         """At the end of the first TM interval after a TO interval: the held value the TO interval ended with
-        against the window the mechanics now produce (the hand-off error of that TO interval). True if measured."""
+        against the first window the mechanics produced after the restart (the hand-off error of that TO interval,
+        at the speed and temperatures it ended with: in a long TM interval, a rundown, the window at its end is
+        at another speed). The first window: the mean of the ``cycles`` cycle means after the first ``skip``
+        (the restart's ramp), for a mean hold of a scalar with that many cycles recorded; else the interval's
+        last window. True if measured."""
         if self._to_end is None or self.count == 0:
             return False
-        now = self.statistic(self.hold)
+        first = self.cycles[skip: skip + cycles]
+        if self.hold == "mean" and cycles > 0 and len(first) == cycles and self._to_end.size == 1:
+            now = np.array([np.mean([m for _, m in first])])
+        else:
+            now = self.statistic(self.hold)
         scale = max(float(np.max(np.abs(now))), 1e-300)
         #: the held value the TO interval ended with minus what the mechanics give at the restart [its unit]
         self.delta = self._to_end - now
@@ -288,6 +307,28 @@ class HandOff:
         if e is not None:
             self.elasticity = e
         self.held = _HeldLaw(self.link, S, ref, 1.0 if self.elasticity is None else self.elasticity, fired, drive)
+        self.gains = self._gains(probe, self.window_inputs(cycles), ref, self.held)
+
+    def _gains(self, probe, u, ref: float, law: "_HeldLaw") -> list[tuple[str, str, int, float]]:
+        """The law's sensitivity to each thermal input at the window's inputs ``u`` (``ref`` its own TO output
+        there): dP/du_i = S e d ln y_TO / du_i (a one-sided difference over ``GAIN_STEP`` of the input, probed
+        through the frozen state), and S b to the driver's temperature. What the mechanics would give at other
+        temperatures, as far as the law knows it."""
+        S = float(law.S[0])
+        out, i = [], 0
+        for p in self.ports:
+            for k in range(np.asarray(self.link.src.u[p]).size):
+                du = GAIN_STEP * abs(float(u[i]))
+                v = np.array(u, dtype=float)
+                v[i] += du
+                y = probe(self.link.src, self.ports, v, self.link.sport) if law.e > 0.0 and du > 0.0 else None
+                if y is not None and y > 0.0 and y != ref:
+                    out.append((self.link.con.src_component, p, k, S * law.e * math.log(y / ref) / du))
+                i += 1
+        d = law.drive
+        if d is not None:
+            out.append((d.owner.link.con.src_component, d.port, d.k, S * d.b))
+        return out
 
     def _settled_points(self, probe) -> list[tuple[float | None, float]]:
         """The fits' points, one per settled cycle of the recorded TM intervals: (ln of the producer's own TO
@@ -451,6 +492,9 @@ class HoldReport:
     #: which the results the mechanics give share; empty where the cycle's speed differed between the last two TM
     #: intervals (the mechanics then moved with the speed too)
     mechanics_fraction: dict[str, float] = field(default_factory=dict)
+    #: "producer.port" -> the hand-off's power in error at the run's end [its unit], from its TO law's
+    #: sensitivity to the estimated errors of the values its producer takes back (hand-offs with a law only)
+    handoff_errors_end: dict[str, float] = field(default_factory=dict)
     #: the run's estimated error [%] (None before a TO interval was charged)
     estimated_error_pct: float | None = None
     #: the temperature whose estimate is the run's, "comp.port"
@@ -485,6 +529,7 @@ class HoldReport:
                "intervals": [dict(i) for i in self.intervals],
                "output_errors": dict(self.output_errors), "output_rise": dict(self.output_rise),
                "output_move": dict(self.output_move), "mechanics_fraction": dict(self.mechanics_fraction),
+               "handoff_errors_end": dict(self.handoff_errors_end),
                "estimated_error_pct": self.estimated_error_pct, "estimated_output": self.estimated_output}
         if self.revolutions_asked is not None:
             w = self.window_revolutions
@@ -674,12 +719,29 @@ class StaggeredHold:
             self._event = None
             return
         fresh = []
+        skip, n = int(math.ceil(self.restart_cycles - 1e-9)), max(1, int(round(self.hold_cycles)))
         for ho in self.handoffs:
-            if ho.measure_restart_error():
+            if ho.measure_restart_error(skip, n):
                 fresh.append(ho)
                 self.report.errors[f"{ho.link.con.src} -> {ho.link.con.dst}"] = ho.error
         if fresh:
             self._estimate(fresh, t0, t1)
+
+    def feedback(self, name: str) -> list[tuple[str, str, int, float]]:
+        """How thermal component ``name``'s inputs follow its own outputs through the mechanics, as the last TO
+        laws measured it: (input port, output port, output element, dP/du) for each hand-off into it whose
+        producer takes that output back (HandOff.gains); the error estimate's feedback (:func:`replay`)."""
+        fed = {(l.con.dst_component, l.con.dst_port): l.sport for l in self.handbacks if l.con.src_component == name}
+        out: dict[tuple[str, str, int], float] = {}
+        for ho in self.handoffs or []:
+            if ho.link.con.dst_component != name:
+                continue
+            for comp, port, k, g in ho.gains:
+                o = fed.get((comp, port))
+                if o is not None:
+                    key = (ho.link.dport, o, k)
+                    out[key] = out.get(key, 0.0) + g
+        return [(*key, g) for key, g in out.items()]
 
     def _scheduled_change(self, t0: float, t1: float) -> str | None:
         """The component whose scheduled change (``next_event``) falls at the end of the TO interval [t0, t1]
@@ -714,7 +776,7 @@ class StaggeredHold:
             pulse = Pulse(t0, t1, self._to_step, delta)
             self._pulses.setdefault(name, []).append(pulse)
             comp = self.system.components[name]
-            own.update(replay(comp, name, [pulse], comp.time))
+            own.update(replay(comp, name, [pulse], comp.time, self.feedback(name)))
         worst, which = self._largest(own)
         self.report.interval_estimates_pct.append(worst)
         self.report.intervals.append({"t_start": t0, "t_end": t1, "estimate_pct": worst, "event": None,
@@ -733,13 +795,14 @@ class StaggeredHold:
         errors: dict[str, np.ndarray] = {}
         for name, pulses in self._pulses.items():
             comp = self.system.components[name]
-            errors.update(replay(comp, name, pulses, comp.time))
+            errors.update(replay(comp, name, pulses, comp.time, self.feedback(name)))
         present = self._thermal_outputs()
         rep = self.report
         rep.output_errors = {k: np.asarray(v, dtype=float).tolist() for k, v in errors.items()}
         rep.output_rise = {k: (v - self._initial[k]).tolist() for k, v in present.items() if k in self._initial}
         rep.output_move = {k: (present[k] - v).tolist() for k, v in self._at_last_restart.items() if k in present}
         rep.estimated_error_pct, rep.estimated_output = self._largest(errors)
+        rep.handoff_errors_end = self._handoff_errors(errors)
         frac: dict[str, float] = {}
         periods = self._tm_periods
         if len(periods) == 2 and periods[0] != periods[1]:
@@ -757,6 +820,23 @@ class StaggeredHold:
                 continue  # a temperature that barely moved over the run drives nothing (as RISE_FLOOR_K)
             frac[name] = max(frac.get(name, 0.0), float(np.linalg.norm(err)) / float(np.linalg.norm(move)))
         rep.mechanics_fraction = frac
+
+    def _handoff_errors(self, errors: dict[str, np.ndarray]) -> dict[str, float]:
+        """Each hand-off's power in error at the run's end by what its TO law says the erring values its producer
+        takes back do to it (HandOff.gains times their estimated errors ``errors``, "comp.port" -> values): the
+        mechanics' own power at the end, "producer.port" -> error [its unit]; only hand-offs with a law."""
+        feeds = {(l.con.dst_component, l.con.dst_port): f"{l.con.src_component}.{l.sport}" for l in self.handbacks}
+        out = {}
+        for ho in self.handoffs or []:
+            if not ho.gains:
+                continue
+            d = 0.0
+            for comp, port, k, g in ho.gains:
+                err = errors.get(feeds.get((comp, port), ""))
+                if err is not None:
+                    d += g * float(np.ravel(err)[k])
+            out[f"{ho.link.con.src_component}.{ho.link.sport}"] = d
+        return out
 
     def _largest(self, errors: dict[str, np.ndarray]) -> tuple[float, str | None]:
         """The largest error [%] of a scalar temperature output (unit K, one element: a thermal model's reported
@@ -776,19 +856,37 @@ class StaggeredHold:
         return worst, which
 
 
-def replay(comp, name: str, pulses: list[Pulse], now: float) -> dict[str, np.ndarray]:
+def replay(comp, name: str, pulses: list[Pulse], now: float,
+           feedback: list[tuple[str, str, int, float]] = ()) -> dict[str, np.ndarray]:
     """The change of each Real output of thermal component ``comp`` at the end of a replay of [pulses[0].t0,
     now] from its present state, with each pulse's input errors added over [t0, t1] (at the pulse's step; the
     gaps at the next pulse's), against the same replay without: for a network linear in its inputs, the
     response at ``now`` of the input errors (a response to an input does not depend on the state it starts
     from). Through get_state / set_inputs / do_step / set_state: any component that can save its state; one
-    that cannot gives no estimate (an empty dict). The state is restored."""
+    that cannot gives no estimate (an empty dict). The state is restored.
+
+    ``feedback``: (input port, output port, output element, g) entries: the input follows that output's error
+    with the gain g (the mechanics, or a TO law, give another power at erring temperatures: a film power that
+    falls as its oil warms pulls the oil back). The errors of the inputs are then closed-loop,
+
+        du(t) = delta(t) + G dy(t),
+
+    delta the pulses' errors and dy the outputs' errors at the end of each step, solved step by step implicitly:
+    a step of a network linear in its inputs gives dy = dy0 + B c for an added input c (B measured once per
+    segment, one step per input), so c = (I - G B)^-1 G (dy0 - 0) with dy0 the error the step would leave
+    without it."""
     outs = [v.name for v in comp.variables if v.causality == "output" and v.type == "Real"]
     try:
         snap = comp.get_state()
     except Exception:  # cannot save its state: no estimate from it
         return {}
-    ports = sorted({p for q in pulses for p in q.delta})
+    fb = [(i, o, k, float(g)) for i, o, k, g in feedback if i in comp.u and o in comp.y and g != 0.0]
+    ins = sorted({i for i, _, _, _ in fb})
+    taps = sorted({(o, k) for _, o, k, _ in fb})
+    G = np.zeros((len(ins), len(taps)))
+    for i, o, k, g in fb:
+        G[ins.index(i), taps.index((o, k))] += g
+    ports = sorted({p for q in pulses for p in q.delta} | set(ins))
     # both replays take the present inputs raised by the errors' magnitude (the same in both: the difference is
     # the errors' response), so that a negative error never asks for a negative power
     lift = {p: sum(np.abs(q.delta[p]) for q in pulses if p in q.delta) for p in ports}
@@ -803,21 +901,58 @@ def replay(comp, name: str, pulses: list[Pulse], now: float) -> dict[str, np.nda
     if now > t:
         segs.append((now - t, pulses[-1].step, None))
 
-    def run(perturbed: bool) -> dict[str, np.ndarray]:
+    def tap() -> np.ndarray:
+        return np.array([float(np.ravel(comp.y[o])[k]) for o, k in taps])
+
+    def inputs(delta, c=None) -> dict:
+        u = {p: u0[p] + (delta[p] if delta is not None and p in delta else 0.0) for p in ports}
+        for n, p in enumerate(ins if c is not None else ()):
+            u[p] = u[p] + c[n]
+        return u
+
+    def run(perturbed: bool, base: list | None) -> tuple[dict[str, np.ndarray], list]:
         comp.set_state(snap)
+        taken, n_step = [], 0
         for length, step, delta in segs:
             if length <= 0.0:
                 continue
-            comp.set_inputs({p: u0[p] + (delta[p] if perturbed and delta is not None and p in delta else 0.0)
-                             for p in ports})
             n = max(1, int(math.ceil(length / step - 1e-9)))
+            h = length / n
+            d = delta if perturbed else None
+            B = None
             for _ in range(n):
-                comp.do_step(comp.time, length / n)
-        return {o: np.array(comp.y[o], dtype=float).ravel() for o in outs}
+                if perturbed and ins:
+                    s0 = comp.get_state()
+                    if B is None:   # the step's response to each added input (linear: once per segment)
+                        comp.set_inputs(inputs(d))
+                        comp.do_step(comp.time, h)
+                        y0 = tap()
+                        B = np.zeros((len(taps), len(ins)))
+                        for m in range(len(ins)):
+                            comp.set_state(s0)
+                            e = np.zeros(len(ins))
+                            e[m] = 1.0
+                            comp.set_inputs(inputs(d, e))
+                            comp.do_step(comp.time, h)
+                            B[:, m] = tap() - y0
+                        comp.set_state(s0)
+                    comp.set_inputs(inputs(d))
+                    comp.do_step(comp.time, h)
+                    dy0 = tap() - base[n_step]
+                    comp.set_state(s0)
+                    c = np.linalg.solve(np.eye(len(ins)) - G @ B, G @ dy0)
+                    comp.set_inputs(inputs(d, c))
+                else:
+                    comp.set_inputs(inputs(d))
+                comp.do_step(comp.time, h)
+                if not perturbed:
+                    taken.append(tap())
+                n_step += 1
+        return {o: np.array(comp.y[o], dtype=float).ravel() for o in outs}, taken
 
     try:
-        base = run(False)
-        pert = run(True)
+        base, path = run(False, None)
+        pert, _ = run(True, path)
     finally:
         comp.set_state(snap)
     return {f"{name}.{o}": pert[o] - base[o] for o in outs}

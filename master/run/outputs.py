@@ -31,13 +31,14 @@ def check_dpi(dpi) -> int:
     return int(round(dpi))
 
 
-def _plain(obj: Any) -> Any:
+def plain_json(obj: Any) -> Any:
+    """``obj`` in what JSON holds: numpy values as Python numbers and lists, NaN/inf as None, paths as text."""
     if isinstance(obj, dict):
-        return {str(k): _plain(v) for k, v in obj.items()}
+        return {str(k): plain_json(v) for k, v in obj.items()}
     if isinstance(obj, (list, tuple)):
-        return [_plain(v) for v in obj]
+        return [plain_json(v) for v in obj]
     if isinstance(obj, np.ndarray):
-        return _plain(obj.tolist())
+        return plain_json(obj.tolist())
     if isinstance(obj, (np.floating, float)):
         x = float(obj)
         return x if math.isfinite(x) else None
@@ -53,6 +54,6 @@ def write_json(path: str | os.PathLike, data: Any) -> Path:
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
     tmp = path.with_name(path.name + ".part")
-    tmp.write_text(json.dumps(_plain(data), indent=2) + "\n")
+    tmp.write_text(json.dumps(plain_json(data), indent=2) + "\n")
     os.replace(tmp, path)
     return path

@@ -12,7 +12,7 @@
   (``complete``, ``interrupted``, ``failed``) when it ends: after a SIGKILL the folder says "running" with a
   process id that is gone, never an older run's results as if current;
 * a run refused at set-up (a bad parameter found when the components are set up) leaves the folder as it found
-  it (api.simulate removes its summary, this takes back the lock and the folders it made); a folder holding only
+  it (the run's session removes its summary, this takes back the lock and the folders it made); a folder holding only
   the failed summary of such a run (as earlier versions left it) is taken by the next run without --overwrite.
 """
 from __future__ import annotations
@@ -81,7 +81,7 @@ class RunFolder:
         self.overwrite = overwrite
         self.resume = resume
         self._fd = None
-        #: set by the run once it has written its first summary.json (api.simulate): until then an error takes
+        #: set by the run once it has written its first summary.json (session.py): until then an error takes
         #: back what entering made (the folders, the lock file), so that a run refused at set-up leaves nothing
         self.started = False
         self._made: list[Path] = []

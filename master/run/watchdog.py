@@ -4,7 +4,7 @@ A component's ``do_step`` that never returns (an FMU's binary stuck in a loop) c
 signals wait for the C call to return, so Ctrl-C does nothing. :class:`Watchdog` watches the call in progress
 (the master marks it in ``algorithm.CALL``: the component, the time, when it started) from a thread; a call older
 than the limit makes it write the run's failure (``on_timeout``: the summary), print one line and end the process
-with exit status 1. ``on_timeout`` (api.simulate) also writes the rows still buffered and closes the time series,
+with exit status 1. ``on_timeout`` (the run's session, session.py) also writes the rows still buffered and closes the time series,
 marked incomplete (the run's thread is inside the component's step, not in the recorder); if that fails, what was
 flushed stays in ``timeseries.h5.part``. A clean failure instead
 (the run goes on to close its files) needs the FMU in a process of its own (``--fmu-process``, fmus/process.py).

@@ -11,8 +11,8 @@
     from rotorcosim.master.scenario import load_scenario
     sc = load_scenario("scenarios/toy_thermomechanical.toml").set({"osc.F0": 20.0})
 """
-from rotorcosim.master.scenario.build import (ComponentSpec, ConnectionSpec, Scenario, ScenarioError, build_simulation,
+from rotorcosim.master.scenario.build import (ComponentSpec, Scenario, ScenarioError, build_simulation,
                                               build_system, create_component, load_scenario, schedule_of)
 
-__all__ = ["ComponentSpec", "ConnectionSpec", "Scenario", "ScenarioError", "build_simulation", "build_system",
+__all__ = ["ComponentSpec", "Scenario", "ScenarioError", "build_simulation", "build_system",
            "create_component", "load_scenario", "schedule_of"]

@@ -102,12 +102,6 @@ class ComponentSpec:
     fmu_label: str | None = None
 
 
-#: one ``[[connections]]`` entry is the system's own connection record (master/core/system.py): from the output
-#: ``src`` to the input ``dst``, how the input sees the output, and the file that brought it (``origin``); the
-#: scenario API's name for it
-ConnectionSpec = Connection
-
-
 @dataclass
 class Scenario:
     """A scenario: what to simulate, as read from its TOML file (or an SSP archive), not yet built.
@@ -139,7 +133,7 @@ class Scenario:
     """
     name: str
     components: dict[str, ComponentSpec]
-    connections: list[ConnectionSpec]
+    connections: list[Connection]
     inputs: dict[str, list[float]] = field(default_factory=dict)
     algorithm: dict = field(default_factory=dict)
     schedule: dict = field(default_factory=dict)

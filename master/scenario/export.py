@@ -7,7 +7,7 @@ from pathlib import Path
 
 from rotorcosim.components import registry
 from rotorcosim.components.contract import ContractError
-from rotorcosim.fmus.export import ExportError, _entries, export_component, write_deterministic_zip
+from rotorcosim.fmus.export import ExportError, export_component, fmu_entries, write_deterministic_zip
 
 
 def export_scenario(sc, dest_dir: str | Path, only: str | None = None) -> dict[str, Path]:
@@ -47,7 +47,7 @@ def export_scenario(sc, dest_dir: str | Path, only: str | None = None) -> dict[s
         spec = sc.components[n]
         target = dest_dir / f"{n}.fmu"
         if spec.fmu is not None:
-            write_deterministic_zip(_entries(Path(spec.fmu)), target)
+            write_deterministic_zip(fmu_entries(Path(spec.fmu)), target)
         else:
             export_component(spec.implementation, target, instance_name=n, parameters=spec.parameters,
                              model_identifier=n)

@@ -119,7 +119,7 @@ def _component(sc, name: str):
     return sc.components[name]
 
 
-def _declared_parameters(spec) -> dict | None:
+def declared_parameters(spec) -> dict | None:
     """The parameters the component's implementation declares, name -> Variable (None when not known before it
     is built: FMUs)."""
     if spec.implementation is None:
@@ -163,7 +163,7 @@ def apply_set(sc, values: Mapping[str, Any], origin: str = API_ORIGIN):
         spec = _component(out, comp)
         _check_value(ref, value)
         try:
-            known = _declared_parameters(spec)
+            known = declared_parameters(spec)
         except ContractError as exc:
             raise ScenarioError(f"set {ref}: {exc}") from None
         if known is not None and param not in known:

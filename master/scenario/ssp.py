@@ -41,7 +41,7 @@ from rotorcosim.fmus import export
 from rotorcosim.master.scenario.export import export_scenario
 from rotorcosim.fmus.flatten import scalar_names
 from rotorcosim.fmus.description import FMUError, describe, ports_of
-from rotorcosim.fmus.model_description import AnnotationError, _unit_element, read_annotation
+from rotorcosim.fmus.model_description import AnnotationError, read_annotation, unit_element
 from rotorcosim.fmus.safezip import ArchiveError, open_zip, safe_extract
 from rotorcosim.fmus.units import definition, is_dimensionless
 
@@ -157,7 +157,7 @@ def system_description(sc: Scenario, fmus: dict[str, Path]) -> bytes:
     if units:
         ud = ET.SubElement(root, _q("ssd", "Units"))
         for u in sorted(units):
-            unit = _unit_element(u)
+            unit = unit_element(u)
             unit.tag = _q("ssc", "Unit")
             for b in unit:
                 b.tag = _q("ssc", "BaseUnit")

@@ -32,7 +32,7 @@ import numpy as np
 
 from rotorcosim.components.contract import COUPLED, HELD
 from rotorcosim.master.manipulator.hold import feeds_thermal
-from rotorcosim.master.schedule.timeline import Schedule, ScheduleError, _positive, register_schedule
+from rotorcosim.master.schedule.timeline import Schedule, ScheduleError, check_positive, register_schedule
 
 #: floors of the relative drift test, by unit (a change smaller than this is no drift)
 DRIFT_FLOORS = {"K": 0.5, "m": 1e-7, "Pa.s": 1e-4, "W": 1.0, "N": 1.0, "rad/s": 1.0, "rad/s2": 1.0}
@@ -71,11 +71,11 @@ class AutoSchedule(Schedule):
     def __post_init__(self):
         for name in ("duration", "step", "thermal_step", "steady_tolerance", "drift_tolerance",
                      "tm_min", "tm_max", "to_min", "to_max"):
-            setattr(self, name, _positive(name, getattr(self, name)))
+            setattr(self, name, check_positive(name, getattr(self, name)))
         if self.speed_tolerance is not None:
-            self.speed_tolerance = _positive("speed_tolerance", self.speed_tolerance)
+            self.speed_tolerance = check_positive("speed_tolerance", self.speed_tolerance)
         if self.tolerance is not None:
-            self.tolerance = _positive("tolerance (percent)", self.tolerance)
+            self.tolerance = check_positive("tolerance (percent)", self.tolerance)
             if self.tolerance > TOLERANCE_MAX_PCT:
                 raise ScheduleError(f"schedule: tolerance {self.tolerance:g} % accepts results off by more than "
                                     f"they are (at most {TOLERANCE_MAX_PCT:g} %; it is in percent)")
@@ -91,7 +91,7 @@ class AutoSchedule(Schedule):
 
     @classmethod
     def from_spec(cls, spec, duration, step, thermal_step, cycle):
-        total = _positive("duration", duration if duration is not None else spec.get("duration"))
+        total = check_positive("duration", duration if duration is not None else spec.get("duration"))
         return cls(total, step, thermal_step, **{k: spec[k] for k in cls.keys if k in spec})
 
     def run(self, sim, first: int = 0) -> None:

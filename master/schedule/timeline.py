@@ -26,7 +26,8 @@ class ScheduleError(ContractError):
     """A schedule that cannot run: a bad ``[schedule]`` table or interval (the message names the key)."""
 
 
-def _positive(name: str, value: Any) -> float:
+def check_positive(name: str, value: Any) -> float:
+    """``value`` as a positive finite float, else a ScheduleError naming ``name``."""
     try:
         x = float(value)
     except (TypeError, ValueError):
@@ -57,8 +58,8 @@ class Interval:
     def __post_init__(self):
         if not isinstance(self.phase, str) or not self.phase:
             raise ScheduleError(f"schedule: interval phase must be a phase's name, got {self.phase!r}")
-        _positive("interval duration", self.duration)
-        _positive("interval step", self.step)
+        check_positive("interval duration", self.duration)
+        check_positive("interval step", self.step)
         if self.step > self.duration * (1 + 1e-12):
             raise ScheduleError(f"schedule: {self.phase} interval step {self.step} s is longer than its duration {self.duration} s")
 
@@ -127,10 +128,10 @@ def _interval_duration(spec: Mapping[str, Any], cycle: float | None) -> float:
         if not cycle:
             raise ScheduleError("schedule: an interval in cycles needs a cycle of constant period (the "
                                 "scenario's [schedule] cycle)")
-        return _positive("interval cycles", spec["cycles"]) * _positive("cycle period", cycle)
+        return check_positive("interval cycles", spec["cycles"]) * check_positive("cycle period", cycle)
     if "duration" not in spec:
         raise ScheduleError(f"schedule: interval {dict(spec)} needs a duration (s) or cycles")
-    return _positive("interval duration", spec["duration"])
+    return check_positive("interval duration", spec["duration"])
 
 
 @register_schedule("timeline")
@@ -173,10 +174,10 @@ class Timeline(Schedule):
             except ContractError as exc:
                 raise ScheduleError(f"schedule: {exc}") from None
             h = item.get("step", step if coupled else thermal_step)
-            intervals.append(Interval(phase, d, min(_positive("interval step", h), d)))
+            intervals.append(Interval(phase, d, min(check_positive("interval step", h), d)))
         tl = cls(intervals)
         if duration is not None:
-            tl = cut_timeline(tl, _positive("duration", duration))
+            tl = cut_timeline(tl, check_positive("duration", duration))
         return tl
 
     def run(self, sim, first: int = 0) -> None:
@@ -198,7 +199,7 @@ class Monolithic(Timeline):
 
     @classmethod
     def from_spec(cls, spec, duration, step, thermal_step, cycle):
-        total = _positive("duration", duration if duration is not None else spec.get("duration"))
+        total = check_positive("duration", duration if duration is not None else spec.get("duration"))
         return cls([Interval(phases_of(spec).coupled, total, min(step, total))])
 
 
@@ -215,8 +216,8 @@ def from_spec(spec: Mapping[str, Any], duration: float | None = None, cycle: flo
     cls = SCHEDULES.get(kind)
     if cls is None:
         raise ScheduleError(f"schedule: kind {kind!r} not in {tuple(SCHEDULES)}")
-    step = _positive("step", spec.get("step", 1e-5))
-    thermal_step = _positive("thermal_step", spec.get("thermal_step", 0.1))
+    step = check_positive("step", spec.get("step", 1e-5))
+    thermal_step = check_positive("thermal_step", spec.get("thermal_step", 0.1))
     return cls.from_spec(spec, duration, step, thermal_step, cycle)
 
 

@@ -247,13 +247,13 @@ def _duration(where: str, table: dict) -> float | None:
 
 def _default_value(sc: Scenario, ref: str, where: str):
     """The scenario's value of ``comp.param`` (or its implementation's declared default)."""
-    from rotorcosim.master.scenario.overrides import _declared_parameters
+    from rotorcosim.master.scenario.overrides import declared_parameters
 
     comp, _, param = ref.partition(".")
     spec = sc.components[comp]
     if param in spec.parameters:
         return spec.parameters[param]
-    declared = _declared_parameters(spec) or {}
+    declared = declared_parameters(spec) or {}
     if param in declared:
         return declared[param].start
     raise SpecError(f"{where}: no start given and {ref} has no value in the scenario (give start)")

@@ -58,7 +58,7 @@ def test_every_critical_up_to_1_5x_with_whirl_and_margin(textbook, capsys):
     from rotorcosim.master.api import load_scenario
 
     m = fem.load(engine)
-    full = critical.synchronous_critical_speeds(m, cs._supports(m, None, load_scenario(scenario)), n=40,
+    full = critical.synchronous_critical_speeds(m, cs.linearised_supports(m, None, load_scenario(scenario)), n=40,
                                                 max_rpm=24000.0)
     for whirl in ("forward", "backward"):
         assert [r["rpm"] for r in rows if r["whirl"] == whirl] == pytest.approx(full[f"{whirl}_synchronous_rpm"],

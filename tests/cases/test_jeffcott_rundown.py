@@ -19,11 +19,18 @@ def _peak(res):
     return r[j], float(np.asarray(res["spool.Omega"]).reshape(len(r), -1)[j, 0]) * 30.0 / np.pi
 
 
+#: the ramp time [s] of a 6 000 rev/min change at lambda = a / wn^2 = 0.02 (a = 200 pi rad/s / T, wn^2 = k / m =
+#: 4e5 s^-2): the fastest rate the crossings are asked to find
+T_LAMBDA_002 = 200.0 * np.pi / (0.02 * K / M)
+
+
 @pytest.mark.parametrize("rpm0, rpm1, duration", [(9000.0, 3000.0, 0.1), (9000.0, 3000.0, 1.0),
-                                                  (3000.0, 9000.0, 0.3)])
+                                                  (3000.0, 9000.0, 0.3), (9000.0, 3000.0, T_LAMBDA_002),
+                                                  (3000.0, 9000.0, T_LAMBDA_002)])
 def test_passage_against_independent_integration(tmp_path, rpm0, rpm1, duration):
     """Rundowns 9000 -> 3000 rev/min in 0.1 s (lambda = a / wn^2 = 0.0157: the peak 23 % below the critical speed)
-    and 1 s, a run-up 3000 -> 9000 in 0.3 s from the synchronous state at 3000: the summary's crossing has found
+    and 1 s, a run-up 3000 -> 9000 in 0.3 s from the synchronous state at 3000, and both at lambda = 0.02 (0.0785 s,
+    the fastest rate asked for): the summary's crossing has found
     the peak, its whirl within 0.1 % and its speed within 0.2 % of the independent integration's, its time and
     speed those of the sample where the whirl is largest."""
     sc = load_scenario("jeffcott_rundown").set({"spool.speed_rpm": rpm0, "spool.end_speed_rpm": rpm1,

@@ -174,7 +174,7 @@ def test_journal_shells_keep_the_papers_steady_state_and_heat_mass(bearing, monk
     P = np.array([625.0, 30.0, 500.0])
     steady, masses = {}, {}
     for N in (1, 8):
-        monkeypatch.setitem(geo._DATA["lumping"], "journal_shells", N)
+        monkeypatch.setitem(geo.THERMAL_DATA["lumping"], "journal_shells", N)
         c = make(bearing)
         assert c.network.n == 9 + N - 1
         steady[N] = c.network.steady(P)[:9]
@@ -199,7 +199,7 @@ def test_journal_shells_converge_over_the_two_minute_run(monkeypatch):
     assert shipped == 8
     T = {}
     for N in (1, 8, 32):
-        monkeypatch.setitem(geo._DATA["lumping"], "journal_shells", N)
+        monkeypatch.setitem(geo.THERMAL_DATA["lumping"], "journal_shells", N)
         c = make(5)
         c.set_inputs({"P_drag": [624.6], "P_sfd": [0.95], "P_rub": [0.0]})
         c.do_step(0.0, 120.0)
@@ -212,6 +212,6 @@ def test_journal_shells_must_be_a_small_positive_integer(monkeypatch):
     from rotorcosim.components.contract import ContractError
     from rotorcosim.components.thermal import geometry as geo
     for bad in (0, 2.5, True, 65):
-        monkeypatch.setitem(geo._DATA["lumping"], "journal_shells", bad)
+        monkeypatch.setitem(geo.THERMAL_DATA["lumping"], "journal_shells", bad)
         with pytest.raises((ValueError, ContractError), match="journal_shells"):
             make(5)

@@ -137,7 +137,7 @@ def test_disk_full_keeps_what_was_flushed(tmp_path, monkeypatch):
 
     monkeypatch.setattr(Recorder, "flush", flush)
     # chunks of 300 rows, so that the disk fills in mid-run (interval ends no longer flush: checkpoint.END_GAP_S)
-    monkeypatch.setattr("rotorcosim.master.api.Recorder", lambda *a, **kw: Recorder(*a, chunk=300, **kw))
+    monkeypatch.setattr("rotorcosim.master.run.session.Recorder", lambda *a, **kw: Recorder(*a, chunk=300, **kw))
     out = tmp_path / "o"
     sc = toy()
     with pytest.raises(OSError, match="No space left"):
@@ -173,7 +173,7 @@ def test_disk_nearly_full_is_refused_before_hdf5_breaks(tmp_path, monkeypatch):
 
     monkeypatch.setattr(observers.os, "statvfs", statvfs)
     # chunks of 300 rows, so that the disk fills in mid-run (interval ends no longer flush: checkpoint.END_GAP_S)
-    monkeypatch.setattr("rotorcosim.master.api.Recorder", lambda *a, **kw: observers.Recorder(*a, chunk=300, **kw))
+    monkeypatch.setattr("rotorcosim.master.run.session.Recorder", lambda *a, **kw: observers.Recorder(*a, chunk=300, **kw))
     out = tmp_path / "o"
     with pytest.raises(OSError, match="No space left on device for the time series"):
         execute(toy(), out, duration=20.0, figures=False)
