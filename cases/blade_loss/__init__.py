@@ -43,7 +43,7 @@ COMMANDS = {
                    "write a small engine of your own and its blade-loss and rundown scenarios into a folder"),
     "check-engine": ("rotorcosim.cases.blade_loss.check_engine",
                      "an engine file's problems, or its nodes, masses, inertias, critical speeds with their "
-                     "separation margins, warnings and Campbell diagram"),
+                     "amplification factors and separation margins (API 684), warnings and Campbell diagram"),
 }
 #: the level the case sweeps (master/case.py ``Level``): the blade-loss force, held by the component parameter its
 #: scenarios name in ``[results] unbalance_parameter``; ``--unbalance`` on ``run`` and ``sweep``, ``unbalance_N``

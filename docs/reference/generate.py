@@ -183,7 +183,10 @@ NOTES = {
     "rundown.unbalance_parameter": "the blade-loss engine's level, as the blade-loss case's (`--unbalance`)",
     "rundown.spools": "the spool components (the first: the crossings' spool)",
     "rundown.critical_speeds_rpm": "the undamped critical speeds [rev/min] the figures mark and a test rotor's "
-                                   "crossings are labelled with (an engine's: its linearised engine's)",
+                                   "crossings are labelled with; optional for an engine: without it the figures "
+                                   "mark the engine's forward critical speeds up to 1.1 x the run's top speed "
+                                   "(those check-engine lists, derived at run time), and its crossings are "
+                                   "labelled with its linearised engine's",
     "results.cycles": "rotor cycles the results are taken over", "intervals.cycles": "length in rotor cycles "
     "(needs `schedule.speed_rpm`)",
     "implementation": "registry name, `\"module:Class\"` or entry point", "fmu": "path of an FMU (instead of "
