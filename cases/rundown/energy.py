@@ -35,7 +35,7 @@ import numpy as np
 
 from rotorcosim.components.contract import HELD
 from rotorcosim.components.spool.ports import kind_of
-from rotorcosim.master.observer.observers import Observer
+from rotorcosim.master.observer.observer import Observer
 
 #: the power output of a torque's producer that it dissipates, by kind
 POWERS = {"drag": "P_drag", "rub": "P_rub"}

@@ -60,20 +60,8 @@ def synchronous_critical_speeds(model: FullModel, supports: dict | None, n: int 
     out = {"forward_synchronous_rpm": [], "backward_synchronous_rpm": []}
     lat = sysm["rotor_lateral"]
     Mlat = Mm[np.ix_(lat, lat)]
-    for m, v in zip(mu[::-1], vec[:, ::-1].T):
-        if m <= 0:
-            continue
-        rpm = 1.0 / np.sqrt(m) / RPM
-        if rpm > max_rpm:
-            continue
-        share = np.real(v[lat].conj() @ Mlat @ v[lat]) / np.real(v.conj() @ Mm @ v)
-        if share < min_share:
-            continue
-        X, Y = v[lat[0::2]], v[lat[1::2]]
-        af = np.sum(np.abs(X + 1j * Y) ** 2)
-        ab = np.sum(np.abs(X - 1j * Y) ** 2)
-        key = "forward_synchronous_rpm" if af >= ab else "backward_synchronous_rpm"
-        out[key].append(float(rpm))
+    for rpm, forward in _whirl_roots(mu[::-1], vec[:, ::-1].T, Mm, lat, Mlat, max_rpm, min_share):
+        out["forward_synchronous_rpm" if forward else "backward_synchronous_rpm"].append(rpm)
     for k in out:
         out[k] = sorted(out[k])[:n]
     return out
@@ -140,8 +128,17 @@ def every_synchronous_critical_speed(model: FullModel, supports: dict | None, ma
         if take == nn or mu[0] <= 0 or 1.0 / np.sqrt(mu[0]) / RPM > max_rpm:
             break
         take = min(2 * take, nn)
-    out = []
-    for m, v in zip(mu, vec.T):
+    out = [{"rpm": rpm, "whirl": "forward" if forward else "backward"}
+           for rpm, forward in _whirl_roots(mu, vec.T, Mm, lat, Mlat, max_rpm, min_share)]
+    return sorted(out, key=lambda r: r["rpm"])
+
+
+def _whirl_roots(mu, modes, Mm, lat, Mlat, max_rpm: float, min_share: float):
+    """The critical speeds among the roots ``mu`` = 1 / Omega^2 of the eigenproblem and their ``modes``, in their
+    order: ``(rpm, forward)`` of each root mu > 0 up to ``max_rpm`` whose mode's rotor lateral share of the
+    kinetic energy is at least ``min_share``; ``forward``: the mode whirls with the spin, |a_f|^2 >= |a_b|^2
+    summed over the rotor nodes (module docstring)."""
+    for m, v in zip(mu, modes):
         if m <= 0:
             continue
         rpm = 1.0 / np.sqrt(m) / RPM
@@ -151,9 +148,7 @@ def every_synchronous_critical_speed(model: FullModel, supports: dict | None, ma
         if share < min_share:
             continue
         X, Y = v[lat[0::2]], v[lat[1::2]]
-        forward = np.sum(np.abs(X + 1j * Y) ** 2) >= np.sum(np.abs(X - 1j * Y) ** 2)
-        out.append({"rpm": float(rpm), "whirl": "forward" if forward else "backward"})
-    return sorted(out, key=lambda r: r["rpm"])
+        yield float(rpm), bool(np.sum(np.abs(X + 1j * Y) ** 2) >= np.sum(np.abs(X - 1j * Y) ** 2))
 
 
 def damping_ratios(model: FullModel, supports: dict | None, criticals: list[dict], excited: float = 1.0,
