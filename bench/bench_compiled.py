@@ -21,7 +21,7 @@ from numba import njit
 from rotorcosim.components.kernels import KernelComponent
 from rotorcosim.master.cli.run import resolve
 from rotorcosim.cases.blade_loss.results import apply_unbalance
-from rotorcosim.master.observer.observers import Recorder
+from rotorcosim.master.observer.recorder import Recorder
 from rotorcosim.master.run.profiling import StepTimer
 from rotorcosim.cases.blade_loss.results import observers as result_observers
 from rotorcosim.master.scenario.cycle import cycle_of

@@ -1,4 +1,4 @@
-"""The staggered scheme's estimated error against its true error, result by result (master/manipulator/hold.py,
+"""The staggered scheme's estimated error against its true error, result by result (master/manipulator/error_estimate.py,
 cases/blade_loss/results.estimated_errors, cases/blade_loss/error_check.py).
 
     python bench/bench_error_estimate.py [--levels paper] [--duration 2] [--out DIR]

@@ -12,7 +12,7 @@ Measured on the shared 2-core VM (loaded by other work), peak MB short / long (r
     0.05 s vs 0.5 s:  run 240.1 / 243.2 (1.013), sweep 281.3 / 280.1 (0.996), compare 263.5 / 269.7 (1.023)
     0.2 s vs 2 s:     run 239.5 / 239.6 (1.000), sweep 278.5 / 280.1 (1.006), compare 263.1 / 265.5 (1.009)
 
-Before the recorder opened its HDF5 file without a chunk cache (observers.py), compare's 2 s monolithic run
+Before the recorder opened its HDF5 file without a chunk cache (recorder_hdf5.py), compare's 2 s monolithic run
 peaked at 285.7 MB (ratio 1.074): h5py's 1 MiB cache per dataset filled with the last chunks written, ~10 MB per
 simulated second of one thermo-mechanical interval.
 """

@@ -22,7 +22,7 @@ import numpy as np
 from rotorcosim import scenarios
 from rotorcosim.master.run import checkpoint
 from rotorcosim.master.cli.run import execute
-from rotorcosim.master.observer.observers import Progress
+from rotorcosim.master.observer.progress import Progress
 from rotorcosim.master.scenario.build import load_scenario
 
 

@@ -26,7 +26,7 @@ import time
 from pathlib import Path
 
 from rotorcosim.master.api import load_scenario, simulate
-from rotorcosim.master.observer.observers import Observer
+from rotorcosim.master.observer.observer import Observer
 from rotorcosim.master.scenario.build import build_simulation, schedule_of
 from rotorcosim.master.scenario.cycle import cycle_of
 from rotorcosim.cases.rundown import compare as rc

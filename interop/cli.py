@@ -7,8 +7,10 @@ bearings at those nodes the co-simulated ball bearings #ID
 rotor; without it the file has the ROSS bearings as linear supports (critical speeds, check-engine, to_ross).
 What each co-simulated part is (ball bearing, squeeze film damper, rub ring, thermal network: ROSS describes none of
 them) comes from ``--parts FILE``: a TOML file of the engine format's part tables (``[bearing.ID]``,
-``[damper.ID]``, ``[rubring.ID]``, ``[thermal.ID]``, ``[unbalance]``), checked and copied into the engine file,
-which ``--attach`` needs.
+``[damper.ID]``, ``[rubring.ID]``, ``[thermal.ID]``, ``[unbalance]``), checked and copied into the engine file.
+``--attach`` needs it: without it, or with a file that leaves a required key of an attached part out, the import
+is refused in one line naming every missing table and key (no generic value stands for a bearing's geometry),
+and nothing is written.
 """
 from __future__ import annotations
 
@@ -41,30 +43,35 @@ PART_TABLES = ("bearing", "damper", "rubring", "thermal", "unbalance")
 
 
 def _parts(path: str | None, engine: dict) -> dict:
-    """The part tables of the file ``path`` (--parts), checked against the engine's [attach]; {} for None."""
-    if path is None:
-        if engine.get("attach"):
-            raise ValueError("--attach needs --parts FILE: what each co-simulated bearing is ([bearing.ID], "
-                             "[damper.ID], [rubring.ID] of the engine format: docs/reference/engine-format.md); "
-                             "ROSS files describe no ball bearing, damper or rub ring")
-        return {}
-    import tomllib
-
+    """The part tables of the file ``path`` (--parts), checked against the engine's [attach]; {} for None. An
+    engine with co-simulated parts that the tables leave without a required key is refused, the keys named:
+    ROSS describes no ball bearing, damper or rub ring, and no generic value stands for one."""
     from rotorcosim.components.rotor import engine_parts
 
-    p = Path(path)
-    if not p.is_file():
-        raise FileNotFoundError(f"--parts {path}: no such file")
-    try:
-        data = tomllib.loads(p.read_text())
-    except (tomllib.TOMLDecodeError, UnicodeDecodeError) as exc:
-        raise ValueError(f"--parts {path}: not valid TOML ({exc})") from None
-    other = sorted(set(data) - set(PART_TABLES))
-    if other:
-        raise ValueError(f"--parts {path}: [{other[0]}] is not a part table (they are: {', '.join(PART_TABLES)})")
-    bad = engine_parts.problems({**data, "attach": engine.get("attach", {})})
-    if bad:
-        raise ValueError(f"--parts {path}: {bad[0]}")
+    data = {}
+    if path is not None:
+        import tomllib
+
+        p = Path(path)
+        if not p.is_file():
+            raise FileNotFoundError(f"--parts {path}: no such file")
+        try:
+            data = tomllib.loads(p.read_text())
+        except (tomllib.TOMLDecodeError, UnicodeDecodeError) as exc:
+            raise ValueError(f"--parts {path}: not valid TOML ({exc})") from None
+        other = sorted(set(data) - set(PART_TABLES))
+        if other:
+            raise ValueError(f"--parts {path}: [{other[0]}] is not a part table (they are: "
+                             f"{', '.join(PART_TABLES)})")
+        bad = engine_parts.problems({**data, "attach": engine.get("attach", {})})
+        if bad:
+            raise ValueError(f"--parts {path}: {bad[0]}")
+    lack = engine_parts.missing({**data, "attach": engine.get("attach", {})})
+    if lack:
+        where = f"--parts {path}" if path is not None else "--attach without --parts FILE"
+        raise ValueError(f"{where}: the co-simulated parts lack {'; '.join(lack)} (ROSS describes no ball bearing, "
+                         "damper or rub ring: give them in a --parts FILE of [bearing.ID], [damper.ID], "
+                         "[rubring.ID] tables, docs/reference/engine-format.md)")
     return data
 
 
@@ -103,7 +110,9 @@ def add_arguments(parser):
                         help="ROSS node of the blade loss (with --attach; default: the first disk's)")
     parser.add_argument("--parts", default=None, metavar="FILE",
                         help="a TOML file of the attached parts ([bearing.ID], [damper.ID], [rubring.ID], "
-                             "[thermal.ID], [unbalance]) copied into the engine file (--attach needs it)")
+                             "[thermal.ID], [unbalance]) copied into the engine file (--attach needs it: without "
+                             "it, or with a required key left out, the import names every missing table and key "
+                             "and writes nothing)")
     parser.add_argument("--hub-mass", type=float, default=DEFAULT_HUB_MASS_KG, metavar="KG",
                         help=f"housing mass of each co-simulated bearing (default {DEFAULT_HUB_MASS_KG:g})")
 

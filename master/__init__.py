@@ -47,7 +47,7 @@ _PUBLIC = {
     "SimulationDiverged": "rotorcosim.master.core.algorithm",
     "Simulation": "rotorcosim.master.simulation",
     "System": "rotorcosim.master.core.system",
-    "Observer": "rotorcosim.master.observer.observers",
+    "Observer": "rotorcosim.master.observer.observer",
     "Case": "rotorcosim.master.sweep",
     "run_cases": "rotorcosim.master.sweep",
 }

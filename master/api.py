@@ -30,7 +30,7 @@ from rotorcosim.master import case
 from rotorcosim.master.core.algorithm import SimulationDiverged  # noqa: F401 - re-exported: rotorcosim.SimulationDiverged
 from rotorcosim.master.core.phases import Phases
 from rotorcosim.master.core.threads import one_thread
-from rotorcosim.master.observer.observers import column_names
+from rotorcosim.master.observer.recorder_csv import column_names
 from rotorcosim.master.observer.series import SeriesFile
 from rotorcosim.master.run import checkpoint
 from rotorcosim.master.run import summary as summaries

@@ -22,7 +22,7 @@ A case is a module or object with any of these attributes:
 - ``SCHEDULE_ALIASES``: names of ``--schedule`` / ``simulate(schedule=...)`` the case adds (alias -> one of
   ``scenario``, ``auto``, ``monolithic``);
 - ``RESULTS_KEYS``: ``{"key": checker}``, the case's own keys of ``[results]`` (checked when a scenario of the
-  case is loaded; a checker is one of master/scenario/schema.py's: None or the error);
+  case is loaded; a checker is one of master/scenario/checkers.py's: None or the error);
 - ``SCORE_KEY``: the key of ``sweep.json`` the score of ``SWEEP_TABLES`` is written under;
 - ``SWEEP_TABLES``: ``"module:function"``, ``function(out, by_level) -> score | None``, called after a sweep with
   one case per level (``by_level``: level -> summary) to write the case's own tables;
@@ -49,7 +49,8 @@ from types import ModuleType
 from typing import Any
 
 from rotorcosim import scenarios
-from rotorcosim.master.scenario import schema
+from rotorcosim.master.scenario.checkers import did_you_mean
+from rotorcosim.master.scenario.tables import TABLES
 from rotorcosim.master.scenario.overrides import set_level
 
 GROUP = "rotorcosim.cases"
@@ -247,11 +248,11 @@ def check_results(sc) -> None:
     level = level_of(kind)
     where = f"{sc.source or sc.name}: [results]"
     for key, value in res.items():
-        if key in schema.TABLES["results"]:
+        if key in TABLES["results"]:
             continue
         if key not in own:
-            known = [*schema.TABLES["results"], *own]
-            raise ValueError(f"{where} {key}: unknown key{schema.did_you_mean(key, known)} (case {kind!r}); known: "
+            known = [*TABLES["results"], *own]
+            raise ValueError(f"{where} {key}: unknown key{did_you_mean(key, known)} (case {kind!r}); known: "
                              f"{', '.join(known)}")
         err = own[key](value)
         if err:

@@ -23,7 +23,9 @@ from rotorcosim.master.core import events
 from rotorcosim.master.core.algorithm import Engine, EngineSettings, SimulationFailed
 from rotorcosim.master.core.cycle import Cycle, RevolutionCounter, as_cycle
 from rotorcosim.master.core.phases import Phases
-from rotorcosim.master.manipulator.hold import DEFAULT_HOLD, HOLDS, RESTART_CYCLES, StaggeredHold
+from rotorcosim.master.core.system import HOLDS
+from rotorcosim.master.manipulator.hold import DEFAULT_HOLD, StaggeredHold
+from rotorcosim.master.manipulator.restart import RESTART_CYCLES
 from rotorcosim.master.schedule.timeline import RunReport, Schedule, ScheduleError, UsedInterval
 from rotorcosim.master.core.system import System
 
@@ -37,7 +39,7 @@ class Simulation:
     thermal-only interval holds of a frozen output ("mean", "rms", "last"); ``hold_cycles``: over how many
     cycles [-] it is taken; ``cycle``: the cycle source (:mod:`rotorcosim.master.core.cycle`: a constant period
     [s] or a declared speed signal) that sets a cycle's length (needed by thermal-only intervals); ``observers``: what watches the run
-    (:class:`~rotorcosim.master.observer.observers.Observer`); ``t0``: the start time [s]; ``restart_cycles``:
+    (:class:`~rotorcosim.master.observer.observer.Observer`); ``t0``: the start time [s]; ``restart_cycles``:
     cycles [-] over which the thermal inputs of the mechanical components go to their new values when a
     thermo-mechanical interval restarts; ``phases``: the
     scenario's names of its coupled and held phases (:class:`~rotorcosim.master.core.phases.Phases`; default

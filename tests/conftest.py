@@ -3,7 +3,7 @@ import signal
 
 import pytest
 
-from rotorcosim.master.observer.observers import Progress
+from rotorcosim.master.observer.progress import Progress
 
 
 @pytest.fixture

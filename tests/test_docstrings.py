@@ -20,7 +20,7 @@ MAIN_CLASSES = {
     "rotorcosim.master.simulation": "Simulation",
     "rotorcosim.master.core.system": "System",
     "rotorcosim.master.scenario.build": "Scenario",
-    "rotorcosim.master.observer.observers": "Observer",
+    "rotorcosim.master.observer.observer": "Observer",
     "rotorcosim.master.api": "Result",
     "rotorcosim.master.schedule.timeline": ("Timeline", "Interval"),
     "rotorcosim.master.core.algorithm": "Engine",

@@ -29,7 +29,7 @@ The generic master runs the case as any other; what its parts measured on this s
   (results.estimated_errors), not to their degrees C values as Table 6's relative errors do.
 """
 
-from rotorcosim.master.scenario import schema
+from rotorcosim.master.scenario import checkers
 
 #: the result extraction of the scenarios whose ``[results] kind`` is ``"blade_loss"`` (rotorcosim.master.case)
 RESULTS = "rotorcosim.cases.blade_loss.results"
@@ -43,7 +43,7 @@ COMMANDS = {
                    "write a small engine of your own and its blade-loss and rundown scenarios into a folder"),
     "check-engine": ("rotorcosim.cases.blade_loss.check_engine",
                      "an engine file's problems, or its nodes, masses, inertias, critical speeds with their "
-                     "separation margins, warnings and Campbell diagram"),
+                     "amplification factors and separation margins (API 684), warnings and Campbell diagram"),
 }
 #: the level the case sweeps (master/case.py ``Level``): the blade-loss force, held by the component parameter its
 #: scenarios name in ``[results] unbalance_parameter``; ``--unbalance`` on ``run`` and ``sweep``, ``unbalance_N``
@@ -58,7 +58,7 @@ DEFAULT_SCENARIO = "blade_loss"
 #: ``--schedule paper`` (and ``simulate(schedule="paper")``): the scenario's own timeline, the paper's
 SCHEDULE_ALIASES = {"paper": "scenario"}
 #: the case's own ``[results]`` keys (master/case.py checks them when a scenario of the case is loaded)
-RESULTS_KEYS = {"unbalance_parameter": schema.port_ref}
+RESULTS_KEYS = {"unbalance_parameter": checkers.port_ref}
 #: the key of sweep.json the score of SWEEP_TABLES is written under
 SCORE_KEY = "paper_score"
 #: what a sweep with one case per level writes besides its own files (Table 5, the paper comparison)

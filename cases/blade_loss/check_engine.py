@@ -4,9 +4,12 @@ polar inertias, critical speeds with their separation margins, warnings and a Ca
 Every problem of the file is listed (one line each, exit status 2), not only the first, a value of the wrong
 TOML shape first (components/rotor/engine_shape.py). A valid file gets its report; every synchronous critical
 speed up to 1.5 x each spool's highest operating speed, excited by that spool's unbalance, with the whirl of its
-mode and its separation margin from each operating speed, on the linearised supports (the co-simulated bearings
-it attaches, linearised from the components of ``--scenario``, default the shipped blade-loss scenario); one
-warning line each (exit status 0) for a critical speed nearer an operating speed than API 684's 15 %, a bearing
+mode, its amplification factor (1 / (2 zeta), zeta the damping ratio of its mode in the damped engine at that
+speed) and its separation margin from each operating speed against the margin API 684 asks for that factor
+(components/rotor/engine_check.required_margin; 15 % for an undamped mode), on the linearised supports (the
+co-simulated bearings it attaches, linearised from the components of ``--scenario``, default the shipped
+blade-loss scenario); one warning line each (exit status 0) for a critical speed nearer an operating speed than
+that margin, a bearing
 bore that fits no shaft section at its node, dimensions implausible for mm and a spool turning a bearing beyond
 its model's speed range; and a Campbell diagram PNG. Example::
 
@@ -55,7 +58,9 @@ def check_engine(path: str, scenario: str | None = None, campbell: str | None = 
     out["operating_speeds_rpm"] = ops
     out["separation"], warn = [], []
     for s, speeds in ops.items():
-        every = critical.every_synchronous_critical_speed(full, sup, SPAN * max(speeds), excited=speeds[0] / first)
+        ratio = speeds[0] / first
+        every = critical.damping_ratios(full, sup, critical.every_synchronous_critical_speed(
+            full, sup, SPAN * max(speeds), excited=ratio), excited=ratio)
         rows, w = engine_check.separation(every, s, data["spool"][s].get("name", s), speeds)
         out["separation"] += rows
         warn += w
@@ -148,10 +153,14 @@ def run(args) -> int:
     for s, speeds in out["operating_speeds_rpm"].items():
         rows = [r for r in out["separation"] if r["spool"] == s]
         print(f"  synchronous critical speeds excited by spool {s} up to {SPAN:g} x its operating speed "
-              f"{', '.join(f'{v:.0f}' for v in speeds)} rev/min (separation margin):")
+              f"{', '.join(f'{v:.0f}' for v in speeds)} rev/min (separation margin, amplification factor, the "
+              "margin API 684 asks):")
         print("    " + (", ".join(f"{r['rpm']:.0f} {r['whirl']} ("
-                                  + "/".join(f"{m['margin_percent']:+.1f} %" for m in r["margins"]) + ")"
-                                  for r in rows) or "none"))
+                                  + "/".join(f"{m['margin_percent']:+.1f} %" for m in r["margins"])
+                                  + (f", AF {r['amplification_factor']:.1f}" if r["amplification_factor"] is not None
+                                     else ", undamped")
+                                  + ", needs " + "/".join(f"{m['required_percent']:.0f} %" for m in r["margins"])
+                                  + ")" for r in rows) or "none"))
     print(f"  supports: {c['support_model']['description']}")
     for line in out["warnings"]:
         print(f"  warning: {line}")

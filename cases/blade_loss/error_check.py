@@ -8,7 +8,7 @@ raised to ``FLOOR_PCT`` (two tiny errors are alike, whatever their ratio).
 """
 from __future__ import annotations
 
-from rotorcosim.master.manipulator.hold import RISE_FLOOR_K
+from rotorcosim.master.manipulator.error_estimate import RISE_FLOOR_K
 
 from .results import TEMPERATURES
 

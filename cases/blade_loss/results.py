@@ -33,8 +33,9 @@ import numpy as np
 
 from rotorcosim.components.contract import COUPLED
 from rotorcosim.master import case
-from rotorcosim.master.manipulator.hold import RISE_FLOOR_K
-from rotorcosim.master.observer.observers import Observer, SteadyWindows, sampled_rows
+from rotorcosim.master.manipulator.error_estimate import RISE_FLOOR_K
+from rotorcosim.master.observer.observer import Observer, sampled_rows
+from rotorcosim.master.observer.steady_windows import SteadyWindows
 from rotorcosim.master.scenario.cycle import cycle_of
 
 from . import thermal_geometry
@@ -247,7 +248,7 @@ def unbalance_force(sc) -> float:
 
 
 #: the results read over the steady window (the mechanics): their estimated error shares the hand-backs'
-#: (master/manipulator/hold.py, HoldReport.mechanics_fraction)
+#: (master/manipulator/error_estimate.py, HoldReport.mechanics_fraction)
 WINDOW_KEYS = ("whirl_amplitude_mm", "transmissibility", "max_contact_load_N", "max_contact_stress_MPa",
                "max_contact_stress_outer_MPa", "rub_power_W", "drag_power_W", "sfd_power_W")
 #: what a user reads for each result that has an estimate (the run's printed estimate names its result so)
@@ -361,7 +362,7 @@ def events(bearings: dict) -> list[dict]:
 
 def estimated_errors(windows, bearings, hold, F_u) -> dict | None:
     """The staggered scheme's estimated error of each Table 4 result [%] (None without a charged thermal-only
-    interval; master/manipulator/hold.py has the estimator): a temperature's is the hold's estimated error of the
+    interval; master/manipulator/hold.py and error_estimate.py have the estimator): a temperature's is the hold's estimated error of the
     thermal network's output, percent of its rise above the run's initial temperature (at least the hold's
     RISE_FLOOR_K); a result read over the steady window takes the share in error of the values its bearing's
     thermal network hands back to the mechanics (``mechanics_fraction`` of ``thermal<ID>``: its oil temperature

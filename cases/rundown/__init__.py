@@ -15,7 +15,7 @@ Scenarios: ``jeffcott_rundown`` (the check case against an independent integrati
 """
 
 from rotorcosim.cases import blade_loss
-from rotorcosim.master.scenario import schema
+from rotorcosim.master.scenario import checkers
 
 #: the result extraction of the scenarios whose ``[results] kind`` is ``"rundown"`` (rotorcosim.master.case)
 RESULTS = "rotorcosim.cases.rundown.results"
@@ -26,5 +26,5 @@ COMPARE = "rotorcosim.cases.rundown.compare:run"
 LEVEL = blade_loss.LEVEL
 #: the case's own ``[results]`` keys: the spool components whose speeds and crossings it reports, the critical
 #: speeds whose crossings it reports [rev/min]; and the blade-loss engine's level when it runs that engine
-RESULTS_KEYS = {"spools": schema.list_of(schema.text), "critical_speeds_rpm": schema.list_of(schema.positive),
-                "unbalance_parameter": schema.port_ref}
+RESULTS_KEYS = {"spools": checkers.list_of(checkers.text), "critical_speeds_rpm": checkers.list_of(checkers.positive),
+                "unbalance_parameter": checkers.port_ref}

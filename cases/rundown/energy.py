@@ -34,10 +34,9 @@ from __future__ import annotations
 import numpy as np
 
 from rotorcosim.components.contract import HELD
-from rotorcosim.master.observer.observers import Observer
+from rotorcosim.components.spool.ports import kind_of
+from rotorcosim.master.observer.observer import Observer
 
-#: the spool's torque inputs by kind (components/spool/component.py)
-TORQUE_INPUTS = {"T_drag1": "drag", "T_drag2": "drag", "T_rub1": "rub", "T_rub2": "rub"}
 #: the power output of a torque's producer that it dissipates, by kind
 POWERS = {"drag": "P_drag", "rub": "P_rub"}
 KINDS = ("drive", "drag", "rub", "aero")
@@ -57,10 +56,9 @@ class SpoolEnergy(Observer):
         self.torques, self.powers = {}, {}
         for sp in self.spools:
             tq, pw = [], []
-            for port, kind in TORQUE_INPUTS.items():
+            for port in self._torque_ports(comps[sp]):
+                kind = kind_of(port)
                 ref = f"{sp}.{port}"
-                if port not in comps[sp].u:
-                    continue
                 src = by_dst.get(ref)
                 if src is None:
                     tq.append((kind, None, float(np.asarray(comps[sp].u[port]).reshape(-1)[0])))
@@ -74,7 +72,7 @@ class SpoolEnergy(Observer):
         # torque at the spool's input, a power at the input of its first consumer
         self.handed = {ref: dst for dst, ref in reversed(list(by_dst.items()))}
         self.held = False
-        self._inputs = {sp: set(comps[sp].u) for sp in self.spools}
+        self._ports_of = {sp: self._torque_ports(comps[sp]) for sp in self.spools}
         self.J = {sp: float(getattr(comps[sp], "J", np.nan)) for sp in self.spools}
         self.c_visc = {sp: float(comps[sp].p.get("drag_coefficient", 0.0)) for sp in self.spools}
         self.omega0 = {sp: self._omega(sim, sp) for sp in self.spools}
@@ -112,9 +110,14 @@ class SpoolEnergy(Observer):
             out[5 if kind == "drag" else 6] += float(np.asarray(v).reshape(-1)[0])
         return out
 
+    @staticmethod
+    def _torque_ports(comp) -> list[str]:
+        """A spool's torque inputs (components/spool/ports.py: its drag torques, then its rub torques)."""
+        return [p for p in comp.u if kind_of(p) is not None]
+
     def _ports(self, sp) -> list[str]:
         """The spool's torque inputs in the order of ``self.torques[sp]``."""
-        return [p for p in TORQUE_INPUTS if p in self._inputs[sp]]
+        return self._ports_of[sp]
 
     def _add(self, sp, prev, rows, dt):
         """The steps ``rows`` (one per step, the values each reports after it; steps ``dt`` long) after ``prev``:

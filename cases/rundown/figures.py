@@ -3,7 +3,8 @@
 * ``rundown_speed.png``: each spool's speed against time, the held-phase (thermal-only) intervals shaded: (a) from
   the start to a minute after the last fuel cut, (b) the whole run in minutes;
 * ``rundown_response.png``: the whirl and the transmitted force (film + centering spring) at each co-simulated
-  bearing (by its id) against the first spool's speed through the rundown (the coupled samples), the critical speeds and the
+  bearing (by its id) against the first spool's speed through the rundown (the coupled samples), the critical speeds
+  dashed (the scenario's ``[results] critical_speeds_rpm``, else the engine's: modes.marked_critical_speeds) and the
   crossings' resonance peaks (results.resonance_peaks) marked (a test rotor: its disk's whirl only);
 * ``rundown_campbell.png``: the Campbell diagram of the linear engine (components/rotor/critical.py; a test
   rotor: its critical speeds as constant frequencies) with the run's 1x trajectory and each crossing's resonance peak;
@@ -24,6 +25,8 @@ from rotorcosim.cases.blade_loss.engine_names import spool_name
 from rotorcosim.cases.blade_loss.results import KELVIN, NODES, bearing_ids
 from rotorcosim.master.observer.series import events_of
 from rotorcosim.master.run.outputs import check_dpi
+
+from .modes import marked_critical_speeds
 
 RPM = 30.0 / math.pi
 #: coupled samples per speed bin of the response figure
@@ -107,9 +110,9 @@ def figures(sc, data, out, dpi: int | None = None) -> list[str]:
     spools = [s for s in _spools(sc) if _get(data, f"{s}.Omega") is not None]
     if not spools:
         return []
-    crit = [float(c) for c in sc.extra.get("results", {}).get("critical_speeds_rpm", [])]
     names = [_speed(sc, data, t, phase, spools, out, events_of(data))]
     w = _get(data, f"{spools[0]}.Omega").reshape(len(t), -1)[:, 0] * RPM
+    crit = marked_critical_speeds(sc, spools[0], float(np.nanmax(w)))
     coupled = phase == 0 if phase is not None else np.ones(len(t), bool)
     locs = _locations(sc, data)
     peaks = _peaks(data, locs, w, coupled)

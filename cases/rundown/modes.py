@@ -13,6 +13,11 @@ covers the speeds of the peaks found (``prepare``) widened by ``SEARCH_MARGIN``.
 
 A test rotor without co-simulated bearings (the Jeffcott check case) has the scenario's ``[results]
 critical_speeds_rpm`` (undamped; no damped speeds).
+
+The figures' dashed lines (:func:`marked_critical_speeds`) are the scenario's ``[results] critical_speeds_rpm``
+when it gives them, else the engine's: the forward synchronous critical speeds that the figures' spool excites,
+of the linear engine ``rotorcosim check-engine`` lists them of (the scenario's bearings and dampers linearised
+where the engine file attaches them), up to the run's top speed.
 """
 from __future__ import annotations
 
@@ -31,6 +36,38 @@ RANGE_STEP_RPM = 500.0
 #: undamped critical speeds, damped ones per (range, film temperatures))
 _ENGINES: dict[tuple, tuple] = {}
 KELVIN = 273.15
+
+
+#: the figures mark the engine's critical speeds up to this times the run's highest speed of their spool
+MARK_SPAN = 1.1
+
+
+def marked_critical_speeds(sc, spool: str, top_rpm: float) -> list[float]:
+    """The critical speeds [rev/min] the rundown figures mark (module docstring) for the spool component
+    ``spool`` whose highest speed in the run is ``top_rpm``: ``[results] critical_speeds_rpm`` when the scenario
+    gives them; else the engine's forward synchronous critical speeds excited by that spool up to
+    :data:`MARK_SPAN` x ``top_rpm``; [] for a scenario without a rotor engine the linear engine can take (a
+    test rotor without the key, an engine without dampers at its bearings)."""
+    given = sc.extra.get("results", {}).get("critical_speeds_rpm")
+    if given:
+        return [float(c) for c in given]
+    rotor = sc.components.get("rotor")
+    if rotor is None or not (math.isfinite(top_rpm) and top_rpm > 0.0):
+        return []
+    from rotorcosim.cases.blade_loss import linear_engine
+    from rotorcosim.components.rotor import critical, engine_check
+    from rotorcosim.components.rotor import model as fem
+
+    try:
+        m = fem.load(rotor.parameters.get("model_file") or None)
+        ops = engine_check.operating_speeds(m.data) if m.data.get("spool") else {}
+        name = sc.components[spool].parameters.get("spool", "pt") if spool in sc.components else None
+        excited = ops[name][0] / next(iter(ops.values()))[0] if name in ops else 1.0
+        every = critical.every_synchronous_critical_speed(m, linear_engine.supports(sc, data=m.data),
+                                                          MARK_SPAN * top_rpm, excited=excited)
+    except (ValueError, KeyError, ZeroDivisionError):
+        return []
+    return [r["rpm"] for r in every if r["whirl"] == "forward"]
 
 
 class ScenarioModes:

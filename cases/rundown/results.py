@@ -42,7 +42,7 @@ import numpy as np
 from scipy.signal import find_peaks, peak_widths
 
 from rotorcosim.components.contract import COUPLED
-from rotorcosim.master.observer.observers import Observer
+from rotorcosim.master.observer.observer import Observer
 
 from .energy import SpoolEnergy
 

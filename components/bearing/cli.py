@@ -12,8 +12,10 @@ import sys
 
 import numpy as np
 
+from ..part_options import add_part_arguments, part_id
 from ..validity import once, warning_line
-from .component import CHECKS, ELASTIC_LIMIT_PA, GEOMETRY, NO_RECORD
+from ..records import NO_RECORD
+from .component import CHECKS, ELASTIC_LIMIT_PA, GEOMETRY
 from .geometry import BEARINGS, build_geometry
 from .static import static_equilibrium, stiffness
 
@@ -22,14 +24,8 @@ ELASTIC_LIMIT_MPA = ELASTIC_LIMIT_PA * 1e-6
 
 
 def add_arguments(parser):
-    parser.add_argument("--bearing", required=True, metavar="ID",
-                        help="the bearing's id in the engine (--engine or --scenario); alone, 0 or 5: the paper's "
-                             "Table 3 bearing")
-    parser.add_argument("--engine", metavar="FILE", help="the engine file whose [bearing.ID] (and [damper.ID]: the "
-                                                         "journal) give the bearing")
-    parser.add_argument("--scenario", dest="part_scenario", metavar="SCENARIO",
-                        help="a scenario whose component bearing<ID> gives the bearing")
-    parser.set_defaults(part=("bearing", "bearing"))
+    add_part_arguments(parser, "bearing", "bearing", "bearing",
+                       "the engine file whose [bearing.ID] (and [damper.ID]: the journal) give the bearing")
     parser.add_argument("--radial-load", type=float, required=True, metavar="N",
                         help="radial load on the inner race, N (along x)")
     parser.add_argument("--axial-load", type=float, default=None, metavar="N",
@@ -43,27 +39,22 @@ def geometry_of(bearing, parameters: dict | None = None):
     """The geometry of bearing ``bearing``: from its component ``parameters`` (an engine's, a scenario's), or the
     paper's Table 3 record of that number."""
     if parameters is None:
-        if _id(str(bearing)) not in BEARINGS:
+        if part_id(str(bearing)) not in BEARINGS:
             raise ValueError(f"--bearing {bearing}: the paper's Table 3 has bearings {sorted(BEARINGS)}; for another "
                              "bearing give its engine (--engine FILE) or a scenario (--scenario)")
-        return build_geometry(_id(str(bearing)))
+        return build_geometry(part_id(str(bearing)))
     table = {key: (int(parameters[name]) if name == "balls" else parameters[name] / scale)
              for name, key, scale in GEOMETRY if name in parameters}
     record = parameters.get("bearing", NO_RECORD)
     return build_geometry(None if record == NO_RECORD else record, f_i=parameters.get("groove_curvature_inner"),
                           f_o=parameters.get("groove_curvature_outer"), preload=parameters.get("preload"), table=table)
 
-def _id(text: str):
-    """A part's id: an integer when it is one (the paper's 0 and 5), else the text."""
-    return int(text) if text.isdigit() else text
-
-
 def evaluate(bearing, radial_load: float, axial_load: float | None = None, speed_rpm: float = 0.0,
              parameters: dict | None = None) -> dict:
     """The equilibrium under (radial_load, 0, axial_load) on the inner race, outer race fixed; SI inside, the
     result in the units of its keys. ``parameters``: the bearing component's (geometry_of)."""
     g = geometry_of(bearing, parameters)
-    bearing = _id(str(bearing))
+    bearing = part_id(str(bearing))
     Fa = g.preload if axial_load is None else axial_load
     for name, v in (("radial load", radial_load), ("axial load", Fa), ("speed", speed_rpm)):
         if not math.isfinite(v) or v < 0.0:

@@ -47,6 +47,8 @@ from ..contract import ContractError, Variable
 from ..kernels import PYTHON, KernelComponent
 from ..numba_internals import address_of
 from ..oil_fit import T_MAX_K, T_MIN_K
+# ``bearing`` = NO_RECORD: no record of the paper's Table 3; every geometry parameter and the preload are given
+from ..records import NO_RECORD, check_selection
 from ..speeds import PT_OMEGA
 from ..validity import Check
 from .drag import static_load_rating
@@ -64,8 +66,6 @@ GEOMETRY = (("balls", "balls", 1), ("ball_diameter", "ball_diameter_mm", 1e-3), 
             ("outside_diameter", "outside_diameter_mm", 1e-3), ("width", "width_mm", 1e-3),
             ("contact_angle", "contact_angle_deg", math.pi / 180.0), ("journal_radius", "journal_radius_mm", 1e-3),
             ("journal_length", "journal_length_mm", 1e-3))
-#: ``bearing`` = NO_RECORD: no record of the paper's Table 3; every geometry parameter and the preload are given
-NO_RECORD = -1
 #: contact stress above which Hertz's elastic theory no longer describes a ball contact: ISO 76 sets the static
 #: load rating of ball bearings at 4200 MPa at the centre of the most loaded contact, where the permanent
 #: deformation of ball and race reaches 1e-4 of the ball diameter (data/bearings.toml [drag], the same value
@@ -190,11 +190,8 @@ class BallBearing(KernelComponent):
             raise ContractError(f"{self.name}.bearing: unknown bearing number {p['bearing']!r}; Table 3 has "
                                 f"{sorted(BEARINGS)}, or -1 for none (then set the geometry parameters "
                                 f"{', '.join(n for n, _, _ in GEOMETRY)} and preload)")
-        if not record:
-            missing = [n for n in [g for g, _, _ in GEOMETRY] + ["preload"] if n not in explicit]
-            if missing:
-                raise ContractError(f"{self.name}: no Table 3 record (bearing = -1) and no {', '.join(missing)} "
-                                    "given (a scenario takes them from its engine file's [bearing.ID], [damper.ID])")
+        check_selection(self, "bearing", BEARINGS, [g for g, _, _ in GEOMETRY] + ["preload"], what="Table 3 record",
+                        tables="[bearing.ID], [damper.ID]")
         if "preload" not in explicit:
             p["preload"] = float(BEARINGS[p["bearing"]]["preload_N"])
         for key, lo in (("omega", 0.0), ("preload", 0.0), ("contact_damping", 0.0), ("ball_damping", 0.0),

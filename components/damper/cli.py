@@ -9,18 +9,13 @@ import math
 import sys
 
 from .component import DAMPERS, LAMINAR_FILM_RE, FastDamper, FEDamper
+from ..part_options import add_part_arguments, part_id
 from ..validity import once, warning_line
 from .viscosity import oil_constants, sae30_viscosity
 
 
 def add_arguments(parser):
-    parser.add_argument("--damper", required=True, metavar="ID",
-                        help="the damper's id in the engine (--engine or --scenario); alone, 0 or 5: the paper's "
-                             "Table 3 damper")
-    parser.add_argument("--engine", metavar="FILE", help="the engine file whose [damper.ID] gives the damper")
-    parser.add_argument("--scenario", dest="part_scenario", metavar="SCENARIO",
-                        help="a scenario whose component damper<ID> gives the damper")
-    parser.set_defaults(part=("damper", "damper"))
+    add_part_arguments(parser, "damper", "damper", "damper", "the engine file whose [damper.ID] gives the damper")
     parser.add_argument("--position", type=float, nargs=2, metavar=("X", "Y"), required=True,
                         help="journal position relative to the housing, m")
     parser.add_argument("--velocity", type=float, nargs=2, metavar=("VX", "VY"), required=True,
@@ -34,16 +29,11 @@ def add_arguments(parser):
 
 
 
-def _id(text: str):
-    """A part's id: an integer when it is one (the paper's 0 and 5), else the text."""
-    return int(text) if text.isdigit() else text
-
-
 def evaluate(damper, position, velocity, temperature_C: float, model: str = "fast",
              cavitation: bool = True, parameters: dict | None = None) -> dict:
     """The film force, spring force, power loss and viscosity (SI) for the CLI and scripts; ``parameters``: the
     damper component's (an engine's, a scenario's), else the paper's Table 3 damper of that number."""
-    damper = _id(str(damper))
+    damper = part_id(str(damper))
     if parameters is None and damper not in DAMPERS:
         raise ValueError(f"--damper {damper}: the paper's Table 3 has dampers {sorted(DAMPERS)}; for another damper "
                          "give its engine (--engine FILE) or a scenario (--scenario)")

@@ -29,6 +29,8 @@ from ..contract import Component, ContractError, Memoryless, Variable
 from ..errors import Diverged
 from ..kernels import KernelComponent
 from ..oil_fit import T_MAX_K, T_MIN_K
+# ``damper`` = NO_RECORD: no record of the paper's Table 3; every one of GEOMETRY is given
+from ..records import NO_RECORD, check_selection
 from ..validity import Check
 from . import wall
 from . import table_cache
@@ -44,8 +46,6 @@ DAMPERS = {int(k): v for k, v in _DATA["damper"].items()}
 FILM = _DATA["film"]
 #: parameters that follow the ``damper`` selection (Table 3) unless set explicitly
 GEOMETRY = ("radius", "length", "clearance", "supply_pressure", "k_spring")
-#: ``damper`` = NO_RECORD: no record of the paper's Table 3; every one of GEOMETRY is given
-NO_RECORD = -1
 #: the largest radial clearance over journal radius the film model accepts: the Reynolds equation (eq. 7) is the
 #: thin-film limit, its neglected terms of order c/R (Szeri, Fluid Film Lubrication, ch. 2); squeeze film dampers
 #: run at c/R ~ 1e-3 (Table 3: 0.635 mm / 80 mm = 0.008), so 0.05 refuses only what is not a film (or is mm read
@@ -142,14 +142,8 @@ class _Damper(Memoryless, Component):
         super().setup(t0)
         p = self.p
         explicit = self.explicit
-        if p["damper"] == NO_RECORD:
-            missing = [key for key in GEOMETRY if key not in explicit]
-            if missing:
-                raise ContractError(f"{self.name}: no Table 3 record (damper = -1) and no {', '.join(missing)} given "
-                                    "(a scenario takes them from its engine file's [damper.ID])")
-        elif p["damper"] not in DAMPERS:
-            raise ContractError(f"{self.name}.damper must be one of {sorted(DAMPERS)} (Table 3) or -1 (none), got "
-                                f"{p['damper']}")
+        check_selection(self, "damper", DAMPERS, GEOMETRY, what="Table 3 record", tables="[damper.ID]",
+                        label=" (Table 3)")
         data = table3(p["damper"]) if p["damper"] != NO_RECORD else {}
         for key in GEOMETRY:
             if key not in explicit:

@@ -57,6 +57,19 @@ def layout(attach: dict) -> Layout:
     return Layout(tuple(bearings), tuple(rubrings))
 
 
+def on_spool(attach: dict, spool: str) -> Layout:
+    """The bearings and rub rings of an ``[attach]`` table (:func:`layout`) whose node is on spool ``spool``
+    (``node = [spool, node]``), in [attach] order: those whose drag and friction torques act on that spool."""
+    lay = layout(attach)
+
+    def on(entry: str) -> bool:
+        node = attach[entry].get("node") if isinstance(attach[entry], dict) else None
+        return isinstance(node, list) and len(node) == 2 and node[0] == spool
+
+    return Layout(tuple(b for b in lay.bearings if on(f"bearing{b}")),
+                  tuple(r for r in lay.rubrings if on(f"rubring{r}")))
+
+
 def layout_of_ports(ports: dict) -> Layout:
     """The layout of a model's port groups (``FullModel.ports``), in their order."""
     return Layout(tuple(g[3:] for g in ports if g.startswith("brg")),

@@ -18,11 +18,13 @@ Conventions:
 * inputs are held over a step; the unbalance force is evaluated at the end of the step (t + h), where Newmark's
   equilibrium is enforced; outputs are the displacements/velocities at t + h;
 * unbalance: F_u(t) = F_residual (cos Wt, sin Wt) from t = 0 plus, from ``t_blade_loss`` on, a step onset of
-  F_unbalance (cos(Wt + phase), sin(Wt + phase)) (W = omega_pt); the residual default 87 N is ISO 21940-11
-  balance grade G 2.5 (gas turbines: e W <= 2.5 mm/s) for a ~20 kg power turbine at 16 000 rev/min (F = m G W;
-  87 N for the 20.8 kg of the first layout, 83 N for the 19.9 kg of the layout calibrated on the 2850 N response:
-  87 N kept, G 2.6 here, 4 N apart, immaterial next to the blade-loss force), all put at the outboard end
-  (conservative: the whole residual at the blade-loss node). The paper gives neither the residual nor its
+  F_unbalance (cos(Wt + phase), sin(Wt + phase)) (W = omega_pt). The residual defaults to 0 (an engine has no
+  residual unbalance unless its file gives one, [unbalance] residual_N). The paper's engine gives 87 N
+  (components/rotor/data/engine.toml): ISO 21940-11 balance grade G 2.5 (gas turbines: e W <= 2.5 mm/s) for a
+  ~20 kg power turbine at 16 000 rev/min (F = m G W; 87 N for the 20.8 kg of the first layout, 83 N for the
+  19.9 kg of the layout calibrated on the 2850 N response: 87 N kept, G 2.6 here, 4 N apart, immaterial next to
+  the blade-loss force), all put at the outboard end (conservative: the whole residual at the blade-loss node).
+  The paper gives neither the residual nor its
   phase. Default phase 90 deg (quadrature, the residual changes the amplitude by (87/712)^2 / 2 = 0.7 % at
   712 N): the paper's own 712 N and 1425 N cases have the same whirl per newton (0.0719 and 0.0734 mm/kN) and
   transmissibility (1.03, 1.02), where a residual in phase (0 deg) would make the
@@ -137,8 +139,9 @@ class Rotor(KernelComponent):
     variables = (
         Variable("F_unbalance", "parameter", unit="N", start=2850.0,
                  description="blade-loss force amplitude (rotating at the PT speed, PT outboard end)"),
-        Variable("F_residual", "parameter", unit="N", start=87.0,
-                 description="residual unbalance force before the blade loss (ISO 21940-11 G 2.5), same node"),
+        Variable("F_residual", "parameter", unit="N", start=0.0,
+                 description="residual unbalance force before the blade loss, same node (0: none; the paper's "
+                             "engine file gives 87 N, ISO 21940-11 G 2.5)"),
         Variable("unbalance_phase", "parameter", unit="rad", start=0.5 * math.pi,
                  description="angle of the lost blade relative to the residual unbalance (default 90 deg: the "
                              "residual adds in quadrature; see the module docstring)"),

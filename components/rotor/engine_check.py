@@ -332,10 +332,35 @@ def report(full: fem.FullModel) -> dict:
 #: in metres reads 0.05 mm) or a spool longer than this [mm] (1.2 m written in um, or a length in m x 1000 twice)
 MIN_SHAFT_DIAMETER_MM = 5.0
 MAX_SPOOL_LENGTH_MM = 20000.0
-#: the separation margin asked between a synchronous critical speed and an operating speed: the order of API
-#: 684's (API 617's) margins, which grow with the mode's amplification factor to 16 % below the minimum and 26 %
-#: above the maximum continuous speed; a critical speed nearer than this is warned of
+#: the separation margin asked between a synchronous critical speed and an operating speed when the mode's
+#: amplification factor is not known (an undamped engine: no damping, so no finite factor): the order of API 684's
+#: margins (:func:`required_margin`), which grow with the amplification factor to 16 % below and 26 % above
 SEPARATION_MARGIN = 0.15
+#: API 684's amplification factor below which a mode needs no separation margin (critically damped)
+AF_NO_MARGIN = 2.5
+
+
+def amplification_factor(zeta: float | None) -> float | None:
+    """The amplification factor AF = 1 / (2 zeta) of a mode of damping ratio ``zeta`` (the peak's sharpness,
+    N_c / (N_2 - N_1) between its half-power points, for light damping); None for an undamped mode (zeta <= 0
+    or unknown)."""
+    return 1.0 / (2.0 * zeta) if zeta is not None and zeta > 0.0 else None
+
+
+def required_margin(af: float | None, above: bool) -> float:
+    """The separation margin [fraction of the operating speed] API 684 asks of a critical speed of amplification
+    factor ``af`` below (``above`` False) or above an operating speed: none for AF < 2.5; below,
+    min(16, 17 (1 - 1 / (AF - 1.5))) %; above, min(26, 10 + 17 (1 - 1 / (AF - 1.5))) % (API 684 SP6.8.2.10, as
+    ROSS's ross/report.py implements it; the standard's own text not consulted); :data:`SEPARATION_MARGIN` for
+    an undamped mode (``af`` None)."""
+    if af is None:
+        return SEPARATION_MARGIN
+    if af < AF_NO_MARGIN:
+        return 0.0
+    base = 17.0 * (1.0 - 1.0 / (af - 1.5))
+    return (min(26.0, 10.0 + base) if above else min(16.0, base)) / 100.0
+
+
 #: a bearing's bore fits its station when it is within this fraction of the outer diameter of a shaft section
 #: (or layer) that meets at the node: an engine file's diameters are rounded, a press fit is microns
 BORE_FIT = 0.02
@@ -388,18 +413,27 @@ def operating_speeds(data: dict) -> dict[str, list[float]]:
 
 def separation(criticals: list[dict], spool: str, name: str, speeds: list[float]) -> tuple[list[dict], list[str]]:
     """The separation margin of each synchronous critical speed excited by ``spool`` from each of its operating
-    ``speeds`` [rev/min], (critical - operating) / operating, and a warning line for each nearer than
-    :data:`SEPARATION_MARGIN`: (rows ``{"rpm", "whirl", "spool", "margins": [{"operating_rpm",
-    "margin_percent"}]}``, warnings)."""
+    ``speeds`` [rev/min], (critical - operating) / operating, against the margin API 684 asks of its mode
+    (:func:`required_margin` of its amplification factor, from the row's ``damping_ratio``; the flat
+    :data:`SEPARATION_MARGIN` for an undamped mode), and a warning line for each nearer than that: (rows
+    ``{"rpm", "whirl", "spool", "damping_ratio", "amplification_factor", "margins": [{"operating_rpm",
+    "margin_percent", "required_percent"}]}``, warnings)."""
     rows, warn = [], []
     for c in criticals:
+        af = amplification_factor(c.get("damping_ratio"))
         margins = []
         for op in speeds:
             m = (c["rpm"] - op) / op
-            margins.append({"operating_rpm": op, "margin_percent": 100.0 * m})
-            if abs(m) < SEPARATION_MARGIN:
+            need = required_margin(af, above=m > 0.0)
+            margins.append({"operating_rpm": op, "margin_percent": 100.0 * m, "required_percent": 100.0 * need})
+            if abs(m) < need:
+                rule = (f"API 684 asks a separation margin of {need:.1%} of a mode of amplification factor "
+                        f"{af:.2f}" if af is not None else
+                        f"API 684 asks a separation margin of the order of {need:.0%} (an undamped mode: no "
+                        "amplification factor)")
                 warn.append(f"spool {spool} ({name}): {c['whirl']} critical speed {c['rpm']:.0f} rev/min is "
                             f"{100 * abs(m):.1f} % {'below' if m < 0 else 'above'} the operating speed {op:.0f} "
-                            f"rev/min; API 684 asks a separation margin of {SEPARATION_MARGIN:.0%}")
-        rows.append({**c, "spool": spool, "margins": margins})
+                            f"rev/min; {rule}")
+        rows.append({**c, "damping_ratio": c.get("damping_ratio"), "amplification_factor": af, "spool": spool,
+                     "margins": margins})
     return rows, warn

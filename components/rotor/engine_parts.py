@@ -210,6 +210,25 @@ def problems(data: dict) -> list[str]:
     return out
 
 
+def missing(data: dict) -> list[str]:
+    """The required keys (no default, no rule, no component default) that the part tables of an engine file's
+    ``data`` lack for the parts its [attach] names, one entry per table: ``"[bearing.0] balls, bore_mm"``; a table
+    absent altogether lacks every required key."""
+    attach = data.get("attach", {}) if isinstance(data.get("attach"), dict) else {}
+    out = []
+    for entry in attach:
+        for table in PER_ID:
+            pid = entry[len(ATTACH_OF[table]):]
+            if not entry.startswith(ATTACH_OF[table]) or entry in ("unbalance", "oil_temperature_C"):
+                continue
+            tables = data.get(table) if isinstance(data.get(table), dict) else {}
+            spec = tables.get(pid) if isinstance(tables.get(pid), dict) else {}
+            lack = [k.key for k in KEYS[table] if k.required and k.key not in spec]
+            if lack:
+                out.append(f"[{table}.{pid}] {', '.join(lack)}")
+    return out
+
+
 class EngineView:
     """The named SI quantities of the engine file ``path`` (module docstring), with ``overrides``."""
 

@@ -20,6 +20,8 @@ from pathlib import Path
 
 from ..contract import ContractError, Memoryless, Variable
 from ..kernels import KernelComponent
+# ``bearing`` = NO_RECORD: no ring of the paper's; clearance and radius are given
+from ..records import NO_RECORD, check_selection
 from ..speeds import PT_OMEGA
 from ..validity import Check
 from .contact import RubParams, tm_step
@@ -31,8 +33,6 @@ RINGS = {int(k): v for k, v in _DATA["ring"].items()}
 CONTACT = _DATA["contact"]
 #: parameters that follow the ``bearing`` selection unless set explicitly
 GEOMETRY = {"clearance": "clearance_mm", "radius": "radius_mm"}
-#: ``bearing`` = NO_RECORD: no ring of the paper's; clearance and radius are given
-NO_RECORD = -1
 #: the largest normal force the shipped contact stiffness describes: data/rubrings.toml [contact] estimates it from
 #: Johnson's conformal line contact (Contact Mechanics, sec. 5.6) as 2.7-3.3e8 N/m over 5-50 kN, so a constant
 #: 3e8 N/m is within 10 % of that law up to 50 kN; beyond it the law (stiffening with load) is not the one used
@@ -85,13 +85,7 @@ class RubRing(Memoryless, KernelComponent):
         super().setup(t0)
         p = self.p
         explicit = self.explicit
-        if p["bearing"] == NO_RECORD:
-            missing = [key for key in GEOMETRY if key not in explicit]
-            if missing:
-                raise ContractError(f"{self.name}: no ring record (bearing = -1) and no {', '.join(missing)} given (a "
-                                    "scenario takes them from its engine file's [rubring.ID])")
-        elif p["bearing"] not in RINGS:
-            raise ContractError(f"{self.name}.bearing must be one of {sorted(RINGS)} or -1 (none), got {p['bearing']}")
+        check_selection(self, "bearing", RINGS, GEOMETRY, what="ring record", tables="[rubring.ID]")
         for key, data_key in GEOMETRY.items():
             if key not in explicit:
                 p[key] = RINGS[p["bearing"]][data_key] * 1e-3

@@ -12,6 +12,9 @@
   windmilling law, zero at the windmill speed ``windmill_rpm``, ``c`` set by its value ``aero_torque`` at
   ``speed_rpm`` (below the windmill speed the airflow drives the spool).
 
+The torque inputs are ``T_drag1`` .. ``T_dragN`` and ``T_rub1`` .. ``T_rubM``: one per co-simulated bearing and
+rub ring of the engine file ``model_file`` on spool ``spool``, at least two of each (ports.py).
+
 ``inertia`` J [kg m^2]: 0 takes the polar inertia of rotor ``spool`` of the model file ``model_file``
 (rotor/spool_inertia.py). Speeds are given in rev/min (the edge), outputs are SI: ``Omega`` [rad/s], ``theta``
 [rad] (the integral of Omega from set-up), ``dOmega`` [rad/s^2], the torques, and ``energy`` = (kinetic energy,
@@ -33,8 +36,10 @@ import numpy as np
 
 from ..contract import COUPLED, HELD, ContractError, Variable
 from ..kernels import KernelComponent
+from ..rotor.model import load_data
 from ..speeds import PT_SPEED_RPM
 from .kernel import CONSTANT, TABLE, TORQUE, SpoolParams, SpoolState, tm_step
+from .ports import kind_of, torque_layout, torque_variables
 from .profile import RPM, cumulative_angle, parse_table, ramp_table
 
 PROFILES = {"constant": CONSTANT, "ramp": TABLE, "table": TABLE, "torque": TORQUE}
@@ -61,10 +66,11 @@ class Spool(KernelComponent):
         Variable("inertia", "parameter", unit="kg.m2", start=0.0,
                  description="polar moment of inertia J (0: from the rotor model file's spool)"),
         Variable("model_file", "parameter", unit="1", start="", type="String",
-                 description="the engine file whose spool `spool` this is, for J when inertia is 0 (a scenario "
-                             "gives its engine)"),
+                 description="the engine file whose spool `spool` this is: J when inertia is 0, one torque "
+                             "input per bearing and rub ring on the spool (a scenario gives \"engine:file\")"),
         Variable("spool", "parameter", unit="1", start="pt", type="String",
-                 description="the spool of the model file ([spool.NAME]) this one is (for J)"),
+                 description="the spool of the model file ([spool.NAME]) this one is (for J and its torque "
+                             "inputs)"),
         Variable("t_fuel_cut", "parameter", unit="s", start=-1.0,
                  description="torque law: the turbine drives (holds the speed) until this time (< 0: never cut)",
                  event="the fuel cut"),
@@ -74,10 +80,7 @@ class Spool(KernelComponent):
                  description="torque law: aerodynamic drag torque at speed_rpm (sets c of c (W - W_wm)|W - W_wm|)"),
         Variable("drag_coefficient", "parameter", unit="N.m.s", start=0.0,
                  description="viscous drag torque per rad/s of the spool's bearings not modelled as components"),
-        Variable("T_drag1", "input", 1, "N.m", "a bearing's drag torque on the spool (opposing its spin)"),
-        Variable("T_drag2", "input", 1, "N.m", "another bearing's drag torque"),
-        Variable("T_rub1", "input", 1, "N.m", "a rub ring's friction torque (opposing the spin)"),
-        Variable("T_rub2", "input", 1, "N.m", "another rub ring's friction torque"),
+    ) + torque_variables(None) + (   # an instance declares those of its model file's spool (__init__)
         Variable("Omega", "output", 1, "rad/s", "spool speed"),
         Variable("theta", "output", 1, "rad", "spool angle (integral of Omega from set-up)"),
         Variable("dOmega", "output", 1, "rad/s2", "spool angular acceleration"),
@@ -89,6 +92,30 @@ class Spool(KernelComponent):
     preferred_step = 1e-4
     phases = frozenset({COUPLED, HELD})
 
+    def __init__(self, name: str = "spool", parameters=None):
+        # the torque inputs follow the model file's bearings and rub rings on this spool (ports.py). A file that
+        # cannot be read keeps the class's ports here; setup names its problem.
+        params = parameters or {}
+        self._model = None
+        if params.get("model_file"):
+            try:
+                self._model, _ = load_data(str(params["model_file"]))
+            except (ValueError, OSError):
+                pass
+        if self._model is not None:
+            spool, spools = str(params.get("spool", "pt")), self._model.get("spool") or {}
+            if "shaft" not in self._model and spool not in spools:
+                # refused here, before its ports are connected: a connection to a port it would have had would
+                # otherwise name the port, not the cause
+                raise ContractError(f"{name}.spool = {spool!r} is not a spool of model_file "
+                                    f"{params['model_file']} (its spools: {', '.join(spools) or 'none'})")
+            lay = torque_layout(self._model, spool)
+            if lay is not None:
+                own = [v for v in type(self).variables if kind_of(v.name) is None]
+                at = next(i for i, v in enumerate(type(self).variables) if kind_of(v.name) is not None)
+                self.variables = tuple(own[:at]) + torque_variables(lay) + tuple(own[at:])
+        super().__init__(name, parameters)
+
     def setup(self, t0=0.0):
         super().setup(t0)
         p = self.p
@@ -99,6 +126,8 @@ class Spool(KernelComponent):
         for k in ("speed_rpm", "end_speed_rpm", "windmill_rpm", "inertia", "aero_torque", "drag_coefficient"):
             if not (math.isfinite(p[k]) and p[k] >= 0.0):
                 raise ContractError(f"{where}.{k} must be a finite number >= 0, got {p[k]}")
+        if p["model_file"]:
+            self._check_model()
         try:
             if p["profile"] == "table":
                 tt, tw = parse_table(p["table"], "table")
@@ -128,7 +157,8 @@ class Spool(KernelComponent):
         self.J = float(J)
         self._kernel_p = SpoolParams(mode, tt, tw, th, float(theta0), float(J),
                                      float(p["t_fuel_cut"]) if p["t_fuel_cut"] >= 0.0 else math.inf,
-                                     p["windmill_rpm"] * RPM, float(c_aero), float(p["drag_coefficient"]))
+                                     p["windmill_rpm"] * RPM, float(c_aero), float(p["drag_coefficient"]),
+                                     sum(kind_of(n) == "drag" for n in self._ports("input")))
         self.state = {"x": np.array([w0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0])}
         self.kernel_step(t0, 0.0)
         self.time = float(t0)
@@ -139,6 +169,18 @@ class Spool(KernelComponent):
         the start of the rundown frozen. EVENT_TOL absorbs the round-off of interval ends."""
         cut = self.p["t_fuel_cut"]
         return float(cut) if self.p["profile"] == "torque" and cut >= 0.0 and cut >= t - EVENT_TOL else None
+
+    def _check_model(self) -> None:
+        """The model file readable, and an engine file's spool ``spool`` one of its spools (a single-shaft file
+        has one, whatever it is called)."""
+        try:
+            data, _ = load_data(self.p["model_file"])
+        except (ValueError, OSError) as exc:
+            raise ContractError(f"{self.name}.model_file: {exc}") from None
+        spools = data.get("spool") or {}
+        if "shaft" not in data and self.p["spool"] not in spools:
+            raise ContractError(f"{self.name}.spool = {self.p['spool']!r} is not a spool of model_file "
+                                f"{self.p['model_file']} (its spools: {', '.join(spools) or 'none'})")
 
     def _model_inertia(self) -> float:
         if not self.p["model_file"]:
@@ -157,7 +199,7 @@ class Spool(KernelComponent):
         return self._kernel_p
 
     def kernel_status(self, status, t, h):
-        bad = [k for k in ("T_drag1", "T_drag2", "T_rub1", "T_rub2") if not np.all(np.isfinite(self.u[k]))]
+        bad = [k for k in self._ports("input") if not np.all(np.isfinite(self.u[k]))]
         raise ContractError(f"{self.name}: non-finite torque input {', '.join(bad)} at t = {t + h:.9g} s")
 
     def do_step(self, t, h):

@@ -22,7 +22,8 @@ from collections import namedtuple
 from ..numba_internals import kernel_jit
 
 SpoolState = namedtuple("SpoolState", "x")
-SpoolParams = namedtuple("SpoolParams", "mode tab_t tab_w tab_th theta0 J t_cut w_wm c_aero c_visc")
+#: ``n_drag``: how many of the inputs, the first ones, are drag torques (the rest are rub torques: ports.py)
+SpoolParams = namedtuple("SpoolParams", "mode tab_t tab_w tab_th theta0 J t_cut w_wm c_aero c_visc n_drag")
 #: modes
 CONSTANT, TABLE, TORQUE = 0, 1, 2
 X_OMEGA, X_THETA, X_DOMEGA, X_W_DRIVE, X_W_DRAG, X_W_RUB, X_W_AERO = range(7)
@@ -55,8 +56,13 @@ def aero_torque(p, w):
 def tm_step(s, p, u, y, t, h):
     """One step from t to t + h; status 2: a non-finite input torque."""
     x = s.x
-    t_drag = u.T_drag1[0] + u.T_drag2[0]
-    t_rub = u.T_rub1[0] + u.T_rub2[0]
+    # u: a homogeneous tuple of the torque inputs, the n_drag drag torques first (component.Spool.kernel_io)
+    t_drag = u[0][0]
+    for j in range(1, p.n_drag):
+        t_drag += u[j][0]
+    t_rub = u[p.n_drag][0]
+    for j in range(p.n_drag + 1, len(u)):
+        t_rub += u[j][0]
     if not math.isfinite(t_drag + t_rub):
         return 2
     w0 = x[X_OMEGA]

@@ -10,6 +10,7 @@ import math
 import sys
 
 from ..oil_fit import check_oil_temperature
+from ..part_options import add_part_arguments, part_id
 from ..validity import once, warning_line
 from .component import CHECKS, ThermalNetwork
 from .geometry import BEARINGS, LE, LI, NODES, SFD
@@ -18,13 +19,8 @@ KELVIN = 273.15
 
 
 def add_arguments(parser):
-    parser.add_argument("--bearing", required=True, metavar="ID",
-                        help="the bearing's id in the engine (--engine or --scenario); alone, 0 or 5: the paper's "
-                             "Table 3 bearing")
-    parser.add_argument("--engine", metavar="FILE", help="the engine file whose parts at bearing ID give the network")
-    parser.add_argument("--scenario", dest="part_scenario", metavar="SCENARIO",
-                        help="a scenario whose component thermal<ID> gives the network")
-    parser.set_defaults(part=("thermal", "bearing"))
+    add_part_arguments(parser, "thermal", "bearing", "network",
+                       "the engine file whose parts at bearing ID give the network")
     parser.add_argument("--drag-power", type=float, required=True, metavar="W", help="bearing drag-torque power, W")
     parser.add_argument("--sfd-power", type=float, required=True, metavar="W", help="damper film viscous power, W")
     parser.add_argument("--rub-power", type=float, default=0.0, metavar="W", help="rub friction power, W (default 0)")
@@ -34,16 +30,11 @@ def add_arguments(parser):
 
 
 
-def _id(text: str):
-    """A part's id: an integer when it is one (the paper's 0 and 5), else the text."""
-    return int(text) if text.isdigit() else text
-
-
 def steady(bearing, drag_power: float, sfd_power: float, rub_power: float = 0.0,
            ambient_C: float = 30.0, parameters: dict | None = None) -> dict:
     """Steady node temperatures (C) and growths (m) of a bearing's network under constant powers (W); ``parameters``:
     the network component's (an engine's, a scenario's), else the paper's Table 3 bearing of that number."""
-    bearing = _id(str(bearing))
+    bearing = part_id(str(bearing))
     if parameters is None and bearing not in BEARINGS:
         raise ValueError(f"--bearing {bearing}: the paper's Table 3 has bearings {sorted(BEARINGS)}; for another "
                          "bearing give its engine (--engine FILE) or a scenario (--scenario)")

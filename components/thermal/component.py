@@ -43,6 +43,9 @@ import numpy as np
 
 from ..contract import ContractError, Variable
 from ..kernels import KernelComponent
+# ``bearing`` = NO_RECORD: no record of the paper's Table 3; the geometry is given (the start values: bearing
+# #0's record, its defaults filled in)
+from ..records import NO_RECORD, check_selection
 from ..oil_fit import SOURCE, T_FLASH_K, T_POUR_K, check_oil_temperature
 from ..speeds import PT_OMEGA
 from ..validity import Check
@@ -76,8 +79,6 @@ GEOMETRY = (("bore", "bore_diameter_mm", 1e-3), ("outside_diameter", "outside_di
             ("housing_wall", "housing_wall_mm", 1e-3), ("housing_length", "housing_length_mm", 1e-3),
             ("rub_radius", "rub_ring_radius_mm", 1e-3))
 _REC0 = bearing_data(0)
-#: ``bearing`` = NO_RECORD: no record of the paper's Table 3; the geometry is given
-NO_RECORD = -1      # the start values: bearing #0's record, its defaults filled in
 _DFLT = THERMAL_DATA["defaults"]
 _DOC = "docs/explanation/paper-components.md"
 
@@ -173,14 +174,8 @@ class ThermalNetwork(KernelComponent):
     def setup(self, t0=0.0):
         super().setup(t0)
         p = self.p
-        if p["bearing"] == NO_RECORD:
-            missing = [name for name, key, _ in GEOMETRY if key in REQUIRED and name not in self.explicit]
-            if missing:
-                raise ContractError(f"{self.name}: no Table 3 record (bearing = -1) and no {', '.join(missing)} given "
-                                    "(a scenario takes them from its engine file's [bearing.ID], [damper.ID])")
-        elif p["bearing"] not in BEARINGS:
-            raise ContractError(f"{self.name}.bearing must be one of {sorted(BEARINGS)} or -1 (none), got "
-                                f"{p['bearing']}")
+        check_selection(self, "bearing", BEARINGS, [name for name, key, _ in GEOMETRY if key in REQUIRED],
+                        what="Table 3 record", tables="[bearing.ID], [damper.ID]")
         if p["method"] not in METHODS:
             raise ContractError(f"{self.name}.method must be one of {METHODS}, got {p['method']!r}")
         for key in ("T_ambient", "T_initial", "T_supply"):

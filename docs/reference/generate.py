@@ -7,7 +7,8 @@
 - components.md: every built-in component implementation (``rotorcosim.components.registry.BUILTIN``) with its
   parameters and ports (causality, size, unit, description; ``components/contract.py``'s ``Variable``);
 - scenario.md: every table and key the scenario schema accepts (the schema's ``TABLES``, ``COMPONENT``,
-  ``CONNECTION`` and ``INTERVAL``, ``rotorcosim.master.scenario.schema``) with the values it takes.
+  ``CONNECTION``, ``INTERVAL``, ``PHASES`` and ``CYCLE``, ``rotorcosim.master.scenario.tables``) with the values
+  it takes.
 
 OUT_DIR defaults to this file's folder. ``tests/test_docs.py`` regenerates into a temporary folder and fails if a
 committed page differs: after changing a command, a component's declarations or the schema, run this script and
@@ -121,12 +122,7 @@ def components_page() -> str:
 
 
 def _schema():
-    for module in ("rotorcosim.master.scenario.schema", "rotorcosim.master.schema"):
-        try:
-            return importlib.import_module(module)
-        except ModuleNotFoundError:
-            continue
-    raise ModuleNotFoundError("the scenario schema (rotorcosim.master.scenario.schema)")
+    return importlib.import_module("rotorcosim.master.scenario.tables")
 
 
 def _values(check) -> str:
@@ -187,7 +183,10 @@ NOTES = {
     "rundown.unbalance_parameter": "the blade-loss engine's level, as the blade-loss case's (`--unbalance`)",
     "rundown.spools": "the spool components (the first: the crossings' spool)",
     "rundown.critical_speeds_rpm": "the undamped critical speeds [rev/min] the figures mark and a test rotor's "
-                                   "crossings are labelled with (an engine's: its linearised engine's)",
+                                   "crossings are labelled with; optional for an engine: without it the figures "
+                                   "mark the engine's forward critical speeds up to 1.1 x the run's top speed "
+                                   "(those check-engine lists, derived at run time), and its crossings are "
+                                   "labelled with its linearised engine's",
     "results.cycles": "rotor cycles the results are taken over", "intervals.cycles": "length in rotor cycles "
     "(needs `schedule.speed_rpm`)",
     "implementation": "registry name, `\"module:Class\"` or entry point", "fmu": "path of an FMU (instead of "
@@ -215,7 +214,8 @@ NOTES = {
 def scenario_page() -> str:
     schema = _schema()
     out = [HEADER, "# Scenario schema reference\n\n",
-           "Every table and key a scenario file accepts (`master/scenario/schema.py`); anything else is an error "
+           "Every table and key a scenario file accepts (`master/scenario/tables.py`, checked by "
+           "`master/scenario/schema.py`); anything else is an error "
            "naming the file, the line, the table and the key. Numbers are SI unless the note says otherwise. "
            "How to write and compose scenarios: [compose scenarios](../how-to/compose-scenarios.md).\n"]
     for table, keys in schema.TABLES.items():
@@ -239,7 +239,7 @@ def scenario_page() -> str:
                "`\"{NAME}\"` in `[algorithm] order` and `[outputs] record` stands for one entry per id "
                "(`master/scenario/templates.py`).\n")
     out.append(_table("[[schedule.intervals]]", schema.INTERVAL, NOTES, "intervals"))
-    out.append(_table("[schedule.phases]", {role: schema.text for role in schema.ROLES}, NOTES, "phases"))
+    out.append(_table("[schedule.phases]", schema.PHASES, NOTES, "phases"))
     out.append(_table("schedule.cycle = { ... }", schema.CYCLE, NOTES, "cycle"))
     return "".join(out)
 

@@ -217,7 +217,7 @@ class _Link:
             out = np.empty(self.n)
             links.take(kind, out, 0, y, 0, self.vectors, 0, self.n, self.state, t_mid, t_end)
         ramp = self.ramp
-        if ramp is not None:  # a hand-back just after a thermal-only interval (master/manipulator/hold.py, Restart)
+        if ramp is not None:  # a hand-back just after a thermal-only interval (master/manipulator/restart.py)
             links.add_restart(out, 0, ramp.delta, 0, self.n, t_end, ramp.t0, ramp.length)
         return out if conv is None else conv(out)
 

@@ -2,7 +2,7 @@
 
 A link carries a producer's output ``y`` (n values) to a consumer's input ``u``. Between the two it may average
 (fast producer -> slow consumer), extrapolate (slow -> fast, or ``linear-end``) and add a hand-back's restart offset
-(master/manipulator/hold.py, Restart); a hand-off window's recording is the hold's own record (master/core/window.py),
+(master/manipulator/restart.py); a hand-off window's recording is the hold's own record (master/core/window.py),
 not part of the link's state. Its state is two sequences of floats with the layout below, the same for the generic
 loop (algorithm._Link keeps them as lists: ``link.state``, ``link.vectors``) and the compiled loop
 (master/compiled/loop_ops: a row of a float64 table and a slice of another per link, copied from and back to the
@@ -17,7 +17,7 @@ State row ``m`` (:data:`NM` floats):
 
 * the link's own: ``HAS_ACC`` (the integral A below holds a value), ``WEIGHT`` (W), ``HAS_PREV``, ``PREV_T``
   (t_prev), ``HAS_CUR``, ``CUR_T`` (t_cur);
-* a hand-back's restart offset (hold.Restart, copied there by the compiled loop): ``R0`` (t0), ``RLEN`` (its
+* a hand-back's restart offset (restart.Restart, copied there by the compiled loop): ``R0`` (t0), ``RLEN`` (its
   length, 0 for none).
 
 Vectors ``v`` (:data:`NV` rows of n floats, flat): ``V_ACC`` (A: the integral of y, or of y^2 for ``rms``, over
@@ -98,7 +98,7 @@ def take(kind, out, oo, y, yo, v, vo, n, m, t_mid, t_end):
 
 def add_restart(out, oo, v, vo, n, t, t0, length):
     """out[oo:oo+n] += delta f(s), s = (t - t0) / length, delta = v[vo:vo+n]: a hand-back's restart offset
-    (hold.Restart), f = 1 for s <= 0, (1 + cos(pi s)) / 2 for 0 < s < 1, nothing added for s >= 1."""
+    (restart.Restart), f = 1 for s <= 0, (1 + cos(pi s)) / 2 for 0 < s < 1, nothing added for s >= 1."""
     s = (t - t0) / length
     if s < 1.0:
         if s <= 0.0:

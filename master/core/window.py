@@ -1,6 +1,6 @@
 """A hand-off window's recording state: the named record the thermal-only hold keeps per hand-off.
 
-The hold (master/manipulator/hold.py, HandOff) owns one :class:`Window` per hand-off: where its ring of the last
+The hold (master/manipulator/handoff.py, HandOff) owns one :class:`Window` per hand-off: where its ring of the last
 samples stands and the rotor cycle being recorded. Both loops record a sample with :func:`record`, the one
 source of that arithmetic: the generic loop on the hold's :class:`Window` (an object with one attribute per
 field), the compiled loop (master/compiled/loop_ops) on a row of a numpy structured array of :data:`DTYPE`

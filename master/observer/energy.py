@@ -14,7 +14,7 @@ from typing import Sequence
 import numpy as np
 
 from rotorcosim.components.contract import COUPLED
-from rotorcosim.master.observer.observers import Observer
+from rotorcosim.master.observer.observer import Observer
 
 
 class EnergyResidual(Observer):

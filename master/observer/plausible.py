@@ -12,7 +12,7 @@ import sys
 
 from rotorcosim.components import plausibility
 
-from .observers import Observer
+from .observer import Observer
 
 
 class Plausibility(Observer):

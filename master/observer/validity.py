@@ -15,7 +15,7 @@ import numpy as np
 from rotorcosim.components.contract import HELD
 from rotorcosim.components.validity import Tracker, warning_line
 
-from .observers import Observer, sampled_rows
+from .observer import Observer, sampled_rows
 
 
 #: sampled rows kept before the checks run on them: the checks cost per call, not per row (~10 us each)

@@ -46,7 +46,9 @@ import numpy as np
 from rotorcosim.components.contract import HELD, Component
 from rotorcosim.components.bounded_read import MAX_CHECKPOINT_BYTES, read_bytes
 
-from rotorcosim.master.observer.observers import DISK_RESERVE_BYTES, Observer
+from rotorcosim.master.observer.recorder import DISK_RESERVE_BYTES
+
+from rotorcosim.master.observer.observer import Observer
 from rotorcosim.master.schedule.timeline import Timeline
 from rotorcosim.master.core.system import System
 

@@ -16,7 +16,8 @@ from pathlib import Path
 
 import numpy as np
 
-from rotorcosim.master.observer.observers import Progress, Recorder
+from rotorcosim.master.observer.progress import Progress
+from rotorcosim.master.observer.recorder import Recorder
 from rotorcosim.master.observer.plausible import Plausibility
 from rotorcosim.master.observer.series import SeriesFile
 from rotorcosim.master.observer.validity import Validity

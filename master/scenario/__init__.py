@@ -1,7 +1,9 @@
 """Scenarios: a system, its parameters and its schedule as data (TOML or SSP), checked before anything runs.
 
 - :mod:`.build`: :class:`Scenario`, :func:`load_scenario`, and the system / simulation built from a scenario;
-- :mod:`.schema`: the checks of a scenario file, each error naming the file, table and key;
+- :mod:`.schema`: the checks of a scenario file, each error naming the file, table and key; its tables and keys
+  (:mod:`.tables`), value checkers (:mod:`.checkers`), the line of a key (:mod:`.key_lines`) and the checks of
+  ``[schedule]`` (:mod:`.schedule_check`);
 - :mod:`.compose`: ``[scenario] extends = ...`` (a scenario stating only what it changes);
 - :mod:`.overrides`: ``--set comp.param=value`` and ``--swap comp=IMPL`` (and their API forms);
 - :mod:`.ssp`: SSP 1.0 archives written from a scenario and read into one.

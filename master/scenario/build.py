@@ -35,7 +35,7 @@
     speed_rpm = 16000                    # the cycle of the thermal-only holds and the automatic schedule: a
                                          # constant speed, or cycle = { period = S } | { signal = "comp.port" }
                                          # (master/scenario/cycle.py)
-    hold = "mean"                        # held statistic of the hand-offs (mean | rms | last), master/manipulator/hold.py
+    hold = "mean"                        # held statistic of the hand-offs (mean | rms | last), master/manipulator/handoff.py
     hold_cycles = 5
     restart_cycles = 2                   # TM restart: rotor cycles over which the thermal inputs of the
                                          # mechanical components go from their pre-TO to their new values
@@ -72,7 +72,8 @@ from rotorcosim.master.scenario import engine as engine_binding
 from rotorcosim.master.scenario import schema
 from rotorcosim.master.scenario.cycle import constant_period, cycle_of, without_source
 from rotorcosim.master.core.algorithm import EngineSettings
-from rotorcosim.master.manipulator.hold import DEFAULT_HOLD, RESTART_CYCLES
+from rotorcosim.master.manipulator.hold import DEFAULT_HOLD
+from rotorcosim.master.manipulator.restart import RESTART_CYCLES
 from rotorcosim.master.scenario.compose import Origins, ScenarioError, compose, real_path
 from rotorcosim.master.scenario.overrides import resolve_file_parameters
 from rotorcosim.master.schedule.timeline import from_spec, phases_of

@@ -271,7 +271,7 @@ class RunReport:
     status: str = "complete"
     #: ``{"component", "t_s", "reason"}`` of the stop request that ended the run, or None
     stopped: dict | None = None
-    #: what the thermal-only hold measured (master/manipulator/hold.py HoldReport), or None
+    #: what the thermal-only hold measured (master/manipulator/error_estimate.py HoldReport), or None
     hold: object = None
     #: the located events (master/core/events.py), in the order they happened; None: no component of the run
     #: declares an event indicator

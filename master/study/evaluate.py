@@ -25,9 +25,10 @@ import sys
 import time
 from typing import Any, Callable, Sequence
 
-# one place for these: the sweep engine's connection timeout [s], retries of a job whose worker died, its Dask
-# client (local cluster or scheduler address), its closing and its SIGTERM-as-Ctrl-C (module-private there)
-from rotorcosim.master.sweep.engine import CONNECT_TIMEOUT_S, RETRIES
+# one place for these: the sweep engine's connection timeout [s], its Dask client (local cluster or scheduler
+# address), its closing and its SIGTERM-as-Ctrl-C; the retry of a job whose worker died (retry.py)
+from rotorcosim.master.sweep.engine import CONNECT_TIMEOUT_S
+from rotorcosim.master.sweep.retry import Outcome, run_retried
 from rotorcosim.master.sweep.engine import close_client, dask_client as sweep_client
 from rotorcosim.master.sweep.engine import sigterm_as_interrupt as terminate_as_interrupt  # noqa: F401 - used as evaluate.terminate_as_interrupt
 
@@ -134,14 +135,10 @@ class Evaluator:
     def _connect(self):
         if self._client is not None:
             return self._client
-        import dask
-
-        # a job whose worker died is run RETRIES more times by the scheduler, then reported failed (KilledWorker;
-        # a scheduler given by address keeps its own setting); the local cluster is sized for the workers asked
-        # for, not the first batch (a calibration's first batch may be one run)
-        with dask.config.set({"distributed.scheduler.allowed-failures": RETRIES}):
-            self._client, self._cluster, self.where = sweep_client(self.scheduler, self.workers, self.connect_timeout,
-                                                                   self.workers or os.cpu_count() or 1)
+        # the local cluster is sized for the workers asked for, not the first batch (a calibration's first batch
+        # may be one run)
+        self._client, self._cluster, self.where = sweep_client(self.scheduler, self.workers, self.connect_timeout,
+                                                               self.workers or os.cpu_count() or 1)
         return self._client
 
     def map(self, jobs: Sequence[Job], done: Callable[[int, Job, dict], None] | None = None) -> list[dict]:
@@ -161,39 +158,19 @@ class Evaluator:
             for i, (_, over) in enumerate(jobs):
                 finish(i, self.task(self.scenario, over, self.duration))
             return out  # type: ignore[return-value]
-        from dask.distributed import as_completed
 
-        client = self._connect()
-        # no more jobs in flight than the cluster runs at once: Dask would otherwise queue several on a worker, and
-        # a worker's death counts against every job it holds (a waiting job was reported failed, measured), so
-        # a job is retried for its own worker's death only
-        slots = max(1, sum(w.get("nthreads", 1) for w in client.scheduler_info().get("workers", {}).values()))
-        waiting = list(range(len(jobs)))
-        futures: dict = {}
+        def ended(i: int, res: Outcome) -> None:
+            if res.error is None:
+                summary = res.value
+            else:  # its worker died on every attempt (KilledWorker), or the task could not start
+                tried = f"{res.attempts} time{'s' if res.attempts > 1 else ''}"
+                summary = {"status": "failed",
+                           "error": f"{type(res.error).__name__}: {' '.join(str(res.error).split())} (the job's "
+                                    f"worker died or could not run it; tried {tried})"}
+            finish(i, summary)
 
-        def submit():
-            i = waiting.pop(0)
-            fut = client.submit(self.task, self.scenario, jobs[i][1], self.duration, pure=False)
-            futures[fut] = i
-            return fut
-
-        running = as_completed([submit() for _ in range(min(slots, len(waiting)))])
-        try:
-            for fut in running:
-                i = futures.pop(fut)
-                try:
-                    summary = fut.result()
-                except Exception as exc:  # KilledWorker: its worker died twice; or the task could not start
-                    summary = {"status": "failed",
-                               "error": f"{type(exc).__name__}: {' '.join(str(exc).split())} (the job's worker "
-                                        f"died or could not run it; tried {RETRIES + 1} times)"}
-                if waiting:
-                    running.add(submit())
-                finish(i, summary)
-        except BaseException:
-            for fut in futures:
-                fut.cancel()
-            raise
+        # a job whose worker died is run again retry.RETRIES times at most
+        run_retried(self._connect(), self.task, [(self.scenario, over, self.duration) for _, over in jobs], ended)
         return out  # type: ignore[return-value]
 
 

@@ -10,9 +10,10 @@ unlocked):
 
 * a case that fails (a bad value, a divergence, a crashed FMU): its summary's ``error``, the others go on;
 * the worker running a case dies (killed, out of memory, a crash in native code): the case is run once more
-  (:data:`RETRIES`), then reported failed by name ("its worker died ..."), the others go on; a case run again
-  is reported (sweep.json ``retries``: the workers that died under it, the one that ran it again, its result;
-  and the progress callback's ``result["retry"]``);
+  (:data:`~rotorcosim.master.sweep.retry.RETRIES`, by :func:`~rotorcosim.master.sweep.retry.run_retried`), then
+  reported failed by name ("its worker died ..."), the others go on; a case run again is reported (sweep.json
+  ``retries``: the workers that died under it, the one that ran it again, its result; and the progress
+  callback's ``result["retry"]``);
 * the scheduler goes away: the sweep ends with :class:`SchedulerLost` naming it and how many cases are kept;
 * Ctrl-C or SIGTERM: the sweep stops (on Dask at once; ``serial`` once the case running, which takes the
   signal over, has stopped or ended), the cases still running marked ``interrupted`` in sweep.json, the others
@@ -38,7 +39,6 @@ import os
 import signal
 import threading
 import time
-import uuid
 import warnings
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -48,13 +48,10 @@ from rotorcosim.master import case as case_
 from rotorcosim.master.schedule import budget
 from rotorcosim.master.sweep.case import Case, failed_summary, run_case
 from rotorcosim.master.sweep.folder import SweepFolder, named_os_error
+from rotorcosim.master.sweep.retry import ALLOWED_FAILURES, Outcome, run_retried
 
 #: how long the client waits for a scheduler given by ``scheduler=`` before saying it cannot reach it [s]
 CONNECT_TIMEOUT_S = 20.0
-#: how often a case whose worker died is run again before it is reported failed
-RETRIES = 1
-#: the Dask metadata key under which a case's attempts are counted (on the scheduler, under it per sweep and case)
-ATTEMPTS = "rotorcosim-sweep-attempts"
 
 
 class SweepError(RuntimeError):
@@ -250,8 +247,6 @@ class _Sweep:
         return {c.name: self.summaries[c.name] for c in self.cases}
 
     def _on_dask(self, todo, scheduler, workers, client, connect_timeout) -> None:
-        from dask.distributed import as_completed
-
         own = client is None
         cluster = None
         if own:
@@ -259,47 +254,37 @@ class _Sweep:
         else:
             self.where = f"{client.scheduler.address}, {len(client.scheduler_info().get('workers', {}))} workers"
         address = scheduler or client.scheduler.address
-        self.token = uuid.uuid4().hex
-        futures: dict = {}
         lost = False
+        submitted: set[int] = set()
+
+        def done(i: int, out: Outcome) -> None:
+            nonlocal lost
+            c = todo[i]
+            if out.error is not None and not out.worker_died and _scheduler_gone(client, out.error):
+                lost = True
+                raise SchedulerLost(self._lost(address))
+            self.finished(c, _case_result(c, out))
+
+        for c in todo:
+            self.status[c.name] = "running"
         try:
+            self.save()
             try:
-                futures = {client.submit(_attempt, c, [ATTEMPTS, self.token, c.name], pure=False): c for c in todo}
+                run_retried(client, run_case, [(c,) for c in todo], done, submitted=submitted)
             except (OSError, TimeoutError):
+                if client.status in ("running", "connecting"):
+                    raise
                 lost = True
                 raise SchedulerLost(self._lost(address)) from None
-            for c in todo:
-                self.status[c.name] = "running"
-            self.save()
-            for fut in as_completed(futures):
-                c = futures[fut]
-                try:
-                    res = fut.result()
-                except Exception as exc:
-                    if _scheduler_gone(client, exc):
-                        lost = True
-                        raise SchedulerLost(self._lost(address)) from None
-                    res = {"summary": failed_summary(c, _task_error(exc)), "files": {}, "host": None}
-                self.finished(c, res)
-        except KeyboardInterrupt:
-            self._not_started(client, futures)
-            raise
+            except KeyboardInterrupt:
+                # the cases not yet sent to a worker go back to pending (only those a worker runs are interrupted)
+                for i, c in enumerate(todo):
+                    if i not in submitted and self.status[c.name] == "running":
+                        self.status[c.name] = "pending"
+                raise
         finally:
-            for fut in futures:
-                fut.cancel()
             if own:
                 close_client(client, cluster, quiet=lost)
-
-    def _not_started(self, client, futures: dict) -> None:
-        """At an interrupt: the cases sent but not yet taken by a worker back to ``pending`` (only those a worker
-        runs are ``interrupted``); when the scheduler cannot say, all stay ``running``."""
-        try:
-            started = client.get_metadata([ATTEMPTS, self.token], {})
-        except Exception:
-            return
-        for c in futures.values():
-            if self.status[c.name] == "running" and not started.get(c.name):
-                self.status[c.name] = "pending"
 
     def _lost(self, address: str) -> str:
         kept = sum(s == "complete" for s in self.status.values())
@@ -307,39 +292,19 @@ class _Sweep:
                 f"cases complete and kept in {self.folder.path}; start a scheduler and continue with --resume")
 
 
-def _attempt(case: Case, key: list) -> dict:
-    """The task a worker runs: count the attempt on the scheduler (a worker that dies while running the case
-    makes the scheduler run it again on another), fail it on a third, else run the case."""
-    from dask.distributed import get_client
-
-    from dask.distributed import get_worker
-
-    client = get_client()
-    n = client.get_metadata(key, 0)
-    client.set_metadata(key, n + 1)
-    # the workers of the earlier attempts (each died under the case) and this one, for the report of a retry
-    where = [f"{ATTEMPTS}-workers", *key[1:]]
-    died_on = client.get_metadata(where, [])
-    me = get_worker().address
-    client.set_metadata(where, [*died_on, me])
-    retry = {"attempt": n + 1, "died_on": died_on, "worker": me} if n else None
-    if n > RETRIES:   # returned, not raised: the workers would log a raised one as an error with its traceback
-        import socket
-
-        error = f"{WorkerDied.__name__}: its worker died while running it, {n} times (retried {RETRIES} time(s))"
-        return {"summary": failed_summary(case, error), "files": {}, "host": socket.gethostname(), "retry": retry}
-    res = run_case(case)
-    if retry:
-        res["retry"] = retry
-    return res
-
-
-def _task_error(exc: BaseException) -> str:
-    """A failed task's error, as a case's summary says it."""
-    name = type(exc).__name__
-    if name == "KilledWorker":   # the scheduler gave up on the task after its own limit of worker deaths
-        return f"WorkerDied: its worker died while running it ({exc})"
-    return f"{name}: {exc}"
+def _case_result(case: Case, out: Outcome) -> dict:
+    """What a case's task came back with (run_case's result, its retry reported), or a failed case's summary."""
+    retry = {"attempt": out.attempts, "died_on": list(out.died_on), "worker": out.worker} if out.died_on else None
+    if out.error is None:
+        res = out.value
+    elif out.worker_died:
+        error = (f"{WorkerDied.__name__}: its worker died while running it, {len(out.died_on)} times "
+                 f"(retried {out.attempts - 1} time(s))")
+        res = {"summary": failed_summary(case, error), "files": {}, "host": None}
+    else:
+        res = {"summary": failed_summary(case, f"{type(out.error).__name__}: {out.error}"), "files": {},
+               "host": None}
+    return {**res, "retry": retry} if retry else res
 
 
 def _scheduler_gone(client, exc: BaseException) -> bool:
@@ -349,15 +314,15 @@ def _scheduler_gone(client, exc: BaseException) -> bool:
 
     if client.status not in ("running", "connecting"):
         return True
-    if isinstance(exc, (CancelledError, asyncio.CancelledError)) or type(exc).__name__ == "FutureCancelledError":
-        return True
-    return False
+    # distributed's FutureCancelledError is a CancelledError
+    return isinstance(exc, (CancelledError, asyncio.CancelledError))
 
 
 def dask_client(scheduler: str | None, workers: int | None, connect_timeout: float, n_cases: int):
     """A Dask client on the running scheduler ``scheduler`` (an address) or on a local cluster of one single-threaded
     worker process per core (at most ``workers``, at most ``n_cases``); returns ``(client, cluster or None, where
     it runs in words)``. An unreachable or malformed address is a ValueError saying so."""
+    import dask
     from dask.distributed import Client, LocalCluster
 
     if scheduler:
@@ -382,8 +347,10 @@ def dask_client(scheduler: str | None, workers: int | None, connect_timeout: flo
             warnings.filterwarnings("ignore", message="Port .* is already in use")
             # Dask's own log off: a worker's death, the task run again and a failed case are the sweep's to say,
             # once each (its scheduler logged "Couldn't gather keys" at ERROR while a dead worker's task was rerun)
-            cluster = LocalCluster(n_workers=n, threads_per_worker=1, processes=True, dashboard_address=None,
-                                   worker_dashboard_address=None, silence_logs=logging.CRITICAL)
+            # a worker's death reaches the client, which runs the task again (retry.py), not the scheduler itself
+            with dask.config.set({"distributed.scheduler.allowed-failures": ALLOWED_FAILURES}):
+                cluster = LocalCluster(n_workers=n, threads_per_worker=1, processes=True, dashboard_address=None,
+                                       worker_dashboard_address=None, silence_logs=logging.CRITICAL)
     finally:
         if main:
             signal.signal(signal.SIGINT, old)

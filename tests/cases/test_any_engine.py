@@ -87,3 +87,17 @@ def test_an_engine_with_bearings_1_2_3(tmp_path, capsys, monkeypatch):
     r = json.loads((tmp_path / "rd" / "summary.json").read_text())
     assert list(r["speeds"]) == ["spool"]
     assert r["speeds"]["spool"]["inertia_kgm2"] == polar_inertia(str(THREE / "engine.toml"), "rotor")
+    # every bearing's drag reaches the spool (one input per bearing on it): the drag the spool's balance books
+    # equals the drag power all three bearings dissipate (their P_drag, recorded, integrated apart), and bearing 2
+    # carries its share of it
+    import h5py
+    import numpy as np
+
+    with h5py.File(tmp_path / "rd" / "timeseries.h5") as f:
+        t = f["time"][()]
+        p = {k: f[f"bearing{k}.P_drag"][()].reshape(len(t)) for k in "123"}
+    e = r["energy"]["spool"]
+    whole = sum(float(np.trapezoid(p[k], t)) for k in p)
+    assert e["drag_dissipated_J"] == pytest.approx(whole, rel=0.02)
+    assert e["work_J"]["drag"] == pytest.approx(e["drag_dissipated_J"], rel=1e-6)
+    assert float(np.trapezoid(p["2"], t)) / whole > 0.2

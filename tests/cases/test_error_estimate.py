@@ -18,7 +18,7 @@ from rotorcosim.cases.blade_loss import LEVELS, error_check
 from rotorcosim.cases.blade_loss.compare import compare
 
 
-@pytest.mark.slow   # ~15 s of CPU time per level (a 2 s staggered and a 2 s monolithic run), ~105 s for the seven
+@pytest.mark.slow   # ~11 s of CPU per level (a 2 s staggered and a 2 s monolithic run), 74 s for the seven (measured)
 @pytest.mark.parametrize("level", LEVELS["paper"])
 def test_the_estimate_brackets_the_true_error_of_table6(tmp_path, level):
     compare(tmp_path / "c", duration=2.0, unbalance=level, figures=False, timing_runs=1)

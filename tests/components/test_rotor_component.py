@@ -204,3 +204,13 @@ def test_ports_follow_the_engine_files_attach():
     assert np.all(np.isfinite(r.y["X_brg2"]))
     stale = kernels.RotorInputs_0123456789
     assert pickle.loads(pickle.dumps(stale)) is stale and stale._fields == ()
+
+
+def test_no_residual_unbalance_by_default_the_papers_engine_gives_87_N():
+    """The rotor component's own default is no residual unbalance (a user's engine gets none unless its file gives
+    one); the paper's engine file gives its 87 N (ISO 21940-11 G 2.5), which its scenarios bind."""
+    import rotorcosim
+    from rotorcosim.components.rotor.component import Rotor
+
+    assert Rotor("rotor").p["F_residual"] == 0.0
+    assert rotorcosim.load_scenario("blade_loss_2850").components["rotor"].parameters["F_residual"] == 87.0

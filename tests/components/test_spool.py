@@ -3,6 +3,7 @@ against the analytic solution of J dW/dt = -c (W - W_wm)^2, its energy bookkeepi
 from __future__ import annotations
 
 import math
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -103,3 +104,41 @@ def test_nan_torque_is_named():
     s.u["T_rub2"] = np.array([math.nan])
     with pytest.raises(ContractError, match="T_rub2"):
         s.do_step(0.0, 1e-3)
+
+
+THREE = Path(__file__).parents[2] / "docs" / "examples" / "three_bearings" / "engine.toml"
+
+
+def test_one_drag_input_per_bearing_on_the_spool_and_their_sum_drives_it():
+    """An engine with three co-simulated bearings and one rub ring on spool "rotor" (docs/examples/three_bearings):
+    three drag inputs, two rub inputs (at least two of each), named for their parts; after the fuel cut the spool
+    decelerates by the sum of all five torques over J (J dW/dt = -sum T, one explicit step: exact)."""
+    s = Spool("spool", {"model_file": str(THREE), "spool": "rotor", "profile": "torque", "inertia": 0.25,
+                        "speed_rpm": 16000.0, "t_fuel_cut": 0.0})
+    ins = [v for v in s.variables if v.causality == "input"]
+    assert [v.name for v in ins] == ["T_drag1", "T_drag2", "T_drag3", "T_rub1", "T_rub2"]
+    assert all(v.unit == "N.m" and v.size == 1 for v in ins)
+    assert [v.description.split(" on ")[0] for v in ins[:4]] == [
+        "drag torque of bearing1", "drag torque of bearing2", "drag torque of bearing3", "friction torque of rubring1"]
+    s.set_inputs({"T_drag1": 1.0, "T_drag2": 2.0, "T_drag3": 4.0, "T_rub1": 8.0, "T_rub2": 16.0})
+    s.setup(0.0)
+    s.do_step(0.0, 1e-3)
+    assert s.y["dOmega"][0] == pytest.approx(-31.0 / 0.25, rel=1e-12)
+    assert s.y["energy"][2] > 0.0 and s.y["energy"][3] / s.y["energy"][2] == pytest.approx(24.0 / 7.0, rel=1e-12)
+    # no engine file: the two of each a spool always has
+    assert [v.name for v in Spool("s", {}).variables if v.causality == "input"] == list(TORQUES)
+
+
+def test_a_spool_the_engine_file_does_not_have_is_named(tmp_path):
+    """Refused when made (before its ports are connected) and, set later, at set-up; an unreadable model file at
+    set-up, by its parameter."""
+    msg = r"spool\.spool = 'pt' is not a spool of model_file .*\(its spools: rotor\)"
+    with pytest.raises(ContractError, match=msg):
+        Spool("spool", {"model_file": str(THREE), "spool": "pt", "inertia": 1.0})
+    s = Spool("spool", {"model_file": str(THREE), "spool": "rotor", "inertia": 1.0})
+    s.set_parameter("spool", "pt")
+    with pytest.raises(ContractError, match=msg):
+        s.setup(0.0)
+    s = Spool("spool", {"model_file": str(tmp_path / "none.toml"), "inertia": 1.0})
+    with pytest.raises(ContractError, match=r"spool\.model_file: .*none\.toml"):
+        s.setup(0.0)

@@ -103,9 +103,12 @@ class Cluster:
         checkout = str(Path(__file__).resolve().parents[2])
         path = os.pathsep.join(p for p in (checkout, os.environ.get("PYTHONPATH", "")) if p)
         env = {**os.environ, "PYTHONUNBUFFERED": "1", "PYTHONPATH": path}
+        # the scheduler reruns no task whose worker died: every death reaches the client, which retries and reports
+        # it (master/sweep/retry.py), as on the local cluster
         self.scheduler = subprocess.Popen(
             [sys.executable, "-m", "distributed.cli.dask_scheduler", "--host", "127.0.0.1", "--port",
-             str(self.port), "--no-dashboard"], cwd=root, env=env, stdout=subprocess.DEVNULL,
+             str(self.port), "--no-dashboard"], cwd=root,
+            env={**env, "DASK_DISTRIBUTED__SCHEDULER__ALLOWED_FAILURES": "0"}, stdout=subprocess.DEVNULL,
             stderr=subprocess.DEVNULL, start_new_session=True)
         self.workers = []
         for i in range(n):

@@ -10,7 +10,7 @@ from pathlib import Path
 import numpy as np
 
 from rotorcosim import scenarios
-from rotorcosim.master.observer.observers import Observer
+from rotorcosim.master.observer.observer import Observer
 from rotorcosim.master.scenario.build import build_simulation, load_scenario
 from rotorcosim.master.schedule import Interval, Timeline
 

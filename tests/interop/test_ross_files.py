@@ -148,7 +148,18 @@ def test_attach_takes_any_bearing_ids(tmp_path, capsys, monkeypatch):
     # what each attached part is comes from --parts (ROSS describes no ball bearing): the file check-engine accepts
     assert main(["import-ross", str(DATA / "rotor_example.toml"), "--out", str(tmp_path / "n.toml"),
                  "--attach", "1=0,2=6"]) == 2
-    assert "--attach needs --parts FILE" in capsys.readouterr().err and not (tmp_path / "n.toml").exists()
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "--attach without --parts FILE" in err[0] and not (tmp_path / "n.toml").exists()
+    # every missing table and required key is named, per attached id
+    assert "[bearing.1] balls, ball_diameter_mm, bore_mm" in err[0] and "[damper.2] radius_mm" in err[0]
+    assert "[rubring.2] clearance_mm" in err[0]
+    half = tmp_path / "half.toml"
+    half.write_text("[bearing.1]\nballs = 21\n")
+    assert main(["import-ross", str(DATA / "rotor_example.toml"), "--out", str(tmp_path / "n.toml"),
+                 "--attach", "1=0,2=6", "--parts", str(half)]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and f"--parts {half}: the co-simulated parts lack [bearing.1] ball_diameter_mm" in err[0]
+    assert not (tmp_path / "n.toml").exists()
     parts = tmp_path / "parts.toml"
     parts.write_text("".join(f"[bearing.{i}]\nballs = 21\nball_diameter_mm = 8.73\nbore_mm = 50.8\n"
                              f"outside_diameter_mm = 90.0\nwidth_mm = 20.0\ncontact_angle_deg = 15.0\n"

@@ -112,7 +112,7 @@ def test_diverging_run_stops_with_clear_error_and_keeps_record(tmp_path):
     keeps (and marks incomplete) what it had."""
     import h5py
 
-    from rotorcosim.master.observer.observers import Recorder
+    from rotorcosim.master.observer.recorder import Recorder
 
     s = System({"m1": create("testing.mass", "m1", {"x0": 1.0, "c": -2000.0, "k": 1.0})}, [], {"m1.F": 0.0})
     rec = Recorder(tmp_path / "ts.h5", ["m1.x"], record_step=1e-3)

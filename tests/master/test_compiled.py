@@ -11,7 +11,7 @@ from rotorcosim.components.bearing.component import BallBearing
 from rotorcosim.master.cli.run import resolve
 from rotorcosim.cases.blade_loss.results import apply_unbalance
 from rotorcosim.master.compiled.choice import CompiledUnavailable
-from rotorcosim.master.observer.observers import Recorder
+from rotorcosim.master.observer.recorder import Recorder
 from rotorcosim.cases.blade_loss.results import observers as result_observers
 from rotorcosim.master.scenario.cycle import cycle_of
 from rotorcosim.master.scenario.build import build_simulation
@@ -62,7 +62,7 @@ def test_compiled_equals_generic_on_the_blade_loss_system(tmp_path, monkeypatch,
     assert cs.engines_used == ["compiled", "compiled"]
     assert ps.engines_used == ["python", "python"]
     if restart_cycles:
-        # the restart's offsets were on (hold.Restart) in both: the growths and the two oil temperatures of each bearing
+        # the restart's offsets were on (restart.Restart) in both: the growths and the two oil temperatures of each bearing
         for sim in (cs, ps):
             ramps = [link.ramp for link in sim.hold.handbacks if link.ramp is not None]
             assert len(ramps) == len(sim.hold.handbacks) == 6 and max(abs(r.delta).max() for r in ramps) > 1e-6

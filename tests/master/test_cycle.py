@@ -177,7 +177,7 @@ def test_intervals_in_cycles_need_a_constant_period(tmp_path):
 
 
 def test_the_steady_windows_follow_the_signal(tmp_path):
-    from rotorcosim.master.observer.observers import SteadyWindows
+    from rotorcosim.master.observer.steady_windows import SteadyWindows
 
     sc = _scenario(tmp_path, 'cycle = { signal = "spin.Omega" }')
     obs = SteadyWindows(["spin.P"], cycle_of(sc.schedule), cycles=2)
@@ -222,7 +222,7 @@ def _falling(cycle, turns=3.0):
     spin = FallingSpinner("spin", {"Omega0": W0, "P0": P0, "a": A})
     node = registry.create("testing.thermal_node", "node")
     system = System({"spin": spin, "node": node}, [Connection("spin.P", "node.P")])
-    from rotorcosim.master.observer.observers import SteadyWindows
+    from rotorcosim.master.observer.steady_windows import SteadyWindows
     obs = SteadyWindows(["spin.P", "spin.theta"], cycle, cycles=turns)
     return Simulation(system, order=["spin", "node"], hold="mean", hold_cycles=turns, cycle=cycle,
                       observers=[obs]), obs

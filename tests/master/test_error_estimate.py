@@ -1,4 +1,4 @@
-"""The staggered scheme's error estimate (master/manipulator/hold.py): the replay that carries a held interval's
+"""The staggered scheme's error estimate (master/manipulator/error_estimate.py): the replay that carries a held interval's
 input errors through a thermal component, against the analytic response of a lumped node; a held interval that ends
 at a component's scheduled change is not charged; the advice when the estimate exceeds the tolerance.
 (tests/cases/test_error_estimate.py holds the estimate against monolithic runs.)"""
@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 
 import rotorcosim
-from rotorcosim.master.manipulator.hold import HoldReport, Pulse, replay
+from rotorcosim.master.manipulator.error_estimate import HoldReport, Pulse, replay
 from rotorcosim.master.scenario.build import build_simulation, schedule_of
 
 

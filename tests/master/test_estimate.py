@@ -18,7 +18,7 @@ import pytest
 import rotorcosim
 from rotorcosim.components.contract import COUPLED
 from rotorcosim.master.core.phases import Phases
-from rotorcosim.master.observer.observers import Progress
+from rotorcosim.master.observer.progress import Progress
 from rotorcosim.master.schedule import budget
 from rotorcosim.master.schedule.timeline import Interval, Timeline
 

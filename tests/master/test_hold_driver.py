@@ -1,4 +1,4 @@
-"""The hold's group driver (master/manipulator/hold.py _Driver): a hand-off whose cycle means follow the temperature of
+"""The hold's group driver (master/manipulator/handoff.py Driver): a hand-off whose cycle means follow the temperature of
 ANOTHER producer of the same thermal component's hand-offs (the bearing's drag following the SFD oil through the
 orbit) gets that temperature, with its ln-slope, as the driver of its TO law."""
 import math
@@ -7,7 +7,7 @@ from types import SimpleNamespace
 import numpy as np
 import pytest
 
-from rotorcosim.master.manipulator.hold import DRIVER_MIN_SPREAD_K, HandOff, _Driver
+from rotorcosim.master.manipulator.handoff import DRIVER_MIN_SPREAD_K, Driver, HandOff
 
 
 class _Var(SimpleNamespace):
@@ -40,7 +40,7 @@ def test_driver_is_the_group_temperature_that_tracks_the_means():
     t_a = 300.0 + 2.0 * rng.random(n)               # a's own input moves (2 K) but does not explain its means
     t_b = np.linspace(300.0, 310.0, n)
     a, b = _group(t_a, t_b)
-    d = _Driver.choose(a, [a, b], cycles=5)
+    d = Driver.choose(a, [a, b], cycles=5)
     assert d is not None and d.owner is b and d.port == "Tb"
     assert d.b == pytest.approx(-0.02, rel=1e-9)
     assert d.w == pytest.approx(np.mean(t_b[-5:]))
@@ -52,7 +52,7 @@ def test_no_driver_when_no_group_temperature_moves():
     n = 40
     t = 300.0 + 0.5 * DRIVER_MIN_SPREAD_K * np.linspace(0.0, 1.0, n)
     a, b = _group(t, t)
-    assert _Driver.choose(a, [a, b], cycles=5) is None
+    assert Driver.choose(a, [a, b], cycles=5) is None
 
 
 def test_only_temperatures_drive():
@@ -60,7 +60,7 @@ def test_only_temperatures_drive():
     a, b = _handoff("a", "Ta"), _handoff("b", "eps", unit="m")
     _record(a, np.full(n, 300.0), 100.0 * np.exp(np.linspace(0.0, 0.3, n)))
     _record(b, np.linspace(0.0, 5.0, n), np.full(n, 1.0))   # moves, but is a length
-    assert _Driver.choose(a, [a, b], cycles=5) is None
+    assert Driver.choose(a, [a, b], cycles=5) is None
 
 
 def test_no_driver_where_the_own_law_tracks_the_means_better():
@@ -80,7 +80,7 @@ def test_no_driver_where_the_own_law_tracks_the_means_better():
         return 100.0 * math.exp(-0.03 * (float(u[0]) - 300.0))
 
     assert a._own_correlation(a._settled_points(own_law)) == pytest.approx(1.0)
-    assert _Driver.choose(a, [b], cycles=5).r == pytest.approx(1.0)  # b tracks as well, not better
+    assert Driver.choose(a, [b], cycles=5).r == pytest.approx(1.0)  # b tracks as well, not better
     a.updates, a.link.real = True, True
     a.link.src.y = {"P": np.array([100.0])}
     a.start_to(own_law, lambda: True, cycles=5, group=[a, b])

@@ -165,7 +165,7 @@ def test_linear_end_extrapolation_is_exact_for_a_ramp():
 
 @pytest.mark.parametrize("restart_cycles", [2.0, 0.0])
 def test_restart_ramps_the_thermal_inputs_of_the_frozen_mechanics(restart_cycles):
-    """At a TM restart (master/manipulator/hold.py, Restart) the oscillator's temperature input goes from its value before the
+    """At a TM restart (master/manipulator/restart.py) the oscillator's temperature input goes from its value before the
     TO interval to the node's present one along a half cosine over restart_cycles forcing periods; with 0 it
     jumps (the paper)."""
     s = toy(thermal=THERMAL)

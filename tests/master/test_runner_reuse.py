@@ -10,7 +10,7 @@ import pytest
 from rotorcosim.master.compiled import runner as compiled
 from rotorcosim.master.cli.run import resolve
 from rotorcosim.cases.blade_loss.results import apply_unbalance
-from rotorcosim.master.observer.observers import Recorder
+from rotorcosim.master.observer.recorder import Recorder
 from rotorcosim.cases.blade_loss.results import observers as result_observers
 from rotorcosim.master.scenario.cycle import cycle_of
 from rotorcosim.master.scenario.build import build_simulation

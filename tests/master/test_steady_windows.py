@@ -1,4 +1,4 @@
-"""SteadyWindows (master/observer/observers.py): the compiled loop's blocks (step_block, copied by slices) keep exactly the
+"""SteadyWindows (master/observer/steady_windows.py): the compiled loop's blocks (step_block, copied by slices) keep exactly the
 window the generic loop's step() calls keep, whatever the block boundaries, the stride, the window's length against
 the blocks and the interval's, and whether the interval's length is known (the rows before the window skipped)."""
 from types import SimpleNamespace
@@ -6,7 +6,7 @@ from types import SimpleNamespace
 import numpy as np
 import pytest
 
-from rotorcosim.master.observer.observers import SteadyWindows
+from rotorcosim.master.observer.steady_windows import SteadyWindows
 
 
 class _Comp:

@@ -112,11 +112,15 @@ std = 1.0
     assert again["samples_this_session"] == 0 and again["failed"] == rep["failed"]
 
 
-def test_a_worker_that_dies_is_retried_once_then_reported(tmp_path, monkeypatch):
-    """On a local Dask cluster: a sample whose worker dies once is run again and succeeds; a sample whose worker
-    dies every time is reported failed (after a second try), not lost and not retried forever."""
-    monkeypatch.setenv("PYTHONPATH", f"{ROOT}:{__import__('os').environ.get('PYTHONPATH', '')}")
-    monkeypatch.setenv("STUDY_MARKERS", str(tmp_path))
+def test_a_worker_that_dies_is_retried_once_then_reported(tmp_path):
+    """On a local Dask cluster of one worker (its nanny restarts it after each death): a sample whose worker dies
+    once is run again and succeeds; a sample whose worker dies every time is reported failed after a second try,
+    not lost and not retried forever. Each study runs in a process of its own under a timeout, so that a study
+    left waiting for a worker fails here instead of hanging the suite (each takes ~5 s)."""
+    import os
+    import subprocess
+    import sys
+
     spec = write_spec(tmp_path, '''samples = 2
 sampler = "mc"
 results = ["y"]
@@ -126,13 +130,24 @@ distribution = "uniform"
 lower = 0.0
 upper = 1.0
 ''')
-    from tests.helpers.study_tasks import always_dies, dies_once
+    env = {**os.environ, "PYTHONPATH": f"{ROOT}:{os.environ.get('PYTHONPATH', '')}", "STUDY_MARKERS": str(tmp_path)}
 
-    rep = rotorcosim.uq(spec, tmp_path / "once", workers=1, quiet=True, task=dies_once)
-    assert rep["failed"]["count"] == 0 and rep["results"]["y"]["n"] == 2
-    rep = rotorcosim.uq(spec, tmp_path / "always", workers=1, quiet=True, task=always_dies)
+    def study(task: str) -> dict:
+        code = (f"import json, rotorcosim; from tests.helpers.study_tasks import {task}; "
+                f"rep = rotorcosim.uq({str(spec)!r}, {str(tmp_path / task)!r}, workers=1, quiet=True, task={task}); "
+                f"print(json.dumps({{'failed': rep['failed'], 'n': rep['results'].get('y', {{}}).get('n')}}))")
+        proc = subprocess.run([sys.executable, "-c", code], env=env, cwd=ROOT, capture_output=True, text=True,
+                              timeout=120)
+        assert proc.returncode == 0, proc.stderr
+        return json.loads(proc.stdout.splitlines()[-1])
+
+    rep = study("dies_once")
+    assert rep["failed"]["count"] == 0 and rep["n"] == 2
+    assert len(list(tmp_path.glob("0.*"))) == 2          # both samples' first worker did die
+    rep = study("always_dies")
     assert rep["failed"]["count"] == 2
-    assert all("tried 2 times" in s["error"] for s in rep["failed"]["samples"])
+    assert all(s["error"].startswith("KilledWorker: ") and "tried 2 times" in s["error"]
+               for s in rep["failed"]["samples"]), rep["failed"]
 
 
 def test_a_study_stopped_by_sigterm_says_so_and_resumes(tmp_path):

@@ -9,7 +9,8 @@ import pytest
 
 from rotorcosim.components.contract import Component, StopRequested, Variable
 from rotorcosim.components.registry import create
-from rotorcosim.master.observer.observers import Observer, Recorder
+from rotorcosim.master.observer.observer import Observer
+from rotorcosim.master.observer.recorder import Recorder
 from rotorcosim.master.schedule import Interval, Timeline
 from rotorcosim.master.simulation import Simulation
 from rotorcosim.master.core.system import Connection, System, SystemError_

@@ -64,7 +64,7 @@ def test_run_failure_is_status_1(tmp_path, capsys, monkeypatch):
     """An environment fault during the run (here: the disk fills while the time series is written)."""
     import errno
 
-    from rotorcosim.master.observer.observers import Recorder
+    from rotorcosim.master.observer.recorder import Recorder
 
     def full(self):
         raise OSError(errno.ENOSPC, "No space left on device", str(self.path))

@@ -427,7 +427,7 @@ def interrupted(tmp_path_factory):
     """A toy run interrupted at t = 0.2 s (a real SIGINT), leaving its checkpoint."""
     import signal
 
-    from rotorcosim.master.observer.observers import Progress
+    from rotorcosim.master.observer.progress import Progress
 
     folder = tmp_path_factory.mktemp("corpus_ck") / "run"
     original = Progress.step

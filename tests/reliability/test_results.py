@@ -9,7 +9,7 @@ import pytest
 from rotorcosim import scenarios
 from rotorcosim.master.run import checkpoint
 from rotorcosim.master.cli.run import execute
-from rotorcosim.master.observer.observers import Recorder
+from rotorcosim.master.observer.recorder import Recorder
 from rotorcosim.master.run.rundir import OutputFolderError, RunFolder
 from rotorcosim.master.scenario.build import load_scenario
 
@@ -106,7 +106,7 @@ def test_sigterm_too(tmp_path, monkeypatch):
     import os
     import signal
 
-    from rotorcosim.master.observer.observers import Progress
+    from rotorcosim.master.observer.progress import Progress
 
     original = Progress.step
 
@@ -157,7 +157,7 @@ def test_disk_nearly_full_is_refused_before_hdf5_breaks(tmp_path, monkeypatch):
     first flushes here, through the free space the recorder asks the system for."""
     import os as _os
 
-    from rotorcosim.master.observer import observers
+    from rotorcosim.master.observer import recorder
 
     real = _os.statvfs
     calls = []
@@ -171,9 +171,9 @@ def test_disk_nearly_full_is_refused_before_hdf5_breaks(tmp_path, monkeypatch):
         calls.append(path)
         return Full(real(path))
 
-    monkeypatch.setattr(observers.os, "statvfs", statvfs)
+    monkeypatch.setattr(recorder.os, "statvfs", statvfs)
     # chunks of 300 rows, so that the disk fills in mid-run (interval ends no longer flush: checkpoint.END_GAP_S)
-    monkeypatch.setattr("rotorcosim.master.run.session.Recorder", lambda *a, **kw: observers.Recorder(*a, chunk=300, **kw))
+    monkeypatch.setattr("rotorcosim.master.run.session.Recorder", lambda *a, **kw: recorder.Recorder(*a, chunk=300, **kw))
     out = tmp_path / "o"
     with pytest.raises(OSError, match="No space left on device for the time series"):
         execute(toy(), out, duration=20.0, figures=False)
@@ -220,20 +220,20 @@ def _h5_contents(path):
 
 def test_a_second_recording_of_the_same_layout_is_the_same_file(tmp_path):
     """The recorder makes the empty HDF5 file once per process and layout and copies it for the next runs
-    (observers._H5_TEMPLATES): the second run's file holds the same attributes, datasets and rows as the first's,
+    (recorder_hdf5.TEMPLATES): the second run's file holds the same attributes, datasets and rows as the first's,
     and a run of another sampling interval gets its own attributes (no template of another layout)."""
-    from rotorcosim.master.observer import observers
+    from rotorcosim.master.observer import recorder_hdf5
 
-    observers._H5_TEMPLATES.clear()
+    recorder_hdf5.TEMPLATES.clear()
     execute(toy(), tmp_path / "a", duration=0.02, figures=False)
-    assert len(observers._H5_TEMPLATES) == 1
+    assert len(recorder_hdf5.TEMPLATES) == 1
     execute(toy(), tmp_path / "b", duration=0.02, figures=False)
-    assert len(observers._H5_TEMPLATES) == 1
+    assert len(recorder_hdf5.TEMPLATES) == 1
     a, b = _h5_contents(tmp_path / "a" / "timeseries.h5"), _h5_contents(tmp_path / "b" / "timeseries.h5")
     assert a == b and len(a) > 3 and a["time"][1]
     other = toy()
     other.outputs["record_step"] = 2 * float(other.outputs.get("record_step", 1e-4))
     execute(other, tmp_path / "c", duration=0.02, figures=False)
     c = _h5_contents(tmp_path / "c" / "timeseries.h5")
-    assert len(observers._H5_TEMPLATES) == 2
+    assert len(recorder_hdf5.TEMPLATES) == 2
     assert c["/"][0]["sampling_interval_s"] == 2 * a["/"][0]["sampling_interval_s"]

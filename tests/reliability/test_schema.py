@@ -7,7 +7,8 @@ from rotorcosim import scenarios
 from rotorcosim.components.contract import ContractError
 from rotorcosim.components.registry import create
 from rotorcosim.master.scenario.build import load_scenario, parse
-from rotorcosim.master.scenario.schema import SchemaError, check, locate
+from rotorcosim.master.scenario.key_lines import locate
+from rotorcosim.master.scenario.schema import SchemaError, check
 
 TOY = scenarios.path("toy_thermomechanical").read_text()
 BEARING = textwrap.dedent("""

@@ -101,7 +101,7 @@ def test_a_case_whose_worker_dies_is_retried_once_then_named(cluster, tmp_path):
     out = tmp_path / "out"
     done = run_cases([Case("always", always, duration=0.05), Case("once", once, duration=0.05),
                       Case("plain", plain, duration=0.05)], out, scheduler=cluster.address)
-    assert (tmp_path / "killed_once").exists()   # the first attempt of "once" did die
+    assert (tmp_path / "killed_once").exists(), (done.status, done.errors)   # the first attempt of "once" did die
     assert done.status == {"always": "failed", "once": "complete", "plain": "complete"}
     assert done.errors["always"].startswith("WorkerDied: its worker died while running it, 2 times"), done.errors
     assert_kept(out, ["once", "plain"])
