@@ -251,6 +251,10 @@ def unbalance_force(sc) -> float:
 #: (master/manipulator/error_estimate.py, HoldReport.mechanics_fraction)
 WINDOW_KEYS = ("whirl_amplitude_mm", "transmissibility", "max_contact_load_N", "max_contact_stress_MPa",
                "max_contact_stress_outer_MPa", "rub_power_W", "drag_power_W", "sfd_power_W")
+#: the results read over the steady window as a largest value (the others are means over it): a ringing window's
+#: largest value is its ringing's crest, where a mean averages the ringing out
+PEAK_KEYS = ("whirl_amplitude_mm", "transmissibility", "max_contact_load_N", "max_contact_stress_MPa",
+             "max_contact_stress_outer_MPa")
 #: what a user reads for each result that has an estimate (the run's printed estimate names its result so)
 LABELS = {"whirl_amplitude_mm": "whirl amplitude", "transmissibility": "transmissibility",
           "max_contact_load_N": "contact load", "max_contact_stress_MPa": "inner-race contact stress",
@@ -329,7 +333,7 @@ def extract(sc, sim, obs, report) -> dict:
         out[str(k)] = r
     res = {"unbalance_N": F_u, "window": {"t_start": float(w["t"][0]), "t_end": float(w["t"][-1])},
            "bearings": out, "events": events(out)}
-    est = estimated_errors(windows.windows, out, report.hold, F_u)
+    est = estimated_errors(windows.windows, out, report.hold, F_u, windows.cycles)
     if est is not None:
         res["estimated_error"] = est
     return res
@@ -360,7 +364,29 @@ def events(bearings: dict) -> list[dict]:
     return out
 
 
-def estimated_errors(windows, bearings, hold, F_u) -> dict | None:
+def unsteadiness(w, k, F_u, cycles: float) -> dict[str, float]:
+    """How far the window ``w`` of bearing ``k`` is from a steady state: each result read over the steady window as
+    a largest value (``PEAK_KEYS``) computed on each of its ``cycles`` cycles alone (the window split in equal
+    parts), half the range of those values, percent of the result over the whole window. A steady response repeats each cycle (0); a window that
+    still holds the ringing of a restart does not, and the result it gives is uncertain by that much. Empty for
+    a window of fewer than 2 cycles or samples."""
+    t = w["t"]
+    n = int(round(cycles))
+    if n < 2 or len(t) < 2 * n or not t[-1] > t[0]:
+        return {}
+    part = np.minimum(((t - t[0]) / ((t[-1] - t[0]) / n)).astype(int), n - 1)
+    arrays = {key: v for key, v in w.items() if isinstance(v, np.ndarray) and v.shape[:1] == t.shape}
+    per = [_window_results({key: v[part == i] for key, v in arrays.items()}, k, F_u) for i in range(n)]
+    whole = _window_results(w, k, F_u)
+    out = {}
+    for key in PEAK_KEYS:
+        vals, q = [p[key] for p in per], whole[key]
+        if q and all(v is not None for v in vals):
+            out[key] = 100.0 * 0.5 * (max(vals) - min(vals)) / abs(q)
+    return out
+
+
+def estimated_errors(windows, bearings, hold, F_u, cycles: float = 0.0) -> dict | None:
     """The staggered scheme's estimated error of each Table 4 result [%] (None without a charged thermal-only
     interval; master/manipulator/hold.py and error_estimate.py have the estimator): a temperature's is the hold's estimated error of the
     thermal network's output, percent of its rise above the run's initial temperature (at least the hold's
@@ -393,6 +419,12 @@ def estimated_errors(windows, bearings, hold, F_u) -> dict | None:
             d, q = hold.handoff_errors_end.get(ref.format(k)), r.get(key)
             if d is not None and q:
                 e[key] = 100.0 * abs(d) / abs(q)
+        # and the last window's own unsteadiness, the restart's ringing (not where the speed moved: then the
+        # results change from cycle to cycle with it)
+        if windows and f is not None:
+            for key, u in unsteadiness(windows[-1], k, F_u, cycles).items():
+                if key in e:
+                    e[key] += u
         per[k] = e
     flat = [(v, f"{k}.{key}") for k, e in per.items() for key, v in e.items()]
     if not flat:
