@@ -5,7 +5,6 @@ from __future__ import annotations
 
 import math
 
-import numpy as np
 import pytest
 
 from rotorcosim.components.fuse.kernel import V_REG, support_force
