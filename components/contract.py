@@ -141,6 +141,10 @@ class Component:
     #: file that wrote it, as an ``fmu = ...`` path is (it was read from the working folder: another folder's file
     #: of that name was used without a word)
     file_parameters: tuple[str, ...] = ()
+    #: names of the component's event indicators (FMI 3.0): real functions of its state and inputs, given after
+    #: each step by :meth:`indicators`, whose change of sign is an event that the master locates in time
+    #: (master/core/events.py) and hands to :meth:`update_discrete`; empty: none, and the master never asks
+    event_indicators: tuple[str, ...] = ()
     #: short description shown by ``rotorcosim`` and written to exported FMUs
     description: str = ""
     #: what the component costs, for the estimate of a run's wall time before it starts
@@ -257,6 +261,25 @@ class Component:
         cut), or None. The automatic schedule ends a held-phase interval there, so that the change happens in a
         coupled interval. None by default."""
         return None
+
+    def indicators(self) -> np.ndarray:
+        """The values of the event indicators (one per name of :attr:`event_indicators`) after the last step or
+        :meth:`update_discrete`. A change of sign of one of them over a step is an event. An empty array: none of
+        them can change sign any more (a broken fuse); while no component has a live indicator, the master saves
+        no state before a step."""
+        return np.zeros(0)
+
+    def event_tolerance(self) -> float:
+        """The time [s] to which the master locates this component's events, at most the step: a component with
+        event indicators declares it as its parameter ``event_tolerance`` (the master names that key when it is
+        larger than the step). 1 us by default."""
+        return float(self.p.get("event_tolerance", 1e-6))
+
+    def update_discrete(self, t: float, which: list[int]) -> dict:
+        """The event at ``t`` [s] of the indicators ``which`` (their positions in :attr:`event_indicators`): update
+        the discrete state and the outputs that follow it (FMI 3.0 updateDiscreteStates), and say what happened:
+        ``{"kind": str, "values": {name: float}}`` (the values that triggered it, for summary.json ``events``)."""
+        raise NotImplementedError(f"{type(self).__name__} declares event indicators but no update_discrete")
 
     def validity(self) -> tuple:
         """Where the model holds: :class:`~rotorcosim.components.validity.Check` objects on the outputs, asked for

@@ -32,6 +32,8 @@ BUILTIN: dict[str, str] = {
     "damper.fast": "rotorcosim.components.damper.component:FastDamper",
     "thermal.network": "rotorcosim.components.thermal.component:ThermalNetwork",
     "rubring.contact": "rotorcosim.components.rubring.component:RubRing",
+    # a support that breaks at a load (an event the master locates)
+    "fuse.support": "rotorcosim.components.fuse.component:SupportFuse",
     # speed as a state: the spool, and the speed-following variants of the rotor, bearing, rub ring
     "spool.speed": "rotorcosim.components.spool.component:Spool",
     "rotor.mta_spinning": "rotorcosim.components.rotor.spinning:SpinningRotor",

@@ -312,10 +312,16 @@ def _results(run: RunSession, post, post_obs: list, summary: dict, data, pool: F
         summary["final_outputs"] = summaries.final_outputs(sim.system)
         summaries.add_estimated_error(summary, sc, hold)
         return []
+    located = summary.pop("events", None)
     summary.update(post.extract(sc, sim, post_obs, sim.report))
-    # what the case found at some time of the run that its end values do not show: one line each
+    # what the case found at some time of the run that its end values do not show: one line each; the events
+    # the master located (master/core/events.py) come first in the one list
     for event in summary.get("events") or []:
         print(f"{sc.name}: warning: {event['message']}", file=sys.stderr)
+    for event in located or []:
+        print(f"{sc.name}: event: {event['message']}", file=sys.stderr)
+    if located is not None:
+        summary["events"] = located + (summary.get("events") or [])
     summaries.add_estimated_error(summary, sc, hold)
     if not (run.opts.figures and run.out is not None and run.status in summaries.ENDED):
         return []

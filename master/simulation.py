@@ -19,6 +19,7 @@ from rotorcosim.components.contract import COUPLED, HELD, ContractError
 
 from rotorcosim.master.compiled import ahead
 from rotorcosim.master.compiled import choice as compiled
+from rotorcosim.master.core import events
 from rotorcosim.master.core.algorithm import Engine, EngineSettings, SimulationFailed
 from rotorcosim.master.core.cycle import Cycle, RevolutionCounter, as_cycle
 from rotorcosim.master.core.phases import Phases
@@ -116,6 +117,8 @@ class Simulation:
         self.engine_choice = "auto"
         self.engine_note: str | None = None
         self.engines_used: list[str] = []
+        if any(c.event_indicators for c in system.components.values()):
+            self.report.events = []
 
     # -- helpers ---------------------------------------------------------------------------------------
     @property
@@ -237,6 +240,9 @@ class Simulation:
             comp.enter_phase(role)
         self.hold.start(role, active, mult, step, self.t, self.engine.steps_taken, nsteps)
         self.engine.prepare(active, mult, step)
+        # events located in the base steps (events.py); without an indicator, the engine's own step unchanged
+        located = events.locator(self, role, active, mult, step)
+        base_step = self.engine.base_step if located is None else located.base_step
         t_start = self.t
         self.interval_steps = nsteps if stop is None else None
         for obs in self.observers:
@@ -263,7 +269,7 @@ class Simulation:
                 finally:
                     k = runner.k
             while k < nsteps and not (runner is not None and runner.why):
-                self.engine.base_step(t_start, k)
+                base_step(t_start, k)
                 k += 1
                 self.t = t_start + k * step
                 req = self.engine.stop

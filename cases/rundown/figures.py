@@ -23,6 +23,7 @@ import numpy as np
 
 from rotorcosim.cases.blade_loss.engine_names import spool_name
 from rotorcosim.cases.blade_loss.results import KELVIN, NODES, bearing_ids
+from rotorcosim.master.observer.series import events_of
 from rotorcosim.master.run.outputs import check_dpi
 
 from .modes import marked_critical_speeds
@@ -109,7 +110,7 @@ def figures(sc, data, out, dpi: int | None = None) -> list[str]:
     spools = [s for s in _spools(sc) if _get(data, f"{s}.Omega") is not None]
     if not spools:
         return []
-    names = [_speed(sc, data, t, phase, spools, out)]
+    names = [_speed(sc, data, t, phase, spools, out, events_of(data))]
     w = _get(data, f"{spools[0]}.Omega").reshape(len(t), -1)[:, 0] * RPM
     crit = marked_critical_speeds(sc, spools[0], float(np.nanmax(w)))
     coupled = phase == 0 if phase is not None else np.ones(len(t), bool)
@@ -124,7 +125,7 @@ def figures(sc, data, out, dpi: int | None = None) -> list[str]:
     return names
 
 
-def _speed(sc, data, t, phase, spools, out):
+def _speed(sc, data, t, phase, spools, out, events):
     plt = _plt()
     cuts = [float(sc.components[s].parameters.get("t_fuel_cut", -1.0)) for s in spools]
     cuts = [c for c in cuts if c >= 0.0]
@@ -141,6 +142,10 @@ def _speed(sc, data, t, phase, spools, out):
             ax.plot(t * scale, _get(data, f"{s}.Omega").reshape(len(t), -1)[:, 0] * RPM, lw=1.2, label=_label(sc, s))
         for c in cuts:
             ax.axvline(c * scale, color="tab:red", ls=":", lw=1)
+        for e in events:
+            ax.axvline(e["t_s"] * scale, color="k", ls="--", lw=0.8)
+            ax.annotate(f"{e['component']} {e['kind']}", (e["t_s"] * scale, 0.98), xycoords=("data", "axes fraction"),
+                        fontsize=7, rotation=90, va="top", ha="right")
         ax.set_xlim(0, t_end * scale)
         ax.set_ylim(bottom=0)
         ax.set_xlabel(xlabel)
@@ -148,7 +153,8 @@ def _speed(sc, data, t, phase, spools, out):
         ax.set_title(title, fontsize=9)
         ax.grid(alpha=0.3)
     axes[0, 0].legend(fontsize=8, loc="lower left")
-    fig.suptitle(f"{sc.name}: spool speeds (dotted: fuel cut)", fontsize=10)
+    fig.suptitle(f"{sc.name}: spool speeds (dotted: fuel cut" + ("; dashed: events" if events else "") + ")",
+                 fontsize=10)
     return _save(fig, out, "rundown_speed.png")
 
 

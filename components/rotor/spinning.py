@@ -100,6 +100,14 @@ class SpinningRotor(Rotor):
                  description="1: start from the synchronous steady state of the linear model under the unbalance "
                              "at the spools' start speeds (the speed inputs at set-up; no port forces: a linear "
                              "rotor's check case); 0: at rest"),
+        Variable("start_support", "parameter", unit="1", start="", type="String",
+                 description="with start_synchronous: the port group (\"brg0\": F_brg0 at X_brg0) where a linear "
+                             "support of start_support_stiffness and _damping acts on the start orbit (a support "
+                             "component's intact stiffness); \"\": none"),
+        Variable("start_support_stiffness", "parameter", unit="N/m", start=0.0,
+                 description="stiffness (x and y) of the start orbit's linear support"),
+        Variable("start_support_damping", "parameter", unit="N.s/m", start=0.0,
+                 description="damping (x and y) of the start orbit's linear support"),
         Variable("Omega_pt", "input", 1, "rad/s", "power-turbine speed"),
         Variable("dOmega_pt", "input", 1, "rad/s2", "power-turbine angular acceleration (tangential unbalance)"),
         Variable("Omega_gg", "input", 1, "rad/s", "gas-generator speed"),
@@ -144,13 +152,39 @@ class SpinningRotor(Rotor):
             Fh = Fh + p["F_unbalance"] * np.exp(1j * p["unbalance_phase"]) * np.array([1.0, -1.0j])
         Fh = Fh * (w / W) ** 2
         C = red["C"] + (w - W) * self._G[0] + (wg - float(p["omega_gg"])) * self._G[1]
+        K = red["K"]
+        if p["start_support"]:
+            # the support's force -(k x + c v) at the port, taken into the orbit's equation (and the start
+            # acceleration's): the orbit a support component carries from t0, which hands its own force over
+            # from the first step
+            S = self._start_support()
+            K = K + p["start_support_stiffness"] * S
+            C = C + p["start_support_damping"] * S
         B_u = red["B_in"][:, -2:]
-        X = np.linalg.solve(red["K"] - w * w * red["M"] + 1j * w * C, B_u @ Fh) * np.exp(1j * w * t0)
+        X = np.linalg.solve(K - w * w * red["M"] + 1j * w * C, B_u @ Fh) * np.exp(1j * w * t0)
         x0, v0 = X.real.copy(), (1j * w * X).real.copy()
         f0 = red["B_in"] @ self._input_vector(t0)
-        a0 = initial_acceleration(red["M"], C, red["K"], x0, v0, f0)
+        a0 = initial_acceleration(red["M"], C, K, x0, v0, f0)
         self.state["s"] = np.concatenate([x0, v0, a0])
         self._write_outputs(self.state["s"], t0)
+
+    def _start_support(self) -> np.ndarray:
+        """The reduced matrix B_F O_x of the group ``start_support`` (its radial x, y): a stiffness k at the port is
+        k times it."""
+        g, red = self.p["start_support"], self._red
+        f_name, x_name = f"F_{g}", f"X_{g}"
+        at = {}
+        k = 0
+        for name in self._in_names:
+            at[name] = k
+            k += self.variable(name).size
+        rows = {name: a for name, a, _ in self._out_slices}
+        if f_name not in at or x_name not in rows:
+            raise ContractError(f"{self.name}.start_support: no port group {g!r} (ports {f_name}, {x_name}); "
+                                f"known: {sorted(n[2:] for n in at if n.startswith('F_'))}")
+        B_F = red["B_in"][:, at[f_name]:at[f_name] + 2]
+        O_x = red["O"][rows[x_name]:rows[x_name] + 2]
+        return B_F @ O_x
 
     def _unbalance(self, t, tau=None):
         """The rotating unbalance force at time t at the rotor's angle and speed (its state ``ang``: the angle at

@@ -22,6 +22,9 @@ def why_not(sim, active, mult, stop) -> str | None:
     """None when the interval can run compiled, else the reason it cannot."""
     comps = sim.system.components
     for n in active:
+        if comps[n].event_indicators:
+            return f"component {n} declares event indicators, which the generic loop locates (master/core/events.py)"
+    for n in active:
         c = comps[n]
         if not isinstance(c, KernelComponent) or c.STEP is None:
             return f"component {n} ({type(c).__name__}) has no compiled kernel"

@@ -427,6 +427,16 @@ class Engine:
         if (k + 1) % self.settings.check_every == 0:
             self.check_finite(t_end)
 
+    def partial_step(self, t: float, tau: float) -> None:
+        """Every active component one step from ``t`` over ``tau`` [s], coupled as in a base step (a single-rate
+        interval): the re-steps of the event location (master/core/events.py)."""
+        h = self.h
+        self.h = tau
+        try:
+            self._pass(self.active, t + tau)
+        finally:
+            self.h = h
+
     def _fire_direct(self, name: str, t: float, hc: float) -> None:
         same, other = self._direct[name]
         u = self._comp[name].u

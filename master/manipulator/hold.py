@@ -70,6 +70,8 @@ class StaggeredHold:
         self._to_step = 0.0
         #: the scheduled change (a component's next_event) the last TO interval ended at, or None
         self._event: str | None = None
+        #: the first event located in the running coupled interval (master/core/events.py), or None
+        self._located: str | None = None
         #: per thermal component: the charged TO intervals' hand-off errors (the run's estimate replays them)
         self._pulses: dict[str, list[Pulse]] = {}
         #: "comp.port" -> the thermal components' outputs at the run's start
@@ -192,10 +194,14 @@ class StaggeredHold:
     def end(self, phase: str, t: float) -> None:
         """End of an interval at time t: after the first TM interval that follows a TO interval, the hand-off
         errors of that TO interval and the estimates (:meth:`_estimate`). A TO interval that ended at a scheduled
-        change of a component (its ``next_event``: a fuel cut) is not charged: the mechanics after the change
-        are not what the held values stood for, and the change starts a fresh coupled interval."""
+        change of a component (its ``next_event``: a fuel cut), or followed by a coupled interval in which an event
+        was located (:meth:`located`), is not charged: the mechanics after the change are not what the held values
+        stood for, and the change starts a fresh coupled interval."""
         self._last_phase = phase
         if phase == COUPLED:
+            # an event located in the coupled interval after a thermal-only one is, like a scheduled change at
+            # its end, no error of the hold: the mechanics after it are not what the held values stood for
+            self._event, self._located = self._event or self._located, None
             self._tm_end = {i: np.array(link.src.y[link.sport], dtype=float) for i, link in enumerate(self.handbacks)}
         if phase == HELD:
             for ho in self.handoffs:
@@ -238,6 +244,12 @@ class StaggeredHold:
                     key = (ho.link.dport, o, k)
                     out[key] = out.get(key, 0.0) + g
         return [(*key, g) for key, g in out.items()]
+
+    def located(self, name: str, t: float) -> None:
+        """An event of component ``name`` located at ``t`` [s] in the running coupled interval
+        (master/core/events.py): the thermal-only interval before it is not charged (:meth:`end`)."""
+        if self._located is None:
+            self._located = f"{name} at {t:.9g} s"
 
     def _scheduled_change(self, t0: float, t1: float) -> str | None:
         """The component whose scheduled change (``next_event``) falls at the end of the TO interval [t0, t1]

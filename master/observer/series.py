@@ -50,5 +50,19 @@ class SeriesFile(Mapping):
     def __iter__(self):
         return iter(self._keys())
 
+    def events(self) -> list[dict]:
+        """The run's located events (the file's ``events`` attribute, master/core/events.py), [] without any."""
+        import json
+
+        with self._open() as f:
+            text = f.attrs.get("events")
+        return json.loads(text) if text else []
+
     def __len__(self) -> int:
         return len(self._keys())
+
+
+def events_of(data) -> list[dict]:
+    """The located events of a run's recorded ``data`` (a :class:`SeriesFile`; in memory: none): what a
+    time-history figure marks."""
+    return data.events() if isinstance(data, SeriesFile) else []

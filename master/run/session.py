@@ -8,6 +8,7 @@ and writes nothing.
 from __future__ import annotations
 
 import contextlib
+import json
 import os
 import sys
 import time
@@ -22,7 +23,7 @@ from rotorcosim.master.observer.series import SeriesFile
 from rotorcosim.master.observer.validity import Validity
 from rotorcosim.master.run import checkpoint, summary, watchdog
 from rotorcosim.master.run.options import RunOptions
-from rotorcosim.master.run.outputs import write_json
+from rotorcosim.master.run.outputs import plain_json, write_json
 from rotorcosim.master.run.provenance import h5_attributes, provenance
 from rotorcosim.master.run.rundir import RunFolder
 
@@ -113,8 +114,12 @@ class RunSession:
         return self.series is None or self.fmt != "h5"
 
     def h5_attributes(self) -> dict[str, str]:
-        """The time series file's attributes: the provenance as it stands (master/run/provenance.py)."""
-        return h5_attributes(self.provenance)
+        """The time series file's attributes: the provenance as it stands (master/run/provenance.py) and, in a run
+        whose components declare event indicators, its located ``events`` (JSON, as summary.json's)."""
+        attrs = h5_attributes(self.provenance)
+        if self.sim is not None and self.sim.report.events is not None:
+            attrs["events"] = json.dumps(plain_json(self.sim.report.events))
+        return attrs
 
     # -- set-up ----------------------------------------------------------------------------------------------
     def observers(self, case_observers: list, estimate: dict) -> list:

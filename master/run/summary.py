@@ -87,6 +87,8 @@ def ended(head: dict, sim, *, status: str, error: BaseException | None, wall_s: 
         "error": None if error is None else f"{type(error).__name__}: {error}",
         # each check of a component's validity envelope the run left: worst value, first time, limit, source
         "validity": validity,
+        # the events located in the run (master/core/events.py), where a component declares event indicators
+        **({} if report.events is None else {"events": report.events}),
     }
 
 

@@ -273,6 +273,9 @@ class RunReport:
     stopped: dict | None = None
     #: what the thermal-only hold measured (master/manipulator/error_estimate.py HoldReport), or None
     hold: object = None
+    #: the located events (master/core/events.py), in the order they happened; None: no component of the run
+    #: declares an event indicator
+    events: list | None = None
 
     def as_dict(self) -> dict:
         """The report as summary.json writes it."""

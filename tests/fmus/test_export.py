@@ -23,11 +23,11 @@ from rotorcosim.fmus.model_description import read_annotation
 QUICK = {"damper.fast": {"damper": 0, "n_theta": 32, "n_z": 8}, "damper.fe": {"damper": 0, "n_theta": 32, "n_z": 8},
          **{k: {"bearing": 0} for k in ("bearing.hertz", "bearing.hertz_spinning", "rubring.contact",
                                          "rubring.contact_spinning", "thermal.network", "thermal.network_spinning")},
-         "spool.speed": {"inertia": 0.0396}}
+         "spool.speed": {"inertia": 0.0396}, "fuse.support": {"k_intact": 4.0e6, "break_load": 1500.0}}
 #: inputs held at typical non-zero values where the start values would leave the component idle
 TYPICAL = {"damper.fast": {"X_journal[1]": 1e-4, "V_journal[2]": 0.05},
            "damper.fe": {"X_journal[1]": 1e-4, "V_journal[2]": 0.05},
-           "testing.mass": {"F": 1.0}, "testing.thermal_node": {"P": 100.0}}
+           "testing.mass": {"F": 1.0}, "testing.thermal_node": {"P": 100.0}, "fuse.support": {"X[1]": 1e-4}}
 
 
 def _importable():

@@ -1,0 +1,53 @@
+"""The support fuse's force law: the intact element, the soft path after the break, the bumper.
+
+With ``x``, ``v`` the supported point's radial displacement and velocity (x, y) against the structure, the force
+the fuse carries (transmitted to the structure) is
+
+    F_support = k x + c v + F_bumper
+
+with ``k`` the intact stiffness ``k_intact`` before the break and the post-fuse stiffness ``k_broken`` after it,
+and the damping ``c`` in both states. The bumper (``bumper_stiffness`` > 0) is a radial stop at the clearance
+``bumper_clearance``: with r = |x| and n = x / r, for r > clearance
+
+    F_bumper = k_b (r - clearance) n + mu k_b (r - clearance) t,    t = v_t / sqrt(|v_t|^2 + v_reg^2),
+
+``v_t = v - (v . n) n`` the tangential (whirl) velocity of the point against the bumper, ``mu`` the friction
+coefficient, ``v_reg`` = :data:`V_REG` (Coulomb friction regularised below it, so that a point at rest on the
+bumper carries no spurious friction). The force on the supported body is ``-F_support``.
+
+The break (one stage): the fuse breaks when the magnitude of the intact element's elastic force ``k_intact |x|``
+reaches ``break_load``; its event indicator is ``k_intact |x| - break_load`` while intact (negative below the
+break load); none after (one stage: nothing left to break). At the break the strain energy ``(k_intact - k_broken) |x|^2 / 2`` of the
+intact element's share leaves the system (the broken element no longer stores it).
+"""
+from __future__ import annotations
+
+import math
+
+#: the sliding speed [m/s] below which the bumper's Coulomb friction is regularised (kernel docstring)
+V_REG = 1e-4
+
+
+def support_force(x: float, y: float, vx: float, vy: float, k: float, c: float, k_b: float, clearance: float,
+                  mu: float) -> tuple[float, float]:
+    """F_support (x, y) [N] of the module docstring's law at the displacement (x, y) [m] and velocity (vx, vy)
+    [m/s] with the element's present stiffness ``k`` [N/m], damping ``c`` [N s/m] and the bumper's stiffness
+    ``k_b`` [N/m] (0: none), clearance [m] and friction coefficient ``mu``."""
+    fx = k * x + c * vx
+    fy = k * y + c * vy
+    if k_b > 0.0:
+        r = math.hypot(x, y)
+        if r > clearance and r > 0.0:
+            nx, ny = x / r, y / r
+            fn = k_b * (r - clearance)
+            vn = vx * nx + vy * ny
+            tx, ty = vx - vn * nx, vy - vn * ny
+            s = mu * fn / math.sqrt(tx * tx + ty * ty + V_REG * V_REG)
+            fx += fn * nx + s * tx
+            fy += fn * ny + s * ty
+    return fx, fy
+
+
+def break_indicator(x: float, y: float, k_intact: float, break_load: float) -> float:
+    """The intact fuse's event indicator [N]: ``k_intact |x| - break_load`` (the break at its zero)."""
+    return k_intact * math.hypot(x, y) - break_load

@@ -1,0 +1,180 @@
+"""Discrete events of a coupled interval: located in time, handed to their component, recorded.
+
+A component may declare event indicators (contract ``event_indicators``, as FMI 3.0's): real functions of its state
+and inputs, read after each step (``indicators()``), whose change of sign over a step is an event. A coupled
+interval with such a component runs its base steps through an :class:`EventLocator`:
+
+* before each base step it saves every active component (``get_state``, the snapshot the checkpoints and the
+  iterative coupling use) and the links' state; after the step it reads the indicators;
+* where one changed sign over the step [t, t + h], the event lies inside it. The locator goes back to t and steps
+  the whole system from t over a shorter step tau (every component one step of length tau, the links as in a base
+  step), bisecting tau until the bracket [tau_lo, tau_hi] (sign kept at tau_lo, changed at tau_hi) is no wider
+  than the smallest ``event_tolerance()`` of the components whose indicator changed;
+* the system then stands at t + tau_hi, just past the event: each of those components gets ``update_discrete``
+  (its discrete state and the outputs that follow it change: a fuse's soft path), the event is recorded, and the
+  base step is completed from there to t + h (an event in that remainder is located the same way). The base
+  steps' grid, the observers' samples and the schedule are those of a run without events.
+
+The event's time is t + tau_hi: at most one tolerance after the zero of the co-simulated indicator (the zero as
+the coupled steps see it: the Gauss-Seidel coupling of a step of length tau). Bisection rather than a secant: the
+indicator is known only through steps of the whole coupled system, which can bend it within the step (an input
+held over the step, a contact switching on), and bisection's count is fixed in advance, log2(h / tolerance)
+re-steps (8 for a 20 us step at 0.1 us).
+
+What it needs: every active component at the interval's base step (a single-rate interval; a multi-rate one with
+an event indicator is refused with the reason) and explicit coupling (one pass per step). A hand-off window of the
+thermal-only hold records the base step's end only. The compiled loop does not locate events: an interval with
+an indicator runs in the generic loop, which says so in summary.json ``engine_note``
+(master/compiled/choice.why_not). A run with no indicator never builds a locator: its base steps are the
+engine's own, untouched.
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from rotorcosim.components.contract import COUPLED, ContractError
+
+
+class EventLocator:
+    """The base steps of a coupled interval with event indicators (module docstring). ``sim``: the
+    :class:`~rotorcosim.master.simulation.Simulation`; ``active``, ``mult``: the interval's components and their
+    step multiples; ``step``: the base step [s]. Located events go to ``sim.report.events`` and to the hold
+    (``sim.hold.located``)."""
+
+    def __init__(self, sim, active, mult, step: float):
+        comps = sim.system.components
+        self.sim, self.engine, self.h = sim, sim.engine, float(step)
+        self.watched = [(n, comps[n]) for n in active if comps[n].event_indicators]
+        names = ", ".join(n for n, _ in self.watched)
+        multi = sorted(n for n in active if mult.get(n, 1) != 1)
+        if multi:
+            raise ContractError(f"event indicators of {names}: every component must step at the interval's step "
+                                f"for the master to locate their events; {', '.join(multi)} step(s) slower")
+        if self.engine.settings.iterations != 1:
+            raise ContractError(f"event indicators of {names}: the master locates events with explicit coupling "
+                                "([algorithm] iterations = 1)")
+        self.tolerance = {}
+        for n, c in self.watched:
+            tol = c.event_tolerance()
+            if not (0.0 < tol <= step):
+                raise ContractError(f"{n}.event_tolerance: {tol!r} s must be within (0, {step:g} s], the step "
+                                    "of the interval it is located in")
+            self.tolerance[n] = tol
+        self.comps = [(n, comps[n]) for n in self.engine.active]
+        self.g = self._values()
+
+    def _values(self) -> list[list[float]]:
+        return [np.asarray(c.indicators(), dtype=float).tolist() for _, c in self.watched]
+
+    def _crossed(self, g: list[list[float]]) -> list[tuple[int, list[int]]]:
+        """(watched component's position, its indicators' positions) whose sign changed from ``self.g`` to ``g``."""
+        out = []
+        for i, (old, new) in enumerate(zip(self.g, g)):
+            # (an indicator that went out, or came back, crossed nothing)
+            which = [j for j, (a, b) in enumerate(zip(old, new)) if (a < 0.0) != (b < 0.0)] if len(old) == len(new) else []
+            if which:
+                out.append((i, which))
+        return out
+
+    def _save(self):
+        eng = self.engine
+        return ([c.get_state() for _, c in self.comps],
+                [(link.state[:], link.vectors[:]) for link in eng.links], dict(eng.steps_taken))
+
+    def _restore(self, saved) -> None:
+        states, links, steps = saved
+        for (_, c), s in zip(self.comps, states):
+            c.set_state(s)
+        for link, (m, v) in zip(self.engine.links, links):
+            link.state[:] = m
+            link.vectors[:] = v
+        self.engine.steps_taken.update(steps)
+
+    def _step(self, t: float, tau: float, windows: bool) -> None:
+        """Every active component one step from ``t`` over ``tau`` [s]; the hold's hand-off windows record it only
+        with ``windows`` (a step that ends on the base steps' grid)."""
+        eng = self.engine
+        kept = []
+        if not windows:
+            kept = [(link, link.window) for link in eng.links if link.window is not None]
+            for link, _ in kept:
+                link.window = None
+        try:
+            eng.partial_step(t, tau)
+        finally:
+            for link, w in kept:
+                link.window = w
+
+    def base_step(self, t0: float, k: int) -> None:
+        """Base step ``k`` of the interval that starts at ``t0`` (the engine's), with its events located."""
+        if not any(self.g):
+            # no live indicator (components.contract: indicators): nothing to go back for
+            self.engine.base_step(t0, k)
+            self.g = self._values()
+            return
+        saved = self._save()
+        self.engine.base_step(t0, k)
+        g = self._values()
+        crossed = self._crossed(g)
+        if not crossed:
+            self.g = g
+            return
+        h = self.h
+        self._locate(saved, t0 + k * h, t0 + (k + 1) * h, crossed)
+
+    def _locate(self, saved, a: float, b: float, crossed) -> None:
+        """The system stepped from ``a`` (state ``saved``) to ``b`` [s] and the indicators ``crossed`` changed sign:
+        find the first event, hand it over, complete the step to ``b``; again while the remainder has one."""
+        while True:
+            tol = min(self.tolerance[self.watched[i][0]] for i, _ in crossed)
+            lo, hi, at_hi = 0.0, b - a, True
+            while hi - lo > tol:
+                mid = 0.5 * (lo + hi)
+                self._restore(saved)
+                self._step(a, mid, windows=False)
+                found = self._crossed(self._values())
+                if found:
+                    hi, at_hi, crossed = mid, True, found
+                else:
+                    lo, at_hi = mid, False
+            t_event = a + hi
+            at_end = b - t_event <= 1e-12 * max(1.0, abs(b))
+            if not at_hi:
+                self._restore(saved)
+                self._step(a, hi, windows=at_end)
+            for i, which in crossed:
+                name, comp = self.watched[i]
+                self._record(name, comp, t_event, which)
+            self.g = self._values()
+            if at_end:
+                return
+            saved = self._save()
+            self._step(t_event, b - t_event, windows=True)
+            g = self._values()
+            crossed = self._crossed(g)
+            if not crossed:
+                self.g = g
+                return
+            a = t_event
+
+    def _record(self, name: str, comp, t: float, which: list[int]) -> None:
+        what = comp.update_discrete(t, which)
+        kind = what.get("kind", "event")
+        indicators = [comp.event_indicators[j] for j in which]
+        self.sim.report.events.append({
+            "t_s": t, "component": name, "kind": kind, "indicators": indicators,
+            "values": what.get("values", {}), "tolerance_s": self.tolerance[name],
+            "message": f"{name}: {kind} at t = {t:.9g} s (event indicator {', '.join(indicators)}, located within "
+                       f"{self.tolerance[name]:.3g} s)"})
+        self.sim.hold.located(name, t)
+
+
+def locator(sim, role: str, active, mult, step: float) -> EventLocator | None:
+    """The interval's :class:`EventLocator`, or None (a held interval, or no active component with an event
+    indicator: the engine's base steps run as they are)."""
+    if role != COUPLED:
+        return None
+    comps = sim.system.components
+    if not any(comps[n].event_indicators for n in active):
+        return None
+    return EventLocator(sim, active, mult, step)
