@@ -37,6 +37,7 @@ import numpy as np
 from rotorcosim.cases.blade_loss.engine_names import bearing_spools, rub_clearances_mm
 from rotorcosim.cases.blade_loss.table5 import PAPER_LEVELS
 from rotorcosim.cases.blade_loss.results import KELVIN, NODES, PLASTIC_FLOW_MPA, bearing_ids
+from rotorcosim.master.observer.series import events_of
 from rotorcosim.master.run.outputs import FIGURE_DPI
 
 ORBIT_CYCLES = 5
@@ -252,6 +253,8 @@ class _Figures:
         self.names: list[str] = []
         #: the figures drawn, kept open instead of closed when set (a test reads their text extents)
         self.keep: list | None = None
+        #: the run's located events (master/core/events.py), marked on every time axis
+        self.events = events_of(data)
 
     def get(self, ref):
         return self.d.get(ref)
@@ -260,7 +263,21 @@ class _Figures:
         tag = f" (paper Fig. {fig_no})" if self.ctx.paper else f" [{self.ctx.name}]"
         return f"{text}, F_u = {self.F_u:g} N{tag}"
 
+    def mark_events(self, fig) -> None:
+        """A dashed line at each located event on every time axis of ``fig`` (those labelled "time ...", and
+        those sharing their x axis) that shows its time."""
+        timed = [a for a in fig.axes if a.get_xlabel().startswith("time")]
+        for a in fig.axes:
+            if not (a in timed or any(a.get_shared_x_axes().joined(a, b) for b in timed)):
+                continue
+            lo, hi = a.get_xlim()
+            for e in self.events:
+                if lo <= e["t_s"] <= hi:
+                    a.axvline(e["t_s"], color="k", ls="--", lw=0.8, gid=f"event-{e['component']}-{e['kind']}")
+
     def save(self, fig, name: str) -> None:
+        if self.events:
+            self.mark_events(fig)
         _margins(fig)
         # written whole or not at all, like every result file
         tmp = self.out / (name + ".part")
