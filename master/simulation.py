@@ -240,9 +240,6 @@ class Simulation:
             comp.enter_phase(role)
         self.hold.start(role, active, mult, step, self.t, self.engine.steps_taken, nsteps)
         self.engine.prepare(active, mult, step)
-        # events located in the base steps (events.py); without an indicator, the engine's own step unchanged
-        located = events.locator(self, role, active, mult, step)
-        base_step = self.engine.base_step if located is None else located.base_step
         t_start = self.t
         self.interval_steps = nsteps if stop is None else None
         for obs in self.observers:
@@ -252,6 +249,10 @@ class Simulation:
         if rp is not None and rp.k:  # resumed mid-interval: the preparation above reset what the checkpoint holds
             rp.restore(self)
             k = rp.k
+        # events located in the base steps (events.py; its indicators read from the state the interval goes on
+        # from); without an indicator, the engine's own step unchanged
+        located = events.locator(self, role, active, mult, step)
+        base_step = self.engine.base_step if located is None else located.base_step
         strides = [max(1, int(getattr(obs, "stride", 1))) for obs in self.observers]
         why = reason
         if self.engine_choice not in compiled.ENGINES:

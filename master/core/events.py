@@ -26,7 +26,9 @@ an event indicator is refused with the reason) and explicit coupling (one pass p
 thermal-only hold records the base step's end only. The compiled loop does not locate events: an interval with
 an indicator runs in the generic loop, which says so in summary.json ``engine_note``
 (master/compiled/choice.why_not). A run with no indicator never builds a locator: its base steps are the
-engine's own, untouched.
+engine's own, untouched. Events happen in coupled intervals: a component that declares an indicator and steps in
+a held interval is refused (:func:`locator`); one that only takes part in coupled intervals (a support fuse) is
+frozen in a held one, where its indicator cannot change.
 """
 from __future__ import annotations
 
@@ -170,11 +172,16 @@ class EventLocator:
 
 
 def locator(sim, role: str, active, mult, step: float) -> EventLocator | None:
-    """The interval's :class:`EventLocator`, or None (a held interval, or no active component with an event
-    indicator: the engine's base steps run as they are)."""
-    if role != COUPLED:
-        return None
+    """The interval's :class:`EventLocator`, or None (no active component with an event indicator: the engine's
+    base steps run as they are). A component with an indicator that steps in a held interval is refused: events
+    are located in coupled intervals, where every component steps (a held interval holds the others' outputs, so
+    an event there would meet mechanics that cannot answer it)."""
     comps = sim.system.components
-    if not any(comps[n].event_indicators for n in active):
+    watched = [n for n in active if comps[n].event_indicators]
+    if not watched:
         return None
+    if role != COUPLED:
+        raise ContractError(f"component {watched[0]} declares event indicators and steps in the held phase "
+                            f"{sim.phase_name}: events are located in coupled intervals only (take it out of the "
+                            "held phase)")
     return EventLocator(sim, active, mult, step)

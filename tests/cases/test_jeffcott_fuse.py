@@ -106,3 +106,20 @@ def test_nan_break_load_is_named(tmp_path):
     from rotorcosim.components.registry import create
     with pytest.raises(ContractError, match=r"fuse\.break_load: value is not finite"):
         create("fuse.support", "fuse", {"k_intact": 4e6, "break_load": float("nan")})
+
+
+@pytest.mark.parametrize("t_signal", [0.012, 0.025])
+def test_a_resumed_run_locates_and_keeps_the_break(tmp_path, sigint_at, t_signal):
+    """Interrupted (a real SIGINT) before the break (0.012 s) or after it (0.025 s), then resumed: the break is
+    where the uninterrupted run has it, bit for bit, listed once."""
+    from rotorcosim.master.run import checkpoint
+
+    whole = simulate("jeffcott_fuse", duration=0.03, figures=False, progress=False)
+    fired = sigint_at(t_signal)
+    out = tmp_path / "r"
+    with pytest.raises(checkpoint.RunInterrupted):
+        simulate("jeffcott_fuse", duration=0.03, out=out, figures=False)
+    assert fired
+    res = simulate("jeffcott_fuse", duration=0.03, out=out, figures=False, resume=True)
+    assert res.summary["resumed_from_t_s"] > 0.0
+    assert res.summary["events"] == whole.summary["events"]

@@ -47,13 +47,13 @@ class ZeroWatch(Component):
         return {"kind": "zero", "values": {"x": float(self.u["x"][0])}}
 
 
-def _sim(tolerance=1e-7, watch=True):
+def _sim(tolerance=1e-7, watch=True, cycle=None):
     comps = {"m1": create("testing.mass", "m1", {"m": 1.0, "k": 40.0, "x0": 0.1})}
     cons = []
     if watch:
         comps["w"] = ZeroWatch("w", {"event_tolerance": tolerance})
         cons = [Connection("m1.x", "w.x")]
-    return Simulation(System(comps, cons, inputs={"m1.F": np.zeros(1)}), order=list(comps))
+    return Simulation(System(comps, cons, inputs={"m1.F": np.zeros(1)}), order=list(comps), cycle=cycle)
 
 
 def test_zeros_located_to_the_tolerance():
@@ -87,3 +87,13 @@ def test_multirate_interval_with_an_indicator_is_refused():
     sim.steps = {"w": 2e-3}
     with pytest.raises(ContractError, match="every component must step at the interval's step"):
         sim.run(Timeline([Interval("TM", duration=0.01, step=1e-3)]))
+
+
+def test_an_indicator_in_a_held_interval_is_refused():
+    """A component with an event indicator that steps in a held interval: a one-line error naming it and the
+    phase (events are located in coupled intervals)."""
+    sim = _sim(cycle=0.01)
+    sim.system.components["w"].phases = frozenset({"TM", "TO"})
+    sim.system.components["m1"].phases = frozenset({"TM", "TO"})
+    with pytest.raises(ContractError, match="component w declares event indicators and steps in the held phase TO"):
+        sim.run(Timeline([Interval("TM", duration=0.05, step=1e-3), Interval("TO", duration=0.01, step=1e-3)]))
