@@ -54,7 +54,7 @@ def _run(spool_class):
                     inputs={"spool.T_drag1": 0.5, "spool.T_drag2": 0.0, "spool.T_rub2": 0.0})
     energy = SpoolEnergy(["spool"])
     sim = Simulation(system, order=["spool", "ring"], observers=[energy])
-    sim.run(Timeline([Interval("TM", 2.0, 1e-4)]))
+    sim.run(Timeline([Interval("TM", 0.5, 1e-4)]))
     return energy.summary(sim)["spool"]
 
 

@@ -59,6 +59,7 @@ def test_undamped_linear_peaks_at_the_critical_speeds():
     assert p0 == pytest.approx(crit, rel=0.01)
 
 
+@pytest.mark.slow   # ~21 s of CPU time (measured): the linear response scanned over the whole speed range
 def test_damped_critical_speeds_are_the_linear_response_peaks():
     """``critical-speeds``' damped critical speeds (cases/blade_loss/response_peaks: a 1.5 % grid refined by a
     bounded search) are the peaks of the linear engine's response scanned here on a 10 rev/min grid."""
