@@ -33,6 +33,7 @@ import math
 from dataclasses import dataclass, field
 
 import numpy as np
+import scipy.linalg
 
 #: least rise [K] a temperature's relative error is taken of (a node that barely warms has no relative error to speak
 #: of: its absolute one is reported in ``output_errors``)
@@ -190,12 +191,13 @@ def replay(comp, name: str, pulses: list[Pulse], now: float,
             n = max(1, int(math.ceil(length / step - 1e-9)))
             h = length / n
             d = delta if perturbed else None
-            B = None
+            u_d = inputs(d)   # the segment's inputs without feedback (set_inputs copies them)
+            B = lu = None
             for _ in range(n):
                 if perturbed and ins:
                     s0 = comp.get_state()
                     if B is None:   # the step's response to each added input (linear: once per segment)
-                        comp.set_inputs(inputs(d))
+                        comp.set_inputs(u_d)
                         comp.do_step(comp.time, h)
                         y0 = tap()
                         B = np.zeros((len(taps), len(ins)))
@@ -207,14 +209,15 @@ def replay(comp, name: str, pulses: list[Pulse], now: float,
                             comp.do_step(comp.time, h)
                             B[:, m] = tap() - y0
                         comp.set_state(s0)
-                    comp.set_inputs(inputs(d))
+                        lu = scipy.linalg.lu_factor(np.eye(len(ins)) - G @ B)
+                    comp.set_inputs(u_d)
                     comp.do_step(comp.time, h)
                     dy0 = tap() - base[n_step]
                     comp.set_state(s0)
-                    c = np.linalg.solve(np.eye(len(ins)) - G @ B, G @ dy0)
+                    c = scipy.linalg.lu_solve(lu, G @ dy0)
                     comp.set_inputs(inputs(d, c))
                 else:
-                    comp.set_inputs(inputs(d))
+                    comp.set_inputs(u_d)
                 comp.do_step(comp.time, h)
                 if not perturbed:
                     taken.append(tap())
