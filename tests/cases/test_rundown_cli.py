@@ -38,6 +38,7 @@ def test_nan_torque_is_named(tmp_path):
     assert r.returncode != 0 and "T_rub1" in r.stderr and "Traceback" not in r.stderr
 
 
+@pytest.mark.slow   # ~9-10 s (measured; a rundown sweep)
 def test_sweep_over_the_speed_profile(tmp_path):
     """A sweep over the ramp's end speed: a rundown to 0 rev/min stops the rotor (a legal end state, reported)
     and crosses the critical speed as the one to 3000 rev/min does, later in speed terms slower."""

@@ -140,6 +140,7 @@ def test_compare_writes_table6(tmp_path):
     assert t["timeline_staggered"][-1]["t_end"] == pytest.approx(0.1, abs=1e-9)
 
 
+@pytest.mark.slow   # ~8 s (measured; both schemes timed)
 def test_compare_draws_the_figures_after_both_timed_runs(tmp_path, monkeypatch):
     """`rotorcosim compare` with figures: no figure worker runs beside a timed run (the pool `rotorcosim run`
     starts at once is never started), and both run folders still get the six figures, drawn after the second

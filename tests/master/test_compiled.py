@@ -123,6 +123,7 @@ def test_components_without_kernels_take_the_generic_loop(tmp_path):
         sim.run(Timeline([Interval("TM", 0.01, 1e-3)]))
 
 
+@pytest.mark.slow   # ~10-40 s (measured; both loops through the automatic schedule)
 def test_automatic_schedule_runs_compiled_and_decides_as_the_generic_loop(tmp_path):
     """The automatic schedule's thermo-mechanical intervals run compiled: its steadiness test gets each chunk's
     rows of the powers it samples (added in the generic loop's order) and is checked at the same base steps (the

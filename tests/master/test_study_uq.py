@@ -10,6 +10,8 @@ import math
 import shutil
 from pathlib import Path
 
+import pytest
+
 import rotorcosim
 
 TOY = Path(__file__).resolve().parents[1] / "helpers" / "two_masses.toml"
@@ -112,6 +114,7 @@ std = 1.0
     assert again["samples_this_session"] == 0 and again["failed"] == rep["failed"]
 
 
+@pytest.mark.slow   # ~14-18 s (measured; two studies in subprocesses, a worker killed)
 def test_a_worker_that_dies_is_retried_once_then_reported(tmp_path):
     """On a local Dask cluster of one worker (its nanny restarts it after each death): a sample whose worker dies
     once is run again and succeeds; a sample whose worker dies every time is reported failed after a second try,
@@ -150,6 +153,7 @@ upper = 1.0
                for s in rep["failed"]["samples"]), rep["failed"]
 
 
+@pytest.mark.slow   # ~8-10 s (measured; a study stopped and resumed)
 def test_a_study_stopped_by_sigterm_says_so_and_resumes(tmp_path):
     """A UQ process stopped by SIGTERM half-way writes uq.json with status "interrupted" and keeps the finished
     samples; the same call again runs only the others and ends complete with every sample."""

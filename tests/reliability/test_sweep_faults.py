@@ -161,6 +161,7 @@ def test_scheduler_gone_ends_the_sweep_and_keeps_the_finished_cases(tmp_path):
                                 "node.sleep=0.21": "interrupted"}
 
 
+@pytest.mark.slow   # ~10-12 s (measured; a sweep interrupted and resumed)
 def test_ctrl_c_stops_cleanly_and_resume_reruns_only_the_rest_bit_identical(tmp_path):
     """A terminal's Ctrl-C (SIGINT to the command's whole process group, its local workers too) once the first
     case is stored: exit status 130, one line saying what was kept, the finished cases whole, the others
