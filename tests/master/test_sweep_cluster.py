@@ -162,6 +162,7 @@ def test_case_folder_names_from_file_paths_and_collisions():
         cases_of(None, {"a.b": ["x" * 300]})
 
 
+@pytest.mark.slow   # ~20 s (measured): a local Dask cluster started and stopped for seven levels
 def test_levels_with_one_value_per_parameter_get_the_paper_tables(tmp_path):
     """A modified model at the paper's levels (one --set value: one case a level) gets table5.csv and
     paper_comparison.csv like a plain level sweep; a model file given by an absolute path runs."""
