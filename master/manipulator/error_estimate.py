@@ -191,7 +191,7 @@ def replay(comp, name: str, pulses: list[Pulse], now: float,
             n = max(1, int(math.ceil(length / step - 1e-9)))
             h = length / n
             d = delta if perturbed else None
-            u_d = inputs(d)   # the segment's inputs without feedback, made once: a component reads its inputs, never writes them
+            u_d = inputs(d)   # made once: a component reads its inputs and never writes them
             B = lu = None
             for _ in range(n):
                 if perturbed and ins:
