@@ -20,6 +20,8 @@ from __future__ import annotations
 import re
 from dataclasses import dataclass
 
+from . import mounts as mount_tables
+
 #: an attachment id: what follows "bearing" / "rubring" in an [attach] key
 ID = re.compile(r"^[A-Za-z0-9_]+$")
 #: [attach] keys that are not bearings or rub rings
@@ -32,6 +34,8 @@ class Layout:
 
     bearings: tuple[str, ...]
     rubrings: tuple[str, ...]
+    #: the engine's mounts to an airframe (mounts.py): (name, number of springs), in file order
+    mounts: tuple[tuple[str, int], ...] = ()
 
 
 #: the paper's engine (and the class-level declaration of the rotor component)
@@ -70,10 +74,19 @@ def on_spool(attach: dict, spool: str) -> Layout:
                   tuple(r for r in lay.rubrings if on(f"rubring{r}")))
 
 
+def with_mounts(lay: Layout, data: dict) -> Layout:
+    """``lay`` with the mounts of an engine file's data (mounts.py; none: ``lay`` itself)."""
+    found = mount_tables.mounts(data)
+    if not found:
+        return lay
+    return Layout(lay.bearings, lay.rubrings, tuple((m.name, len(m.springs)) for m in found.values()))
+
+
 def layout_of_ports(ports: dict) -> Layout:
     """The layout of a model's port groups (``FullModel.ports``), in their order."""
     return Layout(tuple(g[3:] for g in ports if g.startswith("brg")),
-                  tuple(g[3:] for g in ports if g.startswith("rub")))
+                  tuple(g[3:] for g in ports if g.startswith("rub")),
+                  tuple((g[len("mount_"):], len(ports[g])) for g in ports if g.startswith("mount_")))
 
 
 def groups(lay: Layout) -> list[tuple[str, str, str, int]]:
@@ -81,7 +94,8 @@ def groups(lay: Layout) -> list[tuple[str, str, str, int]]:
     return ([(f"brg{b}", f"bearing{b}", "node", 3) for b in lay.bearings]
             + [(f"housing{b}", f"bearing{b}", "housing", 2) for b in lay.bearings]
             + [(f"rub{r}", f"rubring{r}", "node", 2) for r in lay.rubrings]
-            + [("unbalance", "unbalance", "node", 2)])
+            + [("unbalance", "unbalance", "node", 2)]
+            + [(mount_tables.port_group(m), f"mount.{m}", "mount", n) for m, n in lay.mounts])
 
 
 def load_groups(lay: Layout) -> tuple[str, ...]:
@@ -99,6 +113,9 @@ def input_ports(lay: Layout) -> list[tuple[str, str, int, str]]:
             out.append((f"F_rub_housing{b}", f"housing{b}", 2, f"rub ring #{b} reaction on the casing hub under "
                                                                f"bearing #{b}"))
     out += [(f"F_rub{r}", f"rub{r}", 2, f"rub force on the PT node at rub ring #{r}") for r in lay.rubrings]
+    out += [(f"F_{mount_tables.port_group(m)}", mount_tables.port_group(m), n,
+             f"the airframe's motion's force on the engine through each of the {n} springs of mount {m} "
+             "(k u_a + c v_a along the spring's axis)") for m, n in lay.mounts]
     return out
 
 
@@ -108,4 +125,6 @@ def output_ports(lay: Layout) -> list[tuple[str, str, str, int, str]]:
     return ([(f"brg{b}", f"X_brg{b}", f"V_brg{b}", 3, f"PT {{}} at bearing #{b} (x y z)") for b in lay.bearings]
             + [(f"housing{b}", f"X_housing{b}", f"V_housing{b}", 2, f"casing hub {{}} under bearing #{b}")
                for b in lay.bearings]
-            + [(f"rub{r}", f"X_rub{r}", f"V_rub{r}", 2, f"PT {{}} at rub ring #{r}") for r in lay.rubrings])
+            + [(f"rub{r}", f"X_rub{r}", f"V_rub{r}", 2, f"PT {{}} at rub ring #{r}") for r in lay.rubrings]
+            + [(mount_tables.port_group(m), f"X_{mount_tables.port_group(m)}", f"V_{mount_tables.port_group(m)}",
+                n, f"engine {{}} at each of the {n} springs of mount {m}, along its axis") for m, n in lay.mounts])
