@@ -44,6 +44,8 @@ from scipy.signal import find_peaks, peak_widths
 from rotorcosim.components.contract import COUPLED
 from rotorcosim.master.observer.observer import Observer
 
+from rotorcosim.cases.interface import results as interface
+
 from .energy import SpoolEnergy
 
 #: time bins of the response track [s]: many per crossing (a crossing lasts ~0.1-1 s), few per hour of run
@@ -208,11 +210,15 @@ def _case_blade_loss(sc) -> bool:
 
 def observers(sc, cycle):
     spools = _spools(sc)
-    obs = [RundownTrack(spools, _crossing_spool(sc, spools)), SpoolEnergy(spools)]
+    crossing = _crossing_spool(sc, spools)
+    obs = [RundownTrack(spools, crossing), SpoolEnergy(spools)]
+    # an engine on an airframe: its interface loads (cases/interface), last so that the blade-loss case's
+    # observers keep their places
+    tail = interface.observers(sc, f"{crossing}.Omega" if crossing else None)
     if _case_blade_loss(sc):
         from rotorcosim.cases.blade_loss import results as bl
         obs += bl.observers(sc, cycle)
-    return obs
+    return obs + tail
 
 
 def check(sc, sim) -> None:
@@ -400,9 +406,11 @@ def extract(sc, sim, obs, report) -> dict:
         name = spool_name(sc, track.crossing_spool)
         for c in out["crossings"]:
             c["spool_name"] = name
+    others = [o for o in obs[2:] if not isinstance(o, interface.InterfaceTrack)]
     if _case_blade_loss(sc):
         from rotorcosim.cases.blade_loss import results as bl
-        out.update(bl.extract(sc, sim, obs[2:], report))
+        out.update(bl.extract(sc, sim, others, report))
+    out.update(interface.extract(obs))
     return out
 
 
@@ -421,7 +429,7 @@ def result_paths(sc) -> list[str]:
     if _case_blade_loss(sc):
         from rotorcosim.cases.blade_loss import results as bl
         out += bl.result_paths(sc)
-    return out
+    return out + interface.result_paths(sc)
 
 
 def figures(sc, data, out, pool=None, dpi: int | None = None) -> list[str]:

@@ -29,35 +29,14 @@ import numpy as np
 
 from ..contract import COUPLED, ContractError, Variable
 from ..kernels import KernelComponent
-from ..rotor.model import DEFAULT_FILE, load_data
-from ..rotor.mounts import AXES, airframe_model, mounts
+from ..rotor.model import DEFAULT_FILE
 from ..rotor.newmark import step_operator
 from .kernel import AirframeParams, AirframeState, tm_step
-from .modal import ModalModel, read
+from .modal import ModalModel
+from .mounting import installed, spring_rows
 
 #: a response point's output: its acceleration
 ACCELERATION = "a_"
-
-
-def installed(model_file: str) -> tuple[dict, ModalModel | None]:
-    """The mounts and the airframe model of an engine file (none: ``({}, None)``); a bad table, a missing file or
-    a mount on an interface point the model lacks is a ValueError naming it."""
-    data, _ = load_data(model_file or None)
-    found = mounts(data)
-    path = airframe_model(data, model_file or DEFAULT_FILE)
-    if path is None:
-        return found, None
-    model = read(path)
-    for m in found.values():
-        if m.interface not in model.interface:
-            raise ValueError(f"[mount.{m.name}] interface: {m.interface!r} is not an interface point of the "
-                             f"airframe model {path} (its points: {', '.join(model.interface)})")
-        width = model.interface[m.interface].shape[1]
-        for i, s in enumerate(m.springs):
-            if s.dir >= width:
-                raise ValueError(f"[mount.{m.name}] springs[{i}].dir: {s.dir} ({AXES[s.dir]}) but the airframe "
-                                 f"model's point {m.interface!r} has translations only")
-    return found, model
 
 
 def port_variables(found: dict, model: ModalModel | None) -> tuple[Variable, ...]:
@@ -134,16 +113,7 @@ class Airframe(KernelComponent):
     def _matrices(self) -> None:
         """B (springs x modes), the springs' k and c, and the output rows O over [s_new, u] (kernel.py)."""
         model = self._model
-        rows, k, c, mount_of = [], [], [], []
-        for m in self._found.values():
-            phi = model.interface[m.interface]
-            for s in m.springs:
-                rows.append(phi[:, s.dir])
-                k.append(s.k)
-                c.append(s.c)
-                mount_of.append(m.name)
-        B = np.vstack(rows)
-        ks, cs = np.asarray(k), np.asarray(c)
+        _, B, ks, cs = spring_rows(self._found, model)
         n, ns = model.n, len(ks)
         self._B, self._k, self._c = B, ks, cs
         self._Keff = np.diag(model.w ** 2) + B.T @ (ks[:, None] * B)
