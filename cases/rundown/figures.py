@@ -23,6 +23,7 @@ import numpy as np
 
 from rotorcosim.cases.blade_loss.engine_names import spool_name
 from rotorcosim.cases.blade_loss.results import KELVIN, NODES, bearing_ids
+from rotorcosim.cases.interface import figures as interface_figures
 from rotorcosim.master.observer.series import events_of
 from rotorcosim.master.run.outputs import check_dpi
 
@@ -124,7 +125,8 @@ def figures(sc, data, out, dpi: int | None = None) -> list[str]:
     ids = [k for k in bearing_ids(sc.components) if _get(data, f"thermal{k}.T_nodes") is not None]
     if ids:
         names.append(_temperatures(data, t, phase, out, ids))
-    return names
+    # an engine on an airframe: the interface loads and the response points' vibration
+    return names + interface_figures.figures(sc, data, out.folder, out.dpi, spools[0])
 
 
 def _speed(sc, data, t, phase, spools, out, events):
