@@ -4,16 +4,17 @@ Between a supported point (a rotor node, or a bearing's housing side) and the st
 the point's displacement ``X`` and velocity ``V`` (x, y, axial; the axial element carries no force), outputs the
 force the fuse carries, ``F_support`` (x, y) [N], transmitted to the structure, and the force on the supported
 body ``F_rotor`` (= -F_support, its axial element 0, the rotor's port convention). The force law and the break
-are kernel.py's. One stage: the fuse breaks once, from intact to the soft path.
+are kernel.py's. One stage (``stages = 1``): the fuse breaks once, from intact to the soft path ``k_broken``; two
+(``stages = 2``): the soft path breaks again at ``break_load_2`` into ``k_broken_2``.
 
-The break is an event: the component declares one event indicator (``break``, kernel.break_indicator), and the
-master locates its zero within ``event_tolerance`` [s] (master/core/events.py) and calls
+A break is an event: the component declares one event indicator (``break``, kernel.break_indicator: the present
+stage's), and the master locates its zero within ``event_tolerance`` [s] (master/core/events.py) and calls
 :meth:`SupportFuse.update_discrete`, which records the break. The step itself breaks the fuse at its end when the
 indicator reached zero there, so that the fuse also breaks without the master's event location (an FMU in another
 tool: the break then falls on the communication point after the load was reached).
 
-The component is memoryless but for its state ``broken``; its force follows its inputs of the step (the point's
-state at the end of the step in Gauss-Seidel order after the rotor).
+The component is memoryless but for its state ``broken`` (the stages broken); its force follows its inputs of the
+step (the point's state at the end of the step in Gauss-Seidel order after the rotor).
 """
 from __future__ import annotations
 
@@ -38,7 +39,13 @@ class SupportFuse(Component):
         Variable("break_load", "parameter", unit="N", start=0.0,
                  description="the intact element's radial elastic force at which the fuse breaks"),
         Variable("k_broken", "parameter", unit="N/m", start=0.0,
-                 description="stiffness of the soft path after the break (0: none)"),
+                 description="stiffness of the soft path after the (first) break (0: none)"),
+        Variable("stages", "parameter", unit="1", start=1, type="Integer",
+                 description="break stages: 1, or 2 (the soft path breaks again at break_load_2)"),
+        Variable("break_load_2", "parameter", unit="N", start=0.0,
+                 description="with stages = 2: the soft path's radial elastic force k_broken |x| at which it breaks"),
+        Variable("k_broken_2", "parameter", unit="N/m", start=0.0,
+                 description="with stages = 2: stiffness after the second break (below k_broken; 0: none)"),
         Variable("bumper_clearance", "parameter", unit="m", start=0.0,
                  description="radial clearance of the bumper"),
         Variable("bumper_stiffness", "parameter", unit="N/m", start=0.0,
@@ -51,7 +58,7 @@ class SupportFuse(Component):
         Variable("V", "input", 3, "m/s", "velocity of the supported point (x, y, axial)"),
         Variable("F_support", "output", 2, "N", "force the fuse carries, transmitted to the structure"),
         Variable("F_rotor", "output", 3, "N", "force of the fuse on the supported body, -F_support (axial 0)"),
-        Variable("broken", "output", 1, "1", "0 intact, 1 broken"),
+        Variable("broken", "output", 1, "1", "stages broken: 0 intact, 1 after the first break, 2 after the second"),
     )
     required_parameters = ("k_intact", "break_load")
     event_indicators = ("break",)
@@ -74,19 +81,58 @@ class SupportFuse(Component):
             ("bumper_friction", p["bumper_friction"] >= 0.0, "must be >= 0"),
             ("event_tolerance", p["event_tolerance"] > 0.0, "must be > 0"),
         ]
+        checks += self._stage_checks()
         for key, ok, what in checks:
             # NaN fails every comparison above: named with the rest
             if not (ok and math.isfinite(p[key])):
                 raise ContractError(f"{self.name}.{key} {what}, got {p[key]!r}")
-        #: broken: the fuse is on its soft path; reported: the master has located the break (update_discrete)
+        #: (stiffness, load that breaks it) of each stage that can break, then the last stage's stiffness
+        self._stages = [(p["k_intact"], p["break_load"])] + ([(p["k_broken"], p["break_load_2"])]
+                                                             if p["stages"] == 2 else [])
+        self._k_last = p["k_broken_2"] if p["stages"] == 2 else p["k_broken"]
+        #: broken: the stages broken (0 intact); reported: those the master has located (update_discrete)
         self.state = {"broken": np.zeros(1), "reported": np.zeros(1)}
         self._publish()
+
+    def _stage_checks(self) -> list:
+        """The checks of the second stage's keys (``stages``, ``break_load_2``, ``k_broken_2``): one stage leaves
+        them at 0; two need a soft path that carries load (k_broken > 0), a lower stiffness after the second break,
+        and a second load above what the soft path carries at the first break (else both break at once)."""
+        p = self.p
+        if p["stages"] not in (1, 2):
+            return [("stages", False, "must be 1 or 2")]
+        if p["stages"] == 1:
+            return [(k, p[k] == 0.0, "is a second stage's key: give it with stages = 2")
+                    for k in ("break_load_2", "k_broken_2")]
+        first = p["break_load"] * p["k_broken"] / p["k_intact"]
+        return [
+            ("k_broken", p["k_broken"] > 0.0, "must be > 0 with stages = 2 (the second stage breaks the soft path)"),
+            ("break_load_2", p["break_load_2"] > first,
+             f"must be above {first:g} N with stages = 2 (the soft path's force k_broken |x| at the first break; "
+             "a lower one breaks both stages at once)"),
+            ("k_broken_2", 0.0 <= p["k_broken_2"] < p["k_broken"],
+             f"must be within [0, k_broken = {p['k_broken']:g} N/m) (each stage softer than the one before)"),
+        ]
+
+    def _stiffness(self) -> float:
+        s = int(self.state["broken"][0])
+        return self._stages[s][0] if s < len(self._stages) else self._k_last
+
+    def _indicator(self) -> float:
+        """The present stage's indicator (kernel.break_indicator); the fuse must not be at its last stage."""
+        x = self.u["X"]
+        k, load = self._stages[int(self.state["broken"][0])]
+        return break_indicator(float(x[0]), float(x[1]), k, load)
+
+    def _break_through(self) -> None:
+        """Every stage whose load the present displacement reaches breaks (the next one's too, if already over)."""
+        while self.state["broken"][0] < len(self._stages) and self._indicator() >= 0.0:
+            self.state["broken"] = self.state["broken"] + 1.0
 
     def _publish(self) -> None:
         p, u = self.p, self.u
         x, v = u["X"], u["V"]
-        k = p["k_broken"] if self.state["broken"][0] else p["k_intact"]
-        fx, fy = support_force(float(x[0]), float(x[1]), float(v[0]), float(v[1]), k, p["damping"],
+        fx, fy = support_force(float(x[0]), float(x[1]), float(v[0]), float(v[1]), self._stiffness(), p["damping"],
                                p["bumper_stiffness"], p["bumper_clearance"], p["bumper_friction"])
         self.y["F_support"] = np.array([fx, fy])
         self.y["F_rotor"] = np.array([-fx, -fy, 0.0])
@@ -94,25 +140,31 @@ class SupportFuse(Component):
 
     def do_step(self, t, h):
         self.time = t + h
-        x = self.u["X"]
-        if not self.state["broken"][0] and break_indicator(float(x[0]), float(x[1]), self.p["k_intact"],
-                                                           self.p["break_load"]) >= 0.0:
-            # on its own (no master locating the event): broken at the end of the step that reached the load
-            self.state["broken"] = np.ones(1)
+        # on its own (no master locating the event): broken at the end of the step that reached the load
+        self._break_through()
         self._publish()
 
     def indicators(self) -> np.ndarray:
-        if self.state["broken"][0]:
-            # broken by its step and not yet handed over: the indicator has crossed; then none (one stage)
-            return np.zeros(0) if self.state["reported"][0] else np.ones(1)
-        x = self.u["X"]
-        return np.array([break_indicator(float(x[0]), float(x[1]), self.p["k_intact"], self.p["break_load"])])
+        s, reported = self.state["broken"][0], self.state["reported"][0]
+        if s > reported:
+            # broken by its step and not yet handed over: the indicator has crossed
+            return np.ones(1)
+        if s >= len(self._stages):
+            return np.zeros(0)          # the last stage: nothing left to break
+        return np.array([self._indicator()])
 
     def update_discrete(self, t, which):
         x = self.u["X"]
-        elastic = self.p["k_intact"] * math.hypot(float(x[0]), float(x[1]))
-        self.state["broken"] = np.ones(1)
-        self.state["reported"] = np.ones(1)
+        r = math.hypot(float(x[0]), float(x[1]))
+        first = int(self.state["reported"][0])
+        if self.state["broken"][0] <= first:
+            self.state["broken"] = np.array([first + 1.0])
+        self._break_through()
+        self.state["reported"] = self.state["broken"].copy()
         self._publish()
-        return {"kind": "break", "values": {"F_elastic_N": elastic, "break_load_N": self.p["break_load"],
-                                            "X_m": [float(x[0]), float(x[1])]}}
+        # the values of the stage that broke first (a second one broken at once shows in the stage reached)
+        k, load = self._stages[first]
+        values = {"F_elastic_N": k * r, "break_load_N": load, "X_m": [float(x[0]), float(x[1])]}
+        if len(self._stages) > 1:
+            values["stage"] = int(self.state["broken"][0])
+        return {"kind": "break", "values": values}

@@ -15,10 +15,13 @@ and the damping ``c`` in both states. The bumper (``bumper_stiffness`` > 0) is a
 coefficient, ``v_reg`` = :data:`V_REG` (Coulomb friction regularised below it, so that a point at rest on the
 bumper carries no spurious friction). The force on the supported body is ``-F_support``.
 
-The break (one stage): the fuse breaks when the magnitude of the intact element's elastic force ``k_intact |x|``
-reaches ``break_load``; its event indicator is ``k_intact |x| - break_load`` while intact (negative below the
-break load); none after (one stage: nothing left to break). At the break the strain energy ``(k_intact - k_broken) |x|^2 / 2`` of the
-intact element's share leaves the system (the broken element no longer stores it).
+The break, in one or two stages: stage ``s`` (0 intact, 1 after the first break, 2 after the second) carries the
+stiffness ``k_s`` (``k_intact``, ``k_broken``, ``k_broken_2``), and breaks into stage ``s + 1`` when the magnitude
+of its elastic force ``k_s |x|`` reaches the next break load ``L_(s+1)`` (``break_load``, ``break_load_2``). Its
+event indicator is ``k_s |x| - L_(s+1)`` (negative below the load); none after the last stage (nothing left to
+break). A two-stage fuse is the Rolls-Royce arrangement of US 9863274 B2: a first fuse that cuts the stiff load
+path, a second one in the softer path left, which cuts it again at a further load. At a break the strain energy
+``(k_s - k_(s+1)) |x|^2 / 2`` of the broken share leaves the system (the softer element no longer stores it).
 """
 from __future__ import annotations
 
@@ -48,6 +51,7 @@ def support_force(x: float, y: float, vx: float, vy: float, k: float, c: float, 
     return fx, fy
 
 
-def break_indicator(x: float, y: float, k_intact: float, break_load: float) -> float:
-    """The intact fuse's event indicator [N]: ``k_intact |x| - break_load`` (the break at its zero)."""
-    return k_intact * math.hypot(x, y) - break_load
+def break_indicator(x: float, y: float, k: float, break_load: float) -> float:
+    """A stage's event indicator [N]: ``k |x| - break_load`` with ``k`` the stage's stiffness and ``break_load`` the
+    load that breaks it (the break at its zero)."""
+    return k * math.hypot(x, y) - break_load
