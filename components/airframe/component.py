@@ -66,7 +66,10 @@ class Airframe(KernelComponent):
     """The airframe's reduced linear model on the engine's mounts (module docstring)."""
 
     description = ("Airframe on the engine's mounts: a reduced linear (modal) model at the mounts' interface points "
-                   "and response points, the mount springs between them and the engine")
+                   "and response points, the mount springs between them and the engine. Its ports follow the "
+                   "engine file: inputs X_mount_NAME, V_mount_NAME (per spring of mount NAME); outputs "
+                   "F_engine_NAME (per spring, to the rotor's F_mount_NAME), F_NAME [N] and M_NAME [N m] (the "
+                   "mount's load on the airframe, x y z), a_POINT [m/s2] (each response point, x y z)")
     file_parameters = ("model_file",)
     variables = (
         Variable("model_file", "parameter", unit="1", start="", type="String",

@@ -164,3 +164,15 @@ def test_mount_on_a_missing_node_is_one_line(tmp_path, monkeypatch, capsys):
     out = capsys.readouterr().out.splitlines()
     assert len(out) == 2
     assert "[mount.fwd] springs[0].node" in out[1] and "does not exist" in out[1]
+
+
+def test_the_format_pages_example_is_read(tmp_path):
+    import re
+
+    page = (fem.DEFAULT_FILE.parents[3] / "docs" / "reference" / "airframe-format.md").read_text()
+    (tmp_path / "a.toml").write_text(re.search(r"## An example\n.*?```toml\n(.*?)```", page, re.S).group(1))
+    m = read(tmp_path / "a.toml")
+    # the page's cantilever: its tip flexibility with two modes, 4 L^3 / EI (1.8751^-4 + 4.6941^-4), 99.5 % of
+    # L^3 / 3 EI (the page's frequencies to 3 digits)
+    assert static_flexibility(m, "tip")[1, 1] == pytest.approx(0.9954 * L ** 3 / (3.0 * EI), rel=2e-3)
+    assert sorted(m.response) == ["mid_span"]
