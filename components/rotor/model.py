@@ -299,6 +299,9 @@ def _assemble(data: dict, digest: str, omega_pt: float | None, omega_gg: float |
         if p in hubs:
             raise ValueError(f"rotor model: hub {p!r} is both a casing hub and a pedestal")
     hubs = hubs + list(peds)
+    # a fused bearing's own housing: a body of its own after the hubs (its name no TOML key of a hub can clash with)
+    fuses = fuse_ids(data)
+    hubs = hubs + [fused_housing(f) for f in fuses]
     base_hub = base_sh + 3 * n_shell_nodes
     ntot = base_hub + 3 * len(hubs)
 
@@ -421,6 +424,19 @@ def _assemble(data: dict, digest: str, omega_pt: float | None, omega_gg: float |
             if d < 2:
                 _couple(C, i, None, cxy[d])
 
+    # fused housings: the mass, and the fuse's axial hold on the hub (its radial support is the co-simulated fuse)
+    for f in fuses:
+        spec = data["fuse"][f]
+        entry = data.get("attach", {}).get(f"bearing{f}")
+        if not isinstance(entry, dict) or "housing" not in entry:
+            raise ValueError(f"rotor model: [fuse.{f}] is at bearing{f}, which [attach] does not have (a fuse "
+                             "carries a bearing's housing)")
+        mh = _positive(f"[fuse.{f}] housing_mass_kg", spec.get("housing_mass_kg"))
+        i, j = gdof("hub", fused_housing(f), 2), gdof("hub", entry["housing"], 2)
+        for d in range(3):
+            M[gdof("hub", fused_housing(f), d), gdof("hub", fused_housing(f), d)] += mh
+        _couple(K, i, j, _positive(f"[fuse.{f}] k_intact", spec.get("k_intact")))
+
     # mounts to ground
     for m_i, mt in enumerate(cas["mounts"] if cas is not None else ()):
         ring, node, d = int(mt["ring"]), int(mt["node"]), int(mt["dir"])
@@ -483,7 +499,7 @@ def _assemble(data: dict, digest: str, omega_pt: float | None, omega_gg: float |
         return int(i)
 
     sub = np.ix_(free, free)
-    ports = _ports(data.get("attach", {}), dof)
+    ports = _ports(data.get("attach", {}), dof, fuses)
     lateral = [dof(s, n, d) for s in names for n in range(len(z[s])) for d in range(2)]
     for s in names:
         # the speed ratio of the second spool to the first divides by the first (0 was a ZeroDivisionError); a
@@ -620,15 +636,31 @@ def speed_support_delta(full: "FullModel", w: float, n: int | None = None) -> tu
     return dK, dC
 
 
-def _ports(attach: dict, dof) -> dict:
-    """The port groups of the [attach] entries the file gives (attach.groups: any number of bearings and rub rings)."""
+def fuse_ids(data: dict) -> tuple[str, ...]:
+    """The ids of an engine file's ``[fuse.ID]`` tables: the bearings whose housing sits on a support fuse."""
+    fuses = data.get("fuse", {})
+    return tuple(fuses) if isinstance(fuses, dict) else ()
+
+
+def fused_housing(fid: str) -> str:
+    """The body name of fused bearing ``fid``'s own housing (a hub of the model: ``dof("hub", name, d)``)."""
+    return f"bearing{fid} housing"
+
+
+def _ports(attach: dict, dof, fuses=()) -> dict:
+    """The port groups of the [attach] entries the file gives (attach.groups: any number of bearings and rub
+    rings; a fused bearing's housing is its own body, the fuse's structure side the hub of its entry)."""
     ports = {}
-    for group, entry, what, n in attach_layout.groups(attach_layout.layout(attach)):
+    for group, entry, what, n in attach_layout.groups(attach_layout.layout(attach, fuses)):
         if entry not in attach:
             continue
         a = attach[entry]
-        if what == "housing":
-            ports[group] = np.asarray([dof("hub", a["housing"], d) for d in range(2)])
+        if what in ("housing", "fuse"):
+            fid = entry[len("bearing"):]
+            body = fused_housing(fid) if fid in fuses else a["housing"]
+            ports[group] = np.asarray([dof("hub", body, d) for d in range(n)])
+        elif what == "fusehub":
+            ports[group] = np.asarray([dof("hub", a["housing"], d) for d in range(n)])
         else:
             node = a["node"]
             if not (isinstance(node, list) and len(node) == 2):
