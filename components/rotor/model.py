@@ -94,7 +94,9 @@ class FullModel:
         critical speeds and the calibration): per support ``{pt_node, hub, k_contact, m_journal, k_spring,
         c_film}``, the ball contacts (radial stiffness at the preloaded rest) join the power-turbine node to a
         journal body of its own (outer race + SFD journal, eq. 5: 2 DOF, x and y) which the O-ring centering
-        spring and the linearised film join to the casing hub. Returns the augmented matrices ``M, K, C, G_pt,
+        spring and the linearised film join to the casing hub (a fused bearing's, ``fuse = {housing, k, c}``: to
+        its own housing, which the fuse's stiffness ``k`` and damping ``c`` of the stage considered join to the
+        hub). Returns the augmented matrices ``M, K, C, G_pt,
         G_gg`` (the model's DOFs first, then x, y of each journal in the order of ``supports``), ``journal``
         (support key -> its two DOF indices) and ``rotor_lateral``."""
         n0 = self.n
@@ -111,9 +113,15 @@ class FullModel:
         for s_i, (key, s) in enumerate(supports.items()):
             jx = n0 + 2 * s_i
             journal[key] = np.array([jx, jx + 1])
+            fuse = s.get("fuse")
             for d in range(2):
                 i = self.info["dof"](*_node(s), d)
                 h = self.info["dof"]("hub", s["hub"], d)
+                if fuse is not None:
+                    f = self.info["dof"]("hub", fuse["housing"], d)
+                    _couple(K, f, h, _nonneg(f"support {key} fuse k", fuse["k"]))
+                    _couple(C, f, h, _nonneg(f"support {key} fuse c", fuse["c"]))
+                    h = f
                 j = jx + d
                 M[j, j] += _positive(f"support {key} m_journal", s["m_journal"])
                 _couple(K, i, j, _positive(f"support {key} k_contact", s["k_contact"]))
