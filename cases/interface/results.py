@@ -11,7 +11,9 @@ A scenario whose engine hangs from an airframe (an ``airframe.modal`` component,
   amplitude (largest magnitude) of each component over the last :data:`CYCLES` turns of the last
   thermo-mechanical interval of the run (at most its second half): the steady windmilling level when the run ends
   windmilling; ``peak_Nm`` and ``windmilling_Nm`` the same for the moment (``airframe.M_NAME``) of a mount with a
-  rotation spring. Other keys of a mount's entry may be added by other results (the fatigue of the loads);
+  rotation spring; ``del_N`` and ``miner_damage`` (x, y, z), the damage-equivalent load and the Miner damage of
+  each component over the whole run, when the run counts the mount's load (``[results] fatigue_loads``,
+  cases/rundown/fatigue.py);
 * per response point P (``points.P``): ``peak_g``, ``peak_t_s``, ``peak_speed_rpm``, ``windmilling_g``: the same
   for its acceleration (``airframe.a_P``) in units of g (:data:`G`);
 * ``windmilling``: the window of the windmilling levels, ``t_s`` [start, end] and the crossing spool's speed at its
@@ -148,10 +150,22 @@ def observers(sc, speed_ref: str | None) -> list[Observer]:
     return [InterfaceTrack(af, speed_ref)] if af is not None else []
 
 
-def extract(obs: list) -> dict:
-    """``{"interface": ...}`` from the observers :func:`observers` made (empty for none)."""
+def extract(obs: list, fatigue: dict | None = None) -> dict:
+    """``{"interface": ...}`` from the observers :func:`observers` made (empty for none). ``fatigue``: the run's
+    summary ``fatigue`` (cases/rundown/fatigue.py), whose counted mount loads (``airframe.F_NAME[i]``) give each
+    mount's ``del_N`` and ``miner_damage`` (x, y, z; absent for a component not counted)."""
     track = next((o for o in obs if isinstance(o, InterfaceTrack)), None)
-    return {"interface": track.summary()} if track is not None else {}
+    if track is None:
+        return {}
+    out = track.summary()
+    loads = (fatigue or {}).get("loads", {})
+    for name, entry in out["mounts"].items():
+        ref = f"{track.airframe}.F_{name}"
+        rows = {ax: loads.get(f"{ref}[{i}]") for i, ax in enumerate(AXES)}
+        if any(r is not None for r in rows.values()):
+            for key in ("del_N", "miner_damage"):
+                entry[key] = {ax: (r or {}).get(key) for ax, r in rows.items()}
+    return {"interface": out}
 
 
 def result_paths(sc) -> list[str]:

@@ -27,7 +27,9 @@ disk: ``"disk"``, whirl only).
   own peak of the mode, or over the defining peak's where it has none, and that ``speed_range_rpm``. A mode within
   the run's speeds without a peak anywhere gets ``peak_found`` false, a ``note`` and None for the speed, the time
   and the peaks;
-* ``energy``: the spools' energy balance from the torques the components report (:mod:`.energy`).
+* ``energy``: the spools' energy balance from the torques the components report (:mod:`.energy`);
+* ``fatigue`` (a scenario that names ``[results] fatigue_loads``): the fatigue content of each load element over
+  the run (:mod:`.fatigue`: the settings, per element ``del_N``, ``miner_damage``, ``cycles``).
 
 The response is kept as maxima over bins of ``BIN_S`` of thermo-mechanical time, with the time and the speed of
 each bin's largest whirl sample (``RundownTrack``).
@@ -46,6 +48,9 @@ from rotorcosim.master.observer.observer import Observer
 
 from rotorcosim.cases.interface import results as interface
 
+from rotorcosim.master.observer.held_cycles import LoadCycles
+
+from . import fatigue
 from .energy import SpoolEnergy
 
 #: time bins of the response track [s]: many per crossing (a crossing lasts ~0.1-1 s), few per hour of run
@@ -212,6 +217,9 @@ def observers(sc, cycle):
     spools = _spools(sc)
     crossing = _crossing_spool(sc, spools)
     obs = [RundownTrack(spools, crossing), SpoolEnergy(spools)]
+    cycles = fatigue.observer(sc, cycle)
+    if cycles is not None:
+        obs.append(cycles)
     # an engine on an airframe: its interface loads (cases/interface), last so that the blade-loss case's
     # observers keep their places
     tail = interface.observers(sc, f"{crossing}.Omega" if crossing else None)
@@ -406,11 +414,14 @@ def extract(sc, sim, obs, report) -> dict:
         name = spool_name(sc, track.crossing_spool)
         for c in out["crossings"]:
             c["spool_name"] = name
-    others = [o for o in obs[2:] if not isinstance(o, interface.InterfaceTrack)]
+    rest = [o for o in obs[2:] if not isinstance(o, interface.InterfaceTrack)]
+    if rest and isinstance(rest[0], LoadCycles):
+        out["fatigue"] = fatigue.summary(rest[0], sc)
+        rest = rest[1:]
     if _case_blade_loss(sc):
         from rotorcosim.cases.blade_loss import results as bl
-        out.update(bl.extract(sc, sim, others, report))
-    out.update(interface.extract(obs))
+        out.update(bl.extract(sc, sim, rest, report))
+    out.update(interface.extract(obs, out.get("fatigue")))
     return out
 
 
@@ -426,6 +437,8 @@ def result_paths(sc) -> list[str]:
                                              "drag_dissipated_J")]
         out += [f"energy.{sp}.work_J.{k}" for k in ("drive", "drag", "rub", "aero")]
     out.append("crossings.")
+    if sc.extra.get("results", {}).get("fatigue_loads"):
+        out.append("fatigue.")
     if _case_blade_loss(sc):
         from rotorcosim.cases.blade_loss import results as bl
         out += bl.result_paths(sc)
