@@ -60,11 +60,11 @@ def marked_critical_speeds(sc, spool: str, top_rpm: float) -> list[float]:
     if rotor is None or not (math.isfinite(top_rpm) and top_rpm > 0.0):
         return []
     from rotorcosim.cases.blade_loss import linear_engine
+    from rotorcosim.components.airframe.installed import installed_model
     from rotorcosim.components.rotor import critical, engine_check
-    from rotorcosim.components.rotor import model as fem
 
     try:
-        m = fem.load(rotor.parameters.get("model_file") or None)
+        m = installed_model(rotor.parameters.get("model_file") or "")
         ops = engine_check.operating_speeds(m.data) if m.data.get("spool") else {}
         name = sc.components[spool].parameters.get("spool", "pt") if spool in sc.components else None
         excited = ops[name][0] / next(iter(ops.values()))[0] if name in ops else 1.0
@@ -97,7 +97,9 @@ class EngineModes:
         from rotorcosim.cases.blade_loss import linear_engine
         from rotorcosim.components.rotor import critical
 
-        self.full = rotor.full_model()
+        from rotorcosim.components.airframe.installed import on_airframe
+
+        self.full = on_airframe(rotor.full_model(), rotor.p["model_file"])
         self.dampers = dampers
         self.ref_rpm = float(rotor.p["omega_pt"]) * 30.0 / math.pi
         # per process, the linear engine of a model and of the bearings' and dampers' specifications (a sweep's

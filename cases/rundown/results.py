@@ -46,6 +46,8 @@ from scipy.signal import find_peaks, peak_widths
 from rotorcosim.components.contract import COUPLED
 from rotorcosim.master.observer.observer import Observer
 
+from rotorcosim.cases.interface import results as interface
+
 from rotorcosim.master.observer.held_cycles import LoadCycles
 
 from . import fatigue
@@ -213,14 +215,18 @@ def _case_blade_loss(sc) -> bool:
 
 def observers(sc, cycle):
     spools = _spools(sc)
-    obs = [RundownTrack(spools, _crossing_spool(sc, spools)), SpoolEnergy(spools)]
+    crossing = _crossing_spool(sc, spools)
+    obs = [RundownTrack(spools, crossing), SpoolEnergy(spools)]
     cycles = fatigue.observer(sc, cycle)
     if cycles is not None:
         obs.append(cycles)
+    # an engine on an airframe: its interface loads (cases/interface), last so that the blade-loss case's
+    # observers keep their places
+    tail = interface.observers(sc, f"{crossing}.Omega" if crossing else None)
     if _case_blade_loss(sc):
         from rotorcosim.cases.blade_loss import results as bl
         obs += bl.observers(sc, cycle)
-    return obs
+    return obs + tail
 
 
 def check(sc, sim) -> None:
@@ -420,13 +426,14 @@ def extract(sc, sim, obs, report) -> dict:
         name = spool_name(sc, track.crossing_spool)
         for c in out["crossings"]:
             c["spool_name"] = name
-    rest = obs[2:]
+    rest = [o for o in obs[2:] if not isinstance(o, interface.InterfaceTrack)]
     if rest and isinstance(rest[0], LoadCycles):
         out["fatigue"] = fatigue.summary(rest[0], sc)
         rest = rest[1:]
     if _case_blade_loss(sc):
         from rotorcosim.cases.blade_loss import results as bl
         out.update(bl.extract(sc, sim, rest, report))
+    out.update(interface.extract(obs, out.get("fatigue")))
     return out
 
 
@@ -447,7 +454,7 @@ def result_paths(sc) -> list[str]:
     if _case_blade_loss(sc):
         from rotorcosim.cases.blade_loss import results as bl
         out += bl.result_paths(sc)
-    return out
+    return out + interface.result_paths(sc)
 
 
 def figures(sc, data, out, pool=None, dpi: int | None = None) -> list[str]:

@@ -59,15 +59,17 @@ RPM = fem.RPM
 
 
 def port_variables(lay: attach.Layout) -> tuple[Variable, ...]:
-    """The rotor component's port variables for the attached bearings and rub rings (attach.py), then F_u."""
+    """The rotor component's port variables for the attached bearings, rub rings and mounts (attach.py), then
+    F_u. (A mount's spring on a rotation carries N m in its entry of ``F_mount_NAME``, rad in ``X_mount_NAME``.)"""
     ins = attach.input_ports(lay)
     outs = attach.output_ports(lay)
     by_kind = {k: [v for v in ins if v[0].startswith(k)]
                for k in ("F_brg", "F_sfd_housing", "F_rub_housing", "F_fusehub")}
     by_kind["F_rub"] = [v for v in ins if v[0].startswith("F_rub") and not v[0].startswith("F_rub_housing")]
     by_kind["F_fuse"] = [v for v in ins if v[0].startswith("F_fuse") and not v[0].startswith("F_fusehub")]
+    by_kind["F_mount"] = [v for v in ins if v[0].startswith("F_mount_")]
     out = [Variable(name, "input", n, "N", desc) for k in by_kind for name, _, n, desc in by_kind[k]]
-    for prefix in ("brg", "housing", "rub", "fuse"):
+    for prefix in ("brg", "housing", "rub", "fuse", "mount_"):
         group = [o for o in outs if o[0].startswith(prefix)]
         out += [Variable(x, "output", n, "m", d.format("displacement")) for _, x, _, n, d in group]
         out += [Variable(v, "output", n, "m/s", d.format("velocity")) for _, _, v, n, d in group]
@@ -81,8 +83,8 @@ def layout_of_file(model_file: str = "") -> attach.Layout:
     lay = _LAYOUTS.get(key)
     if lay is None:
         data, _ = fem.load_data(model_file or None)
-        lay = attach.PAPER if shaft_model.is_shaft_model(data) else attach.layout(data.get("attach", {}),
-                                                                                    fem.fuse_ids(data))
+        lay = (attach.PAPER if shaft_model.is_shaft_model(data)
+               else attach.with_mounts(attach.layout(data.get("attach", {}), fem.fuse_ids(data)), data))
         _LAYOUTS[key] = lay
     return lay
 
