@@ -263,13 +263,19 @@ class Simulation:
         if role == COUPLED:
             self.engines_used.append("compiled" if runner is not None else "python")
         try:
-            if runner is not None:
-                try:
-                    k = runner.run(k, nsteps, t_start, stop, math.lcm(stop.every, lcm) if stop is not None else 0)
-                    why = runner.why or why
-                finally:
-                    k = runner.k
-            while k < nsteps and not (runner is not None and runner.why):
+            while k < nsteps:
+                if runner is not None:
+                    try:
+                        k = runner.run(k, nsteps, t_start, stop, math.lcm(stop.every, lcm) if stop is not None else 0)
+                        why = runner.why or why
+                    finally:
+                        k = runner.k
+                    if runner.why or runner.pending is None:
+                        break
+                    # base step k is the generic loop's (an event in it: runner.Runner.run), then the compiled
+                    # loop again
+                    if located is not None:
+                        located.resync()
                 base_step(t_start, k)
                 k += 1
                 self.t = t_start + k * step

@@ -12,8 +12,9 @@ master locates its zero within ``event_tolerance`` [s] (master/core/events.py) a
 indicator reached zero there, so that the fuse also breaks without the master's event location (an FMU in another
 tool: the break then falls on the communication point after the load was reached).
 
-The component is memoryless but for its state ``broken``; its force follows its inputs of the step (the point's
-state at the end of the step in Gauss-Seidel order after the rotor).
+Its state is ``broken``, ``reported`` and the indicator's last value ``g``; its force follows its inputs of the
+step (the point's state at the end of the step in Gauss-Seidel order after the rotor). The step is a compiled
+kernel (kernel.step) that reports the indicator's change of sign, so that the compiled loop runs it.
 """
 from __future__ import annotations
 
@@ -21,11 +22,12 @@ import math
 
 import numpy as np
 
-from ..contract import Component, ContractError, Variable
-from .kernel import break_indicator, support_force
+from ..contract import ContractError, Variable
+from ..kernels import KernelComponent
+from .kernel import FuseParams, FuseState, break_indicator, publish, step
 
 
-class SupportFuse(Component):
+class SupportFuse(KernelComponent):
     """A stiff support that breaks at a radial load into a soft path and a bumper (module docstring)."""
 
     description = ("Support fuse: intact stiffness and damping until the radial force reaches the break load, then "
@@ -78,41 +80,40 @@ class SupportFuse(Component):
             # NaN fails every comparison above: named with the rest
             if not (ok and math.isfinite(p[key])):
                 raise ContractError(f"{self.name}.{key} {what}, got {p[key]!r}")
-        #: broken: the fuse is on its soft path; reported: the master has located the break (update_discrete)
-        self.state = {"broken": np.zeros(1), "reported": np.zeros(1)}
+        self._kernel_p = FuseParams(*(float(p[k]) for k in ("k_intact", "damping", "break_load", "k_broken",
+                                                             "bumper_stiffness", "bumper_clearance",
+                                                             "bumper_friction")))
+        x = self.u["X"]
+        #: broken: the fuse is on its soft path; reported: the master has located the break (update_discrete);
+        #: g: the indicator's last value (kernel.step)
+        self.state = {"broken": np.zeros(1), "reported": np.zeros(1),
+                      "g": np.array([break_indicator(float(x[0]), float(x[1]), p["k_intact"], p["break_load"])])}
         self._publish()
 
     def _publish(self) -> None:
-        p, u = self.p, self.u
-        x, v = u["X"], u["V"]
-        k = p["k_broken"] if self.state["broken"][0] else p["k_intact"]
-        fx, fy = support_force(float(x[0]), float(x[1]), float(v[0]), float(v[1]), k, p["damping"],
-                               p["bumper_stiffness"], p["bumper_clearance"], p["bumper_friction"])
-        self.y["F_support"] = np.array([fx, fy])
-        self.y["F_rotor"] = np.array([-fx, -fy, 0.0])
-        self.y["broken"] = self.state["broken"].copy()
+        s, p, u, y = self.kernel_args()
+        publish(s, p, u, y)
 
-    def do_step(self, t, h):
-        self.time = t + h
-        x = self.u["X"]
-        if not self.state["broken"][0] and break_indicator(float(x[0]), float(x[1]), self.p["k_intact"],
-                                                           self.p["break_load"]) >= 0.0:
-            # on its own (no master locating the event): broken at the end of the step that reached the load
-            self.state["broken"] = np.ones(1)
-        self._publish()
+    # -- the compiled kernel (components/kernels.py) ---------------------------------------------------------
+    STEP = staticmethod(step)
+    KERNEL_EVENTS = True
+
+    def kernel_state(self):
+        st = self.state
+        return FuseState(st["broken"], st["reported"], st["g"])
+
+    def kernel_params(self):
+        return self._kernel_p
 
     def indicators(self) -> np.ndarray:
-        if self.state["broken"][0]:
-            # broken by its step and not yet handed over: the indicator has crossed; then none (one stage)
-            return np.zeros(0) if self.state["reported"][0] else np.ones(1)
-        x = self.u["X"]
-        return np.array([break_indicator(float(x[0]), float(x[1]), self.p["k_intact"], self.p["break_load"])])
+        # broken by its step and not yet handed over: the indicator has crossed (g = 1); then none (one stage)
+        return np.zeros(0) if self.state["reported"][0] else self.state["g"].copy()
 
     def update_discrete(self, t, which):
         x = self.u["X"]
         elastic = self.p["k_intact"] * math.hypot(float(x[0]), float(x[1]))
-        self.state["broken"] = np.ones(1)
-        self.state["reported"] = np.ones(1)
+        self.state["broken"][0] = 1.0
+        self.state["reported"][0] = 1.0
         self._publish()
         return {"kind": "break", "values": {"F_elastic_N": elastic, "break_load_N": self.p["break_load"],
                                             "X_m": [float(x[0]), float(x[1])]}}

@@ -19,10 +19,23 @@ The break (one stage): the fuse breaks when the magnitude of the intact element'
 reaches ``break_load``; its event indicator is ``k_intact |x| - break_load`` while intact (negative below the
 break load); none after (one stage: nothing left to break). At the break the strain energy ``(k_intact - k_broken) |x|^2 / 2`` of the
 intact element's share leaves the system (the broken element no longer stores it).
+
+The step (:func:`step`, components/kernels.py contract) breaks the fuse at its end when the indicator reached zero
+there (a fuse without the master's event location, an FMU in another tool, breaks at that communication point),
+keeps the indicator's last value in its state ``g`` (``1`` once broken and until the master has located the
+break, ``reported``) and returns ``EVENT`` when the indicator changed sign over the step.
 """
 from __future__ import annotations
 
 import math
+from collections import namedtuple
+
+from ..kernels import EVENT, OK
+from ..numba_internals import kernel_jit
+
+#: the kernel's containers: ``broken``, ``reported``, ``g`` (arrays of one value); the force law's constants
+FuseState = namedtuple("FuseState", "broken reported g")
+FuseParams = namedtuple("FuseParams", "k_intact damping break_load k_broken k_b clearance mu")
 
 #: the sliding speed [m/s] below which the bumper's Coulomb friction is regularised (kernel docstring)
 V_REG = 1e-4
@@ -51,3 +64,41 @@ def support_force(x: float, y: float, vx: float, vy: float, k: float, c: float, 
 def break_indicator(x: float, y: float, k_intact: float, break_load: float) -> float:
     """The intact fuse's event indicator [N]: ``k_intact |x| - break_load`` (the break at its zero)."""
     return k_intact * math.hypot(x, y) - break_load
+
+
+_force = kernel_jit(support_force, inline="always")
+_indicator = kernel_jit(break_indicator, inline="always")
+
+
+@kernel_jit
+def step(s, p, u, y, t, h):
+    """The fuse over a step with the inputs of its end (module docstring): the break at the step's end when the
+    indicator reached zero, the force law of the state after it; status EVENT when the indicator changed sign."""
+    x = u.X
+    status = OK
+    if s.reported[0] == 0.0:
+        g = 1.0
+        if s.broken[0] == 0.0:
+            g = _indicator(x[0], x[1], p.k_intact, p.break_load)
+            if g >= 0.0:
+                s.broken[0] = 1.0
+                g = 1.0
+        if (g < 0.0) != (s.g[0] < 0.0):
+            status = EVENT
+        s.g[0] = g
+    publish(s, p, u, y)
+    return status
+
+
+@kernel_jit(inline="always")
+def publish(s, p, u, y):
+    """The outputs of the present state: F_support, F_rotor = -F_support (axial 0), broken."""
+    x, v = u.X, u.V
+    k = p.k_broken if s.broken[0] != 0.0 else p.k_intact
+    fx, fy = _force(x[0], x[1], v[0], v[1], k, p.damping, p.k_b, p.clearance, p.mu)
+    y.F_support[0] = fx
+    y.F_support[1] = fy
+    y.F_rotor[0] = -fx
+    y.F_rotor[1] = -fy
+    y.F_rotor[2] = 0.0
+    y.broken[0] = s.broken[0]

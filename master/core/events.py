@@ -23,10 +23,13 @@ re-steps (8 for a 20 us step at 0.1 us).
 
 What it needs: every active component at the interval's base step (a single-rate interval; a multi-rate one with
 an event indicator is refused with the reason) and explicit coupling (one pass per step). A hand-off window of the
-thermal-only hold records the base step's end only. The compiled loop does not locate events: an interval with
-an indicator runs in the generic loop, which says so in summary.json ``engine_note``
-(master/compiled/choice.why_not). A run with no indicator never builds a locator: its base steps are the
-engine's own, untouched. Events happen in coupled intervals: a component that declares an indicator and steps in
+thermal-only hold records the base step's end only. The compiled loop runs such an interval too when the
+components' kernels report their indicators' changes of sign (``KernelComponent.KERNEL_EVENTS``, status ``EVENT``):
+it stops at the base step of an event, rolled back to its start (master/compiled/runner.py), the locator takes
+that step (:meth:`EventLocator.resync` first: the compiled loop stepped the components since) and the compiled
+loop goes on; a component whose kernel does not report them makes the interval the generic loop's, which
+summary.json ``engine_note`` says (master/compiled/choice.why_not). A run with no indicator never builds a
+locator: its base steps are the engine's own, untouched. Events happen in coupled intervals: a component that declares an indicator and steps in
 a held interval is refused (:func:`locator`); one that only takes part in coupled intervals (a support fuse) is
 frozen in a held one, where its indicator cannot change.
 """
@@ -63,6 +66,10 @@ class EventLocator:
                                     "of the interval it is located in")
             self.tolerance[n] = tol
         self.comps = [(n, comps[n]) for n in self.engine.active]
+        self.g = self._values()
+
+    def resync(self) -> None:
+        """Read the indicators again from the components' present state (the compiled loop stepped them since)."""
         self.g = self._values()
 
     def _values(self) -> list[list[float]]:
