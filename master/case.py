@@ -41,6 +41,7 @@ The master names no case: it asks this module.
 from __future__ import annotations
 
 import argparse
+import functools
 import importlib
 import pkgutil
 from dataclasses import dataclass
@@ -58,6 +59,16 @@ GROUP = "rotorcosim.cases"
 SHIPPED = "rotorcosim.cases"
 
 
+@functools.cache
+def installed() -> dict[str, metadata.EntryPoint]:
+    """The entry points of the group ``rotorcosim.cases``, name -> entry point, read once per process: reading
+    every installed distribution's metadata takes ~20 ms, and a run asks for its case several times."""
+    out: dict[str, metadata.EntryPoint] = {}
+    for ep in metadata.entry_points(group=GROUP):
+        out.setdefault(ep.name, ep)   # the first of a name, as a scan would find it
+    return out
+
+
 class CaseError(ValueError):
     """A case name that resolves to nothing usable (one line naming the name and why)."""
 
@@ -72,9 +83,9 @@ def find(kind: str) -> Any:
             return getattr(importlib.import_module(module), attr)
         except (ImportError, AttributeError) as exc:
             raise CaseError(f"case {kind!r}: cannot be imported ({exc})") from None
-    for ep in metadata.entry_points(group=GROUP):
-        if ep.name == kind:
-            return ep.load()
+    ep = installed().get(kind)
+    if ep is not None:
+        return ep.load()
     if not kind.isidentifier():
         raise CaseError(f"case {kind!r}: not a case name (a Python identifier, or 'module:object')")
     try:
@@ -118,8 +129,8 @@ def all_cases() -> dict[str, Any]:
         for info in pkgutil.iter_modules(shipped.__path__):
             if info.ispkg:
                 out[info.name] = importlib.import_module(f"{SHIPPED}.{info.name}")
-    for ep in metadata.entry_points(group=GROUP):
-        out.setdefault(ep.name, ep)
+    for name, ep in installed().items():
+        out.setdefault(name, ep)
     return out
 
 

@@ -4,17 +4,19 @@ Between a supported point (a rotor node, or a bearing's housing side) and the st
 the point's displacement ``X`` and velocity ``V`` (x, y, axial; the axial element carries no force), outputs the
 force the fuse carries, ``F_support`` (x, y) [N], transmitted to the structure, and the force on the supported
 body ``F_rotor`` (= -F_support, its axial element 0, the rotor's port convention). The force law and the break
-are kernel.py's. One stage: the fuse breaks once, from intact to the soft path.
+are kernel.py's. One stage (``stages = 1``): the fuse breaks once, from intact to the soft path ``k_broken``; two
+(``stages = 2``): the soft path breaks again at ``break_load_2`` into ``k_broken_2``.
 
-The break is an event: the component declares one event indicator (``break``, kernel.break_indicator), and the
-master locates its zero within ``event_tolerance`` [s] (master/core/events.py) and calls
+A break is an event: the component declares one event indicator (``break``, kernel.break_indicator: the present
+stage's), and the master locates its zero within ``event_tolerance`` [s] (master/core/events.py) and calls
 :meth:`SupportFuse.update_discrete`, which records the break. The step itself breaks the fuse at its end when the
 indicator reached zero there, so that the fuse also breaks without the master's event location (an FMU in another
 tool: the break then falls on the communication point after the load was reached).
 
-Its state is ``broken``, ``reported`` and the indicator's last value ``g``; its force follows its inputs of the
-step (the point's state at the end of the step in Gauss-Seidel order after the rotor). The step is a compiled
-kernel (kernel.step) that reports the indicator's change of sign, so that the compiled loop runs it.
+Its state is ``broken`` (the stages broken), ``reported`` (those located) and the indicator's last value ``g``;
+its force follows its inputs of the step (the point's state at the end of the step in Gauss-Seidel order after
+the rotor). The step is a compiled kernel (kernel.step) that reports the indicator's changes of sign, so that the
+compiled loop runs it (``KERNEL_EVENTS``).
 """
 from __future__ import annotations
 
@@ -24,7 +26,7 @@ import numpy as np
 
 from ..contract import ContractError, Variable
 from ..kernels import KernelComponent
-from .kernel import FuseParams, FuseState, break_indicator, publish, step
+from .kernel import FuseParams, FuseState, break_indicator, indicator_of, publish, step
 
 
 class SupportFuse(KernelComponent):
@@ -40,7 +42,13 @@ class SupportFuse(KernelComponent):
         Variable("break_load", "parameter", unit="N", start=0.0,
                  description="the intact element's radial elastic force at which the fuse breaks"),
         Variable("k_broken", "parameter", unit="N/m", start=0.0,
-                 description="stiffness of the soft path after the break (0: none)"),
+                 description="stiffness of the soft path after the (first) break (0: none)"),
+        Variable("stages", "parameter", unit="1", start=1, type="Integer",
+                 description="break stages: 1, or 2 (the soft path breaks again at break_load_2)"),
+        Variable("break_load_2", "parameter", unit="N", start=0.0,
+                 description="with stages = 2: the soft path's radial elastic force k_broken |x| at which it breaks"),
+        Variable("k_broken_2", "parameter", unit="N/m", start=0.0,
+                 description="with stages = 2: stiffness after the second break (below k_broken; 0: none)"),
         Variable("bumper_clearance", "parameter", unit="m", start=0.0,
                  description="radial clearance of the bumper"),
         Variable("bumper_stiffness", "parameter", unit="N/m", start=0.0,
@@ -53,7 +61,7 @@ class SupportFuse(KernelComponent):
         Variable("V", "input", 3, "m/s", "velocity of the supported point (x, y, axial)"),
         Variable("F_support", "output", 2, "N", "force the fuse carries, transmitted to the structure"),
         Variable("F_rotor", "output", 3, "N", "force of the fuse on the supported body, -F_support (axial 0)"),
-        Variable("broken", "output", 1, "1", "0 intact, 1 broken"),
+        Variable("broken", "output", 1, "1", "stages broken: 0 intact, 1 after the first break, 2 after the second"),
     )
     required_parameters = ("k_intact", "break_load")
     event_indicators = ("break",)
@@ -76,25 +84,64 @@ class SupportFuse(KernelComponent):
             ("bumper_friction", p["bumper_friction"] >= 0.0, "must be >= 0"),
             ("event_tolerance", p["event_tolerance"] > 0.0, "must be > 0"),
         ]
+        checks += self._stage_checks()
         for key, ok, what in checks:
             # NaN fails every comparison above: named with the rest
             if not (ok and math.isfinite(p[key])):
                 raise ContractError(f"{self.name}.{key} {what}, got {p[key]!r}")
-        self._kernel_p = FuseParams(*(float(p[k]) for k in ("k_intact", "damping", "break_load", "k_broken",
-                                                             "bumper_stiffness", "bumper_clearance",
-                                                             "bumper_friction")))
-        x = self.u["X"]
-        #: broken: the fuse is on its soft path; reported: the master has located the break (update_discrete);
+        #: (stiffness, load that breaks it) of each stage that can break, then the last stage's stiffness
+        self._stages = [(p["k_intact"], p["break_load"])] + ([(p["k_broken"], p["break_load_2"])]
+                                                             if p["stages"] == 2 else [])
+        self._k_last = p["k_broken_2"] if p["stages"] == 2 else p["k_broken"]
+        ks = [k for k, _ in self._stages] + [self._k_last]
+        self._kernel_p = FuseParams(np.array(ks, dtype=float), np.array([load for _, load in self._stages]),
+                                    float(p["damping"]), float(p["bumper_stiffness"]), float(p["bumper_clearance"]),
+                                    float(p["bumper_friction"]))
+        #: broken: the stages broken (0 intact); reported: those the master has located (update_discrete);
         #: g: the indicator's last value (kernel.step)
-        self.state = {"broken": np.zeros(1), "reported": np.zeros(1),
-                      "g": np.array([break_indicator(float(x[0]), float(x[1]), p["k_intact"], p["break_load"])])}
+        self.state = {"broken": np.zeros(1), "reported": np.zeros(1), "g": np.zeros(1)}
         self._publish()
 
+    def _stage_checks(self) -> list:
+        """The checks of the second stage's keys (``stages``, ``break_load_2``, ``k_broken_2``): one stage leaves
+        them at 0; two need a soft path that carries load (k_broken > 0), a lower stiffness after the second break,
+        and a second load above what the soft path carries at the first break (else both break at once)."""
+        p = self.p
+        if p["stages"] not in (1, 2):
+            return [("stages", False, "must be 1 or 2")]
+        if p["stages"] == 1:
+            return [(k, p[k] == 0.0, "is a second stage's key: give it with stages = 2")
+                    for k in ("break_load_2", "k_broken_2")]
+        first = p["break_load"] * p["k_broken"] / p["k_intact"]
+        return [
+            ("k_broken", p["k_broken"] > 0.0, "must be > 0 with stages = 2 (the second stage breaks the soft path)"),
+            ("break_load_2", p["break_load_2"] > first,
+             f"must be above {first:g} N with stages = 2 (the soft path's force k_broken |x| at the first break; "
+             "a lower one breaks both stages at once)"),
+            ("k_broken_2", 0.0 <= p["k_broken_2"] < p["k_broken"],
+             f"must be within [0, k_broken = {p['k_broken']:g} N/m) (each stage softer than the one before)"),
+        ]
+
+    def _indicator(self) -> float:
+        """The present stage's indicator (kernel.break_indicator); the fuse must not be at its last stage."""
+        x = self.u["X"]
+        k, load = self._stages[int(self.state["broken"][0])]
+        return break_indicator(float(x[0]), float(x[1]), k, load)
+
+    def _break_through(self) -> None:
+        """Every stage whose load the present displacement reaches breaks (the next one's too, if already over)."""
+        while self.state["broken"][0] < len(self._stages) and self._indicator() >= 0.0:
+            self.state["broken"] = self.state["broken"] + 1.0
+
     def _publish(self) -> None:
+        """The outputs and the indicator's value ``g`` of the present state (kernel.publish, kernel.indicator_of)."""
         s, p, u, y = self.kernel_args()
+        has, g = indicator_of(s, p, u.X)
+        if has:
+            s.g[0] = g
         publish(s, p, u, y)
 
-    # -- the compiled kernel (components/kernels.py) ---------------------------------------------------------
+    # -- the compiled kernel (components/kernels.py); do_step is the kernel's step -------------------------------
     STEP = staticmethod(step)
     KERNEL_EVENTS = True
 
@@ -106,14 +153,23 @@ class SupportFuse(KernelComponent):
         return self._kernel_p
 
     def indicators(self) -> np.ndarray:
-        # broken by its step and not yet handed over: the indicator has crossed (g = 1); then none (one stage)
-        return np.zeros(0) if self.state["reported"][0] else self.state["g"].copy()
+        # the kernel's value (a stage broken by its step and not yet handed over: 1, crossed); none after the last
+        # stage: nothing left to break
+        s, reported = self.state["broken"][0], self.state["reported"][0]
+        return self.state["g"].copy() if s > reported or s < len(self._stages) else np.zeros(0)
 
     def update_discrete(self, t, which):
         x = self.u["X"]
-        elastic = self.p["k_intact"] * math.hypot(float(x[0]), float(x[1]))
-        self.state["broken"][0] = 1.0
-        self.state["reported"][0] = 1.0
+        r = math.hypot(float(x[0]), float(x[1]))
+        first = int(self.state["reported"][0])
+        if self.state["broken"][0] <= first:
+            self.state["broken"] = np.array([first + 1.0])
+        self._break_through()
+        self.state["reported"] = self.state["broken"].copy()
         self._publish()
-        return {"kind": "break", "values": {"F_elastic_N": elastic, "break_load_N": self.p["break_load"],
-                                            "X_m": [float(x[0]), float(x[1])]}}
+        # the values of the stage that broke first (a second one broken at once shows in the stage reached)
+        k, load = self._stages[first]
+        values = {"F_elastic_N": k * r, "break_load_N": load, "X_m": [float(x[0]), float(x[1])]}
+        if len(self._stages) > 1:
+            values["stage"] = int(self.state["broken"][0])
+        return {"kind": "break", "values": values}

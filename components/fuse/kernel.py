@@ -15,15 +15,18 @@ and the damping ``c`` in both states. The bumper (``bumper_stiffness`` > 0) is a
 coefficient, ``v_reg`` = :data:`V_REG` (Coulomb friction regularised below it, so that a point at rest on the
 bumper carries no spurious friction). The force on the supported body is ``-F_support``.
 
-The break (one stage): the fuse breaks when the magnitude of the intact element's elastic force ``k_intact |x|``
-reaches ``break_load``; its event indicator is ``k_intact |x| - break_load`` while intact (negative below the
-break load); none after (one stage: nothing left to break). At the break the strain energy ``(k_intact - k_broken) |x|^2 / 2`` of the
-intact element's share leaves the system (the broken element no longer stores it).
+The break, in one or two stages: stage ``s`` (0 intact, 1 after the first break, 2 after the second) carries the
+stiffness ``k_s`` (``k_intact``, ``k_broken``, ``k_broken_2``), and breaks into stage ``s + 1`` when the magnitude
+of its elastic force ``k_s |x|`` reaches the next break load ``L_(s+1)`` (``break_load``, ``break_load_2``). Its
+event indicator is ``k_s |x| - L_(s+1)`` (negative below the load); none after the last stage (nothing left to
+break). A two-stage fuse is the Rolls-Royce arrangement of US 9863274 B2: a first fuse that cuts the stiff load
+path, a second one in the softer path left, which cuts it again at a further load. At a break the strain energy
+``(k_s - k_(s+1)) |x|^2 / 2`` of the broken share leaves the system (the softer element no longer stores it).
 
-The step (:func:`step`, components/kernels.py contract) breaks the fuse at its end when the indicator reached zero
-there (a fuse without the master's event location, an FMU in another tool, breaks at that communication point),
-keeps the indicator's last value in its state ``g`` (``1`` once broken and until the master has located the
-break, ``reported``) and returns ``EVENT`` when the indicator changed sign over the step.
+The step (:func:`step`, components/kernels.py contract) breaks the fuse at its end through every stage whose load
+the displacement reaches there (a fuse without the master's event location, an FMU in another tool, breaks at that
+communication point), keeps the indicator's last value in its state ``g`` (``1`` for a stage broken and not yet
+located by the master, ``reported``) and returns ``EVENT`` when the indicator changed sign over the step.
 """
 from __future__ import annotations
 
@@ -33,9 +36,11 @@ from collections import namedtuple
 from ..kernels import EVENT, OK
 from ..numba_internals import kernel_jit
 
-#: the kernel's containers: ``broken``, ``reported``, ``g`` (arrays of one value); the force law's constants
+#: the kernel's containers: ``broken`` (the stages broken), ``reported``, ``g`` (arrays of one value); the
+#: stiffness of each stage ``k`` (intact first, one more than the loads) and the loads that break them ``loads``,
+#: the damping and the bumper
 FuseState = namedtuple("FuseState", "broken reported g")
-FuseParams = namedtuple("FuseParams", "k_intact damping break_load k_broken k_b clearance mu")
+FuseParams = namedtuple("FuseParams", "k loads damping k_b clearance mu")
 
 #: the sliding speed [m/s] below which the bumper's Coulomb friction is regularised (kernel docstring)
 V_REG = 1e-4
@@ -61,29 +66,44 @@ def support_force(x: float, y: float, vx: float, vy: float, k: float, c: float, 
     return fx, fy
 
 
-def break_indicator(x: float, y: float, k_intact: float, break_load: float) -> float:
-    """The intact fuse's event indicator [N]: ``k_intact |x| - break_load`` (the break at its zero)."""
-    return k_intact * math.hypot(x, y) - break_load
+def break_indicator(x: float, y: float, k: float, break_load: float) -> float:
+    """A stage's event indicator [N]: ``k |x| - break_load`` with ``k`` the stage's stiffness and ``break_load`` the
+    load that breaks it (the break at its zero)."""
+    return k * math.hypot(x, y) - break_load
 
 
 _force = kernel_jit(support_force, inline="always")
 _indicator = kernel_jit(break_indicator, inline="always")
 
 
+@kernel_jit(inline="always")
+def indicator_of(s, p, x):
+    """(has, value): whether the fuse has an indicator in its present state, and its value: 1 for a stage broken
+    and not yet located (``broken > reported``), the present stage's ``k_s |x| - L_(s+1)`` while one is left to
+    break, none after the last."""
+    n = int(s.broken[0])
+    if s.broken[0] > s.reported[0]:
+        return True, 1.0
+    if n < p.loads.shape[0]:
+        return True, _indicator(x[0], x[1], p.k[n], p.loads[n])
+    return False, 0.0
+
+
 @kernel_jit
 def step(s, p, u, y, t, h):
-    """The fuse over a step with the inputs of its end (module docstring): the break at the step's end when the
-    indicator reached zero, the force law of the state after it; status EVENT when the indicator changed sign."""
+    """The fuse over a step with the inputs of its end (module docstring): every stage whose load is reached breaks
+    at the step's end, the force law of the stage after it; status EVENT when the indicator changed sign."""
     x = u.X
+    had = s.broken[0] > s.reported[0] or s.broken[0] < p.loads.shape[0]
+    while s.broken[0] < p.loads.shape[0]:
+        n = int(s.broken[0])
+        if _indicator(x[0], x[1], p.k[n], p.loads[n]) < 0.0:
+            break
+        s.broken[0] += 1.0
+    has, g = indicator_of(s, p, x)
     status = OK
-    if s.reported[0] == 0.0:
-        g = 1.0
-        if s.broken[0] == 0.0:
-            g = _indicator(x[0], x[1], p.k_intact, p.break_load)
-            if g >= 0.0:
-                s.broken[0] = 1.0
-                g = 1.0
-        if (g < 0.0) != (s.g[0] < 0.0):
+    if has:
+        if had and (g < 0.0) != (s.g[0] < 0.0):
             status = EVENT
         s.g[0] = g
     publish(s, p, u, y)
@@ -94,8 +114,7 @@ def step(s, p, u, y, t, h):
 def publish(s, p, u, y):
     """The outputs of the present state: F_support, F_rotor = -F_support (axial 0), broken."""
     x, v = u.X, u.V
-    k = p.k_broken if s.broken[0] != 0.0 else p.k_intact
-    fx, fy = _force(x[0], x[1], v[0], v[1], k, p.damping, p.k_b, p.clearance, p.mu)
+    fx, fy = _force(x[0], x[1], v[0], v[1], p.k[int(s.broken[0])], p.damping, p.k_b, p.clearance, p.mu)
     y.F_support[0] = fx
     y.F_support[1] = fy
     y.F_rotor[0] = -fx

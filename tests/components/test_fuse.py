@@ -88,3 +88,63 @@ def test_bad_parameters_name_the_key(key, value, message):
     f = create("fuse.support", "fuse", {"k_intact": K, "break_load": F_BREAK, key: value})
     with pytest.raises(ContractError, match=message.replace("[", r"\[")):
         f.setup(0.0)
+
+
+def _two_stage(**extra):
+    return _fuse(stages=2, break_load_2=200.0, k_broken_2=1.0e5, **extra)
+
+
+def test_two_stages_break_in_turn_into_softer_paths():
+    """stages = 2: intact k x + c v until k_intact |x| reaches break_load; then k_broken x + c v, whose indicator is
+    k_broken |x| - break_load_2; at that load the second break, to k_broken_2 x + c v, and no indicator left. Each
+    discrete update says which stage it reached and the elastic force that broke it."""
+    f = _two_stage()
+    F = _step(f, (1e-4, 0.0), (0.0, 0.02))
+    assert F == pytest.approx([K * 1e-4, C * 0.02], rel=1e-14) and f.y["broken"][0] == 0.0
+    x1 = F_BREAK / K * 1.001
+    F = _step(f, (x1, 0.0), (0.0, 0.0))
+    assert f.y["broken"][0] == 1.0 and F == pytest.approx([K_B * x1, 0.0], rel=1e-14)
+    assert f.indicators() == [1.0]
+    what = f.update_discrete(1e-5, [0])
+    assert what["values"]["stage"] == 1 and what["values"]["F_elastic_N"] == pytest.approx(1.001 * F_BREAK)
+    # on the soft path: its own indicator, below its load
+    assert f.indicators() == pytest.approx([K_B * x1 - 200.0])
+    x2 = 200.0 / K_B * 1.002
+    F = _step(f, (0.0, -x2), (0.01, 0.0), t=1e-5)
+    assert f.y["broken"][0] == 2.0 and F == pytest.approx([C * 0.01, -1.0e5 * x2], rel=1e-14)
+    what = f.update_discrete(2e-5, [0])
+    assert what["values"]["stage"] == 2 and what["values"]["F_elastic_N"] == pytest.approx(1.002 * 200.0)
+    assert what["values"]["break_load_N"] == 200.0
+    assert f.indicators().size == 0
+
+
+def test_a_displacement_past_both_loads_breaks_both_stages_in_one_update():
+    """A located first break whose displacement already loads the soft path past break_load_2 breaks the second
+    stage in the same update (one event, the stage reached 2), so that no crossing is left unseen."""
+    f = _fuse(stages=2, break_load_2=160.0, k_broken_2=1.0e5)
+    x = 170.0 / K_B
+    _step(f, (x, 0.0), (0.0, 0.0))
+    assert f.y["broken"][0] == 2.0
+    what = f.update_discrete(1e-5, [0])
+    assert what["values"]["stage"] == 2 and f.indicators().size == 0
+    assert f.y["F_support"] == pytest.approx([1.0e5 * x, 0.0], rel=1e-14)
+
+
+@pytest.mark.parametrize("extra, message", [
+    ({"stages": 3}, "fuse.stages must be 1 or 2"),
+    ({"break_load_2": 100.0}, "fuse.break_load_2 is a second stage's key: give it with stages = 2"),
+    ({"stages": 2, "break_load_2": 0.0}, "fuse.break_load_2 must be above 150 N with stages = 2"),
+    ({"stages": 2, "break_load_2": float("nan")}, "fuse.break_load_2: value is not finite"),
+    ({"stages": 2, "break_load_2": 140.0}, "fuse.break_load_2 must be above 150 N"),
+    ({"stages": 2, "break_load_2": 400.0, "k_broken_2": 4.0e5}, "fuse.k_broken_2 must be within [0, k_broken"),
+    ({"stages": 2, "break_load_2": 400.0, "k_broken": 0.0}, "fuse.k_broken must be > 0 with stages = 2"),
+])
+def test_inconsistent_stages_name_the_key(extra, message):
+    """A second stage that cannot work is refused in one line naming its key: a second load at or below what the
+    soft path carries at the first break (k_broken / k_intact of break_load: both would break at once), a stiffness
+    after it not below the soft path's, a soft path that carries nothing, a second stage's key without stages = 2."""
+    from rotorcosim.components.contract import ContractError
+
+    params = {"k_intact": K, "break_load": F_BREAK, "k_broken": K_B, **extra}
+    with pytest.raises(ContractError, match=message.replace("[", r"\[")):
+        create("fuse.support", "fuse", params).setup(0.0)
