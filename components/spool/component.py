@@ -12,6 +12,12 @@
   windmilling law, zero at the windmill speed ``windmill_rpm``, ``c`` set by its value ``aero_torque`` at
   ``speed_rpm`` (below the windmill speed the airflow drives the spool).
 
+``flight_profile`` (a CSV file of time against flight condition, flight_profile.py; empty: none) makes the
+windmilling law follow the flight: ``windmill_rpm`` and ``aero_torque`` are then the values at the profile's first
+row, and at time t the windmill speed and ``c`` are scaled by turbomachinery similarity to the flight condition
+there (windmill.py: the windmill speed with Walsh & Fletcher's referred windmilling speed at the Mach number times
+``sqrt(theta)``, ``c`` with the inlet's total density ``delta / theta``), linear in time between rows.
+
 The torque inputs are ``T_drag1`` .. ``T_dragN`` and ``T_rub1`` .. ``T_rubM``: one per co-simulated bearing and
 rub ring of the engine file ``model_file`` on spool ``spool``, at least two of each (ports.py).
 
@@ -40,7 +46,9 @@ from ..rotor.model import load_data
 from ..speeds import PT_SPEED_RPM
 from .kernel import CONSTANT, TABLE, TORQUE, SpoolParams, SpoolState, tm_step
 from .ports import kind_of, torque_layout, torque_variables
+from .flight_profile import read_profile
 from .profile import RPM, cumulative_angle, parse_table, ramp_table
+from .windmill import scales
 
 PROFILES = {"constant": CONSTANT, "ramp": TABLE, "table": TABLE, "torque": TORQUE}
 ENERGY_LABELS = ("kinetic", "drive", "drag", "rub", "aero")
@@ -52,7 +60,7 @@ class Spool(KernelComponent):
     """A spool's speed, angle and torque balance (module docstring)."""
 
     description = "spool speed and angle: prescribed profile or torque balance J dOmega/dt = sum of torques"
-    file_parameters = ("model_file",)
+    file_parameters = ("model_file", "flight_profile")
     variables = (
         Variable("profile", "parameter", unit="1", start="constant", type="String",
                  description="constant | ramp | table | torque"),
@@ -78,6 +86,10 @@ class Spool(KernelComponent):
                  description="torque law: the speed at which the aerodynamic torque vanishes, rev/min"),
         Variable("aero_torque", "parameter", unit="N.m", start=0.0,
                  description="torque law: aerodynamic drag torque at speed_rpm (sets c of c (W - W_wm)|W - W_wm|)"),
+        Variable("flight_profile", "parameter", unit="1", start="", type="String",
+                 description="windmilling law: CSV of time against flight condition (time_s with altitude_m or "
+                             "altitude_ft and mach, or airspeed_m_s and density_kg_m3) that scales windmill_rpm and "
+                             "aero_torque, given at its first row, by similarity (empty: they hold throughout)"),
         Variable("drag_coefficient", "parameter", unit="N.m.s", start=0.0,
                  description="viscous drag torque per rad/s of the spool's bearings not modelled as components"),
     ) + torque_variables(None) + (   # an instance declares those of its model file's spool (__init__)
@@ -149,6 +161,10 @@ class Spool(KernelComponent):
                                     "spool up after the fuel cut")
             if p["aero_torque"] > 0.0:
                 c_aero = p["aero_torque"] / (w0 - p["windmill_rpm"] * RPM) ** 2
+        try:
+            fl_t, fl_wm, fl_c = self._windmill_table(p["windmill_rpm"] * RPM, c_aero)
+        except (ValueError, OSError) as exc:
+            raise ContractError(f"{where}.flight_profile: {exc}") from None
         th = cumulative_angle(tt, tw)
         theta0 = 0.0
         if mode != TORQUE:
@@ -157,7 +173,7 @@ class Spool(KernelComponent):
         self.J = float(J)
         self._kernel_p = SpoolParams(mode, tt, tw, th, float(theta0), float(J),
                                      float(p["t_fuel_cut"]) if p["t_fuel_cut"] >= 0.0 else math.inf,
-                                     p["windmill_rpm"] * RPM, float(c_aero), float(p["drag_coefficient"]),
+                                     fl_t, fl_wm, fl_c, float(p["drag_coefficient"]),
                                      sum(kind_of(n) == "drag" for n in self._ports("input")))
         self.state = {"x": np.array([w0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0])}
         self.kernel_step(t0, 0.0)
@@ -169,6 +185,18 @@ class Spool(KernelComponent):
         the start of the rundown frozen. EVENT_TOL absorbs the round-off of interval ends."""
         cut = self.p["t_fuel_cut"]
         return float(cut) if self.p["profile"] == "torque" and cut >= 0.0 and cut >= t - EVENT_TOL else None
+
+    def _windmill_table(self, w_wm: float, c_aero: float):
+        """Times [s], windmill speeds [rad/s] and torque coefficients [N m s^2] of the windmilling law: one point
+        without a flight profile, else one per row of it (windmill.py)."""
+        if not self.p["flight_profile"]:
+            return np.array([0.0]), np.array([w_wm]), np.array([c_aero])
+        prof = read_profile(self.p["flight_profile"])
+        if not prof.mach[0] > 0.0:
+            raise ValueError(f"{self.p['flight_profile']}: the first row (the condition windmill_rpm and aero_torque "
+                             "are given at) must have a Mach number > 0")
+        speed, torque = scales(prof.mach, prof.theta, prof.delta)
+        return prof.t, w_wm * speed, c_aero * torque
 
     def _check_model(self) -> None:
         """The model file readable, and an engine file's spool ``spool`` one of its spools (a single-shaft file

@@ -23,7 +23,9 @@ from ..numba_internals import kernel_jit
 
 SpoolState = namedtuple("SpoolState", "x")
 #: ``n_drag``: how many of the inputs, the first ones, are drag torques (the rest are rub torques: ports.py)
-SpoolParams = namedtuple("SpoolParams", "mode tab_t tab_w tab_th theta0 J t_cut w_wm c_aero c_visc n_drag")
+#: ``wm_t``, ``wm_w``, ``wm_c``: the windmilling law's table of times, windmill speeds and coefficients c (one point:
+#: constant; a flight profile: one per row, linear in between, held outside)
+SpoolParams = namedtuple("SpoolParams", "mode tab_t tab_w tab_th theta0 J t_cut wm_t wm_w wm_c c_visc n_drag")
 #: modes
 CONSTANT, TABLE, TORQUE = 0, 1, 2
 X_OMEGA, X_THETA, X_DOMEGA, X_W_DRIVE, X_W_DRAG, X_W_RUB, X_W_AERO = range(7)
@@ -46,10 +48,25 @@ def profile_at(tt, tw, th, t):
 
 
 @kernel_jit(inline="always")
-def aero_torque(p, w):
-    """T_aero(Omega) = c (Omega - Omega_wm) |Omega - Omega_wm| and its derivative."""
-    d = w - p.w_wm
-    return p.c_aero * d * abs(d), 2.0 * p.c_aero * abs(d)
+def held_linear(tt, v, t):
+    """The table (tt, v) at t: linear in between, held before the first point and after the last (exactly)."""
+    n = tt.shape[0]
+    if t <= tt[0]:
+        return v[0]
+    if t >= tt[n - 1]:
+        return v[n - 1]
+    k = 0
+    while tt[k + 1] <= t:
+        k += 1
+    return v[k] + (v[k + 1] - v[k]) * (t - tt[k]) / (tt[k + 1] - tt[k])
+
+
+@kernel_jit(inline="always")
+def aero_torque(p, w, t):
+    """T_aero(Omega) = c (Omega - Omega_wm) |Omega - Omega_wm| at time t and its derivative in Omega."""
+    c = held_linear(p.wm_t, p.wm_c, t)
+    d = w - held_linear(p.wm_t, p.wm_w, t)
+    return c * d * abs(d), 2.0 * c * abs(d)
 
 
 @kernel_jit
@@ -67,7 +84,7 @@ def tm_step(s, p, u, y, t, h):
         return 2
     w0 = x[X_OMEGA]
     if p.mode == TORQUE:
-        ta, dta = aero_torque(p, w0)
+        ta, dta = aero_torque(p, w0, t)
         if t + h <= p.t_cut or h == 0.0:
             w1 = w0
             t_drag += p.c_visc * w0
@@ -94,7 +111,7 @@ def tm_step(s, p, u, y, t, h):
         w1, th, dw = profile_at(p.tab_t, p.tab_w, p.tab_th, t + h)
         x[X_THETA] = th - p.theta0
         x[X_DOMEGA] = dw
-        ta = aero_torque(p, w1)[0]
+        ta = aero_torque(p, w1, t + h)[0]
         t_drag += p.c_visc * w1
         t_drive = (p.J * (w1 - w0) / h if h > 0.0 else 0.0) + t_drag + t_rub + ta
     x[X_OMEGA] = w1
