@@ -36,12 +36,32 @@ def add_arguments(parser):
                              "[attach] oil_temperature_C); the undamped critical speeds do not depend on it")
 
 
-def linearised_supports(m, oil_temperature, scenario=None):
+#: the label of each fuse stage in the reports and on the Campbell diagram
+FUSE_STAGES = ("fuse intact", "fuse broken", "fuse broken, second stage")
+
+
+def linearised_supports(m, oil_temperature, scenario=None, fuse_stage: int = 0):
     """The co-simulated bearings linearised where the engine attaches them (every [attach] bearing<ID>), or None
-    for an engine that attaches none (its [[support]] entries are all its supports, e.g. a ROSS rotor)."""
+    for an engine that attaches none (its [[support]] entries are all its supports, e.g. a ROSS rotor); every
+    fused bearing's fuse at ``fuse_stage`` (0 intact, 1 broken, 2 broken in its second stage)."""
     if not attach.layout(m.data.get("attach", {})).bearings:
         return None
-    return linear_engine.supports(scenario, oil_temperature_C=oil_temperature, data=m.data)
+    return linear_engine.supports(scenario, oil_temperature_C=oil_temperature, data=m.data, fuse_stage=fuse_stage)
+
+
+def fuse_states(m, count: int, max_rpm: float, oil_temperature=None, scenario=None) -> list[dict]:
+    """The synchronous critical speeds of an engine with fused bearings after each break (every fuse at stage 1,
+    then 2 where a fuse has two): ``[{"stage", "label", "forward_synchronous_rpm", "backward_synchronous_rpm",
+    "fuse_stiffness_N_per_m"}]``; empty for an engine without a fuse. The intact engine is the report's own."""
+    out = []
+    for stage in range(1, linear_engine.fuse_stages(m.data) + 1):
+        sup = linearised_supports(m, oil_temperature, scenario, stage)
+        crit = critical.synchronous_critical_speeds(m, sup, n=count, max_rpm=max_rpm)
+        out.append({"stage": stage, "label": FUSE_STAGES[stage],
+                    "forward_synchronous_rpm": crit["forward_synchronous_rpm"],
+                    "backward_synchronous_rpm": crit["backward_synchronous_rpm"],
+                    "fuse_stiffness_N_per_m": {k[1:]: v["fuse"]["k"] for k, v in sup.items() if "fuse" in v}})
+    return out
 
 
 def critical_speeds(model_file: str = "", count: int = 6, max_rpm: float = 30000.0,
@@ -75,6 +95,8 @@ def critical_speeds(model_file: str = "", count: int = 6, max_rpm: float = 30000
         ref = m.omega_pt * 30.0 / np.pi
         out["damped_critical_speeds_rpm"] = response_peaks.damped_critical_speeds(
             m, sup, 0.5 * out["forward_synchronous_rpm"][0], max_rpm, ref)
+    if sup is not None and fem.fuse_ids(m.data):
+        out["fuse_states"] = fuse_states(m, count, max_rpm, oil_temperature, scenario)
     return out
 
 
@@ -100,11 +122,26 @@ def draw_campbell(path: str, model_file: str = "", max_rpm: float = 30000.0, cri
     ax.plot(rpm, rpm / 60.0, "k--", lw=1, label="1x first spool speed" if ratio != 1.0 else "1x spool speed")
     if ratio != 1.0:
         ax.plot(rpm, ratio * rpm / 60.0, ":", color="0.35", lw=1, label=f"1x second spool speed ({ratio:.4g} x)")
+    for st, colour in zip((crit or {}).get("fuse_states", []), ("tab:purple", "tab:brown")):
+        # the engine after the break: its whirl frequencies and critical speeds, drawn over the intact engine's
+        sup = linearised_supports(m, oil_temperature, scenario, st["stage"])
+        fb, kb = critical.campbell(m, rpm, sup, n_modes=min(80, m.n))
+        sel = kb == 1
+        ax.scatter(np.broadcast_to(rpm[:, None], fb.shape)[sel], fb[sel], s=3, c=colour, marker="x", alpha=0.6,
+                   label=f"forward whirl, {st['label']}")
+        r = np.asarray(st["forward_synchronous_rpm"], dtype=float)
+        r = r[r <= max_rpm]
+        ax.plot(r, r / 60.0, "s", mfc="none", mec=colour, ms=9, ls="none",
+                label=f"forward synchronous critical speeds, {st['label']}")
+        for v in r[:2]:
+            ax.annotate(f"{v:,.0f}".replace(",", " "), (v, v / 60.0), textcoords="offset points", xytext=(8, 4),
+                        fontsize=8, color=colour)
     if crit:
         r = np.asarray(crit["forward_synchronous_rpm"], dtype=float)
         r = r[r <= max_rpm]
         ax.plot(r, r / 60.0, "o", mfc="none", mec="tab:red", ms=9, ls="none",
-                label="forward synchronous critical speeds")
+                label="forward synchronous critical speeds" + (f", {FUSE_STAGES[0]}" if crit.get("fuse_states")
+                                                                else ""))
         for v in r[:2]:
             ax.annotate(f"{v:,.0f}".replace(",", " "), (v, v / 60.0), textcoords="offset points", xytext=(8, -12),
                         fontsize=8, color="tab:red")
@@ -183,6 +220,11 @@ def run(args) -> int:
         for b, v in sm.get("bearings", {}).items():
             print(f"    #{b}: contact {v['k_contact']:.3g} N/m, journal {v['m_journal']:.3g} kg, O-ring "
                   f"{v['k_spring']:.4g} N/m, film {v['c_film']:.4g} N s/m")
+        for st in out.get("fuse_states", []):
+            print(f"  {st['label']} (fuse stiffness " + ", ".join(f"#{b} {k:.3g} N/m" for b, k in
+                                                        st["fuse_stiffness_N_per_m"].items()) + "), rev/min:")
+            print("    forward :", ", ".join(f"{v:.0f}" for v in st["forward_synchronous_rpm"]))
+            print("    backward:", ", ".join(f"{v:.0f}" for v in st["backward_synchronous_rpm"]))
         if out.get("damped_critical_speeds_rpm"):
             print("  damped (where the unbalance response peaks), rev/min:")
             for b, v in out["damped_critical_speeds_rpm"].items():

@@ -13,6 +13,10 @@ scenario's parameters, at the preloaded rest state and the running speed:
   vanishing circular orbit (the full, uncavitated film: the 0.2 MPa supply keeps a small orbit's film whole), at
   a STATED oil temperature (the rotor data's [attach] ``oil_temperature_C``, or the caller's).
 
+A fused bearing (the engine file's ``[fuse.ID]``) has its own housing on the fuse's stiffness and damping to the
+hub: the stage asked for (``fuse_stage``: 0 intact, 1 after the first break, 2 after the second; a fuse with fewer
+stages stays at its last), from the scenario's ``fuse<ID>`` component or the engine file's ``[fuse.ID]``.
+
 The undamped critical speeds do not depend on the film; the forced response does (``response``).
 """
 from __future__ import annotations
@@ -37,7 +41,22 @@ def scenario_or_default(sc):
     return load_scenario(scenarios.path("blade_loss")) if sc is None else sc
 
 
-def supports(sc=None, oil_temperature_C: float | None = None, data: dict | None = None) -> dict:
+def fuse_stiffness(params: dict, stage: int) -> float:
+    """A fuse's stiffness [N/m] at ``stage`` (0 intact, 1 after the first break, 2 after the second; a one-stage
+    fuse stays at its soft path), from its component's parameters."""
+    ks = [params["k_intact"], params.get("k_broken", 0.0)]
+    if int(params.get("stages", 1)) == 2:
+        ks.append(params.get("k_broken_2", 0.0))
+    return float(ks[min(stage, len(ks) - 1)])
+
+
+def fuse_stages(data: dict) -> int:
+    """The most break stages among the engine file's fuses (0: no fuse)."""
+    fuses = data.get("fuse", {}) if isinstance(data.get("fuse"), dict) else {}
+    return max((int(f.get("stages", 1)) for f in fuses.values() if isinstance(f, dict)), default=0)
+
+
+def supports(sc=None, oil_temperature_C: float | None = None, data: dict | None = None, fuse_stage: int = 0) -> dict:
     """{"h<ID>": {...}} for every bearing<ID> of the rotor data's [attach] (in its order; "h0", "h5" for the paper's
     engine): node, hub and k_contact, m_journal, k_spring, c_film, oil_temperature_C taken from the scenario's
     bearing<ID> and damper<ID> components (a scenario without them is an error naming the id)."""
@@ -77,6 +96,12 @@ def supports(sc=None, oil_temperature_C: float | None = None, data: dict | None 
                     "k_contact": contact_stiffness(brg), "m_journal": float(brg.p["m_journal"]),
                     "k_spring": float(dmp.p["k_spring"]), "c_film": film_damping(dmp, T_C),
                     "oil_temperature_C": T_C}
+        if k in fem.fuse_ids(data):
+            name = f"fuse{k}"
+            fp = (part_parameters(name, scenario=sc) if not own and name in sc.components
+                  else part_parameters(name, data=data))
+            out[key]["fuse"] = {"housing": fem.fused_housing(k), "k": fuse_stiffness(fp, fuse_stage),
+                                "c": float(fp.get("damping", 0.0)), "stage": int(fuse_stage)}
     return out
 
 
@@ -107,7 +132,9 @@ def describe(sup: dict) -> dict:
             "rest -> outer race + journal body (eq. 5) -> O-ring spring + film (linearised at the oil temperature, "
             "centred journal) -> casing hub",
             "oil_temperature_C": next(iter(sup.values()))["oil_temperature_C"],
-            "bearings": {k[1:]: {n: v for n, v in s.items() if n not in ("node", "pt_node", "hub", "oil_temperature_C")}
+            "bearings": {k[1:]: {n: v for n, v in s.items() if n not in ("node", "pt_node", "hub", "oil_temperature_C",
+                                                                         "fuse")}
+                         | ({"fuse_k": s["fuse"]["k"], "fuse_c": s["fuse"]["c"]} if "fuse" in s else {})
                          for k, s in sup.items()}}
 
 

@@ -263,7 +263,7 @@ LABELS = {"whirl_amplitude_mm": "whirl amplitude", "transmissibility": "transmis
           "T_inner_race_C": "inner-race temperature", "T_ball_C": "ball temperature",
           "T_outer_race_C": "outer-race temperature", "T_sfd_oil_C": "squeeze-film oil temperature"}
 #: the powers read over the steady window and the hand-off each one is (its estimate: the hold's
-#: ``handoff_errors_end``, where the hold follows it with a law)
+#: ``handoff_errors_end_pct``, where the hold follows it with a law)
 POWERS = {"drag_power_W": "bearing{}.P_drag", "sfd_power_W": "damper{}.P_film"}
 #: the final temperatures and the thermal network's output each one is
 TEMPERATURES = {"T_inner_race_C": "T_inner_race", "T_ball_C": "T_ball", "T_outer_race_C": "T_outer_race",
@@ -416,9 +416,9 @@ def estimated_errors(windows, bearings, hold, F_u, cycles: float = 0.0) -> dict 
                     e[key] = 100.0 * f * abs(q - q0) / abs(q)
         # a power the hold follows with a law: that law's own sensitivity to the erring temperatures and growths
         for key, ref in POWERS.items():
-            d, q = hold.handoff_errors_end.get(ref.format(k)), r.get(key)
-            if d is not None and q:
-                e[key] = 100.0 * abs(d) / abs(q)
+            d = hold.handoff_errors_end_pct.get(ref.format(k))
+            if d is not None and r.get(key) is not None:
+                e[key] = abs(d)
         # and the last window's own unsteadiness, the restart's ringing (not where the speed moved: then the
         # results change from cycle to cycle with it)
         if windows and f is not None:

@@ -6,6 +6,8 @@ spools' energy balance, and for the blade-loss engine the Table 4 results at the
 - :mod:`.results`: ``summary.json`` keys ``speeds``, ``crossings``, ``energy`` (and ``bearings`` for the engine);
 - :mod:`.modes`: the critical speeds a crossing is labelled with (the linearised engine's, per film temperature);
 - :mod:`.energy`: the spools' energy balance from the torques the components report;
+- :mod:`.fatigue`: the fatigue content of named loads (damage-equivalent loads, Miner damage; held intervals
+  counted from the hold's window);
 - :mod:`.figures`: speed against time with the thermal-only intervals shaded, whirl and transmitted force against
   speed, the Campbell diagram with the run's trajectory, the temperatures;
 - :mod:`.compare`: ``rotorcosim compare blade_loss_rundown``, the staggered scheme against the monolithic run
@@ -25,6 +27,11 @@ COMPARE = "rotorcosim.cases.rundown.compare:run"
 #: blade-loss case's; a rundown of a scenario without that key (a test rotor) has no level to set
 LEVEL = blade_loss.LEVEL
 #: the case's own ``[results]`` keys: the spool components whose speeds and crossings it reports, the critical
-#: speeds whose crossings it reports [rev/min]; and the blade-loss engine's level when it runs that engine
+#: speeds whose crossings it reports [rev/min]; the blade-loss engine's level when it runs that engine; the loads
+#: whose fatigue content it reports and the S-N settings
 RESULTS_KEYS = {"spools": checkers.list_of(checkers.text), "critical_speeds_rpm": checkers.list_of(checkers.positive),
-                "unbalance_parameter": checkers.port_ref}
+                "unbalance_parameter": checkers.port_ref,
+                # the fatigue content of loads (cases/rundown/fatigue.py: defaults and sources)
+                "fatigue_loads": checkers.list_of(checkers.port_ref), "woehler_exponent": checkers.positive,
+                "reference_cycles": checkers.positive, "sn_range_N": checkers.positive,
+                "sn_cycles": checkers.positive}

@@ -25,7 +25,13 @@ summary, time series and figures). ``DIR/rundown_compare.json`` holds:
 - ``duration_s``, ``duration_rule`` (how the duration was chosen), ``t_fuel_cut_s``, ``staggered_phases``
   (simulated time, intervals and steps of each phase of the staggered run) and its ``hold`` report;
 - ``estimated_error``: the staggered run's estimated error of every Table 4 result beside its true error in the
-  same terms (temperatures as rises above the initial temperature; cases/blade_loss/error_check.py).
+  same terms (temperatures as rises above the initial temperature; cases/blade_loss/error_check.py);
+- ``fatigue``: the damage-equivalent load of every counted load element (cases/rundown/fatigue.py: the mounts'
+  loads on an airframe, else the dampers' transmitted forces) over the windmilling, from the fuel cut +
+  :data:`RUNDOWN_S` to the end, in each run (the staggered run's held intervals counted from the hold's window
+  times the revolutions they span, master/observer/held_cycles.py): ``t_from_s``, ``woehler_exponent``,
+  ``reference_cycles``, per element ``del_N`` ``{staggered, monolithic, rel_error_pct}``, ``largest_error_pct``
+  and ``within_2pct``; None when the run ends before the windmilling or has no time series.
 
 The relative error is ``100 |staggered - monolithic| / |monolithic|`` (temperatures in degrees C, as Table 4 and
 ``rotorcosim compare``'s Table 6 give them; 0 when both are 0).
@@ -53,6 +59,7 @@ from rotorcosim.master.compare import within as within_tolerance
 from rotorcosim.master.scenario.build import Scenario, schedule_of
 
 from rotorcosim.cases.blade_loss import error_check
+from rotorcosim.cases.rundown import fatigue
 from rotorcosim.cases.blade_loss.results import RESULT_KEYS, unbalance_force
 
 #: the acceptance: every Table 4 result at the end and every crossing's peaks within 2 %
@@ -133,6 +140,24 @@ def table(st: dict, mono: dict) -> dict:
             "within_2pct": within}
 
 
+def fatigue_table(sc: Scenario, out: Path, duration: float) -> dict | None:
+    """The damage-equivalent loads over the windmilling of both runs in ``out`` (the module's ``fatigue``)."""
+    cut = fuel_cut(sc)
+    t_from = (cut or 0.0) + RUNDOWN_S
+    folders = {k: out / k for k in KINDS}
+    if cut is None or duration <= t_from or not all((f / "timeseries.h5").is_file() for f in folders.values()):
+        return None
+    s = fatigue.settings(sc)
+    counts = {k: fatigue.recorded_counts(f, sc, t_from) for k, f in folders.items()}
+    loads = {key: {"del_N": pair(fatigue.content(counts["staggered"][key], s)["del_N"],
+                                 fatigue.content(c, s)["del_N"])}
+             for key, c in counts["monolithic"].items() if key in counts["staggered"]}
+    largest, within = within_tolerance([v["del_N"] for v in loads.values()], TOLERANCE_PCT)
+    return {"t_from_s": t_from, "woehler_exponent": s["woehler_exponent"],
+            "reference_cycles": s["reference_cycles"], "loads": loads, "largest_error_pct": largest,
+            "within_2pct": within and bool(loads)}
+
+
 def phase_totals(summary: dict) -> dict:
     """Simulated time [s], intervals and steps of each phase of a run's timeline."""
     out = {}
@@ -190,7 +215,8 @@ def compare_rundown(scenario: Scenario | str | Path = "blade_loss_rundown", dura
                 "staggered_phases": phase_totals(st), "hold": st.get("hold"),
                 # the staggered run's estimated error of every result beside its true one, in the same terms
                 "estimated_error": error_check.table(st, mono) if st.get("bearings") and mono.get("bearings")
-                else None}
+                else None,
+                "fatigue": fatigue_table(sc, Path(out), duration)}
 
     return compare_schemes(sc, out, schedule_of(sc, None, duration), schedule_of(sc, "monolithic", duration),
                            tabulate=tabulate, table_name=TABLE, quiet=quiet, figures=figures, overwrite=overwrite,
@@ -226,5 +252,7 @@ def run(args, sc: Scenario) -> int:
           + (f"; estimated error of the staggered run {big['estimated_pct']:.2f} % against a true "
              f"{big['true_pct']:.2f} % (temperatures as rises: estimated_error)"
              if big is not None and big["estimated_pct"] is not None else "")
+          + (f"; windmilling damage-equivalent loads within {pct(t['fatigue']['largest_error_pct'])}"
+             if t.get("fatigue") else "")
           + f"; {Path(args.out) / TABLE}")
     return 0

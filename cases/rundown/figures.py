@@ -8,7 +8,10 @@
   crossings' resonance peaks (results.resonance_peaks) marked (a test rotor: its disk's whirl only);
 * ``rundown_campbell.png``: the Campbell diagram of the linear engine (components/rotor/critical.py; a test
   rotor: its critical speeds as constant frequencies) with the run's 1x trajectory and each crossing's resonance peak;
-* ``rundown_temperatures.png``: the bearing temperatures over the whole run (when recorded), a panel per bearing.
+* ``rundown_temperatures.png``: the bearing temperatures over the whole run (when recorded), a panel per bearing;
+* ``rundown_load_spectra.png`` (a scenario that names ``[results] fatigue_loads``): the load spectrum of each
+  counted load element over the whole run, the cumulative exceedance (the cycles whose range reaches a value,
+  log scale) against the range, the held intervals counted from the hold's window (cases/rundown/fatigue.py).
 
 The spools are named as the engine file names them (``[spool.NAME] name``: "power turbine", "gas generator" for
 the paper's engine; cases/blade_loss/engine_names.py), the bearings by their ids.
@@ -122,7 +125,30 @@ def figures(sc, data, out, dpi: int | None = None) -> list[str]:
     ids = [k for k in bearing_ids(sc.components) if _get(data, f"thermal{k}.T_nodes") is not None]
     if ids:
         names.append(_temperatures(data, t, phase, out, ids))
+    if sc.extra.get("results", {}).get("fatigue_loads"):
+        names.append(_spectra(sc, data, out))
     return names
+
+
+def _spectra(sc, data, out):
+    from rotorcosim.master.observer.fatigue import spectrum
+
+    from .fatigue import recorded_counts
+
+    plt = _plt()
+    counts = recorded_counts(data, sc)
+    fig, ax = plt.subplots(figsize=(8, 5))
+    for key, c in counts.items():
+        sp = spectrum(c)
+        if sp.exceed_n.size:
+            ax.step(sp.exceed_n, sp.exceed_S / 1e3, where="post", label=key)
+    ax.set_xscale("log")
+    ax.set_xlabel("cycles whose range reaches the value (cumulative exceedance)")
+    ax.set_ylabel("load range [kN]")
+    ax.set_title("load spectra over the run (rainflow; held intervals from the hold's window)")
+    ax.grid(True, which="both", alpha=0.3)
+    ax.legend(fontsize=8)
+    return _save(fig, out, "rundown_load_spectra.png")
 
 
 def _speed(sc, data, t, phase, spools, out, events):

@@ -27,7 +27,9 @@ disk: ``"disk"``, whirl only).
   own peak of the mode, or over the defining peak's where it has none, and that ``speed_range_rpm``. A mode within
   the run's speeds without a peak anywhere gets ``peak_found`` false, a ``note`` and None for the speed, the time
   and the peaks;
-* ``energy``: the spools' energy balance from the torques the components report (:mod:`.energy`).
+* ``energy``: the spools' energy balance from the torques the components report (:mod:`.energy`);
+* ``fatigue`` (a scenario that names ``[results] fatigue_loads``): the fatigue content of each load element over
+  the run (:mod:`.fatigue`: the settings, per element ``del_N``, ``miner_damage``, ``cycles``).
 
 The response is kept as maxima over bins of ``BIN_S`` of thermo-mechanical time, with the time and the speed of
 each bin's largest whirl sample (``RundownTrack``).
@@ -44,6 +46,9 @@ from scipy.signal import find_peaks, peak_widths
 from rotorcosim.components.contract import COUPLED
 from rotorcosim.master.observer.observer import Observer
 
+from rotorcosim.master.observer.held_cycles import LoadCycles
+
+from . import fatigue
 from .energy import SpoolEnergy
 
 #: time bins of the response track [s]: many per crossing (a crossing lasts ~0.1-1 s), few per hour of run
@@ -209,6 +214,9 @@ def _case_blade_loss(sc) -> bool:
 def observers(sc, cycle):
     spools = _spools(sc)
     obs = [RundownTrack(spools, _crossing_spool(sc, spools)), SpoolEnergy(spools)]
+    cycles = fatigue.observer(sc, cycle)
+    if cycles is not None:
+        obs.append(cycles)
     if _case_blade_loss(sc):
         from rotorcosim.cases.blade_loss import results as bl
         obs += bl.observers(sc, cycle)
@@ -400,9 +408,13 @@ def extract(sc, sim, obs, report) -> dict:
         name = spool_name(sc, track.crossing_spool)
         for c in out["crossings"]:
             c["spool_name"] = name
+    rest = obs[2:]
+    if rest and isinstance(rest[0], LoadCycles):
+        out["fatigue"] = fatigue.summary(rest[0], sc)
+        rest = rest[1:]
     if _case_blade_loss(sc):
         from rotorcosim.cases.blade_loss import results as bl
-        out.update(bl.extract(sc, sim, obs[2:], report))
+        out.update(bl.extract(sc, sim, rest, report))
     return out
 
 
@@ -418,6 +430,8 @@ def result_paths(sc) -> list[str]:
                                              "drag_dissipated_J")]
         out += [f"energy.{sp}.work_J.{k}" for k in ("drive", "drag", "rub", "aero")]
     out.append("crossings.")
+    if sc.extra.get("results", {}).get("fatigue_loads"):
+        out.append("fatigue.")
     if _case_blade_loss(sc):
         from rotorcosim.cases.blade_loss import results as bl
         out += bl.result_paths(sc)

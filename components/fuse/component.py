@@ -1,9 +1,10 @@
 """The support fuse component (``fuse.support``): a support that breaks at a load, its break located in time.
 
-Between a supported point (a rotor node, or a bearing's housing side) and the structure, taken as fixed: inputs
-the point's displacement ``X`` and velocity ``V`` (x, y, axial; the axial element carries no force), outputs the
-force the fuse carries, ``F_support`` (x, y) [N], transmitted to the structure, and the force on the supported
-body ``F_rotor`` (= -F_support, its axial element 0, the rotor's port convention). The force law and the break
+Between a supported point (a rotor node, or a bearing's housing) and the structure: inputs the point's
+displacement ``X`` and velocity ``V`` (x, y, axial; the axial element carries no force) and the structure's
+``X_structure``, ``V_structure`` (x, y; unconnected: fixed, 0); the fuse's law acts on the difference. Outputs the
+force the fuse carries, ``F_support`` (x, y) [N], the force on the structure, and the force on the supported body
+``F_rotor`` (= -F_support, its axial element 0, the rotor's port convention). The force law and the break
 are kernel.py's. One stage (``stages = 1``): the fuse breaks once, from intact to the soft path ``k_broken``; two
 (``stages = 2``): the soft path breaks again at ``break_load_2`` into ``k_broken_2``.
 
@@ -59,6 +60,10 @@ class SupportFuse(KernelComponent):
                  description="time to which the master locates the break (at most the step)"),
         Variable("X", "input", 3, "m", "displacement of the supported point (x, y, axial)"),
         Variable("V", "input", 3, "m/s", "velocity of the supported point (x, y, axial)"),
+        Variable("X_structure", "input", 2, "m", "displacement of the structure at the fuse (x, y; unconnected: 0)",
+                 start=0.0, has_default=True),
+        Variable("V_structure", "input", 2, "m/s", "velocity of the structure at the fuse (x, y; unconnected: 0)",
+                 start=0.0, has_default=True),
         Variable("F_support", "output", 2, "N", "force the fuse carries, transmitted to the structure"),
         Variable("F_rotor", "output", 3, "N", "force of the fuse on the supported body, -F_support (axial 0)"),
         Variable("broken", "output", 1, "1", "stages broken: 0 intact, 1 after the first break, 2 after the second"),
@@ -122,11 +127,18 @@ class SupportFuse(KernelComponent):
              f"must be within [0, k_broken = {p['k_broken']:g} N/m) (each stage softer than the one before)"),
         ]
 
+    def _relative(self) -> tuple[float, float, float, float]:
+        """The supported point's displacement and velocity (x, y) against the structure."""
+        u = self.u
+        x, v, xs, vs = u["X"], u["V"], u["X_structure"], u["V_structure"]
+        return (float(x[0]) - float(xs[0]), float(x[1]) - float(xs[1]), float(v[0]) - float(vs[0]),
+                float(v[1]) - float(vs[1]))
+
     def _indicator(self) -> float:
         """The present stage's indicator (kernel.break_indicator); the fuse must not be at its last stage."""
-        x = self.u["X"]
+        x, y, _, _ = self._relative()
         k, load = self._stages[int(self.state["broken"][0])]
-        return break_indicator(float(x[0]), float(x[1]), k, load)
+        return break_indicator(x, y, k, load)
 
     def _break_through(self) -> None:
         """Every stage whose load the present displacement reaches breaks (the next one's too, if already over)."""
@@ -136,7 +148,7 @@ class SupportFuse(KernelComponent):
     def _publish(self) -> None:
         """The outputs and the indicator's value ``g`` of the present state (kernel.publish, kernel.indicator_of)."""
         s, p, u, y = self.kernel_args()
-        has, g = indicator_of(s, p, u.X)
+        has, g = indicator_of(s, p, u)
         if has:
             s.g[0] = g
         publish(s, p, u, y)
@@ -159,8 +171,8 @@ class SupportFuse(KernelComponent):
         return self.state["g"].copy() if s > reported or s < len(self._stages) else np.zeros(0)
 
     def update_discrete(self, t, which):
-        x = self.u["X"]
-        r = math.hypot(float(x[0]), float(x[1]))
+        x, y, _, _ = self._relative()
+        r = math.hypot(x, y)
         first = int(self.state["reported"][0])
         if self.state["broken"][0] <= first:
             self.state["broken"] = np.array([first + 1.0])
@@ -169,7 +181,7 @@ class SupportFuse(KernelComponent):
         self._publish()
         # the values of the stage that broke first (a second one broken at once shows in the stage reached)
         k, load = self._stages[first]
-        values = {"F_elastic_N": k * r, "break_load_N": load, "X_m": [float(x[0]), float(x[1])]}
+        values = {"F_elastic_N": k * r, "break_load_N": load, "X_m": [x, y]}
         if len(self._stages) > 1:
             values["stage"] = int(self.state["broken"][0])
         return {"kind": "break", "values": values}

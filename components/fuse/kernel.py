@@ -77,7 +77,14 @@ _indicator = kernel_jit(break_indicator, inline="always")
 
 
 @kernel_jit(inline="always")
-def indicator_of(s, p, x):
+def relative(u):
+    """The supported point's displacement and velocity (x, y) against the structure's."""
+    x, v, xs, vs = u.X, u.V, u.X_structure, u.V_structure
+    return x[0] - xs[0], x[1] - xs[1], v[0] - vs[0], v[1] - vs[1]
+
+
+@kernel_jit(inline="always")
+def indicator_of(s, p, u):
     """(has, value): whether the fuse has an indicator in its present state, and its value: 1 for a stage broken
     and not yet located (``broken > reported``), the present stage's ``k_s |x| - L_(s+1)`` while one is left to
     break, none after the last."""
@@ -85,7 +92,8 @@ def indicator_of(s, p, x):
     if s.broken[0] > s.reported[0]:
         return True, 1.0
     if n < p.loads.shape[0]:
-        return True, _indicator(x[0], x[1], p.k[n], p.loads[n])
+        dx, dy, _, _ = relative(u)
+        return True, _indicator(dx, dy, p.k[n], p.loads[n])
     return False, 0.0
 
 
@@ -93,14 +101,14 @@ def indicator_of(s, p, x):
 def step(s, p, u, y, t, h):
     """The fuse over a step with the inputs of its end (module docstring): every stage whose load is reached breaks
     at the step's end, the force law of the stage after it; status EVENT when the indicator changed sign."""
-    x = u.X
+    dx, dy, _, _ = relative(u)
     had = s.broken[0] > s.reported[0] or s.broken[0] < p.loads.shape[0]
     while s.broken[0] < p.loads.shape[0]:
         n = int(s.broken[0])
-        if _indicator(x[0], x[1], p.k[n], p.loads[n]) < 0.0:
+        if _indicator(dx, dy, p.k[n], p.loads[n]) < 0.0:
             break
         s.broken[0] += 1.0
-    has, g = indicator_of(s, p, x)
+    has, g = indicator_of(s, p, u)
     status = OK
     if has:
         if had and (g < 0.0) != (s.g[0] < 0.0):
@@ -113,8 +121,8 @@ def step(s, p, u, y, t, h):
 @kernel_jit(inline="always")
 def publish(s, p, u, y):
     """The outputs of the present state: F_support, F_rotor = -F_support (axial 0), broken."""
-    x, v = u.X, u.V
-    fx, fy = _force(x[0], x[1], v[0], v[1], p.k[int(s.broken[0])], p.damping, p.k_b, p.clearance, p.mu)
+    dx, dy, dvx, dvy = relative(u)
+    fx, fy = _force(dx, dy, dvx, dvy, p.k[int(s.broken[0])], p.damping, p.k_b, p.clearance, p.mu)
     y.F_support[0] = fx
     y.F_support[1] = fy
     y.F_rotor[0] = -fx

@@ -6,10 +6,18 @@ An engine file's ``[attach]`` names any number of ball bearings ``bearing<ID> = 
 Newmark step and the kernel's offset tables share:
 
 * the DOF groups (:func:`groups`): ``brg<ID>`` (x y z of the spool node at each bearing), ``housing<ID>`` (x y of
-  each bearing's housing hub), ``rub<ID>`` (x y of the spool node at each rub ring), ``unbalance`` (x y);
+  each bearing's housing hub), ``rub<ID>`` (x y of the spool node at each rub ring), ``fuse<ID>`` (x y z of
+  each fused bearing's housing) and ``fusehub<ID>`` (x y of the hub under it), ``unbalance`` (x y);
 * the input ports (:func:`input_ports`): ``F_brg<ID>`` for every bearing, then per bearing ``F_sfd_housing<ID>``
-  and (when it has a rub ring) ``F_rub_housing<ID>``, then ``F_rub<ID>`` for every rub ring;
-* the output ports (:func:`output_ports`): ``X_/V_brg<ID>``, ``X_/V_housing<ID>``, ``X_/V_rub<ID>``.
+  and (when it has a rub ring) ``F_rub_housing<ID>``, then ``F_rub<ID>`` for every rub ring, then per fused
+  bearing ``F_fuse<ID>`` and ``F_fusehub<ID>``;
+* the output ports (:func:`output_ports`): ``X_/V_brg<ID>``, ``X_/V_housing<ID>``, ``X_/V_rub<ID>``,
+  ``X_/V_fuse<ID>``, ``X_/V_fusehub<ID>``.
+
+A fused bearing (the engine file's ``[fuse.ID]``) has a housing of its own, a body that carries its damper and
+rub ring, on a support fuse (components/fuse) to the hub of its ``[attach]`` entry: ``housing<ID>`` (x y) and
+``fuse<ID>`` (x y z, the fuse component's node convention) are that body, ``fusehub<ID>`` the hub (the structure
+side of the fuse).
 
 For the paper's engine (bearings "0" and "5", rub rings "0" and "5") this is the order the rotor component has
 always used, so its numbers are unchanged bit for bit. A rub ring's ring sits on the housing of the bearing of
@@ -32,15 +40,18 @@ class Layout:
 
     bearings: tuple[str, ...]
     rubrings: tuple[str, ...]
+    #: the bearings whose housing sits on a support fuse ([fuse.ID])
+    fuses: tuple[str, ...] = ()
 
 
 #: the paper's engine (and the class-level declaration of the rotor component)
 PAPER = Layout(("0", "5"), ("0", "5"))
 
 
-def layout(attach: dict) -> Layout:
-    """The layout of an ``[attach]`` table; a key that is not an attachment, or a rub ring without its bearing,
-    is a ValueError naming it."""
+def layout(attach: dict, fuses=()) -> Layout:
+    """The layout of an ``[attach]`` table and the ids of the file's ``[fuse.ID]`` tables; a key that is not an
+    attachment, a rub ring without its bearing, or a fuse at a bearing [attach] does not have, is a ValueError
+    naming it."""
     bearings, rubrings = [], []
     for key in attach:
         if key in OTHER_KEYS:
@@ -54,7 +65,11 @@ def layout(attach: dict) -> Layout:
         if r not in bearings:
             raise ValueError(f"rotor model: [attach] rubring{r} has no bearing{r} (a rub ring's ring is on the "
                              f"housing of the bearing of the same id)")
-    return Layout(tuple(bearings), tuple(rubrings))
+    for f in fuses:
+        if f not in bearings:
+            raise ValueError(f"rotor model: [fuse.{f}] is at bearing{f}, which [attach] does not have (a fuse "
+                             f"carries a bearing's housing; bearings: {', '.join(bearings) or 'none'})")
+    return Layout(tuple(bearings), tuple(rubrings), tuple(fuses))
 
 
 def on_spool(attach: dict, spool: str) -> Layout:
@@ -73,7 +88,8 @@ def on_spool(attach: dict, spool: str) -> Layout:
 def layout_of_ports(ports: dict) -> Layout:
     """The layout of a model's port groups (``FullModel.ports``), in their order."""
     return Layout(tuple(g[3:] for g in ports if g.startswith("brg")),
-                  tuple(g[3:] for g in ports if g.startswith("rub")))
+                  tuple(g[3:] for g in ports if g.startswith("rub")),
+                  tuple(g[7:] for g in ports if g.startswith("fusehub")))
 
 
 def groups(lay: Layout) -> list[tuple[str, str, str, int]]:
@@ -81,6 +97,8 @@ def groups(lay: Layout) -> list[tuple[str, str, str, int]]:
     return ([(f"brg{b}", f"bearing{b}", "node", 3) for b in lay.bearings]
             + [(f"housing{b}", f"bearing{b}", "housing", 2) for b in lay.bearings]
             + [(f"rub{r}", f"rubring{r}", "node", 2) for r in lay.rubrings]
+            + [(f"fuse{b}", f"bearing{b}", "fuse", 3) for b in lay.fuses]
+            + [(f"fusehub{b}", f"bearing{b}", "fusehub", 2) for b in lay.fuses]
             + [("unbalance", "unbalance", "node", 2)])
 
 
@@ -99,6 +117,9 @@ def input_ports(lay: Layout) -> list[tuple[str, str, int, str]]:
             out.append((f"F_rub_housing{b}", f"housing{b}", 2, f"rub ring #{b} reaction on the casing hub under "
                                                                f"bearing #{b}"))
     out += [(f"F_rub{r}", f"rub{r}", 2, f"rub force on the PT node at rub ring #{r}") for r in lay.rubrings]
+    for b in lay.fuses:
+        out.append((f"F_fuse{b}", f"fuse{b}", 3, f"the fuse's force on bearing #{b}'s housing (x y z)"))
+        out.append((f"F_fusehub{b}", f"fusehub{b}", 2, f"the fuse's force on the hub under bearing #{b}'s housing"))
     return out
 
 
@@ -108,4 +129,8 @@ def output_ports(lay: Layout) -> list[tuple[str, str, str, int, str]]:
     return ([(f"brg{b}", f"X_brg{b}", f"V_brg{b}", 3, f"PT {{}} at bearing #{b} (x y z)") for b in lay.bearings]
             + [(f"housing{b}", f"X_housing{b}", f"V_housing{b}", 2, f"casing hub {{}} under bearing #{b}")
                for b in lay.bearings]
-            + [(f"rub{r}", f"X_rub{r}", f"V_rub{r}", 2, f"PT {{}} at rub ring #{r}") for r in lay.rubrings])
+            + [(f"rub{r}", f"X_rub{r}", f"V_rub{r}", 2, f"PT {{}} at rub ring #{r}") for r in lay.rubrings]
+            + [(f"fuse{b}", f"X_fuse{b}", f"V_fuse{b}", 3, f"{{}} of bearing #{b}'s housing on its fuse (x y z)")
+               for b in lay.fuses]
+            + [(f"fusehub{b}", f"X_fusehub{b}", f"V_fusehub{b}", 2, f"hub {{}} under the fuse of bearing #{b}")
+               for b in lay.fuses])

@@ -62,10 +62,12 @@ def port_variables(lay: attach.Layout) -> tuple[Variable, ...]:
     """The rotor component's port variables for the attached bearings and rub rings (attach.py), then F_u."""
     ins = attach.input_ports(lay)
     outs = attach.output_ports(lay)
-    by_kind = {k: [v for v in ins if v[0].startswith(k)] for k in ("F_brg", "F_sfd_housing", "F_rub_housing")}
+    by_kind = {k: [v for v in ins if v[0].startswith(k)]
+               for k in ("F_brg", "F_sfd_housing", "F_rub_housing", "F_fusehub")}
     by_kind["F_rub"] = [v for v in ins if v[0].startswith("F_rub") and not v[0].startswith("F_rub_housing")]
+    by_kind["F_fuse"] = [v for v in ins if v[0].startswith("F_fuse") and not v[0].startswith("F_fusehub")]
     out = [Variable(name, "input", n, "N", desc) for k in by_kind for name, _, n, desc in by_kind[k]]
-    for prefix in ("brg", "housing", "rub"):
+    for prefix in ("brg", "housing", "rub", "fuse"):
         group = [o for o in outs if o[0].startswith(prefix)]
         out += [Variable(x, "output", n, "m", d.format("displacement")) for _, x, _, n, d in group]
         out += [Variable(v, "output", n, "m/s", d.format("velocity")) for _, _, v, n, d in group]
@@ -79,7 +81,8 @@ def layout_of_file(model_file: str = "") -> attach.Layout:
     lay = _LAYOUTS.get(key)
     if lay is None:
         data, _ = fem.load_data(model_file or None)
-        lay = attach.PAPER if shaft_model.is_shaft_model(data) else attach.layout(data.get("attach", {}))
+        lay = attach.PAPER if shaft_model.is_shaft_model(data) else attach.layout(data.get("attach", {}),
+                                                                                    fem.fuse_ids(data))
         _LAYOUTS[key] = lay
     return lay
 

@@ -128,6 +128,27 @@ KEYS: dict[str, tuple[Key, ...]] = {
         Key("bearing_oil_flow_L_per_min", "bearing_oil_flow", "L/min", _l_per_min, "oil jet through the bearing",
             component_default=True, source=_THERMAL_DATA + ": none (0), as the paper's network", positive=False),
     ),
+    "fuse": (
+        Key("housing_mass_kg", "housing_mass", "kg", _same, "mass of the bearing's housing the fuse carries (it moves "
+            "with the damper's housing side; the hub keeps its own mass)"),
+        Key("k_intact", "k_intact", "N/m", _same, "intact radial stiffness (x and y; also the housing's axial hold)"),
+        Key("damping", "damping", "N s/m", _same, "damping, intact and after the break", default=0.0,
+            positive=False, source="none"),
+        Key("break_load_N", "break_load", "N", _same, "radial elastic force k_intact |x| at which the fuse breaks"),
+        Key("k_broken", "k_broken", "N/m", _same, "stiffness of the soft path after the break (0: none)",
+            default=0.0, positive=False, source="none: nothing holds the housing radially but the bumper"),
+        Key("stages", "stages", "1", int, "break stages, 1 or 2", default=1, whole=True, source="one stage"),
+        Key("break_load_2_N", "break_load_2", "N", _same, "with stages = 2: the soft path's force k_broken |x| "
+            "at which it breaks", default=0.0, positive=False, source="none (one stage)"),
+        Key("k_broken_2", "k_broken_2", "N/m", _same, "with stages = 2: stiffness after the second break",
+            default=0.0, positive=False, source="none (one stage)"),
+        Key("bumper_clearance_mm", "bumper_clearance", "mm", _mm, "radial clearance of the bumper", default=0.0,
+            positive=False, source="no bumper unless bumper_stiffness is given"),
+        Key("bumper_stiffness", "bumper_stiffness", "N/m", _same, "contact stiffness of the bumper (0: none)",
+            default=0.0, positive=False, source="no bumper"),
+        Key("bumper_friction", "bumper_friction", "1", _same, "friction coefficient of the bumper contact",
+            default=0.0, positive=False, source="frictionless"),
+    ),
     "unbalance": (
         Key("residual_N", "residual", "N", _same, "residual unbalance force before the blade loss, at the "
             "unbalance node, turning with the first spool", default=0.0, positive=False,
@@ -140,9 +161,12 @@ KEYS: dict[str, tuple[Key, ...]] = {
 #: the SI unit of a quantity given in a file unit
 SI_UNIT = {"mm": "m", "deg": "rad", "MPa": "Pa", "L/min": "m3/s"}
 #: the part tables keyed by id (``[unbalance]`` is one table)
-PER_ID = ("bearing", "damper", "rubring", "thermal")
+PER_ID = ("bearing", "damper", "rubring", "thermal", "fuse")
+#: part tables a bearing has only where the file gives one (a support fuse)
+OPTIONAL = ("fuse",)
 #: which [attach] entry each part table belongs to
-ATTACH_OF = {"bearing": "bearing", "damper": "bearing", "thermal": "bearing", "rubring": "rubring"}
+ATTACH_OF = {"bearing": "bearing", "damper": "bearing", "thermal": "bearing", "rubring": "rubring",
+             "fuse": "bearing"}
 
 
 def _key(table: str, key: str) -> Key | None:
@@ -193,6 +217,8 @@ def problems(data: dict) -> list[str]:
                 err = _check_value(k, v)
                 if err:
                     out.append(f"{where} {key}: {err}")
+            if table == "fuse":
+                out += _fuse_problems(where, spec)
     unb = data.get("unbalance")
     if unb is not None:
         if not isinstance(unb, dict):
@@ -210,6 +236,16 @@ def problems(data: dict) -> list[str]:
     return out
 
 
+def _fuse_problems(where: str, spec: dict) -> list[str]:
+    """What a fuse's keys say against each other that no key alone does: a soft path stiffer than the intact one.
+    (The component refuses the same, and inconsistent stages, by its parameter's name when a run sets it up.)"""
+    k, kb = spec.get("k_intact"), spec.get("k_broken", 0.0)
+    if all(isinstance(v, (int, float)) and not isinstance(v, bool) and math.isfinite(v) for v in (k, kb)) and kb > k:
+        return [f"{where} k_broken: must be at most k_intact = {k:g} N/m (the post-fuse path is the softer one), "
+                f"got {kb!r}"]
+    return []
+
+
 def missing(data: dict) -> list[str]:
     """The required keys (no default, no rule, no component default) that the part tables of an engine file's
     ``data`` lack for the parts its [attach] names, one entry per table: ``"[bearing.0] balls, bore_mm"``; a table
@@ -222,6 +258,8 @@ def missing(data: dict) -> list[str]:
             if not entry.startswith(ATTACH_OF[table]) or entry in ("unbalance", "oil_temperature_C"):
                 continue
             tables = data.get(table) if isinstance(data.get(table), dict) else {}
+            if table in OPTIONAL and pid not in tables:
+                continue
             spec = tables.get(pid) if isinstance(tables.get(pid), dict) else {}
             lack = [k.key for k in KEYS[table] if k.required and k.key not in spec]
             if lack:

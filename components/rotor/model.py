@@ -94,7 +94,9 @@ class FullModel:
         critical speeds and the calibration): per support ``{pt_node, hub, k_contact, m_journal, k_spring,
         c_film}``, the ball contacts (radial stiffness at the preloaded rest) join the power-turbine node to a
         journal body of its own (outer race + SFD journal, eq. 5: 2 DOF, x and y) which the O-ring centering
-        spring and the linearised film join to the casing hub. Returns the augmented matrices ``M, K, C, G_pt,
+        spring and the linearised film join to the casing hub (a fused bearing's, ``fuse = {housing, k, c}``: to
+        its own housing, which the fuse's stiffness ``k`` and damping ``c`` of the stage considered join to the
+        hub). Returns the augmented matrices ``M, K, C, G_pt,
         G_gg`` (the model's DOFs first, then x, y of each journal in the order of ``supports``), ``journal``
         (support key -> its two DOF indices) and ``rotor_lateral``."""
         n0 = self.n
@@ -111,9 +113,15 @@ class FullModel:
         for s_i, (key, s) in enumerate(supports.items()):
             jx = n0 + 2 * s_i
             journal[key] = np.array([jx, jx + 1])
+            fuse = s.get("fuse")
             for d in range(2):
                 i = self.info["dof"](*_node(s), d)
                 h = self.info["dof"]("hub", s["hub"], d)
+                if fuse is not None:
+                    f = self.info["dof"]("hub", fuse["housing"], d)
+                    _couple(K, f, h, _nonneg(f"support {key} fuse k", fuse["k"]))
+                    _couple(C, f, h, _nonneg(f"support {key} fuse c", fuse["c"]))
+                    h = f
                 j = jx + d
                 M[j, j] += _positive(f"support {key} m_journal", s["m_journal"])
                 _couple(K, i, j, _positive(f"support {key} k_contact", s["k_contact"]))
@@ -299,6 +307,9 @@ def _assemble(data: dict, digest: str, omega_pt: float | None, omega_gg: float |
         if p in hubs:
             raise ValueError(f"rotor model: hub {p!r} is both a casing hub and a pedestal")
     hubs = hubs + list(peds)
+    # a fused bearing's own housing: a body of its own after the hubs (its name no TOML key of a hub can clash with)
+    fuses = fuse_ids(data)
+    hubs = hubs + [fused_housing(f) for f in fuses]
     base_hub = base_sh + 3 * n_shell_nodes
     ntot = base_hub + 3 * len(hubs)
 
@@ -421,6 +432,19 @@ def _assemble(data: dict, digest: str, omega_pt: float | None, omega_gg: float |
             if d < 2:
                 _couple(C, i, None, cxy[d])
 
+    # fused housings: the mass, and the fuse's axial hold on the hub (its radial support is the co-simulated fuse)
+    for f in fuses:
+        spec = data["fuse"][f]
+        entry = data.get("attach", {}).get(f"bearing{f}")
+        if not isinstance(entry, dict) or "housing" not in entry:
+            raise ValueError(f"rotor model: [fuse.{f}] is at bearing{f}, which [attach] does not have (a fuse "
+                             "carries a bearing's housing)")
+        mh = _positive(f"[fuse.{f}] housing_mass_kg", spec.get("housing_mass_kg"))
+        i, j = gdof("hub", fused_housing(f), 2), gdof("hub", entry["housing"], 2)
+        for d in range(3):
+            M[gdof("hub", fused_housing(f), d), gdof("hub", fused_housing(f), d)] += mh
+        _couple(K, i, j, _positive(f"[fuse.{f}] k_intact", spec.get("k_intact")))
+
     # mounts to ground
     for m_i, mt in enumerate(cas["mounts"] if cas is not None else ()):
         ring, node, d = int(mt["ring"]), int(mt["node"]), int(mt["dir"])
@@ -483,7 +507,7 @@ def _assemble(data: dict, digest: str, omega_pt: float | None, omega_gg: float |
         return int(i)
 
     sub = np.ix_(free, free)
-    ports = _ports(data.get("attach", {}), dof)
+    ports = _ports(data.get("attach", {}), dof, fuses)
     lateral = [dof(s, n, d) for s in names for n in range(len(z[s])) for d in range(2)]
     for s in names:
         # the speed ratio of the second spool to the first divides by the first (0 was a ZeroDivisionError); a
@@ -620,15 +644,31 @@ def speed_support_delta(full: "FullModel", w: float, n: int | None = None) -> tu
     return dK, dC
 
 
-def _ports(attach: dict, dof) -> dict:
-    """The port groups of the [attach] entries the file gives (attach.groups: any number of bearings and rub rings)."""
+def fuse_ids(data: dict) -> tuple[str, ...]:
+    """The ids of an engine file's ``[fuse.ID]`` tables: the bearings whose housing sits on a support fuse."""
+    fuses = data.get("fuse", {})
+    return tuple(fuses) if isinstance(fuses, dict) else ()
+
+
+def fused_housing(fid: str) -> str:
+    """The body name of fused bearing ``fid``'s own housing (a hub of the model: ``dof("hub", name, d)``)."""
+    return f"bearing{fid} housing"
+
+
+def _ports(attach: dict, dof, fuses=()) -> dict:
+    """The port groups of the [attach] entries the file gives (attach.groups: any number of bearings and rub
+    rings; a fused bearing's housing is its own body, the fuse's structure side the hub of its entry)."""
     ports = {}
-    for group, entry, what, n in attach_layout.groups(attach_layout.layout(attach)):
+    for group, entry, what, n in attach_layout.groups(attach_layout.layout(attach, fuses)):
         if entry not in attach:
             continue
         a = attach[entry]
-        if what == "housing":
-            ports[group] = np.asarray([dof("hub", a["housing"], d) for d in range(2)])
+        if what in ("housing", "fuse"):
+            fid = entry[len("bearing"):]
+            body = fused_housing(fid) if fid in fuses else a["housing"]
+            ports[group] = np.asarray([dof("hub", body, d) for d in range(n)])
+        elif what == "fusehub":
+            ports[group] = np.asarray([dof("hub", a["housing"], d) for d in range(n)])
         else:
             node = a["node"]
             if not (isinstance(node, list) and len(node) == 2):

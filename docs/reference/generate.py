@@ -187,6 +187,14 @@ NOTES = {
                                    "mark the engine's forward critical speeds up to 1.1 x the run's top speed "
                                    "(those check-engine lists, derived at run time), and its crossings are "
                                    "labelled with its linearised engine's",
+    "rundown.fatigue_loads": "the loads whose fatigue content summary.json `fatigue` reports (each element of a "
+                             "vector port on its own) and the load spectra figure shows",
+    "rundown.woehler_exponent": "m of the damage-equivalent loads and of the S-N curve (default 3: EN 1993-1-9's "
+                                "slope for direct stress ranges)",
+    "rundown.reference_cycles": "N_ref of the damage-equivalent loads (default 2e6: EN 1993-1-9's reference life)",
+    "rundown.sn_range_N": "the load range [N] the part endures sn_cycles times (its S-N curve; no default: without "
+                          "it no Miner damage)",
+    "rundown.sn_cycles": "the cycles of sn_range_N on the S-N curve (default 2e6: EN 1993-1-9's reference life)",
     "results.cycles": "rotor cycles the results are taken over", "intervals.cycles": "length in rotor cycles "
     "(needs `schedule.speed_rpm`)",
     "implementation": "registry name, `\"module:Class\"` or entry point", "fmu": "path of an FMU (instead of "

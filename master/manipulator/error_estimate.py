@@ -77,6 +77,10 @@ class HoldReport:
     #: "producer.port" -> the hand-off's power in error at the run's end [its unit], from its TO law's
     #: sensitivity to the estimated errors of the values its producer takes back (hand-offs with a law only)
     handoff_errors_end: dict[str, float] = field(default_factory=dict)
+    #: the same, percent of the power the law held when its sensitivity was taken: the share that carries over to
+    #: another operating point (after the last held interval a rundown's powers fall with the speed, and the error
+    #: in watts of a law made at the higher speed would be read against a far smaller power)
+    handoff_errors_end_pct: dict[str, float] = field(default_factory=dict)
     #: the run's estimated error [%] (None before a TO interval was charged)
     estimated_error_pct: float | None = None
     #: the temperature whose estimate is the run's, "comp.port"
@@ -112,6 +116,7 @@ class HoldReport:
                "output_errors": dict(self.output_errors), "output_rise": dict(self.output_rise),
                "output_move": dict(self.output_move), "mechanics_fraction": dict(self.mechanics_fraction),
                "handoff_errors_end": dict(self.handoff_errors_end),
+               "handoff_errors_end_pct": dict(self.handoff_errors_end_pct),
                "estimated_error_pct": self.estimated_error_pct, "estimated_output": self.estimated_output}
         if self.revolutions_asked is not None:
             w = self.window_revolutions

@@ -82,6 +82,8 @@ class HandOff:
         #: the power's sensitivity to the thermal values it follows, from its last TO law: (component whose input
         #: it is, its port, element, dP/du [W per the input's unit]); the error estimate's feedback (error_estimate.replay)
         self.gains: list[tuple[str, str, int, float]] = []
+        #: the held statistic the gains were taken at [W]: an error from them is a share of it
+        self.gains_at = 0.0
 
     # -- TM: record -------------------------------------------------------------------------------------
     def start_tm(self, n_window: int, n_cycle: int, size: int, hs: float = 0.0, turns=None,
@@ -226,6 +228,7 @@ class HandOff:
             self.elasticity = e
         self.held = HeldLaw(self.link, S, ref, 1.0 if self.elasticity is None else self.elasticity, fired, drive)
         self.gains = self._gains(probe, self.window_inputs(cycles), ref, self.held)
+        self.gains_at = float(S[0])
 
     def _gains(self, probe, u, ref: float, law: "HeldLaw") -> list[tuple[str, str, int, float]]:
         """The law's sensitivity to each thermal input at the window's inputs ``u`` (``ref`` its own TO output

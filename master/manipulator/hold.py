@@ -310,7 +310,7 @@ class StaggeredHold:
         rep.output_rise = {k: (v - self._initial[k]).tolist() for k, v in present.items() if k in self._initial}
         rep.output_move = {k: (present[k] - v).tolist() for k, v in self._at_last_restart.items() if k in present}
         rep.estimated_error_pct, rep.estimated_output = self._largest(errors)
-        rep.handoff_errors_end = self._handoff_errors(errors)
+        rep.handoff_errors_end, rep.handoff_errors_end_pct = self._handoff_errors(errors)
         frac: dict[str, float] = {}
         periods = self._tm_periods
         if len(periods) == 2 and periods[0] != periods[1]:
@@ -329,12 +329,13 @@ class StaggeredHold:
             frac[name] = max(frac.get(name, 0.0), float(np.linalg.norm(err)) / float(np.linalg.norm(move)))
         rep.mechanics_fraction = frac
 
-    def _handoff_errors(self, errors: dict[str, np.ndarray]) -> dict[str, float]:
+    def _handoff_errors(self, errors: dict[str, np.ndarray]) -> tuple[dict[str, float], dict[str, float]]:
         """Each hand-off's power in error at the run's end by what its TO law says the erring values its producer
         takes back do to it (HandOff.gains times their estimated errors ``errors``, "comp.port" -> values): the
-        mechanics' own power at the end, "producer.port" -> error [its unit]; only hand-offs with a law."""
+        mechanics' own power at the end, "producer.port" -> error [its unit], and that error in percent of the
+        power the law held when its gains were taken (``HandOff.gains_at``); only hand-offs with a law."""
         feeds = {(l.con.dst_component, l.con.dst_port): f"{l.con.src_component}.{l.sport}" for l in self.handbacks}
-        out = {}
+        out, pct = {}, {}
         for ho in self.handoffs or []:
             if not ho.gains:
                 continue
@@ -343,8 +344,11 @@ class StaggeredHold:
                 err = errors.get(feeds.get((comp, port), ""))
                 if err is not None:
                     d += g * float(np.ravel(err)[k])
-            out[f"{ho.link.con.src_component}.{ho.link.sport}"] = d
-        return out
+            key = f"{ho.link.con.src_component}.{ho.link.sport}"
+            out[key] = d
+            if ho.gains_at > 0.0:
+                pct[key] = 100.0 * d / ho.gains_at
+        return out, pct
 
     def _largest(self, errors: dict[str, np.ndarray]) -> tuple[float, str | None]:
         """The largest error [%] of a scalar temperature output (unit K, one element: a thermal model's reported

@@ -1,0 +1,106 @@
+"""The fatigue content of a rundown's loads: the scenario's keys, their defaults and sources, and the count of a
+run's recorded loads over a span of time.
+
+``[results]`` keys (the rundown case's own, ``RESULTS_KEYS``):
+
+* ``fatigue_loads``: the loads counted, ``"comp.port"`` outputs (each element of a vector port counted on its own);
+  default: the airframe's mount loads (``airframe.F_<mount>``) when the run has an airframe, else the force each
+  damper transmits to the casing (``damper<ID>.F_journal``), those the run records;
+* ``woehler_exponent`` ``m`` (default :data:`WOEHLER_EXPONENT` = 3) and ``reference_cycles`` ``N_ref`` (default
+  :data:`REFERENCE_CYCLES` = 2e6) of the damage-equivalent loads: the slope of the fatigue strength curves of
+  EN 1993-1-9 (Eurocode 3, *Fatigue*) for direct stress ranges up to 5e6 cycles, and the cycle count at which its
+  detail categories are defined;
+* ``sn_range_N`` ``S_c`` [N] and ``sn_cycles`` ``N_c`` (default 2e6, EN 1993-1-9's reference) of the S-N curve of
+  the Miner damage, ``N(S) = N_c (S / S_c)^-m``: the load range the part endures ``N_c`` times. It belongs to the
+  part (its section, material and detail): no default; without it the Miner damage is not computed (None).
+
+The counting and the equations: master/observer/fatigue.py and held_cycles.py.
+"""
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+
+from rotorcosim.master.observer import fatigue as fg
+from rotorcosim.master.observer import held_cycles as hc
+from rotorcosim.master.observer.series import SeriesFile
+
+#: EN 1993-1-9: the slope m of the fatigue strength curves (direct stress ranges, N <= 5e6) and the reference
+#: cycle count N_C = 2e6 of the detail categories
+WOEHLER_EXPONENT = 3.0
+REFERENCE_CYCLES = 2.0e6
+SN_CYCLES = 2.0e6
+#: the keys of [results] and what the module reads from them
+KEYS = ("fatigue_loads", "woehler_exponent", "reference_cycles", "sn_range_N", "sn_cycles")
+#: the hold's window in turns when the scenario's [schedule] does not say (master/scenario/build.py's default)
+HOLD_CYCLES = 5.0
+
+
+def settings(sc) -> dict:
+    """The scenario's fatigue keys with their defaults (module docstring)."""
+    r = sc.extra.get("results", {})
+    return {"woehler_exponent": float(r.get("woehler_exponent", WOEHLER_EXPONENT)),
+            "reference_cycles": float(r.get("reference_cycles", REFERENCE_CYCLES)),
+            "sn_range_N": float(r["sn_range_N"]) if r.get("sn_range_N") is not None else None,
+            "sn_cycles": float(r.get("sn_cycles", SN_CYCLES))}
+
+
+def loads_of(sc, recorded) -> list[str]:
+    """The loads counted (module docstring) among the ``recorded`` names."""
+    named = sc.extra.get("results", {}).get("fatigue_loads")
+    if named:
+        return [str(n) for n in named]
+    mounts = sorted(n for n in recorded if n.startswith("airframe.F_"))
+    return mounts or sorted(n for n in recorded if n.startswith("damper") and n.endswith(".F_journal"))
+
+
+def content(counts: fg.Counts, s: dict) -> dict:
+    """``del_N`` and ``miner_damage`` of one load element's cycles with the settings ``s``."""
+    m = s["woehler_exponent"]
+    return {"del_N": fg.del_load(counts, m, s["reference_cycles"]),
+            "miner_damage": fg.miner_damage(counts, m, s["sn_range_N"], s["sn_cycles"])
+            if s["sn_range_N"] else None,
+            "cycles": float(counts.n.sum())}
+
+
+def recorded_counts(data, sc, t_from: float = 0.0) -> dict[str, fg.Counts]:
+    """The cycles of each load element (``"comp.port[i]"``) of a run's recorded series ``data`` (a run folder's
+    ``timeseries.h5`` as a mapping: master/observer/series.py, or the folder) from time ``t_from`` on: coupled
+    samples as recorded, held intervals from the hold's window (held_cycles.py), the angle the integral of the
+    scenario's cycle signal (``[schedule] cycle``'s speed, recorded)."""
+    if isinstance(data, (str, Path)):
+        data = SeriesFile(Path(data) / "timeseries.h5")
+    t = np.asarray(data["time"], dtype=float)
+    keep = t >= t_from
+    cyc = sc.schedule.get("cycle") or {}
+    speed = np.asarray(data[cyc["signal"]], dtype=float).reshape(t.size, -1)[:, 0] if "signal" in cyc else None
+    if speed is None:
+        raise ValueError("the load cycles of a held interval need the run's cycle: a [schedule] cycle signal")
+    angle = hc.cycle_angle(t[keep], speed[keep])
+    held = np.asarray(data["phase"])[keep] == 1
+    turns = float(sc.schedule.get("hold_cycles", HOLD_CYCLES))
+    out = {}
+    for ref in loads_of(sc, list(data)):
+        y = np.asarray(data[ref], dtype=float).reshape(t.size, -1)[keep]
+        for i in range(y.shape[1]):
+            key = f"{ref}[{i}]" if y.shape[1] > 1 else ref
+            out[key] = hc.staggered_counts(y[:, i], held, angle, turns)
+    return out
+
+
+
+def observer(sc, cycle):
+    """The run's :class:`~rotorcosim.master.observer.held_cycles.LoadCycles` of ``[results] fatigue_loads``, or
+    None when the scenario names none."""
+    named = sc.extra.get("results", {}).get("fatigue_loads")
+    if not named:
+        return None
+    return hc.LoadCycles([str(n) for n in named], cycle, float(sc.schedule.get("hold_cycles", HOLD_CYCLES)))
+
+
+def summary(obs, sc) -> dict:
+    """summary.json ``fatigue``: the settings, and per load element its ``del_N``, ``miner_damage`` and
+    ``cycles`` over the whole run."""
+    s = settings(sc)
+    return {**s, "loads": {k: content(c, s) for k, c in obs.counts().items()}}

@@ -1,0 +1,110 @@
+"""A support fuse in an engine file ([fuse.ID], docs/reference/engine-format.md): the linear engine with the fuse
+intact and broken against the same engine without a fuse (a stiff, light fused housing is the unfused engine; a
+broken fuse under a light housing is a spring in series with the damper's centering spring), the bad inputs as
+one-line errors naming the key, and a co-simulation whose fuse breaks."""
+from __future__ import annotations
+
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+
+from rotorcosim.cases.blade_loss.critical_speeds import fuse_states, linearised_supports
+from rotorcosim.cases.blade_loss.new_engine import new_engine
+from rotorcosim.components.rotor import critical
+from rotorcosim.components.rotor import model as fem
+
+FUSE = """
+[fuse.0]
+housing_mass_kg = {mass}
+k_intact = {k}
+damping = 2000.0
+break_load_N = {load}
+k_broken = {kb}
+"""
+
+
+@pytest.fixture(scope="module")
+def engine_folder(tmp_path_factory):
+    folder = tmp_path_factory.mktemp("engine")
+    new_engine(folder)
+    return folder
+
+
+def _forward(path, stage=0):
+    """The three lowest forward synchronous critical speeds [rev/min] of the engine file at ``path``, its fuses at
+    ``stage`` (critical_speeds' own linearisation, without its damped scan)."""
+    m = fem.load(path)
+    return critical.synchronous_critical_speeds(m, linearised_supports(m, None, None, stage),
+                                                n=3, max_rpm=30000.0)["forward_synchronous_rpm"]
+
+
+def _engine(folder, name, text):
+    path = folder / name
+    path.write_text((folder / "engine.toml").read_text() + text)
+    return str(path)
+
+
+def test_intact_and_broken_critical_speeds_against_the_engine_without_a_fuse(engine_folder):
+    """A fused housing of 1 g on a fuse of 1e12 N/m is the engine without a fuse: its critical speeds within
+    0.01 %. Broken (1e7 N/m), the fuse under that housing is a spring in series with damper #0's centering spring
+    (5.254e6 N/m): the engine without a fuse whose [damper.0] k_spring is 1 / (1 / 5.254e6 + 1 / 1e7) has the
+    fused engine's broken critical speeds within 0.01 % (the lowest falls from 4 349 to 3 707 rev/min). Each
+    reported under fuse_states with its label and stiffness."""
+    plain = _forward(engine_folder / "engine.toml")
+    path = _engine(engine_folder, "fused.toml", FUSE.format(mass=1e-3, k=1e12, load=3000.0, kb=1e7))
+    assert _forward(path) == pytest.approx(plain, rel=1e-4)
+    (broken,) = fuse_states(fem.load(path), 3, 30000.0)
+    assert broken["label"] == "fuse broken" and broken["fuse_stiffness_N_per_m"] == {"0": 1e7}
+    series = 1.0 / (1.0 / 5.254e6 + 1.0 / 1e7)
+    text = (engine_folder / "engine.toml").read_text().replace("k_spring = 5.254e6", f"k_spring = {series!r}", 1)
+    assert text != (engine_folder / "engine.toml").read_text()
+    soft = engine_folder / "soft.toml"
+    soft.write_text(text)
+    expect = _forward(soft)
+    assert broken["forward_synchronous_rpm"] == pytest.approx(expect, rel=1e-4)
+    assert broken["forward_synchronous_rpm"][0] < 0.9 * plain[0]
+
+
+@pytest.mark.parametrize("text, message", [
+    ("\n[fuse.7]\nhousing_mass_kg = 1.0\nk_intact = 1e9\nbreak_load_N = 1000.0\n",
+     "[fuse.7]: [attach] has no bearing7"),
+    (FUSE.format(mass=1.5, k=1e9, load=0.0, kb=1e7), "[fuse.0] break_load_N: must be > 0"),
+    (FUSE.format(mass=1.5, k=1e9, load="nan", kb=1e7), "[fuse.0] break_load_N: must be a finite number"),
+    (FUSE.format(mass=1.5, k=1e9, load=1000.0, kb=2e9), "[fuse.0] k_broken: must be at most k_intact"),
+    (FUSE.format(mass=1.5, k=1e9, load=1000.0, kb=1e7) + "bumper_clearance_mm = -0.1\n",
+     "[fuse.0] bumper_clearance_mm: must be >= 0"),
+    (FUSE.format(mass=1.5, k=1e9, load=1000.0, kb=1e7) + "stiffness = 1.0\n", "[fuse.0] stiffness: unknown key"),
+])
+def test_bad_fuse_in_an_engine_file_is_one_line(engine_folder, tmp_path, text, message):
+    path = _engine(engine_folder, "bad.toml", text)
+    r = subprocess.run([sys.executable, "-m", "rotorcosim.master.cli", "check-engine", path],
+                       capture_output=True, text=True)
+    assert r.returncode == 2, r.stdout + r.stderr
+    lines = [line for line in (r.stdout + r.stderr).splitlines() if line.strip()]
+    assert any(message in line for line in lines), lines
+    assert "Traceback" not in r.stderr
+
+
+def test_a_fused_engine_breaks_its_fuse_in_a_run(engine_folder, tmp_path):
+    """The textbook engine with bearing #0's housing on a fuse (1.5 kg, 1e9 N/m, break at 600 N, 1e7 N/m after),
+    1 500 N of blade loss at 0.01 s: the fuse breaks once, at its load, soon after the blade loss; the force it
+    passes to the hub is the opposite of the force on the housing."""
+    from rotorcosim.master.api import simulate
+
+    _engine(engine_folder, "engine_fused.toml", FUSE.format(mass=1.5, k=1e9, load=600.0, kb=1e7))
+    sc = engine_folder / "fused_blade_loss.toml"
+    sc.write_text('[scenario]\nextends = "blade_loss.toml"\nname = "fused"\nengine = "engine_fused.toml"\n'
+                  '[templates]\nbearing = ["0", "5"]\nrubring = ["0", "5"]\nfuse = ["0"]\n'
+                  '[algorithm]\norder = ["rotor", "bearing{bearing}", "damper{bearing}", "rubring{rubring}", '
+                  '"fuse{fuse}", "thermal{bearing}"]\n'
+                  '[components.thermal0]\nstep = 5e-6\n[components.thermal5]\nstep = 5e-6\n'
+                  '[outputs]\nrecord = ["fuse0.F_support", "fuse0.F_rotor", "fuse0.broken"]\n')
+    res = simulate(str(sc), duration=0.015, figures=False, progress=False)
+    (ev,) = res.summary["events"]
+    assert ev["component"] == "fuse0" and ev["kind"] == "break" and 0.01 < ev["t_s"] < 0.012
+    assert ev["values"]["F_elastic_N"] == pytest.approx(600.0, rel=1e-3)
+    f, g = res["fuse0.F_support"], res["fuse0.F_rotor"]
+    assert np.array_equal(f, -g[:, :2])
+    assert np.asarray(res["fuse0.broken"]).reshape(-1)[-1] == 1.0
