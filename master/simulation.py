@@ -284,7 +284,9 @@ class Simulation:
                             why = runner.why or why
                         finally:
                             k = runner.k
-                    if runner.why or k >= nsteps:
+                        if runner.why:
+                            break
+                    if k >= nsteps:
                         break
                     # base step k is the generic loop's (a time event in it, or an event the compiled loop stopped
                     # at: runner.Runner.run), then the compiled loop again
