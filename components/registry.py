@@ -34,6 +34,8 @@ BUILTIN: dict[str, str] = {
     "rubring.contact": "rotorcosim.components.rubring.component:RubRing",
     # a support that breaks at a load (an event the master locates)
     "fuse.support": "rotorcosim.components.fuse.component:SupportFuse",
+    # the airframe on the engine's mounts (a reduced linear model)
+    "airframe.modal": "rotorcosim.components.airframe.component:Airframe",
     # speed as a state: the spool, and the speed-following variants of the rotor, bearing, rub ring
     "spool.speed": "rotorcosim.components.spool.component:Spool",
     "rotor.mta_spinning": "rotorcosim.components.rotor.spinning:SpinningRotor",

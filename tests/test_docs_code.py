@@ -212,7 +212,8 @@ def test_every_key_on_the_engine_format_page_is_read_by_the_code():
             continue
         named |= set(re.findall(r"\w+", " ".join(re.findall(r"`([^`]*)`", first))))
     # the readers: the rotor model, the attachments, the parts at each attachment (engine_parts.py)
-    source = "".join(_page(ROOT / "components" / "rotor" / f) for f in ("model.py", "attach.py", "engine_parts.py"))
+    source = "".join(_page(ROOT / "components" / "rotor" / f) for f in ("model.py", "attach.py", "engine_parts.py",
+                                                                       "mounts.py"))
     read = set(re.findall(r"[\"'](\w+)[\"']", source))
     words = {"NAME", "hub", "ground", "rotor", "casing", "x", "y", "z", "dir"}   # names and values, not keys
     unread = sorted(k for k in named - words if k not in read and not k[0].isupper() and not k.isdigit())

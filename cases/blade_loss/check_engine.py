@@ -23,6 +23,8 @@ from pathlib import Path
 
 from rotorcosim.cases.blade_loss import critical_speeds as cs
 from rotorcosim.cases.blade_loss import linear_engine
+from rotorcosim.components.airframe.installed import installed_model
+from rotorcosim.components.airframe.mounting import installed
 from rotorcosim.components.bearing.geometry import DN_LIMIT, speed_limit
 from rotorcosim.components.rotor import attach, critical, engine_check
 from rotorcosim.components.rotor import model as fem
@@ -30,7 +32,8 @@ from rotorcosim.master.scenario.build import create_component
 
 
 def check_engine(path: str, scenario: str | None = None, campbell: str | None = None,
-                 max_rpm: float | None = None, count: int = 6) -> dict:
+                 max_rpm: float | None = None, count: int = 6,
+                 windmill_rpm: tuple[float, float] | None = None) -> dict:
     """``{"problems": [...]}`` for a file with problems; else the report (:func:`engine_check.report`) with
     ``critical_speeds`` (:func:`critical_speeds.critical_speeds`), ``separation`` (every synchronous critical
     speed up to :data:`SPAN` x each spool's highest operating speed, excited by that spool's unbalance, with its
@@ -38,10 +41,10 @@ def check_engine(path: str, scenario: str | None = None, campbell: str | None = 
     (one line each: :func:`warnings`) and ``campbell`` (the PNG written, when ``campbell`` names one).
     ``max_rpm`` None: twice the first spool's speed (the list of ``critical_speeds`` and the diagram)."""
     data, _ = fem.load_data(path)
-    found = engine_check.problems(data)
+    found = engine_check.problems(data) or (mount_problems(path) if "mount" in data or "airframe" in data else [])
     if found:
         return {"engine_file": str(path), "problems": found}
-    full = fem.build(data, source=path)
+    full = installed_model(path)
     out = {"engine_file": str(path), "problems": [], **engine_check.report(full)}
     sc = None
     if scenario:
@@ -67,9 +70,21 @@ def check_engine(path: str, scenario: str | None = None, campbell: str | None = 
     out["warnings"] = warn + warnings(data, sc)
     if campbell:
         cs.check_figure_path(campbell)
-        cs.draw_campbell(campbell, str(path), max_rpm, crit, scenario=sc)
+        cs.draw_campbell(campbell, str(path), max_rpm, crit, scenario=sc, windmill_rpm=windmill_rpm)
         out["campbell"] = str(campbell)
     return out
+
+
+def mount_problems(path: str) -> list[str]:
+    """The problem of an engine's mounts and airframe (components/rotor/mounts.py, components/airframe): its
+    tables, its reduced model's file, a spring on a node the engine lacks; one line, or none."""
+    where = f"rotor model file {path}: "
+    try:
+        installed(path)
+        fem.load(path)
+    except (ValueError, OSError) as exc:
+        return [str(exc).removeprefix(where)]
+    return []
 
 
 #: the separation list spans the synchronous critical speeds up to this times each spool's highest operating speed
@@ -124,12 +139,13 @@ def add_arguments(parser):
                         help="highest speed of the critical speeds and the diagram (default: twice the first "
                              "spool's speed)")
     parser.add_argument("--json", action="store_true", help="print a JSON object")
+    cs.add_windmill_argument(parser)
 
 
 def run(args) -> int:
     """Run the command ``args`` (parsed); returns the exit status."""
     campbell = args.campbell or f"{Path(args.file).stem}_campbell.png"
-    out = check_engine(args.file, args.scenario, campbell, args.max_rpm)
+    out = check_engine(args.file, args.scenario, campbell, args.max_rpm, windmill_rpm=args.windmill_rpm)
     if args.json:
         print(json.dumps(out, default=str))
         return 2 if out["problems"] else 0

@@ -14,6 +14,7 @@ from pathlib import Path
 
 import numpy as np
 
+from rotorcosim.components.airframe.installed import installed_model
 from rotorcosim.components.rotor import attach, critical
 from rotorcosim.components.rotor import model as fem
 from rotorcosim.cases.blade_loss import linear_engine, response_peaks
@@ -34,6 +35,25 @@ def add_arguments(parser):
     parser.add_argument("--oil-temperature", type=float, default=None, metavar="C",
                         help="oil temperature of the linearised film (default: the engine file's "
                              "[attach] oil_temperature_C); the undamped critical speeds do not depend on it")
+    add_windmill_argument(parser)
+
+
+def add_windmill_argument(parser):
+    """``--windmill-rpm LO,HI``: the windmilling speeds to mark on the Campbell diagram."""
+    parser.add_argument("--windmill-rpm", type=windmill_range, default=None, metavar="LO,HI",
+                        help="mark this range of first-spool speeds [rev/min] on the Campbell diagram: the "
+                             "windmilling speeds of a diversion (e.g. 3000,4900)")
+
+
+def windmill_range(text: str) -> tuple[float, float]:
+    """``"LO,HI"`` [rev/min] as a pair, 0 <= LO <= HI; else a ValueError naming the option."""
+    try:
+        lo, hi = (float(v) for v in str(text).split(","))
+    except ValueError:
+        raise ValueError(f"--windmill-rpm {text!r}: must be two speeds LO,HI in rev/min (e.g. 3000,4900)") from None
+    if not (np.isfinite(lo) and np.isfinite(hi) and 0.0 <= lo <= hi):
+        raise ValueError(f"--windmill-rpm {text!r}: must be 0 <= LO <= HI, finite")
+    return lo, hi
 
 
 #: the label of each fuse stage in the reports and on the Campbell diagram
@@ -80,7 +100,7 @@ def critical_speeds(model_file: str = "", count: int = 6, max_rpm: float = 30000
         raise ValueError(f"--count must be >= 1, got {count}")
     if not (np.isfinite(max_rpm) and max_rpm > 0):
         raise ValueError(f"--max-rpm must be > 0, got {max_rpm}")
-    m = fem.load(model_file or None)
+    m = installed_model(model_file)
     sup = linearised_supports(m, oil_temperature, scenario)
     out = critical.synchronous_critical_speeds(m, sup, n=count, max_rpm=max_rpm)
     out["speed_ratio_gg_pt"] = critical.speed_ratio(m)
@@ -101,21 +121,26 @@ def critical_speeds(model_file: str = "", count: int = 6, max_rpm: float = 30000
 
 
 def draw_campbell(path: str, model_file: str = "", max_rpm: float = 30000.0, crit: dict | None = None,
-                  oil_temperature: float | None = None, scenario=None) -> None:
+                  oil_temperature: float | None = None, scenario=None,
+                  windmill_rpm: tuple[float, float] | None = None) -> None:
     """Draw the Campbell diagram (whirl frequencies against power-turbine speed up to ``max_rpm`` [rev/min]) into
-    the PNG file ``path``; ``crit``: :func:`critical_speeds`' result, marked on it (None: none marked)."""
+    the PNG file ``path``; ``crit``: :func:`critical_speeds`' result, marked on it (None: none marked). An engine on
+    an airframe is drawn installed (components/airframe/installed.py: the airframe's modes among the engine's);
+    ``windmill_rpm``: (lo, hi) [rev/min], the windmilling speeds shaded."""
     import matplotlib
 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    m = fem.load(model_file or None)
+    m = installed_model(model_file)
     rpm = np.linspace(0.0, max_rpm, 61)
-    f, kind = critical.campbell(m, rpm, linearised_supports(m, oil_temperature, scenario), n_modes=min(80, m.n))
+    extra = m.info.get("airframe_modes", 0)
+    f, kind = critical.campbell(m, rpm, linearised_supports(m, oil_temperature, scenario),
+                                n_modes=min(80 + extra, m.n), n_show=24 + extra)
     ratio = critical.speed_ratio(m)
     fig, ax = plt.subplots(figsize=(10, 5))
     styles = ((1, "tab:blue", "forward whirl"), (-1, "tab:orange", "backward whirl"),
-              (0, "0.75", "no rotor whirl (axial, torsion, casing)"))
+              (0, "0.75", "no rotor whirl (axial, torsion, casing" + (", airframe)" if extra else ")")))
     for code, colour, label in styles:
         sel = kind == code
         ax.scatter(np.broadcast_to(rpm[:, None], f.shape)[sel], f[sel], s=5, c=colour, label=label)
@@ -150,14 +175,17 @@ def draw_campbell(path: str, model_file: str = "", max_rpm: float = 30000.0, cri
     gg = m.omega_gg * 30.0 / np.pi
     op = f"{pt:,.0f} / {gg:,.0f}" if ratio != 1.0 else f"{pt:,.0f}"
     ax.axvline(pt, color="tab:green", lw=1.2, label=f"operating speed: {op} rev/min".replace(",", " "))
+    if windmill_rpm is not None:
+        ax.axvspan(windmill_rpm[0], windmill_rpm[1], color="tab:cyan", alpha=0.25, lw=0,
+                   label=f"windmilling: {windmill_rpm[0]:.0f}-{windmill_rpm[1]:.0f} rev/min")
     ax.set_xlabel(f"first spool speed [rev/min] (second spool at {ratio:.4g} x)" if ratio != 1.0
                   else "spool speed [rev/min]")
     ax.set_ylabel("whirl frequency [Hz]")
     ax.set_xlim(0, max_rpm)
     ax.set_ylim(0, 1.2 * max_rpm / 60.0)
     ax.legend(loc="upper left", bbox_to_anchor=(1.02, 1.0), fontsize=8, framealpha=0.9)
-    ax.set_title("Campbell diagram (undamped; co-simulated bearings linearised: contacts, journal body, O-ring)",
-                 fontsize=9)
+    ax.set_title("Campbell diagram (undamped; co-simulated bearings linearised: contacts, journal body, O-ring)"
+                 + (f"\nthe engine on its airframe ({extra} airframe modes)" if extra else ""), fontsize=9)
     fig.tight_layout()
     fig.savefig(path, dpi=120)
     plt.close(fig)
@@ -194,7 +222,7 @@ def run(args) -> int:
         sc = load_scenario(args.scenario)
     out = critical_speeds(args.model_file, args.count, args.max_rpm, args.oil_temperature, sc)
     if args.campbell:
-        draw_campbell(args.campbell, args.model_file, args.max_rpm, out, args.oil_temperature, sc)
+        draw_campbell(args.campbell, args.model_file, args.max_rpm, out, args.oil_temperature, sc, args.windmill_rpm)
         out["campbell"] = args.campbell
     if args.json:
         print(json.dumps(out))

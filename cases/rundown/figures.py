@@ -26,12 +26,15 @@ import numpy as np
 
 from rotorcosim.cases.blade_loss.engine_names import spool_name
 from rotorcosim.cases.blade_loss.results import KELVIN, NODES, bearing_ids
+from rotorcosim.cases.interface import figures as interface_figures
 from rotorcosim.master.observer.series import events_of
 from rotorcosim.master.run.outputs import check_dpi
 
 from .modes import marked_critical_speeds
 
 RPM = 30.0 / math.pi
+#: the windmilling: from this long after the last fuel cut [s]
+WINDMILL_AFTER_CUT_S = 60.0
 #: coupled samples per speed bin of the response figure
 SPEED_BIN_RPM = 25.0
 
@@ -121,13 +124,14 @@ def figures(sc, data, out, dpi: int | None = None) -> list[str]:
     peaks = _peaks(data, locs, w, coupled)
     first = spool_name(sc, spools[0])
     names.append(_response(data, locs, w, coupled, crit, peaks, out, first))
-    names.append(_campbell(sc, w, crit, peaks, out, first))
+    names.append(_campbell(sc, w, crit, peaks, out, first, windmilling_range(sc, t, w, spools)))
     ids = [k for k in bearing_ids(sc.components) if _get(data, f"thermal{k}.T_nodes") is not None]
     if ids:
         names.append(_temperatures(data, t, phase, out, ids))
     if sc.extra.get("results", {}).get("fatigue_loads"):
         names.append(_spectra(sc, data, out))
-    return names
+    # an engine on an airframe: the interface loads and the response points' vibration
+    return names + interface_figures.figures(sc, data, out.folder, out.dpi, spools[0])
 
 
 def _spectra(sc, data, out):
@@ -242,7 +246,18 @@ def _response(data, locs, w, coupled, crit, peaks, out, spool):
     return _save(fig, out, "rundown_response.png")
 
 
-def _campbell(sc, w, crit, peaks, out, spool):
+def windmilling_range(sc, t, w, spools) -> tuple[float, float] | None:
+    """The first spool's speeds [rev/min] from a minute after the last fuel cut on (the rundown is over by then:
+    the speed figure's zoom), the windmilling; None when the run has no fuel cut or ends before."""
+    cuts = [float(sc.components[s].parameters.get("t_fuel_cut", -1.0)) for s in spools]
+    cuts = [c for c in cuts if c >= 0.0]
+    if not cuts:
+        return None
+    sel = (t >= max(cuts) + WINDMILL_AFTER_CUT_S) & np.isfinite(w)
+    return (float(w[sel].min()), float(w[sel].max())) if sel.any() else None
+
+
+def _campbell(sc, w, crit, peaks, out, spool, windmill=None):
     plt = _plt()
     top = 1.1 * float(np.nanmax(w))
     fig, ax = plt.subplots(figsize=(10, 5))
@@ -251,13 +266,19 @@ def _campbell(sc, w, crit, peaks, out, spool):
     if "rotor" in sc.components:
         try:
             from rotorcosim.cases.blade_loss import linear_engine
+            from rotorcosim.components.airframe.installed import installed_model
             from rotorcosim.components.rotor import critical
-            from rotorcosim.components.rotor import model as fem
 
-            # the run's own engine ("" for a rotor component without one: the shipped engine)
-            m = fem.load(sc.components["rotor"].parameters.get("model_file") or None)
-            f, kind = critical.campbell(m, rpm, linear_engine.supports(sc, data=m.data))
-            for code, colour, label in ((1, "tab:blue", "forward whirl"), (-1, "tab:orange", "backward whirl")):
+            # the run's own engine ("" for a rotor component without one: the shipped engine), on its airframe
+            # when it has one
+            m = installed_model(sc.components["rotor"].parameters.get("model_file") or "")
+            extra = m.info.get("airframe_modes", 0)
+            f, kind = critical.campbell(m, rpm, linear_engine.supports(sc, data=m.data), n_modes=min(80 + extra, m.n),
+                                        n_show=24 + extra)
+            styles = ((1, "tab:blue", "forward whirl"), (-1, "tab:orange", "backward whirl"))
+            if extra:
+                styles += ((0, "0.75", "the airframe's and the casing's modes (no rotor whirl)"),)
+            for code, colour, label in styles:
                 sel = kind == code
                 ax.scatter(np.broadcast_to(rpm[:, None], f.shape)[sel], f[sel], s=5, c=colour, label=label)
             drawn = True
@@ -268,6 +289,9 @@ def _campbell(sc, w, crit, peaks, out, spool):
             ax.axhline(c / 60.0, color="tab:blue", lw=1)
     ax.plot([np.nanmin(w), np.nanmax(w)], [np.nanmin(w) / 60.0, np.nanmax(w) / 60.0], color="k", lw=2.5,
             alpha=0.6, label=f"the run's trajectory (1x {spool})")
+    if windmill is not None:
+        ax.axvspan(windmill[0], windmill[1], color="tab:cyan", alpha=0.3, lw=0,
+                   label=f"windmilling: {windmill[0]:.0f}-{windmill[1]:.0f} rev/min")
     for c in crit:
         ax.plot(c, c / 60.0, "o", mfc="none", mec="tab:red", ms=9)
     for i, s in enumerate(sorted(s for s, _ in peaks)):

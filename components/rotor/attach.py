@@ -25,8 +25,11 @@ the same id (a rub ring without such a bearing is refused by name).
 """
 from __future__ import annotations
 
+import dataclasses
 import re
 from dataclasses import dataclass
+
+from . import mounts as mount_tables
 
 #: an attachment id: what follows "bearing" / "rubring" in an [attach] key
 ID = re.compile(r"^[A-Za-z0-9_]+$")
@@ -42,6 +45,8 @@ class Layout:
     rubrings: tuple[str, ...]
     #: the bearings whose housing sits on a support fuse ([fuse.ID])
     fuses: tuple[str, ...] = ()
+    #: the engine's mounts to an airframe (mounts.py): (name, number of springs), in file order
+    mounts: tuple[tuple[str, int], ...] = ()
 
 
 #: the paper's engine (and the class-level declaration of the rotor component)
@@ -85,11 +90,20 @@ def on_spool(attach: dict, spool: str) -> Layout:
                   tuple(r for r in lay.rubrings if on(f"rubring{r}")))
 
 
+def with_mounts(lay: Layout, data: dict) -> Layout:
+    """``lay`` with the mounts of an engine file's data (mounts.py; none: ``lay`` itself)."""
+    found = mount_tables.mounts(data)
+    if not found:
+        return lay
+    return dataclasses.replace(lay, mounts=tuple((m.name, len(m.springs)) for m in found.values()))
+
+
 def layout_of_ports(ports: dict) -> Layout:
     """The layout of a model's port groups (``FullModel.ports``), in their order."""
     return Layout(tuple(g[3:] for g in ports if g.startswith("brg")),
                   tuple(g[3:] for g in ports if g.startswith("rub")),
-                  tuple(g[7:] for g in ports if g.startswith("fusehub")))
+                  tuple(g[7:] for g in ports if g.startswith("fusehub")),
+                  tuple((g[len("mount_"):], len(ports[g])) for g in ports if g.startswith("mount_")))
 
 
 def groups(lay: Layout) -> list[tuple[str, str, str, int]]:
@@ -99,7 +113,8 @@ def groups(lay: Layout) -> list[tuple[str, str, str, int]]:
             + [(f"rub{r}", f"rubring{r}", "node", 2) for r in lay.rubrings]
             + [(f"fuse{b}", f"bearing{b}", "fuse", 3) for b in lay.fuses]
             + [(f"fusehub{b}", f"bearing{b}", "fusehub", 2) for b in lay.fuses]
-            + [("unbalance", "unbalance", "node", 2)])
+            + [("unbalance", "unbalance", "node", 2)]
+            + [(mount_tables.port_group(m), f"mount.{m}", "mount", n) for m, n in lay.mounts])
 
 
 def load_groups(lay: Layout) -> tuple[str, ...]:
@@ -120,6 +135,9 @@ def input_ports(lay: Layout) -> list[tuple[str, str, int, str]]:
     for b in lay.fuses:
         out.append((f"F_fuse{b}", f"fuse{b}", 3, f"the fuse's force on bearing #{b}'s housing (x y z)"))
         out.append((f"F_fusehub{b}", f"fusehub{b}", 2, f"the fuse's force on the hub under bearing #{b}'s housing"))
+    out += [(f"F_{mount_tables.port_group(m)}", mount_tables.port_group(m), n,
+             f"the airframe's motion's force on the engine through each of the {n} springs of mount {m} "
+             "(k u_a + c v_a along the spring's axis)") for m, n in lay.mounts]
     return out
 
 
@@ -133,4 +151,6 @@ def output_ports(lay: Layout) -> list[tuple[str, str, str, int, str]]:
             + [(f"fuse{b}", f"X_fuse{b}", f"V_fuse{b}", 3, f"{{}} of bearing #{b}'s housing on its fuse (x y z)")
                for b in lay.fuses]
             + [(f"fusehub{b}", f"X_fusehub{b}", f"V_fusehub{b}", 2, f"hub {{}} under the fuse of bearing #{b}")
-               for b in lay.fuses])
+               for b in lay.fuses]
+            + [(mount_tables.port_group(m), f"X_{mount_tables.port_group(m)}", f"V_{mount_tables.port_group(m)}",
+                n, f"engine {{}} at each of the {n} springs of mount {m}, along its axis") for m, n in lay.mounts])

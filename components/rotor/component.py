@@ -45,7 +45,7 @@ import math
 import numpy as np
 
 from ..contract import ContractError, Variable
-from ..kernels import KernelComponent
+from ..kernels import PositionalKernelComponent
 from ..speeds import GG_OMEGA, PT_OMEGA
 from . import attach
 from . import model as fem
@@ -59,15 +59,17 @@ RPM = fem.RPM
 
 
 def port_variables(lay: attach.Layout) -> tuple[Variable, ...]:
-    """The rotor component's port variables for the attached bearings and rub rings (attach.py), then F_u."""
+    """The rotor component's port variables for the attached bearings, rub rings and mounts (attach.py), then
+    F_u. (A mount's spring on a rotation carries N m in its entry of ``F_mount_NAME``, rad in ``X_mount_NAME``.)"""
     ins = attach.input_ports(lay)
     outs = attach.output_ports(lay)
     by_kind = {k: [v for v in ins if v[0].startswith(k)]
                for k in ("F_brg", "F_sfd_housing", "F_rub_housing", "F_fusehub")}
     by_kind["F_rub"] = [v for v in ins if v[0].startswith("F_rub") and not v[0].startswith("F_rub_housing")]
     by_kind["F_fuse"] = [v for v in ins if v[0].startswith("F_fuse") and not v[0].startswith("F_fusehub")]
+    by_kind["F_mount"] = [v for v in ins if v[0].startswith("F_mount_")]
     out = [Variable(name, "input", n, "N", desc) for k in by_kind for name, _, n, desc in by_kind[k]]
-    for prefix in ("brg", "housing", "rub", "fuse"):
+    for prefix in ("brg", "housing", "rub", "fuse", "mount_"):
         group = [o for o in outs if o[0].startswith(prefix)]
         out += [Variable(x, "output", n, "m", d.format("displacement")) for _, x, _, n, d in group]
         out += [Variable(v, "output", n, "m/s", d.format("velocity")) for _, _, v, n, d in group]
@@ -81,8 +83,8 @@ def layout_of_file(model_file: str = "") -> attach.Layout:
     lay = _LAYOUTS.get(key)
     if lay is None:
         data, _ = fem.load_data(model_file or None)
-        lay = attach.PAPER if shaft_model.is_shaft_model(data) else attach.layout(data.get("attach", {}),
-                                                                                    fem.fuse_ids(data))
+        lay = (attach.PAPER if shaft_model.is_shaft_model(data)
+               else attach.with_mounts(attach.layout(data.get("attach", {}), fem.fuse_ids(data)), data))
         _LAYOUTS[key] = lay
     return lay
 
@@ -133,7 +135,7 @@ def reduced_model(model_file: str, n_modes: int, omega_pt: float, omega_gg: floa
     return red
 
 
-class Rotor(KernelComponent):
+class Rotor(PositionalKernelComponent):
     """Flexible dual-rotor engine + casing (MTA-reduced FE model, Newmark-beta), blade-loss force."""
 
     description = ("Flexible dual-rotor gas turbine engine with casing: Timoshenko FE model reduced by modal "
@@ -270,24 +272,6 @@ class Rotor(KernelComponent):
         self._speed_at = np.array([in_fields.index(n) if n in in_fields else -1
                                    for n in ("Omega_pt", "Omega_gg", "dOmega_pt")], dtype=np.int64)
         self._out_off = np.array([rows.get(name, -1) for name in out_fields], dtype=np.int64)
-
-    def kernel_ports(self):
-        """Plain tuples, not named ones: the ports follow the engine file (attach.py), and numba's on-disk cache of
-        the kernel holds every signature it was compiled for in one index, which a process must unpickle whole: a
-        named tuple class of another engine's ports would not exist there. The kernel reads the ports by position
-        (the offset tables), so a plain tuple carries all it needs; its type is keyed by the ports' count."""
-        kp = self.__dict__.get("_kernel_ports")
-        if kp is None:
-            kp = (tuple, tuple, self._ports("input"), self._ports("output"))
-            self._kernel_ports = kp
-        return kp
-
-    def kernel_io(self):
-        # one array type for all ports (the kernel indexes them at run time): inputs made contiguous (a no-op for
-        # the master's arrays); outputs are the component's own contiguous arrays, written in place
-        _, _, ins, outs = self.kernel_ports()
-        u, y = self.u, self.y
-        return tuple(np.ascontiguousarray(u[n]) for n in ins), tuple(y[n] for n in outs)
 
     def _input_vector(self, t):
         u = self.u

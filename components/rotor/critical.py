@@ -56,7 +56,9 @@ def synchronous_critical_speeds(model: FullModel, supports: dict | None, n: int 
     Gt = sysm["G_pt"] + speed_ratio(model) * sysm["G_gg"]
     B = Mm - 1j * Gt
     nn = K.shape[0]
-    mu, vec = sla.eigh(B, K, subset_by_index=[max(nn - 4 * n, 0), nn - 1])
+    # an engine on an airframe (components/airframe/installed.py): its modes come on top of the engine's
+    take = 4 * n + int(model.info.get("airframe_modes", 0))
+    mu, vec = sla.eigh(B, K, subset_by_index=[max(nn - take, 0), nn - 1])
     out = {"forward_synchronous_rpm": [], "backward_synchronous_rpm": []}
     lat = sysm["rotor_lateral"]
     Mlat = Mm[np.ix_(lat, lat)]

@@ -24,6 +24,7 @@ import numpy as np
 from .. import toml_text
 from ..bounded_read import read_bytes
 from . import attach as attach_layout
+from . import mounts as mount_tables
 from .engine_shape import shape_problems
 from .beam import disk, shaft_element
 from .hexa import hex8
@@ -46,13 +47,32 @@ def _read(path: str | Path | None) -> tuple[Path, bytes]:
     return p, read_bytes(p, "rotor model file")
 
 
+#: how many engine files an ``[engine] extends`` chain may hold
+MAX_EXTENDS = 8
+
+
 def file_digest(path: str | Path | None = None) -> str:
-    """The SHA-256 of the model file's bytes, without parsing it (the per-process caches' key)."""
-    return hashlib.sha256(_read(path)[1]).hexdigest()
+    """The SHA-256 of the model file's bytes (and of the files it extends), without parsing a file that extends
+    none (the per-process caches' key)."""
+    raw = _read(path)[1]
+    if b"extends" in raw:
+        return load_data(path)[1]
+    return hashlib.sha256(raw).hexdigest()
 
 
-def load_data(path: str | Path | None = None) -> tuple[dict, str]:
-    """The model data and the SHA-256 of the file's bytes (the cache key)."""
+def _merged(base: dict, over: dict) -> dict:
+    """``over`` laid on ``base``: tables merged key by key, any other value (a list, a number) replaced."""
+    out = dict(base)
+    for k, v in over.items():
+        out[k] = _merged(base[k], v) if isinstance(v, dict) and isinstance(base.get(k), dict) else v
+    return out
+
+
+def load_data(path: str | Path | None = None, _depth: int = 0) -> tuple[dict, str]:
+    """The model data and the SHA-256 of the file's bytes (the cache key). A file whose ``[engine] extends``
+    names another engine file (relative to it) is that file's data with its own tables laid over it (tables
+    merged key by key, other values replaced): an engine that differs from another by a part (a fuse at a
+    bearing) without a copy of its geometry; the digest then covers both."""
     p, raw = _read(path)
     try:
         data = toml_text.loads(raw.decode("utf-8"))
@@ -60,7 +80,19 @@ def load_data(path: str | Path | None = None) -> tuple[dict, str]:
         raise ValueError(f"rotor model file {p}: {exc}") from None
     except UnicodeDecodeError as exc:
         raise ValueError(f"rotor model file {p}: not a text file ({exc})") from None
-    return data, hashlib.sha256(raw).hexdigest()
+    digest = hashlib.sha256(raw).hexdigest()
+    head = data.get("engine")
+    base = head.get("extends") if isinstance(head, dict) else None
+    if base is not None:
+        if not isinstance(base, str) or not base:
+            raise ValueError(f"rotor model file {p}: [engine] extends must name an engine file, got {base!r}")
+        if _depth >= MAX_EXTENDS:
+            raise ValueError(f"rotor model file {p}: [engine] extends chain longer than {MAX_EXTENDS} files")
+        bdata, bdigest = load_data(p.parent / base, _depth + 1)
+        own = dict(data, engine={k: v for k, v in head.items() if k != "extends"})
+        data = _merged(bdata, own)
+        digest = hashlib.sha256((digest + bdigest).encode()).hexdigest()
+    return data, digest
 
 
 @dataclass
@@ -446,13 +478,22 @@ def _assemble(data: dict, digest: str, omega_pt: float | None, omega_gg: float |
         _couple(K, i, j, _positive(f"[fuse.{f}] k_intact", spec.get("k_intact")))
 
     # mounts to ground
-    for m_i, mt in enumerate(cas["mounts"] if cas is not None else ()):
+    for m_i, mt in enumerate(cas.get("mounts", ()) if cas is not None else ()):
         ring, node, d = int(mt["ring"]), int(mt["node"]), int(mt["dir"])
         if not (0 <= ring < len(rings) and 0 <= node < nc and 0 <= d < 3):
             raise ValueError(f"rotor model: casing mount {m_i} ({mt}) out of range")
         i = base_sh + 3 * shell_node(ring, node, 1) + d
         _couple(K, i, None, _positive(f"casing.mounts[{m_i}].k", knob_value(data, mt["k"])))
         _couple(C, i, None, _nonneg(f"casing.mounts[{m_i}].c", mt["c"]))
+
+    # mounts to the airframe: each spring to ground here, the airframe's motion an input (mounts.py)
+    mount_dofs = {}
+    for mname, mt in mount_tables.mounts(data).items():
+        mount_dofs[mname] = [_mount_dof(gdof, f"[mount.{mname}] springs[{s_i}].node", sp, rings, nc, base_sh,
+                                        shell_node) for s_i, sp in enumerate(mt.springs)]
+        for i, sp in zip(mount_dofs[mname], mt.springs):
+            _couple(K, i, None, sp.k)
+            _couple(C, i, None, sp.c)
 
     # linear supports and intermediate bearings (Table 2 for the paper's engine)
     tables = []
@@ -508,6 +549,12 @@ def _assemble(data: dict, digest: str, omega_pt: float | None, omega_gg: float |
 
     sub = np.ix_(free, free)
     ports = _ports(data.get("attach", {}), dof, fuses)
+    for mname, idx in mount_dofs.items():
+        free_idx = newidx[np.asarray(idx)]
+        if np.any(free_idx < 0):
+            raise ValueError(f"rotor model: [mount.{mname}] a spring acts on a held DOF (a spool's drive_node "
+                             "torsion or axial_node)")
+        ports[mount_tables.port_group(mname)] = free_idx
     lateral = [dof(s, n, d) for s in names for n in range(len(z[s])) for d in range(2)]
     for s in names:
         # the speed ratio of the second spool to the first divides by the first (0 was a ZeroDivisionError); a
@@ -539,6 +586,32 @@ def _assemble(data: dict, digest: str, omega_pt: float | None, omega_gg: float |
     return FullModel(M=M[sub], K=K[sub], C=C[sub], G_pt=G[names[0]][sub], G_gg=G_gg,
                      ports=ports, rotor_lateral=np.asarray(lateral),
                      omega_pt=w_pt, omega_gg=w_gg, data=data, digest=digest, info=info)
+
+
+def _mount_dof(gdof, where: str, spring, rings, nc: int, base_sh: int, shell_node) -> int:
+    """The global DOF a mount's spring acts on (mounts.py: a casing outer node, a spool node or a hub)."""
+    node, d = spring.node, spring.dir
+    if node[0] == mount_tables.CASING:
+        if len(node) != 3 or not all(isinstance(v, int) and not isinstance(v, bool) for v in node[1:]):
+            raise ValueError(f'{where}: a casing node is ["casing", ring, circ], got {list(node)!r}')
+        if not len(rings):
+            raise ValueError(f"{where}: the engine has no [casing]")
+        ring, circ = node[1], node[2]
+        if not (0 <= ring < len(rings) and 0 <= circ < nc):
+            raise ValueError(f"{where}: casing node {list(node)!r} does not exist (rings 0-{len(rings) - 1}, "
+                             f"circumferential nodes 0-{nc - 1})")
+        if d > 2:
+            raise ValueError(f"{where}: dir {d}: a casing node has translations only (dir 0-2)")
+        return base_sh + 3 * shell_node(ring, circ, 1) + d
+    if len(node) != 2:
+        raise ValueError(f'{where}: must be ["casing", ring, circ], [spool, node] or ["hub", name], got '
+                         f"{list(node)!r}")
+    if node[0] == "hub" and d > 2:
+        raise ValueError(f"{where}: dir {d}: a hub has translations only (dir 0-2)")
+    try:
+        return gdof(node[0], node[1], d)
+    except ValueError as exc:
+        raise ValueError(f"{where}: {str(exc).removeprefix('rotor model: ')}") from None
 
 
 def _add_layers(data: dict, s: str, z, base: int, K, M, G) -> None:

@@ -85,11 +85,12 @@ def del_load(c: Counts, m: float, n_ref: float) -> float:
 
 def miner_damage(c: Counts, m: float, s_c: float, n_c: float) -> float:
     """D = sum n_i / N(S_i) on the S-N curve through (s_c, n_c) of slope m (fatpack's LinearEnduranceCurve)."""
-    if not c.n.size:
+    keep = c.S > 0.0            # a cycle of no range does no damage (and its endurance is infinite)
+    if not keep.any():
         return 0.0
     curve = fatpack.LinearEnduranceCurve(s_c)
     curve.m, curve.Nc = m, n_c
-    return float(curve.find_miner_sum(np.column_stack([c.S, c.n])))
+    return float(curve.find_miner_sum(np.column_stack([c.S[keep], c.n[keep]])))
 
 
 def spectrum(c: Counts, bins: int = 50) -> Spectrum:

@@ -94,9 +94,10 @@ def test_spool_windmills_at_the_scaled_law_analytic(tmp_path):
 
 
 def test_shipped_diversion_profile():
-    """180 minutes after the one-minute rundown; starts at the rundown scenario's reference, M 0.8 at FL350."""
+    """180 minutes after the 15 s at speed and the one-minute rundown; starts at the rundown scenario's reference,
+    M 0.8 at FL350."""
     p = read_profile(str(SHIPPED))
-    assert p.t[0] == 0.0 and p.t[-1] == 60.0 + 180 * 60.0
+    assert p.t[0] == 0.0 and p.t[-1] == 75.0 + 180 * 60.0
     assert p.mach[0] == 0.8 and p.theta[0] == pytest.approx(0.8566, abs=1e-4)
 
 

@@ -1,0 +1,178 @@
+"""The reduced airframe and the mounts (components/airframe, components/rotor/mounts.py).
+
+* the reduced airframe against the Euler-Bernoulli cantilever (an independent, analytic reference): a modal file
+  of its clamped-free modes (Blevins, *Formulas for natural frequency and mode shape*, table 8-1: beta_n L roots
+  of cos cosh = -1, tip deflection 2 of the shapes normalised to int phi^2 = L) has the static tip flexibility
+  L^3 / (3 EI), and the airframe component stepping that beam on a mount spring k to a held engine point settles
+  at the static deflection k / (k + 3 EI / L^3) of the engine's displacement and oscillates at the first root of
+  the clamped beam's characteristic equation with a tip spring (EI w'''(L) = k w(L), w''(L) = 0), solved here;
+* the shipped example airframe is its derivation's output (components/airframe/example.py);
+* the paper's engine on the pylon (engine_on_pylon.toml) is, on a rigid airframe, the paper's engine: the same
+  file but for the mounts' far ends, and the same assembled matrices bit for bit;
+* bad input: a modal file with a negative modal mass or a frequency of zero, a mount on a node the engine does not
+  have: one line naming the key, exit status 2.
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+from scipy.optimize import brentq
+
+from rotorcosim.components.airframe import example
+from rotorcosim.components.airframe.modal import EXAMPLE, read, static_flexibility, to_toml
+from rotorcosim.components.registry import create
+from rotorcosim.components.rotor import model as fem
+from rotorcosim.master.cli import main
+
+L, EI, MU = 10.0, 1.0e7, 100.0          # m, N m^2, kg/m
+N_MODES = 8
+PYLON = fem.DEFAULT_FILE.with_name("engine_on_pylon.toml")
+
+
+def _beta_roots(n: int) -> np.ndarray:
+    """beta_n L of the clamped-free beam: roots of 1 + cos x cosh x = 0."""
+    return np.array([brentq(lambda x: 1.0 + math.cos(x) * math.cosh(x), (k + 0.2) * math.pi, (k + 0.8) * math.pi)
+                     for k in range(n)])
+
+
+def _cantilever_file(folder, n: int = N_MODES, mass=None, freq=None, zeta: float = 0.02) -> str:
+    """A modal file of the cantilever's first n modes, its tip the interface point (y translation)."""
+    bl = _beta_roots(n)
+    f = bl ** 2 * math.sqrt(EI / (MU * L ** 4)) / (2.0 * math.pi)
+    tip = np.zeros((n, 3))
+    tip[:, 1] = 2.0 * (-1.0) ** np.arange(n)             # phi_n(L) = 2 (-1)^(n+1), int phi^2 = L
+    m = np.full(n, MU * L)
+    if mass is not None:
+        m[1] = mass
+    if freq is not None:
+        f[0] = freq
+    path = folder / "beam.toml"
+    path.write_text(to_toml("cantilever", "Euler-Bernoulli, analytic", f, m, zeta, {"tip": tip}, {}))
+    return str(path)
+
+
+def _engine_file(folder, k: float, node='["casing", 0, 0]') -> str:
+    """An engine file of one mount spring (y) on the cantilever's tip (only what the airframe reads)."""
+    path = folder / "engine.toml"
+    path.write_text(f'[airframe]\nmodel = "beam.toml"\n\n[mount.tip]\ninterface = "tip"\n'
+                    f'springs = [{{ node = {node}, dir = 1, k = {k!r}, c = 0.0 }}]\n')
+    return str(path)
+
+
+def test_cantilever_modes_give_the_static_tip_flexibility(tmp_path):
+    model = read(_cantilever_file(tmp_path))
+    flex = static_flexibility(model, "tip")[1, 1]
+    # the truncated series 4 L^3 / EI sum (beta_n L)^-4 misses the modes above the 8th: 8e-5 of L^3 / 3 EI
+    assert flex == pytest.approx(L ** 3 / (3.0 * EI), rel=1.5e-4)
+    assert model.w[0] == pytest.approx(1.87510407 ** 2 * math.sqrt(EI / (MU * L ** 4)), rel=1e-8)
+
+
+def _tip_spring_frequency(k: float) -> float:
+    """First natural frequency [rad/s] of the clamped beam with a tip spring k (module docstring)."""
+    def det(b):
+        x = b * L
+        ch, c, sh, s = math.cosh(x), math.cos(x), math.sinh(x), math.sin(x)
+        # w = A (cosh - cos) + B (sinh - sin); rows: w''(L) = 0 and EI w'''(L) - k w(L) = 0
+        a11, a12 = b * b * (ch + c), b * b * (sh + s)
+        a21 = EI * b ** 3 * (sh - s) - k * (ch - c)
+        a22 = EI * b ** 3 * (ch + c) - k * (sh - s)
+        return a11 * a22 - a12 * a21
+    grid = np.linspace(0.5, 4.0, 3500) / L
+    vals = [det(b) for b in grid]
+    i = next(j for j in range(len(grid) - 1) if vals[j] * vals[j + 1] < 0)
+    b = brentq(det, grid[i], grid[i + 1])
+    return b * b * math.sqrt(EI / MU)
+
+
+def _step_response(folder, k: float, zeta: float, steps: int, h: float = 2e-4, delta: float = 1e-3):
+    """The tip's displacement after the engine's side of the spring steps to ``delta`` (the component at rest)."""
+    _cantilever_file(folder, zeta=zeta)
+    comp = create("airframe.modal", "airframe", {"model_file": _engine_file(folder, k)})
+    comp.setup(0.0)
+    comp.set_inputs({"X_mount_tip": [delta], "V_mount_tip": [0.0]})
+    u = np.empty(steps)
+    for i in range(steps):
+        comp.do_step(i * h, h)
+        u[i] = delta - comp.y["F_tip"][1] / k        # the spring's load on the airframe: k (delta - u_tip)
+    assert comp.y["F_tip"][0] == 0.0 and comp.y["F_tip"][2] == 0.0     # no other axis carries anything
+    return h * np.arange(1, steps + 1), u
+
+
+def test_airframe_component_on_a_tip_spring_matches_the_beam(tmp_path):
+    k = 3.0 * EI / L ** 3                  # the beam's own static tip stiffness
+    delta = 1e-3
+    # heavily damped (zeta 0.5: settled to 1e-6 in 2 s): the static deflection of two equal springs in series,
+    # to the modes' truncation (8e-5)
+    _, u = _step_response(tmp_path, k, 0.5, 10000)
+    assert u[-1] == pytest.approx(0.5 * delta, rel=2e-4)
+    # 2 % damping: the period from the upward crossings of the static value over 2 s
+    t, u = _step_response(tmp_path, k, 0.02, 10000)
+    d = u - 0.5 * delta
+    up = np.flatnonzero((d[:-1] < 0) & (d[1:] >= 0))
+    tc = t[up] - d[up] * (t[1] - t[0]) / (d[up + 1] - d[up])
+    w = 2.0 * math.pi / np.mean(np.diff(tc))
+    # the damped frequency of the first mode (sqrt(1 - zeta^2) of the undamped): measured 0.13 % above it (the
+    # higher modes' share of the crossings, the Ritz truncation)
+    assert w == pytest.approx(_tip_spring_frequency(k) * math.sqrt(1 - 0.02 ** 2), rel=3e-3)
+
+
+def test_example_airframe_is_its_derivation():
+    assert EXAMPLE.read_text() == example.text()
+    m = read(EXAMPLE)
+    assert m.n == 40 and np.all(np.diff(m.w) >= 0)
+
+
+def test_pylon_engine_on_rigid_mounts_is_the_paper_engine():
+    a_data, _ = fem.load_data()
+    b_data, _ = fem.load_data(PYLON)
+    mounts = a_data["casing"].pop("mounts")
+    for key in ("mount", "airframe"):
+        b_data.pop(key)
+    a_data["engine"].pop("name"), b_data["engine"].pop("name")
+    assert a_data == b_data
+    # every casing spring of engine.toml is one of the mounts', with its stiffness and damping
+    springs = [(s["node"][1], s["node"][2], s["dir"], s["k"], s["c"]) for m in fem.load_data(PYLON)[0]["mount"].values()
+               for s in m["springs"]]
+    assert sorted(springs) == sorted((m["ring"], m["node"], m["dir"], m["k"], m["c"]) for m in mounts)
+    a, b = fem.load(), fem.load(PYLON)
+    assert np.array_equal(a.K, b.K) and np.array_equal(a.C, b.C) and np.array_equal(a.M, b.M)
+
+
+@pytest.mark.parametrize("kw, key", [({"mass": -5.0}, "modes.modal_mass_kg[1]"),
+                                     ({"freq": 0.0}, "modes.frequency_Hz[0]")])
+def test_bad_modal_file_is_one_line_naming_the_key(tmp_path, monkeypatch, capsys, kw, key):
+    _cantilever_file(tmp_path, **kw)
+    with pytest.raises(ValueError, match=key.replace("[", r"\[")):
+        read(tmp_path / "beam.toml")
+    engine = PYLON.read_text().replace('model = "../../airframe/data/pylon_wing.toml"', 'model = "beam.toml"')
+    (tmp_path / "engine.toml").write_text(engine.replace('interface = "pylon_aft"', 'interface = "tip"')
+                                          .replace('interface = "pylon_fwd"', 'interface = "tip"'))
+    monkeypatch.chdir(tmp_path)
+    assert main(["check-engine", str(tmp_path / "engine.toml")]) == 2
+    out = capsys.readouterr().out.splitlines()
+    assert len(out) == 2 and key in out[1]
+
+
+def test_mount_on_a_missing_node_is_one_line(tmp_path, monkeypatch, capsys):
+    bad = PYLON.read_text().replace('{ node = ["casing", 6, 0], dir = 1', '{ node = ["casing", 9, 0], dir = 1')
+    bad = bad.replace('"../../airframe/data/pylon_wing.toml"', repr(str(EXAMPLE)).replace("'", '"'))
+    (tmp_path / "engine.toml").write_text(bad)
+    monkeypatch.chdir(tmp_path)
+    assert main(["check-engine", str(tmp_path / "engine.toml")]) == 2
+    out = capsys.readouterr().out.splitlines()
+    assert len(out) == 2
+    assert "[mount.fwd] springs[0].node" in out[1] and "does not exist" in out[1]
+
+
+def test_the_format_pages_example_is_read(tmp_path):
+    import re
+
+    page = (fem.DEFAULT_FILE.parents[3] / "docs" / "reference" / "airframe-format.md").read_text()
+    (tmp_path / "a.toml").write_text(re.search(r"## An example\n.*?```toml\n(.*?)```", page, re.S).group(1))
+    m = read(tmp_path / "a.toml")
+    # the page's cantilever: its tip flexibility with two modes, 4 L^3 / EI (1.8751^-4 + 4.6941^-4), 99.5 % of
+    # L^3 / 3 EI (the page's frequencies to 3 digits)
+    assert static_flexibility(m, "tip")[1, 1] == pytest.approx(0.9954 * L ** 3 / (3.0 * EI), rel=2e-3)
+    assert sorted(m.response) == ["mid_span"]
