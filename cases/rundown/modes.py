@@ -14,6 +14,11 @@ covers the speeds of the peaks found (``prepare``) widened by ``SEARCH_MARGIN``.
 A test rotor without co-simulated bearings (the Jeffcott check case) has the scenario's ``[results]
 critical_speeds_rpm`` (undamped; no damped speeds).
 
+A run whose support fuses break (an engine file's ``[fuse.ID]``; the run's ``events`` of kind ``break``) changes
+its engine there: its peaks are labelled with the critical speeds of the configuration in force at their time
+(:class:`StagedModes`): the engine with every fuse intact, then after the first break with the fuses at the stage
+that break reached (every fused bearing at that stage: cases/blade_loss/linear_engine.py ``fuse_stage``).
+
 The figures' dashed lines (:func:`marked_critical_speeds`) are the scenario's ``[results] critical_speeds_rpm``
 when it gives them, else the engine's: the forward synchronous critical speeds that the figures' spool excites,
 of the linear engine ``rotorcosim check-engine`` lists them of (the scenario's bearings and dampers linearised
@@ -88,7 +93,7 @@ class EngineModes:
     """The linearised engine's critical speeds (module docstring): ``undamped`` [rev/min], ``damped(temps)``: per
     bearing id, (damped, undamped) pairs [rev/min] at the film temperatures ``temps`` (bearing id -> C)."""
 
-    def __init__(self, sc, rotor, dampers: dict, max_rpm: float):
+    def __init__(self, sc, rotor, dampers: dict, max_rpm: float, fuse_stage: int = 0):
         from rotorcosim.cases.blade_loss import linear_engine
         from rotorcosim.components.rotor import critical
 
@@ -101,9 +106,9 @@ class EngineModes:
         # or a comparison's runs share it)
         specs = repr(sorted((n, c.implementation, sorted(c.parameters.items())) for n, c in sc.components.items()
                             if n.startswith(("bearing", "damper"))))
-        self._key = (self.full.digest, self.ref_rpm, specs, max_rpm)
+        self._key = (self.full.digest, self.ref_rpm, specs, max_rpm, fuse_stage)
         if self._key not in _ENGINES:
-            sup = linear_engine.supports(sc, data=self.full.data)
+            sup = linear_engine.supports(sc, data=self.full.data, fuse_stage=fuse_stage)
             crit = critical.synchronous_critical_speeds(self.full, sup, n=COUNT, max_rpm=max_rpm)
             _ENGINES[self._key] = (sup, [float(c) for c in crit["forward_synchronous_rpm"]], {})
         self.sup, self.undamped, self._cache = _ENGINES[self._key]
@@ -139,9 +144,47 @@ class EngineModes:
         return out
 
 
-def modes_of(sc, sim, locations: dict):
+class StagedModes:
+    """The critical speeds of each configuration of a run: ``stages`` [(t_from [s], label, modes)], in time order,
+    the first from -inf (label None: the run's initial configuration)."""
+
+    def __init__(self, stages):
+        self.stages = list(stages)
+        self._t = [t for t, _, _ in self.stages]
+
+    def index(self, t: float) -> int:
+        """The configuration in force at ``t`` [s]."""
+        return max(i for i, t0 in enumerate(self._t) if t0 <= t)
+
+    def index_array(self, t):
+        """:meth:`index` of each time of the array ``t``."""
+        import numpy as np
+
+        return np.searchsorted(np.asarray(self._t[1:]), np.asarray(t), side="right")
+
+    def tag(self, entry: dict, k: int) -> dict:
+        """A crossing ``entry`` with the ``configuration`` it was labelled in (a run with events only)."""
+        if len(self.stages) > 1:
+            entry["configuration"] = self.stages[k][1] or "initial"
+        return entry
+
+
+def fuse_breaks(events, comps) -> list[tuple[float, int, str]]:
+    """(t [s], the stage reached, a label) of each break of a support fuse among a run's ``events``."""
+    out = []
+    for e in events or ():
+        c = comps.get(e.get("component"))
+        if e.get("kind") != "break" or c is None or "k_intact" not in getattr(c, "p", {}):
+            continue
+        stage = int(e.get("values", {}).get("stage", 1))
+        out.append((float(e["t_s"]), stage, f"after {e['component']} break at {e['t_s']:.6g} s (stage {stage})"))
+    return out
+
+
+def modes_of(sc, sim, locations: dict, events=()):
     """The critical speeds of a run: the linearised engine's when the run has co-simulated bearings the engine
-    file attaches (``locations`` keyed by bearing id), else the scenario's ``critical_speeds_rpm``."""
+    file attaches (``locations`` keyed by bearing id), else the scenario's ``critical_speeds_rpm``; with the
+    breaks of support fuses among ``events``, a :class:`StagedModes` of the engine before and after each."""
     comps = sim.system.components
     given = sc.extra.get("results", {}).get("critical_speeds_rpm", [])
     if "disk" in locations or "rotor" not in comps:
@@ -149,7 +192,13 @@ def modes_of(sc, sim, locations: dict):
     dampers = {k: comps[f"damper{k}"] for k in locations if f"damper{k}" in comps}
     top = float(comps["rotor"].p["omega_pt"]) * 30.0 / math.pi
     try:
-        return EngineModes(sc, comps["rotor"], dampers, 2.0 * top)
+        first = EngineModes(sc, comps["rotor"], dampers, 2.0 * top)
+        breaks = fuse_breaks(events, comps)
+        if not breaks:
+            return first
+        return StagedModes([(-math.inf, None, first)]
+                           + [(t, text, EngineModes(sc, comps["rotor"], dampers, 2.0 * top, fuse_stage=stage))
+                              for t, stage, text in breaks])
     except ValueError:
         # an engine the linear engine cannot take (no damper for an attached bearing): the scenario's speeds
         return ScenarioModes(given)

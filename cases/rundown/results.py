@@ -296,6 +296,8 @@ class Candidate(NamedTuple):
     undamped: float
     damped: float | None
     film_C: dict
+    #: the configuration in force at the peak (its index in the modes' stages: 0 before any event)
+    stage: int = 0
 
 
 def _nearest(x: float, values) -> int:
@@ -318,8 +320,13 @@ def crossings(table: np.ndarray, spool: str, modes, locations: dict, n_spools: i
     """The crossings of ``spool``'s speed through the critical speeds (module docstring) over the rows of
     ``table`` (RundownTrack.table, its location columns as :func:`_layout` of ``locations``). ``modes``: the
     critical speeds (:mod:`.modes`: ``undamped`` [rev/min] and ``damped(temperatures)``; ``prepare(lo, hi)``
-    with the speed range [rev/min] of the peaks found is called first)."""
-    if not len(table) or not modes.undamped:
+    with the speed range [rev/min] of the peaks found is called first), or a :class:`.modes.StagedModes`: the
+    critical speeds of each configuration a run's events put in force (a support fuse's break), each peak
+    labelled with those in force at its time, each entry with its ``configuration``."""
+    from .modes import StagedModes
+
+    staged = modes if isinstance(modes, StagedModes) else StagedModes([(-math.inf, None, modes)])
+    if not len(table) or not any(m.undamped for _, _, m in staged.stages):
         return []
     cols, c = {}, 1 + n_spools
     for loc, kind, _ in _layout(locations):
@@ -330,7 +337,8 @@ def crossings(table: np.ndarray, spool: str, modes, locations: dict, n_spools: i
     found = {loc: resonance_peaks(table[:, cc["w_at"]] * RPM, table[:, cc["whirl"]]) for loc, cc in cols.items()}
     speeds = [p.speed for pk in found.values() for p in pk]
     if speeds:
-        modes.prepare(min(speeds), max(speeds))
+        for _, _, m in staged.stages:
+            m.prepare(min(speeds), max(speeds))
 
     def temps(j):
         return {loc: float(table[j, cc["film"]]) - KELVIN for loc, cc in cols.items() if "film" in cc}
@@ -340,16 +348,20 @@ def crossings(table: np.ndarray, spool: str, modes, locations: dict, n_spools: i
         for p in pk:
             j = p.index
             T = temps(j)
-            u, d = label(loc, p.speed, T, modes)
-            cands.append(Candidate(loc, p, j, u, d, T))
+            k = staged.index(float(table[j, cols[loc]["t_at"]]))
+            u, d = label(loc, p.speed, T, staged.stages[k][2])
+            cands.append(Candidate(loc, p, j, u, d, T, k))
     order = list(cols)
-    w_run = table[:, cols[order[0]]["w_at"]] * RPM
-    w_run = w_run[w_run > 0.0]
-    w_lo, w_hi = (float(w_run.min()), float(w_run.max())) if len(w_run) else (math.nan, math.nan)
+    t_run = table[:, cols[order[0]]["t_at"]]
+    w_all = table[:, cols[order[0]]["w_at"]] * RPM
     out = []
-    for u in sorted(set(modes.undamped) | {cd.undamped for cd in cands}):
-        mine = [cd for cd in cands if cd.undamped == u]
+    keys = {(k, u) for k, (_, _, m) in enumerate(staged.stages) for u in m.undamped}
+    for k, u in sorted(keys | {(cd.stage, cd.undamped) for cd in cands}):
+        mine = [cd for cd in cands if (cd.stage, cd.undamped) == (k, u)]
         if not mine:
+            # the speeds the run had while this configuration was in force
+            w_run = w_all[(w_all > 0.0) & (staged.index_array(t_run) == k)]
+            w_lo, w_hi = (float(w_run.min()), float(w_run.max())) if len(w_run) else (math.nan, math.nan)
             if not w_lo <= u <= w_hi:
                 continue                    # never reached
             entry = {"spool": spool, "critical_speed_rpm": u, "damped_critical_speed_rpm": None,
@@ -358,8 +370,8 @@ def crossings(table: np.ndarray, spool: str, modes, locations: dict, n_spools: i
                      "note": f"no resonance peak of the whirl at any location labelled with this mode (no local "
                              f"maximum of the whirl against speed standing out by {PROMINENCE:.0%} of its largest "
                              "value nearer to it than to another mode)"}
-            entry["bearings"] = {loc: {names[k][0]: None for k in d if k in names} for loc, d in locations.items()}
-            out.append(entry)
+            entry["bearings"] = {loc: {names[x][0]: None for x in d if x in names} for loc, d in locations.items()}
+            out.append(staged.tag(entry, k))
             continue
         # the defining peak: at the first location (in the engine's order) with one, its largest there
         loc = min({cd.location for cd in mine}, key=order.index)
@@ -387,7 +399,7 @@ def crossings(table: np.ndarray, spool: str, modes, locations: dict, n_spools: i
                  for k in KINDS if k in names and k in cols[l2]}
             r["speed_range_rpm"] = [p.lo, p.hi]
             entry["bearings"][l2] = r
-        out.append(entry)
+        out.append(staged.tag(entry, k))
     return out
 
 
@@ -408,7 +420,7 @@ def extract(sc, sim, obs, report) -> dict:
                       "stopped": float(c.y["Omega"][0]) == 0.0}
     out = {"speeds": speeds, "energy": energy.summary(sim), "crossings": []}
     if track.crossing_spool is not None and len(table):
-        modes = modes_of(sc, sim, track.locations)
+        modes = modes_of(sc, sim, track.locations, report.events)
         out["crossings"] = crossings(table, track.crossing_spool, modes, track.locations, len(track.spools))
         from rotorcosim.cases.blade_loss.engine_names import spool_name
         name = spool_name(sc, track.crossing_spool)

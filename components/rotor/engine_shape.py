@@ -54,7 +54,8 @@ CASING = _table({"material": STR, "radius_mm": NUMBER, "thickness_mm": NUMBER, "
                  "struts": STRUTS}, "radius_mm, thickness_mm, n_circ, ring_z_mm, hubs, mounts")
 MATERIAL = _table({"E": NUMBER, "rho": NUMBER, "nu": NUMBER, "G": NUMBER}, "E, rho, nu or G")
 SHAPE = _table({
-    "engine": _table({"format": INT, "name": STR, "description": STR, "source": STR}, "format, name"),
+    "engine": _table({"format": INT, "name": STR, "description": STR, "source": STR, "extends": STR},
+                     "format, name"),
     "calibration": ("tables", "any"),
     "material": ("tables", MATERIAL),
     "damping": _table({"zeta": NUMBER, "f1_Hz": NUMBER, "f2_Hz": NUMBER}, "zeta, f1_Hz, f2_Hz"),

@@ -47,13 +47,32 @@ def _read(path: str | Path | None) -> tuple[Path, bytes]:
     return p, read_bytes(p, "rotor model file")
 
 
+#: how many engine files an ``[engine] extends`` chain may hold
+MAX_EXTENDS = 8
+
+
 def file_digest(path: str | Path | None = None) -> str:
-    """The SHA-256 of the model file's bytes, without parsing it (the per-process caches' key)."""
-    return hashlib.sha256(_read(path)[1]).hexdigest()
+    """The SHA-256 of the model file's bytes (and of the files it extends), without parsing a file that extends
+    none (the per-process caches' key)."""
+    raw = _read(path)[1]
+    if b"extends" in raw:
+        return load_data(path)[1]
+    return hashlib.sha256(raw).hexdigest()
 
 
-def load_data(path: str | Path | None = None) -> tuple[dict, str]:
-    """The model data and the SHA-256 of the file's bytes (the cache key)."""
+def _merged(base: dict, over: dict) -> dict:
+    """``over`` laid on ``base``: tables merged key by key, any other value (a list, a number) replaced."""
+    out = dict(base)
+    for k, v in over.items():
+        out[k] = _merged(base[k], v) if isinstance(v, dict) and isinstance(base.get(k), dict) else v
+    return out
+
+
+def load_data(path: str | Path | None = None, _depth: int = 0) -> tuple[dict, str]:
+    """The model data and the SHA-256 of the file's bytes (the cache key). A file whose ``[engine] extends``
+    names another engine file (relative to it) is that file's data with its own tables laid over it (tables
+    merged key by key, other values replaced): an engine that differs from another by a part (a fuse at a
+    bearing) without a copy of its geometry; the digest then covers both."""
     p, raw = _read(path)
     try:
         data = toml_text.loads(raw.decode("utf-8"))
@@ -61,7 +80,19 @@ def load_data(path: str | Path | None = None) -> tuple[dict, str]:
         raise ValueError(f"rotor model file {p}: {exc}") from None
     except UnicodeDecodeError as exc:
         raise ValueError(f"rotor model file {p}: not a text file ({exc})") from None
-    return data, hashlib.sha256(raw).hexdigest()
+    digest = hashlib.sha256(raw).hexdigest()
+    head = data.get("engine")
+    base = head.get("extends") if isinstance(head, dict) else None
+    if base is not None:
+        if not isinstance(base, str) or not base:
+            raise ValueError(f"rotor model file {p}: [engine] extends must name an engine file, got {base!r}")
+        if _depth >= MAX_EXTENDS:
+            raise ValueError(f"rotor model file {p}: [engine] extends chain longer than {MAX_EXTENDS} files")
+        bdata, bdigest = load_data(p.parent / base, _depth + 1)
+        own = dict(data, engine={k: v for k, v in head.items() if k != "extends"})
+        data = _merged(bdata, own)
+        digest = hashlib.sha256((digest + bdigest).encode()).hexdigest()
+    return data, digest
 
 
 @dataclass

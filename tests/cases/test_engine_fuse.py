@@ -87,12 +87,10 @@ def test_bad_fuse_in_an_engine_file_is_one_line(engine_folder, tmp_path, text, m
     assert "Traceback" not in r.stderr
 
 
-def test_a_fused_engine_breaks_its_fuse_in_a_run(engine_folder, tmp_path):
-    """The textbook engine with bearing #0's housing on a fuse (1.5 kg, 1e9 N/m, break at 600 N, 1e7 N/m after),
-    1 500 N of blade loss at 0.01 s: the fuse breaks once, at its load, soon after the blade loss; the force it
-    passes to the hub is the opposite of the force on the housing."""
-    from rotorcosim.master.api import simulate
-
+@pytest.fixture(scope="module")
+def fused_scenario(engine_folder):
+    """The textbook engine's blade-loss scenario with bearing #0's housing on a fuse (1.5 kg, 1e9 N/m, break at
+    600 N, 1e7 N/m after)."""
     _engine(engine_folder, "engine_fused.toml", FUSE.format(mass=1.5, k=1e9, load=600.0, kb=1e7))
     sc = engine_folder / "fused_blade_loss.toml"
     sc.write_text('[scenario]\nextends = "blade_loss.toml"\nname = "fused"\nengine = "engine_fused.toml"\n'
@@ -101,10 +99,62 @@ def test_a_fused_engine_breaks_its_fuse_in_a_run(engine_folder, tmp_path):
                   '"fuse{fuse}", "thermal{bearing}"]\n'
                   '[components.thermal0]\nstep = 5e-6\n[components.thermal5]\nstep = 5e-6\n'
                   '[outputs]\nrecord = ["fuse0.F_support", "fuse0.F_rotor", "fuse0.broken"]\n')
-    res = simulate(str(sc), duration=0.015, figures=False, progress=False)
+    return str(sc)
+
+
+def test_a_fused_engine_breaks_its_fuse_in_a_run(fused_scenario):
+    """1 500 N of blade loss at 0.01 s on the fused textbook engine: the fuse breaks once, at its load, soon after
+    the blade loss; the force it passes to the hub is the opposite of the force on the housing."""
+    from rotorcosim.master.api import simulate
+
+    res = simulate(fused_scenario, duration=0.015, figures=False, progress=False)
     (ev,) = res.summary["events"]
     assert ev["component"] == "fuse0" and ev["kind"] == "break" and 0.01 < ev["t_s"] < 0.012
     assert ev["values"]["F_elastic_N"] == pytest.approx(600.0, rel=1e-3)
     f, g = res["fuse0.F_support"], res["fuse0.F_rotor"]
     assert np.array_equal(f, -g[:, :2])
     assert np.asarray(res["fuse0.broken"]).reshape(-1)[-1] == 1.0
+
+
+@pytest.mark.slow
+def test_the_paper_engine_with_its_fuse_intact_is_the_paper_engine():
+    """(~15 s of CPU: the paper engine's casing model built and solved twice, slow.) components/rotor/data/engine_fuse.toml (the paper's engine extended by a fuse under bearing #0's housing,
+    half of hub h0's mass on it): intact, its two lowest forward critical speeds within 0.05 % of the paper
+    engine's (8 497 / 10 199 against 8 500 / 10 200 rev/min); broken (2.0e6 N/m), the mode of bearing #0 at
+    5 581 rev/min, below the running speed (the values its comments and the scenario give)."""
+    root = fem.DEFAULT_FILE.parent
+    paper = _forward(root / "engine.toml")
+    fused = _forward(root / "engine_fuse.toml")
+    assert fused[:2] == pytest.approx(paper[:2], rel=5e-4)
+    (broken,) = fuse_states(fem.load(root / "engine_fuse.toml"), 3, 30000.0)
+    assert broken["forward_synchronous_rpm"][0] == pytest.approx(5581.0, abs=1.0)
+
+
+@pytest.mark.slow
+def test_blade_loss_fuse_breaks_in_the_release_transient():
+    """blade_loss_fuse over its first 12 ms (~12 s of CPU in the generic loop, slow): the 14 252 N release at
+    0.01 s breaks the fuse within a millisecond (0.0105 s measured), at its 5 000 N."""
+    from rotorcosim.master.api import simulate
+
+    res = simulate("blade_loss_fuse", duration=0.012, figures=False, progress=False)
+    (ev,) = res.summary["events"]
+    assert ev["component"] == "fuse0" and 0.01 < ev["t_s"] < 0.011
+    assert ev["values"]["F_elastic_N"] == pytest.approx(5000.0, rel=1e-3)
+
+
+@pytest.mark.parametrize("value, message", [
+    ("fuse0.break_load=0", "fuse0.break_load must be a finite number > 0 (N), got 0"),
+    ("fuse0.k_broken=2e9", "fuse0.k_broken must be within [0, k_intact"),
+    ("fuse0.bumper_clearance=-1e-3", "fuse0.bumper_clearance must be >= 0"),
+    ("fuse0.event_tolerance=1e-4", "fuse0.event_tolerance: 0.0001 s must be within (0, 5e-06 s]"),
+])
+def test_bad_fuse_values_of_an_engine_run_are_one_line(fused_scenario, tmp_path, value, message):
+    """The engine route's bad inputs, set on the run: one line naming the key, exit 2, nothing written."""
+    out = tmp_path / "o"
+    r = subprocess.run([sys.executable, "-m", "rotorcosim.master.cli", "run", fused_scenario, "--set", value,
+                        "--set", "rotor.t_blade_loss=0.0005", "--duration", "0.001", "--quiet", "--no-figures", "--out", str(out)],
+                       capture_output=True, text=True)
+    assert r.returncode == 2
+    assert message in r.stderr and "Traceback" not in r.stderr, r.stderr
+    assert len(r.stderr.strip().splitlines()) == 1, r.stderr
+    assert not out.exists() or not any(out.iterdir())

@@ -261,3 +261,23 @@ def test_locations_are_the_engines_bearing_ids():
                                                                          "load": "bearing11.Q_max"}
     assert _locations(NS(system=NS(components={"rotor": comp("X_brg0")}, connections=[]))) == {
         "disk": {"whirl": "rotor.X_brg0"}}
+
+
+def test_peaks_after_an_event_are_labelled_with_that_configurations_critical_speeds():
+    """A rundown whose support breaks half way (at 0.5 s, 6 000 rev/min): a single-dof peak at 7 000 rev/min
+    before the break and one at 4 000 after. The configuration before has critical speeds 7 000 and 4 200, the
+    one after 4 000 and 6 500 (StagedModes, as a fuse's break gives): the first peak is labelled 7 000 in the
+    initial configuration, the second 4 000 (not the nearer-by-the-old-engine 4 200) after the break; the old
+    configuration's 4 200, never reached while it was in force, and the new one's 6 500, likewise, are not listed."""
+    from rotorcosim.cases.rundown.modes import StagedModes
+
+    w = falling(9000.0, 3000.0)
+    t = np.linspace(0.0, 1.0, len(w))
+    whirl = np.where(t < 0.5, sdof(w, 7000.0, 0.03), sdof(w, 4000.0, 0.03))
+    modes = StagedModes([(-math.inf, None, ScenarioModes([7000.0, 4200.0])),
+                         (0.5, "after fuse break at 0.5 s", ScenarioModes([4000.0, 6500.0]))])
+    got = crossings(table(w, whirl), "spool", modes, LOCS, 1)
+    assert [(c["critical_speed_rpm"], c["configuration"], c["peak_found"]) for c in got] == [
+        (7000.0, "initial", True), (4000.0, "after fuse break at 0.5 s", True)]
+    assert got[0]["t_s"] < 0.5 < got[1]["t_s"]
+    assert got[1]["peak_speed_rpm"] == pytest.approx(4000.0, rel=0.01)

@@ -97,7 +97,7 @@ def test_template_components_can_be_changed_like_inherited_ones(tmp_path):
 
 
 @pytest.mark.parametrize("text, message", [
-    ('[templates]\nbearings = ["0"]\n', "'bearings' is not a template (shipped: bearing, fuse, rubring)"),
+    ('[templates]\nbearings = ["0"]\n', "'bearings' is not a template (shipped: bearing, fuse, mount, rubring)"),
     ('[templates]\nbearing = ["0", "a-b"]\n', "bearing must be a list of ids"),
     ('[templates]\nbearing = ["0", "0"]\n', "lists an id twice"),
     ('[templates]\nbearing = "0"\n', "bearing must be a list of ids"),
