@@ -158,3 +158,21 @@ def test_bad_fuse_values_of_an_engine_run_are_one_line(fused_scenario, tmp_path,
     assert message in r.stderr and "Traceback" not in r.stderr, r.stderr
     assert len(r.stderr.strip().splitlines()) == 1, r.stderr
     assert not out.exists() or not any(out.iterdir())
+
+
+def test_an_engine_file_extends_another(tmp_path):
+    """[engine] extends: the base's data with the file's tables laid over it, key by key (engine_fuse.toml keeps
+    engine.toml's spools and hub h0's z_mm, changes h0's mass and adds [fuse.0]); the digest differs from the
+    base's; a base that does not exist, and a chain that loops, are one-line errors naming the file."""
+    root = fem.DEFAULT_FILE.parent
+    base, d0 = fem.load_data(root / "engine.toml")
+    data, d1 = fem.load_data(root / "engine_fuse.toml")
+    assert data["spool"] == base["spool"] and d1 != d0 and d1 == fem.file_digest(root / "engine_fuse.toml")
+    assert data["casing"]["hubs"]["h0"] == {"z_mm": 90, "mass": 1.5}
+    assert "extends" not in data["engine"] and data["fuse"]["0"]["break_load_N"] == 5000.0
+    (tmp_path / "a.toml").write_text('[engine]\nformat = 1\nextends = "missing.toml"\n')
+    with pytest.raises(FileNotFoundError, match="missing.toml"):
+        fem.load_data(tmp_path / "a.toml")
+    (tmp_path / "b.toml").write_text('[engine]\nformat = 1\nextends = "b.toml"\n')
+    with pytest.raises(ValueError, match="extends chain longer than 8 files"):
+        fem.load_data(tmp_path / "b.toml")
