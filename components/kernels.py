@@ -25,6 +25,8 @@ import hashlib
 import re
 from collections import namedtuple
 
+import numpy as np
+
 from .contract import Component
 
 #: kernel status codes: 0 done; PYTHON: nothing changed, run the step through kernel_status; >= 2: component errors
@@ -148,3 +150,26 @@ class KernelComponent(Component):
 
     def do_step(self, t, h):
         self.kernel_step(t, h)
+
+
+class PositionalKernelComponent(KernelComponent):
+    """A kernel component whose ports follow a data file (the rotor's and the airframe's follow the engine file):
+    its kernel reads them by position through offset tables, in plain tuples."""
+
+    def kernel_ports(self):
+        """Plain tuples, not named ones: numba's on-disk cache of a kernel holds every signature it was compiled
+        for in one index, which a process must unpickle whole: a named tuple class of another engine's ports would
+        not exist there. The kernel reads the ports by position (its offset tables), so a plain tuple carries all
+        it needs; its type is keyed by the ports' count."""
+        kp = self.__dict__.get("_kernel_ports")
+        if kp is None:
+            kp = (tuple, tuple, self._ports("input"), self._ports("output"))
+            self._kernel_ports = kp
+        return kp
+
+    def kernel_io(self):
+        # one array type for all ports (the kernel indexes them at run time): inputs made contiguous (a no-op for
+        # the master's arrays); outputs are the component's own contiguous arrays, written in place
+        _, _, ins, outs = self.kernel_ports()
+        u, y = self.u, self.y
+        return tuple(np.ascontiguousarray(u[n]) for n in ins), tuple(y[n] for n in outs)

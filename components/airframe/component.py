@@ -28,7 +28,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..contract import COUPLED, ContractError, Variable
-from ..kernels import KernelComponent
+from ..kernels import PositionalKernelComponent
 from ..rotor.model import DEFAULT_FILE
 from ..rotor.newmark import step_operator
 from .kernel import AirframeParams, AirframeState, tm_step
@@ -62,7 +62,7 @@ def port_variables(found: dict, model: ModalModel | None) -> tuple[Variable, ...
     return tuple(out)
 
 
-class Airframe(KernelComponent):
+class Airframe(PositionalKernelComponent):
     """The airframe's reduced linear model on the engine's mounts (module docstring)."""
 
     description = ("Airframe on the engine's mounts: a reduced linear (modal) model at the mounts' interface points "
@@ -178,19 +178,6 @@ class Airframe(KernelComponent):
 
     # -- the compiled kernel (components/kernels.py) ---------------------------------------------------------
     STEP = staticmethod(tm_step)
-
-    def kernel_ports(self):
-        """Plain tuples (the ports follow the engine file: see the rotor's kernel_ports for why)."""
-        kp = self.__dict__.get("_kernel_ports")
-        if kp is None:
-            kp = (tuple, tuple, self._ports("input"), self._ports("output"))
-            self._kernel_ports = kp
-        return kp
-
-    def kernel_io(self):
-        _, _, ins, outs = self.kernel_ports()
-        u, y = self.u, self.y
-        return tuple(np.ascontiguousarray(u[n], dtype=float) for n in ins), tuple(y[n] for n in outs)
 
     def kernel_state(self):
         return AirframeState(self.state["s"])

@@ -45,7 +45,7 @@ import math
 import numpy as np
 
 from ..contract import ContractError, Variable
-from ..kernels import KernelComponent
+from ..kernels import PositionalKernelComponent
 from ..speeds import GG_OMEGA, PT_OMEGA
 from . import attach
 from . import model as fem
@@ -135,7 +135,7 @@ def reduced_model(model_file: str, n_modes: int, omega_pt: float, omega_gg: floa
     return red
 
 
-class Rotor(KernelComponent):
+class Rotor(PositionalKernelComponent):
     """Flexible dual-rotor engine + casing (MTA-reduced FE model, Newmark-beta), blade-loss force."""
 
     description = ("Flexible dual-rotor gas turbine engine with casing: Timoshenko FE model reduced by modal "
@@ -272,24 +272,6 @@ class Rotor(KernelComponent):
         self._speed_at = np.array([in_fields.index(n) if n in in_fields else -1
                                    for n in ("Omega_pt", "Omega_gg", "dOmega_pt")], dtype=np.int64)
         self._out_off = np.array([rows.get(name, -1) for name in out_fields], dtype=np.int64)
-
-    def kernel_ports(self):
-        """Plain tuples, not named ones: the ports follow the engine file (attach.py), and numba's on-disk cache of
-        the kernel holds every signature it was compiled for in one index, which a process must unpickle whole: a
-        named tuple class of another engine's ports would not exist there. The kernel reads the ports by position
-        (the offset tables), so a plain tuple carries all it needs; its type is keyed by the ports' count."""
-        kp = self.__dict__.get("_kernel_ports")
-        if kp is None:
-            kp = (tuple, tuple, self._ports("input"), self._ports("output"))
-            self._kernel_ports = kp
-        return kp
-
-    def kernel_io(self):
-        # one array type for all ports (the kernel indexes them at run time): inputs made contiguous (a no-op for
-        # the master's arrays); outputs are the component's own contiguous arrays, written in place
-        _, _, ins, outs = self.kernel_ports()
-        u, y = self.u, self.y
-        return tuple(np.ascontiguousarray(u[n]) for n in ins), tuple(y[n] for n in outs)
 
     def _input_vector(self, t):
         u = self.u
