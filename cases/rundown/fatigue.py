@@ -47,10 +47,11 @@ def settings(sc) -> dict:
 
 
 def loads_of(sc, recorded) -> list[str]:
-    """The loads counted (module docstring) among the ``recorded`` names."""
+    """The loads counted (module docstring) among the ``recorded`` names (a named load the run did not record is
+    left out: the summary counts it as the run goes, a recorded series cannot)."""
     named = sc.extra.get("results", {}).get("fatigue_loads")
     if named:
-        return [str(n) for n in named]
+        return [str(n) for n in named if str(n) in recorded]
     mounts = sorted(n for n in recorded if n.startswith("airframe.F_"))
     return mounts or sorted(n for n in recorded if n.startswith("damper") and n.endswith(".F_journal"))
 

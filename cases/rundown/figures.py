@@ -9,8 +9,8 @@
 * ``rundown_campbell.png``: the Campbell diagram of the linear engine (components/rotor/critical.py; a test
   rotor: its critical speeds as constant frequencies) with the run's 1x trajectory and each crossing's resonance peak;
 * ``rundown_temperatures.png``: the bearing temperatures over the whole run (when recorded), a panel per bearing;
-* ``rundown_load_spectra.png`` (a scenario that names ``[results] fatigue_loads``): the load spectrum of each
-  counted load element over the whole run, the cumulative exceedance (the cycles whose range reaches a value,
+* ``rundown_load_spectra.png`` (a scenario that names ``[results] fatigue_loads`` and records them): the load
+  spectrum of each counted load element over the whole run, the cumulative exceedance (the cycles whose range reaches a value,
   log scale) against the range, the held intervals counted from the hold's window (cases/rundown/fatigue.py).
 
 The spools are named as the engine file names them (``[spool.NAME] name``: "power turbine", "gas generator" for
@@ -131,7 +131,9 @@ def figures(sc, data, out, dpi: int | None = None) -> list[str]:
     if ids:
         names.append(_temperatures(data, t, phase, out, ids))
     if sc.extra.get("results", {}).get("fatigue_loads"):
-        names.append(_spectra(sc, data, out))
+        spectra = _spectra(sc, data, out)
+        if spectra is not None:
+            names.append(spectra)
     # an engine on an airframe: the interface loads and the response points' vibration
     return names + interface_figures.figures(sc, data, out.folder, out.dpi, spools[0])
 
@@ -143,6 +145,8 @@ def _spectra(sc, data, out):
 
     plt = _plt()
     counts = recorded_counts(data, sc)
+    if not counts:
+        return None
     fig, ax = plt.subplots(figsize=(8, 5))
     for key, c in counts.items():
         sp = spectrum(c)
