@@ -278,7 +278,15 @@ class Component:
     def update_discrete(self, t: float, which: list[int]) -> dict:
         """The event at ``t`` [s] of the indicators ``which`` (their positions in :attr:`event_indicators`): update
         the discrete state and the outputs that follow it (FMI 3.0 updateDiscreteStates), and say what happened:
-        ``{"kind": str, "values": {name: float}}`` (the values that triggered it, for summary.json ``events``)."""
+        ``{"kind": str, "values": {name: float}}`` (the values that triggered it, for summary.json ``events``).
+
+        ``which`` empty: the time event :meth:`next_event` scheduled at ``t``. By default nothing changes here (the
+        component applies it in its steps: the spool's fuel cut) and the record names the parameter whose event
+        it is (``Variable.event``)."""
+        if not which:
+            what = [v.event for v in self.variables if v.event and v.causality == "parameter"
+                    and isinstance(self.p.get(v.name), (int, float)) and abs(float(self.p[v.name]) - t) <= 1e-9]
+            return {"kind": "time", "values": {"event": what[0]} if what else {}}
         raise NotImplementedError(f"{type(self).__name__} declares event indicators but no update_discrete")
 
     def validity(self) -> tuple:

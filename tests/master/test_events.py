@@ -89,11 +89,57 @@ def test_multirate_interval_with_an_indicator_is_refused():
         sim.run(Timeline([Interval("TM", duration=0.01, step=1e-3)]))
 
 
-def test_an_indicator_in_a_held_interval_is_refused():
-    """A component with an event indicator that steps in a held interval: a one-line error naming it and the
-    phase (events are located in coupled intervals)."""
+def test_an_event_in_a_held_interval_ends_it_and_a_coupled_one_follows():
+    """A component with an event indicator that steps in a held interval: the zero of x0 cos(w t) at pi / (2 w)
+    (0.2484 s) falls in the held interval 0.1-0.4 s; the held interval ends there (located within the tolerance
+    after the exact zero), the rest of it runs coupled, then the timeline goes on; the held interval is not charged
+    to the hold's error estimate (the mechanics after the event are not what the held values stood for)."""
     sim = _sim(cycle=0.01)
     sim.system.components["w"].phases = frozenset({"TM", "TO"})
     sim.system.components["m1"].phases = frozenset({"TM", "TO"})
-    with pytest.raises(ContractError, match="component w declares event indicators and steps in the held phase TO"):
-        sim.run(Timeline([Interval("TM", duration=0.05, step=1e-3), Interval("TO", duration=0.01, step=1e-3)]))
+    report = sim.run(Timeline([Interval("TM", duration=0.1, step=1e-3), Interval("TO", duration=0.3, step=1e-3),
+                               Interval("TM", duration=0.1, step=1e-3)]))
+    exact = math.pi / (2 * W)
+    (ev,) = report.events
+    assert 0.0 <= ev["t_s"] - exact <= 1e-7 + 1e-12
+    phases = [(iv.phase, iv.reason) for iv in report.timeline]
+    assert phases == [("TM", ""), ("TO", "event"), ("TM", "after an event"), ("TM", "")]
+    assert report.timeline[1].t_end == ev["t_s"] and report.timeline[2].t_start == ev["t_s"]
+    assert report.timeline[2].t_end == pytest.approx(0.4, abs=1e-12)
+    assert report.t_end == pytest.approx(0.5, abs=1e-12)
+    (held,) = [iv for iv in report.hold.intervals if iv["t_start"] == pytest.approx(0.1)]
+    assert held["estimate_pct"] is None and held["event"].startswith("w at")
+
+
+class Cut(Component):
+    """Schedules one change of its own at ``t_cut`` (as the spool's fuel cut) and keeps the ends of its steps."""
+
+    variables = (Variable("t_cut", "parameter", unit="s", start=0.0123, event="the cut"),
+                 Variable("x", "input", unit="m"), Variable("ends", "output", unit="1"))
+
+    def setup(self, t0=0.0):
+        super().setup(t0)
+        self.ends = []
+
+    def do_step(self, t, h):
+        self.time = t + h
+        self.ends.append(t + h)
+
+    def next_event(self, t):
+        return self.p["t_cut"] if self.p["t_cut"] >= t - 1e-9 else None
+
+
+def test_a_time_event_splits_its_base_step_and_is_recorded():
+    """A scheduled change inside a base step (0.0123 s in the step 0.012-0.013 s) is a time event: every component
+    steps to it and on from it (the grid of the other steps kept), ``update_discrete(t, [])`` records it (kind
+    "time", the parameter's event named) once; one on the grid is recorded without a split."""
+    for t_cut, split in ((0.0123, True), (0.012, False)):
+        comps = {"m1": create("testing.mass", "m1", {"m": 1.0, "k": 40.0, "x0": 0.1}),
+                 "c": Cut("c", {"t_cut": t_cut})}
+        sim = Simulation(System(comps, [Connection("m1.x", "c.x")], inputs={"m1.F": np.zeros(1)}), order=list(comps))
+        report = sim.run(Timeline([Interval("TM", duration=0.02, step=1e-3)]))
+        (ev,) = report.events
+        assert (ev["t_s"], ev["kind"], ev["trigger"], ev["values"]) == (t_cut, "time", "time", {"event": "the cut"})
+        ends = comps["c"].ends
+        assert (t_cut in ends) and len(ends) == 20 + split
+        assert ends[-1] == pytest.approx(0.02, abs=1e-15) and report.component_steps["c"] == 20 + split
