@@ -15,12 +15,14 @@
 from __future__ import annotations
 
 import math
+import re
 
 import numpy as np
 import pytest
 from scipy.optimize import brentq
 
 from rotorcosim.components.airframe import example
+from rotorcosim.components.contract import ContractError
 from rotorcosim.components.airframe.modal import EXAMPLE, read, static_flexibility, to_toml
 from rotorcosim.components.registry import create
 from rotorcosim.components.rotor import model as fem
@@ -153,6 +155,9 @@ def test_bad_modal_file_is_one_line_naming_the_key(tmp_path, monkeypatch, capsys
     assert main(["check-engine", str(tmp_path / "engine.toml")]) == 2
     out = capsys.readouterr().out.splitlines()
     assert len(out) == 2 and key in out[1]
+    # a run: the airframe component refuses the file when it is made, before its ports are connected
+    with pytest.raises(ContractError, match=re.escape(key)):
+        create("airframe.modal", "airframe", {"model_file": str(tmp_path / "engine.toml")})
 
 
 def test_mount_on_a_missing_node_is_one_line(tmp_path, monkeypatch, capsys):
@@ -167,8 +172,6 @@ def test_mount_on_a_missing_node_is_one_line(tmp_path, monkeypatch, capsys):
 
 
 def test_the_format_pages_example_is_read(tmp_path):
-    import re
-
     page = (fem.DEFAULT_FILE.parents[3] / "docs" / "reference" / "airframe-format.md").read_text()
     (tmp_path / "a.toml").write_text(re.search(r"## An example\n.*?```toml\n(.*?)```", page, re.S).group(1))
     m = read(tmp_path / "a.toml")
