@@ -185,3 +185,18 @@ def test_an_engine_file_extends_another(tmp_path):
     (tmp_path / "b.toml").write_text('[engine]\nformat = 1\nextends = "b.toml"\n')
     with pytest.raises(ValueError, match="extends chain longer than 8 files"):
         fem.load_data(tmp_path / "b.toml")
+
+
+@pytest.mark.slow
+def test_check_engine_lists_the_broken_fuse_critical_speeds(engine_folder, tmp_path):
+    """(~10 s of CPU: the critical speeds, damped peaks and Campbell diagram of both states; slow.) check-engine of an engine with a fuse: its report lists the forward critical speeds with the fuse broken
+    (and --json holds them under critical_speeds.fuse_states), next to the intact engine's."""
+    import json
+
+    path = _engine(engine_folder, "listed.toml", FUSE.format(mass=1.5, k=1e9, load=600.0, kb=1e7))
+    r = subprocess.run([sys.executable, "-m", "rotorcosim.master.cli", "check-engine", path, "--json",
+                        "--campbell", str(tmp_path / "c.png")], capture_output=True, text=True)
+    assert r.returncode == 0, r.stderr
+    (st,) = json.loads(r.stdout)["critical_speeds"]["fuse_states"]
+    assert st["label"] == "fuse broken" and st["forward_synchronous_rpm"][0] == pytest.approx(3707.0, abs=2.0)
+    assert (tmp_path / "c.png").stat().st_size > 0
