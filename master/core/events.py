@@ -22,8 +22,9 @@ held over the step, a contact switching on), and bisection's count is fixed in a
 re-steps (8 for a 20 us step at 0.1 us).
 
 Time events (a component's ``next_event``: the spool's fuel cut) go through the same locator in coupled intervals:
-the base step that holds one is split at it (a single-rate interval; else the component applies it in its own
-step), ``update_discrete(t, [])`` is called and the event recorded (``trigger`` "time"). A held interval ends at a
+the base step that holds one is split at it (a single-rate interval; else it is applied at that step's end), one on
+the grid is taken at the start of its step (the compiled loop runs to it and goes on), ``update_discrete(t, [])``
+is called and the event recorded (``trigger`` "time"). A held interval ends at a
 time event (master/simulation.py) and at a located event of a component that steps in it
 (:attr:`EventLocator.ended_at`); a coupled interval follows (master/schedule).
 
