@@ -126,6 +126,28 @@ def test_the_compiled_loop_locates_the_break_as_the_generic_loop(monkeypatch):
     assert saves and max(saves) < ev["t_s"]
 
 
+def test_a_python_step_while_the_indicator_is_live_goes_through_the_generic_loop(monkeypatch):
+    """The rotor asks for a Python step (status PYTHON: its speed moved past the refactorisation threshold, here a
+    rundown from t = 0) while the fuse's indicator is live (a break load never reached): the compiled loop rolls the
+    chunk back to that base step, which the generic loop takes, and goes on; the time series are the generic
+    loop's, bit for bit, and the roll-backs happened."""
+    from rotorcosim.master.compiled import runner as compiled_runner
+
+    restores = []
+    restore = compiled_runner.Runner._restore
+
+    def counted(self, *args):
+        restores.append(self.sim.t)
+        return restore(self, *args)
+
+    monkeypatch.setattr(compiled_runner.Runner, "_restore", counted)
+    sc = load_scenario("jeffcott_fuse").set({"fuse.break_load": 1e9, "spool.t_start": 0.0, "spool.duration": 0.2})
+    c, g = (simulate(sc, duration=0.03, figures=False, progress=False, engine=e) for e in ("compiled", "python"))
+    assert c.summary["engine"] == "compiled" and not c.summary["events"] and restores
+    for ref in c.signals:
+        assert np.array_equal(c[ref], g[ref]), ref
+
+
 @pytest.mark.parametrize("value, message", [
     ("fuse.break_load=0", "fuse.break_load must be > 0"),
     ("fuse.k_broken=5e6", "fuse.k_broken must be within [0, k_intact"),
