@@ -80,9 +80,10 @@ def test_two_stage_breaks_against_independent_integration(tmp_path):
 
 @pytest.mark.slow
 def test_against_independent_integration(tmp_path):
-    """The whole run (2.5 s; ~25 s of CPU, measured: 125 000 steps in the generic loop, slow): the mean support force
-    over 0.40-0.50 s within 1 % of the reference's (0.09 % measured), the rundown's peak whirl within 1 % (0.06 %)
-    and its speed within 0.5 % (0.04 %); one crossing, labelled with the post-fuse critical speed."""
+    """The whole run (2.5 s; 11 s of CPU, measured: the run in the compiled loop and the reference, slow): the
+    mean support force over 0.40-0.50 s within 1 % of the reference's (0.09 % measured), the rundown's peak whirl
+    within 1 % (0.06 %) and its speed within 0.5 % (0.04 %); one crossing, labelled with the post-fuse critical
+    speed."""
     res = simulate("jeffcott_fuse", out=tmp_path / "run", figures=False, progress=False)
     t, rpm, x, y, vx, vy, _ = _reference(2.5, 250_001)
     sel = (t >= 0.40) & (t <= 0.50)
