@@ -229,7 +229,10 @@ class Component:
             v = self._by_name.get(key)
             if v is None or v.causality != "input":
                 raise ContractError(f"{self.name}: no input {key!r}")
-            arr = np.asarray(value, dtype=float if v.type == "Real" else dtype_of(v.type, v.fmi_type)).reshape(-1)
+            if v.type == "Real" and type(value) is np.ndarray and value.ndim == 1 and value.dtype == np.float64:
+                arr = value     # already what the line below makes (and shares its data the same way), faster
+            else:
+                arr = np.asarray(value, dtype=float if v.type == "Real" else dtype_of(v.type, v.fmi_type)).reshape(-1)
             if arr.size != v.size:
                 raise ContractError(f"{self.name}.{key}: expected {v.size} value(s), got {arr.size}")
             self.u[key] = arr
@@ -278,7 +281,15 @@ class Component:
     def update_discrete(self, t: float, which: list[int]) -> dict:
         """The event at ``t`` [s] of the indicators ``which`` (their positions in :attr:`event_indicators`): update
         the discrete state and the outputs that follow it (FMI 3.0 updateDiscreteStates), and say what happened:
-        ``{"kind": str, "values": {name: float}}`` (the values that triggered it, for summary.json ``events``)."""
+        ``{"kind": str, "values": {name: float}}`` (the values that triggered it, for summary.json ``events``).
+
+        ``which`` empty: the time event :meth:`next_event` scheduled at ``t``. By default nothing changes here (the
+        component applies it in its steps: the spool's fuel cut) and the record names the parameter whose event
+        it is (``Variable.event``)."""
+        if not which:
+            what = [v.event for v in self.variables if v.event and v.causality == "parameter"
+                    and isinstance(self.p.get(v.name), (int, float)) and abs(float(self.p[v.name]) - t) <= 1e-9]
+            return {"kind": "time", "values": {"event": what[0]} if what else {}}
         raise NotImplementedError(f"{type(self).__name__} declares event indicators but no update_discrete")
 
     def validity(self) -> tuple:
@@ -311,11 +322,20 @@ def _copy_snapshot(snap: tuple) -> tuple:
     distinct numeric arrays (what the native components keep) the copy is made directly, the same copy 4-5 times
     faster than deepcopy's generic walk (12 against 56 us for a bearing, measured): the thermal-only hold probes
     the producers' TO outputs through get_state / set_state about a hundred times per staggered run."""
-    if len(snap) == 4 and type(snap[0]) in (float, int) and all(type(d) is dict for d in snap[1:]):
-        arrays = [v for d in snap[1:] for v in d.values()]
-        if (all(type(v) is np.ndarray and not v.dtype.hasobject for v in arrays)
-                and len({id(v) for v in arrays}) == len(arrays)):  # no array met twice (deepcopy would share it)
-            return (snap[0], *({k: v.copy(order="K") for k, v in d.items()} for d in snap[1:]))
+    if len(snap) == 4 and type(snap[0]) in (float, int):
+        out, seen = [snap[0]], set()
+        for d in snap[1:]:
+            if type(d) is not dict:
+                return copy.deepcopy(snap)
+            c = {}
+            for k, v in d.items():
+                # an array met twice would be two copies here (deepcopy shares it); an object array is not numeric
+                if type(v) is not np.ndarray or v.dtype.hasobject or id(v) in seen:
+                    return copy.deepcopy(snap)
+                seen.add(id(v))
+                c[k] = v.copy(order="K")
+            out.append(c)
+        return tuple(out)
     return copy.deepcopy(snap)
 
 

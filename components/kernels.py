@@ -29,8 +29,10 @@ import numpy as np
 
 from .contract import Component
 
-#: kernel status codes: 0 done; PYTHON: nothing changed, run the step through kernel_status; >= 2: component errors
-OK, PYTHON = 0, 1
+#: kernel status codes: 0 done; PYTHON: nothing changed, run the step through kernel_status; >= 2: component errors;
+#: EVENT: the step is done and one of the component's event indicators changed sign over it (the compiled loop
+#: stops there and the master locates the event, master/core/events.py; the generic loop reads ``indicators()``)
+OK, PYTHON, EVENT = 0, 1, -3
 
 #: every port tuple type made so far, (class name, kind, port names) -> type (sent to the ahead-of-time compiler)
 PORT_TUPLES: dict[tuple, type] = {}
@@ -90,6 +92,10 @@ class KernelComponent(Component):
 
     #: the njit step function (set by subclasses, wrapped in staticmethod)
     STEP = None
+    #: True when ``STEP`` returns ``EVENT`` whenever one of the component's event indicators changes sign over the
+    #: step (the compiled loop then runs it and stops at its events); a component with event indicators whose
+    #: kernel does not say so runs in the generic loop
+    KERNEL_EVENTS = False
 
     def _ports(self, causality: str) -> tuple[str, ...]:
         return tuple(v.name for v in self.variables if v.causality == causality and v.carried)
@@ -144,7 +150,7 @@ class KernelComponent(Component):
         self.kernel_prepare(h)
         s, p, u, y = self.kernel_args()
         status = self.STEP(s, p, u, y, t, h)
-        if status:
+        if status and status != EVENT:
             self.kernel_status(status, t, h)
         self.time = t + h
 

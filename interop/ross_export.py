@@ -7,6 +7,9 @@ table's Rayleigh coefficients on every element when ``damped``), disks as ``Disk
 ``rotorcosim critical-speeds`` does (the scenario's ball contacts at the preloaded rest -> outer race + journal
 body -> O-ring + film at the stated oil temperature -> housing, :mod:`rotorcosim.cases.blade_loss.linear_engine`):
 contact bearing from the shaft node to a journal node (``PointMass``), O-ring + film from it to the housing's node.
+A fused bearing's (``[fuse.ID]``) O-ring + film end at its own housing's node (``PointMass`` of ``housing_mass_kg``),
+which the fuse at the stage asked for (``fuse_stage``: 0 intact, 1 broken, 2 broken in its second stage) links to
+the hub.
 
 Two spools become a ``ross.CoAxialRotor`` (nodes numbered shaft after shaft; ROSS turns both at one speed, so an
 engine whose spools turn at different speeds gets ROSS's gyroscopic terms at the first spool's). Not carried (an
@@ -35,8 +38,8 @@ def _load(engine) -> tuple[dict, str]:
     return engine, "engine description"
 
 
-def linear_supports(data: dict, scenario=None) -> dict | None:
-    """The attached co-simulated bearings linearised (None: the engine attaches none)."""
+def linear_supports(data: dict, scenario=None, fuse_stage: int = 0) -> dict | None:
+    """The attached co-simulated bearings linearised (None: the engine attaches none), fuses at ``fuse_stage``."""
     attach = data.get("attach", {})
     if not attach_layout.layout(attach).bearings:
         return None
@@ -44,13 +47,14 @@ def linear_supports(data: dict, scenario=None) -> dict | None:
     from rotorcosim.master.scenario.build import load_scenario
 
     sc = load_scenario(scenario) if isinstance(scenario, (str, Path)) else scenario
-    return linear_engine.supports(sc, data=data)
+    return linear_engine.supports(sc, data=data, fuse_stage=fuse_stage)
 
 
-def to_ross(engine, *, scenario=None, damped: bool = True):
+def to_ross(engine, *, scenario=None, damped: bool = True, fuse_stage: int = 0):
     """A ``ross.Rotor`` of the engine (a file path or an engine description); ``scenario``: the scenario (path
     or Scenario) whose components linearise the attached bearings (None: the shipped blade-loss scenario);
-    ``damped``: False leaves every damping out (undamped critical speeds, as rotorcosim reports them)."""
+    ``damped``: False leaves every damping out (undamped critical speeds, as rotorcosim reports them);
+    ``fuse_stage``: the fused bearings' fuses intact (0) or broken (1, 2)."""
     try:
         import ross as rs
     except ImportError:
@@ -147,12 +151,22 @@ def to_ross(engine, *, scenario=None, damped: bool = True):
             cx, cy = c(cx), c(cy)
         bearings.append(rs.BearingElement(n=gnode(a), n_link=link, kxx=kx, kyy=ky, cxx=cx, cyy=cy,
                                           kzz=s.get("k_axial", 0.0), tag=str(s.get("name", "support")), **extra))
-    sup = linear_supports(data, scenario)
+    sup = linear_supports(data, scenario, fuse_stage)
     for key, v in (sup or {}).items():
         node = v["node"]
         j = n_next
         n_next += 1
         h = hub(v["hub"])
+        fuse = v.get("fuse")
+        if fuse is not None:
+            # the bearing's own housing on the fuse to the hub
+            hf = n_next
+            n_next += 1
+            masses.append(rs.PointMass(n=hf, m=float(data["fuse"][key[1:]]["housing_mass_kg"]),
+                                       tag=f"housing {key} on its fuse"))
+            bearings.append(rs.BearingElement(n=hf, n_link=h, kxx=fuse["k"], cxx=c(fuse["c"]),
+                                              tag=f"fuse {key}"))
+            h = hf
         masses.append(rs.PointMass(n=j, m=v["m_journal"], tag=f"journal {key}"))
         bearings.append(rs.BearingElement(n=gnode(node), n_link=j, kxx=v["k_contact"], cxx=0.0,
                                           tag=f"ball contacts {key}"))

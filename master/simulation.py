@@ -116,8 +116,11 @@ class Simulation:
         #: interval (thermal-only intervals always run the generic loop)
         self.engine_choice = "auto"
         self.engine_note: str | None = None
+        #: True while an interval runs that the schedule inserted after an event (Timeline.run): no checkpoint
+        self.extra_interval = False
         self.engines_used: list[str] = []
-        if any(c.event_indicators for c in system.components.values()):
+        if any(c.event_indicators for c in system.components.values()) or \
+                events.pending_time_event(self, list(system.components), self.t) is not None:
             self.report.events = []
 
     # -- helpers ---------------------------------------------------------------------------------------
@@ -229,6 +232,16 @@ class Simulation:
             raise ScheduleError(f"no component takes part in phase {phase}")
         mult = self._multiples(active, step)
         lcm = math.lcm(*mult.values())
+        if role == HELD:
+            # a held interval ends at a scheduled change (a fuel cut): it happens in the coupled interval after
+            nxt = events.pending_time_event(self, list(self.system.components), self.t)
+            tol = 1e-9 * max(1.0, self.t + duration)
+            if nxt is not None and nxt[0] <= self.t + tol:
+                # due where the coupled interval before ended (its last step's end): recorded there
+                events.record_time(self, nxt[1], nxt[0])
+                nxt = events.pending_time_event(self, list(self.system.components), self.t)
+            if nxt is not None and self.t + tol < nxt[0] < self.t + duration - tol:
+                duration, reason = nxt[0] - self.t, "event"
         nsteps = max(1, round(duration / step))
         if lcm == 1 and abs(nsteps * step - duration) > 1e-9 * duration:
             # single rate (thermal-only intervals): keep the interval's duration exact with the nearest step
@@ -263,16 +276,40 @@ class Simulation:
         if role == COUPLED:
             self.engines_used.append("compiled" if runner is not None else "python")
         try:
-            if runner is not None:
-                try:
-                    k = runner.run(k, nsteps, t_start, stop, math.lcm(stop.every, lcm) if stop is not None else 0)
-                    why = runner.why or why
-                finally:
-                    k = runner.k
-            while k < nsteps and not (runner is not None and runner.why):
+            while k < nsteps:
+                if runner is not None:
+                    # the compiled loop up to the base step of the next time event (events.py), if any
+                    ke = located.time_event_step(t_start, k) if located is not None else None
+                    k_end = nsteps if ke is None else min(ke[0], nsteps)
+                    if k < k_end:
+                        try:
+                            k = runner.run(k, k_end, t_start, stop,
+                                           math.lcm(stop.every, lcm) if stop is not None else 0)
+                            why = runner.why or why
+                        finally:
+                            k = runner.k
+                        if runner.why:
+                            break
+                    if k >= nsteps:
+                        break
+                    if ke is not None and ke[1] and k == ke[0]:
+                        # a time event on the grid: recorded there, and the compiled loop goes on
+                        located.record_due(t_start + k * step)
+                        continue
+                    # base step k is the generic loop's (a time event in it, or an event the compiled loop stopped
+                    # at: runner.Runner.run), then the compiled loop again
+                    if located is not None:
+                        located.resync()
                 base_step(t_start, k)
                 k += 1
                 self.t = t_start + k * step
+                if located is not None and located.ended_at is not None:
+                    # an event ended the held interval (events.py): sampled there, and a coupled interval follows
+                    self.t = located.ended_at
+                    for obs in self.observers:
+                        obs.step(self, self.t)
+                    why = "event"
+                    break
                 req = self.engine.stop
                 if req is not None:
                     # a component asked to stop: the run ends at the time it asked for, sampled there

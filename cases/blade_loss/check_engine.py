@@ -177,6 +177,10 @@ def run(args) -> int:
                                      else ", undamped")
                                   + ", needs " + "/".join(f"{m['required_percent']:.0f} %" for m in r["margins"])
                                   + ")" for r in rows) or "none"))
+    for st in c.get("fuse_states", []):
+        print(f"  forward synchronous critical speeds, {st['label']} (fuse stiffness "
+              + ", ".join(f"#{b} {k:.3g} N/m" for b, k in st["fuse_stiffness_N_per_m"].items()) + "): "
+              + ", ".join(f"{v:.0f}" for v in st["forward_synchronous_rpm"]) + " rev/min")
     print(f"  supports: {c['support_model']['description']}")
     for line in out["warnings"]:
         print(f"  warning: {line}")

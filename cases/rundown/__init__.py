@@ -19,6 +19,8 @@ Scenarios: ``jeffcott_rundown`` (the check case against an independent integrati
 from rotorcosim.cases import blade_loss
 from rotorcosim.master.scenario import checkers
 
+from . import fuse_comparison
+
 #: the result extraction of the scenarios whose ``[results] kind`` is ``"rundown"`` (rotorcosim.master.case)
 RESULTS = "rotorcosim.cases.rundown.results"
 #: ``rotorcosim compare`` for the scenarios of this case (master/case.py ``COMPARE``)
@@ -34,4 +36,7 @@ RESULTS_KEYS = {"spools": checkers.list_of(checkers.text), "critical_speeds_rpm"
                 # the fatigue content of loads (cases/rundown/fatigue.py: defaults and sources)
                 "fatigue_loads": checkers.list_of(checkers.port_ref), "woehler_exponent": checkers.positive,
                 "reference_cycles": checkers.positive, "sn_range_N": checkers.positive,
-                "sn_cycles": checkers.positive}
+                "sn_cycles": checkers.positive,
+                # a run with a support fuse beside the same scenario without it (cases/rundown/fuse_comparison.py)
+                "casing_force_peak": checkers.boolean, "without_fuse": checkers.text,
+                "without_fuse_set": fuse_comparison.settings}

@@ -33,6 +33,8 @@ from rotorcosim.master.run.outputs import check_dpi
 from .modes import marked_critical_speeds
 
 RPM = 30.0 / math.pi
+#: the Campbell diagram labels its resonance peaks' speeds up to this many peaks (more: marks only)
+MAX_PEAK_LABELS = 12
 #: the windmilling: from this long after the last fuel cut [s]
 WINDMILL_AFTER_CUT_S = 60.0
 #: coupled samples per speed bin of the response figure
@@ -298,8 +300,11 @@ def _campbell(sc, w, crit, peaks, out, spool, windmill=None):
                    label=f"windmilling: {windmill[0]:.0f}-{windmill[1]:.0f} rev/min")
     for c in crit:
         ax.plot(c, c / 60.0, "o", mfc="none", mec="tab:red", ms=9)
+    labelled = len(peaks) <= MAX_PEAK_LABELS
     for i, s in enumerate(sorted(s for s, _ in peaks)):
         ax.plot(s, s / 60.0, "x", color="tab:red", ms=9, mew=2)
+        if not labelled:      # an engine on an airframe: a peak per airframe mode; their speeds are the summary's
+            continue
         # above-left of the mark: the trajectory runs up-right from it, the mode lines run flat beside it;
         # neighbouring peaks' labels alternate below-right so that two peaks of one crossing stay readable
         off, ha = ((-8, 6), "right") if i % 2 == 0 else ((8, -12), "left")

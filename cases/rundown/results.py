@@ -50,7 +50,7 @@ from rotorcosim.cases.interface import results as interface
 
 from rotorcosim.master.observer.held_cycles import LoadCycles
 
-from . import fatigue
+from . import fatigue, fuse_comparison
 from .energy import SpoolEnergy
 
 #: time bins of the response track [s]: many per crossing (a crossing lasts ~0.1-1 s), few per hour of run
@@ -226,7 +226,7 @@ def observers(sc, cycle):
     if _case_blade_loss(sc):
         from rotorcosim.cases.blade_loss import results as bl
         obs += bl.observers(sc, cycle)
-    return obs + tail
+    return obs + tail + fuse_comparison.observers(sc)
 
 
 def check(sc, sim) -> None:
@@ -426,7 +426,8 @@ def extract(sc, sim, obs, report) -> dict:
         name = spool_name(sc, track.crossing_spool)
         for c in out["crossings"]:
             c["spool_name"] = name
-    rest = [o for o in obs[2:] if not isinstance(o, interface.InterfaceTrack)]
+    force = [o for o in obs if isinstance(o, fuse_comparison.CasingForce)]
+    rest = [o for o in obs[2:] if not isinstance(o, (interface.InterfaceTrack, fuse_comparison.CasingForce))]
     if rest and isinstance(rest[0], LoadCycles):
         out["fatigue"] = fatigue.summary(rest[0], sc)
         rest = rest[1:]
@@ -434,6 +435,10 @@ def extract(sc, sim, obs, report) -> dict:
         from rotorcosim.cases.blade_loss import results as bl
         out.update(bl.extract(sc, sim, rest, report))
     out.update(interface.extract(obs, out.get("fatigue")))
+    if force:
+        out["casing_force_peak_N"] = dict(force[0].peak)
+    if sc.extra.get("results", {}).get("without_fuse"):
+        out["fuse_comparison"] = fuse_comparison.compare(sc, float(sim.t), out)
     return out
 
 
@@ -454,6 +459,11 @@ def result_paths(sc) -> list[str]:
     if _case_blade_loss(sc):
         from rotorcosim.cases.blade_loss import results as bl
         out += bl.result_paths(sc)
+    res = sc.extra.get("results", {})
+    if res.get("casing_force_peak") or res.get("without_fuse"):
+        out.append("casing_force_peak_N.")
+    if res.get("without_fuse"):
+        out.append("fuse_comparison.")
     return out + interface.result_paths(sc)
 
 

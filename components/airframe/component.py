@@ -81,13 +81,14 @@ class Airframe(PositionalKernelComponent):
     step_cost_s = 10e-6
 
     def __init__(self, name: str = "airframe", parameters=None):
-        # the ports follow the engine file's mounts and the airframe model's response points; a file that cannot
-        # be read leaves the component without ports here, and set-up names the problem
+        # the ports follow the engine file's mounts and the airframe model's response points: a file that cannot
+        # be read is refused here, before the ports are connected (a connection to a port the component would have
+        # had would otherwise name the port, not the cause)
         self._found, self._model, self._problem = {}, None, None
         try:
             self._found, self._model = installed(str((parameters or {}).get("model_file", "") or ""))
         except (ValueError, OSError) as exc:
-            self._problem = str(exc)
+            raise ContractError(f"{name}.model_file: {exc}") from None
         self.variables = type(self).variables + port_variables(self._found, self._model)
         super().__init__(name, parameters)
 

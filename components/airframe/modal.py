@@ -102,7 +102,7 @@ def parse(data: dict, where: str = "airframe model") -> ModalModel:
     n = len(f)
     for i, x in enumerate(f):
         if not x > 0.0:
-            raise _bad(f"{where}: modes.frequency_Hz[{i}]", f"must be > 0, got {x!r} (the elastic modes only: a "
+            raise _bad(f"{where}: modes.frequency_Hz[{i}]", f"must be > 0, got {float(x)!r} (the elastic modes only: a "
                                                             "rigid-body mode has no place in the file)")
     if "modal_mass_kg" not in modes:
         raise _bad(where, "modes.modal_mass_kg missing (the generalised mass of each shape; 1 for "
@@ -110,11 +110,11 @@ def parse(data: dict, where: str = "airframe model") -> ModalModel:
     m = _numbers(f"{where}: modes.modal_mass_kg", modes["modal_mass_kg"], n)
     for i, x in enumerate(m):
         if not x > 0.0:
-            raise _bad(f"{where}: modes.modal_mass_kg[{i}]", f"must be > 0, got {x!r}")
+            raise _bad(f"{where}: modes.modal_mass_kg[{i}]", f"must be > 0, got {float(x)!r}")
     z = _numbers(f"{where}: modes.damping_ratio", modes.get("damping_ratio", 0.0), n)
     for i, x in enumerate(z):
         if not 0.0 <= x < 1.0:
-            raise _bad(f"{where}: modes.damping_ratio[{i}]", f"must be within [0, 1), got {x!r}")
+            raise _bad(f"{where}: modes.damping_ratio[{i}]", f"must be within [0, 1), got {float(x)!r}")
     points: dict[str, dict[str, np.ndarray]] = {k: {} for k in KINDS}
     positions: dict[str, np.ndarray | None] = {}
     for kind in KINDS:

@@ -34,8 +34,8 @@ from ..records import NO_RECORD, check_selection
 from ..validity import Check
 from . import wall
 from . import table_cache
-from .fast import (EPS_MAX, FAST_STEP_SIG, N_TABLE, DamperParams, fast_step, fast_step_address, film_table,
-                   tm_step)
+from .fast import (EPS_MAX, FAST_STEP_SIG, N_TABLE, DamperParams, DamperState, fast_step, fast_step_address,
+                   film_table, tm_step)
 from .reynolds_fe import EPS_FILM_MAX, build_mesh, fe_film_eval
 from .viscosity import oil_constants, sae30_viscosity
 
@@ -107,6 +107,12 @@ class _Damper(Memoryless, Component):
         Variable("k_wall", "parameter", unit="N/m", start=FILM["k_wall"],
                  description="journal-housing contact stiffness beyond the clearance (0: touching the wall is an"
                              " error)"),
+        Variable("oil_loss_time", "parameter", unit="s", start=-1.0,
+                 description="time at which the oil supply is lost: no film from then on, the journal on the land "
+                             "(k_wall, land_friction), no film power (< 0: never)",
+                 event="the loss of the oil supply"),
+        Variable("land_friction", "parameter", unit="1", start=FILM["land_friction"],
+                 description="friction coefficient of the journal on the damper land once the oil supply is lost"),
         Variable("power_in_thermal_only", "parameter", unit="1", start=True, type="Boolean",
                  description="in thermal-only intervals, update the film power from the frozen journal motion at "
                              "the SFD oil viscosity (the master's hold follows it, master/manipulator/hold.py); false: held"),
@@ -151,9 +157,14 @@ class _Damper(Memoryless, Component):
         for key in ("radius", "length", "clearance"):
             if not p[key] > 0.0:
                 raise ContractError(f"{self.name}.{key} must be > 0, got {p[key]}")
-        for key in ("k_spring", "k_wall", "supply_pressure"):
-            if p[key] < 0.0:
+        for key in ("k_spring", "k_wall", "supply_pressure", "land_friction"):
+            if not p[key] >= 0.0:   # (NaN too)
                 raise ContractError(f"{self.name}.{key} must be >= 0, got {p[key]}")
+        if not math.isfinite(p["oil_loss_time"]):
+            raise ContractError(f"{self.name}.oil_loss_time must be a time in s (< 0: never), got {p['oil_loss_time']}")
+        if p["oil_loss_time"] >= 0.0 and p["k_wall"] <= 0.0:
+            raise ContractError(f"{self.name}.k_wall must be > 0 with oil_loss_time = {p['oil_loss_time']:g} s: "
+                                "without its oil the journal runs on the damper land, a contact of that stiffness")
         if p["clearance"] > THIN_FILM * p["radius"]:
             # the film equation (eq. 7, Reynolds) drops terms of order c/R: a thick "film" is outside the model,
             # and in practice a length given in mm where metres are meant (0.635 -> 0.635 m)
@@ -180,7 +191,8 @@ class _Damper(Memoryless, Component):
         self._T = None
         self._mu = 0.0
         self._prepare()
-        self.state = {}
+        #: oil_lost: 1 once the oil supply is lost (update_discrete at oil_loss_time)
+        self.state = {"oil_lost": np.zeros(1)}
         self.phases = frozenset({"TM", "TO"}) if p["power_in_thermal_only"] else frozenset({"TM"})
         self.holds_state_in_TO = bool(p["power_in_thermal_only"])
         self.phase = "TM"
@@ -192,6 +204,35 @@ class _Damper(Memoryless, Component):
     def _compute(self, mu: float, out: np.ndarray) -> int:
         """Fill ``out`` (layout OUT) from the inputs at viscosity mu; return a wall.* status code."""
         raise NotImplementedError
+
+    # -- the loss of the oil supply: a time event (master/core/events.py) ---------------------------------
+    def get_state(self):
+        return (*super().get_state(), self.state["oil_lost"].copy())
+
+    def set_state(self, snapshot):
+        *snap, lost = snapshot
+        super().set_state(tuple(snap))
+        self.state["oil_lost"][0] = lost[0]
+
+    def next_event(self, t):
+        """The loss of the oil supply while it is to come (at ``t`` itself too, as the spool's fuel cut)."""
+        te = self.p["oil_loss_time"]
+        return float(te) if te >= 0.0 and not self.state.get("oil_lost", [0.0])[0] and te >= t - 1e-9 else None
+
+    def update_discrete(self, t, which):
+        """The oil supply lost at ``t``: the film goes, its power drops to zero, the journal runs on the land from
+        this state on (the outputs re-evaluated at the present inputs)."""
+        if which:
+            return super().update_discrete(t, which)
+        before = float(self.y["P_film"][0])
+        self.state["oil_lost"][0] = 1.0
+        if self.phase == "TO" and self.holds_state_in_TO:
+            self._thermal_only_step(t, 0.0)
+        else:
+            self._evaluate(t)
+        dx, dy, _, _ = self._relative()
+        return {"kind": "oil_supply_loss",
+                "values": {"P_film_W": before, "eccentricity_ratio": math.hypot(dx, dy) / self._c}}
 
     # -- stepping --------------------------------------------------------------------------------------
     def viscosity(self, T):
@@ -325,6 +366,8 @@ class FEDamper(_Damper):
         dx, dy, dvx, dvy = self._relative()
         if not math.isfinite(dx + dy + dvx + dvy):
             return wall.NOT_FINITE
+        if self.state["oil_lost"][0]:
+            return wall.dry_land(dx, dy, dvx, dvy, self._c, self._k, self._kw, self.p["land_friction"], out)
         out[:] = 0.0
         if math.hypot(dx, dy) < wall.EPS_DIVERGED * self._c:
             self._film(dx, dy, dvx, dvy, mu, out)
@@ -341,7 +384,8 @@ class FastDamper(KernelComponent, _Damper):
         p = self.p
         self._table = film_table(p["radius"], p["length"], p["clearance"], int(p["n_theta"]), int(p["n_z"]))
         t = self._table
-        prm = np.array([t.u0, t.du, t.n, t.eps_max, t.clearance, self._floor, float(self._cav), self._k, self._kw])
+        prm = np.array([t.u0, t.du, t.n, t.eps_max, t.clearance, self._floor, float(self._cav), self._k, self._kw,
+                        float(p["land_friction"])])
         A, B, rho300, drho = oil_constants()
         self._kernel_p = DamperParams(t.NT, t.G, t.TW, t.toff, t.ftab, t.bounds, t.Wc, t.Ws, prm, np.zeros(self.N_OUT),
                                       np.full(2, np.nan), float(A), float(B), float(rho300), float(drho),
@@ -371,7 +415,7 @@ class FastDamper(KernelComponent, _Damper):
     STEP = staticmethod(tm_step)
 
     def kernel_state(self):
-        return ()
+        return DamperState(self.state["oil_lost"])
 
     def kernel_params(self):
         return self._kernel_p
@@ -388,6 +432,9 @@ class FastDamper(KernelComponent, _Damper):
     def _compute(self, mu, out):
         """The film, spring and wall at viscosity mu (the thermal-only update's evaluation)."""
         p, u = self._kernel_p, self.u
+        if self.state["oil_lost"][0]:
+            dx, dy, dvx, dvy = self._relative()
+            return wall.dry_land(dx, dy, dvx, dvy, self._c, self._k, self._kw, self.p["land_friction"], out)
         return fast_step(p.NT, p.G, p.TW, p.toff, p.ftab, p.bounds, p.Wc, p.Ws, p.prm, u["X_journal"], u["V_journal"],
                          u["X_housing"], u["V_housing"], mu, out)
 

@@ -40,7 +40,7 @@ from numba import types
 from ..numba_internals import address_of, by_address, call_at, kernel_jit
 from . import table_cache
 from .frame import EPS_DIFF, EPS_NEAR_CENTRE, frame, to_housing_axes
-from .wall import NOT_FINITE, spring_and_wall
+from .wall import NOT_FINITE, dry_land, spring_and_wall
 from .reynolds_fe import EPS_FILM_MAX, build_mesh, film_force_aligned, unit_fields
 
 EPS_MAX = EPS_FILM_MAX   # table end = the film model's limit (reynolds_fe); the film saturates beyond it
@@ -470,7 +470,9 @@ def fast_film_force(table: FilmTable, dx, dy, dvx, dvy, mu, supply_pressure, cav
     return float(out[0]), float(out[1])
 
 
-#: the fast damper's kernel constants (components/kernels.py; the damper has no state): the tables and parameters
+#: the fast damper's kernel state: ``oil_lost`` (1 once its oil supply is lost: no film, the journal on the land)
+DamperState = namedtuple("DamperState", "oil_lost")
+#: the fast damper's kernel constants (components/kernels.py): the tables and parameters
 #: of fast_step, its output buffer, a cache [T, mu(T)], the oil's viscosity constants (viscosity.py), the fit's
 #: temperature range (components/oil_fit.py) and the address of fast_step (fast_step_address)
 DamperParams = namedtuple("DamperParams", "NT G TW toff ftab bounds Wc Ws prm out cache walther_A walther_B rho300 "
@@ -496,8 +498,14 @@ def tm_step(s, p, u, y, t, h):
         return 5
     mu = oil_viscosity(p, T)
     out = p.out
-    status = call_at(p.fast_step_at, fast_step, (p.NT, p.G, p.TW, p.toff, p.ftab, p.bounds, p.Wc, p.Ws, p.prm,
-                                                 u.X_journal, u.V_journal, u.X_housing, u.V_housing, mu, out))
+    if s.oil_lost[0] != 0.0:
+        xj, vj, xh, vh = u.X_journal, u.V_journal, u.X_housing, u.V_housing
+        # prm: [.., clearance (4), .., k_spring (7), k_wall (8), land_friction (9)]
+        status = dry_land(xj[0] - xh[0], xj[1] - xh[1], vj[0] - vh[0], vj[1] - vh[1], p.prm[4], p.prm[7], p.prm[8],
+                          p.prm[9], out)
+    else:
+        status = call_at(p.fast_step_at, fast_step, (p.NT, p.G, p.TW, p.toff, p.ftab, p.bounds, p.Wc, p.Ws, p.prm,
+                                                     u.X_journal, u.V_journal, u.X_housing, u.V_housing, mu, out))
     if status != 0:
         return 10 + status
     for k in range(2):

@@ -14,8 +14,10 @@ stage's), and the master locates its zero within ``event_tolerance`` [s] (master
 indicator reached zero there, so that the fuse also breaks without the master's event location (an FMU in another
 tool: the break then falls on the communication point after the load was reached).
 
-The component is memoryless but for its state ``broken`` (the stages broken); its force follows its inputs of the
-step (the point's state at the end of the step in Gauss-Seidel order after the rotor).
+Its state is ``broken`` (the stages broken), ``reported`` (those located) and the indicator's last value ``g``;
+its force follows its inputs of the step (the point's state at the end of the step in Gauss-Seidel order after
+the rotor). The step is a compiled kernel (kernel.step) that reports the indicator's changes of sign, so that the
+compiled loop runs it (``KERNEL_EVENTS``).
 """
 from __future__ import annotations
 
@@ -23,11 +25,12 @@ import math
 
 import numpy as np
 
-from ..contract import Component, ContractError, Variable
-from .kernel import break_indicator, support_force
+from ..contract import ContractError, Variable
+from ..kernels import KernelComponent
+from .kernel import FuseParams, FuseState, break_indicator, indicator_of, publish, step
 
 
-class SupportFuse(Component):
+class SupportFuse(KernelComponent):
     """A stiff support that breaks at a radial load into a soft path and a bumper (module docstring)."""
 
     description = ("Support fuse: intact stiffness and damping until the radial force reaches the break load, then "
@@ -95,8 +98,13 @@ class SupportFuse(Component):
         self._stages = [(p["k_intact"], p["break_load"])] + ([(p["k_broken"], p["break_load_2"])]
                                                              if p["stages"] == 2 else [])
         self._k_last = p["k_broken_2"] if p["stages"] == 2 else p["k_broken"]
-        #: broken: the stages broken (0 intact); reported: those the master has located (update_discrete)
-        self.state = {"broken": np.zeros(1), "reported": np.zeros(1)}
+        ks = [k for k, _ in self._stages] + [self._k_last]
+        self._kernel_p = FuseParams(np.array(ks, dtype=float), np.array([load for _, load in self._stages]),
+                                    float(p["damping"]), float(p["bumper_stiffness"]), float(p["bumper_clearance"]),
+                                    float(p["bumper_friction"]))
+        #: broken: the stages broken (0 intact); reported: those the master has located (update_discrete);
+        #: g: the indicator's last value (kernel.step)
+        self.state = {"broken": np.zeros(1), "reported": np.zeros(1), "g": np.zeros(1)}
         self._publish()
 
     def _stage_checks(self) -> list:
@@ -119,10 +127,6 @@ class SupportFuse(Component):
              f"must be within [0, k_broken = {p['k_broken']:g} N/m) (each stage softer than the one before)"),
         ]
 
-    def _stiffness(self) -> float:
-        s = int(self.state["broken"][0])
-        return self._stages[s][0] if s < len(self._stages) else self._k_last
-
     def _relative(self) -> tuple[float, float, float, float]:
         """The supported point's displacement and velocity (x, y) against the structure."""
         u = self.u
@@ -142,27 +146,29 @@ class SupportFuse(Component):
             self.state["broken"] = self.state["broken"] + 1.0
 
     def _publish(self) -> None:
-        p = self.p
-        fx, fy = support_force(*self._relative(), self._stiffness(), p["damping"], p["bumper_stiffness"],
-                               p["bumper_clearance"], p["bumper_friction"])
-        self.y["F_support"] = np.array([fx, fy])
-        self.y["F_rotor"] = np.array([-fx, -fy, 0.0])
-        self.y["broken"] = self.state["broken"].copy()
+        """The outputs and the indicator's value ``g`` of the present state (kernel.publish, kernel.indicator_of)."""
+        s, p, u, y = self.kernel_args()
+        has, g = indicator_of(s, p, u)
+        if has:
+            s.g[0] = g
+        publish(s, p, u, y)
 
-    def do_step(self, t, h):
-        self.time = t + h
-        # on its own (no master locating the event): broken at the end of the step that reached the load
-        self._break_through()
-        self._publish()
+    # -- the compiled kernel (components/kernels.py); do_step is the kernel's step -------------------------------
+    STEP = staticmethod(step)
+    KERNEL_EVENTS = True
+
+    def kernel_state(self):
+        st = self.state
+        return FuseState(st["broken"], st["reported"], st["g"])
+
+    def kernel_params(self):
+        return self._kernel_p
 
     def indicators(self) -> np.ndarray:
+        # the kernel's value (a stage broken by its step and not yet handed over: 1, crossed); none after the last
+        # stage: nothing left to break
         s, reported = self.state["broken"][0], self.state["reported"][0]
-        if s > reported:
-            # broken by its step and not yet handed over: the indicator has crossed
-            return np.ones(1)
-        if s >= len(self._stages):
-            return np.zeros(0)          # the last stage: nothing left to break
-        return np.array([self._indicator()])
+        return self.state["g"].copy() if s > reported or s < len(self._stages) else np.zeros(0)
 
     def update_discrete(self, t, which):
         x, y, _, _ = self._relative()

@@ -22,10 +22,25 @@ event indicator is ``k_s |x| - L_(s+1)`` (negative below the load); none after t
 break). A two-stage fuse is the Rolls-Royce arrangement of US 9863274 B2: a first fuse that cuts the stiff load
 path, a second one in the softer path left, which cuts it again at a further load. At a break the strain energy
 ``(k_s - k_(s+1)) |x|^2 / 2`` of the broken share leaves the system (the softer element no longer stores it).
+
+The step (:func:`step`, components/kernels.py contract) breaks the fuse at its end through every stage whose load
+the displacement reaches there (a fuse without the master's event location, an FMU in another tool, breaks at that
+communication point), keeps the indicator's last value in its state ``g`` (``1`` for a stage broken and not yet
+located by the master, ``reported``) and returns ``EVENT`` when the indicator changed sign over the step.
 """
 from __future__ import annotations
 
 import math
+from collections import namedtuple
+
+from ..kernels import EVENT, OK
+from ..numba_internals import kernel_jit
+
+#: the kernel's containers: ``broken`` (the stages broken), ``reported``, ``g`` (arrays of one value); the
+#: stiffness of each stage ``k`` (intact first, one more than the loads) and the loads that break them ``loads``,
+#: the damping and the bumper
+FuseState = namedtuple("FuseState", "broken reported g")
+FuseParams = namedtuple("FuseParams", "k loads damping k_b clearance mu")
 
 #: the sliding speed [m/s] below which the bumper's Coulomb friction is regularised (kernel docstring)
 V_REG = 1e-4
@@ -55,3 +70,62 @@ def break_indicator(x: float, y: float, k: float, break_load: float) -> float:
     """A stage's event indicator [N]: ``k |x| - break_load`` with ``k`` the stage's stiffness and ``break_load`` the
     load that breaks it (the break at its zero)."""
     return k * math.hypot(x, y) - break_load
+
+
+_force = kernel_jit(support_force, inline="always")
+_indicator = kernel_jit(break_indicator, inline="always")
+
+
+@kernel_jit(inline="always")
+def relative(u):
+    """The supported point's displacement and velocity (x, y) against the structure's."""
+    x, v, xs, vs = u.X, u.V, u.X_structure, u.V_structure
+    return x[0] - xs[0], x[1] - xs[1], v[0] - vs[0], v[1] - vs[1]
+
+
+@kernel_jit(inline="always")
+def indicator_of(s, p, u):
+    """(has, value): whether the fuse has an indicator in its present state, and its value: 1 for a stage broken
+    and not yet located (``broken > reported``), the present stage's ``k_s |x| - L_(s+1)`` while one is left to
+    break, none after the last."""
+    n = int(s.broken[0])
+    if s.broken[0] > s.reported[0]:
+        return True, 1.0
+    if n < p.loads.shape[0]:
+        dx, dy, _, _ = relative(u)
+        return True, _indicator(dx, dy, p.k[n], p.loads[n])
+    return False, 0.0
+
+
+@kernel_jit
+def step(s, p, u, y, t, h):
+    """The fuse over a step with the inputs of its end (module docstring): every stage whose load is reached breaks
+    at the step's end, the force law of the stage after it; status EVENT when the indicator changed sign."""
+    dx, dy, _, _ = relative(u)
+    had = s.broken[0] > s.reported[0] or s.broken[0] < p.loads.shape[0]
+    while s.broken[0] < p.loads.shape[0]:
+        n = int(s.broken[0])
+        if _indicator(dx, dy, p.k[n], p.loads[n]) < 0.0:
+            break
+        s.broken[0] += 1.0
+    has, g = indicator_of(s, p, u)
+    status = OK
+    if has:
+        if had and (g < 0.0) != (s.g[0] < 0.0):
+            status = EVENT
+        s.g[0] = g
+    publish(s, p, u, y)
+    return status
+
+
+@kernel_jit(inline="always")
+def publish(s, p, u, y):
+    """The outputs of the present state: F_support, F_rotor = -F_support (axial 0), broken."""
+    dx, dy, dvx, dvy = relative(u)
+    fx, fy = _force(dx, dy, dvx, dvy, p.k[int(s.broken[0])], p.damping, p.k_b, p.clearance, p.mu)
+    y.F_support[0] = fx
+    y.F_support[1] = fy
+    y.F_rotor[0] = -fx
+    y.F_rotor[1] = -fy
+    y.F_rotor[2] = 0.0
+    y.broken[0] = s.broken[0]

@@ -22,12 +22,12 @@ def why_not(sim, active, mult, stop) -> str | None:
     """None when the interval can run compiled, else the reason it cannot."""
     comps = sim.system.components
     for n in active:
-        if comps[n].event_indicators:
-            return f"component {n} declares event indicators, which the generic loop locates (master/core/events.py)"
-    for n in active:
         c = comps[n]
         if not isinstance(c, KernelComponent) or c.STEP is None:
             return f"component {n} ({type(c).__name__}) has no compiled kernel"
+        if c.event_indicators and not c.KERNEL_EVENTS:
+            return (f"component {n} declares event indicators and its kernel does not report their changes of "
+                    "sign (KERNEL_EVENTS), so the generic loop locates them (master/core/events.py)")
         if not c.kernel_available():
             return f"component {n} has no compiled kernel in this phase"
         for port in c.kernel_ports()[3]:  # outputs become views of the loop's float array

@@ -42,7 +42,7 @@ import numba
 import numpy as np
 
 from rotorcosim.components.contract import ContractError
-from rotorcosim.components.kernels import PYTHON
+from rotorcosim.components.kernels import EVENT, PYTHON
 from rotorcosim.components.numba_internals import TypingError, compile_for, native_address
 
 from rotorcosim.master.compiled import kernel_args
@@ -218,6 +218,11 @@ class Runner:
         self.status = np.zeros(3, dtype=np.int64)
         self.X = np.zeros(plan.nx)
         self._views = {}
+        #: the plan's components that declare event indicators
+        self.watched = [c for c in plan.comps if c.event_indicators]
+        #: the base step the generic loop is to take next (an event in it, or a component's Python step while an
+        #: indicator is live), or None
+        self.pending = None
 
     @property
     def sim(self):
@@ -266,14 +271,25 @@ class Runner:
 
     def run(self, k: int, nsteps: int, t_start: float, stop=None, period: int = 0) -> int:
         """Base steps k .. nsteps - 1; returns the steps completed (nsteps, or fewer where ``stop`` ended the
-        interval: its reason in ``self.why``). ``self.k`` holds the steps completed when it raises.
+        interval: its reason in ``self.why``; or where base step ``self.pending`` is the generic loop's, below).
+        ``self.k`` holds the steps completed when it raises.
 
+        Events (master/core/events.py): while a component's event indicator is live, the loop's state is saved
+        before each chunk (the components' snapshots and the link tables). A kernel that returns EVENT at base step
+        kk (an indicator changed sign over it) stops the chunk; the chunk is rolled back to its saved state and run
+        again to the start of kk, and the run returns with ``pending = kk``: the caller takes that step in the
+        generic loop, where the event locator finds the event, and comes back. A component's Python step (status
+        PYTHON) while an indicator is live goes the same way, so that the generic step starts on a base step. With
+        no live indicator nothing is saved, and a chunk runs as it would without events.
         ``stop`` (the automatic schedule's test, master/schedule/auto.py) is fed each chunk's rows of the signals it samples
         (``sample_block``) and checked where the generic loop checks it, after every ``period``-th base step: the
         chunks end there."""
         sim, plan, h = self.sim, self.plan, self.h
         self.k = k
         self.why = ""
+        self.pending = None
+        limit = nsteps    # the step the rolled back chunk runs to (an event's)
+        saved = None
         for key in [key for key in self._views if key[0] == "ring"]:  # the last interval's rings, in its own G
             del self._views[key]
         eng = sim.engine
@@ -314,10 +330,12 @@ class Runner:
         res = op.Results(count, self.buf, self.status)
         # containers packed in an earlier interval of the run (a reused runner) and unchanged keep their block
         PA = np.array([pk.address if pk.kargs is not None else 0 for pk in self.packed], dtype=np.int64)
-        while k < nsteps:
-            k1 = min(nsteps, k + CHUNK)
+        while k < limit:
+            k1 = min(limit, k + CHUNK)
             if period:
                 k1 = min(k1, (k // period + 1) * period)
+            # an indicator live: the state the chunk can be rolled back to (base step k, r0 = -1 then)
+            saved = (k, self._save(M, V, W, G)) if r0 < 0 and any(len(c.indicators()) for c in self.watched) else None
             self._adopt()
             self._windows(G, goff)
             kargs = [c.kernel_args() for c in comps]
@@ -337,6 +355,15 @@ class Runner:
             if not sim.first_compiled.is_set():  # the loop and the interval's kernels are loaded: the helper is done
                 sim.compiled_done()
             code, kk, i = (int(x) for x in self.status)
+            if saved is not None and (code == EVENT or code == PYTHON):
+                # base step kk is the generic loop's: the chunk again to its start, from the saved state
+                k, limit = saved[0], kk
+                self._restore(saved[1], M, V, W, G, count)
+                addrs = None
+                continue
+            if code == EVENT:
+                raise ContractError(f"{plan.names[i]}: its kernel reported an event at t = {t_start + (kk + 1) * h:.9g} "
+                                    "s with no live event indicator")
             done = kk  # base steps completed
             self._back(LI, M, V, W, C, count)
             self.k = done
@@ -375,7 +402,26 @@ class Runner:
             comp.time = t + hc
             r0 = i  # resume after the component's step: its bookkeeping, then the next components
         sim.t = t_start + k * h
+        if limit < nsteps:
+            self.pending = limit
         return k
+
+    def _save(self, M, V, W, G):
+        """What a chunk changes: the components' snapshots and the link tables (rows, vectors, window records and
+        rings; the counts are zero at a chunk's start)."""
+        return [c.get_state() for c in self.plan.comps], M.copy(), V.copy(), W.copy(), G.copy()
+
+    def _restore(self, saved, M, V, W, G, count):
+        """Back to :meth:`_save`'s state: the components' ports come back as arrays of their own, which the next
+        chunk adopts into the port array, their state as other containers, which it packs."""
+        states, m, v, w, g = saved
+        for c, st in zip(self.plan.comps, states):
+            c.set_state(st)
+        M[:] = m
+        V[:] = v
+        W[:] = w
+        G[:] = g
+        count[:] = 0
 
     _ADDR: dict = {}
 

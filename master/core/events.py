@@ -1,4 +1,4 @@
-"""Discrete events of a coupled interval: located in time, handed to their component, recorded.
+"""Discrete events of an interval: located in time, handed to their component, recorded.
 
 A component may declare event indicators (contract ``event_indicators``, as FMI 3.0's): real functions of its state
 and inputs, read after each step (``indicators()``), whose change of sign over a step is an event. A coupled
@@ -21,38 +21,81 @@ indicator is known only through steps of the whole coupled system, which can ben
 held over the step, a contact switching on), and bisection's count is fixed in advance, log2(h / tolerance)
 re-steps (8 for a 20 us step at 0.1 us).
 
+Time events (a component's ``next_event``: the spool's fuel cut) go through the same locator in coupled intervals:
+the base step that holds one is split at it (a single-rate interval; else it is applied at that step's end), one on
+the grid is taken at the start of its step (the compiled loop runs to it and goes on), ``update_discrete(t, [])``
+is called and the event recorded (``trigger`` "time"). A held interval ends at a
+time event (master/simulation.py) and at a located event of a component that steps in it
+(:attr:`EventLocator.ended_at`); a coupled interval follows (master/schedule).
+
 What it needs: every active component at the interval's base step (a single-rate interval; a multi-rate one with
 an event indicator is refused with the reason) and explicit coupling (one pass per step). A hand-off window of the
-thermal-only hold records the base step's end only. The compiled loop does not locate events: an interval with
-an indicator runs in the generic loop, which says so in summary.json ``engine_note``
-(master/compiled/choice.why_not). A run with no indicator never builds a locator: its base steps are the
-engine's own, untouched. Events happen in coupled intervals: a component that declares an indicator and steps in
-a held interval is refused (:func:`locator`); one that only takes part in coupled intervals (a support fuse) is
-frozen in a held one, where its indicator cannot change.
+thermal-only hold records the base step's end only. The compiled loop runs such an interval too when the
+components' kernels report their indicators' changes of sign (``KernelComponent.KERNEL_EVENTS``, status ``EVENT``):
+it stops at the base step of an event, rolled back to its start (master/compiled/runner.py), the locator takes
+that step (:meth:`EventLocator.resync` first: the compiled loop stepped the components since) and the compiled
+loop goes on; a component whose kernel does not report them makes the interval the generic loop's, which
+summary.json ``engine_note`` says (master/compiled/choice.why_not). A run with no indicator never builds a
+locator: its base steps are the engine's own, untouched. A component that only takes part in coupled intervals
+(a support fuse) is frozen in a held one, where its indicator cannot change.
 """
 from __future__ import annotations
 
 import numpy as np
 
-from rotorcosim.components.contract import COUPLED, ContractError
+from rotorcosim.components.contract import COUPLED, Component, ContractError
+
+
+def timed(comp) -> bool:
+    """Does the component schedule changes of its own (``next_event``: the spool's fuel cut)?"""
+    return type(comp).next_event is not Component.next_event
+
+
+def pending_time_event(sim, names, t: float):
+    """The first time event still to come at ``t`` [s] of the components ``names`` (``next_event``, not yet
+    recorded in ``sim.report.events``), as (time [s], the names of the components whose event it is), or None."""
+    comps = sim.system.components
+    done = {(e["component"], e["t_s"]) for e in sim.report.events or () if e.get("trigger") == "time"}
+    found = []
+    for n in names:
+        c = comps[n]
+        if not timed(c):
+            continue
+        te = c.next_event(t)
+        if te is not None and (n, te) not in done:
+            found.append((float(te), n))
+    if not found:
+        return None
+    first = min(te for te, _ in found)
+    return first, [n for te, n in found if _near(te, first)]
+
+
+def _near(a: float, b: float) -> bool:
+    """Equal up to the round-off of interval ends (sums of steps)."""
+    return abs(a - b) <= 1e-9 * max(1.0, abs(b))
 
 
 class EventLocator:
-    """The base steps of a coupled interval with event indicators (module docstring). ``sim``: the
-    :class:`~rotorcosim.master.simulation.Simulation`; ``active``, ``mult``: the interval's components and their
-    step multiples; ``step``: the base step [s]. Located events go to ``sim.report.events`` and to the hold
-    (``sim.hold.located``)."""
+    """The base steps of an interval with event indicators or time events (module docstring). ``sim``: the
+    :class:`~rotorcosim.master.simulation.Simulation`; ``role``: the interval's (``COUPLED`` or ``HELD``);
+    ``active``, ``mult``: its components and their step multiples; ``step``: the base step [s]. Located events go
+    to ``sim.report.events`` and to the hold (``sim.hold.located``); :attr:`ended_at`: where an event ended a held
+    interval (None: it goes on)."""
 
-    def __init__(self, sim, active, mult, step: float):
+    def __init__(self, sim, role: str, active, mult, step: float):
         comps = sim.system.components
-        self.sim, self.engine, self.h = sim, sim.engine, float(step)
+        self.sim, self.engine, self.h, self.role = sim, sim.engine, float(step), role
         self.watched = [(n, comps[n]) for n in active if comps[n].event_indicators]
+        self.timed = [n for n in active if timed(comps[n])] if role == COUPLED else []
         names = ", ".join(n for n, _ in self.watched)
         multi = sorted(n for n in active if mult.get(n, 1) != 1)
-        if multi:
+        #: base steps can be split at a time event (a single-rate interval with explicit coupling); else the
+        #: component applies it within its own step, and it is recorded at its time
+        self.split = not multi and self.engine.settings.iterations == 1
+        if multi and self.watched:
             raise ContractError(f"event indicators of {names}: every component must step at the interval's step "
                                 f"for the master to locate their events; {', '.join(multi)} step(s) slower")
-        if self.engine.settings.iterations != 1:
+        if self.engine.settings.iterations != 1 and self.watched:
             raise ContractError(f"event indicators of {names}: the master locates events with explicit coupling "
                                 "([algorithm] iterations = 1)")
         self.tolerance = {}
@@ -64,6 +107,32 @@ class EventLocator:
             self.tolerance[n] = tol
         self.comps = [(n, comps[n]) for n in self.engine.active]
         self.g = self._values()
+        self.ended_at: float | None = None
+
+    def resync(self) -> None:
+        """Read the indicators again from the components' present state (the compiled loop stepped them since)."""
+        self.g = self._values()
+
+    def time_event_step(self, t0: float, k: int) -> tuple[int, bool] | None:
+        """Where the next time event falls in the interval that starts at ``t0`` [s], from base step ``k`` on:
+        (j, True) at the start of base step j (on the grid: the compiled loop runs to it, :meth:`record_due`
+        records it and the compiled loop goes on), (j, False) inside base step j (the compiled loop stops before
+        it, and :meth:`base_step` splits it); None: none to come."""
+        nxt = pending_time_event(self.sim, self.timed, t0 + k * self.h)
+        if nxt is None:
+            return None
+        x = (nxt[0] - t0) / self.h
+        m = int(round(x))
+        if m >= k and _near(nxt[0], t0 + m * self.h):
+            return m, True
+        # step j spans (t0 + j h, t0 + (j + 1) h]
+        return max(k, int(np.ceil(x - 1e-9)) - 1), False
+
+    def record_due(self, t: float) -> None:
+        """Record the time events due at ``t`` [s], the start of a base step (nothing to split)."""
+        nxt = pending_time_event(self.sim, self.timed, t)
+        if nxt is not None and (nxt[0] <= t or _near(nxt[0], t)):
+            record_time(self.sim, nxt[1], nxt[0])
 
     def _values(self) -> list[list[float]]:
         return [np.asarray(c.indicators(), dtype=float).tolist() for _, c in self.watched]
@@ -108,25 +177,56 @@ class EventLocator:
                 link.window = w
 
     def base_step(self, t0: float, k: int) -> None:
-        """Base step ``k`` of the interval that starts at ``t0`` (the engine's), with its events located."""
+        """Base step ``k`` of the interval that starts at ``t0`` (the engine's), with its events located: a time
+        event in it splits it there (a single-rate interval), an indicator's change of sign is bisected."""
+        h = self.h
+        a, b = t0 + k * h, t0 + (k + 1) * h
+        nxt = pending_time_event(self.sim, self.timed, a) if self.timed else None
+        # (an event at the step's end is the next step's, at its start: the sample at the end precedes it)
+        if nxt is not None and nxt[0] < b and not _near(nxt[0], b):
+            te, names = nxt
+            if te <= a or _near(te, a):
+                self._record_time(names, te)
+                self._span(a, b, (t0, k))
+            elif not self.split:
+                # a multi-rate interval: applied at the end of the step that holds it (by the component within its
+                # own step, or by update_discrete there), recorded at its time
+                self._span(a, b, (t0, k))
+                self._record_time(names, te)
+            else:
+                self._span(a, te, None, windows=False)
+                self._record_time(names, te)
+                self._span(te, b, None, windows=True)
+            return
+        self._span(a, b, (t0, k))
+
+    def _span(self, a: float, b: float, base, windows: bool = True) -> None:
+        """The system from ``a`` to ``b`` [s] in one step (``base``: (t0, k), the engine's base step k), its
+        indicators' changes of sign located within."""
         if not any(self.g):
             # no live indicator (components.contract: indicators): nothing to go back for
-            self.engine.base_step(t0, k)
+            self._advance(a, b, base, windows)
             self.g = self._values()
             return
         saved = self._save()
-        self.engine.base_step(t0, k)
+        self._advance(a, b, base, windows)
         g = self._values()
         crossed = self._crossed(g)
         if not crossed:
             self.g = g
             return
-        h = self.h
-        self._locate(saved, t0 + k * h, t0 + (k + 1) * h, crossed)
+        self._locate(saved, a, b, crossed, windows)
 
-    def _locate(self, saved, a: float, b: float, crossed) -> None:
+    def _advance(self, a, b, base, windows) -> None:
+        if base is not None:
+            self.engine.base_step(*base)
+        else:
+            self._step(a, b - a, windows)
+
+    def _locate(self, saved, a: float, b: float, crossed, windows: bool = True) -> None:
         """The system stepped from ``a`` (state ``saved``) to ``b`` [s] and the indicators ``crossed`` changed sign:
-        find the first event, hand it over, complete the step to ``b``; again while the remainder has one."""
+        find the first event, hand it over, complete the step to ``b``; again while the remainder has one. In a
+        held interval the event ends it (:attr:`ended_at`): the step is not completed."""
         while True:
             tol = min(self.tolerance[self.watched[i][0]] for i, _ in crossed)
             lo, hi, at_hi = 0.0, b - a, True
@@ -143,15 +243,18 @@ class EventLocator:
             at_end = b - t_event <= 1e-12 * max(1.0, abs(b))
             if not at_hi:
                 self._restore(saved)
-                self._step(a, hi, windows=at_end)
+                self._step(a, hi, windows=at_end and windows)
             for i, which in crossed:
                 name, comp = self.watched[i]
                 self._record(name, comp, t_event, which)
             self.g = self._values()
+            if self.role != COUPLED:
+                self.ended_at = t_event
+                return
             if at_end:
                 return
             saved = self._save()
-            self._step(t_event, b - t_event, windows=True)
+            self._step(t_event, b - t_event, windows=windows)
             g = self._values()
             crossed = self._crossed(g)
             if not crossed:
@@ -159,29 +262,49 @@ class EventLocator:
                 return
             a = t_event
 
+    def _append(self, entry: dict) -> None:
+        append(self.sim, entry)
+
     def _record(self, name: str, comp, t: float, which: list[int]) -> None:
         what = comp.update_discrete(t, which)
         kind = what.get("kind", "event")
         indicators = [comp.event_indicators[j] for j in which]
-        self.sim.report.events.append({
+        self._append({
             "t_s": t, "component": name, "kind": kind, "indicators": indicators,
             "values": what.get("values", {}), "tolerance_s": self.tolerance[name],
             "message": f"{name}: {kind} at t = {t:.9g} s (event indicator {', '.join(indicators)}, located within "
                        f"{self.tolerance[name]:.3g} s)"})
-        self.sim.hold.located(name, t)
+
+    def _record_time(self, names: list[str], t: float) -> None:
+        record_time(self.sim, names, t)
+
+
+def append(sim, entry: dict) -> None:
+    """An event into the run's report (``sim.report.events``) and the hold's (``located``)."""
+    if sim.report.events is None:
+        sim.report.events = []
+    sim.report.events.append(entry)
+    sim.hold.located(entry["component"], entry["t_s"])
+
+
+def record_time(sim, names: list[str], t: float) -> None:
+    """The time event of the components ``names`` at ``t`` [s]: ``update_discrete(t, [])`` (FMI 3.0's time event)
+    and the record (``trigger`` "time", no indicator, located exactly)."""
+    for name in names:
+        comp = sim.system.components[name]
+        what = comp.update_discrete(t, [])
+        kind = what.get("kind", "time")
+        append(sim, {
+            "t_s": t, "component": name, "kind": kind, "indicators": [], "trigger": "time",
+            "values": what.get("values", {}), "tolerance_s": 0.0,
+            "message": f"{name}: {kind} at t = {t:.9g} s (time event)"})
 
 
 def locator(sim, role: str, active, mult, step: float) -> EventLocator | None:
-    """The interval's :class:`EventLocator`, or None (no active component with an event indicator: the engine's
-    base steps run as they are). A component with an indicator that steps in a held interval is refused: events
-    are located in coupled intervals, where every component steps (a held interval holds the others' outputs, so
-    an event there would meet mechanics that cannot answer it)."""
+    """The interval's :class:`EventLocator`, or None (no active component with an event indicator and, in a
+    coupled interval, no time event to come: the engine's base steps run as they are)."""
     comps = sim.system.components
     watched = [n for n in active if comps[n].event_indicators]
-    if not watched:
+    if not watched and (role != COUPLED or pending_time_event(sim, active, sim.t) is None):
         return None
-    if role != COUPLED:
-        raise ContractError(f"component {watched[0]} declares event indicators and steps in the held phase "
-                            f"{sim.phase_name}: events are located in coupled intervals only (take it out of the "
-                            "held phase)")
-    return EventLocator(sim, active, mult, step)
+    return EventLocator(sim, role, active, mult, step)

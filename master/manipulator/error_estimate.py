@@ -149,15 +149,10 @@ def replay(comp, name: str, pulses: list[Pulse], now: float,
 
         du(t) = delta(t) + G dy(t),
 
-    delta the pulses' errors and dy the outputs' errors at the end of each step. A step of a network linear in
-    its inputs gives dy = dy0 + B c for an added input c (B measured at a segment's first step, one step per
-    input), so the step's loop input is c = (I - G B)^-1 G dy0, dy0 the error the step would leave without it.
-    The first step of a segment solves that exactly (a trial step and a restore); each later step is taken once,
-    with the last step's c plus what the last step missed of its own (``guess``), and reads its own c from its
-    outputs less B guess. Within a segment the applied inputs add up to the solved ones, one step late. Against
-    the analytic closed-loop response of a lumped node this is closer than an implicit solve at each step (a loop
-    of g R = -5 at a step of tau' / 33: 0.07 % against 3.4 % off), and bounded where the loop is far stiffer than
-    the step (tests/master/test_error_estimate.py)."""
+    delta the pulses' errors and dy the outputs' errors at the end of each step, solved step by step implicitly:
+    a step of a network linear in its inputs gives dy = dy0 + B c for an added input c (B measured once per
+    segment, one step per input), so c = (I - G B)^-1 G (dy0 - 0) with dy0 the error the step would leave
+    without it."""
     outs = [v.name for v in comp.variables if v.causality == "output" and v.type == "Real"]
     try:
         snap = comp.get_state()
@@ -206,8 +201,8 @@ def replay(comp, name: str, pulses: list[Pulse], now: float,
             B = lu = None
             for _ in range(n):
                 if perturbed and ins:
-                    if B is None:   # the segment's first step: its response to each added input, and the exact loop
-                        s0 = comp.get_state()
+                    s0 = comp.get_state()
+                    if B is None:   # the step's response to each added input (linear: once per segment)
                         comp.set_inputs(u_d)
                         comp.do_step(comp.time, h)
                         y0 = tap()
@@ -221,20 +216,15 @@ def replay(comp, name: str, pulses: list[Pulse], now: float,
                             B[:, m] = tap() - y0
                         comp.set_state(s0)
                         lu = scipy.linalg.lu_factor(np.eye(len(ins)) - G @ B)
-                        c, _ = dgetrs(*lu, G @ (y0 - base[n_step]))
-                        last = applied = c
-                        comp.set_inputs(inputs(d, c))
-                        comp.do_step(comp.time, h)
-                    else:
-                        # one step, not a trial, a restore and a step: the docstring's ``guess``
-                        guess = last + (last - applied)
-                        comp.set_inputs(inputs(d, guess))
-                        comp.do_step(comp.time, h)
-                        c, _ = dgetrs(*lu, G @ (tap() - B @ guess - base[n_step]))
-                        last, applied = c, guess
-                else:
                     comp.set_inputs(u_d)
                     comp.do_step(comp.time, h)
+                    dy0 = tap() - base[n_step]
+                    comp.set_state(s0)
+                    c, _ = dgetrs(*lu, G @ dy0)   # lu_solve's own LAPACK call, without its checks (per step)
+                    comp.set_inputs(inputs(d, c))
+                else:
+                    comp.set_inputs(u_d)
+                comp.do_step(comp.time, h)
                 if not perturbed:
                     taken.append(tap())
                 n_step += 1

@@ -269,10 +269,10 @@ class Checkpointer(Observer):
 
     def step(self, sim, t):
         if self.stop is not None and self.stop.signal:
-            if not self.interval_ends_only:
+            if not self.interval_ends_only and not sim.extra_interval:
                 self.save(sim, round((t - self._t_start) / self._step))
             raise RunInterrupted(f"{self.stop.signal} received: stopped at t = {t:.9g} s")
-        if self.interval_ends_only:
+        if self.interval_ends_only or sim.extra_interval:
             return
         if self.path is not None and time.perf_counter() - self._last >= self.every_s:
             self.save(sim, round((t - self._t_start) / self._step))
@@ -288,6 +288,10 @@ class Checkpointer(Observer):
     def interval_end(self, sim, used):
         # the position is the start of the next interval; the report already holds this one
         self._t_start = sim.t
+        if not self.interval_ends_only and (sim.extra_interval or used.reason == "event"):
+            # a timeline's held interval ended by an event, and the coupled rest of it (Timeline.run): no position
+            # of the timeline's own
+            return
         if self.interval_ends_only or time.perf_counter() - self._last >= min(self.every_s, END_GAP_S):
             self.save(sim, 0, next_interval=True)
 

@@ -184,11 +184,25 @@ class Timeline(Schedule):
         if any(sim.phases.role(iv.phase) == HELD for iv in self.intervals) and sim.cycle_source is None:
             raise ScheduleError("a schedule with thermal-only intervals needs a cycle (the period over which the "
                                 "held outputs are averaged: the scenario's [schedule] cycle)")
+        coupled = [iv.step for iv in self.intervals if sim.phases.role(iv.phase) != HELD]
         for i, iv in enumerate(self.intervals[first:], first):
             sim.interval_index = i
-            sim.run_interval(iv.phase, iv.duration, iv.step)
+            t_end = sim.t + iv.duration
+            used = sim.run_interval(iv.phase, iv.duration, iv.step)
             if sim.report.stopped:
                 break
+            if used.reason == "event" and coupled and t_end - sim.t > 1e-9 * max(1.0, t_end):
+                # an event ended a held interval (master/core/events.py): the rest of it runs coupled, at the
+                # timeline's coupled step; no checkpoint inside it (its position is no interval of the timeline:
+                # an interrupted run resumes from the checkpoint before)
+                sim.extra_interval = True
+                try:
+                    sim.run_interval(sim.phases.coupled, t_end - sim.t, min(coupled[0], t_end - sim.t),
+                                     reason="after an event")
+                finally:
+                    sim.extra_interval = False
+                if sim.report.stopped:
+                    break
 
 
 @register_schedule("monolithic")

@@ -132,14 +132,23 @@ def test_the_paper_engine_with_its_fuse_intact_is_the_paper_engine():
 
 @pytest.mark.slow
 def test_blade_loss_fuse_breaks_in_the_release_transient():
-    """blade_loss_fuse over its first 12 ms (~12 s of CPU in the generic loop, slow): the 14 252 N release at
+    """blade_loss_fuse over its first 12 ms (~8 s of CPU, most in the generic loop, slow): the 14 252 N release at
     0.01 s breaks the fuse within a millisecond (0.0105 s measured), at its 5 000 N."""
     from rotorcosim.master.api import simulate
 
     res = simulate("blade_loss_fuse", duration=0.012, figures=False, progress=False)
-    (ev,) = res.summary["events"]
-    assert ev["component"] == "fuse0" and 0.01 < ev["t_s"] < 0.011
+    (ev,) = [e for e in res.summary["events"] if e.get("component") == "fuse0"]
+    assert ev["kind"] == "break" and 0.01 < ev["t_s"] < 0.011
     assert ev["values"]["F_elastic_N"] == pytest.approx(5000.0, rel=1e-3)
+    # the comparison without the fuse, run over the same 12 ms: both sides of every quantity at #0 and #5, the
+    # force into the casing at #0 with the fuse the fuse's own (the largest it carried, at least its break load)
+    fc = res.summary["fuse_comparison"]
+    assert fc["without_fuse_scenario"] == "blade_loss_rundown" and fc["duration_s"] == pytest.approx(0.012)
+    for b in ("0", "5"):
+        for q in ("casing_force_peak_N", "max_contact_load_peak_N", "max_contact_stress_peak_MPa"):
+            assert fc["bearings"][b][q]["with_fuse"] > 0.0 and fc["bearings"][b][q]["without_fuse"] > 0.0
+    assert fc["bearings"]["0"]["casing_force_peak_N"]["with_fuse"] == res.summary["casing_force_peak_N"]["0"]
+    assert res.summary["casing_force_peak_N"]["0"] >= 5000.0
 
 
 @pytest.mark.parametrize("value, message", [
@@ -158,3 +167,36 @@ def test_bad_fuse_values_of_an_engine_run_are_one_line(fused_scenario, tmp_path,
     assert message in r.stderr and "Traceback" not in r.stderr, r.stderr
     assert len(r.stderr.strip().splitlines()) == 1, r.stderr
     assert not out.exists() or not any(out.iterdir())
+
+
+def test_an_engine_file_extends_another(tmp_path):
+    """[engine] extends: the base's data with the file's tables laid over it, key by key (engine_fuse.toml keeps
+    engine.toml's spools and hub h0's z_mm, changes h0's mass and adds [fuse.0]); the digest differs from the
+    base's; a base that does not exist, and a chain that loops, are one-line errors naming the file."""
+    root = fem.DEFAULT_FILE.parent
+    base, d0 = fem.load_data(root / "engine.toml")
+    data, d1 = fem.load_data(root / "engine_fuse.toml")
+    assert data["spool"] == base["spool"] and d1 != d0 and d1 == fem.file_digest(root / "engine_fuse.toml")
+    assert data["casing"]["hubs"]["h0"] == {"z_mm": 90, "mass": 1.5}
+    assert "extends" not in data["engine"] and data["fuse"]["0"]["break_load_N"] == 5000.0
+    (tmp_path / "a.toml").write_text('[engine]\nformat = 1\nextends = "missing.toml"\n')
+    with pytest.raises(FileNotFoundError, match="missing.toml"):
+        fem.load_data(tmp_path / "a.toml")
+    (tmp_path / "b.toml").write_text('[engine]\nformat = 1\nextends = "b.toml"\n')
+    with pytest.raises(ValueError, match="extends chain longer than 8 files"):
+        fem.load_data(tmp_path / "b.toml")
+
+
+@pytest.mark.slow
+def test_check_engine_lists_the_broken_fuse_critical_speeds(engine_folder, tmp_path):
+    """(~10 s of CPU: the critical speeds, damped peaks and Campbell diagram of both states; slow.) check-engine of an engine with a fuse: its report lists the forward critical speeds with the fuse broken
+    (and --json holds them under critical_speeds.fuse_states), next to the intact engine's."""
+    import json
+
+    path = _engine(engine_folder, "listed.toml", FUSE.format(mass=1.5, k=1e9, load=600.0, kb=1e7))
+    r = subprocess.run([sys.executable, "-m", "rotorcosim.master.cli", "check-engine", path, "--json",
+                        "--campbell", str(tmp_path / "c.png")], capture_output=True, text=True)
+    assert r.returncode == 0, r.stderr
+    (st,) = json.loads(r.stdout)["critical_speeds"]["fuse_states"]
+    assert st["label"] == "fuse broken" and st["forward_synchronous_rpm"][0] == pytest.approx(3707.0, abs=2.0)
+    assert (tmp_path / "c.png").stat().st_size > 0

@@ -15,12 +15,14 @@
 from __future__ import annotations
 
 import math
+import re
 
 import numpy as np
 import pytest
 from scipy.optimize import brentq
 
 from rotorcosim.components.airframe import example
+from rotorcosim.components.contract import ContractError
 from rotorcosim.components.airframe.modal import EXAMPLE, read, static_flexibility, to_toml
 from rotorcosim.components.registry import create
 from rotorcosim.components.rotor import model as fem
@@ -153,6 +155,9 @@ def test_bad_modal_file_is_one_line_naming_the_key(tmp_path, monkeypatch, capsys
     assert main(["check-engine", str(tmp_path / "engine.toml")]) == 2
     out = capsys.readouterr().out.splitlines()
     assert len(out) == 2 and key in out[1]
+    # a run: the airframe component refuses the file when it is made, before its ports are connected
+    with pytest.raises(ContractError, match=re.escape(key)):
+        create("airframe.modal", "airframe", {"model_file": str(tmp_path / "engine.toml")})
 
 
 def test_mount_on_a_missing_node_is_one_line(tmp_path, monkeypatch, capsys):
@@ -167,8 +172,6 @@ def test_mount_on_a_missing_node_is_one_line(tmp_path, monkeypatch, capsys):
 
 
 def test_the_format_pages_example_is_read(tmp_path):
-    import re
-
     page = (fem.DEFAULT_FILE.parents[3] / "docs" / "reference" / "airframe-format.md").read_text()
     (tmp_path / "a.toml").write_text(re.search(r"## An example\n.*?```toml\n(.*?)```", page, re.S).group(1))
     m = read(tmp_path / "a.toml")
@@ -176,3 +179,31 @@ def test_the_format_pages_example_is_read(tmp_path):
     # L^3 / 3 EI (the page's frequencies to 3 digits)
     assert static_flexibility(m, "tip")[1, 1] == pytest.approx(0.9954 * L ** 3 / (3.0 * EI), rel=2e-3)
     assert sorted(m.response) == ["mid_span"]
+
+
+def test_a_rotation_spring_carries_a_moment(tmp_path):
+    """A spring on a rotation (dir 3: about x) of a spool node, to an interface point whose shape has rotations:
+    the rotor gets its port, the airframe a moment output, and a held engine rotation settles at the static
+    moment of the spring in series with the airframe's rotational flexibility there (the retained modes')."""
+    k = 1.0e6                                         # N m/rad
+    engine = tmp_path / "engine.toml"
+    engine.write_text(f'[airframe]\nmodel = {str(EXAMPLE)!r}\n\n[mount.fwd]\ninterface = "pylon_fwd"\n'
+                      f'springs = [{{ node = ["pt", 5], dir = 3, k = {k!r}, c = 0.0 }}]\n'.replace("'", '"'))
+    comp = create("airframe.modal", "airframe", {"model_file": str(engine)})
+    assert comp.variable("M_fwd").size == 3 and comp.variable("X_mount_fwd").size == 1
+    comp.setup(0.0)
+    theta, h = 1e-4, 1e-3
+    comp.set_inputs({"X_mount_fwd": [theta], "V_mount_fwd": [0.0]})
+    for i in range(8000):                             # 8 s: measured within 3e-6 of the static value over the last 2
+        comp.do_step(i * h, h)
+    f_rr = static_flexibility(read(EXAMPLE), "pylon_fwd")[3, 3]      # k f_rr = 0.12: the airframe yields 11 %
+    assert comp.y["M_fwd"][0] == pytest.approx(k * theta / (1.0 + k * f_rr), rel=1e-4)
+    assert np.all(comp.y["F_fwd"] == 0.0)
+    # the engine side: the spring is in the model at the node's rotation, a port of one value
+    data = PYLON.read_text().replace('\n[mount.aft]\n', '\n[mount.rot]\ninterface = "pylon_fwd"\n'
+                                     'springs = [{ node = ["pt", 5], dir = 3, k = 1.0e6, c = 0.0 }]\n\n[mount.aft]\n')
+    data = data.replace('"../../airframe/data/pylon_wing.toml"', repr(str(EXAMPLE)).replace("'", '"'))
+    (tmp_path / "pylon.toml").write_text(data)
+    full = fem.load(tmp_path / "pylon.toml")
+    i = full.ports["mount_rot"][0]
+    assert full.K[i, i] - fem.load(PYLON).K[i, i] == pytest.approx(k)

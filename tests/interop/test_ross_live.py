@@ -108,3 +108,23 @@ def test_compressor_example_back_to_ross_has_rosss_matrices_at_every_speed(rs):
     for w in (300.0, 1000.0, 1500.0, 2200.0):                 # rad/s, within and beyond the tables' speeds
         for A, B in ((b.K(w), r.K(w)), (b.C(w), r.C(w))):
             assert np.allclose(A, B, rtol=0, atol=1e-10 * np.abs(B).max())
+
+
+@pytest.mark.slow
+def test_to_ross_of_a_fused_engine_gives_rosss_critical_speeds_intact_and_broken(tmp_path):
+    """(~60 s of CPU: ROSS's critical-speed search, twice; slow.) The textbook engine with bearing #0's housing on a fuse (1.5 kg; 1e9 N/m intact, 1e7 N/m broken) in ROSS
+    (the housing a PointMass, the fuse a BearingElement to the pedestal's node): ROSS's forward critical speeds
+    of the undamped rotor equal rotorcosim's with the fuse intact and with it broken (fuse_states) within 0.1 %;
+    the broken fuse lowers the first."""
+    from rotorcosim.cases.blade_loss import critical_speeds, new_engine
+    from rotorcosim.master.api import load_scenario
+
+    engine, scenario = new_engine.new_engine(tmp_path / "e")[:2]
+    engine.write_text(engine.read_text() + "\n[fuse.0]\nhousing_mass_kg = 1.5\nk_intact = 1.0e9\n"
+                      "damping = 2000.0\nbreak_load_N = 600.0\nk_broken = 1.0e7\n")
+    ours = critical_speeds.critical_speeds(str(engine), count=2, max_rpm=1e6, scenario=load_scenario(scenario))
+    for stage, speeds in ((0, ours["forward_synchronous_rpm"]),
+                          (1, ours["fuse_states"][0]["forward_synchronous_rpm"][:2])):
+        ref = _ross_forward_rpm(to_ross(engine, scenario=scenario, damped=False, fuse_stage=stage))[:2]
+        assert np.allclose(speeds, ref, rtol=1e-3), (stage, speeds, ref)
+    assert ours["fuse_states"][0]["forward_synchronous_rpm"][0] < 0.9 * ours["forward_synchronous_rpm"][0]
