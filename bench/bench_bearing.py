@@ -12,6 +12,7 @@ Prints:
 """
 from __future__ import annotations
 
+import checkout  # noqa: F401  (this checkout's rotorcosim, not an installed one: bench/checkout.py)
 import math
 import sys
 import time

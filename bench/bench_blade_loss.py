@@ -8,6 +8,7 @@ the master around them, over a thermo-mechanical interval of --profile-seconds a
 """
 from __future__ import annotations
 
+import checkout  # noqa: F401  (this checkout's rotorcosim, not an installed one: bench/checkout.py)
 import argparse
 import tempfile
 import time

@@ -11,6 +11,7 @@ generic path's profile by component, and the largest relative difference of the 
 """
 from __future__ import annotations
 
+import checkout  # noqa: F401  (this checkout's rotorcosim, not an installed one: bench/checkout.py)
 import argparse
 import time
 

@@ -9,6 +9,7 @@ than 1 %.
 """
 from __future__ import annotations
 
+import checkout  # noqa: F401  (this checkout's rotorcosim, not an installed one: bench/checkout.py)
 import argparse
 import tempfile
 from pathlib import Path

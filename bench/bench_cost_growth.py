@@ -13,6 +13,7 @@ Runs 1 and 2 share this process (caches warm after a first untimed run); no figu
 """
 from __future__ import annotations
 
+import checkout  # noqa: F401  (this checkout's rotorcosim, not an installed one: bench/checkout.py)
 import argparse
 import resource
 import subprocess

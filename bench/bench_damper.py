@@ -8,6 +8,7 @@ distinct journal states on a whirl orbit so that nothing is reused between calls
 """
 from __future__ import annotations
 
+import checkout  # noqa: F401  (this checkout's rotorcosim, not an installed one: bench/checkout.py)
 import argparse
 import math
 import statistics

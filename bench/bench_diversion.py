@@ -15,6 +15,7 @@ windmilling of each, and their ratio. Over ``--duration`` if given, else each sc
 """
 from __future__ import annotations
 
+import checkout  # noqa: F401  (this checkout's rotorcosim, not an installed one: bench/checkout.py)
 import argparse
 import subprocess
 import sys

@@ -14,6 +14,7 @@ per run the largest estimate against the largest true error. The target: every r
 """
 from __future__ import annotations
 
+import checkout  # noqa: F401  (this checkout's rotorcosim, not an installed one: bench/checkout.py)
 import argparse
 import json
 import tempfile

@@ -13,6 +13,7 @@ its CPU time; the estimate is for an unloaded machine.
 """
 from __future__ import annotations
 
+import checkout  # noqa: F401  (this checkout's rotorcosim, not an installed one: bench/checkout.py)
 import time
 
 import rotorcosim

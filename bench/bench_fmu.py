@@ -15,6 +15,7 @@ fresh process with an empty cache and again in another fresh process with the ca
 """
 from __future__ import annotations
 
+import checkout  # noqa: F401  (this checkout's rotorcosim, not an installed one: bench/checkout.py)
 import argparse
 import os
 import subprocess

@@ -6,6 +6,7 @@ Prints the wall time per base step of each (the difference is one pipe round tri
 """
 from __future__ import annotations
 
+import checkout  # noqa: F401  (this checkout's rotorcosim, not an installed one: bench/checkout.py)
 import argparse
 import tempfile
 import time

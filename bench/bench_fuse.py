@@ -12,6 +12,7 @@ Run it once on a quiet machine: the machine is shared.
 """
 from __future__ import annotations
 
+import checkout  # noqa: F401  (this checkout's rotorcosim, not an installed one: bench/checkout.py)
 import argparse
 import json
 import time

@@ -10,6 +10,7 @@ the Ecos engine (ecospy; needs Debian's libtbb12), set-up excluded, all measured
 """
 from __future__ import annotations
 
+import checkout  # noqa: F401  (this checkout's rotorcosim, not an installed one: bench/checkout.py)
 import argparse
 import sys
 import tempfile

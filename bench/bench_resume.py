@@ -9,6 +9,7 @@ summary bit for bit.
 """
 from __future__ import annotations
 
+import checkout  # noqa: F401  (this checkout's rotorcosim, not an installed one: bench/checkout.py)
 import argparse
 import os
 import shutil

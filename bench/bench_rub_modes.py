@@ -27,6 +27,7 @@ of bearing #0. Prints
 """
 from __future__ import annotations
 
+import checkout  # noqa: F401  (this checkout's rotorcosim, not an installed one: bench/checkout.py)
 import copy
 import csv
 import math

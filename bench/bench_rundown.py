@@ -19,6 +19,7 @@ quiet machine): its wall time and timeline. Run it once, not in a loop: the mach
 """
 from __future__ import annotations
 
+import checkout  # noqa: F401  (this checkout's rotorcosim, not an installed one: bench/checkout.py)
 import argparse
 import json
 import tempfile

@@ -14,6 +14,7 @@ runs, with damper #0's O-ring at 5.8e6 N/m and bearing #0's Palmgren factor at 1
 """
 from __future__ import annotations
 
+import checkout  # noqa: F401  (this checkout's rotorcosim, not an installed one: bench/checkout.py)
 import argparse
 import tempfile
 import time

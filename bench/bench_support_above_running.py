@@ -33,6 +33,7 @@ intermediate bearing and the output coupling's mass at #5 as a third knob (solve
 """
 from __future__ import annotations
 
+import checkout  # noqa: F401  (this checkout's rotorcosim, not an installed one: bench/checkout.py)
 import copy
 import math
 import sys

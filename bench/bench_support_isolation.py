@@ -24,6 +24,7 @@ Prints, from the paper's Table 5, the shipped comparison (docs/results/paper_com
 """
 from __future__ import annotations
 
+import checkout  # noqa: F401  (this checkout's rotorcosim, not an installed one: bench/checkout.py)
 import copy
 import csv
 import math

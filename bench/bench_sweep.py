@@ -8,6 +8,7 @@ ratio; pass 120 for the full 2-minute runs, about 7 times longer).
 """
 from __future__ import annotations
 
+import checkout  # noqa: F401  (this checkout's rotorcosim, not an installed one: bench/checkout.py)
 import argparse
 import tempfile
 from pathlib import Path

@@ -12,6 +12,7 @@ one (cases/blade_loss/compare.py: --timing-runs, default 6, half before and half
 """
 from __future__ import annotations
 
+import checkout  # noqa: F401  (this checkout's rotorcosim, not an installed one: bench/checkout.py)
 import argparse
 import statistics
 import tempfile

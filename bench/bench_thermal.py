@@ -14,6 +14,7 @@ a few hundred kelvin (see the printed adiabatic rise of the housing).
 """
 from __future__ import annotations
 
+import checkout  # noqa: F401  (this checkout's rotorcosim, not an installed one: bench/checkout.py)
 import csv
 import time
 

@@ -22,6 +22,7 @@ For each bearing, at the paper's below-rub powers (Table 5: #0 348.3 W drag + 30
 """
 from __future__ import annotations
 
+import checkout  # noqa: F401  (this checkout's rotorcosim, not an installed one: bench/checkout.py)
 import contextlib
 import copy
 

@@ -236,6 +236,10 @@ class Simulation:
             # a held interval ends at a scheduled change (a fuel cut): it happens in the coupled interval after
             nxt = events.pending_time_event(self, list(self.system.components), self.t)
             tol = 1e-9 * max(1.0, self.t + duration)
+            if nxt is not None and nxt[0] <= self.t + tol:
+                # due where the coupled interval before ended (its last step's end): recorded there
+                events.record_time(self, nxt[1], nxt[0])
+                nxt = events.pending_time_event(self, list(self.system.components), self.t)
             if nxt is not None and self.t + tol < nxt[0] < self.t + duration - tol:
                 duration, reason = nxt[0] - self.t, "event"
         nsteps = max(1, round(duration / step))
@@ -276,7 +280,7 @@ class Simulation:
                 if runner is not None:
                     # the compiled loop up to the base step of the next time event (events.py), if any
                     ke = located.time_event_step(t_start, k) if located is not None else None
-                    k_end = nsteps if ke is None else min(ke, nsteps)
+                    k_end = nsteps if ke is None else min(ke[0], nsteps)
                     if k < k_end:
                         try:
                             k = runner.run(k, k_end, t_start, stop,
@@ -288,6 +292,10 @@ class Simulation:
                             break
                     if k >= nsteps:
                         break
+                    if ke is not None and ke[1] and k == ke[0]:
+                        # a time event on the grid: recorded there, and the compiled loop goes on
+                        located.record_due(t_start + k * step)
+                        continue
                     # base step k is the generic loop's (a time event in it, or an event the compiled loop stopped
                     # at: runner.Runner.run), then the compiled loop again
                     if located is not None:

@@ -22,8 +22,9 @@ held over the step, a contact switching on), and bisection's count is fixed in a
 re-steps (8 for a 20 us step at 0.1 us).
 
 Time events (a component's ``next_event``: the spool's fuel cut) go through the same locator in coupled intervals:
-the base step that holds one is split at it (a single-rate interval; else the component applies it in its own
-step), ``update_discrete(t, [])`` is called and the event recorded (``trigger`` "time"). A held interval ends at a
+the base step that holds one is split at it (a single-rate interval; else it is applied at that step's end), one on
+the grid is taken at the start of its step (the compiled loop runs to it and goes on), ``update_discrete(t, [])``
+is called and the event recorded (``trigger`` "time"). A held interval ends at a
 time event (master/simulation.py) and at a located event of a component that steps in it
 (:attr:`EventLocator.ended_at`); a coupled interval follows (master/schedule).
 
@@ -112,15 +113,26 @@ class EventLocator:
         """Read the indicators again from the components' present state (the compiled loop stepped them since)."""
         self.g = self._values()
 
-    def time_event_step(self, t0: float, k: int) -> int | None:
-        """The base step (of the interval that starts at ``t0``, from ``k`` on) in which the next time event falls:
-        the compiled loop stops before it, and :meth:`base_step` takes it; None: none to come."""
+    def time_event_step(self, t0: float, k: int) -> tuple[int, bool] | None:
+        """Where the next time event falls in the interval that starts at ``t0`` [s], from base step ``k`` on:
+        (j, True) at the start of base step j (on the grid: the compiled loop runs to it, :meth:`record_due`
+        records it and the compiled loop goes on), (j, False) inside base step j (the compiled loop stops before
+        it, and :meth:`base_step` splits it); None: none to come."""
         nxt = pending_time_event(self.sim, self.timed, t0 + k * self.h)
         if nxt is None:
             return None
-        # step j spans (t0 + j h, t0 + (j + 1) h]; an event at the interval's start is step 0's
-        j = int(np.ceil((nxt[0] - t0) / self.h - 1e-9)) - 1
-        return max(k, j)
+        x = (nxt[0] - t0) / self.h
+        m = int(round(x))
+        if m >= k and _near(nxt[0], t0 + m * self.h):
+            return m, True
+        # step j spans (t0 + j h, t0 + (j + 1) h]
+        return max(k, int(np.ceil(x - 1e-9)) - 1), False
+
+    def record_due(self, t: float) -> None:
+        """Record the time events due at ``t`` [s], the start of a base step (nothing to split)."""
+        nxt = pending_time_event(self.sim, self.timed, t)
+        if nxt is not None and (nxt[0] <= t or _near(nxt[0], t)):
+            record_time(self.sim, nxt[1], nxt[0])
 
     def _values(self) -> list[list[float]]:
         return [np.asarray(c.indicators(), dtype=float).tolist() for _, c in self.watched]
@@ -170,13 +182,15 @@ class EventLocator:
         h = self.h
         a, b = t0 + k * h, t0 + (k + 1) * h
         nxt = pending_time_event(self.sim, self.timed, a) if self.timed else None
-        if nxt is not None and (nxt[0] <= b or _near(nxt[0], b)):
+        # (an event at the step's end is the next step's, at its start: the sample at the end precedes it)
+        if nxt is not None and nxt[0] < b and not _near(nxt[0], b):
             te, names = nxt
             if te <= a or _near(te, a):
                 self._record_time(names, te)
                 self._span(a, b, (t0, k))
-            elif _near(te, b) or not self.split:
-                # at the step's end, or applied by the component within its own step (a multi-rate interval)
+            elif not self.split:
+                # a multi-rate interval: applied at the end of the step that holds it (by the component within its
+                # own step, or by update_discrete there), recorded at its time
                 self._span(a, b, (t0, k))
                 self._record_time(names, te)
             else:
@@ -249,10 +263,7 @@ class EventLocator:
             a = t_event
 
     def _append(self, entry: dict) -> None:
-        if self.sim.report.events is None:
-            self.sim.report.events = []
-        self.sim.report.events.append(entry)
-        self.sim.hold.located(entry["component"], entry["t_s"])
+        append(self.sim, entry)
 
     def _record(self, name: str, comp, t: float, which: list[int]) -> None:
         what = comp.update_discrete(t, which)
@@ -265,16 +276,28 @@ class EventLocator:
                        f"{self.tolerance[name]:.3g} s)"})
 
     def _record_time(self, names: list[str], t: float) -> None:
-        """The time event of the components ``names`` at ``t`` [s]: ``update_discrete(t, [])`` (FMI 3.0's time
-        event) and the record (``trigger`` "time", no indicator, located exactly)."""
-        for name in names:
-            comp = self.sim.system.components[name]
-            what = comp.update_discrete(t, [])
-            kind = what.get("kind", "time")
-            self._append({
-                "t_s": t, "component": name, "kind": kind, "indicators": [], "trigger": "time",
-                "values": what.get("values", {}), "tolerance_s": 0.0,
-                "message": f"{name}: {kind} at t = {t:.9g} s (time event)"})
+        record_time(self.sim, names, t)
+
+
+def append(sim, entry: dict) -> None:
+    """An event into the run's report (``sim.report.events``) and the hold's (``located``)."""
+    if sim.report.events is None:
+        sim.report.events = []
+    sim.report.events.append(entry)
+    sim.hold.located(entry["component"], entry["t_s"])
+
+
+def record_time(sim, names: list[str], t: float) -> None:
+    """The time event of the components ``names`` at ``t`` [s]: ``update_discrete(t, [])`` (FMI 3.0's time event)
+    and the record (``trigger`` "time", no indicator, located exactly)."""
+    for name in names:
+        comp = sim.system.components[name]
+        what = comp.update_discrete(t, [])
+        kind = what.get("kind", "time")
+        append(sim, {
+            "t_s": t, "component": name, "kind": kind, "indicators": [], "trigger": "time",
+            "values": what.get("values", {}), "tolerance_s": 0.0,
+            "message": f"{name}: {kind} at t = {t:.9g} s (time event)"})
 
 
 def locator(sim, role: str, active, mult, step: float) -> EventLocator | None:

@@ -44,10 +44,11 @@ import numpy as np
 
 #: load classes of the rainflow count: the range resolution is the series' span over this
 LOAD_CLASSES = 4096
-#: cycle ranges ``S`` with their counts ``n`` (1 a full cycle, 0.5 a half)
 Counts = namedtuple("Counts", "S n")
-#: a load spectrum: bin centres and counts of the range histogram; ranges and cycles reaching them (exceedance)
+Counts.__doc__ = "Cycle ranges ``S`` with their counts ``n`` (1 a full cycle, 0.5 a half)."
 Spectrum = namedtuple("Spectrum", "bin_S bin_n exceed_S exceed_n")
+Spectrum.__doc__ = ("A load spectrum: the range histogram's bin centres ``bin_S`` and counts ``bin_n``; the ranges "
+                    "``exceed_S`` and the cycles ``exceed_n`` reaching them (cumulative exceedance).")
 EMPTY = Counts(np.zeros(0), np.zeros(0))
 
 

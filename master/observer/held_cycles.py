@@ -91,6 +91,7 @@ class Stream:
         self.residue = np.zeros(0)
 
     def add(self, y: np.ndarray) -> None:
+        """Count the next chunk ``y`` of the series after the residue of the chunks before."""
         z = np.concatenate([self.residue, np.asarray(y, dtype=float)])
         if z.size < 3 or not np.ptp(z) > 0.0:
             self.residue = z[-2:] if z.size else z
@@ -112,6 +113,7 @@ class Stream:
         self.residue = residue
 
     def counts(self) -> Counts:
+        """Every cycle counted so far: the closed ones, and the residue's ranges as half cycles."""
         half = np.abs(np.diff(self.residue)) if self.residue.size > 1 else np.zeros(0)
         return combine(*self.closed, Counts(half, np.full(half.size, 0.5)))
 
