@@ -7,12 +7,14 @@ import error, it is not skipped.
 from __future__ import annotations
 
 import zipfile
+from pathlib import Path
 
 import numpy as np
 import pytest
 
 from rotorcosim.components import registry
 from rotorcosim.components.contract import ContractError
+from rotorcosim.components.rotor.model import DEFAULT_FILE
 from rotorcosim.fmus.export import ExportError, export_component
 from rotorcosim.fmus.description import describe, ports_of
 from rotorcosim.fmus.model_description import read_annotation
@@ -23,11 +25,14 @@ from rotorcosim.fmus.model_description import read_annotation
 QUICK = {"damper.fast": {"damper": 0, "n_theta": 32, "n_z": 8}, "damper.fe": {"damper": 0, "n_theta": 32, "n_z": 8},
          **{k: {"bearing": 0} for k in ("bearing.hertz", "bearing.hertz_spinning", "rubring.contact",
                                          "rubring.contact_spinning", "thermal.network", "thermal.network_spinning")},
-         "spool.speed": {"inertia": 0.0396}, "fuse.support": {"k_intact": 4.0e6, "break_load": 1500.0}}
+         "spool.speed": {"inertia": 0.0396}, "fuse.support": {"k_intact": 4.0e6, "break_load": 1500.0},
+         # the airframe's ports are its engine file's mounts (the paper engine on the example pylon and wing)
+         "airframe.modal": {"model_file": str(Path(DEFAULT_FILE).with_name("engine_on_pylon.toml"))}}
 #: inputs held at typical non-zero values where the start values would leave the component idle
 TYPICAL = {"damper.fast": {"X_journal[1]": 1e-4, "V_journal[2]": 0.05},
            "damper.fe": {"X_journal[1]": 1e-4, "V_journal[2]": 0.05},
-           "testing.mass": {"F": 1.0}, "testing.thermal_node": {"P": 100.0}, "fuse.support": {"X[1]": 1e-4}}
+           "testing.mass": {"F": 1.0}, "testing.thermal_node": {"P": 100.0}, "fuse.support": {"X[1]": 1e-4},
+           "airframe.modal": {"X_mount_aft[1]": 1e-5}}
 
 
 def _importable():
