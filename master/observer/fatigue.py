@@ -39,7 +39,6 @@ from __future__ import annotations
 
 from collections import namedtuple
 
-import fatpack
 import numpy as np
 
 #: load classes of the rainflow count: the range resolution is the series' span over this
@@ -52,16 +51,24 @@ Spectrum.__doc__ = ("A load spectrum: the range histogram's bin centres ``bin_S`
 EMPTY = Counts(np.zeros(0), np.zeros(0))
 
 
+def library():
+    """fatpack, imported at the first count: it imports numpy.f2py (~0.15 s), which a run without fatigue content
+    would pay at start-up."""
+    import fatpack
+
+    return fatpack
+
+
 def rainflow(y, k: int = LOAD_CLASSES) -> Counts:
     """The rainflow cycles of series ``y``: closed cycles count 1, the residue's ranges 1/2 each."""
     y = np.asarray(y, dtype=float).ravel()
     if y.size < 3 or not np.ptp(y) > 0.0:
         return EMPTY
-    _, at = fatpack.find_reversals(y, k=k)
+    _, at = library().find_reversals(y, k=k)
     if at.size < 2:
         return EMPTY
     # the classes find the turning points; their ranges are the series' own values there, not the classes' centres
-    cycles, residue = fatpack.find_rainflow_cycles(y[at])
+    cycles, residue = library().find_rainflow_cycles(y[at])
     full = np.abs(cycles[:, 1] - cycles[:, 0]) if cycles.size else np.zeros(0)
     half = np.abs(np.diff(residue))
     return Counts(np.concatenate([full, half]), np.concatenate([np.ones(full.size), np.full(half.size, 0.5)]))
@@ -89,7 +96,7 @@ def miner_damage(c: Counts, m: float, s_c: float, n_c: float) -> float:
     keep = c.S > 0.0            # a cycle of no range does no damage (and its endurance is infinite)
     if not keep.any():
         return 0.0
-    curve = fatpack.LinearEnduranceCurve(s_c)
+    curve = library().LinearEnduranceCurve(s_c)
     curve.m, curve.Nc = m, n_c
     return float(curve.find_miner_sum(np.column_stack([c.S[keep], c.n[keep]])))
 

@@ -21,11 +21,10 @@ from __future__ import annotations
 
 import math
 
-import fatpack
 import numpy as np
 
 from rotorcosim.components.contract import COUPLED
-from rotorcosim.master.observer.fatigue import EMPTY, LOAD_CLASSES, Counts, combine, rainflow, scaled
+from rotorcosim.master.observer.fatigue import EMPTY, LOAD_CLASSES, Counts, combine, library, rainflow, scaled
 from rotorcosim.master.observer.observer import Observer
 
 
@@ -97,7 +96,7 @@ class Stream:
             self.residue = z[-2:] if z.size else z
             return
         try:
-            _, at = fatpack.find_reversals(z, k=LOAD_CLASSES)
+            _, at = library().find_reversals(z, k=LOAD_CLASSES)
         except IndexError:      # fatpack's answer to a series without an inner turning point
             at = np.array([0, z.size - 1])
         rev = z[at]
@@ -107,7 +106,7 @@ class Stream:
                 rev = np.append(rev, z[-1])
             elif (z[-1] - rev[-1]) * (rev[-1] - rev[-2]) > 0.0:
                 rev[-1] = z[-1]
-        cycles, residue = fatpack.find_rainflow_cycles(rev) if rev.size > 2 else (np.zeros((0, 2)), rev)
+        cycles, residue = library().find_rainflow_cycles(rev) if rev.size > 2 else (np.zeros((0, 2)), rev)
         if cycles.size:
             self.closed.append(Counts(np.abs(cycles[:, 1] - cycles[:, 0]), np.ones(cycles.shape[0])))
         self.residue = residue
