@@ -92,9 +92,16 @@ class EventLocator:
         #: base steps can be split at a time event (a single-rate interval with explicit coupling); else the
         #: component applies it within its own step, and it is recorded at its time
         self.split = not multi and self.engine.settings.iterations == 1
-        if multi and self.watched:
-            raise ContractError(f"event indicators of {names}: every component must step at the interval's step "
-                                f"for the master to locate their events; {', '.join(multi)} step(s) slower")
+        #: the components at the base step (the event location re-steps them) and those slower, each with its
+        #: step multiple (they step at the end of a split base step that ends one of their windows)
+        self.fast = [n for n in self.engine.active if mult.get(n, 1) == 1]
+        self.slow = [(n, int(mult[n])) for n in self.engine.active if mult.get(n, 1) != 1]
+        slow_live = [n for n, c in self.watched if mult.get(n, 1) != 1 and len(c.indicators())]
+        if slow_live:
+            raise ContractError(f"event indicators of {', '.join(slow_live)}: a component whose event the master "
+                                "locates must step at the interval's step (it is re-stepped within a base step); "
+                                f"{', '.join(slow_live)} step(s) slower")
+        self.watched = [(n, c) for n, c in self.watched if mult.get(n, 1) == 1]
         if self.engine.settings.iterations != 1 and self.watched:
             raise ContractError(f"event indicators of {names}: the master locates events with explicit coupling "
                                 "([algorithm] iterations = 1)")
@@ -106,6 +113,7 @@ class EventLocator:
                                     "of the interval it is located in")
             self.tolerance[n] = tol
         self.comps = [(n, comps[n]) for n in self.engine.active]
+        self._fast_comps = [(n, comps[n]) for n in self.fast]
         self.g = self._values()
         self.ended_at: float | None = None
 
@@ -147,23 +155,26 @@ class EventLocator:
                 out.append((i, which))
         return out
 
-    def _save(self):
+    def _save(self, comps):
+        """What a base step from here changes: the components ``comps`` ((name, component): those that step in
+        it), the links' state and the steps taken."""
         eng = self.engine
-        return ([c.get_state() for _, c in self.comps],
+        return (comps, [c.get_state() for _, c in comps],
                 [(link.state[:], link.vectors[:]) for link in eng.links], dict(eng.steps_taken))
 
     def _restore(self, saved) -> None:
-        states, links, steps = saved
-        for (_, c), s in zip(self.comps, states):
+        comps, states, links, steps = saved
+        for (_, c), s in zip(comps, states):
             c.set_state(s)
         for link, (m, v) in zip(self.engine.links, links):
             link.state[:] = m
             link.vectors[:] = v
         self.engine.steps_taken.update(steps)
 
-    def _step(self, t: float, tau: float, windows: bool) -> None:
-        """Every active component one step from ``t`` over ``tau`` [s]; the hold's hand-off windows record it only
-        with ``windows`` (a step that ends on the base steps' grid)."""
+    def _step(self, t: float, tau: float, windows: bool, end: float | None = None) -> None:
+        """The components at the base step one step from ``t`` over ``tau`` [s] (``end``: the base step's end it
+        reaches, exactly); the hold's hand-off windows record it only with ``windows`` (a step that ends on the base
+        steps' grid)."""
         eng = self.engine
         kept = []
         if not windows:
@@ -171,7 +182,7 @@ class EventLocator:
             for link, _ in kept:
                 link.window = None
         try:
-            eng.partial_step(t, tau)
+            eng.partial_step(t, tau, self.fast, t_end=end)
         finally:
             for link, w in kept:
                 link.window = w
@@ -208,14 +219,17 @@ class EventLocator:
             self._advance(a, b, base, windows)
             self.g = self._values()
             return
-        saved = self._save()
+        # the slow components that step at this base step's end (a multi-rate interval): saved with the fast ones
+        due = [] if base is None else [n for n, m in self.slow if (base[1] + 1) % m == 0]
+        comps = self.engine.system.components
+        saved = self._save(self._fast_comps + [(n, comps[n]) for n in due])
         self._advance(a, b, base, windows)
         g = self._values()
         crossed = self._crossed(g)
         if not crossed:
             self.g = g
             return
-        self._locate(saved, a, b, crossed, windows)
+        self._locate(saved, a, b, crossed, windows, due)
 
     def _advance(self, a, b, base, windows) -> None:
         if base is not None:
@@ -223,16 +237,20 @@ class EventLocator:
         else:
             self._step(a, b - a, windows)
 
-    def _locate(self, saved, a: float, b: float, crossed, windows: bool = True) -> None:
+    def _locate(self, saved, a: float, b: float, crossed, windows: bool = True, due=()) -> None:
         """The system stepped from ``a`` (state ``saved``) to ``b`` [s] and the indicators ``crossed`` changed sign:
-        find the first event, hand it over, complete the step to ``b``; again while the remainder has one. In a
-        held interval the event ends it (:attr:`ended_at`): the step is not completed."""
+        find the first event, hand it over, complete the step to ``b``; again while the remainder has one. The
+        components at the base step are re-stepped; the slow ones ``due`` (a multi-rate interval: those whose
+        window ends at ``b``) step once at ``b``, after the fast ones have reached it. In a held interval the event
+        ends it (:attr:`ended_at`): the step is not completed."""
+        whole = True  # the state is still the first step's to b (the slow ones stepped in it)
         while True:
             tol = min(self.tolerance[self.watched[i][0]] for i, _ in crossed)
             lo, hi, at_hi = 0.0, b - a, True
             while hi - lo > tol:
                 mid = 0.5 * (lo + hi)
                 self._restore(saved)
+                whole = False
                 self._step(a, mid, windows=False)
                 found = self._crossed(self._values())
                 if found:
@@ -243,7 +261,8 @@ class EventLocator:
             at_end = b - t_event <= 1e-12 * max(1.0, abs(b))
             if not at_hi:
                 self._restore(saved)
-                self._step(a, hi, windows=at_end and windows)
+                whole = False
+                self._step(a, hi, windows=at_end and windows, end=b if at_end else None)
             for i, which in crossed:
                 name, comp = self.watched[i]
                 self._record(name, comp, t_event, which)
@@ -252,15 +271,18 @@ class EventLocator:
                 self.ended_at = t_event
                 return
             if at_end:
-                return
-            saved = self._save()
-            self._step(t_event, b - t_event, windows=windows)
+                break
+            saved = self._save(self._fast_comps)
+            whole = False
+            self._step(t_event, b - t_event, windows=windows, end=b)
             g = self._values()
             crossed = self._crossed(g)
             if not crossed:
                 self.g = g
-                return
+                break
             a = t_event
+        if not whole:
+            self.engine.fire(due, b)
 
     def _append(self, entry: dict) -> None:
         append(self.sim, entry)
