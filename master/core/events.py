@@ -44,6 +44,7 @@ from __future__ import annotations
 import numpy as np
 
 from rotorcosim.components.contract import COUPLED, Component, ContractError
+from rotorcosim.master.core import links
 
 
 def timed(comp) -> bool:
@@ -289,6 +290,10 @@ class EventLocator:
 
     def _record(self, name: str, comp, t: float, which: list[int]) -> None:
         what = comp.update_discrete(t, which)
+        # its outputs may jump here: the links that extrapolate them restart their history from the new values
+        for link in self.engine.links:
+            if link.src is comp and link.real and link.produce_kind == links.PROD_HIST:
+                links.restart_history(comp.y[link.sport], 0, link.vectors, 0, link.n, link.state, t)
         kind = what.get("kind", "event")
         indicators = [comp.event_indicators[j] for j in which]
         self._append({

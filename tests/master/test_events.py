@@ -285,3 +285,20 @@ def test_a_power_step_at_a_time_event_reaches_the_thermal_network_exactly():
         sfd.append(T[7])
     rise = np.array(sfd) - T_init[7]
     assert 0.5 < rise.max() < 0.7 and rise[-1] < rise.max()
+
+
+def test_the_base_step_of_an_event_is_one_sample_of_the_hand_off_window():
+    """The hold's hand-off window (the switch's power into a component stepped in the held phase, cycles of 10
+    samples at 1 ms) over a coupled interval of 0.3 s with an event at 0.2484 s: the event's base step is sampled once
+    (its first, rolled back step's sample is replaced by the completed step's, at the same time): 30 whole cycles,
+    none begun; the cycle holding the event has the power on at 8 of its 10 step ends (0.241-0.248 s), mean 800 W."""
+    comps = {"m1": create("testing.mass", "m1", {"m": 1.0, "k": 40.0, "x0": 0.1}),
+             "w": Switch("w", {"event_tolerance": 1e-7, "P0": 1000.0}), "meter": Meter("meter")}
+    comps["meter"].phases = frozenset({"TM", "TO"})
+    sim = Simulation(System(comps, [Connection("m1.x", "w.x"), Connection("w.P", "meter.P")],
+                            inputs={"m1.F": np.zeros(1)}), order=list(comps), cycle=0.01)
+    report = sim.run(Timeline([Interval("TM", duration=0.3, step=1e-3)]))
+    assert [round(e["t_s"], 4) for e in report.events] == [0.2484]
+    (ho,) = sim.hold.handoffs
+    assert (len(ho.cycles), ho.w.cn) == (30, 0)
+    assert [mean for _, mean in ho.cycles[23:26]] == [1000.0, 800.0, 0.0]
