@@ -97,7 +97,6 @@ def fused_scenario(engine_folder):
                   '[templates]\nbearing = ["0", "5"]\nrubring = ["0", "5"]\nfuse = ["0"]\n'
                   '[algorithm]\norder = ["rotor", "bearing{bearing}", "damper{bearing}", "rubring{rubring}", '
                   '"fuse{fuse}", "thermal{bearing}"]\n'
-                  '[components.thermal0]\nstep = 5e-6\n[components.thermal5]\nstep = 5e-6\n'
                   '[outputs]\nrecord = ["fuse0.F_support", "fuse0.F_rotor", "fuse0.broken"]\n')
     return str(sc)
 
