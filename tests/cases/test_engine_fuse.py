@@ -67,6 +67,28 @@ def test_intact_and_broken_critical_speeds_against_the_engine_without_a_fuse(eng
     assert broken["forward_synchronous_rpm"][0] < 0.9 * plain[0]
 
 
+def test_two_fuses_are_reported_in_each_combination_of_their_stages(engine_folder):
+    """Fuses under both bearings' housings (#0 and #5, each 1 g on 1e12 N/m, 1e7 N/m broken): fuse_states lists
+    the three combinations of their stages (#5 broken alone, #0 broken alone, both), each as the engine without
+    fuses whose broken bearings' damper springs are in series with 1e7 N/m (critical speeds within 0.01 %)."""
+    fuse5 = FUSE.replace("[fuse.0]", "[fuse.5]").format(mass=1e-3, k=1e12, load=3000.0, kb=1e7)
+    path = _engine(engine_folder, "two.toml", FUSE.format(mass=1e-3, k=1e12, load=3000.0, kb=1e7) + fuse5)
+    states = fuse_states(fem.load(path), 3, 30000.0)
+    assert [st["stages"] for st in states] == [{"0": 0, "5": 1}, {"0": 1, "5": 0}, {"0": 1, "5": 1}]
+    assert [st["label"] for st in states] == ["fuse 0 intact, fuse 5 broken", "fuse 0 broken, fuse 5 intact",
+                                              "fuse 0 broken, fuse 5 broken"]
+    base = (engine_folder / "engine.toml").read_text()
+    series = 1.0 / (1.0 / 5.254e6 + 1.0 / 1e7)
+    for st in states:
+        parts = base.split("[damper.")
+        for i, part in enumerate(parts[1:], 1):
+            if st["stages"][part.split("]", 1)[0]]:
+                parts[i] = part.replace("k_spring = 5.254e6", f"k_spring = {series!r}", 1)
+        soft = engine_folder / "soft_two.toml"
+        soft.write_text("[damper.".join(parts))
+        assert st["forward_synchronous_rpm"] == pytest.approx(_forward(soft), rel=1e-4), st["label"]
+
+
 @pytest.mark.parametrize("text, message", [
     ("\n[fuse.7]\nhousing_mass_kg = 1.0\nk_intact = 1e9\nbreak_load_N = 1000.0\n",
      "[fuse.7]: [attach] has no bearing7"),
