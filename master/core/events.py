@@ -28,9 +28,16 @@ is called and the event recorded (``trigger`` "time"). A held interval ends at a
 time event (master/simulation.py) and at a located event of a component that steps in it
 (:attr:`EventLocator.ended_at`); a coupled interval follows (master/schedule).
 
-What it needs: every active component at the interval's base step (a single-rate interval; a multi-rate one with
-an event indicator is refused with the reason) and explicit coupling (one pass per step). A hand-off window of the
-thermal-only hold records the base step's end only. The compiled loop runs such an interval too when the
+In a multi-rate interval only the components at the base step are re-stepped (a slower one steps once per window,
+at its end): the locator saves them and the slower ones whose window ends with the base step, and where an event
+splits the base step those step once at its end, after the others (:meth:`EventLocator._locate`). At an event the
+links that extrapolate the component's outputs restart their history (links.restart_history: the consumer's next
+step holds the value after the jump).
+
+What it needs: the components with a live indicator at the interval's base step (one stepping slower is refused
+with the reason) and explicit coupling (one pass per step). A hand-off window of the thermal-only hold records the
+base step's end only (the first, rolled back step's sample is replaced by the completed step's, at the same
+time). The compiled loop runs such an interval too when the
 components' kernels report their indicators' changes of sign (``KernelComponent.KERNEL_EVENTS``, status ``EVENT``):
 it stops at the base step of an event, rolled back to its start (master/compiled/runner.py), the locator takes
 that step (:meth:`EventLocator.resync` first: the compiled loop stepped the components since) and the compiled
