@@ -67,6 +67,29 @@ def test_intact_and_broken_critical_speeds_against_the_engine_without_a_fuse(eng
     assert broken["forward_synchronous_rpm"][0] < 0.9 * plain[0]
 
 
+def test_the_combinations_of_fuse_stages_and_a_run_s_configurations_per_fuse():
+    """linear_engine.fuse_combinations: every combination of the fuses' stages but the all-intact one, the first
+    fuse's stage varying slowest (one fuse: its stages in turn); modes.fuse_breaks: after each break of a run, each
+    fuse at the stage its own breaks reached (the other fuses as they were)."""
+    from types import SimpleNamespace
+
+    from rotorcosim.cases.blade_loss.linear_engine import fuse_combinations
+    from rotorcosim.cases.rundown.modes import fuse_breaks
+
+    assert fuse_combinations({"fuse": {"0": {"stages": 2}}}) == [{"0": 1}, {"0": 2}]
+    assert fuse_combinations({"fuse": {"0": {}, "5": {"stages": 2}}}) == [
+        {"0": 0, "5": 1}, {"0": 0, "5": 2}, {"0": 1, "5": 0}, {"0": 1, "5": 1}, {"0": 1, "5": 2}]
+    assert fuse_combinations({}) == []
+    fuse = SimpleNamespace(p={"k_intact": 1e9})
+    events = [{"component": "fuse5", "kind": "break", "t_s": 0.011, "values": {}},
+              {"component": "spool_pt", "kind": "time", "t_s": 0.012},
+              {"component": "fuse0", "kind": "break", "t_s": 0.013, "values": {"stage": 1}},
+              {"component": "fuse5", "kind": "break", "t_s": 0.014, "values": {"stage": 2}}]
+    comps = {"fuse0": fuse, "fuse5": fuse, "spool_pt": SimpleNamespace(p={})}
+    assert [(t, st) for t, st, _ in fuse_breaks(events, comps)] == [
+        (0.011, {"5": 1}), (0.013, {"5": 1, "0": 1}), (0.014, {"5": 2, "0": 1})]
+
+
 def test_two_fuses_are_reported_in_each_combination_of_their_stages(engine_folder):
     """Fuses under both bearings' housings (#0 and #5, each 1 g on 1e12 N/m, 1e7 N/m broken): fuse_states lists
     the three combinations of their stages (#5 broken alone, #0 broken alone, both), each as the engine without
