@@ -92,6 +92,13 @@ class Airframe(PositionalKernelComponent):
         self.variables = type(self).variables + port_variables(self._found, self._model)
         super().__init__(name, parameters)
 
+    def standalone_problem(self) -> str | None:
+        """An engine file without mounts on an airframe model gives no ports and nothing to step."""
+        if self._model is None or not self._found:
+            return (f"{self.name}.model_file: the engine file {self.p['model_file'] or DEFAULT_FILE} has no "
+                    "[airframe] and [mount.NAME] tables (an engine on a rigid ground needs no airframe component)")
+        return None
+
     def setup(self, t0=0.0):
         super().setup(t0)
         if self._problem is None:
@@ -101,10 +108,9 @@ class Airframe(PositionalKernelComponent):
                 self._problem = str(exc)
         if self._problem is not None:
             raise ContractError(f"{self.name}.model_file: {self._problem}")
-        if self._model is None or not self._found:
-            raise ContractError(f"{self.name}.model_file: the engine file {self.p['model_file'] or DEFAULT_FILE} "
-                                "has no [airframe] and [mount.NAME] tables (an engine on a rigid ground needs no "
-                                "airframe component)")
+        problem = self.standalone_problem()
+        if problem is not None:
+            raise ContractError(problem)
         self._matrices()
         self.state = {"s": np.zeros(3 * self._model.n)}
         self._ops: dict[float, np.ndarray] = {}
