@@ -196,8 +196,10 @@ class Airframe(PositionalKernelComponent):
             if TB is None:
                 n = self._model.n
                 T, Bn = step_operator(np.eye(n), self._Ceff, self._Keff, key)
-                TB = self._ops[key] = np.asfortranarray(np.hstack([T, Bn @ self._Bu]))
-            self._kernel_p = AirframeParams(TB, self._O, self._w, self._y_all, self._in_off, self._out_off)
+                # the displacement rows: the kernel makes the velocities and accelerations from them
+                TB = self._ops[key] = np.asfortranarray(np.hstack([T[:n], Bn[:n] @ self._Bu]))
+            self._kernel_p = AirframeParams(TB, self._O, self._w, self._y_all, self._in_off, self._out_off,
+                                            np.array([4.0 / (key * key), 4.0 / key, 0.5 * key]))
             self._kernel_h = h
 
     def kernel_params(self):
