@@ -63,8 +63,8 @@ EVERY_S = 180.0
 #: wall time]: each save costs ~70 ms (pickling the state, flushing the time series, fsync), which a 10-s main
 #: job paid at all 11 interval ends; SIGINT/SIGTERM still save where they stop, so this bounds only what a hard
 #: kill (SIGKILL, power loss) loses. The automatic schedule, whose only safe points are its interval ends, takes
-#: its state at every interval end and writes it at the same pace (its hours of windmilling have hundreds of
-#: intervals, each state tens of MB): an interrupt or a failure writes the last one taken.
+#: its state at every interval end and writes it at the same pace (a run of hours has hundreds of intervals, each
+#: state tens of MB): an interrupt or a failure writes the last one taken.
 END_GAP_S = 30.0
 
 
