@@ -1,7 +1,7 @@
 """Are two run folders' results bit-identical? ``python bench/same_results.py DIR_A DIR_B``
 
 Compares ``summary.json`` (every value except the ones that measure the machine: wall and CPU times, the load,
-dates, the engine's compile notes) and every dataset and attribute of ``timeseries.h5``, exactly. Prints each
+dates, the engine's compile notes; a path that differs only in the checkout it ran from) and every dataset and attribute of ``timeseries.h5``, exactly. Prints each
 difference and exits 1 if there is one, 0 if the results are the same. Used to check that a change meant to
 leave results alone did (e.g. ``rotorcosim run --out A`` on two versions of the code).
 """
@@ -19,6 +19,18 @@ MACHINE_KEYS = {"wall_time_s", "cpu_time_s", "load_average", "started", "finishe
                 "wall_time_by_phase_s", "peak_memory_MB", "estimate", "files", "output_folder", "step_cost_us", "source"}
 
 
+def _same_file_elsewhere(a, b) -> bool:
+    """Two absolute paths that differ only in the folder the code ran from (two checkouts' copies of one file,
+    as provenance names them): ``/x/main/scenarios/f.toml`` and ``/y/ref/scenarios/f.toml``, the same below a
+    known top folder of the project."""
+    if not (isinstance(a, str) and isinstance(b, str) and a.startswith("/") and b.startswith("/")):
+        return False
+    for top in ("/components/", "/scenarios/", "/cases/", "/interop/", "/fmus/", "/master/"):
+        if top in a and top in b and a[a.index(top):].split(" ")[0] == b[b.index(top):].split(" ")[0]:
+            return a[a.index(top):] == b[b.index(top):]
+    return False
+
+
 def _walk(a, b, where: str, out: list[str]) -> None:
     if isinstance(a, dict) and isinstance(b, dict):
         for k in sorted(set(a) | set(b)):
@@ -31,7 +43,8 @@ def _walk(a, b, where: str, out: list[str]) -> None:
     elif isinstance(a, list) and isinstance(b, list) and len(a) == len(b):
         for i, (x, y) in enumerate(zip(a, b)):
             _walk(x, y, f"{where}[{i}]", out)
-    elif a != b and not (isinstance(a, float) and isinstance(b, float) and np.isnan(a) and np.isnan(b)):
+    elif a != b and not (isinstance(a, float) and isinstance(b, float) and np.isnan(a) and np.isnan(b)) \
+            and not _same_file_elsewhere(a, b):
         out.append(f"{where}: {a!r} != {b!r}")
 
 

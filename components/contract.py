@@ -253,6 +253,15 @@ class Component:
     def set_state(self, snapshot: Any) -> None:
         self.time, self.state, self.u, self.y = _copy_snapshot(snapshot)
 
+    def restore_state(self, snapshot: Any) -> None:
+        """:meth:`set_state` from a snapshot of :meth:`get_state` that the caller gives up (it never uses it
+        again): taken as it is where this class keeps the base snapshot, without set_state's copy. For a trial
+        step undone thousands of times (the error estimate's replay)."""
+        if type(self).set_state is Component.set_state and type(self).get_state is Component.get_state:
+            self.time, self.state, self.u, self.y = snapshot
+        else:
+            self.set_state(snapshot)
+
     def enter_phase(self, phase: str) -> None:
         """Called by the master at the start of every interval with its phase's role (``COUPLED`` or ``HELD``), for
         every component, stepped or frozen. Components that behave differently in thermal-only intervals

@@ -136,7 +136,7 @@ class Airframe(PositionalKernelComponent):
             self._out_rows[name] = sum(len(r) for r in out)
             out.append(block)
 
-        # F_engine: k B q + c B q'
+        # F_engine: k B q + c B q' (of the state one step on: kernel_prepare)
         at = 0
         for m in self._found.values():
             sel = slice(at, at + len(m.springs))
@@ -145,6 +145,7 @@ class Airframe(PositionalKernelComponent):
             blk[:, n:2 * n] = cs[sel, None] * B[sel]
             add(f"F_engine_{m.name}", blk)
             at += len(m.springs)
+        self._n_engine_rows = at
         at = 0
         for m in self._found.values():
             F = np.zeros((3, width))
@@ -192,14 +193,19 @@ class Airframe(PositionalKernelComponent):
     def kernel_prepare(self, h):
         if h != getattr(self, "_kernel_h", None):
             key = float(f"{h:.12g}")
-            TB = self._ops.get(key)
-            if TB is None:
+            ops = self._ops.get(key)
+            if ops is None:
                 n = self._model.n
                 T, Bn = step_operator(np.eye(n), self._Ceff, self._Keff, key)
-                # the displacement rows: the kernel makes the velocities and accelerations from them
-                TB = self._ops[key] = np.asfortranarray(np.hstack([T[:n], Bn[:n] @ self._Bu]))
-            self._kernel_p = AirframeParams(TB, self._O, self._w, self._y_all, self._in_off, self._out_off,
-                                            np.array([4.0 / (key * key), 4.0 / key, 0.5 * key]))
+                full = np.hstack([T, Bn @ self._Bu])
+                # F_engine at the end of the coming step (kernel.py): its rows over the state, through one more step
+                O = self._O.copy()
+                r = self._n_engine_rows
+                O[:r] = self._O[:r, :3 * n] @ full
+                # the kernel steps the displacement rows and makes the velocities and accelerations from them
+                ops = self._ops[key] = (np.asfortranarray(full[:n]), np.asfortranarray(O),
+                                        np.array([4.0 / (key * key), 4.0 / key, 0.5 * key]))
+            self._kernel_p = AirframeParams(*ops, self._w, self._y_all, self._in_off, self._out_off)
             self._kernel_h = h
 
     def kernel_params(self):

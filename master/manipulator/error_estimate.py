@@ -180,7 +180,8 @@ def replay(comp, name: str, pulses: list[Pulse], now: float,
         segs.append((now - t, pulses[-1].step, None))
 
     def tap() -> np.ndarray:
-        return np.array([float(np.ravel(comp.y[o])[k]) for o, k in taps])
+        y = comp.y
+        return np.array([y[o].item(k) if type(y[o]) is np.ndarray else float(np.ravel(y[o])[k]) for o, k in taps])
 
     def inputs(delta, c=None) -> dict:
         u = {p: u0[p] + (delta[p] if delta is not None and p in delta else 0.0) for p in ports}
@@ -219,7 +220,7 @@ def replay(comp, name: str, pulses: list[Pulse], now: float,
                     comp.set_inputs(u_d)
                     comp.do_step(comp.time, h)
                     dy0 = tap() - base[n_step]
-                    comp.set_state(s0)
+                    comp.restore_state(s0)
                     c, _ = dgetrs(*lu, G @ dy0)   # lu_solve's own LAPACK call, without its checks (per step)
                     comp.set_inputs(inputs(d, c))
                 else:

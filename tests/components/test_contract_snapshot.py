@@ -53,3 +53,27 @@ def test_shared_arrays_and_other_types_go_through_deepcopy():
     odd = (0.0, {"k": 3, "x": [1.0, 2.0], "o": np.array([{}], dtype=object)}, {}, {})
     _same(_copy_snapshot(odd), copy.deepcopy(odd))
     assert _copy_snapshot(odd)[1]["x"] is not odd[1]["x"]
+
+
+def test_restore_state_takes_the_snapshot_or_defers_to_an_overridden_set_state():
+    from rotorcosim.components.contract import Component, Memoryless
+
+    class Plain(Component):
+        pass
+
+    class OwnSnapshot(Memoryless, Component):   # a class with its own snapshot: restore_state is its set_state
+        pass
+
+    a = Plain.__new__(Plain)
+    a.time, a.state, a.u, a.y = _snap()
+    snap = a.get_state()
+    a.state["balls"] += 7.0
+    a.restore_state(snap)
+    assert a.state is snap[1] and a.state["balls"][0, 0] == 0.0      # taken as it is, no copy
+
+    b = OwnSnapshot.__new__(OwnSnapshot)
+    b.time, b.u, b.y = 1.0, {"F": np.array([2.0])}, {"P": np.array([3.0])}
+    snap = b.get_state()
+    b.u["F"][0] = 9.0
+    b.restore_state(snap)
+    assert b.u["F"][0] == 2.0 and b.u["F"] is not snap[1]["F"]          # through Memoryless.set_state's copy

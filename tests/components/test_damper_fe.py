@@ -68,6 +68,7 @@ def test_short_damper_circular_centred_orbit(short_dampers, eps, cav):
         assert abs(F[0]) < 0.02 * abs(Ft)
 
 
+@pytest.mark.slow   # three meshes up to 256x128 cells: about a minute of CPU
 @pytest.mark.parametrize("supply_pressure", [0.2e6, 0.0])
 def test_mesh_convergence_second_order(supply_pressure):
     """Force of the Table 3 damper #0 (eps = 0.5, oblique velocity) on 64x32, 128x64 and 256x128 cells: the
