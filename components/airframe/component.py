@@ -92,6 +92,13 @@ class Airframe(PositionalKernelComponent):
         self.variables = type(self).variables + port_variables(self._found, self._model)
         super().__init__(name, parameters)
 
+    def standalone_problem(self) -> str | None:
+        """An engine file without mounts on an airframe model gives no ports and nothing to step."""
+        if self._model is None or not self._found:
+            return (f"{self.name}.model_file: the engine file {self.p['model_file'] or DEFAULT_FILE} has no "
+                    "[airframe] and [mount.NAME] tables (an engine on a rigid ground needs no airframe component)")
+        return None
+
     def setup(self, t0=0.0):
         super().setup(t0)
         if self._problem is None:
@@ -101,10 +108,9 @@ class Airframe(PositionalKernelComponent):
                 self._problem = str(exc)
         if self._problem is not None:
             raise ContractError(f"{self.name}.model_file: {self._problem}")
-        if self._model is None or not self._found:
-            raise ContractError(f"{self.name}.model_file: the engine file {self.p['model_file'] or DEFAULT_FILE} "
-                                "has no [airframe] and [mount.NAME] tables (an engine on a rigid ground needs no "
-                                "airframe component)")
+        problem = self.standalone_problem()
+        if problem is not None:
+            raise ContractError(problem)
         self._matrices()
         self.state = {"s": np.zeros(3 * self._model.n)}
         self._ops: dict[float, np.ndarray] = {}
@@ -191,12 +197,14 @@ class Airframe(PositionalKernelComponent):
             if ops is None:
                 n = self._model.n
                 T, Bn = step_operator(np.eye(n), self._Ceff, self._Keff, key)
-                TB = np.asfortranarray(np.hstack([T, Bn @ self._Bu]))
+                full = np.hstack([T, Bn @ self._Bu])
                 # F_engine at the end of the coming step (kernel.py): its rows over the state, through one more step
                 O = self._O.copy()
                 r = self._n_engine_rows
-                O[:r] = self._O[:r, :3 * n] @ TB
-                ops = self._ops[key] = (TB, np.asfortranarray(O))
+                O[:r] = self._O[:r, :3 * n] @ full
+                # the kernel steps the displacement rows and makes the velocities and accelerations from them
+                ops = self._ops[key] = (np.asfortranarray(full[:n]), np.asfortranarray(O),
+                                        np.array([4.0 / (key * key), 4.0 / key, 0.5 * key]))
             self._kernel_p = AirframeParams(*ops, self._w, self._y_all, self._in_off, self._out_off)
             self._kernel_h = h
 

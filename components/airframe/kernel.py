@@ -10,7 +10,13 @@ stiffness and damping (diagonal) and x_e, v_e the engine's displacement and velo
 
 stepped by Newmark's average acceleration (beta 1/4, gamma 1/2: unconditionally stable, the mount stiffness
 inside the implicit step) with x_e, v_e the inputs of the step (the engine's state at its end, Gauss-Seidel after
-the rotor): s_new = T s + B_u u, s = [q, q', q''], u = [x_e, v_e]. Every output is linear in [s_new, u]:
+the rotor), s = [q, q', q''], u = [x_e, v_e]: the new displacements are one product with the displacement rows of
+the step's linear map (newmark.step_operator: q_1 = T_q s + B_q u, T_q and B_q the first rows of T and B B_u), the
+velocities and accelerations follow from them (Bathe, Finite Element Procedures, 9.2.4):
+
+    q''_1 = 4 / h^2 (q_1 - q) - 4 / h q' - q'',        q'_1 = q' + h / 2 (q'' + q''_1),
+
+a third of the work of the whole map (the same step, to rounding). Every output is linear in [s_new, u]:
 
 * ``F_engine_NAME`` (per spring): the airframe's motion's force on the engine, k_s B_s q^ + c_s B_s q^' (the
   engine model holds -k_s x_e - c_s v_e itself: components/rotor/mounts.py) at the end of the COMING step,
@@ -34,9 +40,10 @@ from collections import namedtuple
 from ..numba_internals import kernel_jit
 
 AirframeState = namedtuple("AirframeState", "s")
-#: TB = [T B_u] (Fortran order), O the output rows over [s_new, u]; w: the work vector [s, u] then [s_new, u];
-#: in_off / out_off: where input port j enters u, where output port j starts in the output vector y_all
-AirframeParams = namedtuple("AirframeParams", "TB O w y_all in_off out_off")
+#: TB = [T_q B_q] (Fortran order: the displacement rows of the step's map over [s, u]), O the output rows over
+#: [s_new, u], nm = [4 / h^2, 4 / h, h / 2] of the step they were made for; w: the work vector [s, u] then
+#: [s_new, u]; in_off / out_off: where input port j enters u, where output port j starts in the output vector y_all
+AirframeParams = namedtuple("AirframeParams", "TB O nm w y_all in_off out_off")
 
 
 @kernel_jit
@@ -57,12 +64,18 @@ def tm_step(s, p, u, y, t, h):
     for i in range(n3):
         w[i] = st[i]
     TB = p.TB
-    for i in range(n3):
+    n = TB.shape[0]
+    for i in range(n):
         st[i] = 0.0
     for j in range(w.shape[0]):
         c = w[j]
-        for i in range(n3):
+        for i in range(n):
             st[i] += TB[i, j] * c
+    c0, c1, hh = p.nm[0], p.nm[1], p.nm[2]
+    for i in range(n):
+        a1 = c0 * (st[i] - w[i]) - c1 * w[n + i] - w[2 * n + i]
+        st[2 * n + i] = a1
+        st[n + i] = w[n + i] + hh * (w[2 * n + i] + a1)
     for i in range(n3):
         w[i] = st[i]
     O = p.O
