@@ -301,6 +301,12 @@ class Component:
             return {"kind": "time", "values": {"event": what[0]} if what else {}}
         raise NotImplementedError(f"{type(self).__name__} declares event indicators but no update_discrete")
 
+    def standalone_problem(self) -> str | None:
+        """Why this component, with its parameters, cannot be set up on its own (an FMU made of it could not
+        initialise: fmus/export.py refuses it), or None. Asked before :meth:`setup`, so it must be cheap; None by
+        default."""
+        return None
+
     def validity(self) -> tuple:
         """Where the model holds: :class:`~rotorcosim.components.validity.Check` objects on the outputs, asked for
         after :meth:`setup` (a limit may follow the parameters). None by default: a component that cannot say

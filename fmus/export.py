@@ -133,6 +133,9 @@ def export_component(implementation: str, dest: str | Path, *, instance_name: st
         comp = cls(instance_name, dict(parameters or {}))   # checks the parameters' names, sizes and types
     except ContractError as exc:
         raise ExportError(f"cannot export {instance_name} ({implementation}): {exc}") from None
+    problem = comp.standalone_problem()
+    if problem is not None:   # its FMU would be written, and fail at its first fmi2ExitInitializationMode
+        raise ExportError(f"cannot export {instance_name} ({implementation}): {problem}")
     try:
         module_path, class_name = bundle.component_location(cls)
         files = bundle.bundle_files(module_path)

@@ -55,6 +55,8 @@ BEARING_KEYS = (*RESULT_KEYS, "max_contact_stress_outer_MPa", "max_contact_load_
                 "whirl_amplitude_relative_mm", "whirl_amplitude_absolute_peak_mm", "whirl_amplitude_relative_peak_mm",
                 "max_contact_stress_outer_peak_MPa", "transmitted_force_peak_N", "rub_power_peak_W",
                 "rub_first_time_s", "plastic_flow_limit_MPa", "plastic_flow_first_time_s")
+#: the steady windows the results need: the last (the results) and the one before it (their error estimate)
+WINDOWS_KEPT = 2
 KELVIN = 273.15
 #: the paper's damage criterion of a ball/race contact: incipient plastic flow at 3200 MPa (its ref. [13]; the
 #: line of its Fig. 12). Not the end of the model (the bearing's own envelope is ISO 76's 4200 MPa,
@@ -204,7 +206,7 @@ def observers(sc, cycle):
     cycles = float(sc.extra.get("results", {}).get("cycles", 5))
     ids = bearing_ids(sc.components)
     housing = {k: h for k in ids if (h := housing_signal(sc, k)) is not None}
-    return [SteadyWindows(window_signals(sc), cycle, cycles), Peaks(ids, housing)]
+    return [SteadyWindows(window_signals(sc), cycle, cycles, keep=WINDOWS_KEPT), Peaks(ids, housing)]
 
 
 def check(sc, sim) -> None:

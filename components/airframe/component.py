@@ -9,7 +9,8 @@ follow the engine file:
   rotor's outputs of the same name;
 * outputs ``F_engine_NAME`` [N] (per spring): the force the airframe's motion puts on the engine through the mount,
   to the rotor's input ``F_mount_NAME``; ``F_NAME`` [N] (x y z): the mount's load on the airframe (the interface
-  load), and ``M_NAME`` [N m] (x y z) when a spring of the mount acts on a rotation; ``a_POINT`` [m/s2] (x y z):
+  load), and ``M_NAME`` [N m] (x y z, about the interface point) when a spring of the mount acts on a rotation or
+  ends off the point (``offset_mm``); ``a_POINT`` [m/s2] (x y z):
   the acceleration at each response point of the airframe model.
 
 It takes part in the coupled phase only: in a held interval its outputs are held (the hold manipulator), as the
@@ -53,7 +54,7 @@ def port_variables(found: dict, model: ModalModel | None) -> tuple[Variable, ...
                             f"the airframe's motion's force on the engine through each spring of mount {m.name}"))
     for m in found.values():
         out.append(Variable(f"F_{m.name}", "output", 3, "N", f"load of mount {m.name} on the airframe (x y z)"))
-        if m.rotations:
+        if m.moment:
             out.append(Variable(f"M_{m.name}", "output", 3, "N.m",
                                 f"moment of mount {m.name} on the airframe (about x y z)"))
     for p in (model.response if model is not None else ()):
@@ -92,6 +93,13 @@ class Airframe(PositionalKernelComponent):
         self.variables = type(self).variables + port_variables(self._found, self._model)
         super().__init__(name, parameters)
 
+    def standalone_problem(self) -> str | None:
+        """An engine file without mounts on an airframe model gives no ports and nothing to step."""
+        if self._model is None or not self._found:
+            return (f"{self.name}.model_file: the engine file {self.p['model_file'] or DEFAULT_FILE} has no "
+                    "[airframe] and [mount.NAME] tables (an engine on a rigid ground needs no airframe component)")
+        return None
+
     def setup(self, t0=0.0):
         super().setup(t0)
         if self._problem is None:
@@ -101,10 +109,9 @@ class Airframe(PositionalKernelComponent):
                 self._problem = str(exc)
         if self._problem is not None:
             raise ContractError(f"{self.name}.model_file: {self._problem}")
-        if self._model is None or not self._found:
-            raise ContractError(f"{self.name}.model_file: the engine file {self.p['model_file'] or DEFAULT_FILE} "
-                                "has no [airframe] and [mount.NAME] tables (an engine on a rigid ground needs no "
-                                "airframe component)")
+        problem = self.standalone_problem()
+        if problem is not None:
+            raise ContractError(problem)
         self._matrices()
         self.state = {"s": np.zeros(3 * self._model.n)}
         self._ops: dict[float, np.ndarray] = {}
@@ -130,7 +137,7 @@ class Airframe(PositionalKernelComponent):
             self._out_rows[name] = sum(len(r) for r in out)
             out.append(block)
 
-        # F_engine: k B q + c B q'
+        # F_engine: k B q + c B q' (of the state one step on: kernel_prepare)
         at = 0
         for m in self._found.values():
             sel = slice(at, at + len(m.springs))
@@ -139,6 +146,7 @@ class Airframe(PositionalKernelComponent):
             blk[:, n:2 * n] = cs[sel, None] * B[sel]
             add(f"F_engine_{m.name}", blk)
             at += len(m.springs)
+        self._n_engine_rows = at
         at = 0
         for m in self._found.values():
             F = np.zeros((3, width))
@@ -151,8 +159,10 @@ class Airframe(PositionalKernelComponent):
                 row[3 * n + i] = ks[i]
                 row[3 * n + ns + i] = cs[i]
                 (F if s.dir < 3 else Mo)[s.dir % 3] += row
+                if s.offset is not None:          # r x (f e_d) about the interface point
+                    Mo += np.outer(np.cross(s.offset, np.eye(3)[s.dir]), row)
             add(f"F_{m.name}", F)
-            if m.rotations:
+            if m.moment:
                 add(f"M_{m.name}", Mo)
             at += len(m.springs)
         for p, phi in model.response.items():
@@ -186,12 +196,19 @@ class Airframe(PositionalKernelComponent):
     def kernel_prepare(self, h):
         if h != getattr(self, "_kernel_h", None):
             key = float(f"{h:.12g}")
-            TB = self._ops.get(key)
-            if TB is None:
+            ops = self._ops.get(key)
+            if ops is None:
                 n = self._model.n
                 T, Bn = step_operator(np.eye(n), self._Ceff, self._Keff, key)
-                TB = self._ops[key] = np.asfortranarray(np.hstack([T, Bn @ self._Bu]))
-            self._kernel_p = AirframeParams(TB, self._O, self._w, self._y_all, self._in_off, self._out_off)
+                full = np.hstack([T, Bn @ self._Bu])
+                # F_engine at the end of the coming step (kernel.py): its rows over the state, through one more step
+                O = self._O.copy()
+                r = self._n_engine_rows
+                O[:r] = self._O[:r, :3 * n] @ full
+                # the kernel steps the displacement rows and makes the velocities and accelerations from them
+                ops = self._ops[key] = (np.asfortranarray(full[:n]), np.asfortranarray(O),
+                                        np.array([4.0 / (key * key), 4.0 / key, 0.5 * key]))
+            self._kernel_p = AirframeParams(*ops, self._w, self._y_all, self._in_off, self._out_off)
             self._kernel_h = h
 
     def kernel_params(self):

@@ -20,11 +20,13 @@ class SteadyWindows(Observer):
     began, plus the one at or before that time, as a window of ``cycles`` periods has; the window's dict then has
     ``revolutions``, the turns it spans (fewer than ``cycles`` where the interval was shorter); its ring, sized for
     the turns at 1 / WINDOW_MARGIN of the speed at the interval's start, grows where the speed falls further (a
-    monolithic run of a falling speed)."""
+    monolithic run of a falling speed). ``keep``: how many of the last windows ``windows`` keeps (None: all); a
+    run of hours has hundreds of TM intervals, whose windows would otherwise fill the memory and every checkpoint."""
 
     def __init__(self, signals: Sequence[str], cycle: Cycle | float, cycles: float = 5.0,
-                 sample_step: float | None = None):
+                 sample_step: float | None = None, keep: int | None = None):
         self.signals = list(signals)
+        self.keep = keep
         self.cycle = as_cycle(cycle)
         self.cycles = cycles
         #: the window of the present TM interval [s]
@@ -155,3 +157,5 @@ class SteadyWindows(Observer):
                 win[key] = win[key][len(t) - k:]
             win["revolutions"] = self._turns.revolutions(float(win["t"][0]), float(win["t"][-1]))
         self.windows.append(win)
+        if self.keep is not None:
+            del self.windows[:-self.keep]

@@ -5,8 +5,9 @@ run depends on: every component's state (the contract's ``get_state``), the mast
 averages, extrapolation history, step counts) and thermal-only hold (hand-off windows, measured laws), the run
 report (the timeline so far) and the observers' states (steady windows, peaks, how many rows the time series had).
 It is taken by :class:`Checkpointer`, an observer placed last, every ``every_s`` seconds of wall time, at the end of
-an interval when the last checkpoint is at least ``min(every_s, END_GAP_S)`` old (every interval end with the
-automatic schedule), and when SIGINT/SIGTERM asked the run to stop: always between two base steps, where every
+an interval when the last checkpoint is at least ``min(every_s, END_GAP_S)`` old (with the automatic schedule:
+taken at every interval end, written at that pace, and the last one taken written when the run is interrupted or
+fails), and when SIGINT/SIGTERM asked the run to stop: always between two base steps, where every
 component has completed its step. :func:`resume` restores it into a freshly built simulation of the same scenario
 (set up as usual, then overwritten), so the resumed run continues with the very numbers the uninterrupted one had:
 its results are bit-identical.
@@ -61,7 +62,9 @@ EVERY_S = 180.0
 #: an interval end is checkpointed only when the last checkpoint (or the run's start) is at least this old [s of
 #: wall time]: each save costs ~70 ms (pickling the state, flushing the time series, fsync), which a 10-s main
 #: job paid at all 11 interval ends; SIGINT/SIGTERM still save where they stop, so this bounds only what a hard
-#: kill (SIGKILL, power loss) loses. The automatic schedule saves every interval end (its only safe points).
+#: kill (SIGKILL, power loss) loses. The automatic schedule, whose only safe points are its interval ends, takes
+#: its state at every interval end and writes it at the same pace (a run of hours has hundreds of intervals, each
+#: state tens of MB): an interrupt or a failure writes the last one taken.
 END_GAP_S = 30.0
 
 
@@ -254,6 +257,8 @@ class Checkpointer(Observer):
         self.saved = 0
         self.disabled: str | None = None
         self.interval_ends_only = False
+        #: the automatic schedule's last interval end taken and not yet written (bytes), or None
+        self.pending: bytes | None = None
 
     def start(self, sim, schedule):
         # the automatic schedule's stop tests live inside its intervals: only their ends are safe points
@@ -271,6 +276,7 @@ class Checkpointer(Observer):
         if self.stop is not None and self.stop.signal:
             if not self.interval_ends_only and not sim.extra_interval:
                 self.save(sim, round((t - self._t_start) / self._step))
+            self.write_pending()
             raise RunInterrupted(f"{self.stop.signal} received: stopped at t = {t:.9g} s")
         if self.interval_ends_only or sim.extra_interval:
             return
@@ -292,13 +298,29 @@ class Checkpointer(Observer):
             # a timeline's held interval ended by an event, and the coupled rest of it (Timeline.run): no position
             # of the timeline's own
             return
-        if self.interval_ends_only or time.perf_counter() - self._last >= min(self.every_s, END_GAP_S):
+        due = time.perf_counter() - self._last >= min(self.every_s, END_GAP_S)
+        if self.interval_ends_only:
+            # its only safe points: each one taken, written at the pace of the others
+            self.save(sim, 0, next_interval=True, write=due)
+        elif due:
             self.save(sim, 0, next_interval=True)
 
-    def save(self, sim, k: int, next_interval: bool = False) -> None:
+    def end(self, sim, error):
+        if error is not None:   # interrupted or failed: the last interval end taken, for --resume
+            self.write_pending()
+
+    def write_pending(self) -> None:
+        """Write the last interval end taken and not yet written, if any (module docstring)."""
+        data, self.pending = self.pending, None
+        if data is not None and self.path is not None and not self.disabled:
+            self._write(data)
+
+    def save(self, sim, k: int, next_interval: bool = False, write: bool = True) -> None:
         """Write a checkpoint of ``sim`` at base step ``k`` of its current interval (``next_interval``: at the
-        start of the next one), replacing the previous checkpoint whole. A state that cannot be saved or a full
-        disk disables further checkpoints (:attr:`disabled` says why) and the run goes on."""
+        start of the next one), replacing the previous checkpoint whole (``write`` False: taken only, written by
+        :meth:`write_pending`). A state that cannot be saved or a full disk disables further checkpoints
+        (:attr:`disabled` says why) and the run goes on."""
+        self.pending = None
         if self.path is None or self.disabled:
             return
         index = sim.interval_index + (1 if next_interval else 0)
@@ -313,6 +335,12 @@ class Checkpointer(Observer):
         except Exception as exc:  # an FMU's state (a pointer into the FMU), or another unpicklable object
             self.disabled = f"the run's state cannot be saved to disk ({type(exc).__name__}: {exc})"
             return
+        if write:
+            self._write(data)
+        else:
+            self.pending = data
+
+    def _write(self, data: bytes) -> None:
         tmp = self.path.with_name(self.path.name + ".part")
         try:
             st = os.statvfs(self.path.parent)

@@ -31,7 +31,9 @@ def export_scenario(sc, dest_dir: str | Path, only: str | None = None) -> dict[s
             continue
         try:
             cls = registry.lookup(spec.implementation)
-            cls(n, dict(spec.parameters))
+            problem = cls(n, dict(spec.parameters)).standalone_problem()
+            if problem is not None:
+                problems.append(f"{n} ({spec.implementation}: {problem})")
         except ImportError as exc:
             problems.append(f"{n} ({spec.implementation}: its implementation cannot be imported yet: {exc})")
         except (ContractError, TypeError, ValueError) as exc:

@@ -138,6 +138,34 @@ def test_export_errors_name_the_problem(tmp_path):
     assert list(tmp_path.iterdir()) == []   # nothing half-written
 
 
+def test_export_refuses_an_airframe_without_mounts(tmp_path):
+    """The airframe on an engine file without [airframe] and [mount.NAME] tables (the default engine's rigid ground)
+    has no ports and could not initialise as an FMU: refused, naming the missing tables, nothing written."""
+    with pytest.raises(ExportError) as info:
+        export_component("airframe.modal", tmp_path)
+    msg = str(info.value)
+    assert "\n" not in msg
+    assert "cannot export airframe.modal (airframe.modal): airframe.modal.model_file: the engine file " in msg
+    assert "has no [airframe] and [mount.NAME] tables" in msg
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_export_fmus_refuses_a_scenarios_airframe_without_mounts(tmp_path, capsys):
+    """The same through ``rotorcosim export-fmus``: one line, exit status 2, no output folder."""
+    from rotorcosim.master.cli.program import main
+
+    scenario = tmp_path / "on_ground.toml"
+    base = Path(registry.__file__).parents[1] / "scenarios" / "blade_loss_2850.toml"
+    scenario.write_text(f'[scenario]\nextends = "{base.as_posix()}"\nname = "on_ground"\n\n'
+                        '[components.airframe]\nimplementation = "airframe.modal"\n')
+    assert main(["export-fmus", str(scenario), "--component", "airframe", "--out", str(tmp_path / "fmus")]) == 2
+    err = capsys.readouterr().err.strip()
+    assert len(err.splitlines()) == 1 and "Traceback" not in err
+    assert "airframe (airframe.modal: airframe.model_file: the engine file " in err
+    assert "has no [airframe] and [mount.NAME] tables" in err
+    assert not (tmp_path / "fmus").exists()
+
+
 _NO_ROTORCOSIM = r"""
 import sys
 class Block:

@@ -57,3 +57,23 @@ def test_blocks_keep_the_generic_window(stride_step, steps_known, nsteps, cycles
         assert len(g["t"]) == min(nsteps // (3 if stride_step else 1), int(np.ceil(cycles / ((3 if stride_step else 1) * h))) + 1)
         for key in g:
             assert np.array_equal(g[key], b[key]), key
+
+
+def test_keep_holds_the_last_windows_only():
+    """``keep``: the last windows, the same as those of an observer that keeps every one (a run of hours would
+    otherwise hold hundreds of them in memory and in every checkpoint)."""
+    h, nsteps = 1e-3, 50
+    every, last = SteadyWindows(["a.x"], cycle=1.0, cycles=0.02), SteadyWindows(["a.x"], cycle=1.0, cycles=0.02,
+                                                                                  keep=2)
+    sim = _sim(True, nsteps)
+    for interval in range(5):
+        for obs in (every, last):
+            obs.interval_start(sim, "TM", h)
+            for k in range(1, nsteps + 1):
+                sim.system.components["a"].y["x"] = np.array([interval, k], dtype=float)
+                obs.step(sim, interval * 10.0 + k * h)
+            obs.interval_end(sim, SimpleNamespace(t_start=interval * 10.0, t_end=interval * 10.0 + nsteps * h))
+    assert len(every.windows) == 5 and len(last.windows) == 2
+    for g, b in zip(every.windows[-2:], last.windows):
+        assert g.keys() == b.keys() and all(np.array_equal(g[k], b[k]) for k in g)
+    assert last.windows[-1]["a.x"][-1].tolist() == [4.0, float(nsteps)]

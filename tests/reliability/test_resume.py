@@ -124,6 +124,27 @@ def auto_reference(tmp_path_factory):
     return out, summary
 
 
+def test_automatic_schedule_writes_its_interval_ends_at_the_checkpoint_pace(tmp_path, monkeypatch):
+    """Each interval end of the automatic schedule is taken, but written only when the last write is
+    END_GAP_S old (a run of hours has hundreds of them, tens of MB each): a run of a few seconds writes none."""
+    writes, taken = [], []
+    write, save = checkpoint.Checkpointer._write, checkpoint.Checkpointer.save
+
+    def counted_write(self, data):
+        writes.append(len(data))
+        write(self, data)
+
+    def counted_save(self, sim, k, next_interval=False, write=True):
+        taken.append(write)
+        save(self, sim, k, next_interval, write)
+
+    monkeypatch.setattr(checkpoint.Checkpointer, "_write", counted_write)
+    monkeypatch.setattr(checkpoint.Checkpointer, "save", counted_save)
+    summary = execute(toy(), tmp_path / "run", "auto", duration=DURATION, figures=False)
+    assert len(taken) == len(summary["timeline"]) >= 4 and not any(taken)
+    assert writes == [] and summary["status"] == "complete"
+
+
 @pytest.mark.parametrize("t_signal", [2.0, 5.3])  # inside a TO interval, inside a later TM interval
 def test_automatic_schedule_resumes_bit_identically(tmp_path, auto_reference, sigint_at, t_signal):
     """The automatic schedule is checkpointed at interval ends (with its own loop state): interrupted inside an
