@@ -8,6 +8,8 @@ takes the bearing and damper components, which the rotor package, bundled alone 
 """
 from __future__ import annotations
 
+import itertools
+
 import json
 import os
 from pathlib import Path
@@ -58,6 +60,8 @@ def windmill_range(text: str) -> tuple[float, float]:
 
 #: the label of each fuse stage in the reports and on the Campbell diagram
 FUSE_STAGES = ("fuse intact", "fuse broken", "fuse broken, second stage")
+#: the Campbell diagram's colours of the engine after the breaks, one per combination of the fuses' stages (in turn)
+FUSE_COLOURS = ("tab:purple", "tab:brown", "tab:olive", "tab:cyan", "tab:pink", "tab:gray")
 
 
 def linearised_supports(m, oil_temperature, scenario=None, fuse_stage: int = 0):
@@ -70,14 +74,20 @@ def linearised_supports(m, oil_temperature, scenario=None, fuse_stage: int = 0):
 
 
 def fuse_states(m, count: int, max_rpm: float, oil_temperature=None, scenario=None) -> list[dict]:
-    """The synchronous critical speeds of an engine with fused bearings after each break (every fuse at stage 1,
-    then 2 where a fuse has two): ``[{"stage", "label", "forward_synchronous_rpm", "backward_synchronous_rpm",
-    "fuse_stiffness_N_per_m"}]``; empty for an engine without a fuse. The intact engine is the report's own."""
+    """The synchronous critical speeds of an engine with fused bearings after the breaks: each combination of its
+    fuses' stages but the all-intact one (linear_engine.fuse_combinations; one fuse: its stages in turn), as
+    ``[{"stage" (the furthest fuse's), "stages" ({fuse id: stage}), "label", "forward_synchronous_rpm",
+    "backward_synchronous_rpm", "fuse_stiffness_N_per_m"}]``; empty for an engine without a fuse. The intact
+    engine is the report's own."""
     out = []
-    for stage in range(1, linear_engine.fuse_stages(m.data) + 1):
-        sup = linearised_supports(m, oil_temperature, scenario, stage)
+    combos = linear_engine.fuse_combinations(m.data)
+    for stages in combos:
+        sup = linearised_supports(m, oil_temperature, scenario, stages)
         crit = critical.synchronous_critical_speeds(m, sup, n=count, max_rpm=max_rpm)
-        out.append({"stage": stage, "label": FUSE_STAGES[stage],
+        stage = max(stages.values())
+        label = FUSE_STAGES[stage] if len(stages) == 1 else ", ".join(
+            f"{FUSE_STAGES[s].replace('fuse', f'fuse {k}', 1)}" for k, s in stages.items())
+        out.append({"stage": stage, "stages": dict(stages), "label": label,
                     "forward_synchronous_rpm": crit["forward_synchronous_rpm"],
                     "backward_synchronous_rpm": crit["backward_synchronous_rpm"],
                     "fuse_stiffness_N_per_m": {k[1:]: v["fuse"]["k"] for k, v in sup.items() if "fuse" in v}})
@@ -147,9 +157,10 @@ def draw_campbell(path: str, model_file: str = "", max_rpm: float = 30000.0, cri
     ax.plot(rpm, rpm / 60.0, "k--", lw=1, label="1x first spool speed" if ratio != 1.0 else "1x spool speed")
     if ratio != 1.0:
         ax.plot(rpm, ratio * rpm / 60.0, ":", color="0.35", lw=1, label=f"1x second spool speed ({ratio:.4g} x)")
-    for st, colour in zip((crit or {}).get("fuse_states", []), ("tab:purple", "tab:brown")):
+    states = (crit or {}).get("fuse_states", [])
+    for st, colour in zip(states, itertools.cycle(FUSE_COLOURS)):
         # the engine after the break: its whirl frequencies and critical speeds, drawn over the intact engine's
-        sup = linearised_supports(m, oil_temperature, scenario, st["stage"])
+        sup = linearised_supports(m, oil_temperature, scenario, st["stages"])
         fb, kb = critical.campbell(m, rpm, sup, n_modes=min(80, m.n))
         sel = kb == 1
         ax.scatter(np.broadcast_to(rpm[:, None], fb.shape)[sel], fb[sel], s=3, c=colour, marker="x", alpha=0.6,

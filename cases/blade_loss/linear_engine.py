@@ -14,8 +14,9 @@ scenario's parameters, at the preloaded rest state and the running speed:
   a STATED oil temperature (the rotor data's [attach] ``oil_temperature_C``, or the caller's).
 
 A fused bearing (the engine file's ``[fuse.ID]``) has its own housing on the fuse's stiffness and damping to the
-hub: the stage asked for (``fuse_stage``: 0 intact, 1 after the first break, 2 after the second; a fuse with fewer
-stages stays at its last), from the scenario's ``fuse<ID>`` component or the engine file's ``[fuse.ID]``.
+hub: the stage asked for (``fuse_stage``: 0 intact, 1 after the first break, 2 after the second, for every fuse, or
+per fuse id; a fuse with fewer stages stays at its last), from the scenario's ``fuse<ID>`` component or the engine
+file's ``[fuse.ID]``.
 
 The undamped critical speeds do not depend on the film; the forced response does (``response``).
 """
@@ -56,10 +57,23 @@ def fuse_stages(data: dict) -> int:
     return max((int(f.get("stages", 1)) for f in fuses.values() if isinstance(f, dict)), default=0)
 
 
-def supports(sc=None, oil_temperature_C: float | None = None, data: dict | None = None, fuse_stage: int = 0) -> dict:
+def fuse_combinations(data: dict) -> list[dict[str, int]]:
+    """Every combination of the engine file's fuses' stages but the all-intact one, {fuse id: stage} (each fuse
+    from 0 to its ``stages``), the first fuse's stage varying slowest: for one fuse, its stages in turn."""
+    fuses = data.get("fuse", {}) if isinstance(data.get("fuse"), dict) else {}
+    ids = [k for k, f in fuses.items() if isinstance(f, dict)]
+    combos = [{}]
+    for k in ids:
+        combos = [dict(c, **{k: s}) for c in combos for s in range(int(fuses[k].get("stages", 1)) + 1)]
+    return [c for c in combos if any(c.values())]
+
+
+def supports(sc=None, oil_temperature_C: float | None = None, data: dict | None = None,
+             fuse_stage: int | dict = 0) -> dict:
     """{"h<ID>": {...}} for every bearing<ID> of the rotor data's [attach] (in its order; "h0", "h5" for the paper's
     engine): node, hub and k_contact, m_journal, k_spring, c_film, oil_temperature_C taken from the scenario's
-    bearing<ID> and damper<ID> components (a scenario without them is an error naming the id)."""
+    bearing<ID> and damper<ID> components (a scenario without them is an error naming the id); a fused bearing's
+    fuse at ``fuse_stage`` (every fuse's, or {fuse id: stage}, 0 for an id not given)."""
     own = sc is None    # no scenario: the engine file's own parts ([bearing.ID], [damper.ID])
     sc = scenario_or_default(sc)
     if data is None:
@@ -100,8 +114,9 @@ def supports(sc=None, oil_temperature_C: float | None = None, data: dict | None 
             name = f"fuse{k}"
             fp = (part_parameters(name, scenario=sc) if not own and name in sc.components
                   else part_parameters(name, data=data))
-            out[key]["fuse"] = {"housing": fem.fused_housing(k), "k": fuse_stiffness(fp, fuse_stage),
-                                "c": float(fp.get("damping", 0.0)), "stage": int(fuse_stage)}
+            stage = int(fuse_stage.get(k, 0) if isinstance(fuse_stage, dict) else fuse_stage)
+            out[key]["fuse"] = {"housing": fem.fused_housing(k), "k": fuse_stiffness(fp, stage),
+                                "c": float(fp.get("damping", 0.0)), "stage": stage}
     return out
 
 

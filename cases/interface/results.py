@@ -64,7 +64,7 @@ class InterfaceTrack(Observer):
         self.refs: dict[str, tuple[str, str, str]] = {}
         for m in comp.mounts.values():
             self.refs[f"{self.airframe}.F_{m.name}"] = ("mounts", m.name, "N")
-            if m.rotations:
+            if m.moment:
                 self.refs[f"{self.airframe}.M_{m.name}"] = ("mounts", m.name, "Nm")
         for p in comp.model.response:
             self.refs[f"{self.airframe}.a_{p}"] = ("points", p, "g")

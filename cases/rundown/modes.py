@@ -16,8 +16,8 @@ critical_speeds_rpm`` (undamped; no damped speeds).
 
 A run whose support fuses break (an engine file's ``[fuse.ID]``; the run's ``events`` of kind ``break``) changes
 its engine there: its peaks are labelled with the critical speeds of the configuration in force at their time
-(:class:`StagedModes`): the engine with every fuse intact, then after the first break with the fuses at the stage
-that break reached (every fused bearing at that stage: cases/blade_loss/linear_engine.py ``fuse_stage``).
+(:class:`StagedModes`): the engine with every fuse intact, then after each break with each fuse at the stage its
+own breaks reached so far (cases/blade_loss/linear_engine.py ``fuse_stage``, per fuse id).
 
 The figures' dashed lines (:func:`marked_critical_speeds`) are the scenario's ``[results] critical_speeds_rpm``
 when it gives them, else the engine's: the forward synchronous critical speeds that the figures' spool excites,
@@ -93,7 +93,7 @@ class EngineModes:
     """The linearised engine's critical speeds (module docstring): ``undamped`` [rev/min], ``damped(temps)``: per
     bearing id, (damped, undamped) pairs [rev/min] at the film temperatures ``temps`` (bearing id -> C)."""
 
-    def __init__(self, sc, rotor, dampers: dict, max_rpm: float, fuse_stage: int = 0):
+    def __init__(self, sc, rotor, dampers: dict, max_rpm: float, fuse_stage: int | dict = 0):
         from rotorcosim.cases.blade_loss import linear_engine
         from rotorcosim.components.rotor import critical
 
@@ -106,7 +106,8 @@ class EngineModes:
         # or a comparison's runs share it)
         specs = repr(sorted((n, c.implementation, sorted(c.parameters.items())) for n, c in sc.components.items()
                             if n.startswith(("bearing", "damper"))))
-        self._key = (self.full.digest, self.ref_rpm, specs, max_rpm, fuse_stage)
+        stage_key = tuple(sorted(fuse_stage.items())) if isinstance(fuse_stage, dict) else fuse_stage
+        self._key = (self.full.digest, self.ref_rpm, specs, max_rpm, stage_key)
         if self._key not in _ENGINES:
             sup = linear_engine.supports(sc, data=self.full.data, fuse_stage=fuse_stage)
             crit = critical.synchronous_critical_speeds(self.full, sup, n=COUNT, max_rpm=max_rpm)
@@ -169,15 +170,18 @@ class StagedModes:
         return entry
 
 
-def fuse_breaks(events, comps) -> list[tuple[float, int, str]]:
-    """(t [s], the stage reached, a label) of each break of a support fuse among a run's ``events``."""
+def fuse_breaks(events, comps) -> list[tuple[float, dict, str]]:
+    """(t [s], every fuse's stage from then on ({fuse id: stage}, the id of component ``fuse<ID>``), a label) of
+    each break of a support fuse among a run's ``events``."""
     out = []
+    stages: dict[str, int] = {}
     for e in events or ():
         c = comps.get(e.get("component"))
         if e.get("kind") != "break" or c is None or "k_intact" not in getattr(c, "p", {}):
             continue
         stage = int(e.get("values", {}).get("stage", 1))
-        out.append((float(e["t_s"]), stage, f"after {e['component']} break at {e['t_s']:.6g} s (stage {stage})"))
+        stages[str(e["component"]).removeprefix("fuse")] = stage
+        out.append((float(e["t_s"]), dict(stages), f"after {e['component']} break at {e['t_s']:.6g} s (stage {stage})"))
     return out
 
 

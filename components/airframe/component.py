@@ -9,7 +9,8 @@ follow the engine file:
   rotor's outputs of the same name;
 * outputs ``F_engine_NAME`` [N] (per spring): the force the airframe's motion puts on the engine through the mount,
   to the rotor's input ``F_mount_NAME``; ``F_NAME`` [N] (x y z): the mount's load on the airframe (the interface
-  load), and ``M_NAME`` [N m] (x y z) when a spring of the mount acts on a rotation; ``a_POINT`` [m/s2] (x y z):
+  load), and ``M_NAME`` [N m] (x y z, about the interface point) when a spring of the mount acts on a rotation or
+  ends off the point (``offset_mm``); ``a_POINT`` [m/s2] (x y z):
   the acceleration at each response point of the airframe model.
 
 It takes part in the coupled phase only: in a held interval its outputs are held (the hold manipulator), as the
@@ -53,7 +54,7 @@ def port_variables(found: dict, model: ModalModel | None) -> tuple[Variable, ...
                             f"the airframe's motion's force on the engine through each spring of mount {m.name}"))
     for m in found.values():
         out.append(Variable(f"F_{m.name}", "output", 3, "N", f"load of mount {m.name} on the airframe (x y z)"))
-        if m.rotations:
+        if m.moment:
             out.append(Variable(f"M_{m.name}", "output", 3, "N.m",
                                 f"moment of mount {m.name} on the airframe (about x y z)"))
     for p in (model.response if model is not None else ()):
@@ -158,8 +159,10 @@ class Airframe(PositionalKernelComponent):
                 row[3 * n + i] = ks[i]
                 row[3 * n + ns + i] = cs[i]
                 (F if s.dir < 3 else Mo)[s.dir % 3] += row
+                if s.offset is not None:          # r x (f e_d) about the interface point
+                    Mo += np.outer(np.cross(s.offset, np.eye(3)[s.dir]), row)
             add(f"F_{m.name}", F)
-            if m.rotations:
+            if m.moment:
                 add(f"M_{m.name}", Mo)
             at += len(m.springs)
         for p, phi in model.response.items():

@@ -1,7 +1,8 @@
 """The airframe's step (components/kernels.py contract): its modes under the engine's motion at the mounts.
 
 With q the modal coordinates of the reduced airframe (mass-normalised, modal.py), B the rows of the interface
-points' shapes along the mount springs' axes (one row per spring s: Phi_I(s)[:, dir_s]), K_s, C_s the springs'
+points' shapes along the mount springs' axes (one row per spring s: Phi_I(s)[:, dir_s], plus
+Phi_I(s)[:, 3:6] (r_s x e_s) for a spring ending at r_s off its point), K_s, C_s the springs'
 stiffness and damping (diagonal) and x_e, v_e the engine's displacement and velocity at the springs (the rotor's
 ``X_mount_NAME``, ``V_mount_NAME``), the springs' forces on the airframe give
 
@@ -27,7 +28,7 @@ a third of the work of the whole map (the same step, to rounding). Every output 
   only the response to the engine's motion over the coming step, of second order in the step, and the loads
   match the installed linear engine's within 0.3 % (tests/cases/test_installed_linear.py);
 * ``F_NAME`` / ``M_NAME``: the mount's load on the airframe, sum over its springs along their axes of
-  k_s (x_e,s - B_s q) + c_s (v_e,s - B_s q');
+  f_s = k_s (x_e,s - B_s q) + c_s (v_e,s - B_s q'), and r_s x f_s e_s in ``M_NAME`` for a spring off its point;
 * ``a_POINT``: a response point's acceleration Phi_P^T q'' (x y z).
 
 So one product y = O [s_new, u] gives them all (O made per step size by component.py).

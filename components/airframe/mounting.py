@@ -27,7 +27,17 @@ def installed(model_file: str) -> tuple[dict, ModalModel | None]:
             if s.dir >= width:
                 raise ValueError(f"[mount.{m.name}] springs[{i}].dir: {s.dir} ({AXES[s.dir]}) but the airframe "
                                  f"model's point {m.interface!r} has translations only")
+            if s.offset is not None and width < 6:
+                raise ValueError(f"[mount.{m.name}] springs[{i}].offset_mm: the spring ends off the point, but the "
+                                 f"airframe model's point {m.interface!r} has translations only (its rotations "
+                                 "carry the offset)")
     return found, model
+
+
+def offset_row(shape: np.ndarray, d: int, r) -> np.ndarray:
+    """The motion along axis d (0-2) of a point r [m] rigidly tied to an interface point of mass-normalised
+    ``shape`` (modes x 6), per modal coordinate: e_d . (u + theta x r) = shape[:, d] + (r x e_d) . theta."""
+    return shape[:, d] + shape[:, 3:6] @ np.cross(r, np.eye(3)[d])
 
 
 def spring_rows(found: dict, model: ModalModel) -> tuple[list[str], np.ndarray, np.ndarray, np.ndarray]:
@@ -37,7 +47,7 @@ def spring_rows(found: dict, model: ModalModel) -> tuple[list[str], np.ndarray, 
         phi = model.interface[m.interface]
         for s in m.springs:
             names.append(m.name)
-            rows.append(phi[:, s.dir])
+            rows.append(phi[:, s.dir] if s.offset is None else offset_row(phi, s.dir, s.offset))
             k.append(s.k)
             c.append(s.c)
     return names, np.vstack(rows), np.asarray(k), np.asarray(c)

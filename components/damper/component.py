@@ -37,6 +37,7 @@ from . import table_cache
 from .fast import (EPS_MAX, FAST_STEP_SIG, N_TABLE, DamperParams, DamperState, fast_step, fast_step_address,
                    film_table, tm_step)
 from .reynolds_fe import EPS_FILM_MAX, build_mesh, fe_film_eval
+from .supply import condition
 from .viscosity import oil_constants, sae30_viscosity
 
 DATA = Path(__file__).with_name("data") / "dampers.toml"
@@ -111,6 +112,11 @@ class _Damper(Memoryless, Component):
                  description="time at which the oil supply is lost: no film from then on, the journal on the land "
                              "(k_wall, land_friction), no film power (< 0: never)",
                  event="the loss of the oil supply"),
+        Variable("oil_loss_eccentricity", "parameter", unit="1", start=0.0,
+                 description="journal eccentricity ratio |X_journal - X_housing| / clearance at which the oil supply "
+                             "is lost, as at oil_loss_time (an event located in time; 0: never)"),
+        Variable("event_tolerance", "parameter", unit="s", start=1e-7,
+                 description="time to which the master locates the oil_loss_eccentricity event (at most the step)"),
         Variable("land_friction", "parameter", unit="1", start=FILM["land_friction"],
                  description="friction coefficient of the journal on the damper land once the oil supply is lost"),
         Variable("power_in_thermal_only", "parameter", unit="1", start=True, type="Boolean",
@@ -165,6 +171,15 @@ class _Damper(Memoryless, Component):
         if p["oil_loss_time"] >= 0.0 and p["k_wall"] <= 0.0:
             raise ContractError(f"{self.name}.k_wall must be > 0 with oil_loss_time = {p['oil_loss_time']:g} s: "
                                 "without its oil the journal runs on the damper land, a contact of that stiffness")
+        e_loss = p["oil_loss_eccentricity"]
+        if not 0.0 <= e_loss <= 1.0:   # (NaN too)
+            raise ContractError(f"{self.name}.oil_loss_eccentricity must be within [0, 1] (an eccentricity ratio; "
+                                f"0: never), got {e_loss}")
+        if e_loss > 0.0 and p["k_wall"] <= 0.0:
+            raise ContractError(f"{self.name}.k_wall must be > 0 with oil_loss_eccentricity = {e_loss:g}: without "
+                                "its oil the journal runs on the damper land, a contact of that stiffness")
+        if not p["event_tolerance"] > 0.0:
+            raise ContractError(f"{self.name}.event_tolerance must be > 0 s, got {p['event_tolerance']}")
         if p["clearance"] > THIN_FILM * p["radius"]:
             # the film equation (eq. 7, Reynolds) drops terms of order c/R: a thick "film" is outside the model,
             # and in practice a length given in mm where metres are meant (0.635 -> 0.635 m)
@@ -191,12 +206,29 @@ class _Damper(Memoryless, Component):
         self._T = None
         self._mu = 0.0
         self._prepare()
-        #: oil_lost: 1 once the oil supply is lost (update_discrete at oil_loss_time)
-        self.state = {"oil_lost": np.zeros(1)}
+        #: oil_lost: 1 once the oil supply is lost (update_discrete at oil_loss_time, or the step that met
+        #: oil_loss_eccentricity); reported: 1 once the loss is handed over (update_discrete); g: the condition's
+        #: indicator (supply.py)
+        self.state = {"oil_lost": np.zeros(1), "reported": np.zeros(1), "g": np.full(1, -1.0)}
         self.phases = frozenset({"TM", "TO"}) if p["power_in_thermal_only"] else frozenset({"TM"})
         self.holds_state_in_TO = bool(p["power_in_thermal_only"])
         self.phase = "TM"
         self._evaluate(t0)
+        if self.state["oil_lost"][0]:
+            dx, dy, _, _ = self._relative()
+            raise ContractError(f"{self.name}.oil_loss_eccentricity = {e_loss:g}: the journal starts at eccentricity "
+                                f"ratio {math.hypot(dx, dy) / self._c:.4g}, at or beyond it")
+
+    @property
+    def event_indicators(self):
+        """``("oil_loss",)`` with an ``oil_loss_eccentricity`` (supply.py), else none: a damper without the condition
+        is no concern of the event location."""
+        return ("oil_loss",) if self.p.get("oil_loss_eccentricity", 0.0) > 0.0 else ()
+
+    def indicators(self):
+        st = self.state
+        live = self.event_indicators and not st["reported"][0]
+        return st["g"].copy() if live else np.zeros(0)
 
     def _prepare(self):
         raise NotImplementedError
@@ -205,14 +237,16 @@ class _Damper(Memoryless, Component):
         """Fill ``out`` (layout OUT) from the inputs at viscosity mu; return a wall.* status code."""
         raise NotImplementedError
 
-    # -- the loss of the oil supply: a time event (master/core/events.py) ---------------------------------
+    # -- the loss of the oil supply: a time event or on a condition (master/core/events.py, supply.py) ---------
     def get_state(self):
-        return (*super().get_state(), self.state["oil_lost"].copy())
+        st = self.state
+        return (*super().get_state(), st["oil_lost"].copy(), st["reported"].copy(), st["g"].copy())
 
     def set_state(self, snapshot):
-        *snap, lost = snapshot
+        *snap, lost, reported, g = snapshot
         super().set_state(tuple(snap))
-        self.state["oil_lost"][0] = lost[0]
+        st = self.state
+        st["oil_lost"][0], st["reported"][0], st["g"][0] = lost[0], reported[0], g[0]
 
     def next_event(self, t):
         """The loss of the oil supply while it is to come (at ``t`` itself too, as the spool's fuel cut)."""
@@ -220,19 +254,31 @@ class _Damper(Memoryless, Component):
         return float(te) if te >= 0.0 and not self.state.get("oil_lost", [0.0])[0] and te >= t - 1e-9 else None
 
     def update_discrete(self, t, which):
-        """The oil supply lost at ``t``: the film goes, its power drops to zero, the journal runs on the land from
-        this state on (the outputs re-evaluated at the present inputs)."""
-        if which:
-            return super().update_discrete(t, which)
-        before = float(self.y["P_film"][0])
-        self.state["oil_lost"][0] = 1.0
+        """The oil supply lost at ``t`` (``which`` empty: at ``oil_loss_time``; else its condition,
+        ``oil_loss_eccentricity``, met): the film goes, its power drops to zero, the journal runs on the land from
+        this state on (the outputs re-evaluated at the present inputs). The values: the film power it had (on the
+        condition, whose step already ended on the land: the film's at the present motion) and the eccentricity
+        ratio."""
+        before = float(self.y["P_film"][0]) if not which else self._film_power()
+        st = self.state
+        st["oil_lost"][0] = 1.0
+        st["reported"][0] = 1.0
         if self.phase == "TO" and self.holds_state_in_TO:
             self._thermal_only_step(t, 0.0)
         else:
             self._evaluate(t)
         dx, dy, _, _ = self._relative()
-        return {"kind": "oil_supply_loss",
-                "values": {"P_film_W": before, "eccentricity_ratio": math.hypot(dx, dy) / self._c}}
+        values = {"P_film_W": before, "eccentricity_ratio": math.hypot(dx, dy) / self._c}
+        if which:
+            values["oil_loss_eccentricity"] = float(self.p["oil_loss_eccentricity"])
+        return {"kind": "oil_supply_loss", "values": values}
+
+    def _film_power(self) -> float:
+        """The film's power at the present motion and oil temperature, -F_film . w [W] (the oil still there)."""
+        dx, dy, dvx, dvy = self._relative()
+        out = np.zeros(self.N_OUT)
+        self._film(dx, dy, dvx, dvy, self.viscosity(float(self.u["T_oil"][0])), out)
+        return -(float(out[0]) * dvx + float(out[1]) * dvy)
 
     # -- stepping --------------------------------------------------------------------------------------
     def viscosity(self, T):
@@ -287,6 +333,9 @@ class _Damper(Memoryless, Component):
         if self.phase == "TO" and self.holds_state_in_TO:
             self._thermal_only_step(t, h)
             return
+        st = self.state
+        dx, dy, _, _ = self._relative()
+        condition(st["oil_lost"], st["reported"], st["g"], self.p["oil_loss_eccentricity"], self._c, dx, dy)
         self._evaluate(t + h)
         self.time = t + h
 
@@ -385,7 +434,7 @@ class FastDamper(KernelComponent, _Damper):
         self._table = film_table(p["radius"], p["length"], p["clearance"], int(p["n_theta"]), int(p["n_z"]))
         t = self._table
         prm = np.array([t.u0, t.du, t.n, t.eps_max, t.clearance, self._floor, float(self._cav), self._k, self._kw,
-                        float(p["land_friction"])])
+                        float(p["land_friction"]), float(p["oil_loss_eccentricity"])])
         A, B, rho300, drho = oil_constants()
         self._kernel_p = DamperParams(t.NT, t.G, t.TW, t.toff, t.ftab, t.bounds, t.Wc, t.Ws, prm, np.zeros(self.N_OUT),
                                       np.full(2, np.nan), float(A), float(B), float(rho300), float(drho),
@@ -414,8 +463,12 @@ class FastDamper(KernelComponent, _Damper):
     # -- the compiled kernel (components/kernels.py): set-up and every step evaluate through it -------------
     STEP = staticmethod(tm_step)
 
+    #: its kernel reports the oil supply's condition met (supply.py): the compiled loop stops there
+    KERNEL_EVENTS = True
+
     def kernel_state(self):
-        return DamperState(self.state["oil_lost"])
+        st = self.state
+        return DamperState(st["oil_lost"], st["reported"], st["g"])
 
     def kernel_params(self):
         return self._kernel_p

@@ -40,6 +40,7 @@ from numba import types
 from ..numba_internals import address_of, by_address, call_at, kernel_jit
 from . import table_cache
 from .frame import EPS_DIFF, EPS_NEAR_CENTRE, frame, to_housing_axes
+from .supply import condition
 from .wall import NOT_FINITE, dry_land, spring_and_wall
 from .reynolds_fe import EPS_FILM_MAX, build_mesh, film_force_aligned, unit_fields
 
@@ -470,8 +471,9 @@ def fast_film_force(table: FilmTable, dx, dy, dvx, dvy, mu, supply_pressure, cav
     return float(out[0]), float(out[1])
 
 
-#: the fast damper's kernel state: ``oil_lost`` (1 once its oil supply is lost: no film, the journal on the land)
-DamperState = namedtuple("DamperState", "oil_lost")
+#: the fast damper's kernel state: ``oil_lost`` (1 once its oil supply is lost: no film, the journal on the land),
+#: ``reported`` and ``g``, the oil supply's condition (supply.py)
+DamperState = namedtuple("DamperState", "oil_lost reported g")
 #: the fast damper's kernel constants (components/kernels.py): the tables and parameters
 #: of fast_step, its output buffer, a cache [T, mu(T)], the oil's viscosity constants (viscosity.py), the fit's
 #: temperature range (components/oil_fit.py) and the address of fast_step (fast_step_address)
@@ -492,14 +494,16 @@ def oil_viscosity(p, T):
 @kernel_jit
 def tm_step(s, p, u, y, t, h):
     """One evaluation at the step's inputs (components/kernels.py contract). Status 5: T_oil outside the
-    viscosity fit; 10 + a wall.* code."""
+    viscosity fit; 10 + a wall.* code; EVENT: the oil supply lost on its condition at this step's end (supply.py)."""
     T = u.T_oil[0]
     if not (T > p.T_min and T <= p.T_max):   # the viscosity fit's range (components/oil_fit.py)
         return 5
     mu = oil_viscosity(p, T)
     out = p.out
+    xj, vj, xh, vh = u.X_journal, u.V_journal, u.X_housing, u.V_housing
+    # the oil supply lost on a condition (supply.py; prm: clearance (4), oil_loss_eccentricity (10))
+    event = condition(s.oil_lost, s.reported, s.g, p.prm[10], p.prm[4], xj[0] - xh[0], xj[1] - xh[1])
     if s.oil_lost[0] != 0.0:
-        xj, vj, xh, vh = u.X_journal, u.V_journal, u.X_housing, u.V_housing
         # prm: [.., clearance (4), .., k_spring (7), k_wall (8), land_friction (9)]
         status = dry_land(xj[0] - xh[0], xj[1] - xh[1], vj[0] - vh[0], vj[1] - vh[1], p.prm[4], p.prm[7], p.prm[8],
                           p.prm[9], out)
@@ -519,4 +523,4 @@ def tm_step(s, p, u, y, t, h):
         y.C_film[k] = out[6 + k]
     y.P_film[0] = out[16]
     y.mu[0] = mu
-    return 0
+    return event

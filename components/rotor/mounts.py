@@ -8,13 +8,17 @@ airframe is
 
     f_s = k_s (u_e,s - u_a,s) + c_s (v_e,s - v_a,s),
 
-and -f_s acts on the engine. The engine model (model.py) holds the part ``-k_s u_e,s - c_s v_e,s`` as a spring
+and -f_s acts on the engine. A translation spring may end off the interface point (``offset_mm``: its end r_s
+from the point, in the engine's axes): its end is then rigidly tied to the point, u_a,s = e_s . (u_I + theta_I x r_s)
+(u_I, theta_I the point's translations and rotations: its shape must give rotations), and the point carries its
+force and the moment r_s x f_s e_s. The engine model (model.py) holds the part ``-k_s u_e,s - c_s v_e,s`` as a spring
 and damper to ground at the engine DOF, exactly as a casing mount to ground: an engine whose airframe does not
 move is the engine on rigid mounts. The rest, ``k_s u_a,s + c_s v_a,s``, is the force the airframe's motion puts
 on the engine through the mount: the airframe component computes it (components/airframe) and the rotor takes it
 at its input ``F_mount_NAME`` (one value per spring). The mount's interface load is the sum of its springs'
-f_s along their axes (a force x y z, and a moment about x y z when a spring acts on a rotation): the springs of a
-mount all end at the interface point, so that a moment of the springs' offsets from it is not carried.
+f_s along their axes (a force x y z) and, when a spring acts on a rotation or ends off the point, the moment
+about the point (x y z: the rotation springs' f_s plus r_s x f_s e_s of the offset ones). A spring without an
+offset ends at the point itself, so a moment of where it sits on the engine is carried only if given.
 
 A node is ``["casing", ring, circ]`` (an outer node of the casing shell: ring index into ``ring_z_mm``,
 circumferential index from +x counter-clockwise), ``[spool, node]`` or ``["hub", name]``. No ``[mount]`` table:
@@ -29,7 +33,7 @@ Example (an engine file)::
     interface = "pylon_fwd"           # an interface point of the airframe model
     springs = [
       { node = ["casing", 0, 2], dir = 0, k = 9.754e7, c = 1.0e4 },
-      { node = ["casing", 0, 0], dir = 1, k = 9.754e7, c = 1.0e4 },
+      { node = ["casing", 0, 0], dir = 1, k = 9.754e7, c = 1.0e4, offset_mm = [300, -300, 0] },
     ]
 """
 from __future__ import annotations
@@ -50,12 +54,13 @@ CASING, HUB = "casing", "hub"
 @dataclass(frozen=True)
 class Spring:
     """One spring of a mount: the engine node, its axis (0-5), stiffness [N/m or N m/rad], damping [N s/m or
-    N m s/rad]."""
+    N m s/rad], and where it ends from the interface point [m] (None: at the point)."""
 
     node: tuple
     dir: int
     k: float
     c: float
+    offset: tuple[float, float, float] | None = None
 
 
 @dataclass(frozen=True)
@@ -68,8 +73,14 @@ class Mount:
 
     @property
     def rotations(self) -> bool:
-        """True when a spring acts on a rotation (the mount carries a moment)."""
+        """True when a spring acts on a rotation."""
         return any(s.dir >= 3 for s in self.springs)
+
+    @property
+    def moment(self) -> bool:
+        """True when the mount carries a moment into the airframe: a spring acts on a rotation or ends off the
+        interface point."""
+        return self.rotations or any(s.offset is not None for s in self.springs)
 
 
 def _number(where: str, v, data: dict, positive: bool) -> float:
@@ -119,9 +130,9 @@ def mounts(data: dict) -> dict[str, Mount]:
 def _spring(w: str, s, data: dict) -> Spring:
     if not isinstance(s, dict):
         raise ValueError(f"{w}: must be a table {{node, dir, k, c}}, got {s!r}")
-    unknown = sorted(set(s) - {"node", "dir", "k", "c"})
+    unknown = sorted(set(s) - {"node", "dir", "k", "c", "offset_mm"})
     if unknown:
-        raise ValueError(f"{w} {unknown[0]}: unknown key (known: node, dir, k, c)")
+        raise ValueError(f"{w} {unknown[0]}: unknown key (known: node, dir, k, c, offset_mm)")
     node = s.get("node")
     if not (isinstance(node, list) and len(node) in (2, 3) and isinstance(node[0], str)):
         raise ValueError(f'{w}.node: must be ["casing", ring, circ], [spool, node] or ["hub", name], got {node!r}')
@@ -130,8 +141,17 @@ def _spring(w: str, s, data: dict) -> Spring:
         raise ValueError(f"{w}.dir: must be 0-5 (x, y, z, rotation about x, y, z), got {d!r}")
     if "k" not in s:
         raise ValueError(f"{w}: k missing (the spring's stiffness, N/m or N m/rad)")
+    offset = s.get("offset_mm")
+    if offset is not None:
+        if not (isinstance(offset, list) and len(offset) == 3 and all(
+                isinstance(v, (int, float)) and not isinstance(v, bool) and math.isfinite(v) for v in offset)):
+            raise ValueError(f"{w}.offset_mm: must be three finite numbers (x y z, mm), got {offset!r}")
+        if int(d) >= 3:
+            raise ValueError(f"{w}.offset_mm: a rotation spring (dir {d}) turns the point the same wherever it ends: "
+                             "give offset_mm on translation springs (dir 0-2) only")
+        offset = tuple(1e-3 * float(v) for v in offset)
     return Spring(tuple(node), int(d), _number(f"{w}.k", s["k"], data, True),
-                  _number(f"{w}.c", s.get("c", 0.0), data, False))
+                  _number(f"{w}.c", s.get("c", 0.0), data, False), offset)
 
 
 def airframe_model(data: dict, engine_file: str | Path | None) -> Path | None:

@@ -427,15 +427,25 @@ class Engine:
         if (k + 1) % self.settings.check_every == 0:
             self.check_finite(t_end)
 
-    def partial_step(self, t: float, tau: float) -> None:
-        """Every active component one step from ``t`` over ``tau`` [s], coupled as in a base step (a single-rate
-        interval): the re-steps of the event location (master/core/events.py)."""
+    def partial_step(self, t: float, tau: float, firing: Sequence[str] | None = None,
+                     t_end: float | None = None) -> None:
+        """The components ``firing`` (default: every active one; those of a multi-rate interval at its base
+        step) one step from ``t`` over ``tau`` [s], coupled as in a base step: the re-steps of the event location
+        (master/core/events.py). ``t_end``: the step's end when it is a base step's (exactly that float, not
+        ``t + tau`` rounded: a hand-off window knows a sample by its time)."""
         h = self.h
         self.h = tau
         try:
-            self._pass(self.active, t + tau)
+            self._pass(self.active if firing is None else list(firing), t + tau if t_end is None else t_end)
         finally:
             self.h = h
+
+    def fire(self, names: Sequence[str], t_end: float) -> None:
+        """The components ``names`` one step each, over their own communication step ending at ``t_end`` [s] (a
+        base step's end): the slow components of a multi-rate base step whose fast ones the event location split
+        (master/core/events.py)."""
+        if names:
+            self._pass(list(names), t_end)
 
     def _fire_direct(self, name: str, t: float, hc: float) -> None:
         same, other = self._direct[name]

@@ -28,9 +28,16 @@ is called and the event recorded (``trigger`` "time"). A held interval ends at a
 time event (master/simulation.py) and at a located event of a component that steps in it
 (:attr:`EventLocator.ended_at`); a coupled interval follows (master/schedule).
 
-What it needs: every active component at the interval's base step (a single-rate interval; a multi-rate one with
-an event indicator is refused with the reason) and explicit coupling (one pass per step). A hand-off window of the
-thermal-only hold records the base step's end only. The compiled loop runs such an interval too when the
+In a multi-rate interval only the components at the base step are re-stepped (a slower one steps once per window,
+at its end): the locator saves them and the slower ones whose window ends with the base step, and where an event
+splits the base step those step once at its end, after the others (:meth:`EventLocator._locate`). At an event the
+links that extrapolate the component's outputs restart their history (links.restart_history: the consumer's next
+step holds the value after the jump).
+
+What it needs: the components with a live indicator at the interval's base step (one stepping slower is refused
+with the reason) and explicit coupling (one pass per step). A hand-off window of the thermal-only hold records the
+base step's end only (the first, rolled back step's sample is replaced by the completed step's, at the same
+time). The compiled loop runs such an interval too when the
 components' kernels report their indicators' changes of sign (``KernelComponent.KERNEL_EVENTS``, status ``EVENT``):
 it stops at the base step of an event, rolled back to its start (master/compiled/runner.py), the locator takes
 that step (:meth:`EventLocator.resync` first: the compiled loop stepped the components since) and the compiled
@@ -44,6 +51,7 @@ from __future__ import annotations
 import numpy as np
 
 from rotorcosim.components.contract import COUPLED, Component, ContractError
+from rotorcosim.master.core import links
 
 
 def timed(comp) -> bool:
@@ -92,9 +100,16 @@ class EventLocator:
         #: base steps can be split at a time event (a single-rate interval with explicit coupling); else the
         #: component applies it within its own step, and it is recorded at its time
         self.split = not multi and self.engine.settings.iterations == 1
-        if multi and self.watched:
-            raise ContractError(f"event indicators of {names}: every component must step at the interval's step "
-                                f"for the master to locate their events; {', '.join(multi)} step(s) slower")
+        #: the components at the base step (the event location re-steps them) and those slower, each with its
+        #: step multiple (they step at the end of a split base step that ends one of their windows)
+        self.fast = [n for n in self.engine.active if mult.get(n, 1) == 1]
+        self.slow = [(n, int(mult[n])) for n in self.engine.active if mult.get(n, 1) != 1]
+        slow_live = [n for n, c in self.watched if mult.get(n, 1) != 1 and len(c.indicators())]
+        if slow_live:
+            raise ContractError(f"event indicators of {', '.join(slow_live)}: a component whose event the master "
+                                "locates must step at the interval's step (it is re-stepped within a base step); "
+                                f"{', '.join(slow_live)} step(s) slower")
+        self.watched = [(n, c) for n, c in self.watched if mult.get(n, 1) == 1]
         if self.engine.settings.iterations != 1 and self.watched:
             raise ContractError(f"event indicators of {names}: the master locates events with explicit coupling "
                                 "([algorithm] iterations = 1)")
@@ -106,6 +121,7 @@ class EventLocator:
                                     "of the interval it is located in")
             self.tolerance[n] = tol
         self.comps = [(n, comps[n]) for n in self.engine.active]
+        self._fast_comps = [(n, comps[n]) for n in self.fast]
         self.g = self._values()
         self.ended_at: float | None = None
 
@@ -147,23 +163,26 @@ class EventLocator:
                 out.append((i, which))
         return out
 
-    def _save(self):
+    def _save(self, comps):
+        """What a base step from here changes: the components ``comps`` ((name, component): those that step in
+        it), the links' state and the steps taken."""
         eng = self.engine
-        return ([c.get_state() for _, c in self.comps],
+        return (comps, [c.get_state() for _, c in comps],
                 [(link.state[:], link.vectors[:]) for link in eng.links], dict(eng.steps_taken))
 
     def _restore(self, saved) -> None:
-        states, links, steps = saved
-        for (_, c), s in zip(self.comps, states):
+        comps, states, links, steps = saved
+        for (_, c), s in zip(comps, states):
             c.set_state(s)
         for link, (m, v) in zip(self.engine.links, links):
             link.state[:] = m
             link.vectors[:] = v
         self.engine.steps_taken.update(steps)
 
-    def _step(self, t: float, tau: float, windows: bool) -> None:
-        """Every active component one step from ``t`` over ``tau`` [s]; the hold's hand-off windows record it only
-        with ``windows`` (a step that ends on the base steps' grid)."""
+    def _step(self, t: float, tau: float, windows: bool, end: float | None = None) -> None:
+        """The components at the base step one step from ``t`` over ``tau`` [s] (``end``: the base step's end it
+        reaches, exactly); the hold's hand-off windows record it only with ``windows`` (a step that ends on the base
+        steps' grid)."""
         eng = self.engine
         kept = []
         if not windows:
@@ -171,7 +190,7 @@ class EventLocator:
             for link, _ in kept:
                 link.window = None
         try:
-            eng.partial_step(t, tau)
+            eng.partial_step(t, tau, self.fast, t_end=end)
         finally:
             for link, w in kept:
                 link.window = w
@@ -208,14 +227,17 @@ class EventLocator:
             self._advance(a, b, base, windows)
             self.g = self._values()
             return
-        saved = self._save()
+        # the slow components that step at this base step's end (a multi-rate interval): saved with the fast ones
+        due = [] if base is None else [n for n, m in self.slow if (base[1] + 1) % m == 0]
+        comps = self.engine.system.components
+        saved = self._save(self._fast_comps + [(n, comps[n]) for n in due])
         self._advance(a, b, base, windows)
         g = self._values()
         crossed = self._crossed(g)
         if not crossed:
             self.g = g
             return
-        self._locate(saved, a, b, crossed, windows)
+        self._locate(saved, a, b, crossed, windows, due)
 
     def _advance(self, a, b, base, windows) -> None:
         if base is not None:
@@ -223,16 +245,20 @@ class EventLocator:
         else:
             self._step(a, b - a, windows)
 
-    def _locate(self, saved, a: float, b: float, crossed, windows: bool = True) -> None:
+    def _locate(self, saved, a: float, b: float, crossed, windows: bool = True, due=()) -> None:
         """The system stepped from ``a`` (state ``saved``) to ``b`` [s] and the indicators ``crossed`` changed sign:
-        find the first event, hand it over, complete the step to ``b``; again while the remainder has one. In a
-        held interval the event ends it (:attr:`ended_at`): the step is not completed."""
+        find the first event, hand it over, complete the step to ``b``; again while the remainder has one. The
+        components at the base step are re-stepped; the slow ones ``due`` (a multi-rate interval: those whose
+        window ends at ``b``) step once at ``b``, after the fast ones have reached it. In a held interval the event
+        ends it (:attr:`ended_at`): the step is not completed."""
+        whole = True  # the state is still the first step's to b (the slow ones stepped in it)
         while True:
             tol = min(self.tolerance[self.watched[i][0]] for i, _ in crossed)
             lo, hi, at_hi = 0.0, b - a, True
             while hi - lo > tol:
                 mid = 0.5 * (lo + hi)
                 self._restore(saved)
+                whole = False
                 self._step(a, mid, windows=False)
                 found = self._crossed(self._values())
                 if found:
@@ -243,7 +269,8 @@ class EventLocator:
             at_end = b - t_event <= 1e-12 * max(1.0, abs(b))
             if not at_hi:
                 self._restore(saved)
-                self._step(a, hi, windows=at_end and windows)
+                whole = False
+                self._step(a, hi, windows=at_end and windows, end=b if at_end else None)
             for i, which in crossed:
                 name, comp = self.watched[i]
                 self._record(name, comp, t_event, which)
@@ -252,21 +279,28 @@ class EventLocator:
                 self.ended_at = t_event
                 return
             if at_end:
-                return
-            saved = self._save()
-            self._step(t_event, b - t_event, windows=windows)
+                break
+            saved = self._save(self._fast_comps)
+            whole = False
+            self._step(t_event, b - t_event, windows=windows, end=b)
             g = self._values()
             crossed = self._crossed(g)
             if not crossed:
                 self.g = g
-                return
+                break
             a = t_event
+        if not whole:
+            self.engine.fire(due, b)
 
     def _append(self, entry: dict) -> None:
         append(self.sim, entry)
 
     def _record(self, name: str, comp, t: float, which: list[int]) -> None:
         what = comp.update_discrete(t, which)
+        # its outputs may jump here: the links that extrapolate them restart their history from the new values
+        for link in self.engine.links:
+            if link.src is comp and link.real and link.produce_kind == links.PROD_HIST:
+                links.restart_history(comp.y[link.sport], 0, link.vectors, 0, link.n, link.state, t)
         kind = what.get("kind", "event")
         indicators = [comp.event_indicators[j] for j in which]
         self._append({

@@ -148,3 +148,15 @@ def produce(kind, y, yo, v, vo, n, m, hc, t_end):
         m[CUR_T] = t_end
         m[HAS_CUR] = 1.0
 
+
+def restart_history(y, yo, v, vo, n, m, t):
+    """The extrapolation history after the producer's output jumped at a discrete event at ``t`` [s] (a fuse's
+    break, master/core/events.py): y[yo:yo+n] is its output from ``t`` on, the history starts there, (y_cur, t_cur)
+    = (y, t) and no y_prev, so that the consumer's next step holds y and the slope restarts from the outputs after
+    the jump (a slope through the jump would carry it into that step)."""
+    c = vo + 2 * n  # V_LAST
+    for q in range(n):
+        v[c + q] = y[yo + q]
+    m[CUR_T] = t
+    m[HAS_CUR] = 1.0
+    m[HAS_PREV] = 0.0

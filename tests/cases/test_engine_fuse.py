@@ -67,6 +67,51 @@ def test_intact_and_broken_critical_speeds_against_the_engine_without_a_fuse(eng
     assert broken["forward_synchronous_rpm"][0] < 0.9 * plain[0]
 
 
+def test_the_combinations_of_fuse_stages_and_a_run_s_configurations_per_fuse():
+    """linear_engine.fuse_combinations: every combination of the fuses' stages but the all-intact one, the first
+    fuse's stage varying slowest (one fuse: its stages in turn); modes.fuse_breaks: after each break of a run, each
+    fuse at the stage its own breaks reached (the other fuses as they were)."""
+    from types import SimpleNamespace
+
+    from rotorcosim.cases.blade_loss.linear_engine import fuse_combinations
+    from rotorcosim.cases.rundown.modes import fuse_breaks
+
+    assert fuse_combinations({"fuse": {"0": {"stages": 2}}}) == [{"0": 1}, {"0": 2}]
+    assert fuse_combinations({"fuse": {"0": {}, "5": {"stages": 2}}}) == [
+        {"0": 0, "5": 1}, {"0": 0, "5": 2}, {"0": 1, "5": 0}, {"0": 1, "5": 1}, {"0": 1, "5": 2}]
+    assert fuse_combinations({}) == []
+    fuse = SimpleNamespace(p={"k_intact": 1e9})
+    events = [{"component": "fuse5", "kind": "break", "t_s": 0.011, "values": {}},
+              {"component": "spool_pt", "kind": "time", "t_s": 0.012},
+              {"component": "fuse0", "kind": "break", "t_s": 0.013, "values": {"stage": 1}},
+              {"component": "fuse5", "kind": "break", "t_s": 0.014, "values": {"stage": 2}}]
+    comps = {"fuse0": fuse, "fuse5": fuse, "spool_pt": SimpleNamespace(p={})}
+    assert [(t, st) for t, st, _ in fuse_breaks(events, comps)] == [
+        (0.011, {"5": 1}), (0.013, {"5": 1, "0": 1}), (0.014, {"5": 2, "0": 1})]
+
+
+def test_two_fuses_are_reported_in_each_combination_of_their_stages(engine_folder):
+    """Fuses under both bearings' housings (#0 and #5, each 1 g on 1e12 N/m, 1e7 N/m broken): fuse_states lists
+    the three combinations of their stages (#5 broken alone, #0 broken alone, both), each as the engine without
+    fuses whose broken bearings' damper springs are in series with 1e7 N/m (critical speeds within 0.01 %)."""
+    fuse5 = FUSE.replace("[fuse.0]", "[fuse.5]").format(mass=1e-3, k=1e12, load=3000.0, kb=1e7)
+    path = _engine(engine_folder, "two.toml", FUSE.format(mass=1e-3, k=1e12, load=3000.0, kb=1e7) + fuse5)
+    states = fuse_states(fem.load(path), 3, 30000.0)
+    assert [st["stages"] for st in states] == [{"0": 0, "5": 1}, {"0": 1, "5": 0}, {"0": 1, "5": 1}]
+    assert [st["label"] for st in states] == ["fuse 0 intact, fuse 5 broken", "fuse 0 broken, fuse 5 intact",
+                                              "fuse 0 broken, fuse 5 broken"]
+    base = (engine_folder / "engine.toml").read_text()
+    series = 1.0 / (1.0 / 5.254e6 + 1.0 / 1e7)
+    for st in states:
+        parts = base.split("[damper.")
+        for i, part in enumerate(parts[1:], 1):
+            if st["stages"][part.split("]", 1)[0]]:
+                parts[i] = part.replace("k_spring = 5.254e6", f"k_spring = {series!r}", 1)
+        soft = engine_folder / "soft_two.toml"
+        soft.write_text("[damper.".join(parts))
+        assert st["forward_synchronous_rpm"] == pytest.approx(_forward(soft), rel=1e-4), st["label"]
+
+
 @pytest.mark.parametrize("text, message", [
     ("\n[fuse.7]\nhousing_mass_kg = 1.0\nk_intact = 1e9\nbreak_load_N = 1000.0\n",
      "[fuse.7]: [attach] has no bearing7"),
@@ -97,7 +142,6 @@ def fused_scenario(engine_folder):
                   '[templates]\nbearing = ["0", "5"]\nrubring = ["0", "5"]\nfuse = ["0"]\n'
                   '[algorithm]\norder = ["rotor", "bearing{bearing}", "damper{bearing}", "rubring{rubring}", '
                   '"fuse{fuse}", "thermal{bearing}"]\n'
-                  '[components.thermal0]\nstep = 5e-6\n[components.thermal5]\nstep = 5e-6\n'
                   '[outputs]\nrecord = ["fuse0.F_support", "fuse0.F_rotor", "fuse0.broken"]\n')
     return str(sc)
 
@@ -205,8 +249,8 @@ def test_check_engine_lists_the_broken_fuse_critical_speeds(engine_folder, tmp_p
 @pytest.mark.slow
 def test_blade_loss_fuse_staggered_against_monolithic_over_60_s(tmp_path):
     """blade_loss_fuse (without its comparison run) staggered and monolithic over its first 60 s (the release,
-    the break, 15 s at full speed, the fuel cut and the rundown through both post-fuse crossings; ~410 s of CPU,
-    360 of them the monolithic run: slow): every Table 4 result (0.19 % measured) and every crossing's peak values
+    the break, 15 s at full speed, the fuel cut and the rundown through both post-fuse crossings; ~330 s of CPU,
+    280 of them the monolithic run: slow): every Table 4 result (0.19 % measured) and every crossing's peak values
     (0.45 %) within 2 %, the break at the same time within one coupled step of 5 us (the same time, measured).
     Not asserted: the speed of the post-fuse crossing's peak, 5 633 rev/min staggered against 5 792 monolithic
     (2.7 %), a broad peak whose largest sample moves along its top (the other crossing's: 0.03 %)."""

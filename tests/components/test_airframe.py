@@ -207,3 +207,60 @@ def test_a_rotation_spring_carries_a_moment(tmp_path):
     full = fem.load(tmp_path / "pylon.toml")
     i = full.ports["mount_rot"][0]
     assert full.K[i, i] - fem.load(PYLON).K[i, i] == pytest.approx(k)
+
+
+def _point_file(folder, a1: float = 0.02, b2: float = 0.05) -> str:
+    """Two modes at one interface point p: mode 1 translates it along x and y (shape a1), mode 2 turns it about z
+    (b2); heavily damped (zeta 0.5) so that a held engine settles within a second."""
+    shape = np.array([[a1, a1, 0.0, 0.0, 0.0, 0.0], [0.0, 0.0, 0.0, 0.0, 0.0, b2]])
+    path = folder / "point.toml"
+    path.write_text(to_toml("point", "two modes", [5.0, 8.0], [30.0, 4.0], 0.5, {"p": shape}, {}))
+    return str(path)
+
+
+@pytest.mark.parametrize("d, offset_mm", [(1, [400.0, 0.0, 0.0]), (0, [0.0, 300.0, 0.0])])
+def test_an_offset_spring_carries_its_moment_into_the_airframe(tmp_path, d, offset_mm):
+    """A translation spring ending off the interface point (offset_mm r) against a hand-computed static case: the
+    point's static stiffnesses are k_t = m1 (2 pi f1)^2 / a1^2 (translation) and k_r = m2 (2 pi f2)^2 / b2^2
+    (rotation about z); the spring's end moves with the point, u_a = e_d . (u + theta x r), and the point takes
+    the force f e_d and the moment r x f e_d. With the engine held at delta along d: f = k delta / (1 + k / k_t +
+    k rho^2 / k_r) (rho the lever arm about z, 0.4 and 0.3 m), F = f e_d, M = r x f e_d (+0.4 f about z for a y
+    spring at +x, -0.3 f for an x spring at +y)."""
+    k, delta, a1, b2 = 2.0e6, 1e-3, 0.02, 0.05
+    _point_file(tmp_path, a1, b2)
+    engine = tmp_path / "engine.toml"
+    engine.write_text(f'[airframe]\nmodel = "point.toml"\n\n[mount.m]\ninterface = "p"\n'
+                      f'springs = [{{ node = ["casing", 0, 0], dir = {d}, k = {k!r}, c = 0.0, '
+                      f'offset_mm = [{", ".join(map(str, offset_mm))}] }}]\n')
+    comp = create("airframe.modal", "airframe", {"model_file": str(engine)})
+    comp.setup(0.0)
+    comp.set_inputs({"X_mount_m": [delta], "V_mount_m": [0.0]})
+    h = 2e-4
+    for i in range(5000):                             # 1 s: 16 time constants of the slower mode
+        comp.do_step(i * h, h)
+    k_t = 30.0 * (2 * math.pi * 5.0) ** 2 / a1 ** 2
+    k_r = 4.0 * (2 * math.pi * 8.0) ** 2 / b2 ** 2
+    r = np.array(offset_mm) * 1e-3
+    f = k * delta / (1.0 + k / k_t + k * (r[0] ** 2 + r[1] ** 2) / k_r)
+    assert comp.y["F_m"] == pytest.approx(f * np.eye(3)[d], rel=1e-6, abs=1e-9 * f)
+    assert comp.y["M_m"] == pytest.approx(np.cross(r, f * np.eye(3)[d]), rel=1e-6, abs=1e-9 * f)
+    assert abs(comp.y["M_m"][2]) == pytest.approx((0.4 if d == 1 else 0.3) * f, rel=1e-6)
+
+
+@pytest.mark.parametrize("spring, model, key", [
+    ('{ node = ["casing", 0, 0], dir = 1, k = 1e6, offset_mm = [1, 2] }', "point", "offset_mm"),
+    ('{ node = ["pt", 5], dir = 3, k = 1e6, offset_mm = [1, 2, 3] }', "point", "offset_mm"),
+    ('{ node = ["casing", 0, 0], dir = 1, k = 1e6, offset_mm = [1, 2, 3] }', "beam", "offset_mm"),
+])
+def test_a_bad_offset_is_one_line(tmp_path, spring, model, key):
+    """offset_mm: not three numbers, on a rotation spring, or on a point whose shape has translations only."""
+    from rotorcosim.components.airframe.mounting import installed
+
+    _point_file(tmp_path)
+    _cantilever_file(tmp_path)
+    engine = tmp_path / "engine.toml"
+    engine.write_text(f'[airframe]\nmodel = "{model}.toml"\n\n[mount.m]\ninterface = "{"p" if model == "point" else "tip"}"\n'
+                      f'springs = [{spring}]\n')
+    with pytest.raises(ValueError, match=rf"^\[mount\.m\] springs\[0\]\.{key}: ") as exc:
+        installed(str(engine))
+    assert "\n" not in str(exc.value)

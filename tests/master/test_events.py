@@ -82,11 +82,79 @@ def test_tolerance_larger_than_the_step_is_named():
         _sim(tolerance=2e-3).run(Timeline([Interval("TM", duration=0.01, step=1e-3)]))
 
 
-def test_multirate_interval_with_an_indicator_is_refused():
+def test_a_live_indicator_of_a_slow_component_is_refused():
     sim = _sim()
     sim.steps = {"w": 2e-3}
-    with pytest.raises(ContractError, match="every component must step at the interval's step"):
+    with pytest.raises(ContractError, match="w: a component whose event the master locates must step at the "
+                                            "interval's step"):
         sim.run(Timeline([Interval("TM", duration=0.01, step=1e-3)]))
+
+
+class Switch(ZeroWatch):
+    """A power P0 switched on and off at each zero of its input (an event indicator), as a fast producer."""
+
+    variables = ZeroWatch.variables + (Variable("P0", "parameter", unit="W", start=0.0),
+                                       Variable("P", "output", unit="W"))
+
+    def setup(self, t0=0.0):
+        super().setup(t0)
+        self.y["P"] = np.array([self.p["P0"]])
+
+    def do_step(self, t, h):
+        super().do_step(t, h)
+        self.y["P"] = self.p["P0"] * (1.0 - self.state["n"] % 2.0)
+
+    def update_discrete(self, t, which):
+        out = super().update_discrete(t, which)
+        self.y["P"] = self.p["P0"] * (1.0 - self.state["n"] % 2.0)
+        return out
+
+
+class Meter(Component):
+    """A slow consumer: the energy of its input power, E += P h, P the mean over its step the master delivers."""
+
+    variables = (Variable("P", "input", unit="W"), Variable("E", "output", unit="J"))
+
+    def setup(self, t0=0.0):
+        super().setup(t0)
+        self.state = {"E": np.zeros(1)}
+        self.ends = []
+
+    def do_step(self, t, h):
+        self.time = t + h
+        self.state["E"] = self.state["E"] + self.u["P"] * h
+        self.y["E"] = self.state["E"].copy()
+        self.ends.append(t + h)
+
+
+@pytest.mark.parametrize("mult", [3, 4])
+def test_events_located_in_a_multirate_interval(mult):
+    """A multi-rate interval with a live indicator: the fast components (the oscillator and a switch on its zeros,
+    1 ms) are re-stepped within the base step, a slow consumer (3 or 4 ms; at 3 ms the first zero's base step,
+    0.248-0.249 s, ends one of its windows) steps on its own grid, once per window, and the mean power it is handed
+    delivers exactly the switch's energy: 1 kW on until the first zero, off to the second, on again, so the meter
+    holds P0 (t1 + T - t2) to round-off with the located times, and within 2 P0 x tolerance of the exact zeros
+    (pi / 2w, 3 pi / 2w). The oscillator ends where it ends without the switch."""
+    T, p0 = 0.996, 1000.0
+    comps = {"m1": create("testing.mass", "m1", {"m": 1.0, "k": 40.0, "x0": 0.1}),
+             "w": Switch("w", {"event_tolerance": 1e-7, "P0": p0}), "meter": Meter("meter")}
+    sim = Simulation(System(comps, [Connection("m1.x", "w.x"), Connection("w.P", "meter.P")],
+                            inputs={"m1.F": np.zeros(1)}), order=list(comps))
+    sim.steps = {"meter": mult * 1e-3}
+    report = sim.run(Timeline([Interval("TM", duration=T, step=1e-3)]))
+    t1, t2 = (e["t_s"] for e in report.events)
+    exact = [math.pi / (2 * W), 3 * math.pi / (2 * W)]
+    assert 0.0 <= t1 - exact[0] <= 1e-7 and 0.0 <= t2 - exact[1] <= 1e-7
+    energy = float(sim.value("meter.E")[0])
+    assert energy == pytest.approx(p0 * (t1 + T - t2), rel=1e-12)
+    assert abs(energy - p0 * (exact[0] + T - exact[1])) <= 2 * p0 * 1e-7
+    # (the ends it saw include the trial steps the event location rolled back: their distinct times)
+    ends = sorted(set(comps["meter"].ends))
+    assert report.component_steps["meter"] == round(T / (mult * 1e-3)) == len(ends)
+    assert ends == pytest.approx([(j + 1) * mult * 1e-3 for j in range(len(ends))], abs=1e-12)
+    plain = _sim(watch=False)
+    plain.run(Timeline([Interval("TM", duration=T, step=1e-3)]))
+    assert float(sim.value("m1.x")[0]) == pytest.approx(float(plain.value("m1.x")[0]), abs=1e-12)
 
 
 def test_an_event_in_a_held_interval_ends_it_and_a_coupled_one_follows():
@@ -217,3 +285,20 @@ def test_a_power_step_at_a_time_event_reaches_the_thermal_network_exactly():
         sfd.append(T[7])
     rise = np.array(sfd) - T_init[7]
     assert 0.5 < rise.max() < 0.7 and rise[-1] < rise.max()
+
+
+def test_the_base_step_of_an_event_is_one_sample_of_the_hand_off_window():
+    """The hold's hand-off window (the switch's power into a component stepped in the held phase, cycles of 10
+    samples at 1 ms) over a coupled interval of 0.3 s with an event at 0.2484 s: the event's base step is sampled once
+    (its first, rolled back step's sample is replaced by the completed step's, at the same time): 30 whole cycles,
+    none begun; the cycle holding the event has the power on at 8 of its 10 step ends (0.241-0.248 s), mean 800 W."""
+    comps = {"m1": create("testing.mass", "m1", {"m": 1.0, "k": 40.0, "x0": 0.1}),
+             "w": Switch("w", {"event_tolerance": 1e-7, "P0": 1000.0}), "meter": Meter("meter")}
+    comps["meter"].phases = frozenset({"TM", "TO"})
+    sim = Simulation(System(comps, [Connection("m1.x", "w.x"), Connection("w.P", "meter.P")],
+                            inputs={"m1.F": np.zeros(1)}), order=list(comps), cycle=0.01)
+    report = sim.run(Timeline([Interval("TM", duration=0.3, step=1e-3)]))
+    assert [round(e["t_s"], 4) for e in report.events] == [0.2484]
+    (ho,) = sim.hold.handoffs
+    assert (len(ho.cycles), ho.w.cn) == (30, 0)
+    assert [mean for _, mean in ho.cycles[23:26]] == [1000.0, 800.0, 0.0]
