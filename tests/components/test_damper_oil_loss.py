@@ -183,6 +183,25 @@ def test_oil_lost_on_an_eccentricity_against_an_independent_integration():
     assert np.all(damper.y["F_film"] == 0.0) and damper.y["P_film"][0] == 0.0 and len(damper.indicators()) == 0
 
 
+def test_the_fe_damper_meets_the_condition_in_its_step():
+    """damper.fe (its Python step, the generic loop's): the indicator |d| / c - e_loss after each step, the oil lost
+    at the end of the step that reaches the ratio (film power zero), the indicator out once the loss is handed
+    over; the event's film power the film's at that motion."""
+    from rotorcosim.components.damper.component import FEDamper
+
+    d = FEDamper("d", {"damper": 0, "oil_loss_eccentricity": 0.5, "n_theta": 32, "n_z": 8})
+    d.setup(0.0)
+    d.set_inputs({"X_journal": [1e-4, 0.0], "V_journal": [0.0, 0.05], "T_oil": [343.15]})
+    d.do_step(0.0, 1e-5)
+    assert d.indicators() == pytest.approx([1e-4 / CLEAR - 0.5]) and d.y["P_film"][0] > 0.0
+    d.set_inputs({"X_journal": [4e-4, 0.0]})
+    d.do_step(1e-5, 1e-5)
+    assert d.indicators() == pytest.approx([4e-4 / CLEAR - 0.5]) and d.y["P_film"][0] == 0.0
+    what = d.update_discrete(2e-5, [0])
+    assert what["kind"] == "oil_supply_loss" and what["values"]["P_film_W"] > 0.0
+    assert len(d.indicators()) == 0
+
+
 def test_without_the_condition_the_damper_declares_no_indicator():
     """A damper without oil_loss_eccentricity is no concern of the event location (no indicator: the run builds no
     locator and its compiled loop saves nothing)."""
