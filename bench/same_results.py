@@ -8,6 +8,7 @@ leave results alone did (e.g. ``rotorcosim run --out A`` on two versions of the 
 from __future__ import annotations
 
 import json
+import re
 import sys
 from pathlib import Path
 
@@ -19,16 +20,23 @@ MACHINE_KEYS = {"wall_time_s", "cpu_time_s", "load_average", "started", "finishe
                 "wall_time_by_phase_s", "peak_memory_MB", "estimate", "files", "output_folder", "step_cost_us", "source"}
 
 
+#: a path into one of the project's top folders, from wherever the checkout is
+_CHECKOUT_PATH = re.compile(r"/\S*?/(components|scenarios|cases|interop|fmus|master)/")
+
+
 def _same_file_elsewhere(a, b) -> bool:
-    """Two absolute paths that differ only in the folder the code ran from (two checkouts' copies of one file,
-    as provenance names them): ``/x/main/scenarios/f.toml`` and ``/y/ref/scenarios/f.toml``, the same below a
-    known top folder of the project."""
-    if not (isinstance(a, str) and isinstance(b, str) and a.startswith("/") and b.startswith("/")):
+    """Two strings that differ only in the folder the code ran from (two checkouts' copies of one file, as
+    provenance names them): ``/x/main/scenarios/f.toml`` and ``/y/ref/scenarios/f.toml``, also inside a longer
+    text ("computed from /x/main/components/...")."""
+    if not (isinstance(a, str) and isinstance(b, str)):
         return False
-    for top in ("/components/", "/scenarios/", "/cases/", "/interop/", "/fmus/", "/master/"):
-        if top in a and top in b and a[a.index(top):].split(" ")[0] == b[b.index(top):].split(" ")[0]:
-            return a[a.index(top):] == b[b.index(top):]
-    return False
+    return _CHECKOUT_PATH.sub(r"<checkout>/\1/", a) == _CHECKOUT_PATH.sub(r"<checkout>/\1/", b)
+
+
+def _short(v, n: int = 160) -> str:
+    """repr of ``v``, cut to ``n`` characters (a list of hundreds of records stays one readable line)."""
+    r = repr(v)
+    return r if len(r) <= n else r[:n] + f"... ({len(r)} characters)"
 
 
 def _walk(a, b, where: str, out: list[str]) -> None:
@@ -45,7 +53,7 @@ def _walk(a, b, where: str, out: list[str]) -> None:
             _walk(x, y, f"{where}[{i}]", out)
     elif a != b and not (isinstance(a, float) and isinstance(b, float) and np.isnan(a) and np.isnan(b)) \
             and not _same_file_elsewhere(a, b):
-        out.append(f"{where}: {a!r} != {b!r}")
+        out.append(f"{where}: {_short(a)} != {_short(b)}")
 
 
 def differences(dir_a: Path, dir_b: Path) -> list[str]:
