@@ -155,6 +155,7 @@ def test_automatic_schedule_runs_compiled_and_decides_as_the_generic_loop(tmp_pa
             assert _rel(y, ps.system.components[name].y[port]) <= RTOL, f"{name}.{port}"
 
 
+@pytest.mark.slow   # 30 ms at the rotor's step in the Python loop: about 20 s of CPU
 def test_compiled_equals_generic_with_windows_counted_in_turns(tmp_path):
     """blade_loss_rundown (its cycle counts the turns of spool_pt.theta), the fuel cut at once: the hand-off
     windows, the cycle means that end at each turn and the steady windows are the same in both loops, and span the
