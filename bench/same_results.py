@@ -84,6 +84,11 @@ def main(argv: list[str]) -> int:
     if len(argv) != 2:
         print(__doc__.splitlines()[0], file=sys.stderr)
         return 2
+    for d in argv:
+        missing = [f for f in ("summary.json", "timeseries.h5") if not (Path(d) / f).is_file()]
+        if missing:
+            print(f"same_results: {d} is not a run folder (no {' or '.join(missing)})", file=sys.stderr)
+            return 2
     diffs = differences(Path(argv[0]), Path(argv[1]))
     for d in diffs:
         print(d)
