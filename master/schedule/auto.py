@@ -2,7 +2,8 @@
 
 TM intervals run until the mechanical outputs handed to the thermal side are steady cycle to cycle (the
 staggered scheme's assumption: once the mechanics are steady, their response changes only with the slow
-temperatures); TO intervals run until the thermal outputs that feed the mechanical side have drifted by more than
+temperatures) and have run the cycles the hold reads at their end (the restart's ramp, ``restart_cycles``, then
+the window of ``hold_cycles``: a shorter interval would hand over powers partly from the ramp); TO intervals run until the thermal outputs that feed the mechanical side have drifted by more than
 ``drift_tolerance``, within min/max durations. The last stretch is one TM interval, where results are read.
 
 Non-stationary runs (a cycle that follows a speed signal, [schedule] cycle): a TM interval is not steady while
@@ -175,13 +176,15 @@ class _StopTest:
 
 class _SteadyTest(_StopTest):
     """Steady when the RMS of the tracked outputs over a cycle changes by less than the tolerance
-    (relative) for ``steady_cycles`` consecutive cycles, after ``tm_min``.
+    (relative) for ``steady_cycles`` consecutive cycles, after ``tm_min`` and the hold's window
+    (:meth:`_window_full`).
 
     A cycle is the ``check_steps`` base steps between two checks (a period at the interval's start, ``every``,
     or the whole number of periods of the multi-rate period); with a cycle source that has an angle, it is as
     many whole turns of that angle, counted from the interval's start, as there are periods between two checks
-    at the starting speed (the RMS over each such span of turns is compared with the previous span's), and the
-    checks, still every ``check_steps`` base steps, take the spans completed since the last one in order."""
+    at the starting speed (one turn, or the turns of a multi-rate period when that is longer: :meth:`cadence`;
+    the RMS over each such span of turns is compared with the previous span's), and the checks, every
+    ``check_steps`` base steps, take the spans completed since the last one in order."""
 
     def __init__(self, sim, sch: AutoSchedule):
         self.sch = sch
@@ -220,8 +223,8 @@ class _SteadyTest(_StopTest):
         """Counted in turns, a check need not fall on a whole period: the first multi-rate period boundary at
         least a period (``every``) after the last check. (The whole multiple of both would be one every
         ``every * period / gcd`` steps, which with a speed whose period is no round number of base steps is
-        hundreds of turns: a windmilling rotor at 3 500 rev/min, 3 503 base steps a turn and a 200-step
-        multi-rate period, checked every 3.5 s, never within a 0.5 s interval.)"""
+        hundreds of turns: 3 503 base steps a turn and a 200-step multi-rate period are checked every 700 600
+        steps, 3.5 s at a 5 us step, never within a coupled interval of 0.5 s.)"""
         if self.turns is None:
             return super().cadence(period)
         return period * max(1, -(-self.every // period))
