@@ -17,7 +17,13 @@ replay that carries a held interval's hand-off errors to the thermal components'
   laws) give other powers than the monolithic run's, and those differences are input errors too. The replay
   closes that loop with the sensitivity of each hand-off's TO law to the values its producer takes back from the
   same thermal component (``HandOff.gains``: elasticity times the frozen law's slope, and the driver's slope): a
-  film power that falls as its oil warms pulls a too warm oil back. The interval's own estimate is its pulse's
+  film power that falls as its oil warms pulls a too warm oil back. The loop runs at the mechanics' sensitivity as
+  far as the restart shows it: the law's gains times the share of the law's move over the last charged interval
+  that the mechanics made (``HandOff.loop_share``, at most 1: a mechanics that moved less than the law pulls back
+  less; one that moved more may have followed values the law does not, and is not credited with a stronger
+  pull-back). The mechanics' sensitivity lies between that share of the law's and the law's own, and an output
+  whose error is a difference of two inputs' responses (a ball between a drag and a rub that err apart) may grow
+  with a stronger loop: each output takes the larger of its errors in the two loops (hold.py ``_response``). The interval's own estimate is its pulse's
   response at the restart; the run's, at its end, the response
   of all the charged intervals' pulses together (a later interval's error that undoes an earlier one's cancels
   it: the mechanics restarted at erring temperatures give powers that pull them back). Temperatures are judged
