@@ -236,6 +236,8 @@ def check(sc, sim) -> None:
     for sp in spools:
         if sp not in sim.system.components:
             raise ValueError(f"[results] spools: no component {sp!r}")
+    fatigue.check(sc, sim)
+    interface.check(sc, sim)
 
 
 class Peak(NamedTuple):
