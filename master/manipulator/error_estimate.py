@@ -59,6 +59,9 @@ class HoldReport:
 
     elasticity: dict[str, float] = field(default_factory=dict)
     errors: dict[str, float] = field(default_factory=dict)
+    #: per hand-off with a law: the share of its law's move over the last charged TO interval the mechanics made
+    #: (HandOff.loop_share, at most 1), at which the replay's loop runs besides the law's own
+    loop_share: dict[str, float] = field(default_factory=dict)
     interval_estimates_pct: list[float] = field(default_factory=list)
     drivers: dict[str, dict | None] = field(default_factory=dict)
     #: windows counted in turns of the cycle's angle: the turns asked for (hold_cycles), and per TO interval the
@@ -118,6 +121,7 @@ class HoldReport:
         """The report as summary.json's ``hold`` (hand-off errors in percent)."""
         out = {"elasticity": dict(self.elasticity), "drivers": dict(self.drivers),
                "handoff_error_pct": {k: 100.0 * v for k, v in self.errors.items()},
+               "loop_share": dict(self.loop_share),
                "interval_estimates_pct": list(self.interval_estimates_pct),
                "intervals": [dict(i) for i in self.intervals],
                "output_errors": dict(self.output_errors), "output_rise": dict(self.output_rise),

@@ -226,6 +226,8 @@ class StaggeredHold:
             if ho.measure_restart_error(skip, n):
                 fresh.append(ho)
                 self.report.errors[f"{ho.link.con.src} -> {ho.link.con.dst}"] = ho.error
+                if ho.gains:
+                    self.report.loop_share[f"{ho.link.con.src} -> {ho.link.con.dst}"] = ho.loop_share
         if fresh:
             self._estimate(fresh, t0, t1)
 
