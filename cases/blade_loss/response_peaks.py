@@ -25,6 +25,7 @@ the peaks, which are refined on the direct solve.
 """
 from __future__ import annotations
 
+import hashlib
 import math
 
 import numpy as np
@@ -50,25 +51,33 @@ def speed_grid(min_rpm: float, max_rpm: float) -> np.ndarray:
     return np.geomspace(min_rpm, max_rpm, n)
 
 
-def whirl_function(full, sup: dict, ref_rpm: float):
+class Whirl:
     """``whirl(rpm)``: per bearing id the whirl [mm] of the linear engine on supports ``sup`` under the unbalance
-    growing with the square of the speed (direct solve), each speed solved once."""
-    system = full.coupled(sup)
-    seen: dict[float, dict[str, float]] = {}
+    growing with the square of the speed (direct solve), each speed solved once. The engine's matrices are built
+    when a solve needs them and :meth:`release` frees them (a rundown keeps its searches for the process)."""
 
-    def whirl(rpm: float) -> dict[str, float]:
-        out = seen.get(rpm)
+    def __init__(self, full, sup: dict, ref_rpm: float):
+        self.full, self.sup, self.ref_rpm = full, sup, ref_rpm
+        self._system = None
+        self._seen: dict[float, dict[str, float]] = {}
+
+    def __call__(self, rpm: float) -> dict[str, float]:
+        out = self._seen.get(rpm)
         if out is None:
-            r = linear_engine.response(full, sup, (rpm / ref_rpm) ** 2, rpm, system)
-            out = seen[rpm] = {b: float(v["whirl_mm"]) for b, v in r.items()}
+            if self._system is None:
+                self._system = self.full.coupled(self.sup)
+            r = linear_engine.response(self.full, self.sup, (rpm / self.ref_rpm) ** 2, rpm, self._system)
+            out = self._seen[rpm] = {b: float(v["whirl_mm"]) for b, v in r.items()}
         return out
 
-    return whirl
+    def release(self) -> None:
+        """Free the engine's matrices (built again by the next new speed)."""
+        self._system = None
 
 
 class DampedPeaks:
     """The damped critical speeds per bearing id of one set of supports: the peaks of ``table`` (per bearing id
-    the whirl over ``grid``), each refined on ``whirl`` (:func:`whirl_function`) when first asked for."""
+    the whirl over ``grid``), each refined on ``whirl`` (:class:`Whirl`) when first asked for."""
 
     def __init__(self, grid: np.ndarray, table: dict[str, np.ndarray], whirl):
         # scipy.signal imports scipy.stats (~1 s of CPU): at the first search, not with the module
@@ -95,7 +104,9 @@ class DampedPeaks:
 
     def all(self) -> dict[str, list[float]]:
         """Every damped critical speed, per bearing id, ascending."""
-        return {b: [self.speed(b, i) for i in idx] for b, idx in self.peaks.items()}
+        out = {b: [self.speed(b, i) for i in idx] for b, idx in self.peaks.items()}
+        self.whirl.release()
+        return out
 
     def nearest(self, b: str, rpm: float) -> float | None:
         """The damped critical speed of bearing ``b`` nearest to ``rpm`` (in ratio, |log(rpm / d)|; of two as near,
@@ -114,6 +125,7 @@ class DampedPeaks:
             cand = (abs(math.log(rpm / d)), k, d)
             if best is None or cand[:2] < best[:2]:
                 best = cand
+        self.whirl.release()
         return None if best is None else best[2]
 
 
@@ -122,12 +134,12 @@ def damped_critical_speeds(full, sup: dict, min_rpm: float, max_rpm: float, ref_
     ``min_rpm`` and ``max_rpm`` at which the rotor's whirl there peaks under an unbalance growing with the square
     of the speed (its level at ``ref_rpm`` does not matter: the system is linear)."""
     grid = speed_grid(min_rpm, max_rpm)
-    whirl = whirl_function(full, sup, ref_rpm)
+    whirl = Whirl(full, sup, ref_rpm)
     return DampedPeaks(grid, direct_table(grid, whirl), whirl).all()
 
 
 def direct_table(grid: np.ndarray, whirl) -> dict[str, np.ndarray]:
-    """Per bearing id the whirl [mm] at each speed of ``grid`` [rev/min] from ``whirl`` (:func:`whirl_function`)."""
+    """Per bearing id the whirl [mm] at each speed of ``grid`` [rev/min] from ``whirl`` (:class:`Whirl`)."""
     rows = [whirl(float(w)) for w in grid]
     return {b: np.array([row[b] for row in rows]) for b in rows[0]}
 
@@ -139,45 +151,43 @@ class FilmScan:
 
     def __init__(self, full, sup: dict, grid: np.ndarray, ref_rpm: float):
         self.full, self.grid, self.ref_rpm = full, grid, ref_rpm
-        self.base = full.coupled(sup)
-        moved = np.zeros(self.base["C"].shape[0], bool)
+        base = full.coupled(sup)
+        moved = np.zeros(base["C"].shape[0], bool)
         for h, s in sup.items():
-            dC = full.coupled({**sup, h: {**s, "c_film": s["c_film"] + 1.0}})["C"] - self.base["C"]
+            dC = full.coupled({**sup, h: {**s, "c_film": s["c_film"] + 1.0}})["C"] - base["C"]
             moved |= (dC != 0.0).any(axis=0) | (dC != 0.0).any(axis=1)
-        self.D = np.flatnonzero(moved)
+        self.D = D = np.flatnonzero(moved)
         self.out = {h[1:]: np.asarray(full.ports[f"brg{h[1:]}"][:2]) for h in sup}
-        self._x0 = None
-
-    def _solve(self) -> None:
-        """x_0 and Y at every grid speed, kept at the whirl's DOFs and D only."""
-        n, D = self.base["C"].shape[0], self.D
-        rows = np.concatenate([*self.out.values(), D])
-        R = np.zeros((n, 1 + len(D)), complex)
-        ux, uy = self.full.ports["unbalance"]
-        R[ux, 0], R[uy, 0] = 1.0, -1j
-        R[D, 1 + np.arange(len(D))] = 1.0
-        # sparse LU (SuperLU): the engine's matrices are a few per cent full, and these solves only locate peaks
+        # x_0 and Y at every grid speed, kept at the whirl's DOFs and D only; by sparse LU (SuperLU): the engine's
+        # matrices are a few per cent full, and these solves only locate peaks
         from scipy.sparse import csc_matrix
         from scipy.sparse.linalg import splu
 
-        mats = {k: csc_matrix(self.base[k]) for k in ("K", "M", "C", "G_pt", "G_gg")}
-        sol = np.stack([splu(csc_matrix(calibration.harmonic_matrix(self.full, mats, w * RPM))).solve(R)[rows]
-                        for w in self.grid])
-        self._x0, self._Y, self._rows = sol[:, :, 0], sol[:, :, 1:], rows
+        n = base["C"].shape[0]
+        rows = np.concatenate([*self.out.values(), D])
+        R = np.zeros((n, 1 + len(D)), complex)
+        ux, uy = full.ports["unbalance"]
+        R[ux, 0], R[uy, 0] = 1.0, -1j
+        R[D, 1 + np.arange(len(D))] = 1.0
+        mats = {k: csc_matrix(base[k]) for k in ("K", "M", "C", "G_pt", "G_gg")}
+        sol = np.stack([splu(csc_matrix(calibration.harmonic_matrix(full, mats, w * RPM))).solve(R)[rows]
+                        for w in grid])
+        self._x0, self._Y = sol[:, :, 0], sol[:, :, 1:]
+        # what a film-only change leaves as it is (kept as digests: the scan lives as long as the process)
+        self._C0 = base["C"]
+        self._fixed = _digests(base)
 
     def table(self, sup: dict) -> dict[str, np.ndarray] | None:
         """Per bearing id the whirl [mm] over the grid on supports ``sup``; None when ``sup`` differs from the
         scan's supports in more than the films' damping (solve it directly then)."""
         s = self.full.coupled(sup)
-        if any(not np.array_equal(s[k], self.base[k]) for k in ("K", "M", "G_pt", "G_gg")):
+        if _digests(s) != self._fixed:
             return None
         D = self.D
-        dC = s["C"] - self.base["C"]
+        dC = s["C"] - self._C0
         dCD = dC[np.ix_(D, D)]
         if np.count_nonzero(dC) != np.count_nonzero(dCD):
             return None
-        if self._x0 is None:
-            self._solve()
         W = self.grid * RPM
         nd = len(self.out) * 2
         x0D, YD = self._x0[:, nd:], self._Y[:, nd:, :]
@@ -186,3 +196,9 @@ class FilmScan:
         x = (self._x0[:, :nd] - (self._Y[:, :nd, :] @ z)[:, :, 0]) * ((self.grid / self.ref_rpm) ** 2)[:, None]
         return {b: 1e3 * calibration.orbit_semi_axis(x[:, 2 * k], x[:, 2 * k + 1])
                 for k, b in enumerate(self.out)}
+
+
+def _digests(system: dict) -> tuple:
+    """Digests of the matrices of a linear engine that its films' damping does not enter."""
+    return tuple(hashlib.sha256(np.ascontiguousarray(system[k]).tobytes()).digest()
+                 for k in ("K", "M", "G_pt", "G_gg"))

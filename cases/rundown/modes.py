@@ -156,7 +156,7 @@ class EngineModes:
             if scan is None:
                 grid = response_peaks.speed_grid(lo, hi)
                 scan = self._cache[("scan", lo, hi)] = response_peaks.FilmScan(self.full, self.sup, grid, self.ref_rpm)
-            whirl = response_peaks.whirl_function(self.full, sup, self.ref_rpm)
+            whirl = response_peaks.Whirl(self.full, sup, self.ref_rpm)
             table = scan.table(sup)
             if table is None:
                 table = response_peaks.direct_table(scan.grid, whirl)

@@ -44,7 +44,7 @@ def test_film_update_equals_the_direct_solve_and_other_changes_are_refused(engin
     scan = rp.FilmScan(m, sup, grid, REF_RPM)
     warm = _films(sup, 0.55, 0.6)        # the films' damping of oil some 10 C warmer
     got = scan.table(warm)
-    want = rp.direct_table(grid, rp.whirl_function(m, warm, REF_RPM))
+    want = rp.direct_table(grid, rp.Whirl(m, warm, REF_RPM))
     for b in want:
         assert np.max(np.abs(got[b] - want[b]) / want[b]) < 1e-9, b
     # a change of anything but the films' damping: not an update of the scan
@@ -52,7 +52,7 @@ def test_film_update_equals_the_direct_solve_and_other_changes_are_refused(engin
     stiff["h0"]["k_spring"] *= 2.0
     assert scan.table(stiff) is None
     # the peaks it finds are the direct solve's, and the nearest one alone is refined to the same speed
-    whirl = rp.whirl_function(m, warm, REF_RPM)
+    whirl = rp.Whirl(m, warm, REF_RPM)
     every = rp.DampedPeaks(grid, want, whirl).all()
     lazy = rp.DampedPeaks(grid, got, whirl)
     assert lazy.peaks == rp.DampedPeaks(grid, want, whirl).peaks and every["0"]
