@@ -226,6 +226,8 @@ class StaggeredHold:
             if ho.measure_restart_error(skip, n):
                 fresh.append(ho)
                 self.report.errors[f"{ho.link.con.src} -> {ho.link.con.dst}"] = ho.error
+                if ho.gains:
+                    self.report.loop_share[f"{ho.link.con.src} -> {ho.link.con.dst}"] = ho.loop_share
         if fresh:
             self._estimate(fresh, t0, t1)
 
@@ -234,13 +236,8 @@ class StaggeredHold:
         sensitivity and at the share of it the mechanics showed (:meth:`feedback`): of the two, each output's
         larger error (the mechanics' sensitivity lies between them, and an output whose error is a difference of
         two inputs' responses may grow with a stronger loop)."""
-        out = replay(comp, name, pulses, comp.time, self.feedback(name))
-        law = self.feedback(name, shared=False)
-        if law != self.feedback(name):
-            for ref, e in replay(comp, name, pulses, comp.time, law).items():
-                if ref in out:
-                    out[ref] = np.where(np.abs(e) > np.abs(out[ref]), e, out[ref])
-        return out
+        shared, law = self.feedback(name), self.feedback(name, shared=False)
+        return replay(comp, name, pulses, comp.time, shared, [law] if law != shared else [])
 
     def feedback(self, name: str, shared: bool = True) -> list[tuple[str, str, int, float]]:
         """How thermal component ``name``'s inputs follow its own outputs through the mechanics, as the last TO

@@ -55,6 +55,12 @@ def test_replay_with_feedback_gives_the_closed_loop_response_of_a_lumped_node():
     assert got["node.T"][0] == pytest.approx(exact, rel=1e-2)
     # and not the open-loop response, 1.5 times larger here
     assert got["node.T"][0] < 0.8 * replay(node, "node", [pulse], node.time + now)["node.T"][0]
+    # two loops at once (the law's and a weaker one): each output the larger of the two, the weaker loop's here,
+    # as each replayed alone gives it
+    weak = replay(node, "node", [pulse], node.time + now, [("P", "T", 0, 0.5 * g)])
+    both = replay(node, "node", [pulse], node.time + now, [("P", "T", 0, g)], [[("P", "T", 0, 0.5 * g)]])
+    assert weak["node.T"][0] > got["node.T"][0]
+    assert both["node.T"][0] == pytest.approx(weak["node.T"][0], rel=1e-12)
 
 
 def test_a_negative_input_error_larger_than_the_input_is_replayed():
