@@ -271,7 +271,7 @@ class Simulation:
         if self.engine_choice not in compiled.ENGINES:
             raise ContractError(f"engine {self.engine_choice!r} not in {compiled.ENGINES}")
         if stop is not None:
-            stop.check_steps = math.lcm(stop.every, lcm)   # the base steps between two of its checks
+            stop.check_steps = stop.cadence(lcm)   # the base steps between two of its checks
         runner = compiled.runner(self, role, active, mult, step, stop, self.engine_choice)
         if role == COUPLED:
             self.engines_used.append("compiled" if runner is not None else "python")
@@ -284,7 +284,7 @@ class Simulation:
                     if k < k_end:
                         try:
                             k = runner.run(k, k_end, t_start, stop,
-                                           math.lcm(stop.every, lcm) if stop is not None else 0)
+                                           stop.check_steps if stop is not None else 0)
                             why = runner.why or why
                         finally:
                             k = runner.k
@@ -324,7 +324,7 @@ class Simulation:
                         obs.step(self, self.t)
                 if stop is not None:
                     stop.sample(self)
-                    if k % stop.every == 0 and k % lcm == 0:
+                    if k % stop.check_steps == 0:
                         found = stop.check(self, self.t)
                         if found:  # otherwise the interval keeps the reason it was given (its maximum reached)
                             why = found

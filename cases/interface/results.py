@@ -52,6 +52,20 @@ def airframe_of(sc) -> str | None:
     return hits[0] if len(hits) == 1 else None
 
 
+def check(sc, sim) -> None:
+    """A scenario's ``[results] airframe`` names one of its components of :data:`IMPLEMENTATION`: else a one-line
+    ValueError naming the key."""
+    named = sc.extra.get("results", {}).get("airframe")
+    if not named:
+        return
+    spec = sc.components.get(str(named))
+    if spec is None or str(named) not in sim.system.components:
+        raise ValueError(f"[results] airframe: no component {named!r}")
+    if spec.implementation != IMPLEMENTATION:
+        raise ValueError(f"[results] airframe: component {named!r} is a {spec.implementation!r}, not an airframe "
+                         f"({IMPLEMENTATION!r})")
+
+
 class InterfaceTrack(Observer):
     """Peaks and the last coupled interval's levels of the airframe's interface loads and accelerations."""
 

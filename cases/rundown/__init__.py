@@ -37,6 +37,9 @@ RESULTS_KEYS = {"spools": checkers.list_of(checkers.text), "critical_speeds_rpm"
                 "fatigue_loads": checkers.list_of(checkers.port_ref), "woehler_exponent": checkers.positive,
                 "reference_cycles": checkers.positive, "sn_range_N": checkers.positive,
                 "sn_cycles": checkers.positive,
+                # the airframe component whose interface loads summary.json reports (cases/interface/results.py;
+                # default: the component named "airframe", else the scenario's one airframe.modal)
+                "airframe": checkers.text,
                 # a run with a support fuse beside the same scenario without it (cases/rundown/fuse_comparison.py)
                 "casing_force_peak": checkers.boolean, "without_fuse": checkers.text,
                 "without_fuse_set": fuse_comparison.settings}

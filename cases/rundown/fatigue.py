@@ -90,6 +90,18 @@ def recorded_counts(data, sc, t_from: float = 0.0) -> dict[str, fg.Counts]:
     return out
 
 
+def check(sc, sim) -> None:
+    """``[results] fatigue_loads`` names outputs of the run's components: else a one-line ValueError naming the
+    key and the load."""
+    comps = sim.system.components
+    for ref in sc.extra.get("results", {}).get("fatigue_loads") or []:
+        comp, _, port = str(ref).partition(".")
+        if comp not in comps:
+            raise ValueError(f"[results] fatigue_loads: {ref!r}: no component {comp!r}")
+        if port not in comps[comp].y:
+            raise ValueError(f"[results] fatigue_loads: {ref!r}: component {comp!r} has no output {port!r} "
+                             f"(its outputs: {', '.join(sorted(comps[comp].y))})")
+
 
 def observer(sc, cycle):
     """The run's :class:`~rotorcosim.master.observer.held_cycles.LoadCycles` of ``[results] fatigue_loads``, or

@@ -7,9 +7,11 @@ film temperatures, its damped critical speeds (cases/blade_loss/response_peaks.p
 unbalance response peaks, per bearing id). Each damped critical speed is one mode's: the one whose undamped
 critical speed is nearest to it (the films move the engine's peaks 5-12 %, less than half the distance between
 its modes). The film's damping follows the oil's viscosity, so the damped speeds are computed per set of film
-temperatures (each bearing's damper its own, rounded to ``TEMPERATURE_STEP_C``), once each per run; the search
-covers the speeds of the peaks found (``prepare``) widened by ``SEARCH_MARGIN``. All of it is kept per process
-(the runs of a sweep or of a comparison share it).
+temperatures (each bearing's damper its own, rounded to ``TEMPERATURE_STEP_C``), once each per run, on one speed
+grid solved once for them all (response_peaks.FilmScan), each damped critical speed refined only when it can be
+the one nearest to a run's peak (response_peaks.DampedPeaks); the search covers the speeds of the peaks found
+(``prepare``) widened by ``SEARCH_MARGIN``. All of it is kept per process (the runs of a sweep or of a comparison
+share it).
 
 A test rotor without co-simulated bearings (the Jeffcott check case) has the scenario's ``[results]
 critical_speeds_rpm`` (undamped; no damped speeds).
@@ -38,7 +40,7 @@ COUNT = 8
 #: the damped search's range is widened to multiples of this [rev/min]
 RANGE_STEP_RPM = 500.0
 #: per process: (model digest, reference speed, bearing and damper specifications, top speed) -> (supports,
-#: undamped critical speeds, damped ones per (range, film temperatures))
+#: undamped critical speeds, {("scan", range): its FilmScan, (range, film temperatures): their DampedPeaks})
 _ENGINES: dict[tuple, tuple] = {}
 KELVIN = 273.15
 
@@ -84,14 +86,14 @@ class ScenarioModes:
     def prepare(self, lo_rpm: float, hi_rpm: float) -> None:
         """Nothing to prepare."""
 
-    def damped(self, temps: dict) -> dict:
+    def damped_near(self, loc: str, speed_rpm: float, temps: dict) -> None:
         """No damped critical speeds."""
-        return {}
+        return None
 
 
 class EngineModes:
-    """The linearised engine's critical speeds (module docstring): ``undamped`` [rev/min], ``damped(temps)``: per
-    bearing id, (damped, undamped) pairs [rev/min] at the film temperatures ``temps`` (bearing id -> C)."""
+    """The linearised engine's critical speeds (module docstring): ``undamped`` [rev/min], ``damped_near``: the
+    damped critical speed at a bearing nearest to a peak's speed, at the film temperatures of the peak."""
 
     def __init__(self, sc, rotor, dampers: dict, max_rpm: float, fuse_stage: int | dict = 0):
         from rotorcosim.cases.blade_loss import linear_engine
@@ -121,7 +123,19 @@ class EngineModes:
         self.range = (math.floor(lo_rpm / SEARCH_MARGIN / RANGE_STEP_RPM) * RANGE_STEP_RPM,
                       math.ceil(hi_rpm * SEARCH_MARGIN / RANGE_STEP_RPM) * RANGE_STEP_RPM)
 
-    def damped(self, temps: dict) -> dict:
+    def damped_near(self, loc: str, speed_rpm: float, temps: dict) -> tuple[float, float] | None:
+        """The damped critical speed at bearing id ``loc`` nearest to ``speed_rpm`` at the film temperatures
+        ``temps`` (bearing id -> C) and the undamped one of its mode (nearest to it), [rev/min]; None where the
+        engine's response does not peak at ``loc``."""
+        d = self._peaks(temps).nearest(loc, speed_rpm)
+        if d is None:
+            return None
+        return d, min(self.undamped, key=lambda u: abs(math.log(d / u)))
+
+    def _peaks(self, temps: dict):
+        """The damped critical speeds (response_peaks.DampedPeaks) at the film temperatures ``temps``, rounded
+        to TEMPERATURE_STEP_C; one search per range and rounded temperatures, its grid shared with the other
+        temperatures' (response_peaks.FilmScan)."""
         from rotorcosim.cases.blade_loss import linear_engine, response_peaks
 
         step = TEMPERATURE_STEP_C
@@ -138,10 +152,15 @@ class EngineModes:
                     s["oil_temperature_C"] = rounded[k]
                 sup[h] = s
             lo, hi = self.range or (0.5 * self.undamped[0], 1.5 * self.undamped[-1])
-            peaks = response_peaks.damped_critical_speeds(self.full, sup, lo, hi, self.ref_rpm)
-            out = {k: [(d, min(self.undamped, key=lambda u: abs(math.log(d / u)))) for d in v]
-                   for k, v in peaks.items()}
-            self._cache[key] = out
+            scan = self._cache.get(("scan", lo, hi))
+            if scan is None:
+                grid = response_peaks.speed_grid(lo, hi)
+                scan = self._cache[("scan", lo, hi)] = response_peaks.FilmScan(self.full, self.sup, grid, self.ref_rpm)
+            whirl = response_peaks.Whirl(self.full, sup, self.ref_rpm)
+            table = scan.table(sup)
+            if table is None:
+                table = response_peaks.direct_table(scan.grid, whirl)
+            out = self._cache[key] = response_peaks.DampedPeaks(scan.grid, table, whirl)
         return out
 
 

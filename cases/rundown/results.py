@@ -236,6 +236,8 @@ def check(sc, sim) -> None:
     for sp in spools:
         if sp not in sim.system.components:
             raise ValueError(f"[results] spools: no component {sp!r}")
+    fatigue.check(sc, sim)
+    interface.check(sc, sim)
 
 
 class Peak(NamedTuple):
@@ -306,11 +308,12 @@ def _nearest(x: float, values) -> int:
 
 def label(loc: str, speed_rpm: float, temps: dict, modes) -> tuple[float, float | None]:
     """The mode of a peak at ``loc`` and ``speed_rpm``: the nearest of the damped critical speeds the linearised
-    engine has at that location at the film temperatures ``temps`` ((damped, undamped) pairs of
-    ``modes.damped``), or, where it has none there, the nearest undamped critical speed. (undamped, damped)."""
-    pairs = modes.damped(temps).get(loc) or []
-    if pairs:
-        d, u = pairs[_nearest(speed_rpm, [p[0] for p in pairs])]
+    engine has at that location at the film temperatures ``temps`` (``modes.damped_near``: it and the undamped
+    critical speed of its mode), or, where it has none there, the nearest undamped critical speed. (undamped,
+    damped)."""
+    hit = modes.damped_near(loc, speed_rpm, temps)
+    if hit is not None:
+        d, u = hit
         return u, d
     und = modes.undamped
     return und[_nearest(speed_rpm, und)], None
@@ -319,8 +322,8 @@ def label(loc: str, speed_rpm: float, temps: dict, modes) -> tuple[float, float 
 def crossings(table: np.ndarray, spool: str, modes, locations: dict, n_spools: int) -> list[dict]:
     """The crossings of ``spool``'s speed through the critical speeds (module docstring) over the rows of
     ``table`` (RundownTrack.table, its location columns as :func:`_layout` of ``locations``). ``modes``: the
-    critical speeds (:mod:`.modes`: ``undamped`` [rev/min] and ``damped(temperatures)``; ``prepare(lo, hi)``
-    with the speed range [rev/min] of the peaks found is called first), or a :class:`.modes.StagedModes`: the
+    critical speeds (:mod:`.modes`: ``undamped`` [rev/min] and ``damped_near(location, speed, temperatures)``;
+    ``prepare(lo, hi)`` with the speed range [rev/min] of the peaks found is called first), or a :class:`.modes.StagedModes`: the
     critical speeds of each configuration a run's events put in force (a support fuse's break), each peak
     labelled with those in force at its time, each entry with its ``configuration``."""
     from .modes import StagedModes

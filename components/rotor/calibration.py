@@ -68,6 +68,22 @@ def calibrate(data: dict, tol_rpm: float = 1.0, max_iter: int = 10, sup: dict | 
     return x, f
 
 
+def harmonic_matrix(full: model.FullModel, system: dict, W: float) -> np.ndarray:
+    """The dynamic stiffness of the linear engine ``system`` (:meth:`model.FullModel.coupled`) for a synchronous
+    response at the power turbine's speed ``W`` [rad/s], the gas generator at its ratio r of it:
+    A = K - W^2 M + i W (C + W G_pt + W r G_gg), so that A X = F for X, F rotating as exp(i W t)."""
+    s = system
+    r = full.omega_gg / full.omega_pt
+    return s["K"] - W ** 2 * s["M"] + 1j * W * (s["C"] + W * s["G_pt"] + W * r * s["G_gg"])
+
+
+def orbit_semi_axis(x, y):
+    """The major semi-axis |a_f| + |a_b| of the elliptic orbit whose x and y move as Re(x exp(i W t)) and
+    Re(y exp(i W t)) (complex amplitudes ``x``, ``y``; numbers or arrays): the orbit is a forward circle of radius
+    |a_f| = |x + i y| / 2 plus a backward one of |a_b| = |x - i y| / 2."""
+    return (abs(x + 1j * y) + abs(x - 1j * y)) / 2.0
+
+
 def coupled_response(full: model.FullModel, sup: dict, F_u: float, rpm: float | None = None,
                      system: dict | None = None) -> dict:
     """Steady synchronous response of the linear engine (supports ``sup``, :meth:`model.FullModel.coupled`) to F_u
@@ -76,17 +92,13 @@ def coupled_response(full: model.FullModel, sup: dict, F_u: float, rpm: float | 
     ``journal_mm`` (orbit of the journal relative to the hub) and ``transmissibility`` |F_spring + F_film| / F_u
     (eq. 23) of the linear support. ``system``: ``full.coupled(sup)`` when the caller has it (a speed scan)."""
     W = full.omega_pt if rpm is None else rpm * model.RPM
-    r = full.omega_gg / full.omega_pt
     s = full.coupled(sup) if system is None else system
-    A = s["K"] - W ** 2 * s["M"] + 1j * W * (s["C"] + W * s["G_pt"] + W * r * s["G_gg"])
+    A = harmonic_matrix(full, s, W)
     f = np.zeros(A.shape[0], complex)
     ux, uy = full.ports["unbalance"]
     f[ux], f[uy] = F_u, -1j * F_u
     X = np.linalg.solve(A, f)
-
-    def amp(x, y):
-        return (abs(x + 1j * y) + abs(x - 1j * y)) / 2.0
-
+    amp = orbit_semi_axis
     out = {}
     for key, sp in sup.items():
         i, j = full.ports[f"brg{key[1:]}"][:2]

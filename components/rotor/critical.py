@@ -80,7 +80,13 @@ def campbell(model: FullModel, rpm_values, supports: dict | None, n_modes: int =
     w2, Phi = sla.eigh(0.5 * (K + K.T) if tables else K, Mm, subset_by_index=[0, n_modes - 1])
     Gt = Phi.T @ (sysm["G_pt"] + speed_ratio(model) * sysm["G_gg"]) @ Phi
     lat = sysm["rotor_lateral"]
-    Mlat = Mm[np.ix_(lat, lat)]
+    # the kinetic-energy shares in the modal basis: q = Phi v gives q^H M q = v^H (Phi^T M Phi) v and the rotor's
+    # lateral part v^H (Phi_l^T M_ll Phi_l) v, small matrices built once (the full M per mode and speed cost
+    # O(n^2) each)
+    Pl = Phi[lat]
+    M_all = Phi.T @ Mm @ Phi
+    M_lat = Pl.T @ Mm[np.ix_(lat, lat)] @ Pl
+    Px, Py = Phi[lat[0::2]], Phi[lat[1::2]]
     freqs, kind = [], []
     for rpm in rpm_values:
         Om = rpm * RPM
@@ -92,18 +98,13 @@ def campbell(model: FullModel, rpm_values, supports: dict | None, n_modes: int =
         keep = lam.imag > 1e-6
         lam, V = lam[keep], V[:n_modes, keep]
         order = np.argsort(lam.imag)[:n_show]
-        f, d = [], []
-        for k in order:
-            q = Phi @ V[:, k]
-            X, Y = q[lat[0::2]], q[lat[1::2]]
-            f.append(lam[k].imag / (2 * np.pi))
-            share = np.real(q[lat].conj() @ Mlat @ q[lat]) / np.real(q.conj() @ Mm @ q)
-            if share < min_share:
-                d.append(0)
-            else:
-                d.append(1 if np.sum(np.abs(X + 1j * Y) ** 2) >= np.sum(np.abs(X - 1j * Y) ** 2) else -1)
-        freqs.append(f)
-        kind.append(d)
+        lam, V = lam[order], V[:, order]
+        share = (np.real(np.einsum("ij,ij->j", V.conj(), M_lat @ V))
+                 / np.real(np.einsum("ij,ij->j", V.conj(), M_all @ V)))
+        X, Y = Px @ V, Py @ V
+        fwd = np.sum(np.abs(X + 1j * Y) ** 2, axis=0) >= np.sum(np.abs(X - 1j * Y) ** 2, axis=0)
+        freqs.append(lam.imag / (2 * np.pi))
+        kind.append(np.where(share < min_share, 0, np.where(fwd, 1, -1)))
     return np.asarray(freqs), np.asarray(kind)
 
 

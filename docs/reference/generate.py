@@ -195,6 +195,9 @@ NOTES = {
     "rundown.sn_range_N": "the load range [N] the part endures sn_cycles times (its S-N curve; no default: without "
                           "it no Miner damage)",
     "rundown.sn_cycles": "the cycles of sn_range_N on the S-N curve (default 2e6: EN 1993-1-9's reference life)",
+    "rundown.airframe": "the airframe component (`airframe.modal`) whose mounts' loads and response points "
+                        "summary.json `interface` reports (default: the component named `airframe`, else the "
+                        "scenario's only `airframe.modal`)",
     "results.cycles": "rotor cycles the results are taken over", "intervals.cycles": "length in rotor cycles "
     "(needs `schedule.speed_rpm`)",
     "implementation": "registry name, `\"module:Class\"` or entry point", "fmu": "path of an FMU (instead of "

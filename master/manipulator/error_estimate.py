@@ -17,7 +17,13 @@ replay that carries a held interval's hand-off errors to the thermal components'
   laws) give other powers than the monolithic run's, and those differences are input errors too. The replay
   closes that loop with the sensitivity of each hand-off's TO law to the values its producer takes back from the
   same thermal component (``HandOff.gains``: elasticity times the frozen law's slope, and the driver's slope): a
-  film power that falls as its oil warms pulls a too warm oil back. The interval's own estimate is its pulse's
+  film power that falls as its oil warms pulls a too warm oil back. The loop runs at the mechanics' sensitivity as
+  far as the restart shows it: the law's gains times the share of the law's move over the last charged interval
+  that the mechanics made (``HandOff.loop_share``, at most 1: a mechanics that moved less than the law pulls back
+  less; one that moved more may have followed values the law does not, and is not credited with a stronger
+  pull-back). The mechanics' sensitivity lies between that share of the law's and the law's own, and an output
+  whose error is a difference of two inputs' responses (a ball between a drag and a rub that err apart) may grow
+  with a stronger loop: each output takes the larger of its errors in the two loops (hold.py ``_response``). The interval's own estimate is its pulse's
   response at the restart; the run's, at its end, the response
   of all the charged intervals' pulses together (a later interval's error that undoes an earlier one's cancels
   it: the mechanics restarted at erring temperatures give powers that pull them back). Temperatures are judged
@@ -31,6 +37,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
+from typing import Sequence
 
 import numpy as np
 import scipy.linalg
@@ -52,6 +59,9 @@ class HoldReport:
 
     elasticity: dict[str, float] = field(default_factory=dict)
     errors: dict[str, float] = field(default_factory=dict)
+    #: per hand-off with a law: the share of its law's move over the last charged TO interval the mechanics made
+    #: (HandOff.loop_share, at most 1), at which the replay's loop runs besides the law's own
+    loop_share: dict[str, float] = field(default_factory=dict)
     interval_estimates_pct: list[float] = field(default_factory=list)
     drivers: dict[str, dict | None] = field(default_factory=dict)
     #: windows counted in turns of the cycle's angle: the turns asked for (hold_cycles), and per TO interval the
@@ -111,6 +121,7 @@ class HoldReport:
         """The report as summary.json's ``hold`` (hand-off errors in percent)."""
         out = {"elasticity": dict(self.elasticity), "drivers": dict(self.drivers),
                "handoff_error_pct": {k: 100.0 * v for k, v in self.errors.items()},
+               "loop_share": dict(self.loop_share),
                "interval_estimates_pct": list(self.interval_estimates_pct),
                "intervals": [dict(i) for i in self.intervals],
                "output_errors": dict(self.output_errors), "output_rise": dict(self.output_rise),
@@ -134,8 +145,8 @@ class Pulse:
         self.t0, self.t1, self.step, self.delta = float(t0), float(t1), float(step), delta
 
 
-def replay(comp, name: str, pulses: list[Pulse], now: float,
-           feedback: list[tuple[str, str, int, float]] = ()) -> dict[str, np.ndarray]:
+def replay(comp, name: str, pulses: list[Pulse], now: float, feedback: list[tuple[str, str, int, float]] = (),
+           also: Sequence[list[tuple[str, str, int, float]]] = ()) -> dict[str, np.ndarray]:
     """The change of each Real output of thermal component ``comp`` at the end of a replay of [pulses[0].t0,
     now] from its present state, with each pulse's input errors added over [t0, t1] (at the pulse's step; the
     gaps at the next pulse's), against the same replay without: for a network linear in its inputs, the
@@ -152,18 +163,23 @@ def replay(comp, name: str, pulses: list[Pulse], now: float,
     delta the pulses' errors and dy the outputs' errors at the end of each step, solved step by step implicitly:
     a step of a network linear in its inputs gives dy = dy0 + B c for an added input c (B measured once per
     segment, one step per input), so c = (I - G B)^-1 G (dy0 - 0) with dy0 the error the step would leave
-    without it."""
+    without it. ``also``: other loops of the same kind; each output then takes the largest of its errors (in
+    magnitude, per element) over ``feedback``'s and theirs (the replay without errors is run once for all)."""
     outs = [v.name for v in comp.variables if v.causality == "output" and v.type == "Real"]
     try:
         snap = comp.get_state()
     except Exception:  # cannot save its state: no estimate from it
         return {}
-    fb = [(i, o, k, float(g)) for i, o, k, g in feedback if i in comp.u and o in comp.y and g != 0.0]
-    ins = sorted({i for i, _, _, _ in fb})
-    taps = sorted({(o, k) for _, o, k, _ in fb})
-    G = np.zeros((len(ins), len(taps)))
-    for i, o, k, g in fb:
-        G[ins.index(i), taps.index((o, k))] += g
+    loops = [[(i, o, k, float(g)) for i, o, k, g in f if i in comp.u and o in comp.y and g != 0.0]
+             for f in (feedback, *also)]
+    ins = sorted({i for fb in loops for i, _, _, _ in fb})
+    taps = sorted({(o, k) for fb in loops for _, o, k, _ in fb})
+    Gs = []
+    for fb in loops:
+        G = np.zeros((len(ins), len(taps)))
+        for i, o, k, g in fb:
+            G[ins.index(i), taps.index((o, k))] += g
+        Gs.append(G)
     ports = sorted({p for q in pulses for p in q.delta} | set(ins))
     # both replays take the present inputs raised by the errors' magnitude (the same in both: the difference is
     # the errors' response), so that a negative error never asks for a negative power
@@ -189,7 +205,7 @@ def replay(comp, name: str, pulses: list[Pulse], now: float,
             u[p] = u[p] + c[n]
         return u
 
-    def run(perturbed: bool, base: list | None) -> tuple[dict[str, np.ndarray], list]:
+    def run(perturbed: bool, base: list | None, G: np.ndarray | None = None) -> tuple[dict[str, np.ndarray], list]:
         comp.set_state(snap)
         taken, n_step = [], 0
         for length, step, delta in segs:
@@ -233,7 +249,12 @@ def replay(comp, name: str, pulses: list[Pulse], now: float,
 
     try:
         base, path = run(False, None)
-        pert, _ = run(True, path)
+        out = {o: None for o in outs}
+        for G in Gs:
+            pert, _ = run(True, path, G)
+            for o in outs:
+                e = pert[o] - base[o]
+                out[o] = e if out[o] is None else np.where(np.abs(e) > np.abs(out[o]), e, out[o])
     finally:
         comp.set_state(snap)
-    return {f"{name}.{o}": pert[o] - base[o] for o in outs}
+    return {f"{name}.{o}": e for o, e in out.items()}

@@ -74,7 +74,11 @@ class HandOff:
         self.held = None
         self.error: float | None = None
         self.delta: np.ndarray | None = None
+        #: the share of its law's move over the last charged TO interval that the mechanics made (:func:`loop_share`:
+        #: the error estimate's loop runs at this share of the law's sensitivity, hold.py)
+        self.loop_share = 1.0
         self._to_end: np.ndarray | None = None
+        self._to_start: np.ndarray | None = None
         #: the window's recording state (master/core/window.py: both loops record into it)
         self.w = Window()
         self.turns = None                   # (RevolutionCounter, turns of the window, the angle's component, port)
@@ -194,13 +198,14 @@ class HandOff:
         #: the held value the TO interval ended with minus what the mechanics give at the restart [its unit]
         self.delta = self._to_end - now
         self.error = float(np.max(np.abs(self.delta))) / scale
-        self._to_end = None
+        self.loop_share = loop_share(self._to_end - self._to_start, self.delta)
+        self._to_end = self._to_start = None
         return True
 
     def forget_restart(self) -> None:
         """The TO interval ended at a scheduled change of the system: its held value is not compared with the
         mechanics after the change."""
-        self._to_end = None
+        self._to_end = self._to_start = None
 
     # -- TO: hold -----------------------------------------------------------------------------------------
     def start_to(self, probe, fired, cycles: int, group: list["HandOff"] | None = None) -> None:
@@ -291,10 +296,27 @@ class HandOff:
         return min(max(e, ELASTICITY_RANGE[0]), ELASTICITY_RANGE[1])
 
     def end_to(self) -> None:
-        """A TO interval ends: keep its last held value (the next TM restart measures the hand-off error)."""
+        """A TO interval ends: keep its first and last held values (the next TM restart measures the hand-off
+        error and the share of the law's move the mechanics made)."""
         if self.held is not None:
             self._to_end = np.array(self.held.value(), dtype=float)
+            self._to_start = np.array(self.held.S, dtype=float)
         self.held = None
+
+
+def loop_share(law_move: np.ndarray, delta: np.ndarray) -> float:
+    """The share of a TO law's move over a held interval (``law_move``: its last value minus its first) that the
+    mechanics made (the law's move less its hand-off error ``delta``: the restart's value minus the first), at most
+    1; 1 where the law moved no more than its error (no share to measure: the law's own sensitivity stands) or the
+    port has more than one element. A share below 1 is a mechanics less sensitive than the law to the
+    values both follow, or a move of values the law does not follow; the error estimate's loop takes the first
+    (the smaller pull-back, the larger estimate), and a power's own error the law's full sensitivity."""
+    if law_move.size != 1 or delta.size != 1:
+        return 1.0
+    move, d = float(law_move[0]), float(delta[0])
+    if not abs(move) > abs(d):
+        return 1.0
+    return min(1.0 - d / move, 1.0)
 
 
 class Held:

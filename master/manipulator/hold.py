@@ -226,13 +226,25 @@ class StaggeredHold:
             if ho.measure_restart_error(skip, n):
                 fresh.append(ho)
                 self.report.errors[f"{ho.link.con.src} -> {ho.link.con.dst}"] = ho.error
+                if ho.gains:
+                    self.report.loop_share[f"{ho.link.con.src} -> {ho.link.con.dst}"] = ho.loop_share
         if fresh:
             self._estimate(fresh, t0, t1)
 
-    def feedback(self, name: str) -> list[tuple[str, str, int, float]]:
+    def _response(self, comp, name: str, pulses: list[Pulse]) -> dict[str, np.ndarray]:
+        """The response now of thermal component ``name`` to ``pulses`` (:func:`replay`), its loop at the law's
+        sensitivity and at the share of it the mechanics showed (:meth:`feedback`): of the two, each output's
+        larger error (the mechanics' sensitivity lies between them, and an output whose error is a difference of
+        two inputs' responses may grow with a stronger loop)."""
+        shared, law = self.feedback(name), self.feedback(name, shared=False)
+        return replay(comp, name, pulses, comp.time, shared, [law] if law != shared else [])
+
+    def feedback(self, name: str, shared: bool = True) -> list[tuple[str, str, int, float]]:
         """How thermal component ``name``'s inputs follow its own outputs through the mechanics, as the last TO
         laws measured it: (input port, output port, output element, dP/du) for each hand-off into it whose
-        producer takes that output back (HandOff.gains); the error estimate's feedback (:func:`replay`)."""
+        producer takes that output back (HandOff.gains; ``shared``: at the share of its law's move the mechanics
+        made over the last charged TO interval, HandOff.loop_share); the error estimate's feedback
+        (:func:`replay`)."""
         fed = {(l.con.dst_component, l.con.dst_port): l.sport for l in self.handbacks if l.con.src_component == name}
         out: dict[tuple[str, str, int], float] = {}
         for ho in self.handoffs or []:
@@ -242,7 +254,7 @@ class StaggeredHold:
                 o = fed.get((comp, port))
                 if o is not None:
                     key = (ho.link.dport, o, k)
-                    out[key] = out.get(key, 0.0) + g
+                    out[key] = out.get(key, 0.0) + g * (ho.loop_share if shared else 1.0)
         return [(*key, g) for key, g in out.items()]
 
     def located(self, name: str, t: float) -> None:
@@ -284,7 +296,7 @@ class StaggeredHold:
             pulse = Pulse(t0, t1, self._to_step, delta)
             self._pulses.setdefault(name, []).append(pulse)
             comp = self.system.components[name]
-            own.update(replay(comp, name, [pulse], comp.time, self.feedback(name)))
+            own.update(self._response(comp, name, [pulse]))
         worst, which = self._largest(own)
         self.report.interval_estimates_pct.append(worst)
         self.report.intervals.append({"t_start": t0, "t_end": t1, "estimate_pct": worst, "event": None,
@@ -303,7 +315,7 @@ class StaggeredHold:
         errors: dict[str, np.ndarray] = {}
         for name, pulses in self._pulses.items():
             comp = self.system.components[name]
-            errors.update(replay(comp, name, pulses, comp.time, self.feedback(name)))
+            errors.update(self._response(comp, name, pulses))
         present = self._thermal_outputs()
         rep = self.report
         rep.output_errors = {k: np.asarray(v, dtype=float).tolist() for k, v in errors.items()}

@@ -2,7 +2,8 @@
 
 TM intervals run until the mechanical outputs handed to the thermal side are steady cycle to cycle (the
 staggered scheme's assumption: once the mechanics are steady, their response changes only with the slow
-temperatures); TO intervals run until the thermal outputs that feed the mechanical side have drifted by more than
+temperatures) and have run the cycles the hold reads at their end (the restart's ramp, ``restart_cycles``, then
+the window of ``hold_cycles``: a shorter interval would hand over powers partly from the ramp); TO intervals run until the thermal outputs that feed the mechanical side have drifted by more than
 ``drift_tolerance``, within min/max durations. The last stretch is one TM interval, where results are read.
 
 Non-stationary runs (a cycle that follows a speed signal, [schedule] cycle): a TM interval is not steady while
@@ -25,6 +26,7 @@ end, the largest of the results' when the scenario's case gives them, else of th
 """
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 from typing import Sequence
 
@@ -150,8 +152,13 @@ class AutoSchedule(Schedule):
 
 class _StopTest:
     every = 1
-    #: base steps between two checks (run_interval sets it: ``every`` and the interval's multi-rate period)
+    #: base steps between two checks (run_interval sets it from :meth:`cadence`)
     check_steps = 1
+
+    def cadence(self, period: int) -> int:
+        """The base steps between two checks in an interval whose components all complete a step every
+        ``period`` base steps (its multi-rate period): whole multiples of both ``every`` and ``period``."""
+        return math.lcm(self.every, period)
 
     def sample(self, sim) -> None:
         pass
@@ -169,13 +176,15 @@ class _StopTest:
 
 class _SteadyTest(_StopTest):
     """Steady when the RMS of the tracked outputs over a cycle changes by less than the tolerance
-    (relative) for ``steady_cycles`` consecutive cycles, after ``tm_min``.
+    (relative) for ``steady_cycles`` consecutive cycles, after ``tm_min`` and the hold's window
+    (:meth:`_window_full`).
 
     A cycle is the ``check_steps`` base steps between two checks (a period at the interval's start, ``every``,
     or the whole number of periods of the multi-rate period); with a cycle source that has an angle, it is as
     many whole turns of that angle, counted from the interval's start, as there are periods between two checks
-    at the starting speed (the RMS over each such span of turns is compared with the previous span's), and the
-    checks, still every ``check_steps`` base steps, take the spans completed since the last one in order."""
+    at the starting speed (one turn, or the turns of a multi-rate period when that is longer: :meth:`cadence`;
+    the RMS over each such span of turns is compared with the previous span's), and the checks, every
+    ``check_steps`` base steps, take the spans completed since the last one in order."""
 
     def __init__(self, sim, sch: AutoSchedule):
         self.sch = sch
@@ -196,6 +205,8 @@ class _SteadyTest(_StopTest):
         self.ended_steady = False
         self._period = (sim.t, sim.hold.cycle)
         self._p_start = self._period[1]
+        # the cycles the hold's windows read at the interval's end: the restart's ramp, then hold_cycles
+        self.window = math.ceil(sim.hold.restart_cycles - 1e-9) + max(1, int(round(sim.hold.hold_cycles)))
         # counted in turns: (the angle's outputs, its port, its ref), the next whole turn, the direction, and the
         # RMS of each turn completed since the last check
         self.turns = None
@@ -207,6 +218,16 @@ class _SteadyTest(_StopTest):
             self.next = float(comps[comp].y[port][0]) + 2.0 * np.pi * self.dir
             self.done: list[np.ndarray] = []
             self.turn_count = 0
+
+    def cadence(self, period: int) -> int:
+        """Counted in turns, a check need not fall on a whole period: the first multi-rate period boundary at
+        least a period (``every``) after the last check. (The whole multiple of both would be one every
+        ``every * period / gcd`` steps, which with a speed whose period is no round number of base steps is
+        hundreds of turns: 3 503 base steps a turn and a 200-step multi-rate period are checked every 700 600
+        steps, 3.5 s at a 5 us step, never within a coupled interval of 0.5 s.)"""
+        if self.turns is None:
+            return super().cadence(period)
+        return period * max(1, -(-self.every // period))
 
     def _turn_done(self, theta: float) -> None:
         """A turn ends at this sample: the RMS of the span if it is its last turn, and the next whole turn past
@@ -283,10 +304,19 @@ class _SteadyTest(_StopTest):
             self._compare(rms)
         if changing:
             self.steady = 0
-        if t - self.t_begin >= self.sch.tm_min - 1e-12 and self.steady >= self.sch.steady_cycles:
+        if (t - self.t_begin >= self.sch.tm_min - 1e-12 and self.steady >= self.sch.steady_cycles
+                and self._window_full(t)):
             self.ended_steady = True
             return "steady"
         return None
+
+    def _window_full(self, t: float) -> bool:
+        """Whether the interval has run the cycles the hold reads after it (``window`` cycles: the restart's
+        ramp, then ``hold_cycles``), in turns of the cycle's angle or in periods of its starting speed: a
+        held interval after a shorter one would hold powers partly from the restart's ramp."""
+        if self.turns is not None:
+            return self.turn_count >= self.window
+        return t - self.t_begin >= self.window * self._p_start - 1e-12 if self._p_start else True
 
     def speed_change(self, sim) -> float:
         """The relative change of the cycle's speed since the interval started (0 for a constant cycle)."""

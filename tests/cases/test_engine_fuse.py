@@ -249,11 +249,11 @@ def test_check_engine_lists_the_broken_fuse_critical_speeds(engine_folder, tmp_p
 @pytest.mark.slow
 def test_blade_loss_fuse_staggered_against_monolithic_over_60_s(tmp_path):
     """blade_loss_fuse (without its comparison run) staggered and monolithic over its first 60 s (the release,
-    the break, 15 s at full speed, the fuel cut and the rundown through both post-fuse crossings; ~330 s of CPU,
-    280 of them the monolithic run: slow): every Table 4 result (0.19 % measured) and every crossing's peak values
-    (0.45 %) within 2 %, the break at the same time within one coupled step of 5 us (the same time, measured).
-    Not asserted: the speed of the post-fuse crossing's peak, 5 633 rev/min staggered against 5 792 monolithic
-    (2.7 %), a broad peak whose largest sample moves along its top (the other crossing's: 0.03 %)."""
+    the break, 15 s at full speed, the fuel cut and the rundown through both post-fuse crossings; ~310 s of CPU,
+    271 of them the monolithic run: slow): every Table 4 result (0.18 % measured) and every crossing's peak values
+    (0.41 %) within 2 %, the break at the same time within one coupled step of 5 us (the same time, measured).
+    Not asserted: the speed of the post-fuse crossing's peak, 5 590 rev/min staggered against 5 792 monolithic
+    (3.5 %), a broad peak passed slowly, whose top falls in a held interval (the other crossing's: 0.001 %)."""
     import json
 
     from rotorcosim.cases.rundown import compare as rc

@@ -35,10 +35,12 @@ class Damped:
     def prepare(self, lo, hi):
         self.range = (lo, hi)
 
-    def damped(self, temps):
+    def damped_near(self, loc, speed_rpm, temps):
+        """The (damped, undamped) pair at ``loc`` whose damped speed is nearest to ``speed_rpm`` (in ratio)."""
         self.asked.append(dict(temps))
         t = next(iter(temps.values()), None)
-        return self.by_temperature.get(round(t) if t is not None else None, self.pairs)
+        pairs = self.by_temperature.get(round(t) if t is not None else None, self.pairs).get(loc) or []
+        return min(pairs, key=lambda p: abs(math.log(speed_rpm / p[0]))) if pairs else None
 
 
 def sdof(rpm, wn_rpm, zeta):

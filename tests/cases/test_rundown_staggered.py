@@ -86,9 +86,10 @@ def test_short_rundown_staggered_within_2pct_of_monolithic(tmp_path):
     _check(t, out)
     assert t["duration_s"] == DURATION and t["duration_rule"] == "given" and t["t_fuel_cut_s"] == CUT
     # the rundown is coupled from the cut through both crossings (no held interval starts at the cut: a coupled
-    # interval ending exactly there once let one start, tests/components/test_spool.py)
+    # interval ending exactly there once let one start, tests/components/test_spool.py; one may end shortly
+    # before it: 0.93 s measured)
     timeline = json.loads((out / "staggered" / "summary.json").read_text())["timeline"]
-    assert all(iv["phase"] == "TM" for iv in timeline if CUT - 0.1 < iv["t_end"] and iv["t_start"] < CUT + 3.0)
+    assert all(iv["phase"] == "TM" for iv in timeline if CUT - 1e-9 < iv["t_end"] and iv["t_start"] < CUT + 3.0)
 
 
 @pytest.mark.slow   # ~32 min of CPU time

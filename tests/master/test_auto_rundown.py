@@ -89,3 +89,19 @@ def test_speed_tolerance_keeps_a_slow_ramp_coupled(speed_tolerance, held_in_ramp
     r = simulate(sc, duration=6.5, figures=False)
     held = [iv for iv in r.summary["timeline"] if iv["phase"] == "TO"]
     assert any(iv["t_start"] < 6.0 for iv in held) == held_in_ramp, r.summary["timeline"]
+
+
+def test_turns_are_checked_when_a_turn_is_no_round_number_of_steps():
+    """A spool at 3 517 rev/min stepping every 1 ms (50 base steps of 2e-5 s), a turn 853 base steps: the test
+    counted in turns is checked about once a turn, not at the common multiple of a turn and the multi-rate
+    period (42 650 steps, 0.85 s, longer than tm_max: never checked, every coupled interval ran to tm_max). At a
+    constant speed the orbit is steady: the coupled intervals end steady, each after the restart's ramp and the
+    hold's window (2 + 5 turns, 0.12 s) and before tm_max."""
+    sc = _auto(load_scenario("jeffcott_rundown").set({"spool.speed_rpm": 3517.0, "spool.end_speed_rpm": 3517.0}),
+               cycle=dict(TURNS), tracked=["rotor.X_brg0"], tm_max=0.3)
+    sc.components["spool"].step = 1e-3
+    r = simulate(sc, duration=1.2, figures=False)
+    coupled = [iv for iv in r.summary["timeline"] if iv["phase"] == "TM"][:-1]   # (the last one: to the end)
+    assert coupled and all(iv["reason"] == "steady" for iv in coupled), r.summary["timeline"]
+    turn = 60.0 / 3517.0
+    assert all(7 * turn - 1e-3 <= iv["t_end"] - iv["t_start"] < 0.3 - 1e-9 for iv in coupled), r.summary["timeline"]

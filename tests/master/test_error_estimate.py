@@ -1,6 +1,7 @@
 """The staggered scheme's error estimate (master/manipulator/error_estimate.py): the replay that carries a held interval's
 input errors through a thermal component, against the analytic response of a lumped node; a held interval that ends
-at a component's scheduled change is not charged; the advice when the estimate exceeds the tolerance.
+at a component's scheduled change is not charged; the advice when the estimate exceeds the tolerance; the share of a
+law's move the mechanics made, at which the replay's loop runs.
 (tests/cases/test_error_estimate.py holds the estimate against monolithic runs.)"""
 from __future__ import annotations
 
@@ -11,6 +12,7 @@ import pytest
 
 import rotorcosim
 from rotorcosim.master.manipulator.error_estimate import HoldReport, Pulse, replay
+from rotorcosim.master.manipulator.handoff import loop_share
 from rotorcosim.master.scenario.build import build_simulation, schedule_of
 
 
@@ -53,6 +55,12 @@ def test_replay_with_feedback_gives_the_closed_loop_response_of_a_lumped_node():
     assert got["node.T"][0] == pytest.approx(exact, rel=1e-2)
     # and not the open-loop response, 1.5 times larger here
     assert got["node.T"][0] < 0.8 * replay(node, "node", [pulse], node.time + now)["node.T"][0]
+    # two loops at once (the law's and a weaker one): each output the larger of the two, the weaker loop's here,
+    # as each replayed alone gives it
+    weak = replay(node, "node", [pulse], node.time + now, [("P", "T", 0, 0.5 * g)])
+    both = replay(node, "node", [pulse], node.time + now, [("P", "T", 0, g)], [[("P", "T", 0, 0.5 * g)]])
+    assert weak["node.T"][0] > got["node.T"][0]
+    assert both["node.T"][0] == pytest.approx(weak["node.T"][0], rel=1e-12)
 
 
 def test_a_negative_input_error_larger_than_the_input_is_replayed():
@@ -105,3 +113,17 @@ def test_a_run_above_its_tolerance_says_which_interval_and_what_to_change():
     sc.schedule["tolerance"] = 99.0
     again = rotorcosim.simulate(sc, schedule="auto", duration=12.0, figures=False).summary["hold"]
     assert again["estimated_error_pct"] < 99.0 and "advice" not in again
+
+
+def test_the_loop_share_is_the_mechanics_move_against_the_laws():
+    """A law that moved -10 W over a held interval with a hand-off error of -4 W (the mechanics at the restart 4 W
+    above it): the mechanics moved -6 W, 0.6 of the law's move (with -9 W of error, 0.1). A mechanics that moved
+    more than the law (-12 W, or +13 W against +10 W) is credited with no more than the law's own sensitivity (1);
+    a law that moved less than its error, or a port of two elements, has no share to measure (1)."""
+    assert loop_share(np.array([-10.0]), np.array([-4.0])) == pytest.approx(0.6)
+    assert loop_share(np.array([-10.0]), np.array([2.0])) == 1.0
+    assert loop_share(np.array([-10.0]), np.array([-9.0])) == pytest.approx(0.1)
+    assert loop_share(np.array([5.0]), np.array([5.5])) == 1.0
+    assert loop_share(np.array([-10.0, 1.0]), np.array([-4.0, 0.0])) == 1.0
+    assert loop_share(np.array([10.0]), np.array([-3.0])) == 1.0
+    assert loop_share(np.array([3.0]), np.array([2.9])) == pytest.approx(1.0 - 2.9 / 3.0)

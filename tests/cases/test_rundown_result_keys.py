@@ -1,0 +1,54 @@
+"""A rundown's [results] keys that name parts of the run (cases/rundown/results.py ``check``, before the run
+starts): ``fatigue_loads`` entries that are no output of the run and an ``airframe`` that is no airframe component
+are one-line errors naming the key; the shipped diversion's keys pass."""
+from __future__ import annotations
+
+import copy
+from types import SimpleNamespace
+
+import pytest
+
+from rotorcosim import scenarios
+from rotorcosim.cases.rundown import results
+from rotorcosim.master.scenario.build import load_scenario
+
+#: the outputs of the diversion's components that the check reads (a stand-in for the built simulation)
+OUTPUTS = {"spool_pt": ["Omega"], "spool_gg": ["Omega"], "rotor": ["X_brg0", "F_u"],
+           "airframe": ["F_aft", "F_fwd", "F_engine_aft", "a_flight_deck"]}
+
+
+@pytest.fixture(scope="module")
+def diversion():
+    return load_scenario(scenarios.path("blade_loss_diversion"))
+
+
+def _with(sc, **keys):
+    sc = copy.copy(sc)
+    sc.extra = copy.deepcopy(sc.extra)
+    sc.extra["results"].update(keys)
+    return sc
+
+
+def _sim():
+    comps = {n: SimpleNamespace(y={p: 0.0 for p in ports}) for n, ports in OUTPUTS.items()}
+    return SimpleNamespace(system=SimpleNamespace(components=comps))
+
+
+def test_the_shipped_keys_pass(diversion):
+    results.check(diversion, _sim())
+    results.check(_with(diversion, airframe="airframe"), _sim())
+
+
+@pytest.mark.parametrize("keys, message", [
+    ({"fatigue_loads": ["airframe.F_nope"]},
+     "[results] fatigue_loads: 'airframe.F_nope': component 'airframe' has no output 'F_nope' (its outputs: "
+     "F_aft, F_engine_aft, F_fwd, a_flight_deck)"),
+    ({"fatigue_loads": ["airframe.F_aft", "nocomp.F"]}, "[results] fatigue_loads: 'nocomp.F': no component 'nocomp'"),
+    ({"airframe": "nonexistent"}, "[results] airframe: no component 'nonexistent'"),
+    ({"airframe": "rotor"}, "[results] airframe: component 'rotor' is a 'rotor.mta_spinning', not an airframe "
+                            "('airframe.modal')"),
+])
+def test_a_key_naming_no_part_of_the_run_is_one_line_naming_it(diversion, keys, message):
+    with pytest.raises(ValueError) as err:
+        results.check(_with(diversion, **keys), _sim())
+    assert str(err.value) == message
