@@ -121,7 +121,13 @@ def test_airframe_component_on_a_tip_spring_matches_the_beam(tmp_path):
 
 
 def test_example_airframe_is_its_derivation():
-    assert EXAMPLE.read_text() == example.text()
+    """The shipped file is what its derivation writes: the same text around the numbers, and the numbers equal to
+    round-off (the eigenvectors' last printed digits move with the BLAS library and its thread count)."""
+    number = re.compile(r"[-+]?(?:\d+\.\d*|\.\d+|\d+)(?:[eE][-+]?\d+)?")
+    shipped, derived = EXAMPLE.read_text(), example.text()
+    assert number.sub("#", shipped) == number.sub("#", derived)
+    a, b = (np.array([float(x) for x in number.findall(t)]) for t in (shipped, derived))
+    assert a.shape == b.shape and np.allclose(a, b, rtol=1e-6, atol=1e-9)
     m = read(EXAMPLE)
     assert m.n == 40 and np.all(np.diff(m.w) >= 0)
 
