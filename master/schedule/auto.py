@@ -3,8 +3,9 @@
 TM intervals run until the mechanical outputs handed to the thermal side are steady cycle to cycle (the
 staggered scheme's assumption: once the mechanics are steady, their response changes only with the slow
 temperatures) and have run the cycles the hold reads at their end (the restart's ramp, ``restart_cycles``, then
-the window of ``hold_cycles``: a shorter interval would hand over powers partly from the ramp); TO intervals run until the thermal outputs that feed the mechanical side have drifted by more than
-``drift_tolerance``, within min/max durations. The last stretch is one TM interval, where results are read.
+the window of ``hold_cycles``: a shorter interval would hand over powers partly from the ramp); TO intervals run
+until the thermal outputs that feed the mechanical side have drifted by more than ``drift_tolerance``, within
+min/max durations. The last stretch is one TM interval, where results are read.
 
 Non-stationary runs (a cycle that follows a speed signal, [schedule] cycle): a TM interval is not steady while
 the cycle's speed changes by more than ``speed_tolerance`` (default ``drift_tolerance``) over ``to_min`` (a spool running down:
