@@ -329,7 +329,8 @@ def loop_share(law_move: np.ndarray, delta: np.ndarray) -> float:
     1; 1 where the law moved no more than its error (no share to measure: the law's own sensitivity stands) or the
     port has more than one element. A share below 1 is a mechanics less sensitive than the law to the
     values both follow, or a move of values the law does not follow; the error estimate's loop takes the first
-    (the smaller pull-back, the larger estimate), and a power's own error the law's full sensitivity."""
+    (the smaller pull-back, the larger estimate), and a power's own error the law's full sensitivity but for a
+    driver's term, which counts at this share (:meth:`HandOff.power_error`)."""
     if law_move.size != 1 or delta.size != 1:
         return 1.0
     move, d = float(law_move[0]), float(delta[0])
