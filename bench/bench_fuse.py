@@ -1,8 +1,16 @@
 """The support fuse's cost: ``blade_loss_fuse`` (the paper's engine with bearing #0's housing on a fuse, 14 252 N)
-against ``blade_loss_rundown`` at the same level, CPU time per simulated second, both in this process, the ratio
-the figure (target: at most 1.2).
+against ``blade_loss_rundown``, CPU time per simulated second, all in this process (target: at most 1.2).
 
     python bench/bench_fuse.py [--duration 675.01] [--repeat 1]
+
+Two comparisons, each a ratio of CPU time per simulated second:
+
+* ``ratio_cpu_per_simulated_s``: against ``blade_loss_rundown`` at the fuse scenario's level (14 252 N), the same
+  engine without the fuse: what the fuse costs;
+* ``ratio_vs_shipped_rundown``: against the shipped ``blade_loss_rundown`` as it is (2 850 N).
+
+Each run also reports its coupled (thermo-mechanical) seconds and its CPU per coupled second: a run that the
+automatic schedule keeps coupled longer (a slower rundown through a crossing) costs more for that reason alone.
 
 Each scenario runs over --duration (default the fuse scenario's own: the release, 15 s at full speed, the rundown
 and 10 minutes of windmilling) on its own schedule, without recorder or figures (``simulate`` without ``out``),
@@ -21,8 +29,11 @@ import time
 
 from rotorcosim.master.api import load_scenario, simulate
 
-#: the comparison: the rundown without a fuse at the fuse scenario's blade-loss level
-PAIR = (("blade_loss_fuse", {}), ("blade_loss_rundown", {"rotor.F_unbalance": 14252.0}))
+#: the fuse scenario, then its comparisons: the rundown without a fuse at the fuse scenario's blade-loss level, and
+#: the shipped rundown as it is
+RUNS = {"blade_loss_fuse": ("blade_loss_fuse", {}),
+        "blade_loss_rundown_14252N": ("blade_loss_rundown", {"rotor.F_unbalance": 14252.0}),
+        "blade_loss_rundown": ("blade_loss_rundown", {})}
 
 
 def scenario(name: str, changes: dict):
@@ -42,9 +53,11 @@ def cost(name: str, changes: dict, duration: float, repeat: int) -> dict:
         res = simulate(sc, duration=duration, figures=False, progress=False)
         c, w = time.process_time() - c0, time.perf_counter() - w0
         if best is None or c < best["cpu_s"]:
+            coupled = sum(iv["t_end"] - iv["t_start"] for iv in res.summary.get("timeline", []) if iv["phase"] == "TM")
             best = {"cpu_s": c, "wall_s": w, "engine": res.summary.get("engine"),
-                    "events": len(res.summary.get("events", []))}
+                    "events": len(res.summary.get("events", [])), "coupled_s": coupled}
     best["cpu_per_simulated_s"] = best["cpu_s"] / duration
+    best["cpu_per_coupled_s"] = best["cpu_s"] / max(best["coupled_s"], 1e-12)
     return best
 
 
@@ -53,13 +66,14 @@ def main(argv=None) -> int:
     ap.add_argument("--duration", type=float, default=None, help="simulated seconds (default: the fuse scenario's)")
     ap.add_argument("--repeat", type=int, default=1)
     a = ap.parse_args(argv)
-    duration = a.duration or float(load_scenario(PAIR[0][0]).schedule["duration"])
-    for name, changes in PAIR:
+    duration = a.duration or float(load_scenario("blade_loss_fuse").schedule["duration"])
+    for name, changes in RUNS.values():
         simulate(scenario(name, changes), duration=0.02, figures=False, progress=False)
-    out = {name: cost(name, changes, duration, a.repeat) for name, changes in PAIR}
+    out = {key: cost(name, changes, duration, a.repeat) for key, (name, changes) in RUNS.items()}
     out["duration_s"] = duration
-    out["ratio_cpu_per_simulated_s"] = (out[PAIR[0][0]]["cpu_per_simulated_s"]
-                                        / out[PAIR[1][0]]["cpu_per_simulated_s"])
+    fuse = out["blade_loss_fuse"]["cpu_per_simulated_s"]
+    out["ratio_cpu_per_simulated_s"] = fuse / out["blade_loss_rundown_14252N"]["cpu_per_simulated_s"]
+    out["ratio_vs_shipped_rundown"] = fuse / out["blade_loss_rundown"]["cpu_per_simulated_s"]
     print(json.dumps(out, indent=1))
     return 0
 

@@ -358,6 +358,7 @@ def draw_figures(sc: Scenario | str | Path, out: str | Path, pool: FigurePool | 
     if not name or not name.endswith(".h5") or not (out / name).exists():
         raise ValueError(f"{f}: the run has no HDF5 time series in {out} (timeseries: {name!r}): the figures "
                          "are drawn from timeseries.h5 ([outputs] format = \"h5\")")
-    names = post.figures(sc, SeriesFile(out / name), out, pool=pool, dpi=check_dpi(dpi))
+    with one_thread():  # the figures' linear analyses give the run's numbers (core/threads.py)
+        names = post.figures(sc, SeriesFile(out / name), out, pool=pool, dpi=check_dpi(dpi))
     write_json(f, {**summary, "figures": names})
     return names

@@ -369,9 +369,12 @@ def events(bearings: dict) -> list[dict]:
 def unsteadiness(w, k, F_u, cycles: float) -> dict[str, float]:
     """How far the window ``w`` of bearing ``k`` is from a steady state: each result read over the steady window as
     a largest value (``PEAK_KEYS``) computed on each of its ``cycles`` cycles alone (the window split in equal
-    parts), half the range of those values, percent of the result over the whole window. A steady response repeats each cycle (0); a window that
-    still holds the ringing of a restart does not, and the result it gives is uncertain by that much. Empty for
-    a window of fewer than 2 cycles or samples."""
+    parts), the range of those values, percent of the result over the whole window. A steady response repeats
+    each cycle (0); a window that still holds the transient of a restart does not, and the result it gives is
+    uncertain by that range: where the transient decays (the window's first cycle the largest, each later one
+    smaller), the steady value lies beyond the smallest cycle, at least the range below the result; where it
+    rings about the steady value, the result's crest is at most the range above it. Empty for a window of
+    fewer than 2 cycles or samples."""
     t = w["t"]
     n = int(round(cycles))
     if n < 2 or len(t) < 2 * n or not t[-1] > t[0]:
@@ -384,7 +387,7 @@ def unsteadiness(w, k, F_u, cycles: float) -> dict[str, float]:
     for key in PEAK_KEYS:
         vals, q = [p[key] for p in per], whole[key]
         if q and all(v is not None for v in vals):
-            out[key] = 100.0 * 0.5 * (max(vals) - min(vals)) / abs(q)
+            out[key] = 100.0 * (max(vals) - min(vals)) / abs(q)
     return out
 
 
@@ -421,7 +424,7 @@ def estimated_errors(windows, bearings, hold, F_u, cycles: float = 0.0) -> dict 
             d = hold.handoff_errors_end_pct.get(ref.format(k))
             if d is not None and r.get(key) is not None:
                 e[key] = abs(d)
-        # and the last window's own unsteadiness, the restart's ringing (not where the speed moved: then the
+        # and the last window's own unsteadiness, the restart's transient (not where the speed moved: then the
         # results change from cycle to cycle with it)
         if windows and f is not None:
             for key, u in unsteadiness(windows[-1], k, F_u, cycles).items():

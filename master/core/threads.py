@@ -10,8 +10,10 @@ exit, so the caller's own work keeps its threads. It also wins over an ``OPENBLA
 result must not depend on it. The small matrices of the model (tens to hundreds of DOF) gain nothing from threads
 (measured 10 times slower eigen-solves on a loaded 2-core machine).
 
-Entered by every entry point: the command line (cli.main), the API's simulate (so the Dask sweep workers too),
-the compiled kernels' helper process. The exported FMUs cannot import rotorcosim; their slave
+Entered by every entry point: the command line (cli.main), the API's simulate (so the Dask sweep workers too) and
+draw_figures, the compiled kernels' helper process. threadpoolctl limits only the libraries loaded when it is
+entered, so :func:`one_thread` loads scipy's BLAS first (numpy's is loaded with rotorcosim): one loaded later
+would start with a thread per core. The exported FMUs cannot import rotorcosim; their slave
 (fmus/slave_template.py) does the same by itself.
 """
 from __future__ import annotations
@@ -24,5 +26,6 @@ from threadpoolctl import threadpool_limits
 @contextlib.contextmanager
 def one_thread():
     """Within: every BLAS and OpenMP pool loaded in the process runs one thread (restored on exit). Nests."""
+    import scipy.linalg  # noqa: F401  (its BLAS loaded before the limit: module docstring)
     with threadpool_limits(limits=1):
         yield

@@ -85,7 +85,8 @@ class HoldReport:
     #: intervals (the mechanics then moved with the speed too)
     mechanics_fraction: dict[str, float] = field(default_factory=dict)
     #: "producer.port" -> the hand-off's power in error at the run's end [its unit], from its TO law's
-    #: sensitivity to the estimated errors of the values its producer takes back (hand-offs with a law only)
+    #: sensitivity to the estimated errors of the values its producer takes back (hand-offs with a law only;
+    #: HandOff.power_error: a driver's term at the share of the law's move the mechanics made)
     handoff_errors_end: dict[str, float] = field(default_factory=dict)
     #: the same, percent of the power the law held when its sensitivity was taken: the share that carries over to
     #: another operating point (after the last held interval a rundown's powers fall with the speed, and the error

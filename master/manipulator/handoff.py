@@ -88,6 +88,9 @@ class HandOff:
         self.gains: list[tuple[str, str, int, float]] = []
         #: the held statistic the gains were taken at [W]: an error from them is a share of it
         self.gains_at = 0.0
+        #: the last of ``gains`` is the driver's (:class:`Driver`: a temperature fitted to trend with the power,
+        #: not the producer's own physics)
+        self.driven = False
 
     # -- TM: record -------------------------------------------------------------------------------------
     def start_tm(self, n_window: int, n_cycle: int, size: int, hs: float = 0.0, turns=None,
@@ -234,6 +237,22 @@ class HandOff:
         self.held = HeldLaw(self.link, S, ref, 1.0 if self.elasticity is None else self.elasticity, fired, drive)
         self.gains = self._gains(probe, self.window_inputs(cycles), ref, self.held)
         self.gains_at = float(S[0])
+        self.driven = drive is not None
+
+    def power_error(self, error_of) -> float:
+        """The power in error [its unit] by its last law's sensitivity (``gains``) to the values it follows, each
+        in error by ``error_of(component, port, element)`` (None: no estimate, left out): dP = sum g_i du_i, the
+        driver's term at ``loop_share``. A driver is a temperature that trended with the power over the coupled
+        cycles, not the producer's own physics; the restart measured how much of the law's move the mechanics
+        made, and a driver the mechanics did not follow is a co-trend (the producer's own terms, its physics at
+        the frozen state, keep the law's full sensitivity)."""
+        driver = len(self.gains) - 1 if getattr(self, "driven", False) else None
+        d = 0.0
+        for n, (comp, port, k, g) in enumerate(self.gains):
+            err = error_of(comp, port, k)
+            if err is not None:
+                d += g * err * (self.loop_share if n == driver else 1.0)
+        return d
 
     def _gains(self, probe, u, ref: float, law: "HeldLaw") -> list[tuple[str, str, int, float]]:
         """The law's sensitivity to each thermal input at the window's inputs ``u`` (``ref`` its own TO output
@@ -310,7 +329,8 @@ def loop_share(law_move: np.ndarray, delta: np.ndarray) -> float:
     1; 1 where the law moved no more than its error (no share to measure: the law's own sensitivity stands) or the
     port has more than one element. A share below 1 is a mechanics less sensitive than the law to the
     values both follow, or a move of values the law does not follow; the error estimate's loop takes the first
-    (the smaller pull-back, the larger estimate), and a power's own error the law's full sensitivity."""
+    (the smaller pull-back, the larger estimate), and a power's own error the law's full sensitivity but for a
+    driver's term, which counts at this share (:meth:`HandOff.power_error`)."""
     if law_move.size != 1 or delta.size != 1:
         return 1.0
     move, d = float(law_move[0]), float(delta[0])

@@ -343,19 +343,21 @@ class StaggeredHold:
 
     def _handoff_errors(self, errors: dict[str, np.ndarray]) -> tuple[dict[str, float], dict[str, float]]:
         """Each hand-off's power in error at the run's end by what its TO law says the erring values its producer
-        takes back do to it (HandOff.gains times their estimated errors ``errors``, "comp.port" -> values): the
+        takes back do to it (HandOff.power_error: its gains times their estimated errors ``errors``, "comp.port" ->
+        values, a driver's at the share of the law's move the mechanics made): the
         mechanics' own power at the end, "producer.port" -> error [its unit], and that error in percent of the
         power the law held when its gains were taken (``HandOff.gains_at``); only hand-offs with a law."""
         feeds = {(l.con.dst_component, l.con.dst_port): f"{l.con.src_component}.{l.sport}" for l in self.handbacks}
         out, pct = {}, {}
+
+        def error_of(comp, port, k):
+            err = errors.get(feeds.get((comp, port), ""))
+            return None if err is None else float(np.ravel(err)[k])
+
         for ho in self.handoffs or []:
             if not ho.gains:
                 continue
-            d = 0.0
-            for comp, port, k, g in ho.gains:
-                err = errors.get(feeds.get((comp, port), ""))
-                if err is not None:
-                    d += g * float(np.ravel(err)[k])
+            d = ho.power_error(error_of)
             key = f"{ho.link.con.src_component}.{ho.link.sport}"
             out[key] = d
             if ho.gains_at > 0.0:

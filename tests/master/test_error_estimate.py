@@ -1,18 +1,19 @@
 """The staggered scheme's error estimate (master/manipulator/error_estimate.py): the replay that carries a held interval's
 input errors through a thermal component, against the analytic response of a lumped node; a held interval that ends
 at a component's scheduled change is not charged; the advice when the estimate exceeds the tolerance; the share of a
-law's move the mechanics made, at which the replay's loop runs.
+law's move the mechanics made, at which the replay's loop runs and a driver's part of a power's error counts.
 (tests/cases/test_error_estimate.py holds the estimate against monolithic runs.)"""
 from __future__ import annotations
 
 import math
+from types import SimpleNamespace
 
 import numpy as np
 import pytest
 
 import rotorcosim
 from rotorcosim.master.manipulator.error_estimate import HoldReport, Pulse, replay
-from rotorcosim.master.manipulator.handoff import loop_share
+from rotorcosim.master.manipulator.handoff import HandOff, loop_share
 from rotorcosim.master.scenario.build import build_simulation, schedule_of
 
 
@@ -127,3 +128,19 @@ def test_the_loop_share_is_the_mechanics_move_against_the_laws():
     assert loop_share(np.array([-10.0, 1.0]), np.array([-4.0, 0.0])) == 1.0
     assert loop_share(np.array([10.0]), np.array([-3.0])) == 1.0
     assert loop_share(np.array([3.0]), np.array([2.9])) == pytest.approx(1.0 - 2.9 / 3.0)
+
+
+def test_a_drivers_share_of_a_power_error_is_what_the_mechanics_followed():
+    """A law of two terms: its producer's own oil (-10 W/K, the frozen state's physics) and a driver, another
+    component's oil that trended with the power (-5 W/K). With the oils in error by +0.1 K and +0.3 K and a restart
+    that showed the mechanics making 0.2 of the law's move, the power is in error by -10 (0.1) + 0.2 (-5) (0.3)
+    = -1.3 W; without a driver both terms count in full (-2.5 W); a value with no estimate is left out."""
+    link = SimpleNamespace(src=SimpleNamespace(holds_state_in_TO=True))
+    ho = HandOff(link, "mean", ["T_oil"])
+    ho.gains = [("bearing", "T_oil", 0, -10.0), ("damper", "T_oil", 0, -5.0)]
+    ho.loop_share, ho.driven = 0.2, True
+    errors = {("bearing", "T_oil", 0): 0.1, ("damper", "T_oil", 0): 0.3}
+    assert ho.power_error(lambda c, p, k: errors.get((c, p, k))) == pytest.approx(-1.3, rel=1e-12)
+    ho.driven = False
+    assert ho.power_error(lambda c, p, k: errors.get((c, p, k))) == pytest.approx(-2.5, rel=1e-12)
+    assert ho.power_error(lambda c, p, k: errors.get((c, p, k)) if c == "damper" else None) == pytest.approx(-1.5)

@@ -4,6 +4,7 @@ A program's OpenBLAS has one thread per core (importing rotorcosim changes no se
 multi-threaded BLAS sums in another order. master/core/threads.py limits the
 pools to one thread around every run. Without it the API run below differed from the command line's by up to
 1e-5 relative (measured on 2 cores)."""
+import json
 import os
 import subprocess
 import sys
@@ -84,3 +85,27 @@ def test_importing_rotorcosim_sets_nothing_in_the_environment():
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, env=_env(), timeout=120)
     assert out.returncode == 0, out.stderr
     assert out.stdout.strip() == "{}", out.stdout
+
+
+LOADED_INSIDE = """
+import sys
+import rotorcosim.master.core.threads as threads
+assert 'numpy' not in sys.modules and 'scipy.linalg' not in sys.modules
+from threadpoolctl import threadpool_info
+with threads.one_thread():
+    import scipy.linalg   # as a figure or an analysis that loads it first inside
+    print([p['num_threads'] for p in threadpool_info() if p['user_api'] == 'blas'])
+"""
+
+
+def test_one_thread_holds_for_the_blas_a_caller_loads_inside_it():
+    """threadpoolctl limits only the libraries loaded when it is entered: one_thread loads numpy's and scipy's BLAS
+    first, so that a program that enters it before loading them (draw_figures called directly) gets one thread
+    too. Needs a machine with more than one core, where a BLAS starts with more than one thread."""
+    if (os.cpu_count() or 1) < 2:
+        pytest.skip("one core: every BLAS starts with one thread")
+    out = subprocess.run([sys.executable, "-c", LOADED_INSIDE], capture_output=True, text=True, env=_env(),
+                         timeout=120)
+    assert out.returncode == 0, out.stderr
+    counts = json.loads(out.stdout.strip())
+    assert counts and all(n == 1 for n in counts), counts
