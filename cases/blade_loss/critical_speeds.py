@@ -17,8 +17,9 @@ from pathlib import Path
 import numpy as np
 
 from rotorcosim.components.airframe.installed import installed_model
-from rotorcosim.components.rotor import attach, critical
+from rotorcosim.components.rotor import attach, critical, engine_check
 from rotorcosim.components.rotor import model as fem
+from rotorcosim.components.rotor.engine_shape import refuse
 from rotorcosim.cases.blade_loss import linear_engine, response_peaks
 
 
@@ -94,6 +95,15 @@ def fuse_states(m, count: int, max_rpm: float, oil_temperature=None, scenario=No
     return out
 
 
+def refuse_problems(data: dict, model_file: str = "") -> None:
+    """A ValueError naming the engine file and the first of its problems that check-engine lists
+    (components/rotor/engine_check.problems: a typo'd key of a part table, a fuse of three stages...), so that the
+    critical speeds are never those of a file check-engine refuses; a shaft model file (``[shaft]``) has its own
+    reader."""
+    if "shaft" not in data:
+        refuse(engine_check.problems(data), f"engine file {model_file or fem.DEFAULT_FILE}")
+
+
 def critical_speeds(model_file: str = "", count: int = 6, max_rpm: float = 30000.0,
                     oil_temperature: float | None = None, scenario=None) -> dict:
     """The ``count`` lowest synchronous critical speeds [rev/min] of the first spool up to ``max_rpm``, of the
@@ -111,6 +121,7 @@ def critical_speeds(model_file: str = "", count: int = 6, max_rpm: float = 30000
     if not (np.isfinite(max_rpm) and max_rpm > 0):
         raise ValueError(f"--max-rpm must be > 0, got {max_rpm}")
     m = installed_model(model_file)
+    refuse_problems(m.data, model_file)
     sup = linearised_supports(m, oil_temperature, scenario)
     out = critical.synchronous_critical_speeds(m, sup, n=count, max_rpm=max_rpm)
     out["speed_ratio_gg_pt"] = critical.speed_ratio(m)

@@ -37,6 +37,7 @@ from pathlib import Path
 from typing import Any, Callable
 
 from . import model as fem
+from .engine_shape import refuse, shape_problems
 from .spool_inertia import spool_polar_inertia
 
 #: rev/min -> rad/s (components/speeds.py's factor, which the paper engine's default speeds use)
@@ -237,13 +238,18 @@ def problems(data: dict) -> list[str]:
 
 
 def _fuse_problems(where: str, spec: dict) -> list[str]:
-    """What a fuse's keys say against each other that no key alone does: a soft path stiffer than the intact one.
-    (The component refuses the same, and inconsistent stages, by its parameter's name when a run sets it up.)"""
+    """What a fuse's keys say that the value checks do not: a number of stages other than 1 or 2, a soft path
+    stiffer than the intact one. (The component refuses the same, and inconsistent stages, by its parameter's name
+    when a run sets it up.)"""
+    out = []
+    stages = spec.get("stages", 1)
+    if isinstance(stages, int) and not isinstance(stages, bool) and stages > 2:   # < 1: the value check
+        out.append(f"{where} stages: must be 1 or 2, got {stages!r}")
     k, kb = spec.get("k_intact"), spec.get("k_broken", 0.0)
     if all(isinstance(v, (int, float)) and not isinstance(v, bool) and math.isfinite(v) for v in (k, kb)) and kb > k:
-        return [f"{where} k_broken: must be at most k_intact = {k:g} N/m (the post-fuse path is the softer one), "
-                f"got {kb!r}"]
-    return []
+        out.append(f"{where} k_broken: must be at most k_intact = {k:g} N/m (the post-fuse path is the softer one), "
+                   f"got {kb!r}")
+    return out
 
 
 def missing(data: dict) -> list[str]:
@@ -274,6 +280,10 @@ class EngineView:
                  data: dict | None = None):
         self.path = str(Path(path) if path else fem.DEFAULT_FILE)
         self.data, self.digest = (data, "") if data is not None else fem.load_data(self.path)
+        if data is None:
+            # a run reads the file through this view: what check-engine lists of its shape and its parts refuses
+            # it here, a typo'd key included, rather than being read as absent
+            refuse(shape_problems(self.data) or problems(self.data), f"engine file {self.path}")
         self.overrides = dict(overrides or {})
         self._spools = list(self.data.get("spool", {})) if isinstance(self.data.get("spool"), dict) else []
         self._inertia: dict[str, float] = {}
@@ -390,7 +400,7 @@ class EngineView:
             v = spec[k.key]
             err = _check_value(k, v)
             if err:
-                raise ValueError(f"engine file {self.path}: {where} {k.key} {err}")
+                raise ValueError(f"engine file {self.path}: {where} {k.key}: {err}")
             return k.to_si(v), f"{self.path} {where} {k.key}"
         if k.default is not None:
             return k.to_si(k.default), f"default {k.default:g} {k.unit}: {k.source}"

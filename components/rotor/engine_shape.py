@@ -3,7 +3,10 @@ holds, checked before any value is read, so that a number where a table belongs,
 number belongs is one line naming the key and the shape expected, not a crash further on.
 
 :data:`SHAPE` is the format's tables and keys as data (docs/reference/engine-format.md); a key the format does not
-know is not a shape problem (the value checks, :mod:`.engine_check`, and the readers of later keys judge it).
+know in one of these tables is a problem too (``spool.pt.speed_rmp: unknown key (did you mean 'speed_rpm'?)``): a
+typo'd key would otherwise be read as absent and its default taken. The part tables (``[bearing.ID]``...,
+``[mount.NAME]``, ``[airframe]``) have their own readers, which name their unknown keys (engine_parts.py,
+mounts.py).
 Kinds: ``"number"`` (an int or float, not a bool), ``"int"``, ``"str"``, ``"knob"`` (a number or the name of a
 [calibration] entry), ``"node"`` (``[spool, node]`` or ``["hub", name]``), ``"end"`` (a node or ``"ground"``),
 ``("list", kind)``, ``("table", {key: kind})`` (known keys), ``("tables", kind)`` (a table of named entries, each
@@ -17,6 +20,8 @@ Example::
     # ['pedestal.h0: must be a table (mass, k or kxx/kyy, c or cxx/cyy, k_axial), got the number 3.0']
 """
 from __future__ import annotations
+
+import difflib
 
 NUMBER, INT, STR, KNOB = "number", "int", "str", "knob"
 NODE, END = "node", "end"
@@ -64,6 +69,8 @@ SHAPE = _table({
     "pedestal": ("tables", PEDESTAL),
     "casing": CASING,
     "attach": ("attach", None),
+    # judged by their own readers (engine_parts.py, mounts.py), which name their unknown keys
+    **{t: "any" for t in ("bearing", "damper", "rubring", "thermal", "fuse", "unbalance", "airframe", "mount")},
 })
 ATTACH_ENTRY = _table({"node": NODE, "housing": STR}, "node, housing")
 
@@ -114,6 +121,11 @@ def _expected(kind) -> str:
     return "a table"
 
 
+def _did_you_mean(word: str, known) -> str:
+    close = difflib.get_close_matches(word, list(known), n=1, cutoff=0.6)
+    return f" (did you mean {close[0]!r}?)" if close else f" (known: {', '.join(known)})"
+
+
 def _check(out: list, where: str, v, kind) -> None:
     def bad():
         out.append(f"{where}: must be {_expected(kind)}, got {_got(v)}")
@@ -154,9 +166,12 @@ def _check(out: list, where: str, v, kind) -> None:
         if not isinstance(v, dict):
             bad()
             return
-        for k, sub in kind[1].items():
-            if k in v:
-                _check(out, f"{where}.{k}" if where else k, v[k], sub)
+        for k, x in v.items():
+            at = f"{where}.{k}" if where else k
+            if k in kind[1]:
+                _check(out, at, x, kind[1][k])
+            else:
+                out.append(f"{at}: unknown {'table' if not where else 'key'}{_did_you_mean(k, kind[1])}")
     elif kind[0] == "tables":
         if not isinstance(v, dict):
             bad()
@@ -190,3 +205,14 @@ def shape_problems(data) -> list[str]:
         return [f"the engine description must be a table, got {_got(data)}"]
     _check(out, "", data, SHAPE)
     return [line.removeprefix(".") for line in out]
+
+
+
+def refuse(found: list[str], where: str) -> None:
+    """A ValueError of the first of the problems ``found`` (``where``: the file, as the reader names it), saying
+    how many more there are; nothing when there are none. The one message of every reader of an engine file that
+    needs the whole file (the model builder, the scenario's engine binding, critical-speeds), where check-engine
+    lists them all."""
+    if found:
+        raise ValueError(f"{where}: {found[0]}" + (f" (and {len(found) - 1} more: rotorcosim check-engine FILE)"
+                                                   if len(found) > 1 else ""))

@@ -25,7 +25,7 @@ from .. import toml_text
 from ..bounded_read import read_bytes
 from . import attach as attach_layout
 from . import mounts as mount_tables
-from .engine_shape import shape_problems
+from .engine_shape import refuse, shape_problems
 from .beam import disk, shaft_element
 from .hexa import hex8
 
@@ -251,10 +251,7 @@ def build(data: dict, digest: str = "", omega_pt: float | None = None, omega_gg:
     """Assemble the full model from the data (docs/reference/engine-format.md for the meaning of each entry); a missing
     table or key, or a value of the wrong kind, is a ValueError naming the file (``source``) and the key."""
     where = f"rotor model file {source or DEFAULT_FILE}"
-    shape = shape_problems(data)
-    if shape:
-        raise ValueError(f"{where}: {shape[0]}" + (f" (and {len(shape) - 1} more: rotorcosim check-engine FILE)"
-                                                   if len(shape) > 1 else ""))
+    refuse(shape_problems(data), where)
     try:
         with np.errstate(over="ignore", invalid="ignore", divide="ignore"):  # non-finite matrices refused below
             return _assemble(data, digest, omega_pt, omega_gg)
@@ -501,6 +498,9 @@ def _assemble(data: dict, digest: str, omega_pt: float | None, omega_gg: float |
     for s_i, s in enumerate(data.get("support", [])):
         a, b = s["a"], s["b"]
         label = f"support {s.get('name', '')!r}"
+        if a == b:
+            raise ValueError(f"rotor model: {label}: a and b are the same node {a} (a support between a node and "
+                             "itself carries no force)")
         if is_speed_dependent(s):
             tables.append(_support_table(s, s_i, label, gdof(a[0], a[1], 0), gdof(a[0], a[1], 1),
                                          None if b == "ground" else (gdof(b[0], b[1], 0), gdof(b[0], b[1], 1))))

@@ -92,7 +92,7 @@ class SignalCycle(Cycle):
         self._scale: tuple[float, bool] | None = None  # (SI factor, True for an angular speed)
 
     def check(self, system) -> None:
-        var = system._port(self.ref, "output")
+        var = system.port(self.ref, "output")
         if var.size != 1:
             raise CycleError(f"cycle signal {self.ref}: a scalar output is needed, it has {var.size} values")
         unit = var.unit
@@ -110,7 +110,7 @@ class SignalCycle(Cycle):
                              "frequency (Hz) is needed")
         self._scale = (d[1], kind == "angular speed")
         if self.angle is not None:
-            avar = system._port(self.angle, "output")
+            avar = system.port(self.angle, "output")
             if avar.size != 1 or avar.unit != "rad" or avar.type != "Real":
                 raise CycleError(f"cycle angle {self.angle}: a scalar Real output in [rad] is needed (it has "
                                  f"{avar.size} value(s) in [{avar.unit}])")

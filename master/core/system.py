@@ -141,7 +141,9 @@ class System:
         except KeyError:
             raise SystemError_(f"unknown component {name!r}; components: {', '.join(self.components)}") from None
 
-    def _port(self, ref: str, causality: str):
+    def port(self, ref: str, causality: str):
+        """The variable of port ``ref`` (``"comp.port"``), which must be of ``causality`` (``"input"``,
+        ``"output"``); a SystemError naming the component's ports of that causality otherwise."""
         comp, port = split_port(ref)
         c = self.component(comp)
         try:
@@ -171,7 +173,7 @@ class System:
                 raise SystemError_(f"{exc} (connection from {con.origin})") from None
             driven[con.dst] = con.src
         for ref, value in list(self.inputs.items()):
-            inp = self._port(ref, "input")
+            inp = self.port(ref, "input")
             if ref in driven:
                 raise SystemError_(f"{ref} has a constant value and is also driven by {driven[ref]}")
             items = list(value) if isinstance(value, (list, tuple, np.ndarray)) else [value]
@@ -204,8 +206,8 @@ class System:
                                + ", ".join(missing) + (f" (components from {', '.join(where)})" if where else ""))
 
     def _check_connection(self, con: Connection, driven: dict[str, str]) -> None:
-        out = self._port(con.src, "output")
-        inp = self._port(con.dst, "input")
+        out = self.port(con.src, "output")
+        inp = self.port(con.dst, "input")
         if out.size != inp.size:
             raise SystemError_(f"{con.src} (size {out.size}) -> {con.dst} (size {inp.size}): sizes differ")
         try:

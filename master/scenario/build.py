@@ -383,6 +383,13 @@ def build_simulation(sc: Scenario, observers=(), system: System | None = None) -
             cycle.check(system)
         except ContractError as exc:
             raise ScenarioError(f"{sc.source or sc.name}: [schedule] cycle: {exc}") from None
+    # the automatic schedule's steadiness test reads them only once an interval has room for it: checked here, so
+    # that a wrong name is refused whatever the duration
+    for ref in s.get("tracked", ()):
+        try:
+            system.port(ref, "output")
+        except ContractError as exc:
+            raise ScenarioError(f"{sc.source or sc.name}: [schedule] tracked: {exc}") from None
     return Simulation(system, order=sc.algorithm.get("order"), settings=engine_settings(sc),
                       steps={n: c.step for n, c in sc.components.items() if c.step is not None},
                       hold=s.get("hold", DEFAULT_HOLD), hold_cycles=float(s.get("hold_cycles", 5)),

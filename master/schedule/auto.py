@@ -82,8 +82,10 @@ class AutoSchedule(Schedule):
             if self.tolerance > TOLERANCE_MAX_PCT:
                 raise ScheduleError(f"schedule: tolerance {self.tolerance:g} % accepts results off by more than "
                                     f"they are (at most {TOLERANCE_MAX_PCT:g} %; it is in percent)")
-        if self.tm_min > self.tm_max or self.to_min > self.to_max:
-            raise ScheduleError("schedule: minimum interval durations must not exceed the maxima")
+        for lo, hi in (("tm_min", "tm_max"), ("to_min", "to_max")):
+            if getattr(self, lo) > getattr(self, hi):
+                raise ScheduleError(f"schedule: {lo} = {getattr(self, lo):g} s is above {hi} = {getattr(self, hi):g} s "
+                                    "(an interval's shortest duration cannot exceed its longest)")
         if int(self.steady_cycles) < 1:
             raise ScheduleError("schedule: steady_cycles must be >= 1")
 
@@ -193,7 +195,7 @@ class _SteadyTest(_StopTest):
         self.refs = list(sch.tracked) or sorted({l.con.src for l in sim.engine.links if feeds_thermal(
             comps[l.con.src_component], comps[l.con.dst_component])})
         for r in self.refs:
-            sim.system._port(r, "output")
+            sim.system.port(r, "output")
         self.every = max(1, int(round(sim.cycle / sch.step)))
         self.t_begin = sim.t
         self.acc = None
@@ -352,7 +354,7 @@ class _DriftTest(_StopTest):
         self.refs = sorted({l.con.src for l in sim.engine.links
                             if feeds_thermal(comps[l.con.dst_component], comps[l.con.src_component])})
         self.start = {r: np.array(sim.value(r), dtype=float) for r in self.refs}
-        self.floors = {r: DRIFT_FLOORS.get(sim.system._port(r, "output").unit, 0.0) for r in self.refs}
+        self.floors = {r: DRIFT_FLOORS.get(sim.system.port(r, "output").unit, 0.0) for r in self.refs}
         self.t_begin = sim.t
 
     def check(self, sim, t):

@@ -121,6 +121,8 @@ def test_two_fuses_are_reported_in_each_combination_of_their_stages(engine_folde
     (FUSE.format(mass=1.5, k=1e9, load=1000.0, kb=1e7) + "bumper_clearance_mm = -0.1\n",
      "[fuse.0] bumper_clearance_mm: must be >= 0"),
     (FUSE.format(mass=1.5, k=1e9, load=1000.0, kb=1e7) + "stiffness = 1.0\n", "[fuse.0] stiffness: unknown key"),
+    # the critical speeds of each combination of stages would be asked of a third stage the format has not
+    (FUSE.format(mass=1.5, k=1e9, load=1000.0, kb=1e7) + "stages = 3\n", "[fuse.0] stages: must be 1 or 2, got 3"),
 ])
 def test_bad_fuse_in_an_engine_file_is_one_line(engine_folder, tmp_path, text, message):
     path = _engine(engine_folder, "bad.toml", text)

@@ -182,3 +182,102 @@ def test_wrong_shape_in_a_part_table_is_one_line_naming_the_key(tmp_path, path, 
     f.write_text(dumps(data))
     problems = check_engine(str(f))["problems"]
     assert any(all(str(p) in line for p in path) and "\n" not in line for line in problems), (path, problems)
+
+
+def _table_paths():
+    """Every table of the format the test engine holds (each a place where a typo'd key could hide)."""
+    return [path for path, kind in _paths(_engine(), es.SHAPE, ()) if not isinstance(kind, str) and kind[0] == "table"]
+
+
+@pytest.mark.parametrize("path", [pytest.param(p, id=_name(p) or "top") for p in _table_paths()])
+def test_an_unknown_key_in_any_table_is_named(tmp_path, path):
+    """A key the format does not know is a problem naming it, not a value silently left at its default."""
+    data = _engine()
+    node = data
+    for p in path:
+        node = node[p]
+    node["zz_unknown"] = 1.0
+    f = tmp_path / "engine.toml"
+    f.write_text(dumps(data))
+    key = _name(path + ("zz_unknown",))
+    problems = check_engine(str(f))["problems"]
+    assert any(line.startswith(f"{key}: unknown") for line in problems), (key, problems)
+    with pytest.raises(ValueError) as exc:
+        fem.load(f)
+    assert key in str(exc.value) and "\n" not in str(exc.value)
+
+
+def test_every_table_of_the_format_is_tried_for_unknown_keys():
+    names = {_name(p) for p in _table_paths()}
+    assert {"", "engine", "material.rotor", "damping", "spool.pt", "spool.pt.disks[0]", "spool.pt.layers[0]",
+            "support[0]", "pedestal.p1", "casing", "casing.hubs.h0", "casing.mounts[0]", "casing.struts"} <= names
+
+
+@pytest.mark.parametrize("old, new, says", [
+    ("speed_rpm = 16000.0", "speed_rmp = 16000.0", "spool.pt.speed_rmp: unknown key (did you mean 'speed_rpm'?)"),
+    ("c = 1751.0\nk_axial", "cc = 1751.0\nk_axial", "support[0].cc: unknown key (did you mean 'c'?)"),
+    ("zeta = 0.01", "zeta = 0.01\nzetta = 0.02", "damping.zetta: unknown key (did you mean 'zeta'?)"),
+    ("[spool.pt]", "[spoool.x]\nspeed_rpm = 1.0\n\n[spool.pt]", "spoool: unknown table (did you mean 'spool'?)"),
+])
+def test_a_typo_is_refused_by_every_command_that_reads_the_engine(tmp_path, capsys, old, new, says):
+    """check-engine lists it, critical-speeds and a run refuse it in one line (exit 2), and the run leaves no
+    folder."""
+    text = fem.DEFAULT_FILE.read_text()
+    assert old in text
+    f = tmp_path / "engine.toml"
+    f.write_text(text.replace(old, new, 1))
+    rc = main(["check-engine", str(f), "--campbell", str(tmp_path / "c.png")])
+    out, err = capsys.readouterr()
+    assert rc == 2 and says in out, (out, err)
+    rc = main(["critical-speeds", "--model", str(f)])
+    out, err = capsys.readouterr()
+    lines = [line for line in err.splitlines() if line.strip()]
+    assert rc == 2 and len(lines) == 1 and says in lines[0] and "Traceback" not in err, err
+    sc = tmp_path / "s.toml"
+    sc.write_text(f'[scenario]\nextends = "blade_loss_2850"\nname = "typo"\nengine = "{f.name}"\n')
+    rc = main(["run", str(sc), "--duration", "0.001", "--no-figures", "--quiet", "--out", str(tmp_path / "o")])
+    out, err = capsys.readouterr()
+    lines = [line for line in err.splitlines() if line.strip()]
+    assert rc == 2 and len(lines) == 1 and says in lines[0], err
+    assert not (tmp_path / "o").exists()
+
+
+@pytest.mark.parametrize("old, new, says", [
+    ("preload_N = 800.0", "preload_N = 800.0\npreload = 800.0", "[bearing.0] preload: unknown key"),
+    ("k_spring = 5.254e6", "k_spring = 5.254e6\nk_sprng = 1.0", "[damper.0] k_sprng: unknown key"),
+    ("phase_deg = 90.0", "phase_deg = 90.0\nphase = 0.0", "[unbalance] phase: unknown key"),
+    ("clearance_mm = 0.508", "clearance_mm = -0.508", "[rubring.0] clearance_mm: must be > 0"),
+    ("[unbalance]", "[thermal.7]\nshaft_length_mm = 100.0\n\n[unbalance]", "[thermal.7]: [attach] has no bearing7"),
+])
+def test_a_part_table_problem_is_refused_by_critical_speeds_and_run(tmp_path, capsys, old, new, says):
+    """What check-engine lists of the part tables refuses critical-speeds and a run too, naming the engine file
+    (not the paper's engine, whose parts the linearisation would otherwise be said to come from), exit 2, no
+    folder."""
+    text = fem.DEFAULT_FILE.read_text()
+    assert old in text
+    f = tmp_path / "engine.toml"
+    f.write_text(text.replace(old, new, 1))
+    rc = main(["critical-speeds", "--model", str(f)])
+    out, err = capsys.readouterr()
+    lines = [line for line in err.splitlines() if line.strip()]
+    assert rc == 2 and len(lines) == 1 and says in lines[0] and str(f) in lines[0], err
+    sc = tmp_path / "s.toml"
+    sc.write_text(f'[scenario]\nextends = "blade_loss_2850"\nname = "part"\nengine = "{f.name}"\n')
+    rc = main(["run", str(sc), "--duration", "0.001", "--no-figures", "--quiet", "--out", str(tmp_path / "o")])
+    out, err = capsys.readouterr()
+    lines = [line for line in err.splitlines() if line.strip()]
+    assert rc == 2 and len(lines) == 1 and says in lines[0] and str(f) in lines[0], err
+    assert not (tmp_path / "o").exists()
+
+
+def test_a_support_between_a_node_and_itself_is_refused(tmp_path, capsys):
+    """It would add k - k = 0 to the stiffness: a support that carries nothing, surely not what was meant."""
+    text = fem.DEFAULT_FILE.read_text()
+    f = tmp_path / "engine.toml"
+    f.write_text(text.replace('b = ["hub", "b1"]', 'b = ["gg", 14]', 1))
+    for argv in (["critical-speeds", "--model", str(f)], ["check-engine", str(f), "--campbell", str(tmp_path / "c.png")]):
+        rc = main(argv)
+        out, err = capsys.readouterr()
+        lines = [line for line in err.splitlines() if line.strip()]
+        assert rc == 2 and len(lines) == 1 and "a and b are the same node ['gg', 14]" in lines[0], (argv, err)
+    assert not (tmp_path / "c.png").exists()

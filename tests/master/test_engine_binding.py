@@ -109,8 +109,8 @@ def test_a_uq_over_a_damper_clearance_moves_its_thermal_network(tmp_path):
 
 @pytest.mark.parametrize("edit, message", [
     ("clearance_mm = 0.635", "[damper.0] clearance_mm missing"),
-    ("clearance_mm = -0.1", "[damper.0] clearance_mm must be > 0 (mm), got -0.1"),
-    ("clearance_mm = \"big\"", "[damper.0] clearance_mm must be a finite number (mm), got 'big'"),
+    ("clearance_mm = -0.1", "[damper.0] clearance_mm: must be > 0 (mm), got -0.1"),
+    ("clearance_mm = \"big\"", "[damper.0] clearance_mm: must be a finite number (mm), got 'big'"),
 ])
 def test_a_bad_part_key_is_a_one_line_error_naming_it(tmp_path, capsys, edit, message):
     text = fem.DEFAULT_FILE.read_text()

@@ -1,0 +1,32 @@
+"""The automatic schedule's keys a user may get wrong, each refused before the run in one line naming the key,
+exit status 2, no folder: a tracked output the system does not have (checked when the scenario is built, not
+when the first steadiness test reads it, which a short run never reaches), an interval's shortest duration above
+its longest."""
+from __future__ import annotations
+
+import pytest
+
+from rotorcosim.master.cli import main
+
+from tests.reliability.test_cli import one_line_error
+
+TOY = "toy_thermomechanical"
+
+
+@pytest.mark.parametrize("schedule, says", [
+    ('tracked = ["osc.nope"]', "[schedule] tracked: osc.nope: component 'osc'"),
+    ('tracked = ["node.C"]', "[schedule] tracked: node.C is a parameter of component 'node'"),
+    ('tracked = ["nope.x"]', "[schedule] tracked: unknown component 'nope'"),
+    ("tm_min = 0.6\ntm_max = 0.5", "tm_min = 0.6 s is above tm_max = 0.5 s"),
+    ("to_min = 2.0\nto_max = 1.0", "to_min = 2 s is above to_max = 1 s"),
+])
+@pytest.mark.parametrize("duration", ["0.01", "20"])
+def test_auto_schedule_keys_refused_whatever_the_duration(tmp_path, capsys, schedule, says, duration):
+    f = tmp_path / "s.toml"
+    f.write_text(f'[scenario]\nextends = "{TOY}"\nname = "t"\n\n[schedule]\n{schedule}\n')
+    out = tmp_path / "o"
+    rc = main(["run", str(f), "--schedule", "auto", "--duration", duration, "--quiet", "--no-figures",
+               "--out", str(out)])
+    line = one_line_error(capsys.readouterr().err)
+    assert rc == 2 and says in line, line
+    assert not out.exists()
