@@ -93,7 +93,7 @@ def load_plugin(path: str, folder: str | None = None) -> type:
     except ModuleNotFoundError as exc:
         if exc.name != module.split(".")[0] and exc.name != module:
             raise ContractError(f"plug-in {path!r}: importing module {module!r} failed: {exc}") from None
-        where = f"the scenario's folder {folder} nor " if folder else ""
+        where = f"the folder {folder} nor " if folder else ""
         raise ContractError(f"plug-in {path!r}: no module {module!r} in {where}sys.path") from None
     except Exception as exc:  # a plug-in's own error at import: say whose it is
         raise ContractError(f"plug-in {path!r}: importing module {module!r} failed: "

@@ -21,7 +21,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from rotorcosim.components.contract import COUPLED
+from rotorcosim.components.contract import COUPLED, ContractError
 from rotorcosim.master.observer.observer import Observer
 
 #: the blade-loss results compared, per bearing id
@@ -91,15 +91,42 @@ def _crossings(summary: dict) -> list[dict]:
     return out
 
 
+def comparison_scenario(sc):
+    """The scenario ``[results] without_fuse`` names, with ``without_fuse_set`` set on it; a one-line ValueError
+    naming the key when it cannot be loaded or set. :func:`check` calls it before the run: the comparison runs it
+    only after the run, which a wrong name would otherwise fail at its end."""
+    from rotorcosim.master.api import load_scenario
+
+    res = sc.extra.get("results", {})
+    try:
+        plain = load_scenario(res["without_fuse"])
+    except (ContractError, ValueError, OSError) as exc:
+        raise ValueError(f"[results] without_fuse: {exc}") from None
+    if res.get("without_fuse_set"):
+        try:
+            plain = plain.set(dict(res["without_fuse_set"]))
+        except (ContractError, ValueError, OSError) as exc:
+            raise ValueError(f"[results] without_fuse_set: {exc}") from None
+    return plain
+
+
+def check(sc) -> None:
+    """``[results] without_fuse`` and ``without_fuse_set`` name a scenario and values it takes
+    (:func:`comparison_scenario`); ``without_fuse_set`` without ``without_fuse`` is refused (nothing would use it)."""
+    res = sc.extra.get("results", {})
+    if res.get("without_fuse"):
+        comparison_scenario(sc)
+    elif res.get("without_fuse_set"):
+        raise ValueError("[results] without_fuse_set: given without [results] without_fuse (the scenario it sets)")
+
+
 def compare(sc, duration: float, fused: dict) -> dict:
     """``fuse_comparison`` (module docstring) of the run of ``sc`` over ``duration`` [s] whose summary entries are
     ``fused`` (``bearings``, ``crossings``, ``casing_force_peak_N``): runs the comparison scenario."""
-    from rotorcosim.master.api import load_scenario, simulate
+    from rotorcosim.master.api import simulate
 
     res = sc.extra["results"]
-    plain = load_scenario(res["without_fuse"])
-    if res.get("without_fuse_set"):
-        plain = plain.set(dict(res["without_fuse_set"]))
+    plain = comparison_scenario(sc)
     plain.extra.setdefault("results", {})["casing_force_peak"] = True
     other = simulate(plain, duration=duration, figures=False, progress=False).summary
     bearings = {}

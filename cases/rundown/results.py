@@ -238,6 +238,7 @@ def check(sc, sim) -> None:
             raise ValueError(f"[results] spools: no component {sp!r}")
     fatigue.check(sc, sim)
     interface.check(sc, sim)
+    fuse_comparison.check(sc)
 
 
 class Peak(NamedTuple):

@@ -168,7 +168,8 @@ class Scenario:
 
     def swap(self, component: str, implementation: str, parameters: Mapping[str, Any] | None = None) -> "Scenario":
         """A new scenario with ``component`` given another implementation: a registry name (``"damper.fe"``),
-        a plug-in ``"module:Class"``, or an FMU file (``"my_damper.fmu"``, relative to the working folder).
+        a plug-in ``"module:Class"`` (its module imported from the working folder first, then from ``sys.path``),
+        or an FMU file (``"my_damper.fmu"``, relative to the working folder).
 
         The component keeps its parameters unless ``parameters`` is given, which then replaces them all."""
         from rotorcosim.master.scenario.overrides import apply_swap

@@ -73,6 +73,18 @@ def _declared(impl: str | None, folder: str | None) -> set[str] | None:
     return {v.name for v in getattr(cls, "variables", ()) if v.causality == "parameter"}
 
 
+def drop_undeclared(binding: EngineBinding | None, component: str, params: dict, declared: set[str]) -> None:
+    """Drop from ``params`` (the parameters of ``component``, in place) and from ``binding`` the bound parameters
+    that its implementation does not ``declare``: a plug-in swapped in for a bound component, as :func:`bind` does
+    for one a scenario file puts in its place."""
+    if binding is None:
+        return
+    for p in [p for p in params if f"{component}.{p}" in binding.targets and p not in declared]:
+        del params[p]
+        binding.targets.pop(f"{component}.{p}")
+        binding.sources.pop(f"{component}.{p}", None)
+
+
 def bind(data: dict, origins, where: str) -> EngineBinding | None:
     """Resolve the ``"engine:NAME"`` values of a composed scenario ``data`` in place (before its schema check);
     returns the binding, or None when the scenario takes nothing from an engine."""

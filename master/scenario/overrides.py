@@ -23,7 +23,7 @@ from rotorcosim.components.contract import ContractError
 from rotorcosim.components.value_types import check_value
 
 from rotorcosim.master.scenario.compose import ScenarioError, real_path
-from rotorcosim.master.scenario.engine import set_bound
+from rotorcosim.master.scenario.engine import drop_undeclared, set_bound
 
 #: where a change made by the API or the command line is said to come from, in error messages
 API_ORIGIN = "Scenario.set/swap"
@@ -206,11 +206,18 @@ def apply_swap(sc, component: str, implementation: str, parameters: Mapping[str,
             raise FileNotFoundError(f"swap {component}: FMU file {path} not found")
         spec.fmu, spec.implementation = str(path), None
     else:
+        # a plug-in the swap names is imported from the working folder first, as a swapped FMU's path is read
+        # from it (the folder of the file the component came from, a shipped template's, is not the user's)
+        folder = str(Path.cwd()) if registry.is_plugin_path(impl) else spec.folder
         try:
-            registry.lookup(impl, spec.folder)  # fail now, naming the implementation, not at build time
+            registry.lookup(impl, folder)  # fail now, naming the implementation, not at build time
         except ContractError as exc:
             raise ScenarioError(f"swap {component}: {exc}") from None
-        spec.implementation, spec.fmu = impl, None
+        spec.implementation, spec.fmu, spec.folder = impl, None, folder
+        if parameters is None:
+            # the values the component took from the engine that its new implementation does not declare
+            drop_undeclared(getattr(out, "engine", None), component, spec.parameters, set(declared_parameters(spec)))
+            spec.param_origins = {k: v for k, v in spec.param_origins.items() if k in spec.parameters}
         spec.start = {}  # start values belong to the FMU it replaces
     spec.origin = origin
     if parameters is not None:

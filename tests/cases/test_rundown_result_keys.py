@@ -52,3 +52,31 @@ def test_a_key_naming_no_part_of_the_run_is_one_line_naming_it(diversion, keys, 
     with pytest.raises(ValueError) as err:
         results.check(_with(diversion, **keys), _sim())
     assert str(err.value) == message
+
+
+@pytest.mark.parametrize("keys, message", [
+    ({"without_fuse": "no_such_scenario"}, "[results] without_fuse: no shipped scenario 'no_such_scenario'"),
+    ({"without_fuse": "blade_loss_rundown", "without_fuse_set": {"rotor.F_unbalnce": 1.0}},
+     "[results] without_fuse_set: set rotor.F_unbalnce: rotor.mta_spinning (rotor) has no parameter 'F_unbalnce'"),
+    ({"without_fuse": "blade_loss_rundown", "without_fuse_set": {"rotr.F_unbalance": 1.0}},
+     "[results] without_fuse_set: scenario 'blade_loss_rundown': no component 'rotr'"),
+    ({"without_fuse_set": {"rotor.F_unbalance": 1.0}}, "[results] without_fuse_set: given without [results] "
+                                                       "without_fuse"),
+])
+def test_the_fuse_comparison_is_checked_before_the_run(diversion, keys, message):
+    """The comparison's scenario runs after the run: a wrong name would fail the command at the run's end (exit
+    2 with the run's files written, minutes or hours later); it is refused before the run starts."""
+    with pytest.raises(ValueError) as err:
+        results.check(_with(diversion, **keys), _sim())
+    assert str(err.value).startswith(message), str(err.value)
+
+
+def test_a_wrong_comparison_scenario_leaves_no_folder(tmp_path, capsys):
+    from rotorcosim.master.cli import main
+
+    sc = tmp_path / "s.toml"
+    sc.write_text('[scenario]\nextends = "blade_loss_fuse"\nname = "t"\n[results]\nwithout_fuse = "nope"\n')
+    rc = main(["run", str(sc), "--duration", "0.001", "--no-figures", "--quiet", "--out", str(tmp_path / "o")])
+    err = [line for line in capsys.readouterr().err.splitlines() if line.strip()]
+    assert rc == 2 and len(err) == 1 and "[results] without_fuse: no shipped scenario 'nope'" in err[0], err
+    assert not (tmp_path / "o").exists()

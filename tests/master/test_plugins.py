@@ -45,8 +45,8 @@ def test_plugin_module_missing_names_the_file_and_folder(tmp_path):
     p.write_text('[scenario]\nextends = "blade_loss_2850"\n[components.damper0]\n'
                  'implementation = "no_such_plugin:Damper"\n')
     with pytest.raises(ContractError, match=rf"{p}:\d+: \[components.damper0\] implementation: plug-in "
-                                            rf"'no_such_plugin:Damper': no module 'no_such_plugin' in the scenario's "
-                                            rf"folder {tmp_path}"):
+                                            rf"'no_such_plugin:Damper': no module 'no_such_plugin' in the folder "
+                                            rf"{tmp_path}"):
         rotorcosim.load_scenario(p)
 
 
@@ -74,3 +74,34 @@ def test_inherited_parameter_not_removed_is_named(tmp_path):
     with pytest.raises(ContractError, match=r"b.toml:\d+: \[components.damper0\] parameters.n_theta: "
                                             r"linear_damper:LinearDamper has no parameter 'n_theta'"):
         rotorcosim.load_scenario(p)
+
+def test_a_swapped_plugin_is_imported_from_the_working_folder(tmp_path, monkeypatch, capsys):
+    """``--swap damper0=module:Class`` finds the module in the folder the command is typed in, as it finds a
+    swapped FMU there, also when that folder is not on ``sys.path`` (the installed ``rotorcosim`` command: only
+    ``python -m`` puts it there); the shipped template damper0 came from has no say. The values damper0 took from
+    the engine (radius, clearance...) that the plug-in does not declare are dropped, as for a plug-in a scenario
+    file puts in its place."""
+    import sys
+
+    # the worked example, with the oil temperature input the shipped template connects (a swap keeps the
+    # component's connections; a scenario file drops one with remove_connections)
+    text = EXAMPLE.with_name("linear_damper.py").read_text()
+    anchor = '        Variable("F_journal", "output"'
+    assert anchor in text
+    (tmp_path / "my_linear_damper.py").write_text(text.replace(
+        anchor, '        Variable("T_oil", "input", 1, "K", "oil temperature (not used)", start=303.15),\n' + anchor, 1))
+    monkeypatch.chdir(tmp_path)
+    monkeypatch.setattr(sys, "path", [p for p in sys.path if p not in ("", ".", str(tmp_path))])
+    monkeypatch.delitem(sys.modules, "my_linear_damper", raising=False)
+    out = tmp_path / "o"
+    rc = main(["run", "--swap", "damper0=my_linear_damper:LinearDamper", "--set", "damper0.k=5.254e6",
+               "--duration", "0.001", "--quiet", "--no-figures", "--out", str(out)])
+    err = capsys.readouterr().err
+    assert rc == 0, err
+    assert (out / "summary.json").exists()
+    # a module that is not there is named with the folder looked in
+    rc = main(["run", "--swap", "damper0=no_such_module:Damper", "--duration", "0.001", "--quiet",
+               "--no-figures", "--out", str(tmp_path / "o2")])
+    err = [line for line in capsys.readouterr().err.splitlines() if line.strip()]
+    assert rc == 2 and len(err) == 1 and f"no module 'no_such_module' in the folder {tmp_path} nor" in err[0], err
+    assert not (tmp_path / "o2").exists()
