@@ -25,7 +25,7 @@ A UQ SPEC::
     scenario = "my_engine.toml"
     duration = 2.0
     samples = 64
-    sampler = "lhs"                       # "mc", "lhs" or "sobol" (Saltelli's scheme: samples x (2 D + 2) runs)
+    sampler = "lhs"                       # "mc", "lhs" or "sobol" (Saltelli's scheme: samples x (D + 2) runs)
     seed = 1
     results = ["bearings.A.whirl_amplitude_mm"]
     [[uq.parameter]]
@@ -81,6 +81,10 @@ DISTRIBUTIONS = {"uniform": ("lower", "upper"), "normal": ("mean", "std"), "logn
                  "truncnormal": ("mean", "std", "lower", "upper")}
 #: defaults of the optional calibration keys: least-squares points, finite-difference step (fraction of a range)
 MAX_EVALUATIONS = 40
+#: the largest design a UQ draws [bytes]: its runs x parameters as float64, drawn whole before its wall time is
+#: priced and its first run starts. Far above a study that can finish (a million runs of six parameters: 46 MiB),
+#: below a size that would end the command out of memory instead of refusing it
+MAX_DESIGN_BYTES = 512 * 2**20
 DIFF_STEP = 0.02
 #: default relative change of the cost (and of the parameters, in their unit scale) at which the search stops: the
 #: runs' own numerical scatter (a nonlinear transient) makes smaller changes meaningless
@@ -196,6 +200,11 @@ def _read(path: Path, table: str) -> dict:
         raise SpecError(f"SPEC {path}: no [{table}] table")
     if not isinstance(data[table], dict):
         raise SpecError(f"SPEC {path}: [{table}] must be a table, got {_shape(data[table])}")
+    other = sorted(set(data) - {table})
+    if other:
+        # a misspelt sub-table ([uq.parmeter]) sits inside [uq], named by its unknown keys; this is what is outside
+        raise SpecError(f"SPEC {path}: unknown table(s) or key(s) {', '.join(other)} (a {table} SPEC holds [{table}] "
+                        "only)")
     return data[table]
 
 
@@ -423,4 +432,9 @@ def read_uq(path: str | Path) -> UQSpec:
         out.append(Distribution(name, kind, vals))
     if sampler == "sobol" and len(out) < 2:
         raise SpecError(f"{w}: the sobol sampler (Sobol' indices) needs at least 2 parameters")
+    runs = n * (len(out) + 2) if sampler == "sobol" else n
+    if runs * len(out) * 8 > MAX_DESIGN_BYTES:
+        raise SpecError(f"{w}: samples = {n}: a design of {runs} runs x {len(out)} parameters "
+                        f"({runs * len(out) * 8 / 2**20:.0f} MiB) is above the {MAX_DESIGN_BYTES / 2**20:.0f} MiB a "
+                        "study draws: give fewer samples")
     return UQSpec(path, scenario, _duration(w, t), n, sampler, seed, list(results), out, dict(overrides))

@@ -140,6 +140,12 @@ def test_a_sweep_prints_its_estimate_and_keeps_it(tmp_path, capsys):
     ("calibrate", CAL.replace("lower = 0.05", "lower = 0.3"), None, "lower 0.3 must be below upper 0.2"),
     ("calibrate", BL_CAL, ",bearings.0.whirl_amplitude_mm,0.1\n",
      "parameter damper0.k_spring: set damper0.k_spring: damper0.k_spring must be >= 0 (N/m), got -1"),
+    # a misspelt table beside the SPEC's own: was ignored, the study run without what it said
+    ("uq", UQ + "[uq_set]\nx = 1\n", None, "unknown table(s) or key(s) uq_set (a uq SPEC holds [uq] only)"),
+    ("calibrate", "seed = 3\n" + CAL, None, "unknown table(s) or key(s) seed (a calibrate SPEC holds [calibrate]"),
+    # a design too large to draw: was "error: out of memory" (exit 1) before the study was priced
+    ("uq", UQ.replace("samples = 4", "samples = 1000000000000"), None,
+     "samples = 1000000000000: a design of 1000000000000 runs x 1 parameters (7629395 MiB) is above the 512 MiB"),
 ])
 def test_spec_mistakes_refused_before_the_first_run(tmp_path, capsys, command, text, targets, message):
     rc, _, err = call(capsys, command, spec(tmp_path, text, targets=targets or ",final_outputs.m1.x,0.05\n"),
