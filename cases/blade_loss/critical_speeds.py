@@ -237,6 +237,8 @@ def run(args) -> int:
     """Run the command ``args`` (parsed); returns the exit status."""
     if args.campbell:
         check_figure_path(args.campbell)
+    elif args.windmill_rpm is not None:
+        raise ValueError("--windmill-rpm marks the Campbell diagram: give --campbell FILE.png too")
     sc = None
     if args.scenario:
         from rotorcosim.master.scenario.build import load_scenario

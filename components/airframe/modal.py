@@ -92,6 +92,13 @@ def parse(data: dict, where: str = "airframe model") -> ModalModel:
         raise _bad(where, f"[airframe] missing (format = {FORMAT}, name)")
     if head.get("format") != FORMAT:
         raise _bad(where, f"[airframe] format = {head.get('format')!r}; this version reads format {FORMAT}")
+    # a misspelt table or key would be read as absent (a response point lost, a name left empty)
+    unknown = sorted(set(data) - {"airframe", "modes", *KINDS})
+    if unknown:
+        raise _bad(where, f"{unknown[0]}: unknown table (known: airframe, modes, {', '.join(KINDS)})")
+    unknown = sorted(set(head) - {"format", "name", "source"})
+    if unknown:
+        raise _bad(where, f"airframe.{unknown[0]}: unknown key (known: format, name, source)")
     modes = data.get("modes")
     if not isinstance(modes, dict):
         raise _bad(where, "[modes] missing (frequency_Hz, modal_mass_kg, damping_ratio)")

@@ -203,6 +203,10 @@ def shape_problems(data) -> list[str]:
     out: list[str] = []
     if not isinstance(data, dict):
         return [f"the engine description must be a table, got {_got(data)}"]
+    if "shaft" in data:
+        # the other model format: a test rotor's, which the rotor component reads and these commands do not
+        return ["shaft: a test rotor's model file ([shaft], components/rotor/shaft_model.py), not an engine file "
+                "(docs/reference/engine-format.md)"]
     _check(out, "", data, SHAPE)
     return [line.removeprefix(".") for line in out]
 

@@ -166,6 +166,24 @@ def test_bad_modal_file_is_one_line_naming_the_key(tmp_path, monkeypatch, capsys
         create("airframe.modal", "airframe", {"model_file": str(tmp_path / "engine.toml")})
 
 
+@pytest.mark.parametrize("old, new, says", [
+    ('name = "cantilever"', 'name = "cantilever"\nnmae = "x"', "airframe.nmae: unknown key (known: format, name, source)"),
+    ("[modes]", "[respnse.mid]\nshape = [[0.0, 1.0, 0.0]]\n\n[modes]", "respnse: unknown table (known: airframe, modes, "
+                                                                     "interface, response)"),
+])
+def test_a_misspelt_table_or_key_of_the_airframe_file_is_named(tmp_path, old, new, says):
+    """Read as absent, it lost a response point or a name without a word; the file's other tables already named
+    theirs (modes.*, interface.NAME.*)."""
+    path = tmp_path / "beam.toml"
+    _cantilever_file(tmp_path)
+    text = path.read_text()
+    assert old in text
+    path.write_text(text.replace(old, new, 1))
+    with pytest.raises(ValueError) as err:
+        read(path)
+    assert str(err.value) == f"airframe model {path}: {says}"
+
+
 def test_mount_on_a_missing_node_is_one_line(tmp_path, monkeypatch, capsys):
     bad = PYLON.read_text().replace('{ node = ["casing", 6, 0], dir = 1', '{ node = ["casing", 9, 0], dir = 1')
     bad = bad.replace('"../../airframe/data/pylon_wing.toml"', repr(str(EXAMPLE)).replace("'", '"'))

@@ -281,3 +281,24 @@ def test_a_support_between_a_node_and_itself_is_refused(tmp_path, capsys):
         lines = [line for line in err.splitlines() if line.strip()]
         assert rc == 2 and len(lines) == 1 and "a and b are the same node ['gg', 14]" in lines[0], (argv, err)
     assert not (tmp_path / "c.png").exists()
+
+
+def test_a_test_rotor_s_model_file_is_named_as_such(tmp_path, capsys):
+    """A ``[shaft]`` model file (the Jeffcott rotor's) given where an engine file belongs: one line saying which
+    format it is (was: three problems of a missing engine, or "shaft: unknown table")."""
+    f = fem.DEFAULT_FILE.with_name("jeffcott.toml")
+    says = "shaft: a test rotor's model file ([shaft], components/rotor/shaft_model.py), not an engine file"
+    rc = main(["critical-speeds", "--model", str(f)])
+    err = [line for line in capsys.readouterr().err.splitlines() if line.strip()]
+    assert rc == 2 and len(err) == 1 and says in err[0], err
+    rc = main(["check-engine", str(f), "--campbell", str(tmp_path / "c.png")])
+    out = capsys.readouterr().out
+    assert rc == 2 and [line.strip() for line in out.splitlines()[1:]] == [says + " (docs/reference/engine-format.md)"]
+
+
+def test_windmill_range_without_a_diagram_is_refused(capsys):
+    """``--windmill-rpm`` only marks the Campbell diagram: without ``--campbell`` it did nothing, silently."""
+    rc = main(["critical-speeds", "--windmill-rpm", "3000,4000"])
+    err = [line for line in capsys.readouterr().err.splitlines() if line.strip()]
+    assert rc == 2 and err == ["rotorcosim critical-speeds: error: --windmill-rpm marks the Campbell diagram: give "
+                               "--campbell FILE.png too"], err
