@@ -53,6 +53,11 @@ import numpy as np
 from rotorcosim.components.contract import COUPLED, Component, ContractError
 from rotorcosim.master.core import links
 
+#: the most bisections of a step an event's location may take: a tolerance below step x 2^-MAX_BISECTIONS is
+#: refused. Float64 resolves about 2^-52 of a step's length: finer, the bracket would stop shrinking and the
+#: bisection never end (a tolerance of 1e-300 s did not).
+MAX_BISECTIONS = 48
+
 
 def timed(comp) -> bool:
     """Does the component schedule changes of its own (``next_event``: the spool's fuel cut)?"""
@@ -119,6 +124,10 @@ class EventLocator:
             if not (0.0 < tol <= step):
                 raise ContractError(f"{n}.event_tolerance: {tol!r} s must be within (0, {step:g} s], the step "
                                     "of the interval it is located in")
+            if tol < step * 2.0 ** -MAX_BISECTIONS:
+                raise ContractError(f"{n}.event_tolerance: {tol!r} s is below {step * 2.0 ** -MAX_BISECTIONS:.3g} s, "
+                                    f"the step {step:g} s bisected {MAX_BISECTIONS} times (a float64 time resolves "
+                                    "no finer within a step)")
             self.tolerance[n] = tol
         self.comps = [(n, comps[n]) for n in self.engine.active]
         self._fast_comps = [(n, comps[n]) for n in self.fast]

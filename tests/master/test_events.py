@@ -82,6 +82,16 @@ def test_tolerance_larger_than_the_step_is_named():
         _sim(tolerance=2e-3).run(Timeline([Interval("TM", duration=0.01, step=1e-3)]))
 
 
+def test_a_tolerance_finer_than_a_float64_step_resolves_is_named():
+    """Bisection toward 1e-300 s never ended (the bracket stops shrinking at the step's last bits): refused,
+    naming the bound, and the finest tolerance allowed still locates the zero."""
+    with pytest.raises(ContractError, match=r"w\.event_tolerance: 1e-300 s is below 3\.55e-18 s, the step 0\.001 s "
+                                            r"bisected 48 times"):
+        _sim(tolerance=1e-300).run(Timeline([Interval("TM", duration=0.01, step=1e-3)]))
+    report = _sim(tolerance=1e-3 * 2.0 ** -48).run(Timeline([Interval("TM", duration=0.3, step=1e-3)]))
+    assert len(report.events) == 1 and 0.0 <= report.events[0]["t_s"] - math.pi / (2 * W) <= 1e-12
+
+
 def test_a_live_indicator_of_a_slow_component_is_refused():
     sim = _sim()
     sim.steps = {"w": 2e-3}
