@@ -88,6 +88,16 @@ class AutoSchedule(Schedule):
                                     "(an interval's shortest duration cannot exceed its longest)")
         if int(self.steady_cycles) < 1:
             raise ScheduleError("schedule: steady_cycles must be >= 1")
+        # an interval shorter than its step would be stretched to a step: with tm_max = 1e-9 s or a thermal_step of
+        # 1e-12 s the run went on without end (it is priced all thermo-mechanical, an upper bound only then)
+        for key, step, what in (("tm_min", self.step, "step"), ("to_min", self.thermal_step, "thermal_step")):
+            if getattr(self, key) < step * (1.0 - 1e-9):
+                raise ScheduleError(f"schedule: {key} = {getattr(self, key):g} s is shorter than one {what} "
+                                    f"({step:g} s): an interval holds at least one step")
+        if self.thermal_step < self.step * (1.0 - 1e-9):
+            raise ScheduleError(f"schedule: thermal_step = {self.thermal_step:g} s is shorter than the "
+                                f"thermo-mechanical step ({self.step:g} s): the thermal-only intervals are the long "
+                                "steps of the automatic schedule")
 
     @property
     def speed_limit(self) -> float:

@@ -193,6 +193,10 @@ def check(sc, schedule, force: bool = False, engine: str = "auto") -> dict:
         longest = max(steps.values(), default=schedule.step)
         if schedule.duration < max(longest, schedule.step):
             raise BudgetError(f"duration {schedule.duration:.6g} s is shorter than one step ({max(longest, schedule.step):g} s)")
+        for name, h in steps.items():
+            if schedule.tm_min < h * (1 - 1e-9):
+                raise BudgetError(f"schedule: tm_min = {schedule.tm_min:g} s is shorter than one communication step "
+                                  f"of {name} ({h:g} s): a thermo-mechanical interval holds at least one")
     est = estimate(sc, schedule, engine)
     if isinstance(schedule, AutoSchedule):
         est["upper_bound"] = True

@@ -19,6 +19,10 @@ TOY = "toy_thermomechanical"
     ('tracked = ["nope.x"]', "[schedule] tracked: unknown component 'nope'"),
     ("tm_min = 0.6\ntm_max = 0.5", "tm_min = 0.6 s is above tm_max = 0.5 s"),
     ("to_min = 2.0\nto_max = 1.0", "to_min = 2 s is above to_max = 1 s"),
+    # intervals shorter than their step: each was stretched to a step, and the run went on without end
+    ("tm_min = 1e-10\ntm_max = 1e-9", "tm_min = 1e-10 s is shorter than one step (0.001 s)"),
+    ("to_min = 0.01", "to_min = 0.01 s is shorter than one thermal_step (0.05 s)"),
+    ("thermal_step = 1e-12\nto_min = 1e-12", "thermal_step = 1e-12 s is shorter than the thermo-mechanical step"),
 ])
 @pytest.mark.parametrize("duration", ["0.01", "20"])
 def test_auto_schedule_keys_refused_whatever_the_duration(tmp_path, capsys, schedule, says, duration):
@@ -29,4 +33,17 @@ def test_auto_schedule_keys_refused_whatever_the_duration(tmp_path, capsys, sche
                "--out", str(out)])
     line = one_line_error(capsys.readouterr().err)
     assert rc == 2 and says in line, line
+    assert not out.exists()
+
+
+def test_a_component_step_longer_than_tm_min_is_refused(tmp_path, capsys):
+    """The scenario's own schedule is a timeline: the automatic one comes from the command line, and its shortest
+    thermo-mechanical interval must hold one step of every component."""
+    f = tmp_path / "s.toml"
+    f.write_text(f'[scenario]\nextends = "{TOY}"\nname = "t"\n\n[components.node]\nstep = 0.1\n\n'
+                 '[schedule]\ntm_min = 0.05\n')
+    out = tmp_path / "o"
+    rc = main(["run", str(f), "--schedule", "auto", "--duration", "20", "--quiet", "--no-figures", "--out", str(out)])
+    line = one_line_error(capsys.readouterr().err)
+    assert rc == 2 and "tm_min = 0.05 s is shorter than one communication step of node (0.1 s)" in line, line
     assert not out.exists()
