@@ -60,6 +60,10 @@ from rotorcosim.master.sweep import SweepInterrupted
 from rotorcosim.master.sweep.folder import named_os_error
 from rotorcosim.master.sweep.lock import FolderLock
 
+#: the prefix of the untimed warm-up's and the repeated timings' scratch folders inside --out (removed as they end;
+#: one a killed comparison left is its own, not another command's file)
+SCRATCH = ".scratch-"
+
 #: the two runs, in the order they run, and their folders
 KINDS = ("staggered", "monolithic")
 #: what must be equal in every timing of the staggered run (a run is deterministic): what the hold measured, the
@@ -217,6 +221,16 @@ def compare_schemes(sc: Scenario, out: str | Path, staggered, monolithic, *,
     runs = {}
     kinds_run = [k for k in KINDS if not (k == "monolithic" and reuse is not None)]
     held = [k for k in kinds_run if (out / k).is_dir() and any(p.name != LOCK for p in (out / k).iterdir())]
+    # a comparison's folder holds its two runs and its table only: another command's files beside them (a run's
+    # summary.json) made a folder of both, whatever the options
+    ours = {*KINDS, table_name, table_name + ".part", LOCK}
+    foreign = sorted(p.name for p in out.iterdir() if p.name not in ours and not p.name.startswith(SCRATCH)) \
+        if out.is_dir() else []
+    if foreign:
+        raise ValueError(f"--out {out} holds files that are not a comparison's ({', '.join(foreign[:5])}"
+                         f"{', ...' if len(foreign) > 5 else ''}): results are never mixed; choose another folder")
+    if (out / table_name).is_file() and not held:
+        held = [table_name]   # a table without its runs is a previous comparison's too: not dropped unasked
     if held and not overwrite and not resume:  # before the warm-up
         raise ValueError(f"--out {out} already holds a comparison ({', '.join(held)}): results are never mixed; "
                          "give --overwrite to replace it, --resume to continue it, or another folder")
@@ -236,7 +250,8 @@ def compare_schemes(sc: Scenario, out: str | Path, staggered, monolithic, *,
     # each run's own checks (schedule, budget) before anything runs; then the comparison's whole budget
     ests = {kind: check_run(s, sch) for kind, (s, sch) in plans.items()}
     edits = sc.edits if check_edits else None
-    kept = {kind: kept_run(out / kind, plans[kind][0].name, duration, level, edits) for kind in held} if resume else {}
+    kept = {kind: kept_run(out / kind, plans[kind][0].name, duration, level, edits) for kind in held
+            if kind in plans} if resume else {}
     kept = {k: v for k, v in kept.items() if v is not None}
     # a kept or reused monolithic run cannot be bracketed by the staggered timings: timed once
     repeats = 1 if reuse is not None or "monolithic" in kept else timing_runs
@@ -349,7 +364,7 @@ def _warm_up(sc: Scenario, out: Path) -> None:
     h = float(s.schedule.get("step", 1e-5))
     tm = 2 * quantum(s)
     ph = Phases.from_spec(s.schedule.get("phases"))
-    with tempfile.TemporaryDirectory(dir=out) as tmp:
+    with tempfile.TemporaryDirectory(dir=out, prefix=SCRATCH) as tmp:
         simulate(s, schedule=Timeline([Interval(ph.coupled, tm, h), Interval(ph.held, 0.1, 0.05),
                                        Interval(ph.coupled, tm, h)]),
                  out=Path(tmp), figures=False, checkpoint_every=None)
@@ -364,7 +379,7 @@ def _time_again(out: Path, sc, sch, count: int, done: int, total: int, quiet: bo
         if not quiet:
             print(f"staggered again: timing {done + j + 1} of {total}", file=sys.stderr, flush=True)
         load = load_average()
-        with tempfile.TemporaryDirectory(dir=out) as tmp:
+        with tempfile.TemporaryDirectory(dir=out, prefix=SCRATCH) as tmp:
             summary = simulate(sc, schedule=sch, out=Path(tmp) / "staggered", figures=False, progress=not quiet,
                                checkpoint_every=None).summary
         out_runs.append((summary, [load, load_average()]))

@@ -86,3 +86,29 @@ def test_an_interrupted_overwrite_leaves_no_previous_table(tmp_path, monkeypatch
     monkeypatch.setattr(cmp, "simulate", interrupted)
     assert main(["compare", "--duration", "2", "--unbalance", "712", "--out", str(out), "--quiet", "--overwrite"]) == 130
     assert not (out / "table6.json").exists()
+
+
+@pytest.mark.parametrize("option", [[], ["--overwrite"], ["--resume"]])
+def test_an_out_folder_holding_another_command_s_results_is_refused(tmp_path, capsys, option):
+    """A run's folder given to compare: its runs and table were written beside the run's summary.json and
+    timeseries.h5, a folder of both (with or without --overwrite); refused before any run, left as it was."""
+    out = tmp_path / "o"
+    out.mkdir()
+    (out / "summary.json").write_text('{"status": "complete"}')
+    (out / "timeseries.h5").write_bytes(b"x")
+    assert main(["compare", "--duration", "2", "--unbalance", "712", "--out", str(out), "--quiet", *option]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and (f"--out {out} holds files that are not a comparison's (summary.json, timeseries.h5): "
+                              "results are never mixed") in err[0], err
+    assert sorted(p.name for p in out.iterdir()) == ["summary.json", "timeseries.h5"]
+
+
+def test_a_table_without_its_runs_is_a_previous_comparison(tmp_path, capsys):
+    """Without --overwrite it was dropped unasked; it is refused as a comparison held, and kept."""
+    out = tmp_path / "o"
+    out.mkdir()
+    (out / "table6.json").write_text("{}")
+    assert main(["compare", "--duration", "2", "--unbalance", "712", "--out", str(out), "--quiet"]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "already holds a comparison (table6.json)" in err[0], err
+    assert (out / "table6.json").read_text() == "{}"
