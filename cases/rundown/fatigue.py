@@ -91,10 +91,18 @@ def recorded_counts(data, sc, t_from: float = 0.0) -> dict[str, fg.Counts]:
 
 
 def check(sc, sim) -> None:
-    """``[results] fatigue_loads`` names outputs of the run's components: else a one-line ValueError naming the
-    key and the load."""
+    """``[results] fatigue_loads`` names outputs of the run's components, and the S-N settings come with what they
+    are about (``fatigue_loads``; ``sn_cycles`` with ``sn_range_N``): else a one-line ValueError naming the key."""
     comps = sim.system.components
-    for ref in sc.extra.get("results", {}).get("fatigue_loads") or []:
+    res = sc.extra.get("results", {})
+    # a setting nothing reads would be taken for one that acted
+    unused = [k for k in KEYS[1:] if k in res] if not res.get("fatigue_loads") else \
+        (["sn_cycles"] if "sn_cycles" in res and res.get("sn_range_N") is None else [])
+    if unused:
+        needs = "fatigue_loads (the loads it is about)" if not res.get("fatigue_loads") else \
+            "sn_range_N (the load range of the S-N curve it is the cycles of: no Miner damage without it)"
+        raise ValueError(f"[results] {unused[0]}: given without [results] {needs}")
+    for ref in res.get("fatigue_loads") or []:
         comp, _, port = str(ref).partition(".")
         if comp not in comps:
             raise ValueError(f"[results] fatigue_loads: {ref!r}: no component {comp!r}")

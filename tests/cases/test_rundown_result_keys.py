@@ -47,6 +47,11 @@ def test_the_shipped_keys_pass(diversion):
     ({"airframe": "nonexistent"}, "[results] airframe: no component 'nonexistent'"),
     ({"airframe": "rotor"}, "[results] airframe: component 'rotor' is a 'rotor.mta_spinning', not an airframe "
                             "('airframe.modal')"),
+    # settings nothing reads: they were taken without a word
+    ({"sn_cycles": 1e6}, "[results] sn_cycles: given without [results] sn_range_N (the load range of the S-N curve "
+                         "it is the cycles of: no Miner damage without it)"),
+    ({"fatigue_loads": [], "woehler_exponent": 5.0}, "[results] woehler_exponent: given without [results] "
+                                                     "fatigue_loads (the loads it is about)"),
 ])
 def test_a_key_naming_no_part_of_the_run_is_one_line_naming_it(diversion, keys, message):
     with pytest.raises(ValueError) as err:
