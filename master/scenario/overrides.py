@@ -205,6 +205,10 @@ def apply_swap(sc, component: str, implementation: str, parameters: Mapping[str,
         if not path.is_file():
             raise FileNotFoundError(f"swap {component}: FMU file {path} not found")
         spec.fmu, spec.implementation = str(path), None
+    elif Path(impl).exists() and not registry.is_plugin_path(impl) and impl not in registry.available():
+        # a file that is no FMU: said so, not listed against the registry's names
+        raise ScenarioError(f"swap {component}: {impl} is a {'folder' if Path(impl).is_dir() else 'file'}, not an "
+                            "FMU (a file whose name ends in .fmu), a registry name or module:Class")
     else:
         # a plug-in the swap names is imported from the working folder first, as a swapped FMU's path is read
         # from it (the folder of the file the component came from, a shipped template's, is not the user's)

@@ -105,3 +105,16 @@ def test_a_swapped_plugin_is_imported_from_the_working_folder(tmp_path, monkeypa
     err = [line for line in capsys.readouterr().err.splitlines() if line.strip()]
     assert rc == 2 and len(err) == 1 and f"no module 'no_such_module' in the folder {tmp_path} nor" in err[0], err
     assert not (tmp_path / "o2").exists()
+
+
+@pytest.mark.parametrize("make", ["file", "folder"])
+def test_a_swap_to_a_file_that_is_no_fmu_says_so(tmp_path, capsys, make):
+    """It was listed against the registry's names ("unknown component implementation ..."), as if a typo."""
+    p = tmp_path / ("damper.txt" if make == "file" else "damper")
+    p.write_text("x") if make == "file" else p.mkdir()
+    rc = main(["run", "--swap", f"damper0={p}", "--duration", "0.001", "--quiet", "--no-figures",
+               "--out", str(tmp_path / "o")])
+    err = [line for line in capsys.readouterr().err.splitlines() if line.strip()]
+    assert rc == 2 and err == [f"rotorcosim run: error: swap damper0: {p} is a {make}, not an FMU (a file whose name "
+                               "ends in .fmu), a registry name or module:Class"], err
+    assert not (tmp_path / "o").exists()
