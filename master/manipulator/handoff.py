@@ -246,7 +246,7 @@ class HandOff:
         cycles, not the producer's own physics; the restart measured how much of the law's move the mechanics
         made, and a driver the mechanics did not follow is a co-trend (the producer's own terms, its physics at
         the frozen state, keep the law's full sensitivity)."""
-        driver = len(self.gains) - 1 if getattr(self, "driven", False) else None
+        driver = len(self.gains) - 1 if self.driven else None
         d = 0.0
         for n, (comp, port, k, g) in enumerate(self.gains):
             err = error_of(comp, port, k)
