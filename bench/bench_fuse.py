@@ -66,6 +66,10 @@ def main(argv=None) -> int:
     ap.add_argument("--duration", type=float, default=None, help="simulated seconds (default: the fuse scenario's)")
     ap.add_argument("--repeat", type=int, default=1)
     a = ap.parse_args(argv)
+    if a.duration is not None and not a.duration > 0.0:
+        ap.error(f"--duration must be a positive number of seconds, got {a.duration}")
+    if a.repeat < 1:
+        ap.error(f"--repeat must be at least 1, got {a.repeat}")
     duration = a.duration or float(load_scenario("blade_loss_fuse").schedule["duration"])
     for name, changes in RUNS.values():
         simulate(scenario(name, changes), duration=0.02, figures=False, progress=False)
