@@ -40,6 +40,15 @@ def positive(v: Any) -> str | None:
     return err
 
 
+def fraction(v: Any) -> str | None:
+    """A finite number in (0, 1]: a relative tolerance (0.02 is 2 %; a value above 1 accepts a change larger than
+    the value itself, and is most often a percentage given as a fraction's key)."""
+    err = positive(v)
+    if err is None and v > 1:
+        return f"is a fraction (0.02 = 2 %), at most 1, got {v!r}"
+    return err
+
+
 def not_negative(v: Any) -> str | None:
     """A finite number >= 0."""
     err = number(v)

@@ -7,8 +7,8 @@ from typing import Callable
 from rotorcosim.master.core.algorithm import ALGORITHMS
 from rotorcosim.master.core.phases import ROLES
 from rotorcosim.master.core.system import AVERAGES, EXTRAPOLATIONS, HOLDS, UNCONNECTED_INPUTS
-from rotorcosim.master.scenario.checkers import (boolean, count, list_of, not_negative, one_of, port_ref, positive, text,
-                                                 text_or_texts, whole_positive)
+from rotorcosim.master.scenario.checkers import (boolean, count, fraction, list_of, not_negative, one_of, port_ref,
+                                                 positive, text, text_or_texts, whole_positive)
 from rotorcosim.master.schedule.timeline import SCHEDULES
 
 SCHEDULE_KINDS = tuple(SCHEDULES)   # the schedule registry (master/schedule/timeline.py)
@@ -28,8 +28,8 @@ TABLES: dict[str, dict[str, Callable | None]] = {
                  "speed_rpm": positive, "cycle": None, "hold": one_of(*HOLDS),
                  "hold_cycles": whole_positive, "restart_cycles": not_negative,
                  "intervals": None, "phases": None,
-                 "steady_tolerance": positive, "steady_cycles": count, "drift_tolerance": positive,
-                 "speed_tolerance": positive,
+                 "steady_tolerance": fraction, "steady_cycles": count, "drift_tolerance": fraction,
+                 "speed_tolerance": fraction,
                  "tm_min": positive, "tm_max": positive, "to_min": positive, "to_max": positive,
                  "tracked": list_of(port_ref), "tolerance": positive},
     "outputs": {"record": list_of(port_ref), "record_step": positive, "format": one_of(*OUTPUT_FORMATS)},

@@ -77,6 +77,10 @@ class AutoSchedule(Schedule):
             setattr(self, name, check_positive(name, getattr(self, name)))
         if self.speed_tolerance is not None:
             self.speed_tolerance = check_positive("speed_tolerance", self.speed_tolerance)
+        for name in ("steady_tolerance", "drift_tolerance", "speed_tolerance"):
+            if (getattr(self, name) or 0.0) > 1.0:
+                raise ScheduleError(f"schedule: {name} is a fraction (0.02 = 2 %), at most 1, got "
+                                    f"{getattr(self, name):g}: it accepts a change larger than the value itself")
         if self.tolerance is not None:
             self.tolerance = check_positive("tolerance (percent)", self.tolerance)
             if self.tolerance > TOLERANCE_MAX_PCT:

@@ -1,7 +1,7 @@
 """The automatic schedule's keys a user may get wrong, each refused before the run in one line naming the key,
 exit status 2, no folder: a tracked output the system does not have (checked when the scenario is built, not
 when the first steadiness test reads it, which a short run never reaches), an interval's shortest duration above
-its longest."""
+its longest, a relative tolerance above 1."""
 from __future__ import annotations
 
 import pytest
@@ -23,6 +23,10 @@ TOY = "toy_thermomechanical"
     ("tm_min = 1e-10\ntm_max = 1e-9", "tm_min = 1e-10 s is shorter than one step (0.001 s)"),
     ("to_min = 0.01", "to_min = 0.01 s is shorter than one thermal_step (0.05 s)"),
     ("thermal_step = 1e-12\nto_min = 1e-12", "thermal_step = 1e-12 s is shorter than the thermo-mechanical step"),
+    # relative tolerances given as percentages: a TO interval that no drift ends, a TM one steady at once
+    ("drift_tolerance = 2", "drift_tolerance: is a fraction (0.02 = 2 %), at most 1, got 2"),
+    ("steady_tolerance = 5.0", "steady_tolerance: is a fraction (0.02 = 2 %), at most 1, got 5.0"),
+    ("speed_tolerance = 10", "speed_tolerance: is a fraction (0.02 = 2 %), at most 1, got 10"),
 ])
 @pytest.mark.parametrize("duration", ["0.01", "20"])
 def test_auto_schedule_keys_refused_whatever_the_duration(tmp_path, capsys, schedule, says, duration):
@@ -47,3 +51,13 @@ def test_a_component_step_longer_than_tm_min_is_refused(tmp_path, capsys):
     line = one_line_error(capsys.readouterr().err)
     assert rc == 2 and "tm_min = 0.05 s is shorter than one communication step of node (0.1 s)" in line, line
     assert not out.exists()
+
+
+def test_a_relative_tolerance_above_one_is_refused_from_python_too():
+    """The automatic schedule made in Python (no scenario file): the same refusal, from the schedule itself."""
+    from rotorcosim.master.schedule.auto import AutoSchedule
+    from rotorcosim.master.schedule.timeline import ScheduleError
+
+    with pytest.raises(ScheduleError, match="drift_tolerance is a fraction"):
+        AutoSchedule(duration=1.0, step=1e-5, thermal_step=0.1, drift_tolerance=2.0)
+    assert AutoSchedule(duration=1.0, step=1e-5, thermal_step=0.1, drift_tolerance=1.0).drift_tolerance == 1.0
