@@ -129,7 +129,7 @@ def _values(check) -> str:
     """What a schema checker accepts, in words (its function name, or a closure's allowed values)."""
     if check is None:
         return "table (see below)"
-    words = {"text": "string", "number": "number", "positive": "positive number", "not_negative": "number >= 0",
+    words = {"text": "string", "number": "number", "positive": "positive number", "fraction": "fraction in (0, 1]", "not_negative": "number >= 0",
              "whole_positive": "positive whole number", "count": "integer >= 1", "boolean": "true / false",
              "port_ref": '"component.port"', "text_or_texts": "string or list of strings",
              "numbers": "number or list of numbers", "parameter_value": "number, string, boolean or list"}
