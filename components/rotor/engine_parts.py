@@ -409,6 +409,12 @@ class EngineView:
             return bore / 2, f"default: {k.source}"
         if k.component_default:
             return None, f"default: {k.source}"
+        raw = self.data.get(table, {})
+        if pid is not None and isinstance(raw, dict) and pid not in raw:
+            # a scenario's template id the engine does not describe at all: no key of it is "missing"
+            ids = ", ".join(sorted(map(str, raw))) or "none"
+            raise ValueError(f"engine file {self.path}: no {where} (the {table} ids it has: {ids}); a scenario's "
+                             f"[templates] {table} lists ids the engine file describes")
         what = f"the {table} at {ATTACH_OF.get(table, table)}{pid}" if pid is not None else f"the {table}"
         raise ValueError(f"engine file {self.path}: {where} {k.key} missing ({k.meaning}, {k.unit}; {what} needs "
                          f"it: {DOC})")

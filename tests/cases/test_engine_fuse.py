@@ -275,3 +275,18 @@ def test_blade_loss_fuse_staggered_against_monolithic_over_60_s(tmp_path):
         (ev,) = [e for e in s["events"] if e.get("component") == "fuse0"]
         breaks.append(ev["t_s"])
     assert abs(breaks[0] - breaks[1]) <= 5e-6
+
+
+def test_a_fuse_template_id_the_engine_does_not_describe_is_named(tmp_path):
+    """``[templates] fuse = ["7"]`` on an engine whose only fuse is [fuse.0]: one line saying the engine has no
+    [fuse.7] and which fuses it has (it said "[fuse.7] k_intact missing", as if a key of a fuse it had were
+    left out), exit 2, nothing written."""
+    f = tmp_path / "s.toml"
+    f.write_text('[scenario]\nextends = "blade_loss_fuse"\nname = "f7"\n\n[templates]\nfuse = ["7"]\n')
+    out = tmp_path / "o"
+    r = subprocess.run([sys.executable, "-m", "rotorcosim.master.cli", "run", str(f), "--duration", "0.001",
+                        "--quiet", "--no-figures", "--out", str(out)], capture_output=True, text=True)
+    assert r.returncode == 2 and "Traceback" not in r.stderr, r.stderr
+    assert "no [fuse.7] (the fuse ids it has: 0)" in r.stderr and "missing" not in r.stderr, r.stderr
+    assert len(r.stderr.strip().splitlines()) == 1, r.stderr
+    assert not out.exists()
