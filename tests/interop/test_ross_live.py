@@ -24,22 +24,35 @@ def rs():
     return ross
 
 
-def _ross_forward_rpm(rotor) -> list[float]:
-    """ROSS's forward critical speeds [rev/min] (its Newton search, converged far below the 0.1 % compared)."""
+def _ross_roots(rotor) -> list[tuple[float, str]]:
+    """ROSS's critical speeds [rev/min] with its whirl labels, ascending (its Newton search, converged far below
+    the 0.1 % compared)."""
     cs = rotor.run_critical_speed(num_modes=12, rtol=1e-8)
-    return sorted(float(w) * 30 / math.pi for w, d in zip(np.asarray(cs.wn()), cs.whirl_direction)
-                  if d == "Forward")
+    return sorted((float(w) * 30 / math.pi, str(d)) for w, d in zip(np.asarray(cs.wn()), cs.whirl_direction))
+
+
+def _assert_forward(ours, roots, rtol: float) -> None:
+    """Our forward critical speeds ``ours`` against ROSS's ``roots`` (:func:`_ross_roots`): each of ours is one of
+    ROSS's critical speeds, and each that ROSS labels forward up to our largest is one of ours. ROSS's label of a
+    mode whose orbit is nearly circular is a rounding's: rotor_example's 2 868 rev/min mode is "Forward" in one
+    process and "Mixed" in another (numpy 2.4, scipy 1.17), so a root's label alone does not decide."""
+    speeds = np.array([r for r, _ in roots])
+    for w in ours:
+        assert np.min(np.abs(speeds / w - 1)) < rtol, (w, roots)
+    for r, d in roots:
+        if d == "Forward" and r <= max(ours) * (1 + rtol):
+            assert np.min(np.abs(np.asarray(ours) / r - 1)) < rtol, (r, ours)
 
 
 @pytest.fixture(scope="module")
 def example_rpm(rs):
-    """``example_rpm(name)``: ROSS's forward critical speeds of its example rotor ``name``, searched once for
+    """``example_rpm(name)``: ROSS's critical speeds of its example rotor ``name`` (:func:`_ross_roots`), searched once for
     the tests of this module that compare with them (the search is most of their cost)."""
     found: dict[str, list[float]] = {}
 
     def get(name: str) -> list[float]:
         if name not in found:
-            found[name] = _ross_forward_rpm(getattr(rs, name)())
+            found[name] = _ross_roots(getattr(rs, name)())
         return found[name]
 
     return get
@@ -51,14 +64,13 @@ def test_ross_example_round_trip(tmp_path, example, rs, example_rpm):
     engine = from_ross(rotor)
     write_engine(engine, tmp_path / "engine.toml")
     m = fem.load(tmp_path / "engine.toml")
-    ref = example_rpm(example)[:2]
     ours = critical.synchronous_critical_speeds(m, None, n=2, max_rpm=1e6)["forward_synchronous_rpm"]
-    assert np.allclose(ours, ref, rtol=1e-3), (ours, ref)
+    _assert_forward(ours, example_rpm(example), rtol=1e-3)
     nd = int(rotor.disk_elements[0].n)
     spool, k = next([s, i] for s, sp in engine["spool"].items() for i in range(len(sp["z_mm"]))
                     if sum(len(v["z_mm"]) for v in list(engine["spool"].values())[:list(engine["spool"]).index(s)])
                     + i == nd)
-    for rpm in (0.7 * ref[0], 1.6 * ref[0]):
+    for rpm in (0.7 * ours[0], 1.6 * ours[0]):
         W = rpm * math.pi / 30
         R = np.asarray(rotor.run_unbalance_response(nd, 1e-3, 0.0, frequency=np.array([W])).forced_resp)[:, 0]
         X = response.unbalance_response(m, None, (spool, k), 1e-3 * W * W, rpm)
@@ -73,7 +85,7 @@ def test_ross_to_rotorcosim_and_back_to_ross(example, rs, example_rpm):
     rotor = getattr(rs, example)()
     back = to_ross(from_ross(rotor))
     assert type(back) is type(rotor)
-    assert np.allclose(_ross_forward_rpm(back), example_rpm(example), rtol=1e-6)
+    assert np.allclose([r for r, _ in _ross_roots(back)], [r for r, _ in example_rpm(example)], rtol=1e-6)
 
 
 def test_compressor_example_live_imports_as_its_saved_file(rs):
@@ -101,8 +113,7 @@ def test_to_ross_gives_rosss_critical_speeds_of_the_linearised_engine(tmp_path):
     rotor = to_ross(engine, scenario=scenario, damped=False)
     ours = critical_speeds.critical_speeds(str(engine), count=2, max_rpm=1e6,
                                            scenario=load_scenario(scenario))["forward_synchronous_rpm"]
-    ref = _ross_forward_rpm(rotor)[:2]
-    assert np.allclose(ours, ref, rtol=1e-3), (ours, ref)
+    _assert_forward(ours, _ross_roots(rotor), rtol=1e-3)
 
 
 def test_to_ross_refuses_a_casing_by_name():
@@ -139,6 +150,6 @@ def test_to_ross_of_a_fused_engine_gives_rosss_critical_speeds_intact_and_broken
     ours = critical_speeds.critical_speeds(str(engine), count=2, max_rpm=1e6, scenario=load_scenario(scenario))
     for stage, speeds in ((0, ours["forward_synchronous_rpm"]),
                           (1, ours["fuse_states"][0]["forward_synchronous_rpm"][:2])):
-        ref = _ross_forward_rpm(to_ross(engine, scenario=scenario, damped=False, fuse_stage=stage))[:2]
-        assert np.allclose(speeds, ref, rtol=1e-3), (stage, speeds, ref)
+        _assert_forward(speeds, _ross_roots(to_ross(engine, scenario=scenario, damped=False, fuse_stage=stage)),
+                        rtol=1e-3)
     assert ours["fuse_states"][0]["forward_synchronous_rpm"][0] < 0.9 * ours["forward_synchronous_rpm"][0]
