@@ -8,7 +8,7 @@ from typing import Mapping
 from rotorcosim.components.contract import COUPLED, HELD, ContractError
 from rotorcosim.master.core.phases import Phases
 from rotorcosim.master.manipulator.restart import RESTART_CYCLES
-from rotorcosim.master.scenario.checkers import did_you_mean
+from rotorcosim.master.scenario.checkers import did_you_mean, positive
 from rotorcosim.master.scenario.tables import CYCLE, INTERVAL, PHASES
 
 
@@ -54,11 +54,12 @@ def _phases(c, s: Mapping) -> Phases:
         raise c.fail("schedule", "phases", str(exc)) from None
 
 
-def check_schedule(c, s: Mapping, comps: Mapping) -> None:
+def check_schedule(c, s: Mapping, comps: Mapping) -> list[float]:
     """``[schedule]`` ``s`` of a scenario of components ``comps`` against itself and them, through ``c`` (the
     schema's :class:`~rotorcosim.master.scenario.schema.Checker`): the cycle source, the phases, the intervals,
     a cycle sampled by two steps at least, the hold's window and the restart's ramp within the thermo-mechanical
-    intervals, each component's step within and a whole multiple of them."""
+    intervals, each component's step within and a whole multiple of them. Returns the thermo-mechanical steps
+    [s] (the schedule's ``step`` and each TM interval's own)."""
     raw = s.get("intervals")
     tm_durations = []
     step = s.get("step", 1e-5)
@@ -128,6 +129,25 @@ def check_schedule(c, s: Mapping, comps: Mapping) -> None:
             if m < 1 - 1e-9 or abs(m - round(m)) > 1e-6 * m:
                 raise c.fail(f"components.{name}", "step",
                              f"{cs} s is not a whole multiple of the thermo-mechanical step {h} s")
+    return sorted({float(step)} | {float(h) for _, _, h in tm_durations})
+
+
+def check_record_step(c, record_step, steps: list[float]) -> None:
+    """``[outputs] record_step`` against the thermo-mechanical ``steps``: a run samples a TM interval every whole
+    number of its steps, and the time series file says so (``sampling_interval_s``); a record_step below a step,
+    or between two multiples of it, would be recorded at another interval than the file states."""
+    if record_step is None or positive(record_step) is not None:
+        return
+    for h in steps:
+        m = record_step / h
+        if m < 1 - 1e-9:
+            raise c.fail("outputs", "record_step", f"{record_step:g} s is shorter than the thermo-mechanical step "
+                         f"{h:g} s: a run samples once a step at most (give {h:g} s or a whole multiple of it)")
+        # (a record_step longer than any run, 1e308, samples each interval's start: whole-multiple is moot)
+        if m < 2.0 ** 52 and abs(m - round(m)) > 1e-6 * m:
+            raise c.fail("outputs", "record_step", f"{record_step:g} s is not a whole multiple of the "
+                         f"thermo-mechanical step {h:g} s (the samples would come every "
+                         f"{max(1, round(m)) * h:g} s)")
 
 
 def _restart(c, s: Mapping, raw, period: float | None, per: str, phases: Phases) -> None:

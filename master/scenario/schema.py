@@ -25,7 +25,7 @@ from typing import Any, Callable, Mapping
 from rotorcosim.components.contract import ContractError
 from rotorcosim.master.scenario.checkers import did_you_mean, is_number, kind_of, parameter_value, port_ref
 from rotorcosim.master.scenario.key_lines import locate, locate_in_bases
-from rotorcosim.master.scenario.schedule_check import check_schedule, known_component
+from rotorcosim.master.scenario.schedule_check import check_record_step, check_schedule, known_component
 from rotorcosim.master.scenario.tables import COMPONENT, CONNECTION, TABLES
 
 
@@ -130,7 +130,8 @@ def check(data: Mapping[str, Any], source: str | Path | None = None, origins=Non
             raise c.fail("inputs", ref, err)
         known_component(c, "inputs", ref, ref, names)
     _algorithm(c, data.get("algorithm", {}), names)
-    check_schedule(c, data.get("schedule", {}), comps)
+    tm_steps = check_schedule(c, data.get("schedule", {}), comps)
+    check_record_step(c, data.get("outputs", {}).get("record_step"), tm_steps)
     for i, ref in enumerate(data.get("outputs", {}).get("record", [])):
         known_component(c, "outputs", "record", ref, names)
         if ref in data["outputs"]["record"][:i]:  # one dataset per signal: a second would collide in the file

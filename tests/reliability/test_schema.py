@@ -38,6 +38,11 @@ def load(tmp_path, text):
      "[schedule] step: must be a number, got a boolean (True)"),
     (lambda s: s.replace("record_step = 1e-3", 'record_step = "1e-3"'),
      "[outputs] record_step: must be a number, got a string ('1e-3')"),
+    # the time series file says sampling_interval_s = record_step: a run samples every whole number of steps
+    (lambda s: s.replace("record_step = 1e-3", "record_step = 1e-4"),
+     "[outputs] record_step: 0.0001 s is shorter than the thermo-mechanical step 0.001 s"),
+    (lambda s: s.replace("record_step = 1e-3", "record_step = 2.5e-3"),
+     "[outputs] record_step: 0.0025 s is not a whole multiple of the thermo-mechanical step 0.001 s"),
     (lambda s: s.replace("hold_cycles = 5", "hold_cycles = -5"), "[schedule] hold_cycles: must be a positive number"),
     (lambda s: s.replace("speed_rpm = 2700.0", "speed_rpm = inf"), "[schedule] speed_rpm: must be a finite number"),
     # unknown keys everywhere, with "did you mean"
