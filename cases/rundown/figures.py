@@ -79,8 +79,8 @@ class _Out(NamedTuple):
     dpi: int
 
 
-def _save(fig, out: _Out, name):
-    fig.tight_layout()
+def _save(fig, out: _Out, name, rect=(0.0, 0.0, 1.0, 1.0)):
+    fig.tight_layout(rect=rect)
     fig.savefig(out.folder / name, dpi=out.dpi)
     _plt().close(fig)
     return name
@@ -323,7 +323,7 @@ def _campbell(sc, w, crit, peaks, out, spool, windmill=None):
 
 def _temperatures(data, t, phase, out, ids):
     plt = _plt()
-    fig, axes = plt.subplots(1, len(ids), figsize=(5.5 * max(len(ids), 2), 4), sharey=True, squeeze=False)
+    fig, axes = plt.subplots(1, len(ids), figsize=(5.5 * max(len(ids), 2), 4.4), sharey=True, squeeze=False)
     axes = axes[0]
     spans = _held_spans(t, phase) if phase is not None else []
     for i, (ax, k) in enumerate(zip(axes, ids)):
@@ -337,5 +337,7 @@ def _temperatures(data, t, phase, out, ids):
         ax.set_xlabel("time [min]")
         ax.grid(alpha=0.3)
     axes[0].set_ylabel("temperature [deg C]")
-    axes[0].legend(fontsize=8)
-    return _save(fig, out, "rundown_temperatures.png")
+    # below the panels, never over a curve (and no search of the best place over every point of hours of data)
+    handles, labels = axes[0].get_legend_handles_labels()
+    fig.legend(handles, labels, loc="lower center", ncol=len(labels), fontsize=8, frameon=False)
+    return _save(fig, out, "rundown_temperatures.png", rect=(0.0, 0.07, 1.0, 1.0))
