@@ -57,6 +57,8 @@ BEARING_KEYS = (*RESULT_KEYS, "max_contact_stress_outer_MPa", "max_contact_load_
                 "rub_first_time_s", "plastic_flow_limit_MPa", "plastic_flow_first_time_s")
 #: the steady windows the results need: the last (the results) and the one before it (their error estimate)
 WINDOWS_KEPT = 2
+#: rotor cycles of a steady window, the last of a thermo-mechanical interval (``[results] cycles``)
+WINDOW_CYCLES = 5.0
 KELVIN = 273.15
 #: the paper's damage criterion of a ball/race contact: incipient plastic flow at 3200 MPa (its ref. [13]; the
 #: line of its Fig. 12). Not the end of the model (the bearing's own envelope is ISO 76's 4200 MPa,
@@ -200,10 +202,15 @@ class Peaks(Observer):
                     p["t_rub"] = float(t)
 
 
+def window_cycles(sc) -> float:
+    """The cycles of a steady window: ``[results] cycles`` (:data:`WINDOW_CYCLES` by default)."""
+    return float(sc.extra.get("results", {}).get("cycles", WINDOW_CYCLES))
+
+
 def observers(sc, cycle):
     """The run's observers for the results: the steady windows over the last ``[results] cycles`` cycles of
     ``cycle`` (the scenario's cycle source, master/core/cycle.py) and the peaks."""
-    cycles = float(sc.extra.get("results", {}).get("cycles", 5))
+    cycles = window_cycles(sc)
     ids = bearing_ids(sc.components)
     housing = {k: h for k in ids if (h := housing_signal(sc, k)) is not None}
     return [SteadyWindows(window_signals(sc), cycle, cycles, keep=WINDOWS_KEPT), Peaks(ids, housing)]

@@ -3,7 +3,8 @@
 * ``rundown_speed.png``: each spool's speed against time, the held-phase (thermal-only) intervals shaded: (a) from
   the start to a minute after the last fuel cut, (b) the whole run in minutes;
 * ``rundown_response.png``: the whirl and the transmitted force (film + centering spring) at each co-simulated
-  bearing (by its id) against the first spool's speed through the rundown (the coupled samples), the critical speeds
+  bearing (by its id) against the first spool's speed through the rundown (the coupled samples; after a held
+  interval past the restart's transient: :func:`settled`), the critical speeds
   dashed (the scenario's ``[results] critical_speeds_rpm``, else the engine's: modes.marked_critical_speeds) and the
   crossings' resonance peaks (results.resonance_peaks) marked (a test rotor: its disk's whirl only);
 * ``rundown_campbell.png``: the Campbell diagram of the linear engine (components/rotor/critical.py; a test
@@ -25,8 +26,9 @@ from typing import NamedTuple
 import numpy as np
 
 from rotorcosim.cases.blade_loss.engine_names import spool_name
-from rotorcosim.cases.blade_loss.results import KELVIN, NODES, bearing_ids
+from rotorcosim.cases.blade_loss.results import KELVIN, NODES, bearing_ids, window_cycles
 from rotorcosim.cases.interface import figures as interface_figures
+from rotorcosim.master.manipulator.restart import RESTART_CYCLES
 from rotorcosim.master.observer.series import events_of
 from rotorcosim.master.run.outputs import check_dpi
 
@@ -122,10 +124,13 @@ def figures(sc, data, out, dpi: int | None = None) -> list[str]:
     w = _get(data, f"{spools[0]}.Omega").reshape(len(t), -1)[:, 0] * RPM
     crit = marked_critical_speeds(sc, spools[0], float(np.nanmax(w)))
     coupled = phase == 0 if phase is not None else np.ones(len(t), bool)
+    # a restart's ramp and the hold's window after it (master/manipulator/hold.py): the revolutions it rings
+    skip = math.ceil(float(sc.schedule.get("restart_cycles", RESTART_CYCLES))) + window_cycles(sc)
+    shown = settled(t, w, phase, skip) if phase is not None else coupled
     locs = _locations(sc, data)
     peaks = _peaks(data, locs, w, coupled)
     first = spool_name(sc, spools[0])
-    names.append(_response(data, locs, w, coupled, crit, peaks, out, first))
+    names.append(_response(data, locs, w, shown, crit, peaks, out, first))
     names.append(_campbell(sc, w, crit, peaks, out, first, windmilling_range(sc, t, w, spools)))
     ids = [k for k in bearing_ids(sc.components) if _get(data, f"thermal{k}.T_nodes") is not None]
     if ids:
@@ -205,6 +210,26 @@ def _binned(w, y, sel):
     return (b[starts] + 0.5) * SPEED_BIN_RPM, np.maximum.reduceat(ys, starts)
 
 
+def settled(t, w, phase, skip: float) -> np.ndarray:
+    """The samples a response curve shows (``w`` the speed [rev/min] at times ``t`` [s]; ``phase``: 0 coupled,
+    1 held): every coupled sample, less the first ``skip`` revolutions of a coupled stretch that follows a held
+    interval (of a stretch shorter than ``skip`` + 1 revolutions, all but its last revolution). After a TM
+    restart the rotor starts from the orbit it was frozen on at a higher speed and rings down to the new one
+    over a few revolutions; drawn per speed, that transient stood as a step at every restart of the
+    windmilling."""
+    phase = np.asarray(phase)
+    keep = phase == 0
+    d = np.diff(np.concatenate([[0], keep.astype(np.int8), [0]]))
+    for s, e in zip(np.flatnonzero(d == 1), np.flatnonzero(d == -1)):
+        if s == 0 or phase[s - 1] != 1:
+            continue
+        # revolutions from the stretch's start to each sample (trapezoids of the speed)
+        rev = np.concatenate([[0.0], np.cumsum(np.diff(t[s:e]) * 0.5 * (np.abs(w[s:e - 1]) + np.abs(w[s + 1:e])))
+                              / 60.0])
+        keep[s:e] = rev >= min(skip, rev[-1] - 1.0)
+    return keep
+
+
 def _radius(a, n):
     a = a.reshape(n, -1)
     return np.hypot(a[:, 0], a[:, 1])
@@ -224,16 +249,16 @@ def _peaks(data, locs, w, coupled):
     return out
 
 
-def _response(data, locs, w, coupled, crit, peaks, out, spool):
+def _response(data, locs, w, shown, crit, peaks, out, spool):
     plt = _plt()
     forces = any(f is not None for _, f in locs.values())
     fig, axes = plt.subplots(2 if forces else 1, 1, figsize=(8, 6.5 if forces else 3.8), sharex=True, squeeze=False)
     n = len(w)
     for name, (xref, fref) in locs.items():
-        s, y = _binned(w, _radius(_get(data, xref), n) * 1e3, coupled)
+        s, y = _binned(w, _radius(_get(data, xref), n) * 1e3, shown)
         axes[0, 0].plot(s, y, lw=1.2, label=f"{name}")
         if fref is not None:
-            s, y = _binned(w, _radius(_get(data, fref), n), coupled)
+            s, y = _binned(w, _radius(_get(data, fref), n), shown)
             axes[1, 0].plot(s, y, lw=1.2, label=f"{name}")
     for i, (s_pk, r_pk) in enumerate(peaks):
         axes[0, 0].plot(s_pk, r_pk * 1e3, "x", color="tab:red", ms=8, mew=2,
