@@ -122,8 +122,16 @@ def mounts(data: dict) -> dict[str, Mount]:
         springs = m.get("springs")
         if not isinstance(springs, list) or not springs:
             raise ValueError(f"{w} springs: must be a list of tables {{node, dir, k, c}}, got {springs!r}")
-        out[name] = Mount(name, m["interface"], tuple(_spring(f"{w} springs[{i}]", s, data)
-                                                      for i, s in enumerate(springs)))
+        parsed = tuple(_spring(f"{w} springs[{i}]", s, data) for i, s in enumerate(springs))
+        seen: dict[tuple, int] = {}
+        for i, sp in enumerate(parsed):
+            at = (sp.node, sp.dir, sp.offset)
+            if at in seen:
+                # two springs at one point and direction add up: most often a spring copied twice
+                raise ValueError(f"{w} springs[{i}]: the same node, dir and offset as springs[{seen[at]}] (two "
+                                 "springs there act as one of their summed k and c: give that one)")
+            seen[at] = i
+        out[name] = Mount(name, m["interface"], parsed)
     return out
 
 

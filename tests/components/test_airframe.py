@@ -288,3 +288,19 @@ def test_a_bad_offset_is_one_line(tmp_path, spring, model, key):
     with pytest.raises(ValueError, match=rf"^\[mount\.m\] springs\[0\]\.{key}: ") as exc:
         installed(str(engine))
     assert "\n" not in str(exc.value)
+
+
+def test_a_spring_given_twice_is_one_line(tmp_path):
+    """Two springs of a mount at one node, direction and offset (a spring copied twice doubled the stiffness
+    silently): refused naming both; the same node in another direction is two springs."""
+    from rotorcosim.components.airframe.mounting import installed
+
+    _point_file(tmp_path)
+    engine = tmp_path / "engine.toml"
+    one = '{ node = ["casing", 0, 0], dir = 1, k = 1e6 }'
+    engine.write_text(f'[airframe]\nmodel = "point.toml"\n\n[mount.m]\ninterface = "p"\nsprings = [{one}, {one}]\n')
+    with pytest.raises(ValueError, match=r"^\[mount\.m\] springs\[1\]: the same node, dir and offset as springs\[0\]"):
+        installed(str(engine))
+    engine.write_text(f'[airframe]\nmodel = "point.toml"\n\n[mount.m]\ninterface = "p"\n'
+                      f'springs = [{one}, {one.replace("dir = 1", "dir = 0")}]\n')
+    installed(str(engine))
