@@ -11,7 +11,8 @@
   ``[scenario] remove_connections = [...]`` removes inherited connections by name before the child's are
   added: a name is the driven input (``"node.P_in"``) or ``"src -> dst"``; each must match one.
 * every other table (``scenario``, ``inputs``, ``algorithm``, ``schedule``, ``outputs``, ``results``) merges key
-  by key, and any other value, lists included (``intervals``, ``record``, ``order``), is replaced.
+  by key, and any other value, lists included (``intervals``, ``record``, ``order``), is replaced; so is
+  ``[schedule] cycle`` whole (a period, or a signal with its unit and angle: one choice, not keys to merge).
   ``[scenario] remove_keys = ["table.key", ...]`` removes inherited keys of those tables (each must exist), e.g.
   ``"schedule.speed_rpm"`` where the child gives a ``cycle`` instead.
 
@@ -273,6 +274,9 @@ def compose(path: str | Path, _seen: tuple = ()) -> tuple[dict, Origins]:
         else:
             out[key] = _merge(base[key], value) if isinstance(value, Mapping) and isinstance(base.get(key), Mapping) \
                 else value
+            if key == "schedule" and isinstance(value, Mapping) and "cycle" in value and isinstance(out[key], dict):
+                # one choice, a period or a signal (with its unit and angle): the child's replaces the base's
+                out[key]["cycle"] = copy.deepcopy(value["cycle"])
     if removes:  # removals with no new connections
         out["connections"] = _connections(base.get("connections", []), [], removes, origins, where)
     if "scenario" not in data and "scenario" in base:

@@ -148,3 +148,20 @@ def test_shipped_levels_compose_as_before():
     assert len(sc.connections) == 46 and sc.components["rotor"].param_origins["F_unbalance"].endswith("14252.toml")
     # the bearing sets come from the template blade_loss.toml instantiates ([templates] bearing = ["0", "5"])
     assert sc.components["damper0"].origin.endswith("templates/bearing.toml")
+
+
+def test_a_child_s_cycle_replaces_the_base_s_whole(tmp_path):
+    """[schedule] cycle is one choice: a child giving a period drops the base's signal, unit and angle (merged key
+    by key they made "give exactly one of period or signal" of a file that gave only a period); other schedule
+    keys still merge."""
+    base = tmp_path / "base.toml"
+    base.write_text('[scenario]\nextends = "blade_loss_rundown"\nname = "b"\n')
+    child = tmp_path / "child.toml"
+    child.write_text(f'[scenario]\nextends = "{base.name}"\nname = "c"\n\n[schedule]\ncycle = {{ period = 0.00375 }}\n')
+    data, _ = compose(child)
+    base_data, _ = compose(base)
+    assert data["schedule"]["cycle"] == {"period": 0.00375}
+    assert "signal" in base_data["schedule"]["cycle"]
+    assert {k: v for k, v in data["schedule"].items() if k != "cycle"} == \
+        {k: v for k, v in base_data["schedule"].items() if k != "cycle"}
+    load_scenario(child)
