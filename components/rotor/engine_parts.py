@@ -336,8 +336,14 @@ class EngineView:
                 raise ValueError(f"{what} a finite number > 0 ({si}), got {value!r}{tail}")
             if not k.positive and value < 0:
                 raise ValueError(f"{what} >= 0 ({si}), got {value!r}{tail}")
-        if parts[0] == "spool" and len(parts) == 3 and parts[2] == "omega":
-            c, value = f"spool.{parts[1]}.speed_rpm", float(value) / RPM
+        if parts[0] == "spool" and len(parts) == 3 and parts[2] in ("omega", "speed_rpm"):
+            # the spool's operating speed: every speed of that spool follows it, the schedule's cycle included
+            if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value) \
+                    or value == 0:
+                raise ValueError(f"{what} a finite non-zero number (the spool's operating speed, "
+                                 f"{'rad/s' if parts[2] == 'omega' else 'rev/min'}), got {value!r}{tail}")
+            if parts[2] == "omega":
+                c, value = f"spool.{parts[1]}.speed_rpm", float(value) / RPM
         self.overrides[c] = value
         return c
 

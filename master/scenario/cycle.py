@@ -18,6 +18,7 @@ knows only the period.
 """
 from __future__ import annotations
 
+import math
 from typing import Any, Mapping
 
 from rotorcosim.master.core.cycle import ConstantCycle, Cycle, SignalCycle
@@ -35,6 +36,11 @@ def cycle_of(schedule: Mapping[str, Any]) -> Cycle | None:
     if speed is not None and table is not None:
         raise ScenarioError("[schedule]: give speed_rpm or cycle, not both (both say the cycle's period)")
     if speed is not None:
+        if isinstance(speed, bool) or not isinstance(speed, (int, float)) or not 0.0 < speed < math.inf:
+            # a value the schema checked can still come from an engine binding (a spool set turning backwards)
+            raise ScenarioError(f"[schedule] speed_rpm: the cycle's speed must be a positive number of rev/min, got "
+                                f"{speed!r} (a spool that turns the other way: give [schedule] cycle = "
+                                "{ period = S })")
         # 60 / speed as a float division: the same period, bit for bit, wherever a run has it
         return ConstantCycle(60.0 / float(speed))
     if table is None:

@@ -423,3 +423,18 @@ def test_top_level_help_says_what_the_tool_does_in_plain_text(capsys):
     assert "Co-simulation of a dual-rotor gas turbine engine" in text
     assert "docs/" in text and "rotorcosim COMMAND --help" in text
     assert "``" not in text and ":mod:" not in text
+
+
+@pytest.mark.parametrize("value, message", [
+    # was "unexpected ZeroDivisionError: float division by zero" (exit 1): the schedule's cycle follows the spool
+    ("rotor.omega_pt=0", "rotor.omega_pt must be a finite non-zero number (the spool's operating speed, rad/s), got 0"),
+    ("rotor.omega_gg=0", "rotor.omega_gg must be a finite non-zero number"),
+    # a first spool set turning the other way: the cycle's speed, not "cycle period must be a positive number"
+    ("rotor.omega_pt=-1675.5", "[schedule] speed_rpm: the cycle's speed must be a positive number of rev/min"),
+])
+def test_a_spool_speed_set_to_zero_or_backwards_is_one_line(tmp_path, capsys, value, message):
+    out = tmp_path / "o"
+    rc, _, err = call(capsys, "run", "blade_loss_2850", "--set", value, "--duration", "0.003", "--quiet",
+                      "--no-figures", "--out", str(out))
+    assert rc == 2 and message in one_line_error(err), err
+    assert not out.exists()
