@@ -26,13 +26,13 @@ from typing import NamedTuple
 import numpy as np
 
 from rotorcosim.cases.blade_loss.engine_names import spool_name
-from rotorcosim.cases.blade_loss.results import KELVIN, NODES, bearing_ids, window_cycles
+from rotorcosim.cases.blade_loss.results import KELVIN, NODES, bearing_ids
 from rotorcosim.cases.interface import figures as interface_figures
-from rotorcosim.master.manipulator.restart import RESTART_CYCLES
 from rotorcosim.master.observer.series import events_of
 from rotorcosim.master.run.outputs import check_dpi
 
 from .modes import marked_critical_speeds
+from .results import restart_revolutions
 
 RPM = 30.0 / math.pi
 #: the Campbell diagram labels its resonance peaks' speeds up to this many peaks (more: marks only)
@@ -124,11 +124,10 @@ def figures(sc, data, out, dpi: int | None = None) -> list[str]:
     w = _get(data, f"{spools[0]}.Omega").reshape(len(t), -1)[:, 0] * RPM
     crit = marked_critical_speeds(sc, spools[0], float(np.nanmax(w)))
     coupled = phase == 0 if phase is not None else np.ones(len(t), bool)
-    # a restart's ramp and the hold's window after it (master/manipulator/hold.py): the revolutions it rings
-    skip = math.ceil(float(sc.schedule.get("restart_cycles", RESTART_CYCLES))) + window_cycles(sc)
-    shown = settled(t, w, phase, skip) if phase is not None else coupled
+    # as the response track of the summary's crossings leaves them out: a restart's first revolutions
+    shown = settled(t, w, phase, restart_revolutions(sc)) if phase is not None else coupled
     locs = _locations(sc, data)
-    peaks = _peaks(data, locs, w, coupled)
+    peaks = _peaks(data, locs, w, shown)
     first = spool_name(sc, spools[0])
     names.append(_response(data, locs, w, shown, crit, peaks, out, first))
     names.append(_campbell(sc, w, crit, peaks, out, first, windmilling_range(sc, t, w, spools)))
@@ -235,13 +234,13 @@ def _radius(a, n):
     return np.hypot(a[:, 0], a[:, 1])
 
 
-def _peaks(data, locs, w, coupled):
-    """(speed, whirl) of every resonance peak of the whirl at each location over the coupled samples: the peaks
-    the summary's crossings are labelled from (results.resonance_peaks), with no window around a critical speed
-    deciding which are drawn."""
+def _peaks(data, locs, w, shown):
+    """(speed, whirl) of every resonance peak of the whirl at each location over the ``shown`` samples (coupled,
+    a restart's first revolutions left out: :func:`settled`): the peaks the summary's crossings are labelled from
+    (results.resonance_peaks), with no window around a critical speed deciding which are drawn."""
     from .results import resonance_peaks
 
-    sel = np.flatnonzero(coupled)
+    sel = np.flatnonzero(shown)
     out = []
     for xref, _ in locs.values():
         r = _radius(_get(data, xref), len(w))
@@ -270,11 +269,14 @@ def _response(data, locs, w, shown, crit, peaks, out, spool):
         for c in crit:
             ax.axvline(c, color="tab:red", ls="--", lw=0.8)
         ax.grid(alpha=0.3)
-        ax.legend(fontsize=8, loc="upper left")
         ax.set_ylim(bottom=0)
     axes[-1, 0].set_xlabel(f"{spool} speed [rev/min] (dashed: undamped critical speeds)")
     axes[0, 0].set_title("response through the rundown: largest value per 25 rev/min of speed", fontsize=9)
-    return _save(fig, out, "rundown_response.png")
+    # one legend below the panels: inside, a fixed corner covered the peak of a run that crosses a low critical
+    # speed at its largest whirl (a broken fuse's 5 600 rev/min)
+    handles, labels = axes[0, 0].get_legend_handles_labels()
+    fig.legend(handles, labels, loc="lower center", ncol=len(labels), fontsize=8, frameon=False)
+    return _save(fig, out, "rundown_response.png", rect=(0.0, 0.05, 1.0, 1.0))
 
 
 def windmilling_range(sc, t, w, spools) -> tuple[float, float] | None:

@@ -32,7 +32,11 @@ disk: ``"disk"``, whirl only).
   the run (:mod:`.fatigue`: the settings, per element ``del_N``, ``miner_damage``, ``cycles``).
 
 The response is kept as maxima over bins of ``BIN_S`` of thermo-mechanical time, with the time and the speed of
-each bin's largest whirl sample (``RundownTrack``).
+each bin's largest whirl sample (``RundownTrack``), less the first revolutions of a TM interval that follows a
+held one (:func:`restart_revolutions`): there the rotor resumes the orbit it was frozen on, at the speed of the
+interval's start, and rings down to the present one; read as the response at the present speed, that transient
+put a crossing's peak at the speed of a restart (a broken fuse's 5 581 rev/min crossing, held through: 5 588
+against the settled response's top near 5 800 rev/min).
 """
 from __future__ import annotations
 
@@ -43,7 +47,8 @@ from typing import NamedTuple
 import numpy as np
 from scipy.signal import find_peaks, peak_widths
 
-from rotorcosim.components.contract import COUPLED
+from rotorcosim.components.contract import COUPLED, HELD
+from rotorcosim.master.manipulator.restart import RESTART_CYCLES
 from rotorcosim.master.observer.observer import Observer
 
 from rotorcosim.cases.interface import results as interface
@@ -132,16 +137,29 @@ def fold(a: np.ndarray, n_spools: int, cols) -> np.ndarray:
     return out
 
 
+def restart_revolutions(sc) -> float:
+    """Revolutions of a TM interval after a held one that the response track and figure leave out: the
+    restart's ramp (``[schedule] restart_cycles``, master/manipulator/restart.py) and the steady window after it
+    (``[results] cycles``), in which the hold reads the settled mechanics."""
+    from rotorcosim.cases.blade_loss.results import window_cycles
+
+    return math.ceil(float(sc.schedule.get("restart_cycles", RESTART_CYCLES)) - 1e-9) + window_cycles(sc)
+
+
 class RundownTrack(Observer):
     """Per bin of BIN_S of thermo-mechanical time: its end time, each spool's speed, and per location the largest
     whirl radius (with the time and the crossing spool's speed of that sample), contact load, inner-race stress
-    and transmitted force, and the film temperature (:func:`fold`)."""
+    and transmitted force, and the film temperature (:func:`fold`). Of a TM interval that follows a held one, the
+    samples of its first ``skip`` revolutions (of the crossing spool) are left out; of one that ends before,
+    all but its last revolution."""
 
-    def __init__(self, spools, crossing_spool: str | None = None):
+    def __init__(self, spools, crossing_spool: str | None = None, skip: float = 0.0):
         self.spools = list(spools)
         self.crossing_spool = crossing_spool or (self.spools[0] if self.spools else None)
+        self.skip = float(skip)
         self.rows: list[np.ndarray] = []
         self.start_speed: dict[str, float] = {}
+        self._phase = None
 
     def start(self, sim, schedule):
         self.locations = _locations(sim)
@@ -151,6 +169,33 @@ class RundownTrack(Observer):
 
     def interval_start(self, sim, phase, step):
         self.active = phase == COUPLED
+        restart = self.active and self._phase == HELD and self.skip > 0.0 and bool(self.spools)
+        self._phase = phase
+        # while skipping: revolutions since the restart, the last sample's time, the last revolution's rows
+        self._turns, self._t_last, self._tail = (0.0, float(sim.t), []) if restart else (None, None, [])
+
+    def interval_end(self, sim, used):
+        if getattr(self, "_turns", None) is not None and self._tail:
+            # shorter than the skip: its last revolution, the closest it came to settling
+            self.rows.append(fold(np.vstack(self._tail)[:, :-1], len(self.spools), self.cols))
+        self._turns, self._tail = None, []
+
+    def _take(self, rows: np.ndarray) -> np.ndarray:
+        """The per-step ``rows`` a restart's first revolutions leave (all of them outside those)."""
+        if getattr(self, "_turns", None) is None:
+            return rows
+        w = np.abs(rows[:, 1 + self.spools.index(self.crossing_spool)])
+        t = rows[:, 0]
+        turns = self._turns + np.cumsum(w * np.diff(np.concatenate([[self._t_last], t]))) / (2.0 * math.pi)
+        self._turns, self._t_last = float(turns[-1]), float(t[-1])
+        keep = turns >= self.skip
+        if keep.any():
+            self._turns, self._tail = None, []
+            return rows[keep]
+        # the last revolution's rows (with their turns): all an interval that ends before the skip gives
+        tail = np.vstack(self._tail + [np.column_stack([rows, turns])])
+        self._tail = [tail[tail[:, -1] > self._turns - 1.0]]
+        return rows[:0]
 
     def block_signals(self, sim):
         refs = [f"{sp}.Omega" for sp in self.spools] + [ref for _, _, ref in self.cols if ref is not None]
@@ -178,12 +223,16 @@ class RundownTrack(Observer):
     def step_block(self, sim, ks, ts, data):
         if not self.active or not len(ts):
             return
-        self.rows.append(fold(self._rows(ts, lambda ref: data[ref]), len(self.spools), self.cols))
+        rows = self._take(self._rows(ts, lambda ref: data[ref]))
+        if len(rows):
+            self.rows.append(fold(rows, len(self.spools), self.cols))
 
     def step(self, sim, t):
         if not getattr(self, "active", False):
             return
-        self.rows.append(self._rows([t], lambda ref: np.asarray(sim.value(ref))[None, :]))
+        rows = self._take(self._rows([t], lambda ref: np.asarray(sim.value(ref))[None, :]))
+        if len(rows):
+            self.rows.append(rows)
 
     def table(self) -> np.ndarray:
         """All bins: columns t, the spools' speeds [rad/s], then per location its columns in KINDS order (whirl [m],
@@ -216,7 +265,7 @@ def _case_blade_loss(sc) -> bool:
 def observers(sc, cycle):
     spools = _spools(sc)
     crossing = _crossing_spool(sc, spools)
-    obs = [RundownTrack(spools, crossing), SpoolEnergy(spools)]
+    obs = [RundownTrack(spools, crossing, restart_revolutions(sc)), SpoolEnergy(spools)]
     cycles = fatigue.observer(sc, cycle)
     if cycles is not None:
         obs.append(cycles)
