@@ -212,7 +212,7 @@ def _binned(w, y, sel):
 def settled(t, w, phase, skip: float) -> np.ndarray:
     """The samples a response curve shows (``w`` the speed [rev/min] at times ``t`` [s]; ``phase``: 0 coupled,
     1 held): every coupled sample, less the first ``skip`` revolutions of a coupled stretch that follows a held
-    interval (of a stretch shorter than ``skip`` + 1 revolutions, all but its last revolution). After a TM
+    interval (of a stretch that ends before, all but its last revolution), as results.RundownTrack. After a TM
     restart the rotor starts from the orbit it was frozen on at a higher speed and rings down to the new one
     over a few revolutions; drawn per speed, that transient stood as a step at every restart of the
     windmilling."""
@@ -225,7 +225,7 @@ def settled(t, w, phase, skip: float) -> np.ndarray:
         # revolutions from the stretch's start to each sample (trapezoids of the speed)
         rev = np.concatenate([[0.0], np.cumsum(np.diff(t[s:e]) * 0.5 * (np.abs(w[s:e - 1]) + np.abs(w[s + 1:e])))
                               / 60.0])
-        keep[s:e] = rev >= min(skip, rev[-1] - 1.0)
+        keep[s:e] = rev >= skip if rev[-1] >= skip else rev > rev[-1] - 1.0
     return keep
 
 

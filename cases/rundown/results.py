@@ -160,6 +160,9 @@ class RundownTrack(Observer):
         self.rows: list[np.ndarray] = []
         self.start_speed: dict[str, float] = {}
         self._phase = None
+        # while a restart's first revolutions are skipped: the revolutions since it, the last sample's time and
+        # the last revolution's rows (None, None, []: not skipping)
+        self._turns, self._t_last, self._tail = None, None, []
 
     def start(self, sim, schedule):
         self.locations = _locations(sim)
@@ -171,18 +174,17 @@ class RundownTrack(Observer):
         self.active = phase == COUPLED
         restart = self.active and self._phase == HELD and self.skip > 0.0 and bool(self.spools)
         self._phase = phase
-        # while skipping: revolutions since the restart, the last sample's time, the last revolution's rows
         self._turns, self._t_last, self._tail = (0.0, float(sim.t), []) if restart else (None, None, [])
 
     def interval_end(self, sim, used):
-        if getattr(self, "_turns", None) is not None and self._tail:
+        if self._turns is not None and self._tail:
             # shorter than the skip: its last revolution, the closest it came to settling
             self.rows.append(fold(np.vstack(self._tail)[:, :-1], len(self.spools), self.cols))
         self._turns, self._tail = None, []
 
     def _take(self, rows: np.ndarray) -> np.ndarray:
         """The per-step ``rows`` a restart's first revolutions leave (all of them outside those)."""
-        if getattr(self, "_turns", None) is None:
+        if self._turns is None:
             return rows
         w = np.abs(rows[:, 1 + self.spools.index(self.crossing_spool)])
         t = rows[:, 0]

@@ -20,8 +20,8 @@ def test_a_restart_s_first_revolutions_are_left_out():
     assert not keep[10:20].any() and not keep[30:34].any()    # held: never
     # after a hold: from 3 revolutions on (samples at 0, 0.5, ..., 4.5 revolutions)
     assert keep[20:30].tolist() == [False] * 6 + [True] * 4
-    # shorter than skip + 1 revolutions: its last revolution (0.5 ... 1.5)
-    assert keep[34:].tolist() == [False, True, True, True]
+    # shorter than skip: its last revolution (after 0.5 of its 1.5)
+    assert keep[34:].tolist() == [False, False, True, True]
 
 
 def test_revolutions_are_counted_at_the_stretch_s_speed():
