@@ -15,6 +15,7 @@ from __future__ import annotations
 
 import checkout  # noqa: F401  (this checkout's rotorcosim, not an installed one: bench/checkout.py)
 import argparse
+import json
 import tempfile
 from pathlib import Path
 
@@ -27,7 +28,11 @@ from rotorcosim.cases.blade_loss.compare import compare
 TIMES = (0.06, 0.12, 0.2, 0.5, 1.0)
 
 
-def oscillation(series: Path, bearing: str, t_end: float, revolutions: float = 5.0, rpm: float = 16000.0) -> float:
+#: the power turbine's speed of the paper's engine [rev/min]: the revolutions a window spans
+RPM = 16000.0
+
+
+def oscillation(series: Path, bearing: str, t_end: float, revolutions: float = 5.0, rpm: float = RPM) -> float:
     """The largest ball load's largest value less its mean [N] over ``revolutions`` ending at ``t_end``."""
     with h5py.File(series) as f:
         t = f["time"][()]
@@ -42,15 +47,18 @@ def main() -> None:
     ap.add_argument("--bearing", default="0")
     ap.add_argument("--out", default=None, help="keep the comparison here (default: a temporary folder)")
     a = ap.parse_args()
+    if not (a.unbalance >= 0.0 and np.isfinite(a.unbalance)):
+        ap.error(f"--unbalance must be a finite force >= 0 N, got {a.unbalance}")
+    if a.bearing not in ("0", "5"):
+        ap.error(f"--bearing: the paper's engine has bearings 0 and 5, got {a.bearing!r}")
     with tempfile.TemporaryDirectory() as tmp:
         out = Path(a.out) if a.out else Path(tmp) / "compare"
         compare(out, duration=2.0, unbalance=a.unbalance, figures=False, overwrite=True, timing_runs=None)
         stag, mono = out / "staggered" / "timeseries.h5", out / "monolithic" / "timeseries.h5"
-        with h5py.File(stag) as f:
-            t, phase = f["time"][()], f["phase"][()]
-        ends = [float(t[i]) for i in np.flatnonzero(np.diff(phase.astype(int)) == 1)] + [float(t[-1])]
-        mech = np.cumsum([e - s for s, e in zip([0.0] + [float(t[i + 1]) for i in np.flatnonzero(
-            np.diff(phase.astype(int)) == -1)], ends)])
+        # the staggered run's TM intervals: where each ends, and the mechanical time the rotor has lived by then
+        timeline = json.loads((out / "staggered" / "summary.json").read_text())["timeline"]
+        tm = [(iv["t_start"], iv["t_end"]) for iv in timeline if iv["phase"] == "TM"]
+        ends, mech = [e for _, e in tm], np.cumsum([e - s for s, e in tm])
         print(f"bearing #{a.bearing}, {a.unbalance:g} N: largest ball load's largest value less its mean over 5 "
               "revolutions [N]")
         for e, m in zip(ends, mech):

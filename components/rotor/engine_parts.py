@@ -178,6 +178,11 @@ def _by_name(table: str, name: str) -> Key | None:
     return next((k for k in KEYS[table] if k.name == name), None)
 
 
+def _is_speed(v: Any) -> bool:
+    """A spool's operating speed: a finite, non-zero number (its sign the direction of rotation)."""
+    return not isinstance(v, bool) and isinstance(v, (int, float)) and math.isfinite(v) and v != 0
+
+
 def _check_value(k: Key, v: Any) -> str | None:
     if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v):
         return f"must be a finite number ({k.unit}), got {v!r}"
@@ -338,8 +343,7 @@ class EngineView:
                 raise ValueError(f"{what} >= 0 ({si}), got {value!r}{tail}")
         if parts[0] == "spool" and len(parts) == 3 and parts[2] in ("omega", "speed_rpm"):
             # the spool's operating speed: every speed of that spool follows it, the schedule's cycle included
-            if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value) \
-                    or value == 0:
+            if not _is_speed(value):
                 raise ValueError(f"{what} a finite non-zero number (the spool's operating speed, "
                                  f"{'rad/s' if parts[2] == 'omega' else 'rev/min'}), got {value!r}{tail}")
             if parts[2] == "omega":
@@ -377,7 +381,7 @@ class EngineView:
                 rpm, src = float(self.overrides[key]), "override"
             else:
                 rpm = spools[spool].get("speed_rpm")
-                if isinstance(rpm, bool) or not isinstance(rpm, (int, float)) or not math.isfinite(rpm) or rpm == 0:
+                if not _is_speed(rpm):
                     raise ValueError(f"{where} speed_rpm: the spool's operating speed (rev/min) missing or not a "
                                      f"non-zero number, got {rpm!r}")
                 rpm, src = float(rpm), f"{where} speed_rpm"
