@@ -34,6 +34,7 @@ import numpy as np
 from rotorcosim.components.contract import COUPLED
 from rotorcosim.master import case
 from rotorcosim.master.manipulator.error_estimate import RISE_FLOOR_K
+from rotorcosim.master.observer import synchronous
 from rotorcosim.master.observer.observer import Observer, sampled_rows
 from rotorcosim.master.observer.steady_windows import SteadyWindows
 from rotorcosim.master.scenario.cycle import cycle_of
@@ -279,16 +280,26 @@ TEMPERATURES = {"T_inner_race_C": "T_inner_race", "T_ball_C": "T_ball", "T_outer
                 "T_sfd_oil_C": "T_sfd_oil"}
 
 
-def _window_results(w, k, F_u) -> dict:
-    """The results of bearing ``k`` read over the steady window ``w`` (SteadyWindows' dict)."""
+def _peak_signals(w, k, F_u) -> dict:
+    """The signals of bearing ``k`` whose largest value over the steady window ``w`` is a result (``PEAK_KEYS``),
+    sample by sample in the result's unit (None: no transmissibility without a blade-loss force)."""
     X = w[f"rotor.X_brg{k}"]
     F = w[f"damper{k}.F_journal"]
+    sigma = w[f"bearing{k}.sigma_max"]
     return {
-        "whirl_amplitude_mm": 1e3 * float(np.max(np.hypot(X[:, 0], X[:, 1]))),
-        "transmissibility": float(np.max(np.hypot(F[:, 0], F[:, 1]))) / F_u if F_u > 0 else None,
-        "max_contact_load_N": float(np.max(w[f"bearing{k}.Q_max"])),
-        "max_contact_stress_MPa": 1e-6 * float(np.max(w[f"bearing{k}.sigma_max"][:, INNER])),
-        "max_contact_stress_outer_MPa": 1e-6 * float(np.max(w[f"bearing{k}.sigma_max"][:, OUTER])),
+        "whirl_amplitude_mm": 1e3 * np.hypot(X[:, 0], X[:, 1]),
+        "transmissibility": np.hypot(F[:, 0], F[:, 1]) / F_u if F_u > 0 else None,
+        "max_contact_load_N": np.max(w[f"bearing{k}.Q_max"], axis=1),
+        "max_contact_stress_MPa": 1e-6 * sigma[:, INNER],
+        "max_contact_stress_outer_MPa": 1e-6 * sigma[:, OUTER],
+    }
+
+
+def _window_results(w, k, F_u) -> dict:
+    """The results of bearing ``k`` read over the steady window ``w`` (SteadyWindows' dict)."""
+    peaks = {key: None if y is None else float(np.max(y)) for key, y in _peak_signals(w, k, F_u).items()}
+    return {
+        **peaks,
         # a bearing without a rub ring: no rub power (null)
         "rub_power_W": float(np.mean(w[f"rubring{k}.P_rub"])) if f"rubring{k}.P_rub" in w else None,
         "drag_power_W": float(np.mean(w[f"bearing{k}.P_drag"])),
@@ -342,7 +353,8 @@ def extract(sc, sim, obs, report) -> dict:
         out[str(k)] = r
     res = {"unbalance_N": F_u, "window": {"t_start": float(w["t"][0]), "t_end": float(w["t"][-1])},
            "bearings": out, "events": events(out)}
-    est = estimated_errors(windows.windows, out, report.hold, F_u, windows.cycles)
+    est = estimated_errors(windows.windows, out, report.hold, F_u, windows.cycles,
+                           {k: ripple_periods(sim, k) for k in peaks.ids})
     if est is not None:
         res["estimated_error"] = est
     return res
@@ -373,32 +385,35 @@ def events(bearings: dict) -> list[dict]:
     return out
 
 
-def unsteadiness(w, k, F_u, cycles: float) -> dict[str, float]:
-    """How far the window ``w`` of bearing ``k`` is from a steady state: each result read over the steady window as
-    a largest value (``PEAK_KEYS``) computed on each of its ``cycles`` cycles alone (the window split in equal
-    parts), the range of those values, percent of the result over the whole window. A steady response repeats
-    each cycle (0); a window that still holds the transient of a restart does not, and the result it gives is
-    uncertain by that range: where the transient decays (the window's first cycle the largest, each later one
-    smaller), the steady value lies beyond the smallest cycle, at least the range below the result; where it
-    rings about the steady value, the result's crest is at most the range above it. Empty for a window of
-    fewer than 2 cycles or samples."""
+def ripple_periods(sim, k) -> tuple[float, ...]:
+    """The periods [s] of bearing ``k``'s own ripple: its balls passing the inner and the outer race
+    (``ball_pass_frequencies`` of the bearing component; none for a bearing that does not report them, whose
+    ripple then counts as unsteadiness: an estimate on the safe side)."""
+    comp = sim.system.components.get(f"bearing{k}")
+    freqs = getattr(comp, "ball_pass_frequencies", None)
+    return tuple(1.0 / f for f in freqs() if f > 0.0) if freqs is not None else ()
+
+
+def unsteadiness(w, k, F_u, cycles: float, ripple=()) -> dict[str, float]:
+    """How far the window ``w`` of bearing ``k`` is from a steady state, for each result read over it as a largest
+    value (``PEAK_KEYS``): the largest deviation of its signal from its time-synchronous average over the window's
+    whole cycles, the bearing's own ball-pass ripple (``ripple``: its periods, :func:`ripple_periods`) left out
+    (master/observer/synchronous.py), percent of the result. A settled response repeats each cycle up to that
+    ripple (0); what a restart or the release left ringing does not, and the window's largest value stands at
+    most that far from the largest value of its repeating part. A slow decay shows only its part that departs
+    from the window's mean. Empty for a window of fewer than 2 cycles or samples."""
     t = w["t"]
-    n = int(round(cycles))
-    if n < 2 or len(t) < 2 * n or not t[-1] > t[0]:
+    if cycles < 2.0 or len(t) < 2 * cycles or not t[-1] > t[0]:
         return {}
-    part = np.minimum(((t - t[0]) / ((t[-1] - t[0]) / n)).astype(int), n - 1)
-    arrays = {key: v for key, v in w.items() if isinstance(v, np.ndarray) and v.shape[:1] == t.shape}
-    per = [_window_results({key: v[part == i] for key, v in arrays.items()}, k, F_u) for i in range(n)]
-    whole = _window_results(w, k, F_u)
     out = {}
-    for key in PEAK_KEYS:
-        vals, q = [p[key] for p in per], whole[key]
-        if q and all(v is not None for v in vals):
-            out[key] = 100.0 * (max(vals) - min(vals)) / abs(q)
+    for key, y in _peak_signals(w, k, F_u).items():
+        q = None if y is None else float(np.max(y))
+        if q:
+            out[key] = 100.0 * synchronous.largest_residual(t, y, cycles, ripple) / abs(q)
     return out
 
 
-def estimated_errors(windows, bearings, hold, F_u, cycles: float = 0.0) -> dict | None:
+def estimated_errors(windows, bearings, hold, F_u, cycles: float = 0.0, ripple=None) -> dict | None:
     """The staggered scheme's estimated error of each Table 4 result [%] (None without a charged thermal-only
     interval; master/manipulator/hold.py and error_estimate.py have the estimator): a temperature's is the hold's estimated error of the
     thermal network's output, percent of its rise above the run's initial temperature (at least the hold's
@@ -407,8 +422,10 @@ def estimated_errors(windows, bearings, hold, F_u, cycles: float = 0.0) -> dict 
     and growths) of its own change between the last two thermo-mechanical intervals, percent of its value: the
     mechanics follow those values quasi-statically, so an error that is a share of their move over the held
     interval is that share of the result's move (not estimated where the speed changed between those intervals:
-    the hold gives no fraction then). ``largest_pct`` and ``largest`` ("bearing.key") are the run's
-    estimate, ``largest_label`` names its result for a reader ("bearing #0 drag power")."""
+    the hold gives no fraction then); a result read as the window's largest value adds the window's
+    :func:`unsteadiness` (``ripple``: bearing id -> the periods of its own ripple, :func:`ripple_periods`).
+    ``largest_pct`` and ``largest`` ("bearing.key") are the run's estimate, ``largest_label`` names its result
+    for a reader ("bearing #0 drag power")."""
     if hold is None or hold.estimated_error_pct is None:
         return None
     per: dict[str, dict[str, float]] = {}
@@ -431,10 +448,10 @@ def estimated_errors(windows, bearings, hold, F_u, cycles: float = 0.0) -> dict 
             d = hold.handoff_errors_end_pct.get(ref.format(k))
             if d is not None and r.get(key) is not None:
                 e[key] = abs(d)
-        # and the last window's own unsteadiness, the restart's transient (not where the speed moved: then the
-        # results change from cycle to cycle with it)
+        # and the last window's own unsteadiness, the transient the mechanics still carry (not where the speed
+        # moved: then the results change from cycle to cycle with it)
         if windows and f is not None:
-            for key, u in unsteadiness(windows[-1], k, F_u, cycles).items():
+            for key, u in unsteadiness(windows[-1], k, F_u, cycles, (ripple or {}).get(k, ())).items():
                 if key in e:
                     e[key] += u
         per[k] = e

@@ -53,7 +53,7 @@ from ..speeds import PT_OMEGA
 from ..validity import Check
 from .drag import static_load_rating
 from .geometry import DATA, BEARINGS, DN_LIMIT, build_geometry, speed_limit
-from .kernel import (DRAG, G_EPS_LIMIT, G_F_C, G_Z0, GEO, NUM, O_SIZE, O_SUBSTEPS, BearingParams, BearingState,
+from .kernel import (DRAG, G_EPS_LIMIT, G_F_C, G_OMEGA, G_OMEGA_CAGE, G_Z0, GEO, NUM, O_SIZE, O_SUBSTEPS, BearingParams, BearingState,
                      oil_viscosity, pack, step, tm_step, viscous_power)
 from .oil import WALTHER_A, WALTHER_B, sae30_kinematic_viscosity
 from .static import preload_offset, solve_balls
@@ -179,6 +179,15 @@ class BallBearing(KernelComponent):
         rec = BEARINGS.get(self.p["bearing"], BEARINGS[0])
         bore = float(self.p["bore"]) if "bore" in self.explicit else rec["bore_mm"] * 1e-3
         return bore, speed_limit(bore)
+
+    def ball_pass_frequencies(self) -> tuple[float, float]:
+        """The frequencies [Hz] at which the balls pass a point of the inner race, ``Z (omega - omega_c) / 2 pi``,
+        and of the outer race, ``Z omega_c / 2 pi``, at the speed the bearing runs at now (after set-up): the
+        periods of its own ripple, which a load turning with the shaft (the unbalance) sees at the first and a
+        fixed load (gravity) at the second, in its contact loads and stresses however settled the run is."""
+        w, wc = self._geo[G_OMEGA], self._geo[G_OMEGA_CAGE]
+        z = self.geometry.Z / (2.0 * math.pi)
+        return float(z * (w - wc)), float(z * wc)
 
     # -- set-up --------------------------------------------------------------------------------------------
     def setup(self, t0=0.0):
