@@ -1,8 +1,8 @@
 """What a steady window holds that does not repeat each cycle: the residual of its time-synchronous average.
 
 A response settled at a constant speed repeats every cycle (a revolution of period ``T``), up to sources of a
-period of their own that the machine carries for good, such as the balls of a rolling bearing passing the load
-(``periods``: 1 / ball-pass frequency). What repeats neither way is what is left of a transient: the ringing of a
+period of their own that the machine carries for good, such as rolling elements passing the load (``periods``:
+1 / their passing frequency). What repeats neither way is what is left of a transient: the ringing of a
 mode at its own frequency, a drift. Over the last ``n`` whole cycles of the window, starting at ``t0``:
 
     p(s)   = 1/n sum_{i<n} y(t0 + (i + s) T),   0 <= s < 1        time-synchronous average (one cycle)
