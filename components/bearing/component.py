@@ -53,8 +53,8 @@ from ..speeds import PT_OMEGA
 from ..validity import Check
 from .drag import static_load_rating
 from .geometry import DATA, BEARINGS, DN_LIMIT, build_geometry, speed_limit
-from .kernel import (DRAG, G_EPS_LIMIT, G_F_C, G_OMEGA, G_OMEGA_CAGE, G_Z0, GEO, NUM, O_SIZE, O_SUBSTEPS, BearingParams, BearingState,
-                     oil_viscosity, pack, step, tm_step, viscous_power)
+from .kernel import (DRAG, G_EPS_LIMIT, G_F_C, G_OMEGA, G_OMEGA_CAGE, G_Z0, GEO, NUM, O_SIZE, O_SUBSTEPS,
+                     BearingParams, BearingState, oil_viscosity, pack, step, tm_step, viscous_power)
 from .oil import WALTHER_A, WALTHER_B, sae30_kinematic_viscosity
 from .static import preload_offset, solve_balls
 
