@@ -185,6 +185,9 @@ class BallBearing(KernelComponent):
         and of the outer race, ``Z omega_c / 2 pi``, at the speed the bearing runs at now (after set-up): the
         periods of its own ripple, which a load turning with the shaft (the unbalance) sees at the first and a
         fixed load (gravity) at the second, in its contact loads and stresses however settled the run is."""
+        if getattr(self, "_geo", None) is None:
+            raise ContractError(f"{self.name}: its ball-pass frequencies are known after set-up (the speed and the "
+                                "geometry it runs with)")
         w, wc = self._geo[G_OMEGA], self._geo[G_OMEGA_CAGE]
         z = self.geometry.Z / (2.0 * math.pi)
         return float(z * (w - wc)), float(z * wc)

@@ -25,6 +25,9 @@ def residual(t: np.ndarray, y: np.ndarray, cycles: float) -> tuple[np.ndarray, n
     of a window of ``cycles`` cycles (sampled at ``t``, increasing), on a uniform grid ``s`` of as many samples per
     cycle as the window has (``y`` read there by linear interpolation). Returns ``(s, r)``."""
     n = int(np.floor(cycles + 1e-9))
+    if n < 1 or len(t) < 2 or not t[-1] > t[0]:
+        raise ValueError(f"a time-synchronous average needs a window of a whole cycle at least, sampled in time; got "
+                         f"{cycles:g} cycles over {len(t)} samples")
     period = (t[-1] - t[0]) / cycles
     m = max(2, int(round((len(t) - 1) / cycles)))
     s = t[-1] - n * period + np.arange(n * m) * (period / m)

@@ -407,3 +407,8 @@ def test_ball_pass_frequencies_are_the_ripple_of_the_contact_load(load):
     line = f[f > 1e3][np.argmax(spectrum[f > 1e3])]
     inner, outer = b.ball_pass_frequencies()
     assert line == pytest.approx(outer if load == "fixed" else inner, rel=2e-3)
+
+
+def test_ball_pass_frequencies_before_set_up_are_refused():
+    with pytest.raises(ContractError, match="after set-up"):
+        BallBearing("brg", {"bearing": 0}).ball_pass_frequencies()

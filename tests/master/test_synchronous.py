@@ -72,3 +72,9 @@ def test_periods_the_window_cannot_resolve_are_left_out():
     plain = synchronous.largest_residual(t, y, CYCLES)
     step = t[1] - t[0]
     assert synchronous.largest_residual(t, y, CYCLES, [step, 3.0 * T]) == plain
+
+
+def test_a_window_of_less_than_a_cycle_is_refused():
+    t = np.linspace(0.0, 0.5 * T, 100)
+    with pytest.raises(ValueError, match="a whole cycle at least"):
+        synchronous.largest_residual(t, np.sin(t), 0.5)
