@@ -5,11 +5,12 @@ is the monolithic run itself. What it holds: the run's estimate (the largest of 
 below the largest true error and at most 3 times it; no temperature's estimate of either bearing is below its true
 error (by more than FLOOR_PCT: two errors that small are alike), and none is above 6 times it (the target is 3;
 one is above: #0's squeeze-film oil at 8 551 N, 0.26 % against 0.02 % of its 50 K rise, 5.3 times). The results
-of the mechanics are reported, not held: their true errors at 2 s come mostly from the transient the staggered
-mechanics still carry (the release's ringing, which they live only 32 revolutions of the 2 s to damp, and each
-restart's own decay), which their estimates take from the window's own unsteadiness (results.unsteadiness: what does not repeat
-each cycle beside the bearing's own ball-pass ripple, held on synthetic windows below) only as far as the
-window shows it
+of the mechanics read as a window's largest value have true errors at 2 s that come mostly from the transient the
+staggered mechanics still carry (the release's ringing, which they live only 32 revolutions of the 2 s to damp,
+and each restart's own decay); their estimates take it from the window's own unsteadiness (results.unsteadiness:
+what does not repeat each cycle beside the bearing's own ball-pass ripple, held on synthetic windows below). Held
+here as a guard: none below 0.6 of its true error (measured: 0.70 at the least, #0's inner-race stress at 712 N;
+the per-cycle range this measure replaced gave 0.40 there); above 3 times they are reported, not held
 (bench/bench_error_estimate.py prints every row, docs/explanation/staggered-scheme.md has the table)."""
 from __future__ import annotations
 
@@ -37,6 +38,9 @@ def test_the_estimate_brackets_the_true_error_of_table6(tmp_path, level):
     for r in temperatures:
         assert r["ratio"] >= 1.0 or r["true_pct"] - r["estimated_pct"] < error_check.FLOOR_PCT, r
         assert r["ratio"] <= 6.0, r
+    for r in rows:
+        if r["key"] in results.PEAK_KEYS:
+            assert r["ratio"] >= 0.6, r
 
 
 def _window(amplitudes, samples=20):
