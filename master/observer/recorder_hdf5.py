@@ -13,6 +13,11 @@ import numpy as np
 TEMPLATES: dict[tuple, bytes] = {}
 #: layouts :data:`TEMPLATES` keeps (the oldest goes first)
 TEMPLATES_KEPT = 8
+#: HDF5's file lock on the run's own ``.part`` file, which no other process opens while it is written: off. A child
+#: process started meanwhile by another thread (the figure workers) holds a copy of the descriptor of the file
+#: being created until its exec closes it, and with it that descriptor's lock, so the reopening for appending
+#: was refused now and then ("unable to lock file, errno = 11")
+LOCKING = False
 
 
 def dtype_of(kind: str, fmi_type: str):
@@ -62,7 +67,7 @@ def create(tmp: Path, signals: Sequence[str], variables: dict, record_step: floa
          variables[ref].description, tuple(variables[ref].column_labels())) for ref in signals))
     blob = TEMPLATES.get(key)
     if blob is None:
-        with h5py.File(tmp, "w") as f:
+        with h5py.File(tmp, "w", locking=LOCKING) as f:
             write_layout(f, signals, variables, record_step, chunk, phases)
         blob = tmp.read_bytes()
         if len(TEMPLATES) >= TEMPLATES_KEPT:
@@ -74,7 +79,7 @@ def create(tmp: Path, signals: Sequence[str], variables: dict, record_step: floa
     # (1 MiB a dataset) held the last chunks written of every dataset, ~10 MB more per simulated second
     # of a monolithic run up to ~1 MiB x its ~30 datasets (measured: a 2 s run peaked 20 MB above a
     # 0.2 s one)
-    return h5py.File(tmp, "r+", rdcc_nbytes=0)
+    return h5py.File(tmp, "r+", rdcc_nbytes=0, locking=LOCKING)
 
 
 def datasets(f, names: Sequence[str]) -> dict:
@@ -118,7 +123,7 @@ def reopen(tmp: Path, path: Path, names: Sequence[str], rows: int):
     import h5py
 
     try:
-        f = h5py.File(tmp, "r+")
+        f = h5py.File(tmp, "r+", locking=LOCKING)
     except OSError as exc:
         os.replace(tmp, path)
         raise ValueError(f"recorder: {path} cannot be reopened ({exc}): resume impossible") from None

@@ -54,6 +54,39 @@ def test_a_file_that_cannot_be_opened_at_set_up_is_the_one_error(tmp_path, monke
     assert not (tmp_path / "o").exists()
 
 
+def test_a_lock_on_another_descriptor_of_the_runs_own_file_refuses_nothing(tmp_path):
+    """A child process that another thread starts while the recorder creates its file (the figure workers) holds a
+    copy of the file's descriptor, and with it HDF5's lock, until its exec closes it: the reopening for appending
+    was refused now and then ("unable to lock file, errno = 11", a sweep's case failing). The recorder opens its
+    own ``.part`` file, which no other process opens, without HDF5's lock (recorder_hdf5.LOCKING): an exclusive
+    lock held on another descriptor of it refuses neither the first file of a layout (made by h5py) nor the next
+    (copied from the template), and the file holds its layout."""
+    import fcntl
+    import os
+
+    import h5py
+
+    from rotorcosim.components.contract import Variable
+    from rotorcosim.master.core.phases import Phases
+    from rotorcosim.master.observer import recorder_hdf5
+
+    recorder_hdf5.TEMPLATES.clear()
+    variables = {"c.x": Variable("x", "output", 2, "m", "a signal")}
+    for name in ("first", "second"):
+        tmp = tmp_path / f"{name}.h5.part"
+        tmp.write_bytes(b"")
+        held = os.open(tmp, os.O_RDWR)
+        try:
+            fcntl.flock(held, fcntl.LOCK_EX | fcntl.LOCK_NB)
+            f = recorder_hdf5.create(tmp, ["c.x"], variables, 1e-3, 16, Phases())
+            f.close()
+        finally:
+            os.close(held)
+        with h5py.File(tmp, "r") as f:
+            assert f["c.x"].shape == (0, 2) and "time" in f
+    assert len(recorder_hdf5.TEMPLATES) == 1
+
+
 @pytest.mark.parametrize("args, warned", [
     (["jeffcott_rundown", "--duration", "0.05"], None),
     (["blade_loss_rundown", "--duration", "0.02"], "spool_gg.t_fuel_cut = 15.01 s is at or after the end of the run "
