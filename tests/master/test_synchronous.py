@@ -40,10 +40,11 @@ def test_a_ringing_leaves_its_amplitude():
 @pytest.mark.parametrize("orders", [(11.796,), (11.796, 9.242)])
 def test_a_ripple_of_its_own_period_is_taken_out(orders):
     """The balls' ripple at 11.796 (and 9.242) times the cycle's frequency, a sawtooth (all harmonics), its
-    period 63.6 (81.2) samples: kept without its periods (three quarters of its amplitude at least), taken out with them down to
-    a tenth of it (what is left is the share of the ripple the synchronous average took in: 58.98 passes in the
-    5 cycles, not a whole number), while the ringing beside it keeps 0.8 of its amplitude (the moving means pass 1.8 x the cycle's
-    frequency at sin(pi f P) / (pi f P) = 0.96 each, and the synchronous average takes up to 0.2)."""
+    period 63.6 (81.2) samples: kept without its periods (three quarters of its amplitude at least), taken out
+    with them down to a tenth of it (what is left is the share of the ripple the synchronous average took in:
+    58.98 passes in the 5 cycles, not a whole number), while a ringing beside it keeps 0.7 of its amplitude at
+    least (the moving means pass 1.8 x the cycle's frequency at sin(pi f P) / (pi f P) = 0.96 each, and the
+    synchronous average takes up to 0.2)."""
     def ripple(t):
         return sum(2.0 * ((o * t / T) % 1.0 - 0.5) for o in orders)
     t, y = window(periodic, ripple)
