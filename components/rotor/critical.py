@@ -183,8 +183,29 @@ def damping_ratios(model: FullModel, supports: dict | None, criticals: list[dict
         if not same:          # none of that whirl among the nearest few: every eigenvalue
             same = [lam for lam, whirl in _damped_modes(sysm, model, w / excited, min_share) if whirl == r["whirl"]]
         lam = min(same, key=lambda x: abs(abs(x) - w)) if same else None
-        out.append({**r, "damping_ratio": float(-lam.real / abs(lam)) if lam is not None else None})
+        out.append({**r, "damping_ratio": damping_ratio(lam, sysm, model, w / excited) if lam is not None else None})
     return out
+
+
+#: damping ratios below this are the eigensolvers' round-off, not damping: reported as 0 (an undamped mode, no
+#: amplification factor). Measured: the modes of ROSS's undamped example rotors (rotor_example, coaxrotor_example:
+#: no damping anywhere) came out at 1e-31-1e-27, of either sign, from the shift-invert search; the least damped
+#: mode of the shipped engines and examples is at 1.8e-2 (docs/examples/three_spools).
+ZETA_RESOLUTION = 1e-9
+
+
+def damping_ratio(lam: complex, sysm: dict, model: FullModel, w: float) -> float:
+    """The damping ratio zeta = -Re lambda / |lambda| of the eigenvalue ``lam`` of the engine ``sysm`` at the
+    first spool's speed w [rad/s]: 0 where the engine dissipates nothing at that speed (its damping matrix with
+    the supports' coefficients at w is zero: the gyroscopic terms conserve energy, so zeta is exactly 0 whatever
+    the solver leaves in Re lambda) or where |zeta| is below :data:`ZETA_RESOLUTION`."""
+    C = sysm["C"]
+    if model.info.get("speed_supports"):
+        C = C + speed_support_delta(model, w, C.shape[0])[1]
+    if not np.any(C):
+        return 0.0
+    zeta = float(-lam.real / abs(lam))
+    return 0.0 if abs(zeta) < ZETA_RESOLUTION else zeta
 
 
 #: how many eigenvalues of the damped engine :func:`_modes_near` takes around its target frequency
@@ -331,5 +352,5 @@ def speed_dependent_critical_speeds(model: FullModel, supports: dict | None, max
         if i >= len(m) or not 0.0 < w <= top:
             continue
         lam, whirl = m[i]
-        out.append({"rpm": w / RPM, "whirl": whirl, "damping_ratio": float(-lam.real / abs(lam))})
+        out.append({"rpm": w / RPM, "whirl": whirl, "damping_ratio": damping_ratio(lam, sysm, model, w / excited)})
     return sorted(out, key=lambda r: r["rpm"])

@@ -92,3 +92,34 @@ def test_separation_warns_by_the_modes_amplification_factor():
     assert "14400 rev/min is 10.0 % below" in warn[0] and "12.1% of a mode of amplification factor 5.00" in warn[0]
     assert "17000 rev/min is 6.2 % above" in warn[1] and "22.1%" in warn[1]
     assert "18000 rev/min is 12.5 % above" in warn[2] and "undamped mode" in warn[2] and "15%" in warn[2]
+
+
+def test_an_engine_that_dissipates_nothing_has_undamped_modes(tmp_path):
+    """ROSS's rotor_example (its saved file: no damping in its shaft or its bearings) is a conservative gyroscopic
+    system, whose eigenvalues are purely imaginary (Genta, Dynamics of Rotating Systems, 4.7): every critical
+    speed's damping ratio is exactly 0 and has no amplification factor, so API 684's flat margin applies. The
+    eigensolvers leave 1e-31-1e-27 of either sign in Re lambda, which read as damping gave amplification
+    factors of 1e27-1e30."""
+    from rotorcosim.interop import from_ross, write_engine
+
+    path = tmp_path / "engine.toml"
+    write_engine(from_ross(Path(__file__).resolve().parents[1] / "interop" / "data" / "rotor_example.toml"), path)
+    m = fem.load(path)
+    rows = critical.damping_ratios(m, None, critical.every_synchronous_critical_speed(m, None, 15000.0))
+    assert len(rows) >= 6
+    assert all(r["damping_ratio"] == 0.0 for r in rows), rows
+    sep, _ = engine_check.separation(rows, "shaft", "shaft", [10000.0])
+    assert all(r["amplification_factor"] is None for r in sep)
+    assert {mg["required_percent"] for r in sep for mg in r["margins"]} == {100 * engine_check.SEPARATION_MARGIN}
+
+
+def test_round_off_below_the_resolution_is_no_damping():
+    """The resolution's two sides: a ratio of round-off size reads 0, the least damped mode of the shipped engines
+    (1.8e-2, three_spools) and a lightly damped machine's 1e-4 are kept as they are."""
+    m = fem.load(THREE)
+    sysm = {"C": m.C + 1.0, "K": m.K}
+    for zeta in (1e-4, 1.8e-2):
+        lam = complex(-zeta * 100.0, 100.0 * (1 - zeta ** 2) ** 0.5)
+        assert critical.damping_ratio(lam, sysm, m, 0.0) == pytest.approx(zeta)
+    assert critical.damping_ratio(complex(3e-29, 100.0), sysm, m, 0.0) == 0.0
+    assert critical.damping_ratio(complex(-1e-12, 100.0), {"C": 0.0 * m.C, "K": m.K}, m, 0.0) == 0.0
