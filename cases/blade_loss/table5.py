@@ -30,20 +30,50 @@ def _fmt(x) -> str:
     return "" if x is None else f"{x:.6g}"
 
 
-def write_table5(out: Path, by_level: dict[float, dict]) -> None:
-    """Write ``table5.csv`` and ``table5.md`` (beside the paper's values) into the folder ``out``; ``by_level``:
-    unbalance [N] -> that run's summary."""
+def bearing_ids(by_level: dict[float, dict]) -> list[str]:
+    """The bearings the runs report, in the order they first appear (an engine of one's own names its own)."""
+    ids: list[str] = []
+    for summary in by_level.values():
+        ids += [k for k in summary.get("bearings", {}) if k not in ids]
+    return ids
+
+
+def write_table5(out: Path, by_level: dict[float, dict], beside_paper: bool = True) -> None:
+    """Write ``table5.csv`` and ``table5.md`` into the folder ``out``; ``by_level``: unbalance [N] -> that run's
+    summary. ``beside_paper``: each cell beside the paper's value, for its bearings #0 and #5; otherwise (an
+    engine of one's own: the paper's values are of another machine) our values alone, for the runs' bearings."""
     levels = list(by_level)
+    ids = list(BEARINGS) if beside_paper else bearing_ids(by_level)
     rows = [["result", "bearing"] + [f"{f:g}" for f in levels]]
     for key in RESULT_KEYS:
-        for k in BEARINGS:
+        for k in ids:
             rows.append([key, str(k)] + [_fmt(by_level[f].get("bearings", {}).get(str(k), {}).get(key)) for f in levels])
     tmp = out / "table5.csv.part"
     with open(tmp, "w", newline="") as fh:
         fh.write("# rotorcosim: blade-loss results (paper Table 4 definitions); columns: unbalance force in N\n")
         csv.writer(fh).writerows(rows)
     os.replace(tmp, out / "table5.csv")
+    lines = _beside_paper(by_level) if beside_paper else _ours_alone(by_level, ids)
+    tmp = out / "table5.md.part"
+    tmp.write_text("\n".join(lines) + "\n")
+    os.replace(tmp, out / "table5.md")
 
+
+def _ours_alone(by_level: dict[float, dict], ids: list[str]) -> list[str]:
+    levels = list(by_level)
+    lines = ["# Blade-loss results by unbalance level (the paper's Table 5 layout)", "",
+             "Each cell: ours (the paper's values are of its own engine, not this one: not compared).", "",
+             "| result | brg | " + " | ".join(f"{f:g} N" for f in levels) + " |",
+             "|---|---|" + "---|" * len(levels)]
+    for key in RESULT_KEYS:
+        for k in ids:
+            cells = [by_level[f].get("bearings", {}).get(k, {}).get(key) for f in levels]
+            lines.append(f"| {key} | {k} | " + " | ".join("n/a" if v is None else f"{v:.4g}" for v in cells) + " |")
+    return lines
+
+
+def _beside_paper(by_level: dict[float, dict]) -> list[str]:
+    levels = list(by_level)
     paper = paper_table5()
     lines = ["# Table 5: rotorcosim beside the paper", "",
              "Each cell: ours / paper (difference in % of the paper's value).", "",
@@ -64,7 +94,5 @@ def write_table5(out: Path, by_level: dict[float, dict]) -> None:
                 else:
                     cells.append(f"{ours:.4g} / {ref:.4g} ({100 * (ours - ref) / ref:+.0f} %)")
             lines.append(f"| {key} | {k} | " + " | ".join(cells) + " |")
-    tmp = out / "table5.md.part"
-    tmp.write_text("\n".join(lines) + "\n")
-    os.replace(tmp, out / "table5.md")
+    return lines
 

@@ -59,3 +59,30 @@ def test_missing_level_or_value_counts_as_a_miss_and_files_are_written(tmp_path)
     assert rows[0] == ["result", "bearing", "unbalance_N", "paper", "ours", "ratio"]
     assert len(rows) == 1 + sc["cells"]
     assert (tmp_path / "paper_comparison.png").stat().st_size > 10_000
+
+
+def test_a_sweep_of_another_engine_is_not_scored_against_the_paper(tmp_path):
+    """The paper's Table 5 is of its own engine: a sweep at the paper's levels of an engine of one's own (its
+    rotor's model file another) writes its values alone, for its own bearings, and no comparison or score."""
+    ours = {}
+    for level in (712.0, 1425.0):
+        ours[level] = {"provenance": {"parameters": {"rotor": {"parameters": {"model_file": "/x/engine.toml"}}}},
+                       "bearings": {"1": {"whirl_amplitude_mm": 0.25}, "2": {"whirl_amplitude_mm": 0.5}}}
+    assert pc.sweep_tables(tmp_path, ours) is None
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["table5.csv", "table5.md"]
+    with open(tmp_path / "table5.csv") as f:
+        rows = [r for r in csv.reader(f) if r and not r[0].startswith("#")]
+    assert ["whirl_amplitude_mm", "1", "0.25", "0.25"] in rows and ["whirl_amplitude_mm", "2", "0.5", "0.5"] in rows
+    assert not [r for r in rows if r[1] in ("0", "5")]
+    md = (tmp_path / "table5.md").read_text()
+    assert "| whirl_amplitude_mm | 1 | 0.25 | 0.25 |" in md and " / " not in md     # no "ours / paper" cell
+
+
+def test_a_sweep_of_the_paper_engine_is_scored(tmp_path):
+    from rotorcosim.components.rotor.model import DEFAULT_FILE
+
+    ours = _paper_as_ours()
+    for s in ours.values():
+        s["provenance"] = {"parameters": {"rotor": {"parameters": {"model_file": str(DEFAULT_FILE)}}}}
+    assert pc.sweep_tables(tmp_path, ours)["within_30pct"] == 152
+    assert (tmp_path / "paper_comparison.csv").exists() and "/ 0.0512 (+0 %)" in (tmp_path / "table5.md").read_text()
