@@ -151,8 +151,8 @@ def from_ross(rotor, *, speed_rpm: float | None = None, speed_rpm_coefficients: 
     speed = float(speed_rpm) if speed_rpm is not None else DEFAULT_SPEED_RPM
     if not (np.isfinite(speed) and speed > 0):
         raise RossImportError(f"speed must be a finite number > 0 rev/min, got {speed_rpm!r}")
-    if not (isinstance(hub_mass_kg, (int, float)) and np.isfinite(hub_mass_kg) and hub_mass_kg >= 0):
-        raise RossImportError(f"hub mass (--hub-mass) must be a finite mass >= 0 kg, got {hub_mass_kg!r}")
+    if not (isinstance(hub_mass_kg, (int, float)) and np.isfinite(hub_mass_kg) and hub_mass_kg > 0):
+        raise RossImportError(f"hub mass (--hub-mass) must be a finite mass > 0 kg, got {hub_mass_kg!r}")
     _check_elements(el)
 
     # spools: chains of shaft elements

@@ -41,6 +41,42 @@ def _system(model: FullModel, supports: dict | None) -> dict:
     return model.coupled(supports)
 
 
+def _free_part(model: FullModel, A: np.ndarray) -> str:
+    """The part of the engine that moves most in the null mode of the symmetric matrix ``A`` (the model's DOFs
+    first, then the journals of :meth:`FullModel.coupled`): "spool 'hp'", "hub 'h0'", "the casing"."""
+    w, v = np.linalg.eigh(0.5 * (A + A.T))
+    u2 = v[:, 0] ** 2
+    share = {}
+    dof = model.info["dof"]
+    for s, n_nodes in model.info.get("spools", {}).items():
+        for node in range(n_nodes):
+            for d in range(6):
+                try:
+                    share[f"spool {s!r}"] = share.get(f"spool {s!r}", 0.0) + u2[dof(s, node, d)]
+                except ValueError:          # a DOF the spool's drive or axial node holds
+                    pass
+    for h in model.info.get("hubs", []):
+        share[f"hub {h!r}"] = sum(u2[dof("hub", h, d)] for d in range(3))
+    share["a co-simulated bearing's journal"] = float(u2[model.n:].sum())
+    share["the casing"] = max(1.0 - sum(share.values()), 0.0)
+    return max(share, key=share.get)
+
+
+def _definite_eigh(a: np.ndarray, b: np.ndarray, model: FullModel, b_is: str, **kw):
+    """``scipy.linalg.eigh(a, b)``, whose ``b`` must be positive definite: the engine's stiffness with its
+    supports (``b_is`` "stiffness") or its mass ("mass"). A singular one (a spool nothing holds; a DOF without
+    mass) is an input error naming the part, not LAPACK's 'leading minor of order 72 of B'."""
+    try:
+        return sla.eigh(a, b, **kw)
+    except np.linalg.LinAlgError:
+        part = _free_part(model, b.real)
+    if b_is == "stiffness":
+        raise ValueError(f"the engine's stiffness with its supports is singular: {part} moves freely, held by no "
+                         "spring (a spool needs supports, pedestals, attached bearings or intershaft bearings at "
+                         "two nodes or more)") from None
+    raise ValueError(f"the engine's mass matrix is singular: {part} has a motion without mass") from None
+
+
 def synchronous_critical_speeds(model: FullModel, supports: dict | None, n: int = 12,
                                 max_rpm: float = 60000.0, min_share: float = 0.05) -> dict:
     """Forward and backward synchronous critical speeds (rev/min of the power turbine), ascending, of the model
@@ -58,7 +94,7 @@ def synchronous_critical_speeds(model: FullModel, supports: dict | None, n: int 
     nn = K.shape[0]
     # an engine on an airframe (components/airframe/installed.py): its modes come on top of the engine's
     take = 4 * n + int(model.info.get("airframe_modes", 0))
-    mu, vec = sla.eigh(B, K, subset_by_index=[max(nn - take, 0), nn - 1])
+    mu, vec = _definite_eigh(B, K, model, "stiffness", subset_by_index=[max(nn - take, 0), nn - 1])
     out = {"forward_synchronous_rpm": [], "backward_synchronous_rpm": []}
     lat = sysm["rotor_lateral"]
     Mlat = Mm[np.ix_(lat, lat)]
@@ -77,7 +113,8 @@ def campbell(model: FullModel, rpm_values, supports: dict | None, n_modes: int =
     K, Mm = sysm["K"], sysm["M"]
     tables = bool(model.info.get("speed_supports"))
     # a basis of the non-spinning modes (of the symmetric part, for supports with cross-coupled coefficients)
-    w2, Phi = sla.eigh(0.5 * (K + K.T) if tables else K, Mm, subset_by_index=[0, n_modes - 1])
+    w2, Phi = _definite_eigh(0.5 * (K + K.T) if tables else K, Mm, model, "mass",
+                             subset_by_index=[0, n_modes - 1])
     Gt = Phi.T @ (sysm["G_pt"] + speed_ratio(model) * sysm["G_gg"]) @ Phi
     lat = sysm["rotor_lateral"]
     # the kinetic-energy shares in the modal basis: q = Phi v gives q^H M q = v^H (Phi^T M Phi) v and the rotor's
@@ -126,7 +163,7 @@ def every_synchronous_critical_speed(model: FullModel, supports: dict | None, ma
     Mlat = Mm[np.ix_(lat, lat)]
     take = min(24, nn)
     while True:
-        mu, vec = sla.eigh(B, K, subset_by_index=[nn - take, nn - 1])
+        mu, vec = _definite_eigh(B, K, model, "stiffness", subset_by_index=[nn - take, nn - 1])
         # mu = 1/w^2 descending from the top: the smallest taken is the highest speed reached
         if take == nn or mu[0] <= 0 or 1.0 / np.sqrt(mu[0]) / RPM > max_rpm:
             break

@@ -187,9 +187,10 @@ def problems(data: dict) -> list[str]:
         if h in hubs:
             p.add(f"pedestal.{h}", "is also a casing hub")
         hubs.append(h)
-        p.value(f"pedestal.{h}.mass", pv.get("mass"), positive=False)
-        for k in ("kxx", "kyy"):
-            p.value(f"pedestal.{h}.{k if k in pv else 'k'}", pv.get(k, pv.get("k")), allow_knob=True)
+        # a housing without mass leaves the mass matrix singular: no modes, no reduced rotor, no run
+        p.value(f"pedestal.{h}.mass", pv.get("mass"))
+        for k in dict.fromkeys(k if k in pv else "k" for k in ("kxx", "kyy")):   # a shared k named once
+            p.value(f"pedestal.{h}.{k}", pv.get(k), allow_knob=True)
 
     def ref(where, r, *, hub_ok=True, ground_ok=False):
         if ground_ok and r == "ground":

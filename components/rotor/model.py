@@ -446,9 +446,9 @@ def _assemble(data: dict, digest: str, omega_pt: float | None, omega_gg: float |
                 sd = [base_sh + 3 * shell_node(int(hit[0]), c, 0) + d for d in range(3)]
                 idx = np.array(hd + sd)
                 K[np.ix_(idx, idx)] += np.block([[k3, -k3], [-k3, k3]])
-    # pedestals: hubs on springs to ground (no casing needed); a massless one (a ROSS support node) is allowed
+    # pedestals: hubs on springs to ground (no casing needed), each of some mass (M positive definite)
     for h, pv in peds.items():
-        mh = _nonneg(f"pedestal.{h}.mass", pv["mass"])
+        mh = _positive(f"pedestal.{h}.mass", pv["mass"])
         kxy = [_positive(f"pedestal.{h}.{k if k in pv else 'k'}", knob_value(data, pv[k] if k in pv else pv["k"]))
                for k in ("kxx", "kyy")]
         cxy = [_nonneg(f"pedestal.{h}.{k if k in pv else 'c'}", pv[k] if k in pv else pv.get("c", 0.0))

@@ -101,3 +101,49 @@ def test_bad_geometry_is_one_line(tmp_path, capsys, setting, message):
     err = [l for l in capsys.readouterr().err.splitlines() if l.strip()]
     assert rc == 2 and len(err) == 1 and message in err[0], err
     assert not (tmp_path / "o" / "timeseries.h5").exists()
+
+
+def test_a_massless_pedestal_is_refused_by_name(tmp_path, capsys):
+    """A pedestal of mass 0 leaves the mass matrix singular: check-engine and the run used to end in scipy's
+    'The leading minor of order 59 of B is not positive definite'; now each names the key."""
+    assert main(["new-engine", str(tmp_path / "X")]) == 0
+    f = tmp_path / "X" / "engine.toml"
+    f.write_text(f.read_text().replace("[pedestal.h0]\nmass = 3.0", "[pedestal.h0]\nmass = 0.0"))
+    capsys.readouterr()
+    assert main(["check-engine", str(f), "--campbell", str(tmp_path / "c.png")]) == 2
+    assert "pedestal.h0.mass: must be a finite number > 0, got 0.0" in capsys.readouterr().out
+    assert main(["run", str(tmp_path / "X" / "blade_loss.toml"), "--duration", "0.001", "--no-figures", "--quiet",
+                 "--out", str(tmp_path / "o")]) == 2
+    err = [line for line in capsys.readouterr().err.splitlines() if line.strip()]
+    assert len(err) == 1 and err[0].endswith("pedestal.h0.mass must be a finite number > 0, got 0.0"), err
+    assert not (tmp_path / "o").exists() and not (tmp_path / "c.png").exists()
+
+
+#: a second spool on nothing: no support, pedestal or bearing holds it
+FREE_SPOOL = """[spool.hp]
+speed_rpm = 20000.0
+material = "steel"
+z_mm = [300, 400, 500]
+d_out_mm = [120, 120]
+d_in_mm = [100, 100]
+drive_node = 0
+
+"""
+
+
+def test_a_spool_nothing_holds_is_named(tmp_path, capsys):
+    """An engine whose stiffness with its supports is singular (a spool left on nothing) ended check-engine and
+    critical-speeds in LAPACK's 'The leading minor of order 72 of B is not positive definite'; now one line
+    naming the spool."""
+    assert main(["new-engine", str(tmp_path / "X")]) == 0
+    f = tmp_path / "X" / "engine.toml"
+    f.write_text(f.read_text().replace("[pedestal.h0]", FREE_SPOOL + "[pedestal.h0]"))
+    capsys.readouterr()
+    for argv in (["check-engine", str(f), "--campbell", str(tmp_path / "c.png")], ["critical-speeds", "--model", str(f)]):
+        assert main(argv) == 2
+        err = [line for line in capsys.readouterr().err.splitlines() if line.strip()]
+        assert len(err) == 1 and err[0].endswith(
+            "error: the engine's stiffness with its supports is singular: spool 'hp' moves freely, held by no "
+            "spring (a spool needs supports, pedestals, attached bearings or intershaft bearings at two nodes or "
+            "more)"), err
+    assert not (tmp_path / "c.png").exists()
