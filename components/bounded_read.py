@@ -95,6 +95,18 @@ def read_text(path: str | os.PathLike, what: str, limit: int = MAX_TEXT_BYTES, e
     return read_bytes(path, what, limit).decode(encoding)
 
 
+def read_table_text(path: str | os.PathLike, what: str, limit: int = MAX_TEXT_BYTES) -> str:
+    """The text of a table a user wrote (a CSV file, often saved by a spreadsheet): a leading byte-order mark
+    dropped (a spreadsheet's "CSV UTF-8" writes one, which would stick to the first column's name), and bytes
+    that are not UTF-8 text refused in one line naming the file (a ValueError)."""
+    data = read_bytes(path, what, limit)
+    try:
+        return data.decode("utf-8-sig")
+    except UnicodeDecodeError as exc:
+        raise ValueError(f"{what} {path}: not UTF-8 text (byte {data[exc.start]:#04x} at position {exc.start}): "
+                         "save it as CSV, UTF-8") from None
+
+
 def entry_size(zf: zipfile.ZipFile, name: str | zipfile.ZipInfo, source: str,
                limit: int = MAX_ENTRY_BYTES) -> zipfile.ZipInfo:
     """The entry ``name`` of ``zf`` (KeyError when absent), refused when its directory gives more than ``limit``."""

@@ -26,7 +26,7 @@ from collections import namedtuple
 
 import numpy as np
 
-from ..bounded_read import read_text
+from ..bounded_read import read_table_text
 from .atmosphere import H_BOTTOM, H_TOP, density_altitude, isa, speed_of_sound, total_ratios
 
 FlightProfile = namedtuple("FlightProfile", "t mach theta delta")
@@ -41,7 +41,7 @@ MACH_MAX = 1.0
 def read_profile(path: str) -> FlightProfile:
     """The profile of the CSV file ``path`` (module docstring); a one-line ValueError naming the file, the line
     and the column of a fault."""
-    text = read_text(path, "flight profile")
+    text = read_table_text(path, "flight profile")
     rows, header = [], None
     for no, line in enumerate(text.splitlines(), 1):
         body = line.split("#", 1)[0].strip()

@@ -21,7 +21,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-from rotorcosim.components.bounded_read import read_text
+from rotorcosim.components.bounded_read import read_table_text
 
 #: a result is "within +-30 %" when 1 - BAND <= ours / target <= 1 + BAND, "within x2" when 0.5 <= ratio <= 2
 BAND = 0.30
@@ -91,7 +91,7 @@ def read_targets(path: str | Path, cases: dict[str, dict], residual: str = "log"
     path = Path(path)
     if not path.is_file():
         raise FileNotFoundError(f"targets file {path}: no such file")
-    text = read_text(path, "targets file")
+    text = read_table_text(path, "targets file")
     rows = list(csv.reader(line for line in text.splitlines() if line.strip() and not line.lstrip().startswith("#")))
     if not rows:
         raise TargetError(f"targets file {path}: empty")

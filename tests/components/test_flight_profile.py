@@ -120,3 +120,17 @@ def test_bad_profiles_are_one_line_errors_naming_the_parameter(tmp_path, text, m
         Spool("spool", {"inertia": 0.04, "profile": "torque", "speed_rpm": 16000.0, "windmill_rpm": 4900.0,
                         "aero_torque": 30.0, "flight_profile": path}).setup(0.0)
     assert "\n" not in str(err.value) and str(err.value).startswith("spool.flight_profile: ")
+
+
+def test_a_spreadsheets_byte_order_mark_is_dropped_and_other_bytes_named(tmp_path):
+    """A profile saved as "CSV UTF-8" by a spreadsheet starts with a byte-order mark: it used to make the header
+    ('3 values for the 1 columns \\ufeff'); bytes that are not UTF-8 ended in the codec's message, naming no file."""
+    text = "time_s, altitude_ft, mach\n0, 35000, 0.8\n600, 30000, 0.7\n"
+    plain = read_profile(_write(tmp_path, text))
+    bom = read_profile(_write(tmp_path, "\ufeff" + text, "bom.csv"))
+    assert np.array_equal(plain.t, bom.t) and np.array_equal(plain.mach, bom.mach)
+    bad = tmp_path / "bad.csv"
+    bad.write_bytes(b"\xff\xfetime_s")
+    with pytest.raises(ValueError) as err:
+        read_profile(str(bad))
+    assert str(err.value) == f"flight profile {bad}: not UTF-8 text (byte 0xff at position 0): save it as CSV, UTF-8"

@@ -220,3 +220,20 @@ def test_resume_into_a_folder_without_a_study_is_refused(tmp_path, capsys):
     rc, _, err = call(capsys, "uq", spec(tmp_path, UQ), "--out", tmp_path / "o", "--serial", "--resume")
     assert rc == 2 and "holds no study to resume" in error_line(err)
     assert not (tmp_path / "o").exists()
+
+
+def test_a_targets_table_from_a_spreadsheet_is_read_and_a_binary_one_named(tmp_path, capsys):
+    """A targets file saved as "CSV UTF-8" begins with a byte-order mark: it was refused as having no column
+    'case' (the first column read as '\\ufeffcase'); bytes that are not UTF-8 gave the codec's message alone."""
+    from rotorcosim.master.study.targets import read_targets
+
+    f = tmp_path / "t.csv"
+    f.write_text("\ufeffcase,result,value\n,final_outputs.m1.x,0.05\n", encoding="utf-8")
+    (target,) = read_targets(f, {})
+    assert (target.case, target.result, target.value) == ("", "final_outputs.m1.x", 0.05)
+    p = spec(tmp_path, CAL)
+    (tmp_path / "t.csv").write_bytes(b"case,result,value\n,final_outputs.m1.x,0.05\xff\n")
+    rc, _, err = call(capsys, "calibrate", p, "--out", tmp_path / "o", "--serial")
+    assert rc == 2 and error_line(err) == (f"rotorcosim calibrate: error: targets file {tmp_path / 't.csv'}: not "
+                                           "UTF-8 text (byte 0xff at position 42): save it as CSV, UTF-8")
+    assert not (tmp_path / "o").exists()
