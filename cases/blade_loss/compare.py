@@ -45,7 +45,8 @@ from rotorcosim.master.cli.run import add_edit_arguments, apply_edits, parse_set
 from rotorcosim.master import case
 
 from . import error_check
-from .results import apply_unbalance
+from .figures import is_paper_case
+from .results import apply_unbalance, bearing_ids, unbalance_force
 
 #: Table 6's rows (no rub power: there is no rub at 2850 N)
 KEYS = ("whirl_amplitude_mm", "transmissibility", "max_contact_load_N", "max_contact_stress_MPa", "drag_power_W",
@@ -73,6 +74,8 @@ REVOLUTIONS = 32.0
 TABLE = "table6.json"
 #: the summary key of the level the runs are made at (cases/blade_loss/results.py)
 LEVEL_KEY = "unbalance_N"
+#: Table 6's blade-loss force [N], the level of the paper's comparison
+TABLE6_UNBALANCE_N = 2850.0
 
 
 def add_arguments(p):
@@ -82,8 +85,9 @@ def add_arguments(p):
     p.add_argument("--duration", type=float, default=None,
                    help="simulated duration [s] (default 2, as the paper; a rundown scenario: the rundown plus 10 "
                         "minutes of windmilling, cases/rundown/compare.py)")
-    p.add_argument("--unbalance", type=float, default=None, help="blade-loss force [N] (default 2850; a rundown "
-                                                                 "scenario: its own level)")
+    p.add_argument("--unbalance", type=float, default=None,
+                   help="blade-loss force [N] (default 2850 for the shipped scenarios; a scenario of your own or "
+                        "a rundown scenario: its own level)")
     add_scenario(p, "blade_loss", note="the levels' base file, F_u = 2850 N as in blade_loss_2850 that run uses; "
                                        "the runs' results carry its name. blade_loss_rundown: staggered against "
                                        "monolithic over a rundown, rundown_compare.json")
@@ -92,8 +96,9 @@ def add_arguments(p):
     p.add_argument("--revolutions", type=float, default=None,
                    help=f"Table 6: rotor revolutions in all thermo-mechanical intervals of the staggered run "
                         f"(default {REVOLUTIONS:g}; the paper: 50)")
-    p.add_argument("--bearing", type=int, choices=(0, 5), default=None,
-                   help="Table 6: bearing of the table (default 0)")
+    p.add_argument("--bearing", default=None, metavar="ID",
+                   help="Table 6: bearing of the table, an id of the scenario's bearings (default: its first; 0 "
+                        "or 5 in the paper's engine)")
     p.add_argument("--no-figures", action="store_true",
                    help="skip the PNG figures of the two runs (they are drawn after both timed runs, untimed)")
     add_dpi(p)
@@ -148,14 +153,15 @@ def _staggered(sc, schedule: str, tolerance, duration: float, revolutions: float
                               float(s["speed_rpm"]), revolutions, quantum(sc))
 
 
-def compare(out: Path, duration=2.0, unbalance=2850.0, scenario="blade_loss", revolutions=REVOLUTIONS, bearing=0,
+def compare(out: Path, duration=2.0, unbalance=TABLE6_UNBALANCE_N, scenario="blade_loss", revolutions=REVOLUTIONS, bearing=0,
             quiet=True, figures=True, overwrite=False, schedule="paper", tolerance=None, monolithic=None,
             timing_runs=None, dpi=None, resume=False) -> dict:
     """Run the comparison into the folder ``out`` and return the table written to ``out/table6.json`` (see the
     module's docstring): the blade-loss case's use of :func:`rotorcosim.master.compare.compare_schemes`.
 
     ``duration`` [s] simulated; ``unbalance`` [N]; ``scenario`` (a name or file); ``revolutions``: rotor
-    revolutions [-] of the staggered run's TM intervals in all; ``bearing``: 0 or 5, the table's; ``quiet``: no
+    revolutions [-] of the staggered run's TM intervals in all; ``bearing``: the table's, an id of the
+    scenario's bearings (0 or 5 in the paper's engine); ``quiet``: no
     progress; ``figures``: draw each run's figures; ``overwrite``: replace a previous comparison in ``out``;
     ``schedule``: "paper" or "auto" for the staggered run, ``tolerance`` [%] for "auto"; ``monolithic``: a
     folder with a monolithic run to reuse; ``timing_runs``: how often the staggered run is timed (default 6);
@@ -188,6 +194,7 @@ def compare(out: Path, duration=2.0, unbalance=2850.0, scenario="blade_loss", re
     if sc.extra.get("results", {}).get("kind") != "blade_loss":  # before any run: Table 6 is bearing results
         raise ValueError(f"compare: scenario {sc.name!r} has no bearing results to compare ([results] kind = "
                          "\"blade_loss\" in the blade-loss scenarios)")
+    _check_bearing(sc, bearing)
     apply_unbalance(sc, unbalance)
     staggered = _staggered(sc, schedule, tolerance, duration, revolutions)
     mono = Timeline([Interval("TM", duration, float(sc.schedule.get("step", 1e-5)))])
@@ -214,6 +221,28 @@ def compare(out: Path, duration=2.0, unbalance=2850.0, scenario="blade_loss", re
                            timing_runs=(timing_runs or TIMING_RUNS) if schedule == "paper" else 1,
                            reuse=monolithic, reuse_check=lambda summary, f: _check_results(summary, f, bearing),
                            level=LevelValue(LEVEL_KEY, float(unbalance), "N"), same=("bearings",))
+
+
+def _check_bearing(sc, bearing) -> None:
+    """The table's bearing must be one of the scenario's, known before either run (after both, its results
+    were looked up and missing: "error: '0'", the runs' folders left without a table)."""
+    ids = bearing_ids(sc.components)
+    if str(bearing) not in ids:
+        raise ValueError(f"--bearing {bearing}: scenario {sc.name!r} has no bearing {bearing} (its bearings: "
+                         f"{', '.join(ids) or 'none'})")
+
+
+def table_bearing(sc, text: str | None):
+    """The table's bearing from ``--bearing`` (None: the scenario's first): a number where the id is one, as
+    table6.json has always written the paper's 0 and 5."""
+    text = bearing_ids(sc.components)[0] if text is None and bearing_ids(sc.components) else text
+    return int(text) if text is not None and text.isdecimal() and str(int(text)) == text else text
+
+
+def default_unbalance(sc) -> float:
+    """The level of a comparison given no ``--unbalance``: Table 6's 2850 N for the shipped scenarios; a
+    scenario of one's own keeps its own blade-loss force (2850 N is a blade of the paper's engine)."""
+    return TABLE6_UNBALANCE_N if is_paper_case(sc, TABLE6_UNBALANCE_N) else unbalance_force(sc)
 
 
 def _check_results(summary: dict, f: Path, bearing: int) -> None:
@@ -248,9 +277,8 @@ def run(args) -> int:
         raise ValueError("compare: --set / --swap apply to a case's own comparison (blade_loss_rundown); Table 6 "
                          "compares the scenario as it is (give --unbalance for its level)")
     t = compare(Path(args.out), 2.0 if args.duration is None else args.duration,
-                2850.0 if args.unbalance is None else args.unbalance, args.scenario,
-                REVOLUTIONS if args.revolutions is None else args.revolutions,
-                0 if args.bearing is None else args.bearing,
+                default_unbalance(sc) if args.unbalance is None else args.unbalance, args.scenario,
+                REVOLUTIONS if args.revolutions is None else args.revolutions, table_bearing(sc, args.bearing),
                 quiet=args.quiet, figures=not args.no_figures, overwrite=args.overwrite,
                 schedule=args.schedule or "paper", tolerance=args.tolerance, monolithic=args.monolithic,
                 timing_runs=args.timing_runs, resume=args.resume, dpi=args.dpi)

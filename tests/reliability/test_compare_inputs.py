@@ -1,6 +1,7 @@
 """`rotorcosim compare`'s inputs: a scenario without bearing results, and --monolithic folders that are not the
 monolithic run this comparison needs (another scenario, a damaged summary): one line before any run."""
 import json
+from pathlib import Path
 
 import pytest
 
@@ -112,3 +113,31 @@ def test_a_table_without_its_runs_is_a_previous_comparison(tmp_path, capsys):
     err = capsys.readouterr().err.strip().splitlines()
     assert len(err) == 1 and "already holds a comparison (table6.json)" in err[0], err
     assert (out / "table6.json").read_text() == "{}"
+
+
+EXAMPLES = Path(__file__).resolve().parents[2] / "docs" / "examples"
+
+
+def test_a_bearing_the_scenario_does_not_have_is_refused_before_any_run(tmp_path, capsys):
+    """An engine of bearings 1, 2, 3: the table's bearing 0 was looked up after both runs ("error: '0'", their
+    folders left without a table), and --bearing took only 0 or 5."""
+    scenario = str(EXAMPLES / "three_bearings" / "blade_loss.toml")
+    rc = main(["compare", scenario, "--bearing", "0", "--duration", "0.2", "--revolutions", "4", "--no-figures",
+               "--quiet", "--out", str(tmp_path / "o")])
+    err = [line for line in capsys.readouterr().err.splitlines() if line.strip()]
+    assert rc == 2 and err == ["rotorcosim compare: error: --bearing 0: scenario 'three_bearings_blade_loss' has "
+                               "no bearing 0 (its bearings: 1, 2, 3)"], err
+    assert not (tmp_path / "o").exists()
+
+
+def test_an_own_engine_is_compared_at_its_own_level_and_first_bearing():
+    """Without --unbalance or --bearing, a scenario of one's own ran at the paper's 2850 N (its own blade is
+    1500 N) and tabled bearing 0; the shipped scenarios keep Table 6's 2850 N and bearing 0."""
+    from rotorcosim.cases.blade_loss.compare import default_unbalance, table_bearing
+    from rotorcosim.master.cli.run import resolve
+
+    own = resolve(str(EXAMPLES / "three_bearings" / "blade_loss.toml"))
+    assert default_unbalance(own) == 1500.0 and table_bearing(own, None) == 1 and table_bearing(own, "3") == 3
+    for name in ("blade_loss", "blade_loss_712"):
+        paper = resolve(name)
+        assert default_unbalance(paper) == 2850.0 and table_bearing(paper, None) == 0
