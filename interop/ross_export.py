@@ -1,7 +1,8 @@
 """An engine of rotorcosim's format as a ``ross.Rotor`` (needs ROSS: ``pip install "rotorcosim[ross]"``).
 
 What goes over: each shaft section as a uniform ``ShaftElement`` (the material's E, G, rho; the [damping]
-table's Rayleigh coefficients on every element when ``damped``), disks as ``DiskElement``, linear supports as
+table's Rayleigh coefficients plus the spool's own ``rayleigh`` on every element when ``damped``; the spool's
+``shear_effects`` and ``rotary_inertia``), disks as ``DiskElement``, linear supports as
 ``BearingElement`` (to ground, or through ``n_link`` to a pedestal's node, which carries the pedestal's mass as a
 ``PointMass`` and its springs to ground). The co-simulated bearings the file attaches are linearised as
 ``rotorcosim critical-speeds`` does (the scenario's ball contacts at the preloaded rest -> outer race + journal
@@ -88,18 +89,22 @@ def to_ross(engine, *, scenario=None, damped: bool = True, fuse_stage: int = 0):
             raise ValueError(f"{where}: spool.{sname}.layers: to_ross carries layered sections on a single spool "
                              "only (ROSS's CoAxialRotor numbers its elements itself)")
         elems = []
+        beam = fem.element_options(sp, sname, len(z) - 1)
         for e in range(len(z) - 1):
+            # the element's own Rayleigh damping on top of the structure's (both C = alpha M + beta K of it)
+            opts = {"alpha": alpha + (beam.alpha[e] if damped else 0.0),
+                    "beta": beta + (beam.beta[e] if damped else 0.0),
+                    "shear_effects": beam.shear, "rotary_inertia": beam.rotary}
             # a layered section: ROSS's further ShaftElement between the same two nodes (n given)
             elems.append(rs.ShaftElement(L=z[e + 1] - z[e], idl=d_in[e], odl=d_out[e], material=material,
-                                         alpha=alpha, beta=beta, tag=f"{sname} section {e}",
-                                         **({"n": e} if layers else {})))
+                                         tag=f"{sname} section {e}", **opts, **({"n": e} if layers else {})))
             for i, layer in enumerate(x for x in layers if x["element"] == e):
                 lm = data["material"][layer.get("material", sp.get("material", "rotor"))]
                 lmat = rs.Material(name=layer.get("material", "layer"), rho=lm["rho"], E=lm["E"],
                                    G_s=lm["G"] if "G" in lm else lm["E"] / (2.0 * (1.0 + lm["nu"])))
                 elems.append(rs.ShaftElement(L=z[e + 1] - z[e], idl=layer["d_in_mm"] * 1e-3,
-                                             odl=layer["d_out_mm"] * 1e-3, material=lmat, alpha=alpha, beta=beta,
-                                             n=e, tag=f"{sname} section {e} layer {i}"))
+                                             odl=layer["d_out_mm"] * 1e-3, material=lmat, n=e,
+                                             tag=f"{sname} section {e} layer {i}", **opts))
         shafts.append(elems)
         n_next += len(z)
 

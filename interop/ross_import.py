@@ -16,8 +16,9 @@
   (linear interpolation); mass coefficients are errors;
 * each spool turns at ``speed_rpm`` (ROSS's files carry no operating speed); its torsion and axial motion are
   held at its first node (ROSS leaves them free: rigid modes that no lateral result depends on);
-* no structural damping ([damping] zeta = 0, as ROSS's shaft elements with alpha = beta = 0; other values are
-  an error).
+* the shaft elements' options: ROSS's ``alpha``, ``beta`` (Rayleigh damping of each element, C_e = alpha M_e +
+  beta K_e) as the spool's ``rayleigh``, ``shear_effects = false`` (Euler-Bernoulli) and ``rotary_inertia =
+  false`` as the spool's keys of those names; no structural damping besides ([damping] zeta = 0).
 
 ``attach`` makes ROSS bearings the co-simulated ball bearings ("bearing<ID>": any number, any ids): a bearing to
 ground has its linear coefficients become a pedestal (the housing, ``hub_mass_kg``) on which the ball bearing and
@@ -162,13 +163,9 @@ def from_ross(rotor, *, speed_rpm: float | None = None, speed_rpm_coefficients: 
             raise RossImportError(f"ROSS shaft element {e['tag']!r} is tapered (odl {e['odl']}, odr {e['odr']}, idl "
                                   f"{e['idl']}, idr {e['idr']} m); the engine format has uniform sections: split it "
                                   "into uniform elements in ROSS")
-        if float(e.get("alpha", 0.0)) != 0.0 or float(e.get("beta", 0.0)) != 0.0:
-            raise RossImportError(f"ROSS shaft element {e['tag']!r}: Rayleigh damping alpha/beta per element is not "
-                                  "carried (engine format: one [damping] for the structure)")
-        for flag in ("shear_effects", "rotary_inertia", "gyroscopic"):
-            if e.get(flag, True) is False:
-                raise RossImportError(f"ROSS shaft element {e['tag']!r}: {flag} = false is not carried (rotorcosim's "
-                                      "elements are Timoshenko beams with rotary inertia and gyroscopic terms)")
+        if e.get("gyroscopic", True) is False:
+            raise RossImportError(f"ROSS shaft element {e['tag']!r}: gyroscopic = false is not carried (rotorcosim's "
+                                  "elements always have their gyroscopic terms)")
     # layered sections: a second (third...) element between the same two nodes becomes a layer of the first
     layered: dict[int, list[dict]] = {}
     main = []
@@ -224,7 +221,8 @@ def from_ross(rotor, *, speed_rpm: float | None = None, speed_rpm_coefficients: 
                               "z_mm": [v * 1e3 for v in z],
                               "d_out_mm": [float(e["odl"]) * 1e3 for e in chain],
                               "d_in_mm": [float(e["idl"]) * 1e3 for e in chain],
-                              "drive_node": 0, "axial_node": 0, "disks": []}
+                              "drive_node": 0, "axial_node": 0, "disks": [],
+                              **_beam_options(s, chain, layered)}
         if layers:
             engine["spool"][s]["layers"] = layers
 
@@ -355,6 +353,35 @@ def from_ross(rotor, *, speed_rpm: float | None = None, speed_rpm_coefficients: 
             "unbalance": {"node": node(int(unbalance_node), "unbalance")},
             "oil_temperature_C": 30.0}
     return engine
+
+
+def _beam_options(s: str, chain: list[dict], layered: dict[int, list[dict]]) -> dict:
+    """The spool keys of ROSS's element options along ``chain`` (its elements, ``layered``: their layers by
+    ROSS element number): ``shear_effects`` and ``rotary_inertia`` where false (one value per spool: mixed values
+    are an error naming the shaft), and ``rayleigh`` (alpha, beta: one number where every element has the same,
+    else one per element; a layer must have its element's) where any is not 0."""
+    out: dict = {}
+    for flag in ("shear_effects", "rotary_inertia"):
+        values = {bool(x.get(flag, True)) for e in chain for x in [e, *layered.get(int(e["n"]), [])]}
+        if len(values) > 1:
+            raise RossImportError(f"ROSS shaft {s}: elements with {flag} true and false; the engine format has one "
+                                  f"{flag} per spool")
+        if values == {False}:
+            out[flag] = False
+    ray = {}
+    for key in ("alpha", "beta"):
+        vals = [float(e.get(key, 0.0)) for e in chain]
+        for e, v in zip(chain, vals):
+            for x in layered.get(int(e["n"]), []):
+                if float(x.get(key, 0.0)) != v:
+                    raise RossImportError(f"ROSS shaft element {x['tag']!r}: a layer of Rayleigh {key} "
+                                          f"{x.get(key, 0.0)!r} on an element of {v!r}; the engine format gives a "
+                                          "layer its element's")
+        if any(v != 0.0 for v in vals):
+            ray[key] = vals[0] if len(set(vals)) == 1 else vals
+    if ray:
+        out["rayleigh"] = ray
+    return out
 
 
 def _number(e: dict, key: str, what: str, *, positive: bool = False, inner_of: str | None = None) -> float:

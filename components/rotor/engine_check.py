@@ -138,6 +138,13 @@ def problems(data: dict) -> list[str]:
         if "drive_node" not in r:
             p.add(w, "drive_node missing (the node whose torsion is held: the spool turns at constant speed)")
         _layers(p, w, r, len(z), mats)
+        for key, v in r.get("rayleigh", {}).items():
+            vals = v if isinstance(v, list) else [v]
+            if isinstance(v, list) and len(v) != ne:
+                p.add(f"{w}.rayleigh.{key}", f"needs {ne} values (one per element) or one number, got {len(v)}")
+                continue
+            for e, x in enumerate(vals):
+                p.value(f"{w}.rayleigh.{key}" + (f"[{e}]" if isinstance(v, list) else ""), x, positive=False)
         for i, dk in enumerate(r.get("disks", [])):
             dw = f"{w}.disks[{i}] ({dk.get('name', '')!r})" if isinstance(dk, dict) else f"{w}.disks[{i}]"
             if not isinstance(dk, dict):

@@ -23,7 +23,7 @@ from __future__ import annotations
 
 import difflib
 
-NUMBER, INT, STR, KNOB = "number", "int", "str", "knob"
+NUMBER, INT, STR, KNOB, BOOL = "number", "int", "str", "knob", "bool"
 NODE, END = "node", "end"
 
 
@@ -36,6 +36,10 @@ def _coef():
     return ("number|list", NUMBER)
 
 
+#: a spool's per-element value: a number for every element, or one per element
+PER_ELEMENT = ("number|list", NUMBER, "one per element")
+
+
 #: the engine format's tables and keys and the kind of each
 DISK = _table({"node": INT, "name": STR, "mass": KNOB, "Ip": NUMBER, "Id": NUMBER, "r_gyration_mm": NUMBER},
               "node, name, mass, Ip, Id")
@@ -43,7 +47,9 @@ LAYER = _table({"element": INT, "d_out_mm": NUMBER, "d_in_mm": NUMBER, "material
                "element, d_out_mm, d_in_mm, material")
 SPOOL = _table({"name": STR, "speed_rpm": NUMBER, "material": STR, "z_mm": ("list", NUMBER),
                 "d_out_mm": ("list", KNOB), "d_in_mm": ("list", KNOB), "drive_node": INT, "axial_node": INT,
-                "disks": ("array", DISK), "layers": ("array", LAYER)},
+                "disks": ("array", DISK), "layers": ("array", LAYER), "shear_effects": BOOL,
+                "rotary_inertia": BOOL,
+                "rayleigh": _table({"alpha": PER_ELEMENT, "beta": PER_ELEMENT}, "alpha, beta")},
                "speed_rpm, z_mm, d_out_mm, d_in_mm, drive_node, disks...")
 SUPPORT = _table({"name": STR, "a": NODE, "b": END, "speed_rpm": ("list", NUMBER),
                   **{k: _coef() for k in ("k", "c", "kxx", "kyy", "kxy", "kyx", "cxx", "cyy", "cxy", "cyx")},
@@ -100,6 +106,8 @@ def _expected(kind) -> str:
         return "an integer"
     if kind == STR:
         return "a string"
+    if kind == BOOL:
+        return "true or false"
     if kind == KNOB:
         return "a number or the name of a [calibration] value"
     if kind == NODE:
@@ -111,7 +119,7 @@ def _expected(kind) -> str:
         return {NUMBER: "a list of numbers", KNOB: "a list of numbers (or [calibration] names)",
                 INT: "a list of integers"}.get(kind[1], "a list")
     if tag == "number|list":
-        return "a number, or a list of numbers (one per speed_rpm)"
+        return f"a number, or a list of numbers ({kind[2] if len(kind) > 2 else 'one per speed_rpm'})"
     if tag == "table":
         return f"a table ({kind[2]})" if kind[2] else "a table"
     if tag == "tables":
@@ -140,6 +148,9 @@ def _check(out: list, where: str, v, kind) -> None:
             bad()
     elif kind == STR:
         if not isinstance(v, str):
+            bad()
+    elif kind == BOOL:
+        if not isinstance(v, bool):
             bad()
     elif kind == KNOB:
         if not (_is_num(v) or isinstance(v, str)):

@@ -363,6 +363,7 @@ def _assemble(data: dict, digest: str, omega_pt: float | None, omega_gg: float |
     M = np.zeros((ntot, ntot))
     K = np.zeros((ntot, ntot))
     G = {s: np.zeros((ntot, ntot)) for s in names}
+    C_shafts = np.zeros((ntot, ntot))   # the spools' own Rayleigh damping, element by element (ROSS's alpha, beta)
 
     # spools: Timoshenko shaft elements and disks
     for s in names:
@@ -372,16 +373,19 @@ def _assemble(data: dict, digest: str, omega_pt: float | None, omega_gg: float |
         if len(d_out) != len(z[s]) - 1 or len(d_in) != len(z[s]) - 1:
             raise ValueError(f"rotor model: spool.{s} needs {len(z[s]) - 1} section diameters (one per element "
                              f"between its {len(z[s])} stations), got {len(d_out)} outer and {len(d_in)} inner")
+        beam = element_options(r, s, len(z[s]) - 1)
         for e in range(len(z[s]) - 1):
             if not d_in[e] < d_out[e]:
                 raise ValueError(f"rotor model: spool.{s} section {e}: inner diameter {d_in[e] * 1e3:g} mm is not "
                                  f"smaller than the outer {d_out[e] * 1e3:g} mm")
-            ke, me, ge = shaft_element(z[s][e + 1] - z[s][e], E, Gmod, rho, d_out[e], d_in[e])
+            ke, me, ge = shaft_element(z[s][e + 1] - z[s][e], E, Gmod, rho, d_out[e], d_in[e], beam.shear,
+                                       beam.rotary)
             idx = np.arange(base[s] + 6 * e, base[s] + 6 * e + 12)
             K[np.ix_(idx, idx)] += ke
             M[np.ix_(idx, idx)] += me
             G[s][np.ix_(idx, idx)] += ge
-        _add_layers(data, s, z[s], base[s], K, M, G[s])
+            C_shafts[np.ix_(idx, idx)] += beam.alpha[e] * me + beam.beta[e] * ke
+        _add_layers(data, s, z[s], base[s], K, M, G[s], C_shafts, beam)
         for dk in r.get("disks", []):
             m_d, Ip, Id = disk_inertia(data, dk)
             for k, v in (("mass", m_d), ("Ip", Ip), ("Id", Id)):
@@ -420,7 +424,7 @@ def _assemble(data: dict, digest: str, omega_pt: float | None, omega_gg: float |
                 M[np.ix_(idx, idx)] += me
 
     K_struct = K.copy()   # Rayleigh damping acts on the elastic elements only (the supports have their own)
-    C = np.zeros((ntot, ntot))
+    C = C_shafts
 
     # casing hubs and struts (spring elements in the local radial / tangential / axial frame)
     if cas is not None:
@@ -614,10 +618,40 @@ def _mount_dof(gdof, where: str, spring, rings, nc: int, base_sh: int, shell_nod
         raise ValueError(f"{where}: {str(exc).removeprefix('rotor model: ')}") from None
 
 
-def _add_layers(data: dict, s: str, z, base: int, K, M, G) -> None:
+@dataclass(frozen=True)
+class ElementOptions:
+    """A spool's beam options (engine format: ``shear_effects``, ``rotary_inertia``, ``rayleigh``): Timoshenko
+    (``shear``) or Euler-Bernoulli beams, with or without rotary inertia in the mass matrix (the gyroscopic terms
+    stay), and each element's own Rayleigh damping C_e = alpha_e M_e + beta_e K_e (ROSS's ShaftElement alpha,
+    beta), per element."""
+
+    shear: bool
+    rotary: bool
+    alpha: tuple[float, ...]
+    beta: tuple[float, ...]
+
+
+def element_options(spool: dict, s: str, ne: int) -> ElementOptions:
+    """The :class:`ElementOptions` of spool ``s`` (its table ``spool``, ``ne`` elements)."""
+    ray = spool.get("rayleigh", {})
+
+    def per_element(key):
+        v = ray.get(key, 0.0)
+        vals = list(v) if isinstance(v, list) else [v] * ne
+        if len(vals) != ne:
+            raise ValueError(f"rotor model: spool.{s}.rayleigh.{key} needs one value per element ({ne}), got "
+                             f"{len(vals)}")
+        return tuple(_nonneg(f"spool.{s}.rayleigh.{key}[{e}]", x) for e, x in enumerate(vals))
+
+    return ElementOptions(bool(spool.get("shear_effects", True)), bool(spool.get("rotary_inertia", True)),
+                          per_element("alpha"), per_element("beta"))
+
+
+def _add_layers(data: dict, s: str, z, base: int, K, M, G, C, beam: ElementOptions) -> None:
     """The spool's ``layers``: a second (third...) shaft element between the nodes of an element, of its own
     section and material (a sleeve, a shrunk-on hub, ROSS's layered sections), added to the element's matrices
-    (the beam's stiffness, mass and gyroscopic terms are additive over concentric tubes)."""
+    (the beam's stiffness, mass, gyroscopic and Rayleigh damping terms are additive over concentric tubes; a
+    layer takes its element's ``beam`` options)."""
     ne = len(z) - 1
     for i, layer in enumerate(data["spool"][s].get("layers", [])):
         where = f"spool.{s}.layers[{i}]"
@@ -630,11 +664,12 @@ def _add_layers(data: dict, s: str, z, base: int, K, M, G) -> None:
         if not d_in < d_out:
             raise ValueError(f"rotor model: {where}: inner diameter {d_in * 1e3:g} mm is not smaller than the outer "
                              f"{d_out * 1e3:g} mm")
-        ke, me, ge = shaft_element(z[e + 1] - z[e], E, Gmod, rho, d_out, d_in)
+        ke, me, ge = shaft_element(z[e + 1] - z[e], E, Gmod, rho, d_out, d_in, beam.shear, beam.rotary)
         idx = np.arange(base + 6 * e, base + 6 * e + 12)
         K[np.ix_(idx, idx)] += ke
         M[np.ix_(idx, idx)] += me
         G[np.ix_(idx, idx)] += ge
+        C[np.ix_(idx, idx)] += beam.alpha[e] * me + beam.beta[e] * ke
 
 
 #: the coefficients of a support, x y direct and cross-coupled

@@ -19,7 +19,7 @@ from rotorcosim.master.cli import main
 CANDIDATES = {"number": 7.5, "string": "x", "list": [1.0, 2.0], "table": {"a": 1.0}, "boolean": True}
 #: what each kind of key accepts (written here, independently of the module under test)
 ACCEPTS = {"number": {"number", "integer"}, "int": {"integer"}, "str": {"string"},
-           "knob": {"number", "integer", "string"}, "node": set(), "end": {"string"}}
+           "knob": {"number", "integer", "string"}, "node": set(), "end": {"string"}, "bool": {"boolean"}}
 
 
 def _engine() -> dict:
@@ -27,6 +27,8 @@ def _engine() -> dict:
     data = copy.deepcopy(data)
     data["pedestal"] = {"p1": {"mass": 2.0, "k": 1e8, "c": 100.0, "k_axial": 1e8}}
     data["spool"]["pt"]["layers"] = [{"element": 5, "d_out_mm": 70.0, "d_in_mm": 66.0, "material": "rotor"}]
+    data["spool"]["gg"].update({"shear_effects": True, "rotary_inertia": False, "rayleigh": {"alpha": 1.0}})
+    data["spool"]["pt"]["rayleigh"] = {"beta": [1e-6] * (len(data["spool"]["pt"]["z_mm"]) - 1)}
     data["support"].append({"name": "seal", "a": ["pt", 10], "b": "ground", "speed_rpm": [5000.0, 10000.0],
                             "kxx": [1e5, 2e5], "kyy": [1e5, 2e5], "kxy": [3e5, 4e5], "kyx": [-3e5, -4e5],
                             "cxx": 500.0, "cyy": 500.0, "cxy": 10.0, "cyx": -10.0})
@@ -302,3 +304,19 @@ def test_windmill_range_without_a_diagram_is_refused(capsys):
     err = [line for line in capsys.readouterr().err.splitlines() if line.strip()]
     assert rc == 2 and err == ["rotorcosim critical-speeds: error: --windmill-rpm marks the Campbell diagram: give "
                                "--campbell FILE.png too"], err
+
+
+@pytest.mark.parametrize("rayleigh, message", [
+    ({"alpha": -1.0}, "spool.gg.rayleigh.alpha: must be a finite number >= 0, got -1.0"),
+    ({"beta": [1e-6, 1e-6]}, "spool.gg.rayleigh.beta: needs 15 values (one per element) or one number, got 2"),
+    ({"alpha": [1.0] * 14 + [float("nan")]}, "spool.gg.rayleigh.alpha[14]: must be a finite number >= 0, got nan"),
+])
+def test_a_bad_rayleigh_value_is_named(rayleigh, message):
+    from rotorcosim.components.rotor.engine_check import problems
+
+    data = _engine()
+    assert len(data["spool"]["gg"]["z_mm"]) == 16
+    data["spool"]["gg"]["rayleigh"] = rayleigh
+    assert problems(data)[0] == message
+    with pytest.raises(ValueError, match="rayleigh"):
+        fem.build(data)
