@@ -110,22 +110,25 @@ def full_model(model_file: str = "", omega_pt=None, omega_gg=None) -> fem.FullMo
 
 def reduced_model(model_file: str, n_modes: int, omega_pt: float, omega_gg: float) -> dict:
     """MTA-reduced matrices (eqs. 20-22) and the port rows of the basis, in the order of attach.py's groups and
-    ports for the model's bearings and rub rings (``layout``); cached per process."""
+    ports for the model's bearings and rub rings (``layout``); cached per process. Supports with coefficients over
+    speed have them at ``omega_pt`` (the first spool's speed)."""
     full = full_model(model_file, omega_pt, omega_gg)
-    tables = full.info.get("speed_supports")
-    if tables:
-        raise ValueError(f"rotor model file {model_file}: support {tables[0]['name']!r} has coefficients over speed "
-                         "or cross-coupled ones, which the co-simulated rotor does not take (constant, direct "
-                         "coefficients only); its critical speeds: rotorcosim critical-speeds --model FILE")
     lay = attach.layout_of_ports(full.ports)
     fem.require_ports(full, attach.load_groups(lay))
     key = (full.digest, int(n_modes), float(omega_pt), float(omega_gg))
     red = _REDUCED.get(key)
     if red is None:
         load_dofs = np.concatenate([full.ports[g] for g in attach.load_groups(lay)])
-        basis, n_aug = mta_basis(full.K, full.M, int(n_modes), load_dofs)
+        speed_supports = bool(full.info.get("speed_supports"))
+        # cross-coupled supports make K unsymmetric: the basis is of its symmetric part (a Ritz basis: the
+        # projection below takes K whole)
+        basis, n_aug = mta_basis(0.5 * (full.K + full.K.T) if speed_supports else full.K, full.M, int(n_modes),
+                                 load_dofs)
         C = full.C + omega_pt * full.G_pt + omega_gg * full.G_gg
         Mr, Cr, Kr = project(basis, full.M, C, full.K)
+        if speed_supports:    # their coefficients at the first spool's speed (the file's K, C hold its speed_rpm's)
+            dK, dC = fem.projected_support_delta(full, basis, omega_pt)
+            Kr, Cr = Kr + dK, Cr + dC
         in_dofs = np.concatenate([full.ports[g] for _, g, _, _ in attach.input_ports(lay)]
                                  + [full.ports["unbalance"]])
         out_dofs = np.concatenate([full.ports[g] for g, _, _, _, _ in attach.output_ports(lay)])

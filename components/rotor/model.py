@@ -738,6 +738,23 @@ def _couple_2x2(A, dofs, k2) -> None:
         A[np.ix_(b, a)] -= k2
 
 
+def projected_support_delta(full: "FullModel", basis: np.ndarray, w: float) -> tuple[np.ndarray, np.ndarray]:
+    """:func:`speed_support_delta` projected on ``basis`` (the full model's DOFs by the reduced ones), support
+    by support: B^T dK B and B^T dC B with, for a support between nodes a and b (or ground), its 2x2 change
+    acting on u_a - u_b: (B_a - B_b)^T dk (B_a - B_b). Zero matrices for an engine without such supports."""
+    m = basis.shape[1]
+    dK, dC = np.zeros((m, m)), np.zeros((m, m))
+    for t in full.info.get("speed_supports", []):
+        k1, c1 = support_matrices(t, w)
+        k0, c0 = support_matrices(t, t["speed_rad_s"])
+        D = basis[list(t["dofs"][:2])]
+        if t["dofs"][2] is not None:
+            D = D - basis[list(t["dofs"][2:])]
+        dK += D.T @ (k1 - k0) @ D
+        dC += D.T @ (c1 - c0) @ D
+    return dK, dC
+
+
 def speed_support_delta(full: "FullModel", w: float, n: int | None = None) -> tuple[np.ndarray, np.ndarray]:
     """(dK, dC): what the speed-dependent supports add at the speed w [rad/s] of the first spool beyond what the
     assembled K and C hold (their coefficients at the file's speed); ``n`` the size of the matrices (the model's,

@@ -3,7 +3,7 @@
 The model (:class:`~rotorcosim.components.rotor.model.FullModel`, optionally with its co-simulated bearings
 linearised, :meth:`FullModel.coupled`) under a force of amplitude F rotating forward at the first spool's
 speed Omega at one node: (K - Omega^2 M + i Omega (C + Omega G_1 + Omega r G_2)) X = F (1, -i) in (x, y), r the
-second spool's speed ratio. The complex amplitudes X of every DOF are returned; a node's x amplitude is |X_x|.
+second spool's speed ratio, K and C with the speed-dependent supports' coefficients at Omega. The complex amplitudes X of every DOF are returned; a node's x amplitude is |X_x|.
 
 Example::
 
@@ -16,7 +16,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .model import RPM, FullModel
+from .model import RPM, FullModel, speed_support_delta
 
 
 def unbalance_response(model: FullModel, supports: dict | None, node: tuple, force: float, rpm: float,
@@ -27,7 +27,11 @@ def unbalance_response(model: FullModel, supports: dict | None, node: tuple, for
     r = model.omega_gg / model.omega_pt
     s = model.coupled(supports) if supports is not None else {
         "M": model.M, "K": model.K, "C": model.C, "G_pt": model.G_pt, "G_gg": model.G_gg}
-    A = s["K"] - W ** 2 * s["M"] + 1j * W * (s["C"] + W * s["G_pt"] + W * r * s["G_gg"])
+    K, C = s["K"], s["C"]
+    if model.info.get("speed_supports"):   # their coefficients at this speed (K and C hold the file's speed_rpm's)
+        dK, dC = speed_support_delta(model, W, K.shape[0])
+        K, C = K + dK, C + dC
+    A = K - W ** 2 * s["M"] + 1j * W * (C + W * s["G_pt"] + W * r * s["G_gg"])
     f = np.zeros(A.shape[0], complex)
     ux = model.info["dof"](node[0], node[1], 0)
     uy = model.info["dof"](node[0], node[1], 1)

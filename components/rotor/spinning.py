@@ -7,7 +7,9 @@ inputs (``Omega_pt``, ``dOmega_pt``, ``Omega_gg``, from the spools, components/s
   the reference speeds W (the parameters ``omega_pt``, ``omega_gg``) where the reduced model was projected:
   projected once, scaled per step. The Newmark step map is rebuilt whenever a speed has left the one it was
   built for by more than ``gyro_tolerance`` of its reference speed (the kernel hands that step to Python, status
-  PYTHON), so the gyroscopic terms lag the speed by at most that fraction (default 1e-3);
+  PYTHON), so the gyroscopic terms lag the speed by at most that fraction (default 1e-3); supports whose
+  coefficients change with speed (model.py, ``speed_supports``) are taken at the power turbine's speed of the
+  step map in the same way (model.projected_support_delta);
 * unbalance: the force of a mass ``m e`` at the rotor's angle ``theta`` on the shaft is the reaction to the mass's
   acceleration, ``-m e d^2(e^{i theta})/dt^2 / e = m e (Omega^2 - i dOmega/dt) e^{i theta}``: ``m e Omega^2``
   outwards and the tangential ``m e dOmega/dt`` 90 deg behind, against the sense of rotation, while the speed
@@ -38,6 +40,7 @@ import numpy as np
 from ..contract import ContractError, Variable
 from ..kernels import PYTHON
 from ..numba_internals import kernel_jit
+from . import model as fem
 from .component import Rotor, full_model
 from .kernel import advance, pack
 from .newmark import initial_acceleration, step_operator
@@ -129,9 +132,14 @@ class SpinningRotor(Rotor):
             B = red["basis"]
             _GYRO[key] = (B.T @ full.G_pt @ B, B.T @ full.G_gg @ B)
         self._G = _GYRO[key]
-        # no gyroscopic coupling (a spool without polar inertia): the step map never depends on its speed
-        self._tol = np.array([math.inf if not np.any(g) else p["gyro_tolerance"] * abs(w)
-                              for g, w in zip(self._G, self._op)])
+        self._full = full
+        # supports whose coefficients change with the first spool's speed: the step map depends on it as on the
+        # gyroscopic terms
+        tables = bool(full.info.get("speed_supports"))
+        # no gyroscopic coupling (a spool without polar inertia) and no such support: the step map never depends
+        # on that spool's speed
+        self._tol = np.array([math.inf if not (np.any(g) or (tables and i == 0)) else p["gyro_tolerance"] * abs(w)
+                              for i, (g, w) in enumerate(zip(self._G, self._op))])
         self.state["ang"] = np.array([0.0, 0.0, float(p["omega_pt"])])
         if p["start_synchronous"]:
             w, wg = float(self.u["Omega_pt"][0]), float(self.u["Omega_gg"][0])
@@ -151,8 +159,7 @@ class SpinningRotor(Rotor):
         if t0 >= p["t_blade_loss"]:
             Fh = Fh + p["F_unbalance"] * np.exp(1j * p["unbalance_phase"]) * np.array([1.0, -1.0j])
         Fh = Fh * (w / W) ** 2
-        C = red["C"] + (w - W) * self._G[0] + (wg - float(p["omega_gg"])) * self._G[1]
-        K = red["K"]
+        K, C = self._at_speeds(w, wg)
         if p["start_support"]:
             # the support's force -(k x + c v) at the port, taken into the orbit's equation (and the start
             # acceleration's): the orbit a support component carries from t0, which hands its own force over
@@ -205,15 +212,27 @@ class SpinningRotor(Rotor):
             fy += p["F_unbalance"] * scale * math.sin(ph)
         return fx, fy
 
+    def _at_speeds(self, w: float, wg: float) -> tuple[np.ndarray, np.ndarray]:
+        """The reduced K and C at the speeds ``w`` (power turbine, the first spool) and ``wg`` [rad/s]: the
+        gyroscopic terms, and the speed-dependent supports' coefficients at w, moved from the reference speeds'."""
+        red, p = self._red, self.p
+        K, C = red["K"], red["C"]
+        if (w, wg) == (p["omega_pt"], p["omega_gg"]):
+            return K, C
+        C = C + (w - p["omega_pt"]) * self._G[0] + (wg - p["omega_gg"]) * self._G[1]
+        if self._full.info.get("speed_supports"):
+            dK1, dC1 = fem.projected_support_delta(self._full, red["basis"], w)
+            dK0, dC0 = fem.projected_support_delta(self._full, red["basis"], float(p["omega_pt"]))
+            K, C = K + (dK1 - dK0), C + (dC1 - dC0)
+        return K, C
+
     def _operators(self, h):
         key = (float(f"{h:.12g}"), self._op)
         ops = self._ops.get(key)
         if ops is None:
             red, p = self._red, self.p
-            C = red["C"]
-            if self._op != (p["omega_pt"], p["omega_gg"]):
-                C = C + (self._op[0] - p["omega_pt"]) * self._G[0] + (self._op[1] - p["omega_gg"]) * self._G[1]
-            T, B = step_operator(red["M"], C, red["K"], key[0], p["newmark_beta"], p["newmark_gamma"])
+            K, C = self._at_speeds(*self._op)
+            T, B = step_operator(red["M"], C, K, key[0], p["newmark_beta"], p["newmark_gamma"])
             ops = pack(T, B @ red["B_in"])
             if len(self._ops) > 32:
                 self._ops.clear()

@@ -4,7 +4,7 @@ run_critical_speed within 0.1 % (peer code: data/ross_compressor_reference.json,
 tests/interop/make_ross_compressor_reference.py). Both of ROSS's definitions, the fixed points in speed of the
 damped natural frequency |lambda| (wn) and of the damped frequency Im lambda (wd), the coefficients taken at each
 speed. ROSS's modes are all lateral (whirl forward, backward or mixed: its mixed mode is one of our backward
-ones by the orbits' energy). And the other places these engines go: the co-simulated rotor refuses them by name;
+ones by the orbits' energy). And the other places these engines go: the co-simulated rotor takes the tables at its speed;
 ROSS's coaxial rotor's bearings attach to their pedestals; an intershaft bearing is refused in one line."""
 from __future__ import annotations
 
@@ -55,15 +55,32 @@ def test_critical_speeds_equal_rosss_within_0_1_percent(compressor, natural):
         assert w == "Mixed" or o["whirl"] == w.lower(), (o, r, w)
 
 
-def test_the_co_simulated_rotor_refuses_a_speed_dependent_support(compressor, tmp_path):
-    from rotorcosim.components.rotor.component import reduced_model
+def test_the_co_simulated_rotor_takes_the_tables_at_its_speed(compressor, tmp_path):
+    """The co-simulated rotor of the compressor (with an unbalance and one co-simulated bearing's ports added) at
+    12 000 rev/min, away from the file's 10 000: its reduced stiffness and damping are the projection on its basis
+    of the full matrices with every table at that speed, as the linear engine takes them (speed_support_delta),
+    the seals' cross-coupled terms included (model.projected_support_delta projects support by support)."""
+    import copy
 
-    engine, _ = compressor
+    import numpy as np
+
+    from rotorcosim.components.rotor.component import full_model, reduced_model
+
+    engine = copy.deepcopy(compressor[0])
+    engine["pedestal"] = {"hb": {"mass": 1.0, "k": 1e3}}
+    engine["attach"] = {"unbalance": {"node": ["shaft", 20]}, "bearing0": {"node": ["shaft", 30], "housing": "hb"}}
     path = tmp_path / "e.toml"
     write_engine(engine, path)
-    with pytest.raises(ValueError, match=r"support '.+' has coefficients over speed or cross-coupled ones") as exc:
-        reduced_model(str(path), 12, 1000.0, 1000.0)
-    assert "\n" not in str(exc.value)
+    w = 12000.0 * fem.RPM
+    red = reduced_model(str(path), 12, w, w)
+    full = full_model(str(path), w, w)
+    dK, dC = fem.speed_support_delta(full, w)
+    B = red["basis"]
+    assert not np.allclose(dK, dK.T)          # the seals' cross-coupled terms moved with the speed
+    K = B.T @ (full.K + dK) @ B
+    C = B.T @ (full.C + dC + w * (full.G_pt + full.G_gg)) @ B
+    assert np.allclose(red["K"], K, rtol=0, atol=1e-9 * np.abs(K).max())
+    assert np.allclose(red["C"], C, rtol=0, atol=1e-9 * np.abs(C).max())
 
 
 def test_coaxial_rotor_bearings_attach_to_their_pedestals(tmp_path, capsys):
