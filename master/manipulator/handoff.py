@@ -71,6 +71,8 @@ class HandOff:
         self.updates = bool(getattr(link.src, "holds_state_in_TO", False))
         self.elasticity: float | None = None
         self.history: list[list[tuple[np.ndarray, float]]] = []   # per TM interval: (thermal inputs, cycle mean)
+        #: the current TM interval's cycles (none before the first: a timeline may begin thermal-only)
+        self.cycles: list[tuple[np.ndarray, float]] = []
         self.held = None
         self.error: float | None = None
         self.delta: np.ndarray | None = None

@@ -4,6 +4,8 @@ when the first steadiness test reads it, which a short run never reaches), an in
 its longest, a relative tolerance above 1."""
 from __future__ import annotations
 
+import json
+
 import pytest
 
 from rotorcosim.master.cli import main
@@ -61,3 +63,18 @@ def test_a_relative_tolerance_above_one_is_refused_from_python_too():
     with pytest.raises(ScheduleError, match="drift_tolerance is a fraction"):
         AutoSchedule(duration=1.0, step=1e-5, thermal_step=0.1, drift_tolerance=2.0)
     assert AutoSchedule(duration=1.0, step=1e-5, thermal_step=0.1, drift_tolerance=1.0).drift_tolerance == 1.0
+
+
+def test_a_timeline_that_begins_thermal_only(tmp_path, capsys):
+    """A thermal-only interval before any thermo-mechanical one holds the mechanics' outputs at the start: with
+    the ball bearings' drag law (own engine) it ended in "unexpected AttributeError: 'HandOff' object has no
+    attribute 'cycles' ... it may be a bug" (exit 1)."""
+    assert main(["new-engine", str(tmp_path / "X")]) == 0
+    f = tmp_path / "X" / "first_to.toml"
+    f.write_text('[scenario]\nextends = "blade_loss.toml"\nname = "first_to"\n\n[schedule]\n'
+                 'intervals = [{ phase = "TO", duration = 0.5 }, { phase = "TM", duration = 0.02 }]\n')
+    out = tmp_path / "o"
+    assert main(["run", str(f), "--quiet", "--no-figures", "--out", str(out)]) == 0, capsys.readouterr().err
+    s = json.loads((out / "summary.json").read_text())
+    assert s["status"] == "complete" and [i["phase"] for i in s["timeline"]] == ["TO", "TM"]
+    assert s["bearings"]["0"]["T_ball_C"] > 30.0          # the first TO interval warmed the bearing
