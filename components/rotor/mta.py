@@ -19,6 +19,19 @@ import scipy.linalg as sla
 DEGENERATE_RTOL = 1e-8
 
 
+class RigidModesOnly(Exception):
+    """The retained modes are all rigid-body modes: :func:`augmentation_vectors` has no shift to work with."""
+
+
+def _rigid_only(K, M, n: int) -> str:
+    """Why ``n`` retained modes give no basis: they are all rigid-body modes (w^2 ~ 0, within 1e-6 of the
+    highest), of which the message gives the count the retained modes must exceed."""
+    w2 = sla.eigh(K, M, eigvals_only=True)
+    rigid = int(np.sum(w2 <= 1e-6 * float(np.max(np.abs(w2)))))
+    return (f"n_modes = {n} retains rigid-body modes only (the rotor moves freely without its co-simulated "
+            f"bearings: {rigid} such modes); retain more than {rigid} (n_modes >= {rigid + 1})")
+
+
 def modes(K: np.ndarray, M: np.ndarray, n: int) -> tuple[np.ndarray, np.ndarray]:
     """The lowest ``n`` eigenpairs (w^2, Phi) of eq. (17), Phi mass-normalised; more than ``n`` when the n-th
     eigenvalue is degenerate (repeated, e.g. a symmetric casing's pair of modes): the whole group is kept.
@@ -58,7 +71,11 @@ def augmentation_vectors(K, M, Phi, F_o, rtol: float = 1e-10) -> np.ndarray:
         # so X stays M-orthogonal to the retained modes, which include the rigid ones); sigma = 1e-3 of the
         # highest retained eigenvalue keeps the shifted problem well conditioned
         sigma = 1e-3 * float(np.max(np.diag(Phi.T @ K @ Phi)))
-        factor = sla.cho_factor(K + sigma * M)
+        try:
+            factor = sla.cho_factor(K + sigma * M)
+        except sla.LinAlgError:
+            # every retained mode is a rigid one (sigma ~ 0): no shift to take the static response on
+            raise RigidModesOnly() from None
     X = sla.cho_solve(factor, F_t)
     # orthonormalise X in the M inner product first so dependent load vectors cannot make eq. (19) singular
     Mb = X.T @ M @ X
@@ -74,7 +91,10 @@ def augmentation_vectors(K, M, Phi, F_o, rtol: float = 1e-10) -> np.ndarray:
 def mta_basis(K, M, n_modes: int, load_dofs) -> tuple[np.ndarray, int]:
     """The pseudo-modal set [Phi eta] and the number of augmentation vectors."""
     _, Phi = modes(K, M, n_modes)
-    eta = augmentation_vectors(K, M, Phi, unit_loads(K.shape[0], load_dofs))
+    try:
+        eta = augmentation_vectors(K, M, Phi, unit_loads(K.shape[0], load_dofs))
+    except RigidModesOnly:
+        raise ValueError(_rigid_only(K, M, n_modes)) from None
     return np.hstack([Phi, eta]), eta.shape[1]
 
 

@@ -147,3 +147,17 @@ def test_a_spool_nothing_holds_is_named(tmp_path, capsys):
             "spring (a spool needs supports, pedestals, attached bearings or intershaft bearings at two nodes or "
             "more)"), err
     assert not (tmp_path / "c.png").exists()
+
+
+def test_too_few_modes_for_a_rotor_free_without_its_bearings(tmp_path, capsys):
+    """new-engine's rotor rests on its co-simulated bearings only: 4 rigid-body modes without them. n_modes <= 4
+    ended the run in LAPACK's '55-th leading minor of the array is not positive definite'."""
+    assert main(["new-engine", str(tmp_path / "X")]) == 0
+    capsys.readouterr()
+    rc = main(["run", str(tmp_path / "X" / "blade_loss.toml"), "--set", "rotor.n_modes=2", "--duration", "0.001",
+               "--no-figures", "--quiet", "--out", str(tmp_path / "o")])
+    err = [line for line in capsys.readouterr().err.splitlines() if line.strip()]
+    assert rc == 2 and err == ["rotorcosim run: error: rotor: n_modes = 2 retains rigid-body modes only (the rotor "
+                               "moves freely without its co-simulated bearings: 4 such modes); retain more than 4 "
+                               "(n_modes >= 5)"], err
+    assert not (tmp_path / "o").exists()
