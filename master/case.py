@@ -52,7 +52,8 @@ from typing import Any
 from rotorcosim import scenarios
 from rotorcosim.master.scenario.checkers import did_you_mean
 from rotorcosim.master.scenario.tables import TABLES
-from rotorcosim.master.scenario.overrides import set_level
+from rotorcosim.components.contract import ContractError
+from rotorcosim.master.scenario.overrides import declared_parameters, set_level
 
 GROUP = "rotorcosim.cases"
 #: where the cases shipped with rotorcosim live (a namespace, not an import of them)
@@ -268,8 +269,23 @@ def check_results(sc) -> None:
         err = own[key](value)
         if err:
             raise ValueError(f"{where} {key}: {err}")
-        if key == level.results_key and value.partition(".")[0] not in sc.components:
-            raise ValueError(f"{where} {key}: {value!r}: no component {value.partition('.')[0]!r}")
+        if key == level.results_key:
+            _check_level_parameter(sc, f"{where} {key}", value)
+
+
+def _check_level_parameter(sc, where: str, ref: str) -> None:
+    """The level's ``comp.param`` must be a parameter the component has: a misspelt one was accepted and the
+    run reported no level (summary.json ``unbalance_N`` null), ``--unbalance`` then refused by the component."""
+    comp, _, param = ref.partition(".")
+    if comp not in sc.components:
+        raise ValueError(f"{where}: {ref!r}: no component {comp!r}")
+    try:
+        known = declared_parameters(sc.components[comp])
+    except ContractError:   # an implementation that cannot be looked up: the build names it
+        return
+    if known is not None and param not in known:
+        raise ValueError(f"{where}: {ref!r}: component {comp!r} has no parameter {param!r}"
+                         f"{did_you_mean(param, list(known))}")
 
 
 def _loaded_cases():

@@ -42,6 +42,11 @@ def test_a_cases_results_keys_are_checked_at_load(tmp_path):
     f.write_text('[scenario]\nextends = "blade_loss_2850"\n[results]\nunbalance_parameter = "nowhere.F"\n')
     with pytest.raises(ValueError, match=r"\[results\] unbalance_parameter: 'nowhere.F': no component 'nowhere'"):
         rotorcosim.load_scenario(f)
+    # a misspelt parameter was accepted: the run reported no level (unbalance_N null)
+    f.write_text('[scenario]\nextends = "blade_loss_2850"\n[results]\nunbalance_parameter = "rotor.F_unbalanc"\n')
+    with pytest.raises(ValueError, match=r"\[results\] unbalance_parameter: 'rotor.F_unbalanc': component 'rotor' "
+                                         r"has no parameter 'F_unbalanc' \(did you mean 'F_unbalance'\?\)$"):
+        rotorcosim.load_scenario(f)
     # without a case, the schema is strict: a case's key is unknown there
     f.write_text('[scenario]\nextends = "toy_thermomechanical"\n[results]\nspools = ["osc"]\n')
     with pytest.raises(Exception, match=r"\[results\] spools: unknown key"):
