@@ -10,8 +10,9 @@ speed) and its separation margin from each operating speed against the margin AP
 co-simulated bearings it attaches, linearised from the components of ``--scenario``, default the shipped
 blade-loss scenario); one warning line each (exit status 0) for a critical speed nearer an operating speed than
 that margin, a bearing
-bore that fits no shaft section at its node, dimensions implausible for mm and a spool turning a bearing beyond
-its model's speed range; and a Campbell diagram PNG. Example::
+bore that fits no shaft section at its node, dimensions implausible for mm, a spool turning a bearing beyond
+its model's speed range and, for an engine with cross-coupled supports (the only ones that can feed a whirl), a
+whirl mode of negative damping at the operating speed; and a Campbell diagram PNG. Example::
 
     rotorcosim check-engine my_engine/engine.toml --scenario my_engine/blade_loss.toml
 """
@@ -67,6 +68,13 @@ def check_engine(path: str, scenario: str | None = None, campbell: str | None = 
         rows, w = engine_check.separation(every, s, data["spool"][s].get("name", s), speeds)
         out["separation"] += rows
         warn += w
+    out["stability"] = None
+    feeding = engine_check.destabilising(data)
+    if feeding:
+        rpm = abs(first)
+        modes = critical.whirl_modes(full, sup, rpm, SPAN * max(max(v) for v in ops.values()) / 60.0)
+        out["stability"] = {"first_spool_rpm": rpm, "cross_coupled_supports": feeding, "modes": modes}
+        warn += engine_check.stability(modes, rpm)
     out["warnings"] = warn + warnings(data, sc)
     if campbell:
         cs.check_figure_path(campbell)
@@ -181,6 +189,13 @@ def run(args) -> int:
         print(f"  forward synchronous critical speeds, {st['label']} (fuse stiffness "
               + ", ".join(f"#{b} {k:.3g} N/m" for b, k in st["fuse_stiffness_N_per_m"].items()) + "): "
               + ", ".join(f"{v:.0f}" for v in st["forward_synchronous_rpm"]) + " rev/min")
+    st = out["stability"]
+    if st is not None:
+        least = min(st["modes"], key=lambda m: m["damping_ratio"], default=None)
+        print(f"  stability at {st['first_spool_rpm']:.0f} rev/min (cross-coupled supports: "
+              f"{', '.join(st['cross_coupled_supports'])}): {len(st['modes'])} whirl modes up to {SPAN:g} x the "
+              "operating speeds" + (f"; least damped {least['frequency_Hz']:.4g} Hz {least['whirl']}, damping ratio "
+                                    f"{least['damping_ratio']:.3g}" if least else ""))
     print(f"  supports: {c['support_model']['description']}")
     for line in out["warnings"]:
         print(f"  warning: {line}")

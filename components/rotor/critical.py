@@ -245,6 +245,29 @@ def damping_ratio(lam: complex, sysm: dict, model: FullModel, w: float) -> float
     return 0.0 if abs(zeta) < ZETA_RESOLUTION else zeta
 
 
+def whirl_modes(model: FullModel, supports: dict | None, rpm: float, max_hz: float,
+                min_share: float = 0.05) -> list[dict]:
+    """The rotor whirl modes of the damped engine (:func:`damping_ratios`' engine) with the first spool at ``rpm``
+    [rev/min], every spool in the file's ratio and the speed-dependent supports' coefficients at that speed, up to
+    ``max_hz``: ``[{"frequency_Hz": |lambda| / 2 pi, "whirl", "damping_ratio", "log_dec"}]`` ascending, the
+    logarithmic decrement 2 pi zeta / sqrt(1 - zeta^2) (None at zeta >= 1: no oscillation). Every eigenvalue
+    (a dense solve): for engines of a few hundred DOFs."""
+    sysm = _system(model, supports)
+    if "C" not in sysm:
+        sysm = {**sysm, "C": model.C}
+    sysm["whirl_dofs"] = _whirl_dofs(sysm, model)
+    w = abs(float(rpm)) * RPM
+    out = []
+    for lam, whirl in _damped_modes(sysm, model, w, min_share):
+        f = abs(lam) / (2.0 * np.pi)
+        if f > max_hz:
+            continue
+        z = damping_ratio(lam, sysm, model, w)
+        out.append({"frequency_Hz": float(f), "whirl": whirl, "damping_ratio": z,
+                    "log_dec": float(2.0 * np.pi * z / np.sqrt(1.0 - z * z)) if abs(z) < 1.0 else None})
+    return sorted(out, key=lambda r: r["frequency_Hz"])
+
+
 #: how many eigenvalues of the damped engine :func:`_modes_near` takes around its target frequency
 NEAR_MODES = 4
 #: the shift-invert search's restarts at most (measured: at most 76 operator applications on the engines of the

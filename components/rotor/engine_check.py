@@ -419,6 +419,24 @@ def operating_speeds(data: dict) -> dict[str, list[float]]:
     return {s: [abs(float(r["speed_rpm"]))] for s, r in data["spool"].items()}
 
 
+def destabilising(data: dict) -> list[str]:
+    """The names of the supports that can destabilise the engine: cross-coupled coefficients (a skew-symmetric
+    stiffness feeds energy into a forward whirl; a cross damping can make the damping indefinite). Without any,
+    the linear engine cannot grow: its stiffness and damping are symmetric and not negative, its gyroscopic terms
+    skew (they exchange energy between the planes, they add none)."""
+    return [s.get("name", f"support[{i}]") for i, s in enumerate(data.get("support", []))
+            if any(np.any(np.asarray(s.get(k, 0.0), float) != 0.0) for k in ("kxy", "kyx", "cxy", "cyx"))]
+
+
+def stability(modes: list[dict], rpm: float) -> list[str]:
+    """One warning line per whirl mode of ``modes`` (critical.whirl_modes at ``rpm``, the first spool's
+    operating speed) whose damping ratio is negative: the mode grows, whatever the unbalance."""
+    return [f"unstable {m['whirl']} whirl mode at {m['frequency_Hz']:.4g} Hz at {rpm:.0f} rev/min (damping ratio "
+            f"{m['damping_ratio']:.3g}, log dec {m['log_dec']:.3g}): the linearised engine is unstable there, its "
+            "response grows whatever the unbalance (the cross-coupled supports feed it)"
+            for m in modes if m["damping_ratio"] < 0.0]
+
+
 def separation(criticals: list[dict], spool: str, name: str, speeds: list[float]) -> tuple[list[dict], list[str]]:
     """The separation margin of each synchronous critical speed excited by ``spool`` from each of its operating
     ``speeds`` [rev/min], (critical - operating) / operating, against the margin API 684 asks of its mode

@@ -2,7 +2,7 @@
 its separation margin, and one warning line each for a critical speed nearer than the margin API 684 asks for its
 mode's amplification factor (tests/components/test_separation_margin.py), a
 bearing bore that does not fit the shaft at its node, dimensions implausible for mm, a spool turning a bearing
-beyond its model's speed range."""
+beyond its model's speed range, and a whirl mode that cross-coupled supports make unstable."""
 from __future__ import annotations
 
 import json
@@ -134,3 +134,47 @@ def test_a_spool_beyond_its_bearings_speed_range(tmp_path, textbook, capsys):
     lines = [line for line in out.splitlines() if "speed limit" in line]
     assert lines == ["  warning: attach.bearing5: the bearing turns with spool rotor at 31000 rev/min, above the ball "
                      "bearing model's speed limit 29833 rev/min (bore 83.8 mm, bore x speed <= 2.5e+06 mm rev/min)"]
+
+
+def _rigid_rotor(tmp_path, q: float) -> Path:
+    """A stiff 100 mm shaft 200 mm long with a 50 kg disk at its middle on two like supports (k = 5e6 N/m,
+    c = 1000 N s/m and cross-coupled kxy = -kyx = q each), 3 000 rev/min."""
+    e = {"engine": {"format": fem.FORMAT, "name": "rigid rotor on cross-coupled supports"},
+         "material": {"rotor": {"E": 2.1e11, "rho": 7850.0, "nu": 0.3}},
+         "damping": {"zeta": 0.0, "f1_Hz": 1.0, "f2_Hz": 2.0},
+         "spool": {"s": {"speed_rpm": 3000.0, "z_mm": [0.0, 100.0, 200.0], "d_out_mm": [100.0, 100.0],
+                         "d_in_mm": [0.0, 0.0], "drive_node": 0, "axial_node": 0,
+                         "disks": [{"node": 1, "name": "disk", "mass": 50.0, "Ip": 0.05, "Id": 0.5}]}},
+         "support": [{"name": f"seal {n}", "a": ["s", n], "b": "ground", "k": 5e6, "c": 1000.0, "kxy": q,
+                      "kyx": -q} for n in (0, 2)]}
+    p = tmp_path / "rigid.toml"
+    p.write_text(dumps(e))
+    return p
+
+
+def test_a_whirl_fed_by_cross_coupled_supports_is_named_past_its_threshold(tmp_path):
+    """The analytic threshold of cross-coupled stiffness: a rigid rotor of mass m on supports of total stiffness k,
+    damping c and cross-coupled stiffness q whirls unstably forward at its natural frequency w_n = sqrt(k / m)
+    once q > c w_n (m z'' + c z' + (k - i q) z = 0, z = x + i y: at lambda = i w_n
+    the real part gives k = m w_n^2, the imaginary one q = c w_n). Here m = 62.3 kg (disk and shaft), k = 1e7 N/m,
+    c = 2000 N s/m: q* = 8.01e5 N/m. At 0.9 q* the least damped mode is damped, at 1.1 q* it is the forward
+    cylindrical mode at w_n, of negative damping, and check-engine says so in one line."""
+    import math
+
+    m_total = 50.0 + 7850.0 * math.pi * 0.05 ** 2 * 0.2
+    wn = math.sqrt(1e7 / m_total)
+    q_star = 2000.0 * wn
+    for ratio, unstable in ((0.9, False), (1.1, True)):
+        out = check_engine(str(_rigid_rotor(tmp_path, 0.5 * ratio * q_star)), max_rpm=6000.0)
+        st = out["stability"]
+        assert st["cross_coupled_supports"] == ["seal 0", "seal 2"]
+        least = min(st["modes"], key=lambda r: r["damping_ratio"])
+        assert least["frequency_Hz"] == pytest.approx(wn / (2 * math.pi), rel=5e-3)
+        lines = [w for w in out["warnings"] if w.startswith("unstable")]
+        if unstable:
+            assert least["whirl"] == "forward" and least["damping_ratio"] < 0.0
+            assert len(lines) == 1 and "forward whirl mode at" in lines[0]
+        else:
+            assert least["damping_ratio"] > 0.0 and not lines
+    # without cross-coupling nothing is solved for: the linear engine cannot grow
+    assert check_engine(str(_rigid_rotor(tmp_path, 0.0)), max_rpm=6000.0)["stability"] is None
