@@ -181,12 +181,20 @@ def run(args) -> int:
     e = s.get("estimated_error") or {}
     which = e.get("largest_label") or e.get("largest")
     print(f"{sc.name}: {s['t_end_s']:.4g} s simulated in {s['wall_time_s']:.3g} s wall time "
-          f"({s['engine'] or 'no'} engine)"
-          + (f"; estimated error of the staggered scheme {est:.2f} %" + (f" ({which})" if which else "")
-             if est is not None else ""))
+          f"({s['engine'] or 'no'} engine)" + estimate_text(est, which))
     note = (s.get("hold") or {}).get("advice")
     if note:
         print(f"rotorcosim run: {note}")
     # the last line: every file the run wrote
     print("written: " + ", ".join(str(f) for f in res.files))
     return 0
+
+
+def estimate_text(est: float | None, which: str | None) -> str:
+    """What the run's line says of the staggered scheme's estimated error ``est`` [%] (None: none) on the result
+    ``which``: two decimals, or one significant digit below 0.005 % (a long run's estimate often is), never
+    "0.00 %" for an estimate that is not zero."""
+    if est is None:
+        return ""
+    pct = f"{est:.2f}" if est == 0.0 or est >= 0.005 else f"{est:.1g}"
+    return f"; estimated error of the staggered scheme {pct} %" + (f" ({which})" if which else "")
