@@ -128,7 +128,13 @@ def _coefficient(b: dict, key: str, speed_rpm: float | None) -> float:
                               "speed to take the coefficients at (--coefficients-at RPM)")
     if freq is None or len(freq) != len(v):
         raise RossImportError(f"ROSS {b['kind']} {b['tag']!r}: {key} has {len(v)} values but no matching frequency")
-    return float(np.interp(speed_rpm * RPM, np.asarray(freq, float), np.asarray(v, float)))
+    f = np.asarray(freq, float)
+    lo, hi = float(f.min()) / RPM, float(f.max()) / RPM
+    # beyond its speeds the interpolation would hold the end value, where ROSS extrapolates: not ROSS's rotor
+    if not lo * (1 - 1e-9) <= speed_rpm <= hi * (1 + 1e-9):
+        raise RossImportError(f"ROSS {b['kind']} {b['tag']!r}: --coefficients-at {speed_rpm:g} rev/min is outside the "
+                              f"speeds its {key} is given at ({lo:.6g} to {hi:.6g} rev/min)")
+    return float(np.interp(speed_rpm * RPM, f, np.asarray(v, float)))
 
 
 def from_ross(rotor, *, speed_rpm: float | None = None, speed_rpm_coefficients: float | None = None,
@@ -152,6 +158,11 @@ def from_ross(rotor, *, speed_rpm: float | None = None, speed_rpm_coefficients: 
     speed = float(speed_rpm) if speed_rpm is not None else DEFAULT_SPEED_RPM
     if not (np.isfinite(speed) and speed > 0):
         raise RossImportError(f"speed must be a finite number > 0 rev/min, got {speed_rpm!r}")
+    if unbalance_node is not None and not attach:
+        raise RossImportError("--unbalance-node places the blade loss of the co-simulated bearings: it applies with "
+                              "--attach only (without it the engine has no [attach] table)")
+    if speed_rpm_coefficients is not None and not (np.isfinite(speed_rpm_coefficients) and speed_rpm_coefficients >= 0):
+        raise RossImportError(f"--coefficients-at must be a finite speed >= 0 rev/min, got {speed_rpm_coefficients!r}")
     if not (isinstance(hub_mass_kg, (int, float)) and np.isfinite(hub_mass_kg) and hub_mass_kg > 0):
         raise RossImportError(f"hub mass (--hub-mass) must be a finite mass > 0 kg, got {hub_mass_kg!r}")
     _check_elements(el)

@@ -34,6 +34,8 @@ def read(path: str | Path) -> dict:
     """The elements of the ROSS rotor file ``path``: ``{"version", "shafts", "disks", "bearings",
     "point_masses"}``, each a list of dicts with the file's keys (``kind`` added to bearings)."""
     p = Path(path)
+    if p.is_dir():
+        raise RossFileError(f"ROSS rotor file {p} is a folder, not a file written by ROSS's Rotor.save")
     if not p.is_file():
         raise FileNotFoundError(f"ROSS rotor file not found: {p}")
     try:

@@ -84,3 +84,38 @@ def test_the_writer_refuses_what_check_engine_rejects(tmp_path):
     with pytest.raises(ValueError, match=r"element 0.*inner diameter 60"):
         write_engine(bad, tmp_path / "e.toml")
     assert list(tmp_path.iterdir()) == []
+
+
+@pytest.mark.parametrize("example, value, message", [
+    # nan and inf gave NaN coefficients (a check-engine line naming a support, not the option), a negative speed
+    # was taken silently
+    ("rotor_example", "nan", "--coefficients-at must be a finite speed >= 0 rev/min, got nan"),
+    ("rotor_example", "-3", "--coefficients-at must be a finite speed >= 0 rev/min, got -3.0"),
+    # beyond a table's speeds the end value was held silently, where ROSS extrapolates (3000 rev/min: kxx 1.14e8
+    # written, ROSS's 9.28e7)
+    ("compressor_example", "3000", "ROSS BearingElement 'Bearing 0': --coefficients-at 3000 rev/min is outside the "
+                                   "speeds its kxx is given at (4000 to 11000 rev/min)"),
+])
+def test_coefficients_at_a_speed_the_file_cannot_give(tmp_path, capsys, example, value, message):
+    p = tmp_path / "rotor.toml"
+    p.write_text((DATA / f"{example}.toml").read_text())
+    line = _refused(tmp_path, capsys, p, f"--coefficients-at={value}")
+    assert line == f"rotorcosim import-ross: error: {message}", line
+
+
+def test_an_unbalance_node_without_attach_is_refused(tmp_path, capsys):
+    """--unbalance-node without --attach was dropped without a word (the engine written had no unbalance)."""
+    p = tmp_path / "rotor.toml"
+    p.write_text((DATA / "rotor_example.toml").read_text())
+    line = _refused(tmp_path, capsys, p, "--unbalance-node", "3")
+    assert line == ("rotorcosim import-ross: error: --unbalance-node places the blade loss of the co-simulated "
+                    "bearings: it applies with --attach only (without it the engine has no [attach] table)"), line
+
+
+def test_a_folder_is_not_a_rotor_file(tmp_path, capsys):
+    """A folder given as the ROSS file was called 'not found'."""
+    (tmp_path / "rotor.toml").mkdir()
+    assert main(["import-ross", str(tmp_path / "rotor.toml"), "--out", str(tmp_path / "engine.toml")]) == 2
+    err = [line for line in capsys.readouterr().err.splitlines() if line.strip()]
+    assert err == [f"rotorcosim import-ross: error: ROSS rotor file {tmp_path / 'rotor.toml'} is a folder, not a "
+                   "file written by ROSS's Rotor.save"], err
