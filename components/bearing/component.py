@@ -44,6 +44,7 @@ import math
 import numpy as np
 
 from ..contract import ContractError, Variable
+from ..errors import Diverged
 from ..kernels import PYTHON, KernelComponent
 from ..numba_internals import address_of
 from ..oil_fit import T_MAX_K, T_MIN_K
@@ -341,7 +342,8 @@ class BallBearing(KernelComponent):
         if flag == 2.0:
             raise ContractError(f"{self.name}.eps: thermal growths {self.u['eps']} m exceed 5 % of the ball "
                                 f"diameter ({self._geo[G_EPS_LIMIT]:.3g} m); not a thermal growth")
-        raise RuntimeError(f"{self.name}: the bearing state became non-finite at t = {t:.9g} s")
+        # its state left the equations' domain: a divergence (reported as such), not a fault of the component
+        raise Diverged(f"{self.name}: the bearing state became non-finite at t = {t:.9g} s")
 
     def _viscous_power(self, T):
         """omega M_v: the load-independent (viscous) part of the Palmgren drag power at oil temperature T (kept for

@@ -45,6 +45,7 @@ import math
 import numpy as np
 
 from ..contract import ContractError, Variable
+from ..errors import Diverged
 from ..kernels import PositionalKernelComponent
 from ..speeds import GG_OMEGA, PT_OMEGA
 from . import attach
@@ -332,7 +333,7 @@ class Rotor(PositionalKernelComponent):
     def kernel_status(self, status, t, h):
         if status == 2:
             self._input_vector(t + h)          # names the offending input
-        raise ContractError(f"{self.name}: the rotor response became non-finite at t = {t + h:.9g} s")
+        raise Diverged(f"{self.name}: the rotor response became non-finite at t = {t + h:.9g} s")
 
     # -- helpers for checks and the CLI ------------------------------------------------------------------
     @property

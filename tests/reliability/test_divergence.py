@@ -61,3 +61,25 @@ def test_overflow_ends_in_the_divergence_message_only(tmp_path, capsys):
     assert rc == 1 and err.count("\n") == 1, err
     assert "node.T is not finite at t = 0.002 s" in err and "Warning" not in err, err
     assert (tmp_path / "o" / "summary.json").exists() and (tmp_path / "o" / "timeseries.h5").exists()
+
+
+@pytest.mark.parametrize("engine", ["compiled", "python"])
+def test_a_bearing_whose_state_blows_up_is_a_divergence(tmp_path, capsys, engine):
+    """A blade-loss force of 1e12 N on new-engine's rotor blows the ball bearing's state up: the run stopped as
+    'a component failed' (ComponentFailed), not as the divergence it is; it keeps what it recorded."""
+    import json
+
+    from rotorcosim.master.cli import main
+
+    assert main(["new-engine", str(tmp_path / "X")]) == 0
+    capsys.readouterr()
+    out = tmp_path / "o"
+    rc = main(["run", str(tmp_path / "X" / "blade_loss.toml"), "--set", "rotor.F_unbalance=1e12", "--duration",
+               "0.02", "--engine", engine, "--quiet", "--no-figures", "--out", str(out)])
+    err = [line for line in capsys.readouterr().err.splitlines() if line.strip()]
+    assert rc == 1 and len(err) == 1 and err[0].startswith(
+        "rotorcosim run: the simulation diverged: bearing0 failed in do_step at t = 0.009995 s: bearing0: the bearing "
+        "state became non-finite at t = 0.01 s"), err
+    summary = json.loads((out / "summary.json").read_text())
+    assert summary["status"] == "failed" and summary["error"].startswith("SimulationDiverged: bearing0")
+    assert (out / "timeseries.h5").is_file()
