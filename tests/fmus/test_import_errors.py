@@ -144,8 +144,29 @@ def test_ports_of_the_wrong_size_are_named(damper_fmu):
 def test_scalars_that_do_not_form_a_vector(damper_fmu, tmp_path):
     xml = description(damper_fmu).replace('name="X_journal[2]"', 'name="X_journal[3]"')
     bad = rewrite(damper_fmu, tmp_path / "gap.fmu", {"modelDescription.xml": xml.encode()})
-    with pytest.raises(FMUError, match=r"elements of 'X_journal' are not numbered 1\.\.n without gaps"):
+    with pytest.raises(FMUError, match=r"elements of 'X_journal' are not numbered 1\.\.n \(or 0\.\.n-1\) without "
+                                       r"gaps \(found indices \[1, 3\]\)"):
         load_fmu_component(bad, "d")
+
+
+def test_scalars_numbered_from_0_form_a_vector(damper_fmu, tmp_path):
+    """A C or C++ tool's arrays (libcosim's test FMU vector.fmu: input[0]..input[2]): the same port as 1-based
+    names, element by element: the damper FMU with X_journal[1], [2] renamed [0], [1] gives the same outputs."""
+    xml = description(damper_fmu).replace('name="X_journal[1]"', 'name="X_journal[0]"').replace(
+        'name="X_journal[2]"', 'name="X_journal[1]"')
+    zero = rewrite(damper_fmu, tmp_path / "zero.fmu", {"modelDescription.xml": xml.encode()})
+    outs = []
+    for fmu in (damper_fmu, zero):
+        c = load_fmu_component(fmu, "d")
+        assert c.variable("X_journal").size == 2
+        c.setup(0.0)
+        c.set_inputs({"X_journal": np.array([1e-4, -2e-4])})
+        c.do_step(0.0, 1e-5)
+        outs.append({k: np.array(v, dtype=float) for k, v in c.y.items()})
+        c.terminate()
+    assert outs[0].keys() == outs[1].keys() and any(np.any(v) for v in outs[0].values())
+    for k in outs[0]:
+        np.testing.assert_array_equal(outs[1][k], outs[0][k], err_msg=k)
 
 
 def test_rollback_needs_fmu_state(mass_fmu, tmp_path):
