@@ -11,7 +11,8 @@ Mapping onto the contract (components/contract.py):
 
 * parameters are set right away (before initialisation, as FMI requires); unknown names, wrong sizes or
   non-parameters are clear errors naming the FMU;
-* ``setup(t0)``: (setupExperiment,) enterInitializationMode, inputs, exitInitializationMode, outputs read;
+* ``setup(t0)``: (setupExperiment, the parameters and start values set again, as fmpy and libcosim set them
+  after it,) enterInitializationMode, inputs, exitInitializationMode, outputs read;
 * ``do_step(t, h)``: all inputs set, DoStep, all outputs read into ``self.y`` (the master reads ``y``);
 * ``get_state``/``set_state``: Get/SetFMUstate when the FMU declares
   ``canGetAndSetFMUstate``; otherwise a clear error (rollback is impossible with that FMU);
@@ -186,6 +187,10 @@ class FMUComponent(Component):
         self.time = 0.0
         self._version = "3" if md.fmiVersion.startswith("3.") else "2"
         self.start_values: dict[str, Any] = {}
+        # the parameters and start values written before initialisation, written again after setupExperiment
+        # (setup): an FMU may reset its variables there (a 20-sim FMU of libcosim's demo lost its mt0_init), and
+        # fmpy and libcosim write them after it
+        self._before_init: dict[str, tuple] = {}
         try:
             folder, cached = extraction_cache.acquire(self.path, md.guid if self._version == "2"
                                                       else md.instantiationToken)
@@ -336,7 +341,9 @@ class FMUComponent(Component):
         if self._handle.initialised:
             raise FMUError(f"{self._where}: parameter {name!r} can only be set before setup()")
         refs = list(dict.fromkeys(e.valueReference for e in self._scalars[name]))
-        self._write(v, refs, np.atleast_1d(np.asarray(coerced, dtype=object)), f"parameter {name!r}")
+        values = np.atleast_1d(np.asarray(coerced, dtype=object))
+        self._write(v, refs, values, f"parameter {name!r}")
+        self._before_init[f"parameter {name!r}"] = (v, refs, values)
         self.p[name] = coerced
         self.explicit.add(name)
 
@@ -386,6 +393,7 @@ class FMUComponent(Component):
                 problems.append(str(exc).replace(f"{self._where}: ", ""))
                 continue
             self._write(var, [e.valueReference for e in elems], arr, f"the start value of {name!r}")
+            self._before_init[f"the start value of {name!r}"] = (var, [e.valueReference for e in elems], arr)
             self.start_values[name] = arr
         if problems:
             raise FMUError(f"{self._where}: start values: " + "; ".join(problems))
@@ -426,6 +434,8 @@ class FMUComponent(Component):
         try:
             if self._version == "2":
                 fmu.setupExperiment(startTime=self.time)
+                for what, (var, refs, values) in self._before_init.items():
+                    self._write(var, refs, values, what)
                 fmu.enterInitializationMode()
             else:
                 fmu.enterInitializationMode(startTime=self.time)

@@ -15,8 +15,9 @@ algorithm, schedule, outputs, results, per-component communication steps and eac
 averaging/extrapolation/hold settings.
 
 ``read_ssp`` reads any SSP 1.0 archive of FMI co-simulation FMUs (flat system): without our annotation it
-uses Gauss-Seidel in element order and a monolithic schedule over the DefaultExperiment with the smallest
-DefaultExperiment stepSize of the FMUs. The archive is extracted (safely: safezip.py) into a temporary
+uses Gauss-Seidel in element order and a monolithic schedule over the DefaultExperiment at the step the
+Open Simulation Platform's annotation of it gives (``osp:FixedStepAlgorithm baseStepSize``, libcosim's), else
+the smallest DefaultExperiment stepSize of the FMUs. The archive is extracted (safely: safezip.py) into a temporary
 folder that lives until the process ends, since the scenario's components point at the FMUs in it.
 What it reads is checked as a TOML scenario is: the annotation's settings through the scenario schema
 (master/scenario/schema.py), component names (non-empty, no '.', unique), a parameter value written in another unit
@@ -407,6 +408,32 @@ def _time(de, key: str, default: float, where: str) -> float:
     return value
 
 
+#: the Open Simulation Platform's annotation of an SSP system's co-simulation algorithm (libcosim, Ecos)
+OSP_ANNOTATION = "com.opensimulationplatform"
+OSP_NS = "http://opensimulationplatform.com/SSP/OSPAnnotations"
+
+
+def _osp_base_step(de, where: str) -> float | None:
+    """The communication step [s] an OSP annotation of ``ssd:DefaultExperiment`` gives
+    (``osp:Algorithm/osp:FixedStepAlgorithm baseStepSize``, as libcosim reads it), or None without one."""
+    for ann in (de.findall("ssd:Annotations/ssc:Annotation", NS) if de is not None else []):
+        if ann.get("type") != OSP_ANNOTATION:
+            continue
+        algo = ann.find(f"{{{OSP_NS}}}Algorithm/{{{OSP_NS}}}FixedStepAlgorithm")
+        text = algo.get("baseStepSize") if algo is not None else None
+        if text is None:
+            continue
+        try:
+            value = float(text)
+        except ValueError:
+            value = float("nan")
+        if not (math.isfinite(value) and value > 0.0):
+            raise SSPError(f"{where}: ssd:DefaultExperiment: {OSP_ANNOTATION} FixedStepAlgorithm baseStepSize="
+                           f"{text!r} is not a positive number of seconds")
+        return value
+    return None
+
+
 def read_ssp(path: str | Path) -> Scenario:
     """The scenario of the SSP archive at ``path`` (components given as the FMUs inside it)."""
     path = Path(path)
@@ -537,7 +564,9 @@ def _scenario_of(path: Path, folder: Path) -> Scenario:
         stop = _time(de, "stopTime", start + 1.0, where)
         if not stop > start:
             raise SSPError(f"{where}: ssd:DefaultExperiment: stopTime {stop!r} is not after startTime {start!r}")
-        schedule = {"kind": "monolithic", "duration": stop - start, "step": min(steps) if steps else 1e-3}
+        step = _osp_base_step(de, where)
+        schedule = {"kind": "monolithic", "duration": stop - start,
+                    "step": step if step is not None else min(steps) if steps else 1e-3}
     algorithm = payload.get("algorithm") or {"kind": "gauss-seidel", "order": list(components)}
     for ref, values in payload.get("inputs", {}).items():
         inputs[ref] = list(values) if isinstance(values, list) else values

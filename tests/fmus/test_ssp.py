@@ -317,3 +317,41 @@ def test_parameter_file_units_that_cannot_be_read(tmp_path, toy_ssp, base, extra
     with pytest.raises(SSPError) as err:
         read_ssp(_with_parameter_file(toy_ssp, tmp_path / "u.ssp", _ssv("0.01", "X", base), extra))
     assert message in str(err.value) and "\n" not in str(err.value)
+
+
+def _as_osp_archive(toy_ssp: Path, dst: Path, base_step: str | None) -> Path:
+    """The toy's archive as another tool writes it: without our annotation, its DefaultExperiment carrying the
+    Open Simulation Platform's algorithm annotation (libcosim's demo.ssp) when ``base_step`` is given."""
+    import xml.etree.ElementTree as ET
+
+    from rotorcosim.master.scenario.ssp import ANNOTATION, NS, OSP_ANNOTATION, OSP_NS
+
+    with zipfile.ZipFile(toy_ssp) as zf:
+        entries = {n: zf.read(n) for n in zf.namelist()}
+    root = ET.fromstring(entries["SystemStructure.ssd"])
+    anns = root.find("ssd:Annotations", NS)
+    for a in anns.findall("ssc:Annotation", NS):
+        if a.get("type") == ANNOTATION:
+            anns.remove(a)
+    de = root.find("ssd:DefaultExperiment", NS)
+    if base_step is not None:
+        a = ET.SubElement(ET.SubElement(de, f"{{{NS['ssd']}}}Annotations"), f"{{{NS['ssc']}}}Annotation",
+                          {"type": OSP_ANNOTATION})
+        ET.SubElement(ET.SubElement(a, f"{{{OSP_NS}}}Algorithm"), f"{{{OSP_NS}}}FixedStepAlgorithm",
+                      {"baseStepSize": base_step})
+    entries["SystemStructure.ssd"] = ET.tostring(root, encoding="UTF-8", xml_declaration=True)
+    with zipfile.ZipFile(dst, "w") as zf:
+        for n, data in entries.items():
+            zf.writestr(n, data)
+    return dst
+
+
+def test_another_tools_archive_runs_at_its_osp_base_step(toy_ssp, tmp_path):
+    """libcosim's SSP systems give their step as osp:FixedStepAlgorithm baseStepSize (its demo.ssp: 1e-4 s, which
+    our master ran at its FMUs' 1e-3 s before): read as the schedule's step; without it, the FMUs' smallest
+    DefaultExperiment stepSize; a step that is no positive number is named."""
+    plain = read_ssp(_as_osp_archive(toy_ssp, tmp_path / "plain.ssp", None)).schedule["step"]
+    osp = read_ssp(_as_osp_archive(toy_ssp, tmp_path / "osp.ssp", "2.5e-4")).schedule
+    assert osp["kind"] == "monolithic" and osp["step"] == 2.5e-4 != plain
+    with pytest.raises(SSPError, match=r"FixedStepAlgorithm baseStepSize='-1' is not a positive number"):
+        read_ssp(_as_osp_archive(toy_ssp, tmp_path / "bad.ssp", "-1"))

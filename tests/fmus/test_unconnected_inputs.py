@@ -279,3 +279,15 @@ def test_an_exported_native_component_keeps_its_defaults(tmp_path):
         for c in sim.system.components.values():
             c.terminate()
     assert cap.rows[-1]["g.y"][0] == 3.0
+
+
+def test_parameters_survive_an_fmu_that_resets_them_in_setup_experiment(tmp_path):
+    """tests/fmus/models/resets2.py resets k in fmi2SetupExperiment: our run, like fmpy's (which writes start
+    values after setupExperiment), keeps the k it was given."""
+    from tests.helpers.fmus import build_python_fmu
+
+    fmu = build_python_fmu("resets2", tmp_path, fmi3=False)
+    cap, report = run_alone(fmu, params={"k": 3.0})
+    ref = fmpy_alone(fmu, params={"k": 3.0})
+    assert report.status == "complete" and np.all(ref["y"] == 3.0)
+    assert_same_as_fmpy(cap, ref, 1)
