@@ -109,6 +109,20 @@ def check_finite(name: str, value: np.ndarray) -> None:
         raise ContractError(f"{name}: value is not finite ({value})")
 
 
+def output_problem(comp: "Component") -> str | None:
+    """What is wrong with the first output of ``comp`` that is not what the contract makes it (a numpy array of
+    its declared size), or None: a plug-in that writes a list, or three values into a port of two, made the
+    readers fail far from it (numba's typing error in another component, numpy's broadcast message)."""
+    for v in comp.variables:
+        if v.causality != "output" or not v.carried:
+            continue
+        a = comp.y.get(v.name)
+        if not isinstance(a, np.ndarray) or a.size != v.size:
+            got = f"{a.size} value(s)" if isinstance(a, np.ndarray) else f"a {type(a).__name__} ({a!r:.40})"
+            return f"{comp.name}.{v.name} must be a numpy array of {v.size} value(s), got {got}"
+    return None
+
+
 class Component:
     """Base class of native components.
 

@@ -74,6 +74,13 @@ def _load_path(path: str):
     return getattr(importlib.import_module(module), attr)
 
 
+def is_plugin_class(cls) -> bool:
+    """Whether ``cls`` is a user's component (a ``module:Class`` plug-in or an installed entry point), not one the
+    project ships: what it raises is a mistake of the user's code, named with its component as an input error,
+    where the project's own exception would be a bug."""
+    return str(getattr(cls, "__module__", "")).split(".")[0] != "rotorcosim"
+
+
 def is_plugin_path(name: str) -> bool:
     """True for an implementation written ``"module:Class"`` (a plug-in imported directly)."""
     module, colon, attr = str(name).partition(":")

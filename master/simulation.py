@@ -15,7 +15,8 @@ from typing import Sequence
 
 import numpy as np
 
-from rotorcosim.components.contract import COUPLED, HELD, ContractError
+from rotorcosim.components import registry
+from rotorcosim.components.contract import COUPLED, HELD, ContractError, output_problem
 
 from rotorcosim.master.compiled import ahead
 from rotorcosim.master.compiled import choice as compiled
@@ -169,6 +170,13 @@ class Simulation:
                 # a set-up that cannot start from the component's parameters (e.g. the balls' static equilibrium
                 # under a preload of 1e300 N): an input mistake named with its component, not "a bug"
                 raise ContractError(f"{name} could not be set up with its parameters: {exc}") from exc
+            except Exception as exc:
+                if not registry.is_plugin_class(type(comp)):
+                    raise
+                raise ContractError(f"{name} could not be set up with its parameters: {type(exc).__name__}: "
+                                    f"{exc}") from exc
+            if registry.is_plugin_class(type(comp)) and (problem := output_problem(comp)):
+                raise ContractError(f"after its set-up: {problem}")
             if name in by_comp:  # setup may reset inputs to their start values
                 comp.set_inputs(by_comp[name])
             ready.add(name)

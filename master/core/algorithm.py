@@ -29,7 +29,8 @@ from typing import Sequence
 
 import numpy as np
 
-from rotorcosim.components.contract import Component, ContractError, StopRequested
+from rotorcosim.components.contract import Component, ContractError, StopRequested, output_problem
+from rotorcosim.components.registry import is_plugin_class
 from rotorcosim.components.errors import Diverged, ProcessDied, StepTimeout
 
 from rotorcosim.master.core import links
@@ -296,6 +297,8 @@ class Engine:
         self.links = [_Link(c, system.components[c.src_component], system.components[c.dst_component],
                             conv.get(c.dst)) for c in system.connections]
         self.steps_taken = {n: 0 for n in self.order}
+        #: the user's components (plug-ins): their outputs are checked against the contract after each step
+        self._plugins = {n for n, c in system.components.items() if is_plugin_class(type(c))}
         #: the first stop request of the run (a StopRequested), or None; see _pass
         self.stop: StopRequested | None = None
 
@@ -380,6 +383,8 @@ class Engine:
             if values:
                 comp.set_inputs(values)
             comp.do_step(t, hc)
+            if name in self._plugins and (problem := output_problem(comp)):
+                raise ContractError(problem)
         except SimulationFailed:
             raise
         except StopRequested as req:

@@ -317,13 +317,20 @@ def create_component(spec: ComponentSpec) -> Component:
         from rotorcosim.fmus.importer import load_fmu_component
 
         return load_fmu_component(spec.fmu, spec.name, spec.parameters, spec.start, spec.fmu_label)
+    cls = None
     try:
-        return registry.create(spec.implementation, spec.name, spec.parameters, folder=spec.folder)
+        cls = registry.lookup(spec.implementation, spec.folder)
+        return cls(spec.name, spec.parameters or {})
     except ContractError as exc:
         bad = [p for p in spec.parameters if f"{p!r}" in str(exc) and spec.param_origins.get(p)]
         if bad and spec.param_origins[bad[0]] != spec.origin:
             where = f"{spec.param_origins[bad[0]]}: "  # the file that set the offending parameter
         raise ScenarioError(f"{where}[components.{spec.name}]: {exc}") from None
+    except Exception as exc:
+        if cls is None or not registry.is_plugin_class(cls):
+            raise
+        raise ScenarioError(f"{where}[components.{spec.name}]: plug-in {spec.implementation!r} could not be made: "
+                            f"{type(exc).__name__}: {exc}") from None
 
 
 def build_system(sc: Scenario) -> System:

@@ -54,11 +54,18 @@ def scenario_parameters(sc, component: str | None = None) -> list[dict]:
                 rows.append({"component": name, "name": p, "unit": "", "default": None, "value": _plain(v),
                              "source": spec.param_origins.get(p, spec.origin or ""), "description": "FMU parameter"})
             continue
+        where = f"{spec.origin + ': ' if spec.origin else ''}[components.{name}]"
+        cls = None
         try:
-            comp = registry.create(spec.implementation, spec.name, spec.parameters, folder=spec.folder)
+            cls = registry.lookup(spec.implementation, spec.folder)
+            comp = cls(spec.name, spec.parameters or {})
             comp.setup(0.0)
         except ContractError as exc:
-            raise ScenarioError(f"{spec.origin + ': ' if spec.origin else ''}[components.{name}]: {exc}") from None
+            raise ScenarioError(f"{where}: {exc}") from None
+        except Exception as exc:
+            if cls is None or not registry.is_plugin_class(cls):
+                raise
+            raise ScenarioError(f"{where}: plug-in {spec.implementation!r}: {type(exc).__name__}: {exc}") from None
         for v in type(comp).variables:
             if v.causality != "parameter":
                 continue

@@ -118,3 +118,58 @@ def test_a_swap_to_a_file_that_is_no_fmu_says_so(tmp_path, capsys, make):
     assert rc == 2 and err == [f"rotorcosim run: error: swap damper0: {p} is a {make}, not an FMU (a file whose name "
                                "ends in .fmu), a registry name or module:Class"], err
     assert not (tmp_path / "o").exists()
+
+
+#: the worked example's damper, broken in the ways a plug-in's author may break it
+BROKEN = '''
+import numpy as np
+from linear_damper import LinearDamper
+
+
+class Init(LinearDamper):
+    def __init__(self, name, parameters=None):
+        raise RuntimeError("boom in init")
+
+
+class Setup(LinearDamper):
+    def setup(self, t0=0.0):
+        raise KeyError("k_missing")
+
+
+class ListAtSetup(LinearDamper):
+    def setup(self, t0=0.0):
+        super().setup(t0)
+        self.y["F_journal"] = [0.0, 0.0]
+
+
+class ThreeValues(LinearDamper):
+    def do_step(self, t, h):
+        super().do_step(t, h)
+        self.y["F_journal"] = np.zeros(3)
+'''
+
+
+@pytest.mark.parametrize("cls, rc, line", [
+    # were: "unexpected RuntimeError: boom in init (... it may be a bug)", exit 1
+    ("Init", 2, "rotorcosim run: error: {s}: [components.damper0]: plug-in 'broken:Init' could not be made: "
+                "RuntimeError: boom in init"),
+    # was: "error: 'k_missing'", naming nothing
+    ("Setup", 2, "rotorcosim run: error: damper0 could not be set up with its parameters: KeyError: 'k_missing'"),
+    # was: bearing0's numba typing error over 23 lines
+    ("ListAtSetup", 2, "rotorcosim run: error: after its set-up: damper0.F_journal must be a numpy array of 2 "
+                       "value(s), got a list ([0.0, 0.0])"),
+    # was: "error: could not broadcast input array from shape (3,) into shape (2,)", exit 2
+    ("ThreeValues", 1, "rotorcosim run: a component failed: damper0 failed in do_step at t = 0 s: "
+                       "damper0.F_journal must be a numpy array of 2 value(s), got 3 value(s); what was recorded is "
+                       "in {o} (summary.json has the error)"),
+])
+def test_a_broken_plugin_is_named_in_one_line(tmp_path, capsys, cls, rc, line):
+    (tmp_path / "linear_damper.py").write_text((EXAMPLE.parent / "linear_damper.py").read_text())
+    (tmp_path / "broken.py").write_text(BROKEN)
+    s = tmp_path / "s.toml"
+    s.write_text(EXAMPLE.read_text().replace("linear_damper:LinearDamper", f"broken:{cls}"))
+    out = tmp_path / "o"
+    assert main(["run", str(s), "--duration", "0.02", "--quiet", "--no-figures", "--out", str(out)]) == rc
+    err = [x for x in capsys.readouterr().err.splitlines() if x.strip()]
+    assert err == [line.format(s=s, o=out)], err
+    assert out.exists() == (rc == 1)
