@@ -27,7 +27,7 @@ from typing import Any, Callable, Sequence
 
 # one place for these: the sweep engine's connection timeout [s], its Dask client (local cluster or scheduler
 # address), its closing and its SIGTERM-as-Ctrl-C; the retry of a job whose worker died (retry.py)
-from rotorcosim.master.sweep.engine import CONNECT_TIMEOUT_S
+from rotorcosim.master.sweep.engine import CONNECT_TIMEOUT_S, check_where
 from rotorcosim.master.sweep.retry import Outcome, run_retried
 from rotorcosim.master.sweep.engine import close_client, dask_client as sweep_client
 from rotorcosim.master.sweep.engine import sigterm_as_interrupt as terminate_as_interrupt  # noqa: F401 - used as evaluate.terminate_as_interrupt
@@ -76,6 +76,7 @@ def check_scheduler(scheduler: str | None, connect_timeout: float = CONNECT_TIME
 def slots(scheduler: str | None, workers: int | None, serial: bool) -> int:
     """How many runs a study runs at once: 1 serial, the scheduler's threads, or the local cluster's workers
     (``workers``, default the cores). Checks the scheduler (:func:`check_scheduler`)."""
+    check_where(scheduler, workers, serial)
     if serial:
         return 1
     threads = check_scheduler(scheduler)
@@ -110,10 +111,7 @@ class Evaluator:
     def __init__(self, scenario: str, duration: float | None = None, *, scheduler: str | None = None,
                  workers: int | None = None, serial: bool = False, task: Callable = run_job,
                  connect_timeout: float = CONNECT_TIMEOUT_S):
-        if workers is not None and (isinstance(workers, bool) or not isinstance(workers, int) or workers < 1):
-            raise ValueError(f"workers must be an integer >= 1, got {workers!r}")
-        if serial and scheduler:
-            raise ValueError("give a scheduler or serial, not both")
+        check_where(scheduler, workers, serial)
         self.scenario, self.duration, self.task = scenario, duration, task
         self.scheduler, self.workers, self.serial = scheduler, workers, serial
         self.connect_timeout = connect_timeout

@@ -114,8 +114,7 @@ def run_cases(cases: Sequence[Case], out, *, scheduler: str | None = None, worke
     names = [c.name for c in cases]
     if len(set(names)) != len(names):
         raise ValueError(f"run_cases: two cases are named {next(n for n in names if names.count(n) > 1)!r}")
-    if workers is not None and workers < 1:
-        raise ValueError(f"--workers must be at least 1, got {workers}")
+    check_where(scheduler, workers, serial)
     # fail early: a bad scenario, an unknown component, a duration or schedule no run takes, a sweep too long
     prices = [c.check(force) for c in cases]
     est = _estimate(prices, scheduler, workers, serial, client, connect_timeout, force)
@@ -129,6 +128,15 @@ def run_cases(cases: Sequence[Case], out, *, scheduler: str | None = None, worke
         sweep = _Sweep(cases, folder, definitions, {**(info or {}), "estimate": est}, progress)
         sweep.level_column = column
         return sweep.run(scheduler, workers, serial, client, connect_timeout, finish)
+
+
+def check_where(scheduler: str | None, workers, serial: bool) -> None:
+    """Where a sweep's or a study's runs go, checked before anything is written: a local cluster of a whole
+    number of workers >= 1, and ``serial`` (this process, no Dask) without a scheduler (one was ignored)."""
+    if workers is not None and (isinstance(workers, bool) or not isinstance(workers, int) or workers < 1):
+        raise ValueError(f"--workers must be at least 1, got {workers!r}")
+    if serial and scheduler:
+        raise ValueError("--serial runs in this process, without Dask: give it or --scheduler, not both")
 
 
 def _estimate(prices: list[dict], scheduler, workers, serial, client, connect_timeout, force) -> dict:

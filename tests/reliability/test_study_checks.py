@@ -237,3 +237,19 @@ def test_a_targets_table_from_a_spreadsheet_is_read_and_a_binary_one_named(tmp_p
     assert rc == 2 and error_line(err) == (f"rotorcosim calibrate: error: targets file {tmp_path / 't.csv'}: not "
                                            "UTF-8 text (byte 0xff at position 42): save it as CSV, UTF-8")
     assert not (tmp_path / "o").exists()
+
+
+@pytest.mark.parametrize("command, text", [("uq", UQ), ("calibrate", CAL), ("sweep", None)])
+@pytest.mark.parametrize("where, message", [
+    # a study checked --workers after writing its report (uq.json / calibration.json left in --out)
+    (["--workers", "0"], "--workers must be at least 1, got 0"),
+    # the scheduler was ignored (sweep) or refused after the report was written (studies)
+    (["--serial", "--scheduler", "tcp://127.0.0.1:1"],
+     "--serial runs in this process, without Dask: give it or --scheduler, not both"),
+])
+def test_where_the_runs_go_is_checked_before_anything_is_written(tmp_path, capsys, command, text, where, message):
+    first = (["sweep", "toy_thermomechanical", "--unbalance", "1,2", "--duration", "0.05"] if text is None
+             else [command, spec(tmp_path, text)])
+    rc, _, err = call(capsys, *first, *where, "--quiet", "--out", tmp_path / "o")
+    assert rc == 2 and error_line(err) == f"rotorcosim {command}: error: {message}", err
+    assert not (tmp_path / "o").exists()
