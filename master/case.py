@@ -275,7 +275,8 @@ def check_results(sc) -> None:
 
 def _check_level_parameter(sc, where: str, ref: str) -> None:
     """The level's ``comp.param`` must be a parameter the component has: a misspelt one was accepted and the
-    run reported no level (summary.json ``unbalance_N`` null), ``--unbalance`` then refused by the component."""
+    run reported no level (its summary's level key null), the level's command-line option then refused by the
+    component."""
     comp, _, param = ref.partition(".")
     if comp not in sc.components:
         raise ValueError(f"{where}: {ref!r}: no component {comp!r}")
