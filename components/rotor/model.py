@@ -68,7 +68,7 @@ def _merged(base: dict, over: dict) -> dict:
     return out
 
 
-def load_data(path: str | Path | None = None, _depth: int = 0) -> tuple[dict, str]:
+def load_data(path: str | Path | None = None, _chain: tuple = ()) -> tuple[dict, str]:
     """The model data and the SHA-256 of the file's bytes (the cache key). A file whose ``[engine] extends``
     names another engine file (relative to it) is that file's data with its own tables laid over it (tables
     merged key by key, other values replaced): an engine that differs from another by a part (a fuse at a
@@ -86,9 +86,13 @@ def load_data(path: str | Path | None = None, _depth: int = 0) -> tuple[dict, st
     if base is not None:
         if not isinstance(base, str) or not base:
             raise ValueError(f"rotor model file {p}: [engine] extends must name an engine file, got {base!r}")
-        if _depth >= MAX_EXTENDS:
+        chain = (*_chain, p.resolve())
+        if (p.parent / base).resolve() in chain:   # not "a chain longer than 8 files"
+            raise ValueError(f"rotor model file {p}: [engine] extends loops back on itself "
+                             f"({' -> '.join(map(str, (*chain, (p.parent / base).resolve())))})")
+        if len(_chain) >= MAX_EXTENDS:
             raise ValueError(f"rotor model file {p}: [engine] extends chain longer than {MAX_EXTENDS} files")
-        bdata, bdigest = load_data(p.parent / base, _depth + 1)
+        bdata, bdigest = load_data(p.parent / base, chain)
         own = dict(data, engine={k: v for k, v in head.items() if k != "extends"})
         data = _merged(bdata, own)
         digest = hashlib.sha256((digest + bdigest).encode()).hexdigest()

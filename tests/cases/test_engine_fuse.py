@@ -230,9 +230,16 @@ def test_an_engine_file_extends_another(tmp_path):
     (tmp_path / "a.toml").write_text('[engine]\nformat = 1\nextends = "missing.toml"\n')
     with pytest.raises(FileNotFoundError, match="missing.toml"):
         fem.load_data(tmp_path / "a.toml")
+    # a loop is said as one (it was "extends chain longer than 8 files")
     (tmp_path / "b.toml").write_text('[engine]\nformat = 1\nextends = "b.toml"\n')
-    with pytest.raises(ValueError, match="extends chain longer than 8 files"):
+    b = (tmp_path / "b.toml").resolve()
+    with pytest.raises(ValueError) as err:
         fem.load_data(tmp_path / "b.toml")
+    assert str(err.value) == f"rotor model file {tmp_path / 'b.toml'}: [engine] extends loops back on itself ({b} -> {b})"
+    for i in range(10):   # a chain of 10 files: the 9th may extend no further
+        (tmp_path / f"c{i}.toml").write_text(f'[engine]\nformat = 1\nextends = "c{i + 1}.toml"\n')
+    with pytest.raises(ValueError, match=r"c8\.toml: \[engine\] extends chain longer than 8 files"):
+        fem.load_data(tmp_path / "c0.toml")
 
 
 @pytest.mark.slow
