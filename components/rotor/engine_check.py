@@ -38,7 +38,9 @@ class _Problems:
         self.out: list[str] = []
 
     def add(self, where: str, what: str) -> None:
-        self.out.append(f"{where}: {what}")
+        line = f"{where}: {what}"
+        if line not in self.out:   # kxx and kyy given by one k: its problem once
+            self.out.append(line)
 
     def value(self, where: str, value, *, positive=True, allow_knob=False):
         """A finite number > 0 (>= 0 with positive=False), or a [calibration] knob's name; None if not."""
@@ -153,11 +155,7 @@ def problems(data: dict) -> list[str]:
             if not _node_ok(dk.get("node"), len(z)):
                 p.add(dw, f"node {dk.get('node')!r} out of range 0-{len(z) - 1}")
             p.value(f"{dw}.mass", dk.get("mass"), positive=False, allow_knob=True)
-            if isinstance(dk.get("mass"), str):
-                p.value(f"{dw}.r_gyration_mm", dk.get("r_gyration_mm"))
-            else:
-                for k in ("Ip", "Id"):
-                    p.value(f"{dw}.{k}", dk.get(k), positive=False)
+            _disk_inertia(p, dw, dk)
 
     cas = data.get("casing")
     hubs: list[str] = []
@@ -196,8 +194,8 @@ def problems(data: dict) -> list[str]:
         hubs.append(h)
         # a housing without mass leaves the mass matrix singular: no modes, no reduced rotor, no run
         p.value(f"pedestal.{h}.mass", pv.get("mass"))
-        for k in dict.fromkeys(k if k in pv else "k" for k in ("kxx", "kyy")):   # a shared k named once
-            p.value(f"pedestal.{h}.{k}", pv.get(k), allow_knob=True)
+        for k in ("kxx", "kyy"):
+            p.value(f"pedestal.{h}.{k if k in pv else 'k'}", pv.get(k, pv.get("k")), allow_knob=True)
 
     def ref(where, r, *, hub_ok=True, ground_ok=False):
         if ground_ok and r == "ground":
@@ -247,6 +245,23 @@ def problems(data: dict) -> list[str]:
             p.add(f"attach.{key}", f"no bearing{key[len('rubring'):]} in [attach] (a rub ring's ring is on the "
                                    "housing of the bearing of the same id)")
     return p.out + engine_parts.problems(data)
+
+
+def _disk_inertia(p: _Problems, dw: str, dk: dict) -> None:
+    """A disk's inertias: Ip and Id with a mass in kg, r_gyration_mm with a mass named by [calibration] (Ip = m r_g^2,
+    Id = Ip / 2). A key of the other form is not read (model.disk_inertia): it is refused, not ignored."""
+    if isinstance(dk.get("mass"), str):
+        unread, how = [k for k in ("Ip", "Id") if k in dk], "a mass named by [calibration] takes them from r_gyration_mm"
+        if "r_gyration_mm" not in dk:
+            p.add(f"{dw}.r_gyration_mm", "missing (a mass named by [calibration] takes Ip = m r_g^2, Id = Ip / 2)")
+        else:
+            p.value(f"{dw}.r_gyration_mm", dk.get("r_gyration_mm"))
+    else:
+        unread, how = [k for k in ("r_gyration_mm",) if k in dk], "it goes with a mass named by [calibration]"
+        for k in ("Ip", "Id"):
+            p.value(f"{dw}.{k}", dk.get(k), positive=False)
+    for k in unread:
+        p.add(f"{dw}.{k}", f"not read ({how})")
 
 
 def _layers(p: _Problems, w: str, r: dict, nodes: int, mats: dict) -> None:

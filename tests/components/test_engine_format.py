@@ -85,6 +85,29 @@ def test_every_problem_of_a_file_is_named():
     assert engine_check.problems(fem.load_data()[0]) == []
 
 
+def test_a_disk_key_that_would_not_be_read_is_named():
+    """A disk's Ip and Id go with a mass in kg, r_gyration_mm with a mass named by [calibration]: a key of the
+    other form was ignored (r_gyration_mm beside Ip, Id) or left a confusing 'r_gyration_mm: ... got None'."""
+    d = _beam(n_el=4)
+    d["calibration"] = {"m_disk": 2.0}
+    d["spool"]["s"]["disks"] = [{"node": 1, "name": "a", "mass": 1.0, "Ip": 0.01, "Id": 0.005, "r_gyration_mm": 50.0},
+                                {"node": 2, "name": "b", "mass": "m_disk", "Ip": 0.01, "Id": 0.005}]
+    assert engine_check.problems(d) == [
+        "spool.s.disks[0] ('a').r_gyration_mm: not read (it goes with a mass named by [calibration])",
+        "spool.s.disks[1] ('b').r_gyration_mm: missing (a mass named by [calibration] takes Ip = m r_g^2, Id = Ip / 2)",
+        "spool.s.disks[1] ('b').Ip: not read (a mass named by [calibration] takes them from r_gyration_mm)",
+        "spool.s.disks[1] ('b').Id: not read (a mass named by [calibration] takes them from r_gyration_mm)"]
+
+
+def test_a_problem_of_a_shared_k_is_listed_once():
+    """k standing for kxx and kyy: its problem was listed twice ('support[0] ('left').k: must be ...' two lines)."""
+    d = _beam(n_el=4)
+    d["support"][0]["k"] = -1.0
+    d["pedestal"] = {"h": {"mass": 1.0, "k": 0.0}}
+    assert engine_check.problems(d) == ["pedestal.h.k: must be a finite number > 0, got 0.0",
+                                        "support[0] ('left').k: must be a finite number > 0, got -1.0"]
+
+
 def test_mta_basis_of_a_free_spool():
     """A spool held by nothing in K (its bearings are co-simulated) has rigid-body modes: the augmentation
     vectors come from the shifted K + sigma M and stay M-orthogonal to the retained modes (exactly, by
