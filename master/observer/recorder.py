@@ -20,6 +20,11 @@ from rotorcosim.master.observer.observer import Observer, sampled_rows
 DISK_RESERVE_BYTES = 4 * 1024 ** 2
 
 
+def _size(n: float) -> str:
+    """A size on disk as it reads best: 3 significant digits of GiB, or of MiB below one."""
+    return f"{n / 2 ** 30:.3g} GiB" if n >= 2 ** 30 else f"{n / 2 ** 20:.3g} MiB"
+
+
 class Recorder(Observer):
     """Records ``signals`` ("component.port") every ``record_step`` seconds of a TM interval and at every step
     of a TO interval, into ``path`` (``.h5`` / ``.hdf5``: one dataset per signal plus ``time`` and ``phase``;
@@ -79,8 +84,33 @@ class Recorder(Observer):
             self._open()  # a resumed run: the file holds the rows up to the checkpoint, its first sample too
             return
         if self.path is not None:
+            self._check_room(sim, schedule)
             self._open()
         self._sample(sim, sim.t)
+
+    def _check_room(self, sim, schedule) -> None:
+        """Refuse a run whose time series cannot fit on its disk before it starts (it filled the disk hours in
+        and failed there: an hour monolithic of the blade-loss system records ~36 GB): the rows its timeline
+        records, at 8 bytes a value (the HDF5 file's size; a CSV file's is larger), against the free space. The
+        automatic schedule's intervals are not known before the run."""
+        intervals = getattr(schedule, "intervals", None)
+        if not intervals:
+            return
+        rows = 1.0
+        for iv in intervals:
+            every = iv.step if sim.phases.role(iv.phase) == HELD else max(iv.step, self.record_step)
+            rows += iv.duration / every
+        width = 2 + sum(self.sizes.values())
+        need = rows * width * 8
+        try:
+            st = os.statvfs(self.path.parent)
+        except (OSError, AttributeError):
+            return
+        free = st.f_bavail * st.f_frsize
+        if need > free:
+            raise ValueError(f"the time series would take about {_size(need)} ({rows:,.0f} rows of {width} values), "
+                             f"more than the {_size(free)} free on the disk holding {self.path.parent}: record fewer "
+                             "signals (--record), a longer [outputs] record_step or a shorter --duration")
 
     def _open(self):
         self.path.parent.mkdir(parents=True, exist_ok=True)

@@ -183,6 +183,36 @@ def test_disk_nearly_full_is_refused_before_hdf5_breaks(tmp_path, monkeypatch):
         assert "No space left" in f.attrs["error"]
 
 
+def test_a_time_series_the_disk_cannot_hold_is_refused_before_the_run(tmp_path, monkeypatch, capsys):
+    """A run whose timeline records more than the disk's free space (an hour of the blade-loss system on the
+    monolithic schedule: ~36 GB) started and failed when the disk filled, hours in; it is refused at its start,
+    one line, exit 2, no folder. Here the disk has 6 MiB free and the toy records rows of 5 values every
+    1 ms: 200 s (7.63 MiB) do not fit, 20 s (0.76 MiB) do."""
+    import os as _os
+
+    from rotorcosim.master.cli import main
+    from rotorcosim.master.observer import recorder
+
+    real = _os.statvfs
+
+    class SixMiB:
+        def __init__(self, st):
+            self.f_frsize = st.f_frsize
+            self.f_bavail = 6 * 2 ** 20 // st.f_frsize
+
+    monkeypatch.setattr(recorder.os, "statvfs", lambda path: SixMiB(real(path)))
+    out = tmp_path / "o"
+    rc = main(["run", "toy_thermomechanical", "--schedule", "monolithic", "--duration", "200", "--quiet",
+               "--no-figures", "--out", str(out)])
+    err = [x for x in capsys.readouterr().err.splitlines() if x.strip()]
+    assert rc == 2 and err == [f"rotorcosim run: error: the time series would take about 7.63 MiB (200,001 rows of 5 "
+                               f"values), more than the 6 MiB free on the disk holding {out}: record fewer signals "
+                               "(--record), a longer [outputs] record_step or a shorter --duration"], err
+    assert not out.exists()
+    assert main(["run", "toy_thermomechanical", "--schedule", "monolithic", "--duration", "20", "--quiet",
+                 "--no-figures", "--out", str(out)]) == 0
+
+
 def test_a_run_that_failed_before_its_first_step_does_not_block_its_folder(tmp_path):
     """A bad parameter found when the components are set up leaves no folder (nothing was computed); the
     corrected run takes the same --out, while a folder with results is still refused."""
