@@ -90,9 +90,9 @@ class Recorder(Observer):
 
     def _check_room(self, sim, schedule) -> None:
         """Refuse a run whose time series cannot fit on its disk before it starts (it filled the disk hours in
-        and failed there: an hour monolithic of the blade-loss system records ~36 GB): the rows its timeline
-        records, at 8 bytes a value (the HDF5 file's size; a CSV file's is larger), against the free space. The
-        automatic schedule's intervals are not known before the run."""
+        and failed there: tens of GB for an hour of a fast-sampled system): the rows its timeline records, at 8
+        bytes a value (the HDF5 file's size; a CSV file's is larger), against the free space. The automatic
+        schedule's intervals are not known before the run."""
         intervals = getattr(schedule, "intervals", None)
         if not intervals:
             return
