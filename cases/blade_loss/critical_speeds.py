@@ -26,7 +26,8 @@ from rotorcosim.cases.blade_loss import linear_engine, response_peaks
 def add_arguments(parser):
     """The options of ``rotorcosim critical-speeds`` on ``parser``."""
     parser.add_argument("--model", "--model-file", dest="model_file", default="", metavar="FILE",
-                        help="engine file (TOML, docs/reference/engine-format.md); default: the paper's engine")
+                        help="engine file (TOML, docs/reference/engine-format.md); default: the engine of "
+                             "--scenario, else the paper's engine")
     parser.add_argument("--scenario", default=None, metavar="SCENARIO",
                         help="the scenario whose bearing and damper components linearise the attached bearings "
                              "(default: the shipped blade-loss scenario)")
@@ -233,6 +234,19 @@ def check_figure_path(path: str) -> None:
                              f"({', '.join(sorted(formats))})")
 
 
+def scenario_engine(sc) -> str:
+    """The engine file scenario ``sc`` runs (its ``[scenario] engine``, else its rotor's ``model_file``; '' for
+    none or no scenario: the paper's). Without it ``--scenario my_engine/blade_loss.toml`` listed the paper's
+    engine's critical speeds, its bearings linearised with the scenario's."""
+    if sc is None:
+        return ""
+    if getattr(sc, "engine", None) is not None:
+        return str(sc.engine.file)
+    rotor = sc.components.get("rotor")
+    model = rotor.parameters.get("model_file") if rotor is not None else None
+    return model if isinstance(model, str) else ""
+
+
 def run(args) -> int:
     """Run the command ``args`` (parsed); returns the exit status."""
     if args.campbell:
@@ -241,12 +255,13 @@ def run(args) -> int:
         raise ValueError("--windmill-rpm marks the Campbell diagram: give --campbell FILE.png too")
     sc = None
     if args.scenario:
-        from rotorcosim.master.scenario.build import load_scenario
+        from rotorcosim.master.api import load_scenario   # a shipped name too, as every command's --scenario
 
         sc = load_scenario(args.scenario)
-    out = critical_speeds(args.model_file, args.count, args.max_rpm, args.oil_temperature, sc)
+    model_file = args.model_file or scenario_engine(sc)
+    out = critical_speeds(model_file, args.count, args.max_rpm, args.oil_temperature, sc)
     if args.campbell:
-        draw_campbell(args.campbell, args.model_file, args.max_rpm, out, args.oil_temperature, sc, args.windmill_rpm)
+        draw_campbell(args.campbell, model_file, args.max_rpm, out, args.oil_temperature, sc, args.windmill_rpm)
         out["campbell"] = args.campbell
     if args.json:
         print(json.dumps(out))

@@ -105,6 +105,9 @@ def supports(sc=None, oil_temperature_C: float | None = None, data: dict | None 
             dmp = create_component(sc.components[f"damper{k}"])
         brg.setup(0.0)
         dmp.setup(0.0)
+        if not own:
+            for comp, kind in ((brg, "bearing"), (dmp, "damper")):
+                _check_linearisable(sc, comp, kind)
         at = ls[f"bearing{k}"]
         out[key] = {"node": tuple(at["node"]), "hub": at["housing"],
                     "k_contact": contact_stiffness(brg), "m_journal": float(brg.p["m_journal"]),
@@ -118,6 +121,24 @@ def supports(sc=None, oil_temperature_C: float | None = None, data: dict | None 
             out[key]["fuse"] = {"housing": fem.fused_housing(k), "k": fuse_stiffness(fp, stage),
                                 "c": float(fp.get("damping", 0.0)), "stage": stage}
     return out
+
+
+#: what the linearisation reads of a bearing and a damper: the native models' (contact_stiffness, film_damping)
+READS = {"bearing": (("geometry", "z0"), ("omega", "m_journal"), "the ball bearing (bearing.hertz)"),
+         "damper": (("viscosity", "film_force"), ("k_spring", "clearance"), "the damper (damper.fast or damper.fe)")}
+
+
+def _check_linearisable(sc, comp, kind: str) -> None:
+    """A scenario's part in another implementation (an FMU of an SSP archive, a plug-in) has not what the
+    linearisation reads: an error naming it ('FMUComponent' object has no attribute 'geometry' and "error:
+    'k_spring'" were all it said)."""
+    attributes, parameters, native = READS[kind]
+    if all(hasattr(comp, a) for a in attributes) and all(p in comp.p for p in parameters):
+        return
+    spec = sc.components[comp.name]
+    what = spec.fmu_label or spec.fmu or spec.implementation   # an SSP's FMU by its entry, not its extraction
+    raise ValueError(f"scenario {sc.name!r}: {comp.name} is {what}, not {native} whose "
+                     "model the linearised engine reads: give a scenario of the native parts (--scenario FILE)")
 
 
 def contact_stiffness(bearing) -> float:

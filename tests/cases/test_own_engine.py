@@ -161,3 +161,34 @@ def test_too_few_modes_for_a_rotor_free_without_its_bearings(tmp_path, capsys):
                                "moves freely without its co-simulated bearings: 4 such modes); retain more than 4 "
                                "(n_modes >= 5)"], err
     assert not (tmp_path / "o").exists()
+
+
+def test_critical_speeds_of_a_scenario_are_its_engines(tmp_path, capsys):
+    """critical-speeds --scenario my_engine/blade_loss.toml (no --model) listed the paper's engine's speeds
+    ('of spool 'pt'', 8500, 10200 ...) with the scenario's bearings linearised onto it; a shipped name was 'not
+    found'. Now the scenario's engine, as --model of it gives, and shipped names are taken."""
+    import json
+
+    assert main(["new-engine", str(tmp_path / "X")]) == 0
+    capsys.readouterr()
+    assert main(["critical-speeds", "--scenario", str(tmp_path / "X" / "blade_loss.toml"), "--json"]) == 0
+    by_scenario = json.loads(capsys.readouterr().out)
+    assert main(["critical-speeds", "--model", str(tmp_path / "X" / "engine.toml"), "--json"]) == 0
+    by_model = json.loads(capsys.readouterr().out)
+    assert by_scenario["forward_synchronous_rpm"] == by_model["forward_synchronous_rpm"]
+    assert by_scenario["spools"] == ["rotor"]
+    assert main(["critical-speeds", "--scenario", "blade_loss", "--json"]) == 0
+    assert json.loads(capsys.readouterr().out)["spools"][0] == "pt"
+
+
+def test_a_scenario_whose_damper_is_a_plugin_cannot_linearise_the_engine(capsys):
+    """The linearised engine reads the native damper's film: a plug-in (or an SSP's FMU) in its place ended in
+    "error: 'k_spring'" ('FMUComponent' object has no attribute 'geometry' for an SSP, exit 1 'a bug')."""
+    from pathlib import Path
+
+    example = Path(__file__).resolve().parents[2] / "docs" / "examples" / "linear_damper" / "linear_damper.toml"
+    assert main(["critical-speeds", "--scenario", str(example)]) == 2
+    err = [line for line in capsys.readouterr().err.splitlines() if line.strip()]
+    assert err == ["rotorcosim critical-speeds: error: scenario 'linear_damper_2850': damper0 is "
+                   "linear_damper:LinearDamper, not the damper (damper.fast or damper.fe) whose model the linearised "
+                   "engine reads: give a scenario of the native parts (--scenario FILE)"], err
