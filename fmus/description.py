@@ -1,10 +1,12 @@
 """An FMU's model description read and checked, and its variables as contract variables (the first step of
 using an FMU as a component: fmus/importer.py).
 
-``describe(path)`` checks the archive (fmus/safezip.py) and its modelDescription.xml (FMI 2.0 or 3.0, value
+``describe(path)`` checks the archive (fmus/safezip.py) and its modelDescription.xml (FMI 1.0, 2.0 or 3.0, value
 references that do not collide) and returns it parsed by fmpy; ``ports_of`` turns its variables into the
-contract's ports: FMI 2.0 scalars ``X[1]..X[n]`` regrouped into a vector port (flatten.py), FMI 3.0 arrays as
-vector ports, each with its kind, unit (unit definitions kept: units.py), range, enumeration items and start.
+contract's ports: FMI 1.0 / 2.0 scalars ``X[1]..X[n]`` regrouped into a vector port (flatten.py), FMI 3.0 arrays
+as vector ports, each with its kind, unit (unit definitions kept: units.py), range, enumeration items and start.
+fmpy reads an FMI 1.0 description into FMI 2.0's terms: causality ``internal`` is ``local``, and a variable of
+variability ``parameter`` is a parameter.
 """
 from __future__ import annotations
 
@@ -22,6 +24,7 @@ from rotorcosim.components.bounded_read import TooLarge, read_entry
 from rotorcosim.components.contract import ContractError, Variable
 from rotorcosim.components.value_types import KIND_OF, UNCARRIED
 
+from rotorcosim.fmus import fmi1
 from rotorcosim.fmus.flatten import FlattenError, regroup
 from rotorcosim.fmus.units import BASE
 from rotorcosim.fmus.safezip import ArchiveError, check_entries, open_zip
@@ -69,7 +72,7 @@ def describe(path: str | Path):
     """Check ``path`` as an FMU and return ``(model description xml bytes, fmpy ModelDescription)``.
 
     Raises FMUError for: a file that is not a zip, unsafe entries, no modelDescription.xml, an unreadable model
-    description, a version other than FMI 2.0 / 3.0, an FMU without co-simulation (model exchange only)."""
+    description, a version other than FMI 1.0 / 2.0 / 3.0, an FMU without co-simulation (model exchange only)."""
     from fmpy import read_model_description
 
     path = Path(path)
@@ -89,9 +92,9 @@ def describe(path: str | Path):
         md = read_model_description(io.BytesIO(_zip_of({"modelDescription.xml": xml})), validate=False)
     except Exception as exc:  # lxml / fmpy parse errors: an unreadable description
         raise FMUError(f"{path}: modelDescription.xml cannot be read: {exc}") from None
-    if md.fmiVersion != "2.0" and not md.fmiVersion.startswith("3."):
-        raise FMUError(f"{path}: FMI {md.fmiVersion} FMU: rotorcosim imports FMI 2.0 and 3.0 co-simulation FMUs")
-    _check_value_references(md, str(path))
+    if not _imported_version(md.fmiVersion):
+        raise FMUError(f"{path}: FMI {md.fmiVersion} FMU: {_VERSIONS}")
+    _check_value_references(md, str(path), fmi1.aliases(xml) if md.fmiVersion == "1.0" else {})
     if md.coSimulation is None:
         if md.modelExchange is not None:
             raise FMUError(f"{path}: the FMU offers model exchange only, no co-simulation interface: rotorcosim "
@@ -122,6 +125,13 @@ def describe(path: str | Path):
     return xml, md
 
 
+_VERSIONS = "rotorcosim imports FMI 1.0, 2.0 and 3.0 co-simulation FMUs"
+
+
+def _imported_version(version: str) -> bool:
+    return version in ("1.0", "2.0") or version.startswith("3.")
+
+
 def _check_description_text(path: Path, xml: bytes) -> None:
     """Before fmpy reads it: no DTD (entity bombs, external entities), and an FMI version we import."""
     if b"<!DOCTYPE" in xml or b"<!ENTITY" in xml:
@@ -132,20 +142,24 @@ def _check_description_text(path: Path, xml: bytes) -> None:
     if version is None and start is not None and b"fmiVersion" not in start.group(0):
         # a whole start tag without the attribute: fmpy's own message was "'NoneType' object has no attribute
         # 'startswith'"
-        raise FMUError(f"{path}: modelDescription.xml gives no fmiVersion: not an FMI 2.0 or 3.0 model description")
-    if version is not None and not (version == "2.0" or version.startswith("3.")):
-        raise FMUError(f"{path}: FMI {version} FMU: rotorcosim imports FMI 2.0 and 3.0 co-simulation FMUs")
+        raise FMUError(f"{path}: modelDescription.xml gives no fmiVersion: not an FMI 1.0, 2.0 or 3.0 model "
+                       "description")
+    if version is not None and not _imported_version(version):
+        raise FMUError(f"{path}: FMI {version} FMU: {_VERSIONS}")
 
 
-def _check_value_references(md, where: str) -> None:
+def _check_value_references(md, where: str, declared_aliases: Mapping[str, str]) -> None:
     """Two variables of one type may share a valueReference only as aliases of one output; an input or a
-    parameter sharing one with another variable would be set through the other's name."""
+    parameter sharing one with another variable would be set through the other's name. An FMI 1.0 variable
+    declared an alias (``declared_aliases``) shares its reference on purpose, with an input too."""
     seen: dict[tuple, object] = {}
     for v in md.modelVariables:
         key = (v.type, v.valueReference)
         other = seen.get(key)
         if other is None:
             seen[key] = v
+            continue
+        if v.name in declared_aliases or other.name in declared_aliases:
             continue
         if {other.causality, v.causality} & {"input", "parameter"}:
             raise FMUError(f"{where}: variables {other.name!r} ({other.causality}) and {v.name!r} ({v.causality}) "
@@ -186,9 +200,9 @@ def declared_attribute(e, attr: str):
 def ports_of(md, where: str, hidden=frozenset(), defaults=None) -> tuple[list[Variable], dict[str, list]]:
     """Contract variables from the FMU's variables, and ``{port: [fmpy variables by index]}``.
 
-    FMI 2.0 scalars ``X[1]..X[n]`` are regrouped into a port ``X`` of size n; an FMI 3.0 array variable is one
-    port of size prod(shape) (row-major, as FMI serialises arrays). Every type of FMI 2.0 / 3.0 co-simulation
-    is a port (value_types.py); Binary and Clock ports are declared but carry no value. All the problems found
+    FMI 1.0 / 2.0 scalars ``X[1]..X[n]`` are regrouped into a port ``X`` of size n; an FMI 3.0 array variable is
+    one port of size prod(shape) (row-major, as FMI serialises arrays). Every type of FMI 1.0 / 2.0 / 3.0
+    co-simulation is a port (value_types.py); Binary and Clock ports are declared but carry no value. All the problems found
     are reported at once. ``hidden``: variables that are not ports (our FMUs' schedule phase variables).
 
     An input may stay unconnected (``has_default``, keeping its start value, as fmpy, Ecos and OMSimulator do)
@@ -222,7 +236,7 @@ def ports_of(md, where: str, hidden=frozenset(), defaults=None) -> tuple[list[Va
             bad = True
         kind = KIND_OF.get(first.type)
         if kind is None:
-            problems.append(f"variable {first.name!r} has type {first.type}, which is not an FMI 2.0/3.0 "
+            problems.append(f"variable {first.name!r} has type {first.type}, which is not an FMI "
                             "co-simulation type")
             bad = True
         if bad:

@@ -49,7 +49,7 @@ import numpy as np
 from rotorcosim.components.contract import Component, ContractError, StopRequested, Variable
 from rotorcosim.components.value_types import KIND_OF, check_value, dtype_of
 
-from rotorcosim.fmus import extraction_cache
+from rotorcosim.fmus import extraction_cache, fmi1
 from rotorcosim.fmus import model_description as mdx
 from rotorcosim.fmus.description import FMUError, declared_attribute, describe, parse_number, ports_of
 from rotorcosim.fmus.fmpy_internals import c_function
@@ -63,6 +63,9 @@ _FMI2_TERMINATED, _FMI2_LAST_SUCCESSFUL_TIME = 3, 2   # fmi2StatusKind values
 
 #: per FMI version and FMI type: (ctypes value type, the suffix of its Get/Set functions)
 _CTYPES = {
+    "1": {"Real": (ctypes.c_double, "Real"), "Integer": (ctypes.c_int, "Integer"),
+          "Enumeration": (ctypes.c_int, "Integer"), "Boolean": (ctypes.c_uint8, "Boolean"),
+          "String": (ctypes.c_char_p, "String")},
     "2": {"Real": (ctypes.c_double, "Real"), "Integer": (ctypes.c_int, "Integer"),
           "Enumeration": (ctypes.c_int, "Integer"), "Boolean": (ctypes.c_int, "Boolean"),
           "String": (ctypes.c_char_p, "String")},
@@ -74,6 +77,9 @@ _CTYPES = {
           "Boolean": (ctypes.c_bool, "Boolean"), "String": (ctypes.c_char_p, "String")},
 }
 
+
+#: the function freeing an instance, per FMI version (fmpy's names)
+_FREE = {"1": "fmi1FreeSlaveInstance", "2": "fmi2FreeInstance", "3": "fmi3FreeInstance"}
 
 #: logger callbacks handed to FMUs (see _instantiate2)
 _CALLBACKS: list = []
@@ -98,7 +104,7 @@ class _Handle:
         if fmu is not None:
             try:
                 if self.instantiated:
-                    getattr(fmu, f"fmi{self.version}FreeInstance")(fmu.component)
+                    getattr(fmu, _FREE[self.version])(fmu.component)
                 fmu.freeLibrary()
             except Exception:  # best effort while tearing down
                 pass
@@ -129,12 +135,21 @@ def _purge_cached(ann: mdx.Annotation) -> None:
 class _Transfer:
     """Preallocated value references and values of one FMI type, for a set of ports (one Get/Set call)."""
 
-    def __init__(self, version: str, fmi_type: str, ports: list[tuple[Variable, list[int]]], fmu):
+    def __init__(self, version: str, fmi_type: str, ports: list[tuple[Variable, list[int]]], fmu,
+                 negated: list[int] = ()):
         ctype, suffix = _CTYPES[version][fmi_type]
         self.fmi3 = version == "3"
         self.string = fmi_type == "String"
-        self.get_name, self.set_name = f"fmi{version}Get{suffix}", f"fmi{version}Set{suffix}"
-        self.get, self.set = c_function(fmu, self.get_name), c_function(fmu, self.set_name)
+        if version == "1":
+            # bound with their C signatures (fmi1.py): fmpy's names and types do not fit a direct call
+            self.get_name, self.set_name = f"fmiGet{suffix}", f"fmiSet{suffix}"
+            self.get, self.set = fmi1.function(fmu, self.get_name), fmi1.function(fmu, self.set_name)
+        else:
+            self.get_name, self.set_name = f"fmi{version}Get{suffix}", f"fmi{version}Set{suffix}"
+            self.get, self.set = c_function(fmu, self.get_name), c_function(fmu, self.set_name)
+        # FMI 1.0 negated aliases: the positions whose value is the opposite of the one behind the reference
+        self.negated = np.asarray(negated, dtype=np.intp) if len(negated) else None
+        self.boolean = fmi_type == "Boolean"
         self.ports = []
         vrs: list[int] = []
         n = 0
@@ -149,9 +164,14 @@ class _Transfer:
         self.view = None if self.string else np.ctypeslib.as_array(self.values)
         self.args = (self.vr, self.nvr, self.values) + ((n,) if self.fmi3 else ())
 
+    def negate(self) -> None:
+        """The negated aliases' values in the buffer turned into their base's (or back: it is its own inverse)."""
+        v = self.view[self.negated]
+        self.view[self.negated] = (v == 0) if self.boolean else -v
+
 
 class FMUComponent(Component):
-    """An FMI 2.0 / 3.0 co-simulation FMU following the component contract."""
+    """An FMI 1.0 / 2.0 / 3.0 co-simulation FMU following the component contract."""
 
     def __init__(self, path: str | Path, name: str = "component", parameters: Mapping[str, Any] | None = None,
                  start_values: Mapping[str, Any] | None = None, label: str | None = None):
@@ -179,21 +199,24 @@ class FMUComponent(Component):
         self.preferred_step = float(step) if step else Component.preferred_step
         self.description = md.description or ""
         self.implementation = ann.implementation
-        self.can_get_set_state = bool(md.coSimulation.canGetAndSetFMUstate)
+        self._version = {"1.0": "1", "2.0": "2"}.get(md.fmiVersion, "3")
+        # FMI 1.0 has no FMU state functions (fmpy leaves the flag false for it)
+        self.can_get_set_state = bool(md.coSimulation.canGetAndSetFMUstate) and self._version != "1"
+        self._negated = frozenset(n for n, kind in (fmi1.aliases(xml).items() if self._version == "1" else ())
+                                  if kind == "negatedAlias")
         self.p = {v.name: v.start for v in self.variables if v.causality == "parameter"}
         self.u = {v.name: v.start_array() for v in self.variables if v.causality == "input" and v.carried}
         self.y = {v.name: v.start_array() for v in self.variables if v.causality == "output" and v.carried}
         self.state = {}
         self.time = 0.0
-        self._version = "3" if md.fmiVersion.startswith("3.") else "2"
         self.start_values: dict[str, Any] = {}
         # the parameters and start values written before initialisation, written again after setupExperiment
         # (setup): an FMU may reset its variables there (a 20-sim FMU of libcosim's demo lost its mt0_init), and
         # fmpy and libcosim write them after it
         self._before_init: dict[str, tuple] = {}
         try:
-            folder, cached = extraction_cache.acquire(self.path, md.guid if self._version == "2"
-                                                      else md.instantiationToken)
+            folder, cached = extraction_cache.acquire(self.path, md.instantiationToken if self._version == "3"
+                                                      else md.guid)
         except ArchiveError as exc:
             raise FMUError(str(exc)) from None
         self._handle = _Handle(folder, ann, self._version, cached)
@@ -217,9 +240,18 @@ class FMUComponent(Component):
             if v.causality == causality and v.carried:
                 refs = list(dict.fromkeys(e.valueReference for e in self._scalars[v.name]))
                 by_type.setdefault(v.fmi_type, []).append((v, refs))
-        return [_Transfer(self._version, t, ports, self._handle.fmu) for t, ports in sorted(by_type.items())]
+        return [_Transfer(self._version, t, ports, self._handle.fmu, self._negated_positions(ports))
+                for t, ports in sorted(by_type.items())]
+
+    def _negated_positions(self, ports: list[tuple[Variable, list[int]]]) -> list[int]:
+        """The positions, in one transfer's buffer, of FMI 1.0 negated aliases (none for FMI 2.0 / 3.0)."""
+        if not self._negated:
+            return []
+        names = [e.name for var, _ in ports for e in self._scalars[var.name]]
+        return [i for i, n in enumerate(names) if n in self._negated]
 
     def _instantiate(self, md, where: str) -> None:
+        from fmpy.fmi1 import FMU1Slave
         from fmpy.fmi2 import FMU2Slave
         from fmpy.fmi3 import FMU3Slave
 
@@ -228,9 +260,10 @@ class FMUComponent(Component):
         binary = h.folder / "binaries"
         cwd = os.getcwd()
         try:
-            if self._version == "2":
-                h.fmu = FMU2Slave(guid=md.guid, unzipDirectory=str(h.folder), modelIdentifier=ident,
-                                  instanceName=self.name)
+            if self._version in ("1", "2"):
+                cls = FMU1Slave if self._version == "1" else FMU2Slave
+                h.fmu = cls(guid=md.guid, unzipDirectory=str(h.folder), modelIdentifier=ident,
+                            instanceName=self.name)
             else:
                 h.fmu = FMU3Slave(guid=md.instantiationToken, unzipDirectory=str(h.folder),
                                   modelIdentifier=ident, instanceName=self.name)
@@ -243,7 +276,11 @@ class FMUComponent(Component):
         log = h.log
         _purge_cached(h.annotation)
         try:
-            if self._version == "2":
+            if self._version == "1":
+                fmi1.instantiate(h.fmu, log, _CALLBACKS)
+                h.instantiated = True
+                self._bind1()
+            elif self._version == "2":
                 self._instantiate2(log)
             else:
                 def logger(env, status, category, message):
@@ -256,6 +293,8 @@ class FMUComponent(Component):
             raise FMUError(f"{where}: instantiation failed ({exc}){self._log_text()}") from None
         h.instantiated = True
         self._c = h.fmu.component
+        if self._version == "1":
+            return
         suffix = "eger" if self._version == "2" else "32"
         self._int_get = c_function(h.fmu, f"fmi{self._version}GetInt{suffix}")
         self._int_set = c_function(h.fmu, f"fmi{self._version}SetInt{suffix}")
@@ -263,6 +302,15 @@ class FMUComponent(Component):
         if self._version == "3":
             self._flags = [ctypes.c_bool(), ctypes.c_bool(), ctypes.c_bool(), ctypes.c_double()]
             self._flag_refs = [ctypes.byref(x) for x in self._flags]
+
+    def _bind1(self) -> None:
+        """The FMI 1.0 functions called directly, with their C signatures (a binary without one of them is
+        reported here, at instantiation)."""
+        fmu = self._handle.fmu
+        self._int_get = fmi1.function(fmu, "fmiGetInteger")
+        self._int_set = fmi1.function(fmu, "fmiSetInteger")
+        self._do_step = fmi1.function(fmu, "fmiDoStep")
+        self._initialize1 = fmi1.function(fmu, "fmiInitializeSlave")
 
     def _instantiate2(self, log) -> None:
         from fmpy.fmi2 import (calloc, fmi2CallbackAllocateMemoryTYPE, fmi2CallbackFreeMemoryTYPE,
@@ -310,8 +358,13 @@ class FMUComponent(Component):
             raise FMUError(f"{self._where}: {what} failed (status {label}){self._log_text()}")
 
     # -- parameters and start values ---------------------------------------------------------------------
-    def _write(self, var: Variable, refs: list[int], values: np.ndarray, what: str) -> None:
-        """Set ``values`` (already checked against ``var``) through fmpy's typed setters."""
+    def _write(self, var: Variable, refs: list[int], values: np.ndarray, what: str,
+               names: list[str] = ()) -> None:
+        """Set ``values`` (already checked against ``var``) through fmpy's typed setters; ``names``, the
+        variables written (one per reference), tells FMI 1.0 negated aliases, whose base gets the opposite."""
+        if self._negated and any(n in self._negated for n in names):
+            values = np.array([(not x if var.type == "Boolean" else -x) if n in self._negated else x
+                               for n, x in zip(names, values)], dtype=object)
         fmu = self._handle.fmu
         suffix = _CTYPES[self._version][var.fmi_type][1]
         setter = getattr(fmu, "set" + suffix)
@@ -340,9 +393,12 @@ class FMUComponent(Component):
             raise FMUError(f"{self._where}: {exc}") from None
         if self._handle.initialised:
             raise FMUError(f"{self._where}: parameter {name!r} can only be set before setup()")
-        refs = list(dict.fromkeys(e.valueReference for e in self._scalars[name]))
+        first = {}
+        for e in self._scalars[name]:
+            first.setdefault(e.valueReference, e.name)   # one write per reference (FMI 2.0 aliases in a port)
+        refs = list(first)
         values = np.atleast_1d(np.asarray(coerced, dtype=object))
-        self._write(v, refs, values, f"parameter {name!r}")
+        self._write(v, refs, values, f"parameter {name!r}", list(first.values()))
         self._before_init[f"parameter {name!r}"] = (v, refs, values)
         self.p[name] = coerced
         self.explicit.add(name)
@@ -372,7 +428,13 @@ class FMUComponent(Component):
             if first.causality == "input":
                 problems.append(f"{name!r} is an input: connect it or give it a constant under [inputs]")
                 continue
-            if first.variability == "constant" or first.initial not in ("exact", "approx"):
+            if self._version == "1" and (first.variability == "constant" or first.start is None):
+                # FMI 1.0 has no 'initial': a variable with a declared start value takes one before
+                # fmiInitializeSlave (fmpy's rule for FMI 1.0 too)
+                problems.append(f"{name!r} (causality {first.causality}, variability {first.variability}) has no "
+                                "start value to set: only FMI 1.0 variables that declare a start value do")
+                continue
+            if self._version != "1" and (first.variability == "constant" or first.initial not in ("exact", "approx")):
                 problems.append(f"{name!r} (causality {first.causality}, variability {first.variability}, initial "
                                 f"{first.initial}) has no start value to set: only variables with initial = "
                                 "\"exact\" or \"approx\" do (states, for instance)")
@@ -392,7 +454,8 @@ class FMUComponent(Component):
             except ContractError as exc:
                 problems.append(str(exc).replace(f"{self._where}: ", ""))
                 continue
-            self._write(var, [e.valueReference for e in elems], arr, f"the start value of {name!r}")
+            self._write(var, [e.valueReference for e in elems], arr, f"the start value of {name!r}",
+                        [e.name for e in elems])
             self._before_init[f"the start value of {name!r}"] = (var, [e.valueReference for e in elems], arr)
             self.start_values[name] = arr
         if problems:
@@ -410,6 +473,8 @@ class FMUComponent(Component):
             else:
                 for name, a, b, _ in tr.ports:
                     tr.view[a:b] = self.u[name]
+                if tr.negated is not None:
+                    tr.negate()
             self._check(tr.set(self._c, *tr.args), tr.set_name)
 
     def _pull_outputs(self) -> None:
@@ -420,6 +485,8 @@ class FMUComponent(Component):
                     self.y[name] = np.array([(tr.values[i] or b"").decode("utf-8", "replace")
                                              for i in range(a, b)], dtype=object)
             else:
+                if tr.negated is not None:
+                    tr.negate()
                 for name, a, b, dtype in tr.ports:
                     self.y[name] = tr.view[a:b].astype(dtype)
 
@@ -432,15 +499,18 @@ class FMUComponent(Component):
         self.time = float(t0)
         fmu = h.fmu
         try:
-            if self._version == "2":
+            if self._version == "1":
+                self._initialize_slave()
+            elif self._version == "2":
                 fmu.setupExperiment(startTime=self.time)
                 for what, (var, refs, values) in self._before_init.items():
                     self._write(var, refs, values, what)
                 fmu.enterInitializationMode()
             else:
                 fmu.enterInitializationMode(startTime=self.time)
-            self._push_inputs()
-            fmu.exitInitializationMode()
+            if self._version != "1":
+                self._push_inputs()
+                fmu.exitInitializationMode()
         except FMUError:
             raise
         except Exception as exc:
@@ -455,6 +525,13 @@ class FMUComponent(Component):
             bits = self._get_integer(self._phases_out)
             self.phases = frozenset(p for p, b in (("TM", 1), ("TO", 2)) if bits & b)
             self.holds_state_in_TO = bool(bits & 4)
+
+    def _initialize_slave(self) -> None:
+        """FMI 1.0: the inputs, then fmiInitializeSlave with no stop time (the master's run may end anywhere).
+        There is no initialisation mode: parameters and start values were set after instantiation, and inputs
+        are set before it, as FMI 1.0 allows."""
+        self._push_inputs()
+        self._check(self._initialize1(self._c, self.time, 0, 0.0), f"fmiInitializeSlave(tStart = {self.time:.9g} s)")
 
     def _get_integer(self, vr: int) -> int:
         vrs, val = (ctypes.c_uint * 1)(vr), (ctypes.c_int32 * 1)()
@@ -475,7 +552,11 @@ class FMUComponent(Component):
         ``terminateSimulation``, at the last successful time when it also returned early) reads the outputs
         where the FMU stopped and raises StopRequested; the master ends the run there."""
         self._push_inputs()
-        if self._version == "2":
+        if self._version == "1":
+            status = self._do_step(self._c, float(t), float(h), 1)
+            if status == _DISCARD:
+                self._discard1(t, h)
+        elif self._version == "2":
             status = self._do_step(self._c, float(t), float(h), 1)
             if status == _DISCARD and not self._error_text():   # (our FMUs report their failures by text)
                 self._stop2(t, h)
@@ -486,6 +567,19 @@ class FMUComponent(Component):
         self._check(status, f"DoStep(t = {t:.9g} s, h = {h:.3g} s)")
         self.time = t + h
         self._pull_outputs()
+
+    def _discard1(self, t: float, h: float) -> None:
+        """FMI 1.0's fmiDiscard: the slave computed part of the step only, and FMI 1.0 has no way to ask to
+        terminate (FMI 2.0's fmi2Terminated): the step failed, at the time the slave reached when it tells it."""
+        last = ctypes.c_double(t)
+        try:
+            told = fmi1.function(self._handle.fmu, "fmiGetRealStatus")(
+                self._c, fmi1.LAST_SUCCESSFUL_TIME, ctypes.byref(last)) <= _OK_STATUS
+        except Exception:
+            told = False
+        reached = f"it reached t = {last.value:.9g} s" if told else "fmiLastSuccessfulTime not available"
+        raise FMUError(f"{self._where}: fmiDoStep(t = {t:.9g} s, h = {h:.3g} s) returned fmiDiscard ({reached}): "
+                       f"the step was not completed{self._log_text()}")
 
     def _stop2(self, t: float, h: float) -> None:
         fmu = self._handle.fmu
@@ -531,7 +625,8 @@ class FMUComponent(Component):
     # -- state -----------------------------------------------------------------------------------------
     def _require_state(self) -> None:
         if not self.can_get_set_state:
-            raise FMUError(f"{self._where}: the FMU cannot get/set its state (canGetAndSetFMUstate is false): "
+            why = "FMI 1.0 has no FMU state functions" if self._version == "1" else "canGetAndSetFMUstate is false"
+            raise FMUError(f"{self._where}: the FMU cannot get/set its state ({why}): "
                            "rollback (iterative coupling) and state snapshots are impossible with it")
 
     def get_state(self) -> Any:
