@@ -146,6 +146,13 @@ def _check_description_text(path: Path, xml: bytes) -> None:
                        "description")
     if version is not None and not _imported_version(version):
         raise FMUError(f"{path}: FMI {version} FMU: {_VERSIONS}")
+    if version == "1.0" and start is not None:
+        # fmpy reads these two unchecked: an FMI 2.0 description labelled 1.0 was "int() argument must be ..."
+        missing = [a for a in ("modelIdentifier", "numberOfContinuousStates")
+                   if not re.search(rb"\s" + a.encode() + rb"\s*=", start.group(0))]
+        if missing:
+            raise FMUError(f"{path}: modelDescription.xml (fmiVersion 1.0) gives no {' and no '.join(missing)} on "
+                           "fmiModelDescription, which FMI 1.0 requires")
 
 
 def _check_value_references(md, where: str, declared_aliases: Mapping[str, str]) -> None:

@@ -140,3 +140,34 @@ def reference3_fmus(fmu_dir) -> dict[str, Path]:
                 zf.write(src / file, entry)
         out[name] = fmu
     return out
+
+
+#: the FMI 1.0 co-simulation test models after the Modelica Reference FMUs (models/reference1)
+REFERENCE1 = ("dahlquist1", "feedthrough1")
+
+
+@pytest.fixture(scope="session")
+def reference1_fmus(fmu_dir) -> dict[str, Path]:
+    """The models of models/reference1 (after the Reference FMUs' Dahlquist and Feedthrough) as FMI 1.0
+    co-simulation FMUs, compiled here with the system's C compiler (FMI 1.0 names the platform ``linux64``)."""
+    import shutil
+    import subprocess
+    import zipfile
+
+    cc = shutil.which("cc") or shutil.which("gcc")
+    if cc is None or not sys.platform.startswith("linux"):
+        pytest.skip("no C compiler (or not Linux): the FMI 1.0 test FMUs in C cannot be built")
+    src = Path(__file__).with_name("models") / "reference1"
+    out = {}
+    for name in REFERENCE1:
+        binary = fmu_dir / name / "binaries" / "linux64" / f"{name}.so"
+        binary.parent.mkdir(parents=True, exist_ok=True)
+        built = subprocess.run([cc, "-shared", "-fPIC", "-O2", "-o", str(binary), str(src / f"{name}.c"), "-lm"],
+                               capture_output=True, text=True, timeout=120)
+        assert built.returncode == 0, built.stderr[-2000:]
+        fmu = fmu_dir / f"{name}.fmu"
+        with zipfile.ZipFile(fmu, "w", zipfile.ZIP_DEFLATED) as zf:
+            zf.write(src / f"{name}.xml", "modelDescription.xml")
+            zf.write(binary, f"binaries/linux64/{name}.so")
+        out[name] = fmu
+    return out

@@ -124,10 +124,18 @@ def test_an_entry_twice_with_the_same_bytes_is_one_entry(mass_fmu, tmp_path, pri
         shutil.rmtree(folder)
 
 
-def test_fmi_1_0(mass_fmu, tmp_path):
+def test_an_fmi_version_not_imported(mass_fmu, tmp_path):
+    bad = rebuild(mass_fmu, tmp_path / "v4.fmu", lambda n, d: d.replace(b'fmiVersion="2.0"', b'fmiVersion="4.0"')
+                  if n == "modelDescription.xml" else d)
+    with pytest.raises(FMUError, match="FMI 4.0 FMU: rotorcosim imports FMI 1.0, 2.0 and 3.0 co-simulation FMUs"):
+        load_fmu_component(bad, "c")
+
+
+def test_an_fmi_2_0_description_labelled_1_0(mass_fmu, tmp_path):
     bad = rebuild(mass_fmu, tmp_path / "v1.fmu", lambda n, d: d.replace(b'fmiVersion="2.0"', b'fmiVersion="1.0"')
                   if n == "modelDescription.xml" else d)
-    with pytest.raises(FMUError, match="FMI 1.0 FMU: rotorcosim imports FMI 2.0 and 3.0"):
+    with pytest.raises(FMUError, match=r"\(fmiVersion 1.0\) gives no modelIdentifier and no numberOfContinuousStates "
+                                       "on fmiModelDescription, which FMI 1.0 requires"):
         load_fmu_component(bad, "c")
 
 

@@ -276,8 +276,10 @@ FMU_FAULTS = {
     "entity bomb": lambda src, dst: rebuild(src, dst, _md(lambda t: re.sub(
         r"^(<\?xml[^>]*\?>)?", lambda m: (m.group(0) or "") + '<!DOCTYPE fmiModelDescription [<!ENTITY a '
         '"aaaaaaaaaa"><!ENTITY b "&a;&a;&a;&a;&a;&a;&a;&a;">]>', t, count=1))),
-    "FMI 1.0": lambda src, dst: rebuild(src, dst, _md(lambda t: re.sub(r'fmiVersion="[^"]*"', 'fmiVersion="1.0"',
+    "FMI 4.0": lambda src, dst: rebuild(src, dst, _md(lambda t: re.sub(r'fmiVersion="[^"]*"', 'fmiVersion="4.0"',
                                                                       t, count=1))),
+    "FMI 2.0 labelled 1.0": lambda src, dst: rebuild(src, dst, _md(lambda t: re.sub(
+        r'fmiVersion="[^"]*"', 'fmiVersion="1.0"', t, count=1))),
     "no binaries": lambda src, dst: rebuild(src, dst, lambda n, d: None if n.startswith("binaries/") else d),
     "model exchange only": lambda src, dst: rebuild(src, dst, _md(lambda t: t.replace("<CoSimulation",
                                                                                      "<ModelExchange"))),
@@ -315,6 +317,8 @@ FMU_SAYS = {
     "model identifier absolute": "modelIdentifier '/lib/x86_64-linux-gnu/libc.so.6' is not a file name",
     "no model identifier": "modelIdentifier None is not a file name",
     "no FMI version": "gives no fmiVersion",
+    "FMI 4.0": "FMI 4.0 FMU: rotorcosim imports FMI 1.0, 2.0 and 3.0 co-simulation FMUs",
+    "FMI 2.0 labelled 1.0": "which FMI 1.0 requires",
     "default step not a number": "DefaultExperiment stepSize='abc' is not a positive number",
     "default step zero": "DefaultExperiment stepSize='0' is not a positive number",
     "annotation phases unknown": "phases='XX' must name one or both of TM, TO",
