@@ -1,6 +1,6 @@
 """The value types a port or parameter can have, and the checks of a value against its declaration.
 
-A variable's ``type`` is one of the contract's kinds; ``fmi_type`` keeps the FMI 2.0 / 3.0 type it came from
+A variable's ``type`` is one of the contract's kinds; ``fmi_type`` keeps the FMI 1.0 / 2.0 / 3.0 type it came from
 (an imported FMU's ``Float32``, ``Int8``, ``UInt64``, ``Enumeration``...), which fixes its range:
 
 =========  ==========================================================  =========================

@@ -1,4 +1,4 @@
-"""Any FMI 2.0 (or 3.0) co-simulation FMU as a rotorcosim component (through fmpy).
+"""Any FMI 1.0, 2.0 or 3.0 co-simulation FMU as a rotorcosim component (through fmpy).
 
 ``load_fmu_component(path, name, params)`` is what the master calls for a scenario component given as
 ``fmu = "file.fmu"``. Its model description is read and its ports made by description.py, a saved state is
@@ -12,27 +12,35 @@ Mapping onto the contract (components/contract.py):
 * parameters are set right away (before initialisation, as FMI requires); unknown names, wrong sizes or
   non-parameters are clear errors naming the FMU;
 * ``setup(t0)``: (setupExperiment, the parameters and start values set again, as fmpy and libcosim set them
-  after it,) enterInitializationMode, inputs, exitInitializationMode, outputs read;
+  after it,) enterInitializationMode, inputs, exitInitializationMode, outputs read; FMI 1.0, which has no
+  initialisation mode: inputs, ``fmiInitializeSlave(t0, stopTimeDefined = false)``, outputs read;
 * ``do_step(t, h)``: all inputs set, DoStep, all outputs read into ``self.y`` (the master reads ``y``);
 * ``get_state``/``set_state``: Get/SetFMUstate when the FMU declares
-  ``canGetAndSetFMUstate``; otherwise a clear error (rollback is impossible with that FMU);
+  ``canGetAndSetFMUstate``; otherwise, and for every FMI 1.0 FMU (FMI 1.0 has no FMU state), a clear error
+  (rollback is impossible with that FMU);
 * ``phases`` and ``preferred_step``: from rotorcosim's vendor annotation when the FMU is one of ours, else
   ``{"TM"}`` and the DefaultExperiment stepSize (model_description.py documents the annotation);
 * ``do_step``: a stop request of the FMU (FMI 2: ``fmi2Discard`` with ``fmi2Terminated`` true, at
   ``fmi2LastSuccessfulTime``; FMI 3: ``terminateSimulation``, at ``lastSuccessfulTime`` after an early return)
   reads the outputs where the FMU stopped and raises the contract's StopRequested: the master ends the run there;
-* ``start_values``: start values of states and other ``initial = "exact"/"approx"`` variables, checked against
-  their type and range and set before initialisation (fmpy's ``start_values``).
+  FMI 1.0 cannot ask to stop: its ``fmiDiscard`` is a failed step;
+* ``start_values``: start values of states and other ``initial = "exact"/"approx"`` variables (FMI 1.0, which
+  has no ``initial``: variables that declare a start value), checked against their type and range and set before
+  initialisation (fmpy's ``start_values``).
 
-Types: every FMI 2.0 / 3.0 co-simulation type becomes a port (components/value_types.py): Real/Float64/Float32,
+Types: every FMI 1.0 / 2.0 / 3.0 co-simulation type becomes a port (components/value_types.py): Real/Float64/Float32,
 Integer/Enumeration and every FMI 3.0 integer width, Boolean, String; FMI 3.0 arrays are vector ports of
 prod(shape) values (row-major); Binary and Clock ports are declared but not carried (they may stay unconnected).
 Ranges (min/max, enumeration items) and unit definitions (BaseUnit exponents, factor, offset) are kept on the
 contract variables, for the checks of values and the unit conversions of connections (master/core/conversions.py).
+FMI 1.0 (fmi1.py): fmpy reads its description in FMI 2.0's terms (variability ``parameter`` is a parameter,
+causality ``internal`` a local); a declared alias may share an input's value reference, and a negated alias's
+values are negated both ways in the transfer buffers.
 
 The hot path calls the FMU's C functions directly with preallocated ctypes buffers, one Get/Set call per FMI type
 (fmpy's convenience wrappers build new arrays on every call): the FMU boundary should cost what FMI costs, not
-what the glue costs.
+what the glue costs. The FMI 1.0 functions are bound again with their C signatures (fmi1.py: fmpy's declare
+some return types wrongly).
 """
 from __future__ import annotations
 
@@ -57,7 +65,7 @@ from rotorcosim.fmus.fmu_state import STATE_FUNCTIONS, FMUState
 from rotorcosim.fmus.flatten import FlattenError, regroup
 from rotorcosim.fmus.safezip import ArchiveError
 
-_OK_STATUS = 1  # OK = 0, Warning = 1 (FMI 2.0 and 3.0): anything above is a failure
+_OK_STATUS = 1  # OK = 0, Warning = 1 (FMI 1.0, 2.0 and 3.0): anything above is a failure
 _DISCARD = 2
 _FMI2_TERMINATED, _FMI2_LAST_SUCCESSFUL_TIME = 3, 2   # fmi2StatusKind values
 
