@@ -8,6 +8,7 @@ from pathlib import Path
 
 import fmpy
 import pytest
+from fmpy.fmi1 import FMU1Slave
 from fmpy.fmi2 import FMU2Slave
 from fmpy.fmi3 import FMU3Slave
 from packaging.specifiers import SpecifierSet
@@ -48,6 +49,14 @@ def test_every_internal_works_with_the_installed_fmpy_fmi3(types3_fmu, tmp_path)
     slave = _loaded(types3_fmu, FMU3Slave, "instantiationToken", tmp_path)
     try:
         fmpy_internals.check(slave, "3")
+    finally:
+        slave.freeInstance()
+
+
+def test_every_internal_works_with_the_installed_fmpy_fmi1(reference1_fmus, tmp_path):
+    slave = _loaded(reference1_fmus["dahlquist1"], FMU1Slave, "guid", tmp_path)
+    try:
+        fmpy_internals.check(slave, "1")
     finally:
         slave.freeInstance()
 

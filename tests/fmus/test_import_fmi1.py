@@ -120,3 +120,58 @@ def test_fmi1_start_value_without_a_declared_start(reference1_fmus):
     with pytest.raises(FMUError, match=r"'real_out' \(causality output, variability continuous\) has no start value "
                                        "to set: only FMI 1.0 variables that declare a start value do"):
         load_fmu_component(reference1_fmus["feedthrough1"], "f", start_values={"real_out": 1.0})
+
+
+def test_fmi1_discard_is_a_failed_step(reference1_fmus):
+    """fmiDiscard from fmiDoStep: FMI 1.0 has no way to ask to stop, so the step failed; the error says where
+    the slave got to (fmiLastSuccessfulTime)."""
+    c = load_fmu_component(reference1_fmus["dahlquist1"], "d", {"t_discard": 0.3})
+    try:
+        c.setup(0.0)
+        c.do_step(0.0, 0.25)
+        with pytest.raises(FMUError, match=r"fmiDoStep\(t = 0.25 s, h = 0.25 s\) returned fmiDiscard \(it reached "
+                                           r"t = 0.3 s\): the step was not completed"):
+            c.do_step(0.25, 0.25)
+    finally:
+        c.terminate()
+
+
+def test_fmi1_step_error_names_the_fmus_message(reference1_fmus):
+    """A failing fmiDoStep is one line with what the FMU logged (FMI 1.0's variadic logger, formatted by fmpy's
+    native proxy)."""
+    c = load_fmu_component(reference1_fmus["dahlquist1"], "d")
+    try:
+        c.setup(0.0)
+        with pytest.raises(FMUError, match=r"DoStep\(t = 0.5 s, h = 0.1 s\) failed \(status error\): fmiDoStep: "
+                                           "not at the slave's time$"):
+            c.do_step(0.5, 0.1)
+    finally:
+        c.terminate()
+
+
+def test_fmi1_guid_that_does_not_match_the_binary(reference1_fmus, tmp_path):
+    src = reference1_fmus["feedthrough1"]
+    bad = tmp_path / "guid1.fmu"
+    with zipfile.ZipFile(src) as zin, zipfile.ZipFile(bad, "w") as zout:
+        for item in zin.infolist():
+            data = zin.read(item)
+            if item.filename == "modelDescription.xml":
+                data = data.replace(b"{8c4e810f-3df3-4a00-8276-176fa3c9f002}", b"{00000000-0000-0000-0000-000000000000}")
+            zout.writestr(item, data)
+    with pytest.raises(FMUError, match=r"guid1.fmu \(component 'c'\): instantiation failed \(fmiInstantiateSlave "
+                                       r"returned no instance\)"):
+        load_fmu_component(bad, "c")
+
+
+def test_fmi1_binary_of_another_model_identifier(reference1_fmus, tmp_path):
+    """The functions of an FMI 1.0 binary carry the model identifier: a binary under the right file name that
+    exports another identifier's functions does not load, and the error names the binary."""
+    src = reference1_fmus["feedthrough1"]
+    bad = tmp_path / "ident1.fmu"
+    with zipfile.ZipFile(src) as zin, zipfile.ZipFile(bad, "w") as zout:
+        zout.writestr("modelDescription.xml", zin.read("modelDescription.xml").replace(
+            b'modelIdentifier="feedthrough1"', b'modelIdentifier="other1"'))
+        zout.writestr("binaries/linux64/other1.so", zin.read("binaries/linux64/feedthrough1.so"))
+    with pytest.raises(FMUError, match=r"its binary \(model identifier 'other1'\) does not load on this platform: "
+                                       r".*other1_fmi.*\(binaries in the FMU: binaries/linux64/other1.so\)"):
+        load_fmu_component(bad, "c")

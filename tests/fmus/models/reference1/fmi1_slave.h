@@ -4,7 +4,8 @@
  * functions, then includes this file:
  *   start_values(Instance *) the declared start values,
  *   calculate(Instance *)    the outputs from the state, inputs and parameters,
- *   step(Instance *, h)      the state advanced over one communication step.
+ *   step(Instance *, h, end) the state advanced over one communication step, ending at *end (a step computed
+ *                            in part lowers *end and returns fmiDiscard).
  * Every function of the FMI 1.0 co-simulation API is exported (fmpy binds them all), with the model identifier
  * as prefix, as FMI 1.0 names them. The types are declared here, as FMI 1.0's headers declare them. */
 
@@ -44,7 +45,7 @@ typedef struct {
 
 static void start_values(Instance *m);
 static void calculate(Instance *m);
-static void step(Instance *m, double h);
+static fmiStatus step(Instance *m, double h, double *end);
 
 static void set_string(Instance *m, unsigned int vr, const char *value) {
     free(m->s[vr]);
@@ -86,10 +87,11 @@ fmiStatus FMI(fmiDoStep)(fmiComponent c, fmiReal t, fmiReal h, fmiBoolean newSte
     Instance *m = c;
     if (fabs(t - m->time) > 1e-9 * (1.0 + fabs(t))) return fail(m, "fmiDoStep: not at the slave's time");
     if (h < 0) return fail(m, "fmiDoStep: negative step");
-    step(m, h);
-    m->time = t + h;
+    double end = t + h;
+    fmiStatus status = step(m, h, &end);
+    m->time = end;
     calculate(m);
-    return fmiOK;
+    return status;
 }
 
 fmiStatus FMI(fmiTerminateSlave)(fmiComponent c) { (void)c; return fmiOK; }
