@@ -436,16 +436,9 @@ class FMUComponent(Component):
             if first.causality == "input":
                 problems.append(f"{name!r} is an input: connect it or give it a constant under [inputs]")
                 continue
-            if self._version == "1" and (first.variability == "constant" or first.start is None):
-                # FMI 1.0 has no 'initial': a variable with a declared start value takes one before
-                # fmiInitializeSlave (fmpy's rule for FMI 1.0 too)
-                problems.append(f"{name!r} (causality {first.causality}, variability {first.variability}) has no "
-                                "start value to set: only FMI 1.0 variables that declare a start value do")
-                continue
-            if self._version != "1" and (first.variability == "constant" or first.initial not in ("exact", "approx")):
-                problems.append(f"{name!r} (causality {first.causality}, variability {first.variability}, initial "
-                                f"{first.initial}) has no start value to set: only variables with initial = "
-                                "\"exact\" or \"approx\" do (states, for instance)")
+            refusal = self._no_start_value(first)
+            if refusal:
+                problems.append(f"{name!r} {refusal}")
                 continue
             kind = KIND_OF.get(first.type)
             size = int(np.prod(first.shape)) if getattr(first, "dimensions", None) and first.shape else len(elems)
@@ -468,6 +461,21 @@ class FMUComponent(Component):
             self.start_values[name] = arr
         if problems:
             raise FMUError(f"{self._where}: start values: " + "; ".join(problems))
+
+    def _no_start_value(self, var) -> str:
+        """Why the FMU variable ``var`` takes no start value, or "" when it does."""
+        if self._version == "1":
+            # FMI 1.0 has no 'initial': a variable with a declared start value takes one before
+            # fmiInitializeSlave (fmpy's rule for FMI 1.0 too)
+            if var.variability == "constant" or var.start is None:
+                return (f"(causality {var.causality}, variability {var.variability}) has no start value to set: "
+                        "only FMI 1.0 variables that declare a start value do")
+            return ""
+        if var.variability == "constant" or var.initial not in ("exact", "approx"):
+            return (f"(causality {var.causality}, variability {var.variability}, initial {var.initial}) has no "
+                    "start value to set: only variables with initial = \"exact\" or \"approx\" do (states, for "
+                    "instance)")
+        return ""
 
     # -- the co-simulation calls -----------------------------------------------------------------------
     def _push_inputs(self) -> None:
