@@ -1,18 +1,13 @@
-"""The Modelica Reference FMUs, FMI 1.0 (co-simulation), FMI 2.0 and FMI 3.0 builds, every model with a
-co-simulation interface, run with every input unconnected: our master's run equals fmpy's ``simulate_fmu`` sample
-for sample.
+"""The Modelica Reference FMUs, FMI 2.0 and FMI 3.0 builds, every model with a co-simulation interface, run with
+every input unconnected: our master's run equals fmpy's ``simulate_fmu`` sample for sample.
 
 No package of a registry this project installs from ships the Reference FMUs or their sources, and the tests
 fetch nothing: set ``ROTORCOSIM_REFERENCE_FMUS`` to a checkout of the modelica/Reference-FMUs repository (built
 here into a temporary folder with cmake and a C compiler, once per FMI version; the checkout may be read-only) or
-to a folder holding built FMUs (a release archive unpacked: ``1.0/cs/``, ``2.0/`` and ``3.0/``). .ci/run points it
-at ``../shared/reference-fmus``. Without it the tests are skipped with that reason; test_unconnected_inputs.py runs
+to a folder holding built FMUs (a release archive unpacked: ``2.0/`` and ``3.0/``). .ci/run points it at
+``../shared/reference-fmus``. Without it the tests are skipped with that reason; test_unconnected_inputs.py runs
 models after Feedthrough, StateSpace and Roberts, built from this repository's own sources, on every machine with
 a C compiler.
-
-FMI 1.0 builds come from checkouts up to release 0.0.39, the last with FMI 1.0 (cmake ``-D FMI_VERSION=1 -D
-FMI_TYPE=CS``; later checkouts have no FMI 1.0 sources, and the FMI 1.0 cases are then skipped with that reason);
-test_import_fmi1.py runs FMI 1.0 models after Dahlquist and Feedthrough, built from this repository's own sources.
 
 Each model runs from t = 0 to its DefaultExperiment's stop time (at most 10 s) in steps of 1/64 s (a binary
 fraction: fmpy's step is t_{k+1} - t_k, ours the nominal step; they are the same number only when exact).
@@ -34,8 +29,7 @@ from tests.fmus.test_unconnected_inputs import assert_same_as_fmpy, fmpy_alone, 
 ENV = "ROTORCOSIM_REFERENCE_FMUS"
 #: the models of the Reference FMUs with a co-simulation interface, per FMI version (Clocks has scheduled
 #: execution only; Roberts and StateSpace are FMI 3.0 models)
-MODELS = {"1": ("BouncingBall", "Dahlquist", "Feedthrough", "Resource", "Stair", "VanDerPol"),
-          "2": ("BouncingBall", "Dahlquist", "Feedthrough", "Resource", "Stair", "VanDerPol"),
+MODELS = {"2": ("BouncingBall", "Dahlquist", "Feedthrough", "Resource", "Stair", "VanDerPol"),
           "3": ("BouncingBall", "Dahlquist", "Feedthrough", "Resource", "Roberts", "Stair", "StateSpace",
                 "VanDerPol")}
 #: the models whose outputs move with every input left at its start value (the others pass their inputs or
@@ -62,9 +56,7 @@ def _find(folder: Path, version: str) -> dict[str, Path]:
     found: dict[str, Path] = {}
     for fmu in sorted(folder.rglob("*.fmu")):
         if fmu.stem in MODELS[version] and fmu.stem not in found and _version(fmu) == version:
-            # FMI 1.0 builds one archive per interface: a co-simulation one declares <Implementation>
-            if version != "1" or b"<Implementation" in _description(fmu):
-                found[fmu.stem] = fmu
+            found[fmu.stem] = fmu
     return found
 
 
@@ -75,13 +67,7 @@ def _build(source: Path, version: str, build: Path) -> Path:
                     f"them (cmake: {cmake or 'absent'}, C compiler: {cc or 'absent'})")
     # the sources build with -Werror; GCC 12 at -O2 warns about a strncpy in Resource/model.c that fills its
     # buffer exactly (a warning about the missing terminator of a string that is terminated on the next line)
-    if version == "1" and not any(source.glob("*/FMI1CS.xml")):
-        pytest.skip(f"{ENV}={source} has no FMI 1.0 sources (no <model>/FMI1CS.xml: the Reference FMUs dropped "
-                    "FMI 1.0 after release 0.0.39); test_import_fmi1.py runs FMI 1.0 models built from this "
-                    "repository's own sources")
-    # FMI 1.0 builds one interface at a time: FMI_TYPE selects co-simulation
-    fmi_type = ["-D", "FMI_TYPE=CS"] if version == "1" else []
-    for command in ([cmake, "-S", str(source), "-B", str(build), "-D", f"FMI_VERSION={version}", *fmi_type,
+    for command in ([cmake, "-S", str(source), "-B", str(build), "-D", f"FMI_VERSION={version}",
                      "-D", "WITH_FMUSIM=OFF", "-D", "CMAKE_BUILD_TYPE=Release",
                      "-D", "CMAKE_C_FLAGS=-Wno-error=stringop-truncation"],
                     # the models only: the sources' examples (executables that compile every model again) are
@@ -131,9 +117,8 @@ def test_reference_fmu_equals_fmpy_sample_for_sample(reference_fmus, version, na
     duration = _stop_time(fmu)
     cap, report = run_alone(fmu, duration=duration, h=H)
     ref = fmpy_alone(fmu, duration=duration, h=H)
-    # Stair asks to terminate at t = 9 s: both runs stop there (the times are compared below); FMI 1.0 has no
-    # way to ask, and its Stair runs on
-    assert report.status == ("stopped" if name == "Stair" and version != "1" else "complete"), report.status
+    # Stair asks to terminate at t = 9 s: both runs stop there (the times are compared below)
+    assert report.status == ("stopped" if name == "Stair" else "complete"), report.status
     assert_same_as_fmpy(cap, ref, 1)
     if name in MOVING:
         names = [n for n in ref.dtype.names if n != "time"]
