@@ -122,6 +122,9 @@ def bind(data: dict, origins, where: str) -> EngineBinding | None:
             raise ScenarioError(f"{origins.parameter(cname, 'model_file') or where}: [components.{cname}] model_file "
                                 f"= {mf!r}, but the scenario's engine is {file!r}: name the engine once, with "
                                 "[scenario] engine = \"FILE\" (every part takes its values from it)")
+    if not targets:
+        raise ScenarioError(f"{where}: [scenario] engine = {file!r}, but no component takes a value from it (a "
+                            f"parameter written \"{PREFIX}NAME\"): the run would not be of that engine")
     binding = EngineBinding(file, targets)
     apply(binding, data=data, where=where, origins=origins)
     return binding

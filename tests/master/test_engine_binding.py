@@ -139,3 +139,19 @@ def test_check_engine_names_an_unknown_or_misplaced_part_key(tmp_path):
     lines = engine_parts.problems(data)
     assert any(line.startswith("[damper.0] clerance_mm: unknown key (known: radius_mm") for line in lines)
     assert "[bearing.7]: [attach] has no bearing7 (the part sits at that attachment)" in lines
+
+
+def test_an_engine_nothing_takes_a_value_from_is_refused(tmp_path, capsys):
+    """[scenario] engine = "engine.toml" in a scenario whose components take nothing from it (it extends
+    jeffcott_rundown, which runs its own rotor file) was accepted: the Jeffcott rotor ran, and summary.json named
+    the engine file as the run's. Now one line, exit 2, no folder."""
+    (tmp_path / "engine.toml").write_text((fem.DEFAULT_FILE).read_text())
+    s = tmp_path / "s.toml"
+    s.write_text('[scenario]\nextends = "jeffcott_rundown"\nname = "mine"\nengine = "engine.toml"\n')
+    out = tmp_path / "o"
+    assert main(["run", str(s), "--duration", "0.01", "--quiet", "--no-figures", "--out", str(out)]) == 2
+    err = [line for line in capsys.readouterr().err.splitlines() if line.strip()]
+    assert err == [f"rotorcosim run: error: {s}: [scenario] engine = '{tmp_path / 'engine.toml'}', but no component "
+                   "takes a value from it (a parameter written \"engine:NAME\"): the run would not be of that "
+                   "engine"], err
+    assert not out.exists()
