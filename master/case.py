@@ -250,27 +250,27 @@ def schedule_aliases() -> dict[str, str]:
 
 def check_results(sc) -> None:
     """The ``[results]`` keys of ``sc`` that the schema left to its case: each one the case declares
-    (``RESULTS_KEYS``), of the declared form; a ``comp.param`` value names a component of ``sc``. A one-line
-    ValueError naming the key otherwise."""
+    (``RESULTS_KEYS``), of the declared form; and the level's ``comp.param`` (the case's key, or any scenario's
+    ``level_parameter``) a parameter of a component of ``sc``. A one-line ValueError naming the key otherwise."""
     res = sc.extra.get("results", {})
     kind = res.get("kind")
-    if not kind:
-        return
-    own = dict(getattr(find(kind), "RESULTS_KEYS", {}) or {})
-    level = level_of(kind)
     where = f"{sc.source or sc.name}: [results]"
-    for key, value in res.items():
-        if key in TABLES["results"]:
-            continue
-        if key not in own:
-            known = [*TABLES["results"], *own]
-            raise ValueError(f"{where} {key}: unknown key{did_you_mean(key, known)} (case {kind!r}); known: "
-                             f"{', '.join(known)}")
-        err = own[key](value)
-        if err:
-            raise ValueError(f"{where} {key}: {err}")
-        if key == level.results_key:
-            _check_level_parameter(sc, f"{where} {key}", value)
+    if kind:
+        own = dict(getattr(find(kind), "RESULTS_KEYS", {}) or {})
+        for key, value in res.items():
+            if key in TABLES["results"]:
+                continue
+            if key not in own:
+                known = [*TABLES["results"], *own]
+                raise ValueError(f"{where} {key}: unknown key{did_you_mean(key, known)} (case {kind!r}); known: "
+                                 f"{', '.join(known)}")
+            err = own[key](value)
+            if err:
+                raise ValueError(f"{where} {key}: {err}")
+    level, ref = scenario_level(sc)
+    if isinstance(ref, str):   # the case's own key, or the generic level_parameter of any scenario
+        key = level.results_key if res.get(level.results_key) else LEVEL_KEY
+        _check_level_parameter(sc, f"{where} {key}", ref)
 
 
 def _check_level_parameter(sc, where: str, ref: str) -> None:

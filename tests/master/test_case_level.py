@@ -47,6 +47,11 @@ def test_a_cases_results_keys_are_checked_at_load(tmp_path):
     with pytest.raises(ValueError, match=r"\[results\] unbalance_parameter: 'rotor.F_unbalanc': component 'rotor' "
                                          r"has no parameter 'F_unbalanc' \(did you mean 'F_unbalance'\?\)$"):
         rotorcosim.load_scenario(f)
+    # the generic level of a scenario without a case, the same (a sweep ran every case into its failure)
+    f.write_text('[scenario]\nextends = "toy_thermomechanical"\n[results]\nlevel_parameter = "osc.F0x"\n')
+    with pytest.raises(ValueError, match=r"\[results\] level_parameter: 'osc.F0x': component 'osc' has no parameter "
+                                         r"'F0x' \(did you mean 'F0'\?\)$"):
+        rotorcosim.load_scenario(f)
     # without a case, the schema is strict: a case's key is unknown there
     f.write_text('[scenario]\nextends = "toy_thermomechanical"\n[results]\nspools = ["osc"]\n')
     with pytest.raises(Exception, match=r"\[results\] spools: unknown key"):
