@@ -64,7 +64,8 @@ class RubRing(Memoryless, KernelComponent):
         Variable("friction", "parameter", unit="1", start=CONTACT["friction"], description="Coulomb coefficient",
                  min=0.0, max=2.0),
         Variable("radius", "parameter", unit="m", start=RINGS[0]["radius_mm"] * 1e-3,
-                 description="rotor surface radius at the ring (spin surface speed omega * radius)"),
+                 description="rotor surface radius at the ring (spin surface speed omega * radius)",
+                 plausible=(0.002, 1.0)),   # a shaft of a few mm to a fan's hub, in m
         Variable("omega", "parameter", unit="rad/s", start=PT_OMEGA, description="rotor spin speed (counter-clockwise +)"),
         Variable("slip_regularisation", "parameter", unit="m/s", start=CONTACT["slip_regularisation"],
                  description="sliding speed below which the friction force is proportional to the slip"),

@@ -141,17 +141,21 @@ class ThermalNetwork(KernelComponent):
                  description=_table3("squeeze film damper radial clearance c_sf")),
         Variable("shaft_length", "parameter", unit="m", start=_REC0["shaft_length_mm"] * 1e-3,
                  description=f"shaft conduction length L_s of R_sa (default {_DFLT['shaft_length_mm']:g} mm, "
-                             f"data/thermal.toml [defaults]: an assumption, {_DOC})"),
+                             f"data/thermal.toml [defaults]: an assumption, {_DOC})",
+                 plausible=(0.005, 2.0)),
         Variable("housing_wall", "parameter", unit="m", start=_REC0["housing_wall_mm"] * 1e-3,
                  description=f"housing wall outside the damper film, r_h = r_j + c_sf + wall (default "
-                             f"{_DFLT['housing_wall_mm']:g} mm, data/thermal.toml [defaults]: an assumption, {_DOC})"),
+                             f"{_DFLT['housing_wall_mm']:g} mm, data/thermal.toml [defaults]: an assumption, {_DOC})",
+                 plausible=(0.001, 0.2)),
         Variable("housing_length", "parameter", unit="m", start=_REC0["housing_length_mm"] * 1e-3,
                  description=f"housing length L_h (default {_DFLT['housing_length_per_damper_length']:g} x "
-                             f"damper_length, data/thermal.toml [defaults]: an assumption, {_DOC})"),
+                             f"damper_length, data/thermal.toml [defaults]: an assumption, {_DOC})",
+                 plausible=(0.002, 1.0)),
         Variable("rub_radius", "parameter", unit="m", start=_REC0["rub_ring_radius_mm"] * 1e-3,
                  description="rotor radius at the rub ring, R_r of eq. (11), the rub's sliding speed for the Blok "
                              "partition (default bore/2, as components/rubring/data/rubrings.toml; set it to the "
-                             "rub ring's radius)"),
+                             "rub ring's radius)",
+                 plausible=(0.002, 1.0)),
         Variable("method", "parameter", unit="1", start="exact", type="String",
                  description="integration: 'exact' (held-input exact solution) or 'backward-euler'"),
         Variable("P_drag", "input", 1, "W", "bearing drag-torque power (mean over the step)"),

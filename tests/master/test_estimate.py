@@ -150,3 +150,20 @@ def test_a_parameter_off_by_a_unit_factor_is_named_with_its_range(capsys):
                      "to 1e+08 N/m: 1000 times too small? (a value in N/mm where N/m is meant)"]
     rotorcosim.simulate(sc, duration=0.002, figures=False)
     assert "plausible" not in capsys.readouterr().err
+
+
+def test_a_rub_ring_radius_in_mm_is_warned(tmp_path, capsys):
+    """An engine's [rubring.0] radius_mm = 3000 (3 m on a 60 mm shaft: metres written as mm twice over) ran
+    without a word; the rub ring and the thermal network that takes its heat now warn, naming the slip."""
+    from rotorcosim.master.cli import main
+
+    assert main(["new-engine", str(tmp_path / "X")]) == 0
+    f = tmp_path / "X" / "engine.toml"
+    f.write_text(f.read_text().replace("radius_mm = 30.0", "radius_mm = 3000.0"))
+    capsys.readouterr()
+    assert main(["run", str(tmp_path / "X" / "blade_loss.toml"), "--duration", "0.02", "--quiet", "--no-figures",
+                 "--out", str(tmp_path / "o")]) == 0
+    lines = [ln for ln in capsys.readouterr().err.splitlines() if "plausible" in ln]
+    assert lines == [f"my_engine_blade_loss: warning: {c}.{p} = 3 m is outside its plausible range 0.002 to 1 m: 1000 "
+                     "times too large? (a value in mm where m is meant)"
+                     for c, p in (("thermal0", "rub_radius"), ("rubring0", "radius"))], lines
