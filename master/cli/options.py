@@ -130,7 +130,13 @@ def finish_part(args: argparse.Namespace) -> argparse.Namespace:
     if scenario:
         from rotorcosim.master.api import load_scenario
 
-        args.parameters = part_parameters(f"{kind}{pid}", scenario=load_scenario(scenario))
+        sc = load_scenario(scenario)
+        args.parameters = part_parameters(f"{kind}{pid}", scenario=sc)
+        impl = sc.components[f"{kind}{pid}"].implementation
+        if impl is not None and not impl.startswith(f"{kind}."):
+            # a plug-in's parameters given to the project's model of that part failed there, naming a variable
+            raise ValueError(f"--scenario {scenario}: {kind}{pid} is {impl}, not one of rotorcosim's {kind} models "
+                             f"({kind}.*), which this command evaluates")
     elif engine:
         if not Path(engine).is_file():
             raise FileNotFoundError(f"--engine {engine}: no such file")

@@ -173,3 +173,15 @@ def test_a_broken_plugin_is_named_in_one_line(tmp_path, capsys, cls, rc, line):
     err = [x for x in capsys.readouterr().err.splitlines() if x.strip()]
     assert err == [line.format(s=s, o=out)], err
     assert out.exists() == (rc == 1)
+
+
+def test_damper_force_of_a_plugin_damper_is_refused_by_name(capsys):
+    """damper-force --scenario with damper0 a plug-in gave the plug-in's parameters to the project's damper model:
+    'damper0: no variable 'k' (known: ...)'. Now one line naming the plug-in; damper5 (native) still evaluates."""
+    argv = ["damper-force", "--scenario", str(EXAMPLE), "--position", "2e-4", "0", "--velocity", "0", "0.05",
+            "--temperature", "40", "--damper"]
+    assert main([*argv, "0"]) == 2
+    err = [x for x in capsys.readouterr().err.splitlines() if x.strip()]
+    assert err == [f"rotorcosim damper-force: error: --scenario {EXAMPLE}: damper0 is linear_damper:LinearDamper, not "
+                   "one of rotorcosim's damper models (damper.*), which this command evaluates"], err
+    assert main([*argv, "5"]) == 0
