@@ -29,6 +29,7 @@ def export_scenario(sc, dest_dir: str | Path, only: str | None = None) -> dict[s
             if not Path(spec.fmu).is_file():
                 problems.append(f"{n} (FMU {spec.fmu} not found)")
             continue
+        cls = None
         try:
             cls = registry.lookup(spec.implementation)
             problem = cls(n, dict(spec.parameters)).standalone_problem()
@@ -38,6 +39,10 @@ def export_scenario(sc, dest_dir: str | Path, only: str | None = None) -> dict[s
             problems.append(f"{n} ({spec.implementation}: its implementation cannot be imported yet: {exc})")
         except (ContractError, TypeError, ValueError) as exc:
             problems.append(f"{n} ({spec.implementation}: {exc})")
+        except Exception as exc:
+            if cls is None or not registry.is_plugin_class(cls):
+                raise
+            problems.append(f"{n} ({spec.implementation}: {type(exc).__name__}: {exc})")   # the user's code
     if problems:
         raise ExportError(f"scenario {sc.name!r}: cannot export component(s): " + "; ".join(problems))
     try:

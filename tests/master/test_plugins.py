@@ -185,3 +185,19 @@ def test_damper_force_of_a_plugin_damper_is_refused_by_name(capsys):
     assert err == [f"rotorcosim damper-force: error: --scenario {EXAMPLE}: damper0 is linear_damper:LinearDamper, not "
                    "one of rotorcosim's damper models (damper.*), which this command evaluates"], err
     assert main([*argv, "5"]) == 0
+
+
+@pytest.mark.parametrize("command", [["export-fmus", "--component", "damper0", "--out", "{t}/fmus"],
+                                     ["export-ssp", "--out", "{t}/s.ssp"]])
+def test_exporting_a_plugin_whose_constructor_raises_names_it(tmp_path, capsys, command):
+    """export-fmus / export-ssp of a scenario whose plug-in's constructor raises: 'unexpected RuntimeError: boom in
+    init (... it may be a bug)', exit 1; now the export's own list of what cannot be exported names it, exit 2."""
+    (tmp_path / "linear_damper.py").write_text((EXAMPLE.parent / "linear_damper.py").read_text())
+    (tmp_path / "broken.py").write_text(BROKEN)
+    s = tmp_path / "s.toml"
+    s.write_text(EXAMPLE.read_text().replace("linear_damper:LinearDamper", "broken:Init"))
+    assert main([command[0], str(s), *[a.format(t=tmp_path) for a in command[1:]]]) == 2
+    err = [x for x in capsys.readouterr().err.splitlines() if x.strip()]
+    assert err == [f"rotorcosim {command[0]}: error: scenario 'linear_damper_2850': cannot export component(s): "
+                   "damper0 (broken:Init: RuntimeError: boom in init)"], err
+    assert not (tmp_path / "fmus").exists() and not (tmp_path / "s.ssp").exists()
