@@ -171,13 +171,19 @@ def score_line(sc: dict, out) -> str:
 
 
 def of_the_paper_engine(summary: dict) -> bool:
-    """Whether a run's summary is of the paper's engine: its rotor's model file the shipped one (a summary that
-    does not say, a case that failed before it started, counts as the paper's)."""
-    from rotorcosim.components.rotor.model import DEFAULT_FILE
+    """Whether a run's summary is of the paper's engine: its rotor's model file the shipped one, or a copy of it
+    (the same bytes, the files it extends included: a sweep over a copied engine file is the paper's engine); a
+    summary that does not say, a case that failed before it started, counts as the paper's."""
+    from rotorcosim.components.rotor.model import DEFAULT_FILE, file_digest
 
     rotor = summary.get("provenance", {}).get("parameters", {}).get("rotor", {})
     model = rotor.get("parameters", {}).get("model_file") if isinstance(rotor, dict) else None
-    return not model or Path(str(model)).resolve() == Path(DEFAULT_FILE).resolve()
+    if not model or Path(str(model)).resolve() == Path(DEFAULT_FILE).resolve():
+        return True
+    try:
+        return file_digest(str(model)) == file_digest(None)
+    except (OSError, ValueError):       # the file is gone or unreadable since the run: not known to be the paper's
+        return False
 
 
 def sweep_tables(out: Path, by_level: dict) -> dict | None:

@@ -86,3 +86,22 @@ def test_a_sweep_of_the_paper_engine_is_scored(tmp_path):
         s["provenance"] = {"parameters": {"rotor": {"parameters": {"model_file": str(DEFAULT_FILE)}}}}
     assert pc.sweep_tables(tmp_path, ours)["within_30pct"] == 152
     assert (tmp_path / "paper_comparison.csv").exists() and "/ 0.0512 (+0 %)" in (tmp_path / "table5.md").read_text()
+
+
+def test_a_sweep_of_a_copy_of_the_paper_engine_is_scored(tmp_path):
+    """A byte-for-byte copy of the shipped engine file (test_sweep_cluster's grid over rotor.model_file) is the
+    paper's engine; an edited copy is not."""
+    from rotorcosim.cases.blade_loss.paper_comparison import of_the_paper_engine
+    from rotorcosim.components.rotor.model import DEFAULT_FILE
+
+    copy = tmp_path / "engine copy.toml"
+    copy.write_bytes(DEFAULT_FILE.read_bytes())
+    edited = tmp_path / "edited.toml"
+    edited.write_bytes(DEFAULT_FILE.read_bytes() + b"\n# a comment: another file\n")
+
+    def summary(path):
+        return {"provenance": {"parameters": {"rotor": {"parameters": {"model_file": str(path)}}}}}
+
+    assert of_the_paper_engine(summary(copy)) and of_the_paper_engine(summary(DEFAULT_FILE))
+    assert not of_the_paper_engine(summary(edited))
+    assert not of_the_paper_engine(summary(tmp_path / "gone.toml"))
