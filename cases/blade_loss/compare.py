@@ -7,7 +7,7 @@ The same blade-loss system run twice over ``duration``: staggered (3 thermo-mech
 ``speedup`` (their ratio), ``cpu_time_s`` and ``speedup_cpu`` the same in the process's CPU time (on a loaded
 machine the wall times also hold the other processes' share, unequally in two runs of 2 and 30 s), ``load_average``
 -> {run: [before, after]} the machine's 1-minute load average around each timed run, ``estimated_error`` the
-staggered run's estimated error of every Table 4 result of both bearings beside its true error in the same terms
+staggered run's estimated error of every Table 4 result of every bearing beside its true error in the same terms
 (error_check.py: ``per_result`` rows, ``largest``); each run's own folder (``staggered/``, ``monolithic/``) has
 its summary, time series and figures. The runs, their timing and the folder's rules are the generic master's
 :func:`rotorcosim.master.compare.compare_schemes`; this module chooses the schedules and makes the table.
@@ -287,6 +287,6 @@ def run(args) -> int:
     print(f"Table 6 (bearing #{t['bearing']}, {t['duration_s']} s, {t['schedule']} schedule): speed-up "
           f"{t['speedup']:.1f}{cpu}, largest relative error {t['largest_error_pct']:.2f} %"
           + (f"; estimated error of the staggered run {big['estimated_pct']:.2f} % against a true "
-             f"{big['true_pct']:.2f} % (every result of both bearings, temperatures as rises: estimated_error)"
+             f"{big['true_pct']:.2f} % (every result of every bearing, temperatures as rises: estimated_error)"
              if big["estimated_pct"] is not None else "") + f"; {args.out}/table6.json")
     return 0

@@ -132,11 +132,15 @@ def run_cases(cases: Sequence[Case], out, *, scheduler: str | None = None, worke
 
 def check_where(scheduler: str | None, workers, serial: bool) -> None:
     """Where a sweep's or a study's runs go, checked before anything is written: a local cluster of a whole
-    number of workers >= 1, and ``serial`` (this process, no Dask) without a scheduler (one was ignored)."""
+    number of workers >= 1, and ``serial`` (this process, no Dask) without a scheduler or a number of workers
+    (they were ignored)."""
     if workers is not None and (isinstance(workers, bool) or not isinstance(workers, int) or workers < 1):
         raise ValueError(f"--workers must be at least 1, got {workers!r}")
     if serial and scheduler:
         raise ValueError("--serial runs in this process, without Dask: give it or --scheduler, not both")
+    if serial and workers is not None:   # the local cluster's size: a serial run has none, and ignored it
+        raise ValueError(f"--serial runs in this process, one run after another: give it or --workers "
+                         f"({workers}), not both")
 
 
 def _estimate(prices: list[dict], scheduler, workers, serial, client, connect_timeout, force) -> dict:

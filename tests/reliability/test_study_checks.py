@@ -246,6 +246,9 @@ def test_a_targets_table_from_a_spreadsheet_is_read_and_a_binary_one_named(tmp_p
     # the scheduler was ignored (sweep) or refused after the report was written (studies)
     (["--serial", "--scheduler", "tcp://127.0.0.1:1"],
      "--serial runs in this process, without Dask: give it or --scheduler, not both"),
+    # the local cluster's size was ignored
+    (["--serial", "--workers", "3"],
+     "--serial runs in this process, one run after another: give it or --workers (3), not both"),
 ])
 def test_where_the_runs_go_is_checked_before_anything_is_written(tmp_path, capsys, command, text, where, message):
     first = (["sweep", "toy_thermomechanical", "--unbalance", "1,2", "--duration", "0.05"] if text is None
