@@ -42,6 +42,17 @@ def function(fmu: Any, name: str) -> Callable:
     return f
 
 
+def logger_to(log: list):
+    """The FMU logger callback (FMI 1.0 and 2.0 take the same five arguments) that appends ``(status,
+    category, message)`` to ``log``, the bytes decoded."""
+
+    def logger(component, instance, status, category, message):
+        log.append((int(status), (category or b"").decode("utf-8", "replace"),
+                    (message or b"").decode("utf-8", "replace")))
+
+    return logger
+
+
 def instantiate(fmu: Any, log, keep: list) -> None:
     """fmiInstantiateSlave with a logger appending ``(status, category, message)`` to ``log``; the callbacks
     are appended to ``keep`` (the importer keeps them for the life of the process, as for FMI 2.0). A
@@ -50,10 +61,7 @@ def instantiate(fmu: Any, log, keep: list) -> None:
                            fmi1CallbackFunctions, fmi1CallbackLoggerTYPE, free)
     from fmpy.logging import addLoggerProxy
 
-    def logger(component, instance, status, category, message):
-        log.append((int(status), (category or b"").decode("utf-8", "replace"),
-                    (message or b"").decode("utf-8", "replace")))
-
+    logger = logger_to(log)
     cb = fmi1CallbackFunctions()
     cb.logger = fmi1CallbackLoggerTYPE(logger)
     cb.allocateMemory = fmi1CallbackAllocateMemoryTYPE(calloc)

@@ -325,10 +325,7 @@ class FMUComponent(Component):
                                fmi2CallbackFunctions, fmi2CallbackLoggerTYPE, free)
         from fmpy.logging import addLoggerProxy
 
-        def logger(env, instance, status, category, message):
-            log.append((int(status), (category or b"").decode("utf-8", "replace"),
-                        (message or b"").decode("utf-8", "replace")))
-
+        logger = fmi1.logger_to(log)
         cb = fmi2CallbackFunctions()
         cb.logger = fmi2CallbackLoggerTYPE(logger)
         cb.allocateMemory = fmi2CallbackAllocateMemoryTYPE(calloc)

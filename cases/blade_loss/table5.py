@@ -59,12 +59,16 @@ def write_table5(out: Path, by_level: dict[float, dict], beside_paper: bool = Tr
     os.replace(tmp, out / "table5.md")
 
 
+def _head(title: str, cell: str, levels: list) -> list[str]:
+    """The page's title, what a cell holds, and the table's header over the ``levels`` [N]."""
+    return [f"# {title}", "", f"Each cell: {cell}.", "",
+            "| result | brg | " + " | ".join(f"{f:g} N" for f in levels) + " |", "|---|---|" + "---|" * len(levels)]
+
+
 def _ours_alone(by_level: dict[float, dict], ids: list[str]) -> list[str]:
     levels = list(by_level)
-    lines = ["# Blade-loss results by unbalance level (the paper's Table 5 layout)", "",
-             "Each cell: ours (the paper's values are of its own engine, not this one: not compared).", "",
-             "| result | brg | " + " | ".join(f"{f:g} N" for f in levels) + " |",
-             "|---|---|" + "---|" * len(levels)]
+    lines = _head("Blade-loss results by unbalance level (the paper's Table 5 layout)",
+                  "ours (the paper's values are of its own engine, not this one: not compared)", levels)
     for key in RESULT_KEYS:
         for k in ids:
             cells = [by_level[f].get("bearings", {}).get(k, {}).get(key) for f in levels]
@@ -75,10 +79,8 @@ def _ours_alone(by_level: dict[float, dict], ids: list[str]) -> list[str]:
 def _beside_paper(by_level: dict[float, dict]) -> list[str]:
     levels = list(by_level)
     paper = paper_table5()
-    lines = ["# Table 5: rotorcosim beside the paper", "",
-             "Each cell: ours / paper (difference in % of the paper's value).", "",
-             "| result | brg | " + " | ".join(f"{f:g} N" for f in levels) + " |",
-             "|---|---|" + "---|" * len(levels)]
+    lines = _head("Table 5: rotorcosim beside the paper", "ours / paper (difference in % of the paper's value)",
+                  levels)
     for key in RESULT_KEYS:
         for k in BEARINGS:
             cells = []
