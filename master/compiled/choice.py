@@ -18,13 +18,29 @@ class CompiledUnavailable(ContractError):
     """``--engine compiled`` asked for an interval the compiled path cannot run (the message says why)."""
 
 
+def class_why_not(name: str, cls: type) -> str | None:
+    """The reason component ``name``, of class ``cls``, can run no thermo-mechanical interval compiled, or None
+    (whether an interval can is :func:`why_not`'s to say, once the system is built)."""
+    if not (isinstance(cls, type) and issubclass(cls, KernelComponent)) or cls.STEP is None:
+        return f"component {name} ({getattr(cls, '__name__', cls)}) has no compiled kernel"
+    return None
+
+
+def check_request(reasons: dict[str, str], choice: str) -> None:
+    """Refuse ``--engine compiled`` before the run starts when a component taking part in its thermo-mechanical
+    intervals can never run compiled (``reasons``: :func:`class_why_not` of each, from the scenario's classes):
+    without it the run printed its estimate, built the system and started before the first interval refused."""
+    if reasons:
+        refuse(None, choice, next(iter(reasons.values())))
+
+
 def why_not(sim, active, mult, stop) -> str | None:
     """None when the interval can run compiled, else the reason it cannot."""
     comps = sim.system.components
     for n in active:
         c = comps[n]
-        if not isinstance(c, KernelComponent) or c.STEP is None:
-            return f"component {n} ({type(c).__name__}) has no compiled kernel"
+        if (reason := class_why_not(n, type(c))) is not None:
+            return reason
         if c.event_indicators and not c.KERNEL_EVENTS:
             return (f"component {n} declares event indicators and its kernel does not report their changes of "
                     "sign (KERNEL_EVENTS), so the generic loop locates them (master/core/events.py)")
@@ -73,8 +89,10 @@ def runner(sim, phase, active, mult, step, stop, choice: str):
 
 
 def refuse(sim, choice, reason):
-    """No compiled runner: an error under ``--engine compiled``, else the reason noted for the summary."""
+    """No compiled runner: an error under ``--engine compiled``, else the reason noted for the summary (``sim``
+    None: before the run, nothing to note)."""
     if choice == "compiled":
         raise CompiledUnavailable(f"--engine compiled: cannot compile the thermo-mechanical interval: {reason}")
-    sim.engine_note = reason
+    if sim is not None:
+        sim.engine_note = reason
     return None

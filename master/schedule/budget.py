@@ -104,9 +104,12 @@ def _fmu_inner(path: str):
 
 def component_costs(sc, engine: str = "auto") -> dict:
     """What each step of scenario ``sc`` costs [s]: ``{"compiled": bool, "components": {name: (TM cost, TO cost,
-    phases, step)}, "setup_s": ...}`` (``phases``: the phases the component steps in, TO for a thermal-only update
-    too; ``step``: its communication step or None). Thermal-only steps run in Python."""
+    phases, step)}, "setup_s": ..., "no_kernel": {name: reason}}`` (``phases``: the phases the component steps in,
+    TO for a thermal-only update too; ``step``: its communication step or None; ``no_kernel``: the components
+    stepping in TM intervals that can never run compiled, choice.class_why_not). Thermal-only steps run in
+    Python."""
     from rotorcosim.components import registry
+    from rotorcosim.master.compiled import choice
 
     classes, fmus = {}, {}
     for name, spec in sc.components.items():
@@ -118,8 +121,17 @@ def component_costs(sc, engine: str = "auto") -> dict:
                 classes[name] = registry.lookup(spec.implementation, spec.folder)
             except Exception:  # noqa: BLE001 - the build names the problem; the estimate prices it as unknown
                 classes[name] = None
-    compiled = engine != "python" and not fmus and all(
-        c is not None and getattr(c, "STEP", None) is not None for c in classes.values())
+    why, coupled = {}, set()
+    for name, cls in classes.items():
+        if name in fmus:
+            from rotorcosim.fmus.importer import FMUComponent
+
+            why[name] = choice.class_why_not(name, FMUComponent)
+        elif cls is not None:  # an unknown one: the build names it
+            why[name] = choice.class_why_not(name, cls)
+        if COUPLED in (cls.phases if cls is not None else {COUPLED}):
+            coupled.add(name)
+    compiled = engine != "python" and len(why) == len(classes) and not any(why.values())
     costs, setup = {}, RUN_SETUP_S
     for name, spec in sc.components.items():
         cls = classes[name]
@@ -136,7 +148,8 @@ def component_costs(sc, engine: str = "auto") -> dict:
             tm, to = tm + extra, to + extra
             setup += FMU_PROCESS_START_S if own_process else 0.0
         costs[name] = (tm + (0.0 if compiled else LINK_STEP_S), to + LINK_STEP_S, phases, spec.step)
-    return {"compiled": compiled, "components": costs, "setup_s": setup}
+    return {"compiled": compiled, "components": costs, "setup_s": setup,
+            "no_kernel": {n: r for n, r in why.items() if r is not None and n in coupled}}
 
 
 def estimate(sc, schedule, engine: str = "auto") -> dict:
@@ -197,6 +210,11 @@ def check(sc, schedule, force: bool = False, engine: str = "auto") -> dict:
             if schedule.tm_min < h * (1 - 1e-9):
                 raise BudgetError(f"schedule: tm_min = {schedule.tm_min:g} s is shorter than one communication step "
                                   f"of {name} ({h:g} s): a thermo-mechanical interval holds at least one")
+    if engine == "compiled" and (not isinstance(schedule, Timeline) or any(
+            iv.phase == phases_of(sc.schedule).coupled for iv in schedule.intervals)):
+        from rotorcosim.master.compiled import choice
+
+        choice.check_request(component_costs(sc, engine)["no_kernel"], engine)
     est = estimate(sc, schedule, engine)
     if isinstance(schedule, AutoSchedule):
         est["upper_bound"] = True

@@ -167,3 +167,17 @@ def test_a_rub_ring_radius_in_mm_is_warned(tmp_path, capsys):
     assert lines == [f"my_engine_blade_loss: warning: {c}.{p} = 3 m is outside its plausible range 0.002 to 1 m: 1000 "
                      "times too large? (a value in mm where m is meant)"
                      for c, p in (("thermal0", "rub_radius"), ("rubring0", "radius"))], lines
+
+
+def test_engine_compiled_is_refused_before_any_run_output(capsys, monkeypatch, tmp_path):
+    """--engine compiled with a component that has no kernel (the FE damper) is refused before the estimate's
+    line, the build and the output folder: it was refused only at the first thermo-mechanical interval."""
+    from rotorcosim.master.compiled.choice import CompiledUnavailable
+
+    monkeypatch.setattr(budget, "WARN_S", 0.0)
+    sc = rotorcosim.load_scenario("blade_loss_2850").swap("damper0", "damper.fe")
+    with pytest.raises(CompiledUnavailable, match="component damper0 .FEDamper. has no compiled kernel"):
+        rotorcosim.simulate(sc, duration=0.02, engine="compiled", out=tmp_path / "o")
+    assert capsys.readouterr().err == ""
+    assert not (tmp_path / "o").exists()
+    rotorcosim.simulate("toy_thermomechanical", duration=0.05, figures=False, engine="python")  # not refused
