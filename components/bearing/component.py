@@ -92,6 +92,9 @@ class BallBearing(KernelComponent):
                    "body, thermal growths and Palmgren drag torque (paper eqs. 1-10, Table 3)")
     preferred_step = 1e-5
     phases = frozenset({"TM"})
+    #: the parameter that is the speed of the rotor node the bearing is linked to: the scenario build refuses a
+    #: value other than that node's spool speed (master/scenario/build.check_speeds)
+    fixed_speed = "omega"
     step_cost_s, kernel_step_cost_s, setup_cost_s = 13e-6, 2.5e-6, 0.1  # bench/bench_estimate.py
     variables = (
         Variable("bearing", "parameter", start=NO_RECORD, type="Integer",

@@ -106,6 +106,8 @@ class SpinningBearing(BallBearing):
     """The ball bearing with the spool speed as an input (module docstring)."""
 
     description = BallBearing.description + " (inner race speed as an input)"
+    #: the speed is the Omega input; omega is only the reference of the speed terms' tables, free to differ
+    fixed_speed = None
     variables = BallBearing.variables + (
         Variable("Omega", "input", 1, "rad/s", "inner race (spool) speed"),
         Variable("T_drag", "output", 1, "N.m", "drag torque on the spool, P_drag / Omega"),

@@ -185,6 +185,32 @@ class Rotor(PositionalKernelComponent):
             self.variables = tuple(own[:at]) + port_variables(lay) + tuple(own[at:])
         super().__init__(name, parameters)
 
+    def port_speeds(self) -> dict[str, tuple[str, float]]:
+        """``{output port: (parameter, speed [rad/s])}``: the speed the spool node of each bearing's and rub
+        ring's output ports turns at, the parameter giving it (the first spool omega_pt, the second omega_gg), from
+        the model file's [attach] before set-up; what a part linked to the port with a speed of its own must
+        agree with (master/scenario/build.check_speeds). Empty when the file cannot say (a test rotor's [shaft],
+        a file that cannot be read: set-up names its problem)."""
+        try:
+            data, _ = fem.load_data(str(self.p.get("model_file") or "") or None)
+        except (ValueError, OSError):
+            return {}
+        at, spools = data.get("attach"), data.get("spool")
+        if shaft_model.is_shaft_model(data) or not isinstance(at, dict) or not isinstance(spools, dict):
+            return {}
+        # a third spool and later turn at their files' ratio to the second: no parameter of their own to name
+        own = dict(zip(spools, ("omega_pt", "omega_gg")))
+        out = {}
+        for ids, entry, ports in ((self._layout.bearings, "bearing", ("X_brg", "V_brg")),
+                                  (self._layout.rubrings, "rubring", ("X_rub", "V_rub"))):
+            for i in ids:
+                where = at.get(f"{entry}{i}")
+                node = where.get("node") if isinstance(where, dict) else None
+                param = own.get(node[0]) if isinstance(node, list) and node and isinstance(node[0], str) else None
+                if param is not None:
+                    out.update({f"{port}{i}": (param, float(self.p[param])) for port in ports})
+        return out
+
     # -- parameters ------------------------------------------------------------------------------------
     def _check_parameters(self):
         p = self.p

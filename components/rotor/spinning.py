@@ -96,6 +96,11 @@ class SpinningRotor(Rotor):
 
     description = ("Flexible dual-rotor engine + casing (MTA, Newmark) at varying spool speeds: gyroscopics and "
                    "unbalance follow the speed inputs")
+
+    def port_speeds(self) -> dict[str, tuple[str, float]]:
+        # the speeds are the inputs Omega_pt, Omega_gg; omega_pt, omega_gg only the reference of the projection
+        return {}
+
     variables = Rotor.variables + (
         Variable("gyro_tolerance", "parameter", unit="1", start=1e-3,
                  description="relative speed change that rebuilds the Newmark map (gyroscopic terms)"),

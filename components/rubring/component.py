@@ -80,6 +80,8 @@ class RubRing(Memoryless, KernelComponent):
     )
     preferred_step = 1e-5
     phases = frozenset({"TM"})
+    #: the parameter that is the speed of the rotor node the ring is linked to (master/scenario/build.check_speeds)
+    fixed_speed = "omega"
     step_cost_s, kernel_step_cost_s = 6.5e-6, 0.5e-6  # bench/bench_estimate.py
 
     def setup(self, t0=0.0):

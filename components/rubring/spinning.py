@@ -50,6 +50,8 @@ class SpinningRubRing(RubRing):
     """The rub ring with the spool speed as an input (module docstring)."""
 
     description = RubRing.description + " (spin speed as an input)"
+    #: the speed is the Omega input; omega is only the reference of the speed terms' tables, free to differ
+    fixed_speed = None
     variables = RubRing.variables + (
         Variable("Omega", "input", 1, "rad/s", "rotor spin speed (counter-clockwise +)"),
         Variable("T_rub", "output", 1, "N.m", "friction torque on the spool (opposing the spin)"),

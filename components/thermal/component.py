@@ -173,6 +173,9 @@ class ThermalNetwork(KernelComponent):
     )
     preferred_step = 1e-3
     phases = frozenset({"TM", "TO"})
+    #: the parameter that is the shaft speed at the bearing, and the input whose producer (the bearing, P_drag = M
+    #: omega) turns at it: the two must agree (master/scenario/build.check_speeds)
+    fixed_speed, speed_follows = "omega", "P_drag"
     step_cost_s, kernel_step_cost_s = 45e-6, 5e-6  # bench/bench_estimate.py
 
     def setup(self, t0=0.0):

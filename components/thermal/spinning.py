@@ -44,6 +44,8 @@ class SpinningThermalNetwork(ThermalNetwork):
     """The thermal network with the shaft speed as an input (module docstring)."""
 
     description = ThermalNetwork.description + " (shaft speed as an input)"
+    #: the speed is the Omega input; omega is only the reference of the speed terms' tables, free to differ
+    fixed_speed = None
     variables = ThermalNetwork.variables + (
         Variable("speed_tolerance", "parameter", unit="1", start=0.02,
                  description="relative speed change that rebuilds the network's speed terms"),

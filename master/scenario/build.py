@@ -346,6 +346,7 @@ def build_system(sc: Scenario) -> System:
         system = System(comps, cons, {k: v for k, v in sc.inputs.items()},
                         origins={n: c.origin for n, c in sc.components.items() if c.origin},
                         unconnected_inputs=sc.unconnected_inputs)
+        check_speeds(system)
     except BaseException as exc:
         # the components made so far are let go now: an FMU's process or extraction folder is not left to the
         # garbage collector (a system refused for its units kept an FMU's child process running until then)
@@ -367,6 +368,40 @@ def build_system(sc: Scenario) -> System:
         print(f"{sc.name}: {defaulted_line(system.defaulted)} ([scenario] unconnected_inputs = \"error\" refuses "
               "them)", file=sys.stderr)
     return system
+
+
+def check_speeds(system: System) -> None:
+    """Refuse a part whose own fixed speed (its class's ``fixed_speed`` parameter: a constant-speed bearing's,
+    rub ring's or thermal network's ``omega``) is not the speed of the rotor node it is linked to (the rotor's
+    ``port_speeds``: its spool's speed parameter), or of the part whose input it follows (``speed_follows``: a
+    thermal network takes its bearing's drag power, which turns at the bearing's speed). Such a run computed the
+    part at one speed and the rotor at another without a word. A part that takes its speed as an input (a
+    speed-following variant) declares no fixed speed and is not checked."""
+    comps = system.components
+
+    def fixed(name: str) -> float | None:
+        param = getattr(comps[name], "fixed_speed", None)
+        return comps[name].p.get(param) if param else None
+
+    def agree(name: str, ref: str, speed: float, link: str, change: str) -> None:
+        own = fixed(name)
+        if own is not None and not math.isclose(own, speed, rel_tol=1e-9):
+            raise ContractError(
+                f"{name}.{comps[name].fixed_speed} = {own:.6g} rad/s is not the speed of what it is linked to "
+                f"({link}): {ref} = {speed:.6g} rad/s; give them one speed (drop {name}'s own value where an engine "
+                f"gives the speed, or change both with --set {change}=...)")
+
+    for con in system.connections:
+        speeds = getattr(comps[con.src_component], "port_speeds", None)
+        at = speeds().get(split_port(con.src)[1]) if speeds is not None else None
+        if at is not None:
+            ref = f"{con.src_component}.{at[0]}"
+            agree(con.dst_component, ref, at[1], f"{con.src} -> {con.dst}", ref)
+    for con in system.connections:
+        follows = getattr(comps[con.dst_component], "speed_follows", None)
+        if follows and split_port(con.dst)[1] == follows and fixed(con.src_component) is not None:
+            ref = f"{con.src_component}.{comps[con.src_component].fixed_speed}"
+            agree(con.dst_component, ref, fixed(con.src_component), f"{con.src} -> {con.dst}", ref)
 
 
 def engine_settings(sc: Scenario) -> EngineSettings:

@@ -14,6 +14,7 @@ from __future__ import annotations
 import csv
 import json
 import math
+import re
 from pathlib import Path
 
 import pytest
@@ -155,3 +156,26 @@ def test_an_engine_nothing_takes_a_value_from_is_refused(tmp_path, capsys):
                    "takes a value from it (a parameter written \"engine:NAME\"): the run would not be of that "
                    "engine"], err
     assert not out.exists()
+
+
+@pytest.mark.parametrize("part, value, message", [
+    ("bearing0", 1000.0, "bearing0.omega = 1000 rad/s is not the speed of what it is linked to (rotor.X_brg0 -> "
+                         "bearing0.X_inner): rotor.omega_pt = 1675.52 rad/s"),
+    ("rubring5", 1000.0, "rubring5.omega = 1000 rad/s is not the speed of what it is linked to (rotor.X_rub5"),
+    ("thermal5", 1000.0, "thermal5.omega = 1000 rad/s is not the speed of what it is linked to (bearing5.P_drag -> "
+                         "thermal5.P_drag): bearing5.omega = 1675.52 rad/s"),
+])
+def test_a_part_turning_at_another_speed_than_its_spool_is_refused(tmp_path, part, value, message):
+    """A constant-speed part given its own omega (a plain value replaces the engine's binding) while its rotor
+    node turns at the spool's speed ran without a word, the part at one speed and the rotor at another."""
+    from rotorcosim import scenarios
+    from rotorcosim.master.scenario.build import build_system
+
+    src = tmp_path / "s.toml"
+    src.write_text(f'[scenario]\nextends = "{scenarios.path("blade_loss_2850").as_posix()}"\n'
+                   f'name = "s"\n[components.{part}]\nparameters = {{ omega = {value} }}\n')
+    with pytest.raises(ScenarioError, match=re.escape(message)):
+        build_system(rotorcosim.load_scenario(src))
+    # by its name the speed moves the spool and every part on it together: no contradiction
+    for comp in build_system(rotorcosim.load_scenario("blade_loss_2850").set({f"{part}.omega": value})).components.values():
+        comp.terminate()
