@@ -425,6 +425,11 @@ def read_uq(path: str | Path) -> UQSpec:
             raise SpecError(f"{pw}: std must be > 0, got {vals['std']:g}")
         if "lower" in vals and not vals["lower"] < vals["upper"]:
             raise SpecError(f"{pw}: lower {vals['lower']:g} must be below upper {vals['upper']:g}")
+        if kind == "truncnormal" and not vals["lower"] <= vals["mean"] <= vals["upper"]:
+            # the study reports its mean as the parameter's and probes the parameter there: a truncated normal's
+            # mean always lies within its bounds, so one outside is a slip (a bound or the mean in another unit)
+            raise SpecError(f"{pw}: a truncnormal distribution's mean {vals['mean']:g} lies outside its bounds "
+                            f"[{vals['lower']:g}, {vals['upper']:g}]: give a mean between lower and upper")
         if kind == "lognormal" and vals["mean"] <= 0:
             raise SpecError(f"{pw}: a lognormal distribution needs mean > 0, got {vals['mean']:g}")
         probe = vals.get("mean", (vals.get("lower", 0.0) + vals.get("upper", 0.0)) / 2)

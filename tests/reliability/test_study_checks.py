@@ -137,6 +137,10 @@ def test_a_sweep_prints_its_estimate_and_keeps_it(tmp_path, capsys):
     ("uq", BL_UQ, None, "got -7251034.591191405 (the engine's damper.0.k_spring) (a sample of its normal "
      "distribution, mean 5.254e+06, std 5e+06: narrow it or truncate it, truncnormal)"),
     ("uq", UQ.replace("std = 0.02", "std = -1"), None, "std must be > 0"),
+    # a mean outside the bounds was drawn from the normal's far tail (or NaN), probed at a value never drawn
+    ("uq", UQ.replace('"normal"', '"truncnormal"').replace("std = 0.02", "std = 0.02\nlower = 0.2\nupper = 0.3"),
+     None, "parameter m1.x0: a truncnormal distribution's mean 0.1 lies outside its bounds [0.2, 0.3]: give a mean "
+     "between lower and upper"),
     ("calibrate", CAL.replace("lower = 0.05", "lower = 0.3"), None, "lower 0.3 must be below upper 0.2"),
     ("calibrate", BL_CAL, ",bearings.0.whirl_amplitude_mm,0.1\n",
      "parameter damper0.k_spring: set damper0.k_spring: damper0.k_spring must be >= 0 (N/m), got -1"),
