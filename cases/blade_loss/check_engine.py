@@ -188,7 +188,8 @@ def run(args) -> int:
     for st in c.get("fuse_states", []):
         print(f"  forward synchronous critical speeds, {st['label']} (fuse stiffness "
               + ", ".join(f"#{b} {k:.3g} N/m" for b, k in st["fuse_stiffness_N_per_m"].items()) + "): "
-              + ", ".join(f"{v:.0f}" for v in st["forward_synchronous_rpm"]) + " rev/min")
+              + (st["note"] if "note" in st else ", ".join(f"{v:.0f}" for v in st["forward_synchronous_rpm"])
+                 + " rev/min"))
     st = out["stability"]
     if st is not None:
         least = min(st["modes"], key=lambda m: m["damping_ratio"], default=None)

@@ -85,14 +85,29 @@ def fuse_states(m, count: int, max_rpm: float, oil_temperature=None, scenario=No
     combos = linear_engine.fuse_combinations(m.data)
     for stages in combos:
         sup = linearised_supports(m, oil_temperature, scenario, stages)
-        crit = critical.synchronous_critical_speeds(m, sup, n=count, max_rpm=max_rpm)
+        stiffness = {k[1:]: v["fuse"]["k"] for k, v in sup.items() if "fuse" in v}
         stage = max(stages.values())
         label = FUSE_STAGES[stage] if len(stages) == 1 else ", ".join(
             f"{FUSE_STAGES[s].replace('fuse', f'fuse {k}', 1)}" for k, s in stages.items())
-        out.append({"stage": stage, "stages": dict(stages), "label": label,
-                    "forward_synchronous_rpm": crit["forward_synchronous_rpm"],
-                    "backward_synchronous_rpm": crit["backward_synchronous_rpm"],
-                    "fuse_stiffness_N_per_m": {k[1:]: v["fuse"]["k"] for k, v in sup.items() if "fuse" in v}})
+        free = [k for k, v in stiffness.items() if v == 0.0]
+        try:
+            crit = critical.synchronous_critical_speeds(m, sup, n=count, max_rpm=max_rpm)
+            note = None
+        except ValueError as exc:
+            if not free or "singular" not in str(exc):
+                raise
+            # a soft path of stiffness 0 (k_broken's default): nothing holds the housing radially but a bumper,
+            # the engine after this break has a rigid-body motion and no critical speed to list
+            crit = {"forward_synchronous_rpm": [], "backward_synchronous_rpm": []}
+            note = (f"not computed: fuse {', '.join('#' + k for k in free)} has stiffness 0 after this break "
+                    "(nothing but a bumper holds its housing radially): the linearised engine moves freely")
+        entry = {"stage": stage, "stages": dict(stages), "label": label,
+                 "forward_synchronous_rpm": crit["forward_synchronous_rpm"],
+                 "backward_synchronous_rpm": crit["backward_synchronous_rpm"],
+                 "fuse_stiffness_N_per_m": stiffness}
+        if note:
+            entry["note"] = note
+        out.append(entry)
     return out
 
 
@@ -170,7 +185,7 @@ def draw_campbell(path: str, model_file: str = "", max_rpm: float = 30000.0, cri
     if ratio != 1.0:
         ax.plot(rpm, ratio * rpm / 60.0, ":", color="0.35", lw=1, label=f"1x second spool speed ({ratio:.4g} x)")
     states = (crit or {}).get("fuse_states", [])
-    for st, colour in zip(states, itertools.cycle(FUSE_COLOURS)):
+    for st, colour in zip([st for st in states if "note" not in st], itertools.cycle(FUSE_COLOURS)):
         # the engine after the break: its whirl frequencies and critical speeds, drawn over the intact engine's
         sup = linearised_supports(m, oil_temperature, scenario, st["stages"])
         fb, kb = critical.campbell(m, rpm, sup, n_modes=min(80, m.n))
@@ -290,6 +305,9 @@ def run(args) -> int:
         for st in out.get("fuse_states", []):
             print(f"  {st['label']} (fuse stiffness " + ", ".join(f"#{b} {k:.3g} N/m" for b, k in
                                                         st["fuse_stiffness_N_per_m"].items()) + "), rev/min:")
+            if "note" in st:
+                print(f"    {st['note']}")
+                continue
             print("    forward :", ", ".join(f"{v:.0f}" for v in st["forward_synchronous_rpm"]))
             print("    backward:", ", ".join(f"{v:.0f}" for v in st["backward_synchronous_rpm"]))
         if out.get("damped_critical_speeds_rpm"):

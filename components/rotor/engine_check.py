@@ -244,7 +244,7 @@ def problems(data: dict) -> list[str]:
         if key.startswith("rubring") and f"bearing{key[len('rubring'):]}" not in attach:
             p.add(f"attach.{key}", f"no bearing{key[len('rubring'):]} in [attach] (a rub ring's ring is on the "
                                    "housing of the bearing of the same id)")
-    return p.out + engine_parts.problems(data)
+    return p.out + engine_parts.problems(data) + engine_parts.absent(data)
 
 
 def _disk_inertia(p: _Problems, dw: str, dk: dict) -> None:

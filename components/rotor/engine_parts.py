@@ -242,6 +242,21 @@ def problems(data: dict) -> list[str]:
     return out
 
 
+def absent(data: dict) -> list[str]:
+    """One line per required key that a part table the engine file gives, for a part its [attach] names, leaves
+    out (``"[fuse.0] k_intact: missing (...)"``): check-engine lists them with the file's other problems, rather
+    than a run or the linearised engine stopping at the first value it asks for."""
+    attach = data.get("attach", {}) if isinstance(data.get("attach"), dict) else {}
+    out = []
+    for table in PER_ID:
+        parts = data.get(table)
+        for pid, spec in (parts.items() if isinstance(parts, dict) else ()):
+            if isinstance(spec, dict) and f"{ATTACH_OF[table]}{pid}" in attach:
+                out += [f"[{table}.{pid}] {k.key}: missing ({k.meaning}, {k.unit}; required: {DOC})"
+                        for k in KEYS[table] if k.required and k.key not in spec]
+    return out
+
+
 def _fuse_problems(where: str, spec: dict) -> list[str]:
     """What a fuse's keys say that the value checks do not: a number of stages other than 1 or 2, a soft path
     stiffer than the intact one. (The component refuses the same, and inconsistent stages, by its parameter's name

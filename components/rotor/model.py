@@ -200,6 +200,8 @@ def _couple(A, i, j, k):
 
 
 def _positive(name, value):
+    if value is None:   # a key the file leaves out (check-engine lists it: engine_parts.absent)
+        raise ValueError(f"rotor model: {name} missing (a finite number > 0; docs/reference/engine-format.md)")
     if not (isinstance(value, (int, float)) and math.isfinite(value) and value > 0):
         raise ValueError(f"rotor model: {name} must be a finite number > 0, got {value!r}")
     return float(value)

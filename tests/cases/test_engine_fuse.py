@@ -123,6 +123,11 @@ def test_two_fuses_are_reported_in_each_combination_of_their_stages(engine_folde
     (FUSE.format(mass=1.5, k=1e9, load=1000.0, kb=1e7) + "stiffness = 1.0\n", "[fuse.0] stiffness: unknown key"),
     # the critical speeds of each combination of stages would be asked of a third stage the format has not
     (FUSE.format(mass=1.5, k=1e9, load=1000.0, kb=1e7) + "stages = 3\n", "[fuse.0] stages: must be 1 or 2, got 3"),
+    # a required key left out: named as missing, in the user's file (it read "got None", or named the paper's
+    # engine file: components/rotor/data/engine.toml)
+    ("\n[fuse.0]\nk_intact = 1e9\nbreak_load_N = 600.0\n", "[fuse.0] housing_mass_kg: missing (mass of the"),
+    ("\n[fuse.0]\nhousing_mass_kg = 1.5\nbreak_load_N = 600.0\n", "[fuse.0] k_intact: missing (intact radial"),
+    ("\n[fuse.0]\nhousing_mass_kg = 1.5\nk_intact = 1e9\n", "[fuse.0] break_load_N: missing (radial elastic"),
 ])
 def test_bad_fuse_in_an_engine_file_is_one_line(engine_folder, tmp_path, text, message):
     path = _engine(engine_folder, "bad.toml", text)
@@ -131,7 +136,30 @@ def test_bad_fuse_in_an_engine_file_is_one_line(engine_folder, tmp_path, text, m
     assert r.returncode == 2, r.stdout + r.stderr
     lines = [line for line in (r.stdout + r.stderr).splitlines() if line.strip()]
     assert any(message in line for line in lines), lines
-    assert "Traceback" not in r.stderr
+    assert "Traceback" not in r.stderr and "None" not in r.stdout + r.stderr
+    assert "components/rotor/data/engine.toml" not in r.stdout + r.stderr
+
+
+def test_a_part_table_without_a_required_key_is_a_problem_of_the_user_s_file(engine_folder):
+    """A [bearing.0] without its balls: check-engine lists it by key (it stopped at the linearised engine, naming
+    the paper's engine file components/rotor/data/engine.toml as the file that lacked it)."""
+    from rotorcosim.components.rotor import engine_check
+
+    data, _ = fem.load_data(engine_folder / "engine.toml")
+    del data["bearing"]["0"]["balls"]
+    (line,) = engine_check.problems(data)
+    assert line.startswith("[bearing.0] balls: missing (number of balls"), line
+
+
+def test_a_fuse_with_no_soft_path_lists_its_broken_state_as_not_computed(engine_folder):
+    """k_broken's default 0 (nothing holds the housing after the break but a bumper): the engine after the break
+    has a rigid-body motion; check-engine reports the intact engine and says why the broken one has no critical
+    speeds (it stopped with 'spool rotor moves freely, held by no spring')."""
+    path = _engine(engine_folder, "no_soft_path.toml",
+                   "\n[fuse.0]\nhousing_mass_kg = 1.5\nk_intact = 1e9\nbreak_load_N = 600.0\n")
+    (st,) = fuse_states(fem.load(path), 3, 30000.0)
+    assert st["forward_synchronous_rpm"] == [] and st["fuse_stiffness_N_per_m"] == {"0": 0.0}
+    assert st["note"].startswith("not computed: fuse #0 has stiffness 0 after this break"), st["note"]
 
 
 @pytest.fixture(scope="module")
@@ -299,3 +327,11 @@ def test_a_fuse_template_id_the_engine_does_not_describe_is_named(tmp_path):
     assert "no [fuse.7] (the fuse ids it has: 0)" in r.stderr and "missing" not in r.stderr, r.stderr
     assert len(r.stderr.strip().splitlines()) == 1, r.stderr
     assert not out.exists()
+
+
+def test_a_run_of_a_fuse_without_its_housing_mass_names_the_key_missing(engine_folder):
+    """A run (not check-engine) of an engine whose [fuse.0] leaves out housing_mass_kg: one line naming the key
+    as missing (it read 'must be a finite number > 0, got None')."""
+    path = _engine(engine_folder, "no_mass.toml", "\n[fuse.0]\nk_intact = 1e9\nbreak_load_N = 600.0\n")
+    with pytest.raises(ValueError, match=r"\[fuse\.0\] housing_mass_kg missing \(a finite number > 0"):
+        fem.load(path)
