@@ -72,7 +72,7 @@ def _bad(where: str, what: str) -> ValueError:
     return ValueError(f"{where}: {what}")
 
 
-def _numbers(where: str, v, n: int | None) -> np.ndarray:
+def _numbers(where: str, v, n: int | None, per: str = "one value per mode ({n})") -> np.ndarray:
     if isinstance(v, (int, float)) and not isinstance(v, bool) and n is not None:
         v = [v] * n
     if not isinstance(v, list) or not v:
@@ -81,7 +81,7 @@ def _numbers(where: str, v, n: int | None) -> np.ndarray:
         if isinstance(x, bool) or not isinstance(x, (int, float)) or not math.isfinite(x):
             raise _bad(f"{where}[{i}]", f"must be a finite number, got {x!r}")
     if n is not None and len(v) != n:
-        raise _bad(where, f"needs one value per mode ({n}), got {len(v)}")
+        raise _bad(where, f"needs {per.format(n=n)}, got {len(v)}")
     return np.asarray(v, dtype=float)
 
 
@@ -144,10 +144,11 @@ def parse(data: dict, where: str = "airframe model") -> ModalModel:
             width = len(rows[0]) if isinstance(rows[0], list) else 0
             if width not in (3, 6):
                 raise _bad(f"{w}.shape[0]", "must be a row of 3 (T1 T2 T3) or 6 (T1 T2 T3 R1 R2 R3) numbers")
-            phi = np.vstack([_numbers(f"{w}.shape[{j}]", r, width) for j, r in enumerate(rows)])
+            phi = np.vstack([_numbers(f"{w}.shape[{j}]", r, width, "as many values as shape[0] ({n}: T1 T2 T3"
+                                      + (" R1 R2 R3" if width == 6 else "") + ")") for j, r in enumerate(rows)])
             points[kind][name] = phi / np.sqrt(m)[:, None]
             pos = pt.get("position_mm")
-            positions[name] = None if pos is None else _numbers(f"{w}.position_mm", pos, 3) * 1e-3
+            positions[name] = None if pos is None else _numbers(f"{w}.position_mm", pos, 3, "3 values (x y z, mm)") * 1e-3
     if not points["interface"]:
         raise _bad(where, "no [interface.NAME] point (where the engine's mounts end)")
     return ModalModel(str(head.get("name", "")), 2.0 * math.pi * f, z, points["interface"], points["response"],

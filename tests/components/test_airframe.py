@@ -184,6 +184,24 @@ def test_a_misspelt_table_or_key_of_the_airframe_file_is_named(tmp_path, old, ne
     assert str(err.value) == f"airframe model {path}: {says}"
 
 
+def test_a_shape_row_or_position_of_another_length_names_what_it_needs(tmp_path):
+    """A shape row shorter than the first, a position of 2 numbers: the message said 'needs one value per mode
+    (3)', where a row holds a point's components (T1 T2 T3 ...) and a position its x y z."""
+    path = tmp_path / "beam.toml"
+    _cantilever_file(tmp_path)
+    text = path.read_text()
+    rows = re.search(r"shape = \[\n(.*?)\]\n", text, re.S).group(1).splitlines()
+    short = rows[1].rsplit(",", 2)[0] + "],"
+    path.write_text(text.replace(rows[1], short, 1))
+    with pytest.raises(ValueError) as err:
+        read(path)
+    assert str(err.value).endswith("interface.tip.shape[1]: needs as many values as shape[0] (3: T1 T2 T3), got 2")
+    path.write_text(text.replace("[interface.tip]", "[interface.tip]\nposition_mm = [1.0, 2.0]", 1))
+    with pytest.raises(ValueError) as err:
+        read(path)
+    assert str(err.value).endswith("interface.tip.position_mm: needs 3 values (x y z, mm), got 2")
+
+
 def test_mount_on_a_missing_node_is_one_line(tmp_path, monkeypatch, capsys):
     bad = PYLON.read_text().replace('{ node = ["casing", 6, 0], dir = 1', '{ node = ["casing", 9, 0], dir = 1')
     bad = bad.replace('"../../airframe/data/pylon_wing.toml"', repr(str(EXAMPLE)).replace("'", '"'))
