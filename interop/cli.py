@@ -53,6 +53,9 @@ def _parts(path: str | None, engine: dict) -> dict:
         import tomllib
 
         p = Path(path)
+        if p.is_dir():
+            raise IsADirectoryError(f"--parts {path}: is a folder; give the TOML file of the parts ([bearing.ID], "
+                                    "[damper.ID], ...)")
         if not p.is_file():
             raise FileNotFoundError(f"--parts {path}: no such file")
         try:

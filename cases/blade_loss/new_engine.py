@@ -34,11 +34,29 @@ def new_engine(folder: str | Path) -> list[Path]:
     there = [name for name in TEMPLATES if (d / name).exists()]
     if there:
         raise FileExistsError(f"new-engine {folder}: {', '.join(there)} already there; choose an empty folder")
-    d.mkdir(parents=True, exist_ok=True)
+    new = [p for p in (d, *d.parents) if not p.exists()]   # the folders this call creates, deepest first
     out = []
-    for name, src in TEMPLATES.items():
-        (d / name).write_text(src.read_text())
-        out.append(d / name)
+    try:
+        d.mkdir(parents=True, exist_ok=True)
+        for name, src in TEMPLATES.items():
+            out.append(d / name)
+            (d / name).write_text(src.read_text())
+    except OSError as exc:
+        # nothing half-written is left: the files and the folders made here go again
+        for f in out:
+            f.unlink(missing_ok=True)
+        for p in new:
+            try:
+                p.rmdir()
+            except OSError:
+                pass
+        what = f"cannot write {out[-1].name} into it" if out else "the folder cannot be created"
+        parent = next((p for p in d.parents if p.exists()), None)
+        why = exc.strerror or str(exc)
+        if not out and parent is not None:   # /proc/x: "No such file or directory" of a /proc that exists
+            why += f" ({parent} does not take a new folder)"
+        # the same class: a folder that does not exist stays bad input (exit 2), a permission the environment's
+        raise type(exc)(f"new-engine {folder}: {what}: {why}; choose a folder you can write in") from None
     return out
 
 

@@ -194,8 +194,11 @@ def problems(data: dict) -> list[str]:
         hubs.append(h)
         # a housing without mass leaves the mass matrix singular: no modes, no reduced rotor, no run
         p.value(f"pedestal.{h}.mass", pv.get("mass"))
+        # named, not read as k = None ("pedestal.h0.k: ... got None" for a pedestal with kxx only)
+        _stiffness_missing(p, f"pedestal.{h}", pv)
         for k in ("kxx", "kyy"):
-            p.value(f"pedestal.{h}.{k if k in pv else 'k'}", pv.get(k, pv.get("k")), allow_knob=True)
+            if k in pv or "k" in pv:
+                p.value(f"pedestal.{h}.{k if k in pv else 'k'}", pv.get(k, pv.get("k")), allow_knob=True)
 
     def ref(where, r, *, hub_ok=True, ground_ok=False):
         if ground_ok and r == "ground":
@@ -220,8 +223,10 @@ def problems(data: dict) -> list[str]:
         if fem.is_speed_dependent(s):
             _speed_table(p, w, s)
             continue
+        _stiffness_missing(p, w, s)
         for k in ("kxx", "kyy"):
-            p.value(f"{w}.{k if k in s else 'k'}", s.get(k, s.get("k")))
+            if k in s or "k" in s:
+                p.value(f"{w}.{k if k in s else 'k'}", s.get(k, s.get("k")))
         for k in ("cxx", "cyy"):
             p.value(f"{w}.{k if k in s else 'c'}", s.get(k, s.get("c", 0.0)), positive=False)
     attach = data.get("attach", {})
@@ -313,6 +318,13 @@ def _speed_table(p: _Problems, w: str, s: dict) -> None:
                 p.value(where, x, positive=False)
             elif not (_num(x) and math.isfinite(x)):
                 p.add(where, f"must be a finite number, got {x!r}")
+
+
+def _stiffness_missing(p, where: str, table: dict) -> None:
+    """Name the direct stiffnesses a support or pedestal table leaves out (neither kxx/kyy nor k for both)."""
+    missing = [k for k in ("kxx", "kyy") if k not in table and "k" not in table]
+    if missing:
+        p.add(where, f"{' and '.join(missing)} missing: give kxx and kyy, or k for both")
 
 
 def _node_ok(n, count: int) -> bool:

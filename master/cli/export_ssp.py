@@ -25,6 +25,8 @@ def run(args) -> int:
     from rotorcosim.master.cli.run import resolve
     from rotorcosim.master.scenario.ssp import write_ssp
 
+    if not str(args.out).strip():   # Path("") is ".", which the archive check named instead
+        raise ValueError("--out is empty: give the SSP archive to write (FILE.ssp)")
     sc = resolve(args.scenario)
     path = write_ssp(sc, Path(args.out))
     print(f"{sc.name}: {len(sc.components)} components, {len(sc.connections)} connections -> {path}")

@@ -103,6 +103,47 @@ def test_bad_geometry_is_one_line(tmp_path, capsys, setting, message):
     assert not (tmp_path / "o" / "timeseries.h5").exists()
 
 
+def test_a_pedestal_without_its_stiffness_names_the_missing_keys(tmp_path, capsys):
+    """A pedestal with kxx only was reported as "pedestal.h0.k: must be a finite number > 0, got None"."""
+    assert main(["new-engine", str(tmp_path / "X")]) == 0
+    f = tmp_path / "X" / "engine.toml"
+    f.write_text(f.read_text().replace("[pedestal.h0]\nmass = 3.0\nk = 5.0e8", "[pedestal.h0]\nmass = 3.0\nkxx = 5.0e8")
+                 .replace("[pedestal.h5]\nmass = 3.0\nk = 5.0e8", "[pedestal.h5]\nmass = 3.0"))
+    capsys.readouterr()
+    assert main(["check-engine", str(f)]) == 2
+    out = capsys.readouterr().out
+    assert "pedestal.h0: kyy missing: give kxx and kyy, or k for both" in out, out
+    assert "pedestal.h5: kxx and kyy missing: give kxx and kyy, or k for both" in out, out
+    assert "None" not in out
+
+
+def test_new_engine_into_a_folder_that_cannot_be_made_says_which_and_why(tmp_path, capsys, monkeypatch):
+    """new-engine /proc/x printed a bare "[Errno 2] No such file or directory: '/proc/x'"; a write that fails
+    half-way leaves nothing behind."""
+    import errno
+    from pathlib import Path
+
+    if Path("/proc").is_dir():
+        assert main(["new-engine", "/proc/x"]) == 2
+        assert capsys.readouterr().err == ("rotorcosim new-engine: error: new-engine /proc/x: the folder cannot be "
+                                           "created: No such file or directory (/proc does not take a new folder); "
+                                           "choose a folder you can write in\n")
+    real, calls = Path.write_text, []
+
+    def disk_full(self, *a, **k):
+        calls.append(self)
+        if len(calls) == 2:
+            raise OSError(errno.ENOSPC, "No space left on device")
+        return real(self, *a, **k)
+
+    monkeypatch.setattr(Path, "write_text", disk_full)
+    assert main(["new-engine", str(tmp_path / "a" / "b")]) == 1
+    err = capsys.readouterr().err
+    assert err.startswith(f"rotorcosim new-engine: error: new-engine {tmp_path / 'a' / 'b'}: cannot write "
+                          "blade_loss.toml into it: No space left on device"), err
+    assert list(tmp_path.iterdir()) == []
+
+
 def test_a_massless_pedestal_is_refused_by_name(tmp_path, capsys):
     """A pedestal of mass 0 leaves the mass matrix singular: check-engine and the run used to end in scipy's
     'The leading minor of order 59 of B is not positive definite'; now each names the key."""

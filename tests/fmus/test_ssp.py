@@ -102,6 +102,10 @@ def test_cli_errors_name_the_problem(tmp_path, capsys, monkeypatch):
     assert not (tmp_path / "y").exists()     # checked before anything was written
     assert main(["export-ssp", str(tmp_path / "toy.zip"), str(TOY)]) == 2
     assert "must end in .ssp" in capsys.readouterr().err
+    # an empty name was read as the folder "." (". must end in .ssp")
+    assert main(["export-ssp", "--out", "", str(TOY)]) == 2
+    assert capsys.readouterr().err == ("rotorcosim export-ssp: error: --out is empty: give the SSP archive to write "
+                                       "(FILE.ssp)\n")
 
 
 def test_bad_ssp_archives(tmp_path, toy_ssp):

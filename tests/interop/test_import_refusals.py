@@ -119,3 +119,11 @@ def test_a_folder_is_not_a_rotor_file(tmp_path, capsys):
     err = [line for line in capsys.readouterr().err.splitlines() if line.strip()]
     assert err == [f"rotorcosim import-ross: error: ROSS rotor file {tmp_path / 'rotor.toml'} is a folder, not a "
                    "file written by ROSS's Rotor.save"], err
+
+
+def test_a_folder_given_as_the_parts_file_is_named_a_folder(tmp_path, capsys):
+    """--parts FOLDER said "no such file" of a folder that exists."""
+    rotor = _mutated(tmp_path, "L = 0.25", "L = 0.25")
+    line = _refused(tmp_path, capsys, rotor, "--attach", "0=0", "--parts", str(tmp_path))
+    assert line == (f"rotorcosim import-ross: error: --parts {tmp_path}: is a folder; give the TOML file of the "
+                    "parts ([bearing.ID], [damper.ID], ...)"), line
