@@ -38,6 +38,8 @@ from .mounting import installed, spring_rows
 
 #: a response point's output: its acceleration
 ACCELERATION = "a_"
+#: the columns of a moment's and an acceleration's x y z (the time series' ``columns``; they read 1, 2, 3)
+AXES = ("x", "y", "z")
 
 
 def port_variables(found: dict, model: ModalModel | None) -> tuple[Variable, ...]:
@@ -56,10 +58,10 @@ def port_variables(found: dict, model: ModalModel | None) -> tuple[Variable, ...
         out.append(Variable(f"F_{m.name}", "output", 3, "N", f"load of mount {m.name} on the airframe (x y z)"))
         if m.moment:
             out.append(Variable(f"M_{m.name}", "output", 3, "N.m",
-                                f"moment of mount {m.name} on the airframe (about x y z)"))
+                                f"moment of mount {m.name} on the airframe (about x y z)", labels=AXES))
     for p in (model.response if model is not None else ()):
         out.append(Variable(f"{ACCELERATION}{p}", "output", 3, "m/s2", f"acceleration at response point {p} "
-                                                                       "(x y z)"))
+                                                                       "(x y z)", labels=AXES))
     return tuple(out)
 
 

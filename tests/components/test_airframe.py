@@ -322,3 +322,18 @@ def test_a_spring_given_twice_is_one_line(tmp_path):
     engine.write_text(f'[airframe]\nmodel = "point.toml"\n\n[mount.m]\ninterface = "p"\n'
                       f'springs = [{one}, {one.replace("dir = 1", "dir = 0")}]\n')
     installed(str(engine))
+
+
+def test_a_moment_s_and_an_acceleration_s_columns_are_x_y_z(tmp_path):
+    """The time series' `columns` of M_NAME and a_NAME are x, y, z, as outputs.md says and as F_NAME's are (they
+    read 1, 2, 3: a vector not in m, m/s or N got numbered columns)."""
+    from rotorcosim.master.observer.recorder_csv import column_names
+
+    engine = tmp_path / "engine.toml"
+    engine.write_text(f'[airframe]\nmodel = {str(EXAMPLE)!r}\n\n[mount.fwd]\ninterface = "pylon_fwd"\n'
+                      f'springs = [{{ node = ["pt", 5], dir = 3, k = 1.0e6, c = 0.0 }}]\n'.replace("'", '"'))
+    comp = create("airframe.modal", "airframe", {"model_file": str(engine)})
+    for port in ("F_fwd", "M_fwd", "a_flight_deck", "a_seat_track"):
+        assert comp.variable(port).column_labels() == ["x", "y", "z"], port
+    variables = {"airframe.a_flight_deck": comp.variable("a_flight_deck")}
+    assert column_names(["airframe.a_flight_deck"], variables)[0] == "airframe.a_flight_deck[x] (m/s2)"
