@@ -120,9 +120,14 @@ def test_the_main_classes_name_their_parameters_and_show_an_example(modname, nam
 
 @pytest.mark.parametrize("modname", [m for m in _public_modules()
                                      if ">>>" in (importlib.util.find_spec(m).loader.get_source(m) or "")])
-def test_the_examples_run(modname):
+def test_the_examples_run(modname, tmp_path, monkeypatch):
     """Every example of the docstrings runs as shown (those marked ``+SKIP`` aside: they need a long run)."""
     import doctest
+    import tempfile
+
+    # the examples make their folders with tempfile.mkdtemp(), as a reader would: here, inside tmp_path (they
+    # were left in /tmp by every run of the suite)
+    monkeypatch.setattr(tempfile, "tempdir", str(tmp_path))
 
     result = doctest.testmod(importlib.import_module(modname),
                              optionflags=doctest.ELLIPSIS | doctest.NORMALIZE_WHITESPACE)

@@ -69,4 +69,8 @@ class Watchdog:
                     self.on_timeout(f"{timed_out.__name__}: {msg}")
             finally:
                 print(f"{self.prog}: error: {timed_out.what}: {msg}", file=sys.stderr, flush=True)
+                # os._exit runs no atexit handler: an SSP archive's extraction folder would stay in /tmp
+                ssp = sys.modules.get("rotorcosim.master.scenario.ssp")
+                if ssp is not None:
+                    ssp.remove_extracted()
                 os._exit(1)

@@ -28,6 +28,7 @@ from __future__ import annotations
 import atexit
 import json
 import math
+import multiprocessing.util
 import os
 import shutil
 import tempfile
@@ -208,13 +209,29 @@ def write_ssp(sc: Scenario, path: str | Path) -> Path:
 
 
 # -- reading -------------------------------------------------------------------------------------------
-_extracted: list[Path] = []
+#: the archives' extraction folders, each with the process that made it (a forked child inherits the list: it
+#: removes its own only, never its parent's, which the parent still runs from)
+_extracted: list[tuple[int, Path]] = []
+_finalizer_in: int | None = None
 
 
 @atexit.register
-def _cleanup() -> None:
-    for folder in _extracted:
+def remove_extracted() -> None:
+    """Remove this process's extraction folders (at exit; watchdog.py calls it before it ends a hung process)."""
+    mine = [f for pid, f in _extracted if pid == os.getpid()]
+    _extracted[:] = [(pid, f) for pid, f in _extracted if pid != os.getpid()]
+    for folder in mine:
         shutil.rmtree(folder, ignore_errors=True)
+
+
+def _remove_at_exit(folder: Path) -> None:
+    global _finalizer_in
+    _extracted.append((os.getpid(), folder))
+    if _finalizer_in != os.getpid():
+        # a multiprocessing child (fork: a sweep's worker) ends with os._exit, which runs no atexit handler, and
+        # clears the finalizers it inherits: registered in the process that extracts
+        multiprocessing.util.Finalize(None, remove_extracted, exitpriority=0)
+        _finalizer_in = os.getpid()
 
 
 def _value(p: ET.Element, where: str):
@@ -444,12 +461,12 @@ def read_ssp(path: str | Path) -> Scenario:
         folder = safe_extract(path, "SSP archive", prefix="rcs_ssp_")
     except ArchiveError as exc:
         raise SSPError(str(exc)) from None
-    _extracted.append(folder)
+    _remove_at_exit(folder)
     try:
         return _scenario_of(path, folder)
     except BaseException:  # a malformed archive: its extraction folder goes at once, not at exit
         shutil.rmtree(folder, ignore_errors=True)
-        _extracted.remove(folder)
+        _extracted.remove((os.getpid(), folder))
         raise
 
 

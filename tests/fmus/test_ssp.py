@@ -3,6 +3,7 @@ by a co-simulation engine that is not ours (Ecos) within 1 % of our master at th
 from __future__ import annotations
 
 import os
+import tempfile
 import zipfile
 from pathlib import Path
 
@@ -164,7 +165,10 @@ def ecos_run(ssp: Path, step: float, n: int, signals: list[str]) -> dict[str, np
     return out
 
 
-def test_ecos_runs_the_exported_ssp_like_our_master(toy_ssp, ecospy_loaded):
+def test_ecos_runs_the_exported_ssp_like_our_master(toy_ssp, ecospy_loaded, tmp_path, monkeypatch):
+    # Ecos extracts the archive into the temporary folder (ecos_ssp_<uuid>) and leaves it there: into tmp_path
+    tempfile.gettempdir()   # Python's own temporary folder is read once, before: it stays /tmp for the other tests
+    monkeypatch.setenv("TMPDIR", str(tmp_path))
     (phase, duration, step), = TM
     n = round(duration / step)
     signals = ["osc.x", "osc.v", "osc.P", "node.T"]
@@ -359,3 +363,20 @@ def test_another_tools_archive_runs_at_its_osp_base_step(toy_ssp, tmp_path):
     assert osp["kind"] == "monolithic" and osp["step"] == 2.5e-4 != plain
     with pytest.raises(SSPError, match=r"FixedStepAlgorithm baseStepSize='-1' is not a positive number"):
         read_ssp(_as_osp_archive(toy_ssp, tmp_path / "bad.ssp", "-1"))
+
+
+def _read_in_child(path: str, tmp: str) -> None:
+    tempfile.tempdir = tmp
+    read_ssp(path)
+
+
+def test_a_child_process_removes_what_it_extracted(toy_ssp, tmp_path):
+    """A multiprocessing child (a sweep's worker) that read an archive ends with os._exit, which runs no atexit
+    handler: its extraction folder (rcs_ssp_*) stayed in /tmp."""
+    import multiprocessing
+
+    child = multiprocessing.get_context("fork").Process(target=_read_in_child, args=(str(toy_ssp), str(tmp_path)))
+    child.start()
+    child.join(120)
+    assert child.exitcode == 0
+    assert list(tmp_path.iterdir()) == []
