@@ -64,7 +64,13 @@ def rainflow(y, k: int = LOAD_CLASSES) -> Counts:
     y = np.asarray(y, dtype=float).ravel()
     if y.size < 3 or not np.ptp(y) > 0.0:
         return EMPTY
-    _, at = library().find_reversals(y, k=k)
+    try:
+        _, at = library().find_reversals(y, k=k)
+    except IndexError:
+        # a series monotone at the load classes' resolution (a temperature rising, a load over a short coupled
+        # interval): fatpack indexes a second reversal it has not found. Its one reversal pair is its ends: one
+        # half cycle, from its first value to its last
+        return Counts(np.array([abs(y[-1] - y[0])]), np.array([0.5]))
     if at.size < 2:
         return EMPTY
     # the classes find the turning points; their ranges are the series' own values there, not the classes' centres

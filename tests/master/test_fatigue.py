@@ -67,3 +67,14 @@ def test_slow_sweep_through_a_resonance_against_the_quasi_steady_damage():
     ref = integrate.quad(rate_of_damage, 0.0, T, points=[50.0], limit=400)[0]
     assert d == pytest.approx(ref, rel=0.01)
     assert spring.max() > 9.0 * F0            # the resonance was crossed: 1 / (2 zeta) = 10 x the static force
+
+
+@pytest.mark.parametrize("y", [np.linspace(0.0, 1.0, 10), [300.0, 300.0, 300.0 + 1e-9, 300.0 + 1e-9],
+                               [1.0, 1.0, 2.0, 2.0], [0.0, 1.0, 1.0 - 1e-9]])
+def test_a_monotone_series_is_one_half_cycle(y):
+    """A series without a reversal between its ends (a thermal node's temperature over a short run, a load over a
+    short coupled interval; the last one monotone at the load classes' resolution): one half cycle from its first
+    value to its last. fatpack's find_reversals raised an IndexError, which ended a run after it had written its
+    time series and figures ('rotorcosim run: error: index -2 is out of bounds for axis 0 with size 1')."""
+    c = fg.rainflow(y)
+    assert list(c.n) == [0.5] and c.S[0] == pytest.approx(abs(y[-1] - y[0]), rel=1e-12, abs=0.0)
