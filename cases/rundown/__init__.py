@@ -28,13 +28,28 @@ COMPARE = "rotorcosim.cases.rundown.compare:run"
 #: the level: the blade-loss engine's unbalance force (``[results] unbalance_parameter``, ``--unbalance``), as the
 #: blade-loss case's; a rundown of a scenario without that key (a test rotor) has no level to set
 LEVEL = blade_loss.LEVEL
+#: the steepest S-N curve accepted (``[results] woehler_exponent``): slopes are 3 to 5 for steel details (EN 1993-1-9)
+#: and up to ~20 for some materials; the damage-equivalent load sums S^m, which overflows a float beyond ~100 for
+#: loads of kN (its value came out null, with numpy's overflow warning)
+MAX_WOEHLER_EXPONENT = 50.0
+
+
+def woehler_exponent(v) -> str | None:
+    """A finite S-N slope m in (0, :data:`MAX_WOEHLER_EXPONENT`]."""
+    err = checkers.positive(v)
+    if err is None and v > MAX_WOEHLER_EXPONENT:
+        return (f"must be at most {MAX_WOEHLER_EXPONENT:g} (the S-N curve's slope m: 3 to 5 for steel details, "
+                f"EN 1993-1-9; the loads' S^m overflows beyond), got {v!r}")
+    return err
+
+
 #: the case's own ``[results]`` keys: the spool components whose speeds and crossings it reports, the critical
 #: speeds whose crossings it reports [rev/min]; the blade-loss engine's level when it runs that engine; the loads
 #: whose fatigue content it reports and the S-N settings
 RESULTS_KEYS = {"spools": checkers.list_of(checkers.text), "critical_speeds_rpm": checkers.list_of(checkers.positive),
                 "unbalance_parameter": checkers.port_ref,
                 # the fatigue content of loads (cases/rundown/fatigue.py: defaults and sources)
-                "fatigue_loads": checkers.list_of(checkers.port_ref), "woehler_exponent": checkers.positive,
+                "fatigue_loads": checkers.list_of(checkers.port_ref), "woehler_exponent": woehler_exponent,
                 "reference_cycles": checkers.positive, "sn_range_N": checkers.positive,
                 "sn_cycles": checkers.positive,
                 # the airframe component whose interface loads summary.json reports (cases/interface/results.py;

@@ -85,3 +85,16 @@ def test_a_wrong_comparison_scenario_leaves_no_folder(tmp_path, capsys):
     err = [line for line in capsys.readouterr().err.splitlines() if line.strip()]
     assert rc == 2 and len(err) == 1 and "[results] without_fuse: no shipped scenario 'nope'" in err[0], err
     assert not (tmp_path / "o").exists()
+
+
+def test_an_s_n_slope_whose_load_powers_overflow_is_refused_before_the_run(tmp_path, capsys):
+    """woehler_exponent = 1e6: S^m overflowed, numpy warned and the damage-equivalent loads came out null in
+    summary.json after the whole run; refused at the start, naming the key, no folder."""
+    from rotorcosim.master.cli import main
+
+    sc = tmp_path / "s.toml"
+    sc.write_text('[scenario]\nextends = "blade_loss_diversion"\nname = "t"\n[results]\nwoehler_exponent = 1e6\n')
+    rc = main(["run", str(sc), "--duration", "0.001", "--no-figures", "--quiet", "--out", str(tmp_path / "o")])
+    err = [line for line in capsys.readouterr().err.splitlines() if line.strip()]
+    assert rc == 2 and len(err) == 1 and "[results] woehler_exponent: must be at most 50" in err[0], err
+    assert not (tmp_path / "o").exists()
