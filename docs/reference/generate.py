@@ -132,7 +132,8 @@ def _values(check) -> str:
     words = {"text": "string", "number": "number", "positive": "positive number", "fraction": "fraction in (0, 1]", "not_negative": "number >= 0",
              "whole_positive": "positive whole number", "count": "integer >= 1", "boolean": "true / false",
              "port_ref": '"component.port"', "text_or_texts": "string or list of strings",
-             "numbers": "number or list of numbers", "parameter_value": "number, string, boolean or list"}
+             "numbers": "number or list of numbers", "parameter_value": "number, string, boolean or list",
+             "woehler_exponent": "positive number, at most 50"}
     if check.__closure__:   # one_of(*allowed) and list_of(item) return a closure named check
         inner = check.__closure__[0].cell_contents
         if isinstance(inner, tuple):
