@@ -20,7 +20,6 @@ from __future__ import annotations
 
 import json
 import math
-from pathlib import Path
 
 from rotorcosim.cases.blade_loss import critical_speeds as cs
 from rotorcosim.cases.blade_loss import linear_engine
@@ -141,8 +140,7 @@ def add_arguments(parser):
                         help="the scenario whose bearing and damper components linearise the attached bearings "
                              "(default: the shipped blade-loss scenario)")
     parser.add_argument("--campbell", metavar="FILE.png", default=None,
-                        help="where to draw the Campbell diagram (default: FILE's name + _campbell.png in the "
-                             "current folder)")
+                        help="draw the Campbell diagram into this PNG file (default: none drawn)")
     parser.add_argument("--max-rpm", type=float, default=None, metavar="RPM",
                         help="highest speed of the critical speeds and the diagram (default: twice the first "
                              "spool's speed)")
@@ -152,8 +150,8 @@ def add_arguments(parser):
 
 def run(args) -> int:
     """Run the command ``args`` (parsed); returns the exit status."""
-    campbell = args.campbell or f"{Path(args.file).stem}_campbell.png"
-    out = check_engine(args.file, args.scenario, campbell, args.max_rpm, windmill_rpm=args.windmill_rpm)
+    # a figure only where asked: a check wrote FILE_campbell.png into whatever folder it was run from
+    out = check_engine(args.file, args.scenario, args.campbell, args.max_rpm, windmill_rpm=args.windmill_rpm)
     if args.json:
         print(json.dumps(out, default=str))
         return 2 if out["problems"] else 0
@@ -200,5 +198,6 @@ def run(args) -> int:
     print(f"  supports: {c['support_model']['description']}")
     for line in out["warnings"]:
         print(f"  warning: {line}")
-    print(f"Campbell diagram: {out['campbell']}")
+    if out.get("campbell"):
+        print(f"Campbell diagram: {out['campbell']}")
     return 0

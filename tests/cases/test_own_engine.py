@@ -233,3 +233,15 @@ def test_a_scenario_whose_damper_is_a_plugin_cannot_linearise_the_engine(capsys)
     assert err == ["rotorcosim critical-speeds: error: scenario 'linear_damper_2850': damper0 is "
                    "linear_damper:LinearDamper, not the damper (damper.fast or damper.fe) whose model the linearised "
                    "engine reads: give a scenario of the native parts (--scenario FILE)"], err
+
+
+def test_check_engine_draws_its_figure_only_where_asked(tmp_path, capsys, monkeypatch):
+    """Without --campbell it wrote engine_campbell.png into the working folder."""
+    assert main(["new-engine", str(tmp_path / "X")]) == 0
+    monkeypatch.chdir(tmp_path)
+    assert main(["check-engine", str(tmp_path / "X" / "engine.toml")]) == 0
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["X"]
+    assert sorted(p.name for p in (tmp_path / "X").iterdir()) == ["blade_loss.toml", "engine.toml", "rundown.toml"]
+    assert "Campbell diagram" not in capsys.readouterr().out
+    assert main(["check-engine", str(tmp_path / "X" / "engine.toml"), "--campbell", str(tmp_path / "c.png")]) == 0
+    assert (tmp_path / "c.png").is_file()
