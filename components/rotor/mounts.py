@@ -100,6 +100,10 @@ def mounts(data: dict) -> dict[str, Mount]:
     """The mounts of an engine file's data, in file order (empty: none); a table or value of the wrong kind is a
     ValueError naming its key. Whether a node exists is the model's to say (model.py, engine_check.py)."""
     table = data.get("mount")
+    if not table and isinstance(table, (dict, type(None))) and "airframe" in data:
+        # the airframe would be read and then left out: the engine ran on its ground, without a word
+        raise ValueError("[airframe]: no [mount.NAME] table hangs the engine from it (each: interface = a point "
+                         "of the airframe model, springs = [{node, dir, k, c}, ...]); add them, or remove [airframe]")
     if table is None:
         return {}
     if not isinstance(table, dict):

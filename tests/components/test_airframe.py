@@ -337,3 +337,16 @@ def test_a_moment_s_and_an_acceleration_s_columns_are_x_y_z(tmp_path):
         assert comp.variable(port).column_labels() == ["x", "y", "z"], port
     variables = {"airframe.a_flight_deck": comp.variable("a_flight_deck")}
     assert column_names(["airframe.a_flight_deck"], variables)[0] == "airframe.a_flight_deck[x] (m/s2)"
+
+
+def test_an_airframe_without_a_mount_is_one_line(tmp_path, monkeypatch, capsys):
+    """[airframe] without any [mount.NAME]: check-engine said 'no problem found' and a run stood the engine on
+    its ground, the airframe read and left out (a [mount] without [airframe] was refused already)."""
+    text = PYLON.read_text().replace('"../../airframe/data/pylon_wing.toml"', repr(str(EXAMPLE)).replace("'", '"'))
+    text = re.sub(r"\n\[mount\.\w+\]\n.*?(?=\n\[(?!mount))", "", text, flags=re.S)
+    assert "\n[mount." not in text and "\n[airframe]" in text
+    (tmp_path / "engine.toml").write_text(text)
+    monkeypatch.chdir(tmp_path)
+    assert main(["check-engine", str(tmp_path / "engine.toml")]) == 2
+    out = capsys.readouterr().out.splitlines()
+    assert len(out) == 2 and out[1].strip().startswith("[airframe]: no [mount.NAME] table hangs the engine from it")
