@@ -231,7 +231,8 @@ def simulate(sc: Scenario | str | Path, duration: float | None = None, schedule=
 
     The summary's ``status`` says how the run ended: ``complete``, ``stopped`` (a component asked to stop),
     ``interrupted`` (SIGINT/SIGTERM) or ``failed``; on ``interrupted`` and ``failed`` the error is raised after
-    the summary and the time series are written, carrying the partial :class:`Result` as ``.result``.
+    the summary and the time series are written, carrying the partial :class:`Result` as ``.result``. Results
+    or figures that fail once the steps have ended fail the run too: :class:`ResultsFailed`.
 
     The whole run uses one BLAS thread whatever the calling program set up (threads.py): the same numbers as the
     command line's, bit for bit."""
@@ -287,10 +288,14 @@ def _run(sc: Scenario, schedule, duration: float | None, opts: RunOptions) -> Re
         data, files = run.recorded()
         try:
             files += _results(run, post, post_obs, summary, data, pool)
-        except Exception as exc:
-            if run.error is None:
-                raise
-            summary["results_error"] = f"{type(exc).__name__}: {exc}"
+        except ResultsFailed as exc:
+            if run.error is not None:   # the run's own error is the one that ended it
+                summary["results_error"] = f"{type(exc.__cause__).__name__}: {exc.__cause__}"
+            else:
+                # the steps' record is whole and stays; the summary must not say "complete" over results that
+                # were never made (_results has taken back a half-made extraction, _draw its figures)
+                run.post_failed(exc)
+                summary.update(status=run.status, error=f"{type(exc).__name__}: {exc}")
         run.finish(summary, files)
         result = Result(data, dict(run.recorder.variables), summaries.as_written(summary), files, sim.phases)
         if run.error is not None:
@@ -302,10 +307,39 @@ def _run(sc: Scenario, schedule, duration: float | None, opts: RunOptions) -> Re
     return result
 
 
+class ResultsFailed(RuntimeError):
+    """A run whose steps ended but whose results could not be made after them: ``step`` says which (extracting
+    the results, drawing the figures); the error that stopped it is its ``__cause__``. Its time series is kept,
+    summary.json says ``failed`` with this error, and no figure of the step is left (:func:`_draw`). Raised
+    carrying the partial :class:`Result` as ``.result``, like a failed run's error."""
+
+    def __init__(self, step: str, cause: BaseException):
+        self.step = step
+        super().__init__(f"{step} failed after the simulation ended: {type(cause).__name__}: {cause}")
+
+
+#: the steps after the simulation, as :class:`ResultsFailed` names them
+EXTRACTING, DRAWING = "extracting the results", "drawing the figures"
+
+
 def _results(run: RunSession, post, post_obs: list, summary: dict, data, pool: FigurePool | None) -> list[Path]:
     """The case's results (``post``, its observers ``post_obs``) added to ``summary``, or the components' final
     outputs for a scenario without a case or a run that computed nothing; the estimated error; the case's figures
-    of a run that ended by itself, drawn from ``data`` (in ``pool``). Returns the figure files."""
+    of a run that ended by itself, drawn from ``data`` (in ``pool``). Returns the figure files; a step that fails
+    raises :class:`ResultsFailed`."""
+    before = dict(summary)
+    try:
+        return _extract(run, post, post_obs, summary, data, pool)
+    except ResultsFailed:   # the figures: the results made before them are whole
+        raise
+    except Exception as exc:
+        # some results added, the located events taken out to be merged: the summary as the run left it
+        summary.clear()
+        summary.update(before)
+        raise ResultsFailed(EXTRACTING, exc) from exc
+
+
+def _extract(run: RunSession, post, post_obs: list, summary: dict, data, pool: FigurePool | None) -> list[Path]:
     sc, sim = run.sc, run.sim
     hold = sim.report.hold
     if post is None or (run.error is not None and not sim.computed):
@@ -325,9 +359,23 @@ def _results(run: RunSession, post, post_obs: list, summary: dict, data, pool: F
     summaries.add_estimated_error(summary, sc, hold)
     if not (run.opts.figures and run.out is not None and run.status in summaries.ENDED):
         return []
-    names = post.figures(sc, data, run.out, pool=pool, dpi=run.opts.dpi)
+    names = _draw(post, sc, data, run.out, pool, run.opts.dpi)
     summary["figures"] = names
     return [run.out / n for n in names]
+
+
+def _draw(post, sc: Scenario, data, out: Path, pool: FigurePool | None, dpi) -> list[str]:
+    """``post.figures`` into ``out``, whole or not at all: a drawing that fails leaves none of the files it made
+    (a figure's ``.part``, the figures already drawn: a set of figures with some missing reads as a run that drew
+    no more) and raises :class:`ResultsFailed`."""
+    present = {f.name for f in out.iterdir()}
+    try:
+        return post.figures(sc, data, out, pool=pool, dpi=dpi)
+    except Exception as exc:
+        for f in out.iterdir():
+            if f.name not in present and f.is_file():
+                f.unlink(missing_ok=True)
+        raise ResultsFailed(DRAWING, exc) from exc
 
 
 def draw_figures(sc: Scenario | str | Path, out: str | Path, pool: FigurePool | None = None,
@@ -359,6 +407,7 @@ def draw_figures(sc: Scenario | str | Path, out: str | Path, pool: FigurePool | 
         raise ValueError(f"{f}: the run has no HDF5 time series in {out} (timeseries: {name!r}): the figures "
                          "are drawn from timeseries.h5 ([outputs] format = \"h5\")")
     with one_thread():  # the figures' linear analyses give the run's numbers (core/threads.py)
-        names = post.figures(sc, SeriesFile(out / name), out, pool=pool, dpi=check_dpi(dpi))
+        # a failure leaves the complete run as it was (its summary without figures: drawn again later)
+        names = _draw(post, sc, SeriesFile(out / name), out, pool, check_dpi(dpi))
     write_json(f, {**summary, "figures": names})
     return names

@@ -19,7 +19,7 @@ from rotorcosim.master.run import checkpoint
 from rotorcosim.master.run import watchdog
 from rotorcosim.master.core.algorithm import SimulationFailed
 from rotorcosim.master import case
-from rotorcosim.master.api import DEFAULT_SCENARIO, SCHEDULES, load_scenario, simulate
+from rotorcosim.master.api import DEFAULT_SCENARIO, SCHEDULES, ResultsFailed, load_scenario, simulate
 from rotorcosim.master.cli.options import SCHEDULE_HELP, add_dpi, add_out, add_scenario
 from rotorcosim.master.compiled.choice import ENGINES
 from rotorcosim.master.scenario.overrides import apply_set, apply_swap, parse_set, parse_swap
@@ -166,6 +166,11 @@ def run(args) -> int:
     except SimulationFailed as exc:   # diverged, a component failed, a step timed out, a process crashed
         print(f"rotorcosim run: {exc.what}: {exc}; what was recorded is in {out} (summary.json has the error)",
               file=sys.stderr)
+        return 1
+    except ResultsFailed as exc:   # the steps ended; their results or figures could not be made
+        print(f"rotorcosim run: {exc}; the time series is kept in {out} (summary.json has the error)",
+              file=sys.stderr)
+        print("written: " + ", ".join(str(f) for f in exc.result.files))
         return 1
     except KeyboardInterrupt as exc:
         print(f"rotorcosim run: interrupted ({exc or 'SIGINT'}); the time series and summary.json in {out} "

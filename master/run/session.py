@@ -71,6 +71,7 @@ class RunSession:
         self.status: str | None = None
         self.error: BaseException | None = None
         self.wall_s = 0.0
+        self._stepped = False
         self._exits = contextlib.ExitStack()
 
     # -- the folder ------------------------------------------------------------------------------------------
@@ -211,6 +212,12 @@ class RunSession:
         return True
 
     # -- the end ---------------------------------------------------------------------------------------------
+    def post_failed(self, error: BaseException) -> None:
+        """The run's steps ended by themselves, then making its results raised ``error``: the run is
+        ``failed`` with it. Its checkpoint goes all the same (:meth:`finish`): the time series is whole, and a
+        ``--resume`` from the checkpoint would only compute again what it holds."""
+        self.error, self.status, self._stepped = error, "failed", True
+
     def summary(self) -> dict:
         """The summary of the run that ended (:func:`.summary.ended`), before the case's results are added."""
         saver = self.saver
@@ -243,7 +250,7 @@ class RunSession:
         except OSError:
             if self.error is None:
                 raise
-        if self.status in summary.ENDED:
+        if self.status in summary.ENDED or self._stepped:
             (self.out / checkpoint.CHECKPOINT).unlink(missing_ok=True)
 
 
