@@ -53,6 +53,63 @@ class Layout:
 PAPER = Layout(("0", "5"), ("0", "5"))
 
 
+#: the abbreviations the paper's engine's port descriptions use for its spools' names ([spool.NAME] name)
+PAPER_SPOOLS = {"power turbine": "PT", "gas generator": "GG"}
+
+
+@dataclass(frozen=True)
+class Words:
+    """What the port descriptions call the parts of an engine: ``spool``, the spool an attached part's node is
+    on where ``on`` (``(entry, word)``: ``("bearing0", "rotor spool")``) does not say otherwise; ``hubs``
+    (``(bearing id, word)``) what a bearing's housing is where it is not a casing hub. The defaults are the
+    paper's engine's words (the class-level declaration of the rotor component)."""
+
+    spool: str = "PT"
+    on: tuple[tuple[str, str], ...] = ()
+    hubs: tuple[tuple[str, str], ...] = ()
+    #: the engine's first and second spools (None: it has one)
+    first: str = "PT"
+    second: str | None = "GG"
+
+    def spool_of(self, entry: str) -> str:
+        return dict(self.on).get(entry, self.spool)
+
+    def hub_of(self, bearing: str) -> str:
+        return dict(self.hubs).get(bearing, "casing hub")
+
+
+def spool_word(data: dict, key) -> str:
+    """How the port descriptions call the spool ``key`` of an engine file's data: its ``[spool.KEY] name`` (its
+    key where it has none) followed by "spool", or the paper's abbreviation of that name ("PT", "GG")."""
+    spool = (data.get("spool") or {}).get(key) if isinstance(data.get("spool"), dict) else None
+    name = str((spool.get("name") if isinstance(spool, dict) else None) or key)
+    return PAPER_SPOOLS.get(name, name if name.lower().endswith("spool") else f"{name} spool")
+
+
+def words(data: dict, lay: Layout) -> Words:
+    """The :class:`Words` of an engine file's ``data`` for its layout ``lay``: the paper's engine (and a file
+    naming its spools as the paper does) gets the defaults; a test rotor's ``[shaft]``, "shaft"."""
+    if "shaft" in data:
+        return Words(spool="shaft", first="shaft", second=None)
+    keys = list(data.get("spool") or {}) if isinstance(data.get("spool"), dict) else []
+    attach = data.get("attach") if isinstance(data.get("attach"), dict) else {}
+    pedestals = data.get("pedestal") if isinstance(data.get("pedestal"), dict) else {}
+    on, hubs = [], []
+    for entry in [f"bearing{b}" for b in lay.bearings] + [f"rubring{r}" for r in lay.rubrings]:
+        node = attach.get(entry, {}).get("node") if isinstance(attach.get(entry), dict) else None
+        if isinstance(node, list) and len(node) == 2 and isinstance(node[0], str):
+            word = spool_word(data, node[0])
+            if word != Words.spool:
+                on.append((entry, word))
+    for b in lay.bearings:
+        housing = attach.get(f"bearing{b}", {}).get("housing") if isinstance(attach.get(f"bearing{b}"), dict) else None
+        if isinstance(housing, str) and housing in pedestals:
+            hubs.append((b, "pedestal"))
+    first = spool_word(data, keys[0]) if keys else Words.first
+    second = spool_word(data, keys[1]) if len(keys) > 1 else None if keys else Words.second
+    return Words(on=tuple(on), hubs=tuple(hubs), first=first, second=second)
+
+
 def layout(attach: dict, fuses=()) -> Layout:
     """The layout of an ``[attach]`` table and the ids of the file's ``[fuse.ID]`` tables; a key that is not an
     attachment, a rub ring without its bearing, or a fuse at a bearing [attach] does not have, is a ValueError
@@ -122,16 +179,19 @@ def load_groups(lay: Layout) -> tuple[str, ...]:
     return tuple(g for g, _, _, _ in groups(lay))
 
 
-def input_ports(lay: Layout) -> list[tuple[str, str, int, str]]:
-    """(input port, DOF group, size, description) in the order of the Newmark step's force vector."""
-    out = [(f"F_brg{b}", f"brg{b}", 3, f"bearing #{b} force on the PT node (x y z)") for b in lay.bearings]
+def input_ports(lay: Layout, w: Words = Words()) -> list[tuple[str, str, int, str]]:
+    """(input port, DOF group, size, description) in the order of the Newmark step's force vector; the
+    descriptions in the engine's words ``w``."""
+    out = [(f"F_brg{b}", f"brg{b}", 3, f"bearing #{b} force on the {w.spool_of(f'bearing{b}')} node (x y z)")
+           for b in lay.bearings]
     for b in lay.bearings:
-        out.append((f"F_sfd_housing{b}", f"housing{b}", 2, f"damper #{b} reaction on the casing hub under "
+        out.append((f"F_sfd_housing{b}", f"housing{b}", 2, f"damper #{b} reaction on the {w.hub_of(b)} under "
                                                            f"bearing #{b}"))
         if b in lay.rubrings:
-            out.append((f"F_rub_housing{b}", f"housing{b}", 2, f"rub ring #{b} reaction on the casing hub under "
-                                                               f"bearing #{b}"))
-    out += [(f"F_rub{r}", f"rub{r}", 2, f"rub force on the PT node at rub ring #{r}") for r in lay.rubrings]
+            out.append((f"F_rub_housing{b}", f"housing{b}", 2, f"rub ring #{b} reaction on the {w.hub_of(b)} "
+                                                               f"under bearing #{b}"))
+    out += [(f"F_rub{r}", f"rub{r}", 2, f"rub force on the {w.spool_of(f'rubring{r}')} node at rub ring #{r}")
+            for r in lay.rubrings]
     for b in lay.fuses:
         out.append((f"F_fuse{b}", f"fuse{b}", 3, f"the fuse's force on bearing #{b}'s housing (x y z)"))
         out.append((f"F_fusehub{b}", f"fusehub{b}", 2, f"the fuse's force on the hub under bearing #{b}'s housing"))
@@ -141,13 +201,16 @@ def input_ports(lay: Layout) -> list[tuple[str, str, int, str]]:
     return out
 
 
-def output_ports(lay: Layout) -> list[tuple[str, str, str, int, str]]:
+def output_ports(lay: Layout, w: Words = Words()) -> list[tuple[str, str, str, int, str]]:
     """(DOF group, displacement port, velocity port, size, description of X and V: "{} at ...") in the order of
-    the output rows. ("PT": the spool the part is on; the paper's bearings are on the power turbine.)"""
-    return ([(f"brg{b}", f"X_brg{b}", f"V_brg{b}", 3, f"PT {{}} at bearing #{b} (x y z)") for b in lay.bearings]
-            + [(f"housing{b}", f"X_housing{b}", f"V_housing{b}", 2, f"casing hub {{}} under bearing #{b}")
+    the output rows; the descriptions in the engine's words ``w`` (the spool each part is on: "PT" for the
+    paper's bearings, on its power turbine)."""
+    return ([(f"brg{b}", f"X_brg{b}", f"V_brg{b}", 3, f"{w.spool_of(f'bearing{b}')} {{}} at bearing #{b} (x y z)")
+             for b in lay.bearings]
+            + [(f"housing{b}", f"X_housing{b}", f"V_housing{b}", 2, f"{w.hub_of(b)} {{}} under bearing #{b}")
                for b in lay.bearings]
-            + [(f"rub{r}", f"X_rub{r}", f"V_rub{r}", 2, f"PT {{}} at rub ring #{r}") for r in lay.rubrings]
+            + [(f"rub{r}", f"X_rub{r}", f"V_rub{r}", 2, f"{w.spool_of(f'rubring{r}')} {{}} at rub ring #{r}")
+               for r in lay.rubrings]
             + [(f"fuse{b}", f"X_fuse{b}", f"V_fuse{b}", 3, f"{{}} of bearing #{b}'s housing on its fuse (x y z)")
                for b in lay.fuses]
             + [(f"fusehub{b}", f"X_fusehub{b}", f"V_fusehub{b}", 2, f"hub {{}} under the fuse of bearing #{b}")

@@ -40,6 +40,7 @@ Conventions:
 """
 from __future__ import annotations
 
+import dataclasses
 import math
 
 import numpy as np
@@ -59,11 +60,12 @@ RPM = fem.RPM
 
 
 
-def port_variables(lay: attach.Layout) -> tuple[Variable, ...]:
+def port_variables(lay: attach.Layout, w: attach.Words = attach.Words()) -> tuple[Variable, ...]:
     """The rotor component's port variables for the attached bearings, rub rings and mounts (attach.py), then
-    F_u. (A mount's spring on a rotation carries N m in its entry of ``F_mount_NAME``, rad in ``X_mount_NAME``.)"""
-    ins = attach.input_ports(lay)
-    outs = attach.output_ports(lay)
+    F_u, described in the engine's words ``w``. (A mount's spring on a rotation carries N m in its entry of
+    ``F_mount_NAME``, rad in ``X_mount_NAME``.)"""
+    ins = attach.input_ports(lay, w)
+    outs = attach.output_ports(lay, w)
     by_kind = {k: [v for v in ins if v[0].startswith(k)]
                for k in ("F_brg", "F_sfd_housing", "F_rub_housing", "F_fusehub")}
     by_kind["F_rub"] = [v for v in ins if v[0].startswith("F_rub") and not v[0].startswith("F_rub_housing")]
@@ -80,17 +82,22 @@ def port_variables(lay: attach.Layout) -> tuple[Variable, ...]:
 
 def layout_of_file(model_file: str = "") -> attach.Layout:
     """The bearings and rub rings of a model file's [attach] (a test rotor's [shaft] has the paper's)."""
+    return engine_of_file(model_file)[0]
+
+
+def engine_of_file(model_file: str = "") -> tuple[attach.Layout, attach.Words]:
+    """:func:`layout_of_file`, and what the port descriptions call the file's parts (attach.Words)."""
     key = fem.file_digest(model_file or None)
-    lay = _LAYOUTS.get(key)
-    if lay is None:
+    found = _LAYOUTS.get(key)
+    if found is None:
         data, _ = fem.load_data(model_file or None)
         lay = (attach.PAPER if shaft_model.is_shaft_model(data)
                else attach.with_mounts(attach.layout(data.get("attach", {}), fem.fuse_ids(data)), data))
-        _LAYOUTS[key] = lay
-    return lay
+        found = _LAYOUTS[key] = (lay, attach.words(data, lay))
+    return found
 
 
-_LAYOUTS: dict[str, attach.Layout] = {}
+_LAYOUTS: dict[str, tuple[attach.Layout, attach.Words]] = {}
 #: the paper's engine's load groups (brg0, brg5, housing0, housing5, rub0, rub5, unbalance)
 LOAD_GROUPS = attach.load_groups(attach.PAPER)
 # reduced models, per process: (file digest, n_modes, omega_pt, omega_gg) -> dict
@@ -139,6 +146,15 @@ def reduced_model(model_file: str, n_modes: int, omega_pt: float, omega_gg: floa
     return red
 
 
+def _in_words(v: Variable, w: attach.Words, descriptions: dict[str, str]) -> Variable:
+    """``v`` described in the engine's words ``w`` where ``descriptions`` has it; else ``v``."""
+    text = descriptions.get(v.name)
+    if text is None:
+        return v
+    second = w.second or "second spool (this engine has none)"
+    return dataclasses.replace(v, description=text.format(first=w.first, second=second))
+
+
 class Rotor(PositionalKernelComponent):
     """Flexible dual-rotor engine + casing (MTA-reduced FE model, Newmark-beta), blade-loss force."""
 
@@ -165,6 +181,13 @@ class Rotor(PositionalKernelComponent):
         Variable("newmark_beta", "parameter", unit="1", start=0.25, description="Newmark beta"),
         Variable("newmark_gamma", "parameter", unit="1", start=0.5, description="Newmark gamma"),
     ) + port_variables(attach.PAPER)   # an instance declares those of its model file's [attach] (__init__)
+    #: the variables whose descriptions name the paper's spools, as an engine of other spools says them
+    #: ({first}, {second}: its first and second spools, attach.Words)
+    spool_descriptions = {
+        "F_unbalance": "blade-loss force amplitude (rotating at the speed of the {first}, at [attach] unbalance)",
+        "omega_pt": "speed of the {first} (the first spool)",
+        "omega_gg": "speed of the {second}",
+    }
     preferred_step = 1e-5
     phases = frozenset({"TM"})
     step_cost_s, kernel_step_cost_s, setup_cost_s = 16e-6, 5e-6, 0.2  # bench/bench_estimate.py
@@ -173,16 +196,19 @@ class Rotor(PositionalKernelComponent):
         # the ports follow the model file's [attach] (attach.py): any number of bearings and rub rings. A file that
         # cannot be read keeps the class's ports here; setup names its problem.
         try:
-            lay = layout_of_file(str((parameters or {}).get("model_file", "") or ""))
+            lay, w = engine_of_file(str((parameters or {}).get("model_file", "") or ""))
         except (ValueError, OSError):
-            lay = attach.PAPER
+            lay, w = attach.PAPER, attach.Words()
         self._layout = lay
-        if lay != attach.PAPER:
+        if lay != attach.PAPER or w != attach.Words():
             declared = port_variables(attach.PAPER)
             names = {v.name for v in declared}
             own = [v for v in type(self).variables if v.name not in names]
             at = next(i for i, v in enumerate(type(self).variables) if v.name in names)
-            self.variables = tuple(own[:at]) + port_variables(lay) + tuple(own[at:])
+            self.variables = tuple(own[:at]) + port_variables(lay, w) + tuple(own[at:])
+        if (w.first, w.second) != (attach.Words.first, attach.Words.second):
+            # a time series or modelDescription of a user's engine read "power-turbine speed" for its one spool
+            self.variables = tuple(_in_words(v, w, self.spool_descriptions) for v in self.variables)
         super().__init__(name, parameters)
 
     def port_speeds(self) -> dict[str, tuple[str, float]]:

@@ -121,6 +121,12 @@ class SpinningRotor(Rotor):
         Variable("Omega_gg", "input", 1, "rad/s", "gas-generator speed"),
     )
 
+    spool_descriptions = {
+        **Rotor.spool_descriptions,
+        "Omega_pt": "speed of the {first} (the first spool)",
+        "dOmega_pt": "angular acceleration of the {first} (tangential unbalance)",
+        "Omega_gg": "speed of the {second}",
+    }
     inputs_at_setup = True
 
     def setup(self, t0=0.0):
