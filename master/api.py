@@ -256,7 +256,10 @@ def _run(sc: Scenario, schedule, duration: float | None, opts: RunOptions) -> Re
     estimate = budget.check(sc, sch, opts.force, opts.engine)
     if estimate["wall_s"] > budget.WARN_S:
         # from Python as from the command line: a long run does not start silently
-        print(f"{sc.name}: {estimate['steps']:,} steps, estimated {estimate['wall']} of wall time "
+        # the automatic schedule is priced as if every step were coupled: an upper bound, often far above
+        # (it holds most of a long run), and said so
+        said = "at most" if estimate.get("upper_bound") else "estimated"
+        print(f"{sc.name}: {estimate['steps']:,} steps, {said} {estimate['wall']} of wall time "
               f"({estimate['engine']} engine)", file=sys.stderr)
     post = _postprocessor(sc)
     signals = opts.signals(sc.outputs)

@@ -138,6 +138,11 @@ def test_simulate_from_python_says_what_it_estimates(capsys, monkeypatch):
     rotorcosim.simulate("toy_thermomechanical", duration=0.05, figures=False)
     err = capsys.readouterr().err
     assert "toy_thermomechanical: 50 steps, estimated" in err and "of wall time (python engine)" in err
+    # the automatic schedule is priced as all coupled steps: a bound, said so (a diversion's 200 s: "20 min",
+    # 54 s taken)
+    rotorcosim.simulate("toy_thermomechanical", duration=0.05, schedule="auto", figures=False)
+    err = capsys.readouterr().err
+    assert "toy_thermomechanical: 50 steps, at most" in err and "estimated" not in err
 
 
 def test_a_parameter_off_by_a_unit_factor_is_named_with_its_range(capsys):
