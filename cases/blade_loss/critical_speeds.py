@@ -196,18 +196,17 @@ def draw_campbell(path: str, model_file: str = "", max_rpm: float = 30000.0, cri
         r = r[r <= max_rpm]
         ax.plot(r, r / 60.0, "s", mfc="none", mec=colour, ms=9, ls="none",
                 label=f"forward synchronous critical speeds, {st['label']}")
-        for v in r[:2]:
-            ax.annotate(f"{v:,.0f}".replace(",", " "), (v, v / 60.0), textcoords="offset points", xytext=(8, 4),
-                        fontsize=8, color=colour)
+        for v, text in speed_labels(r[:2], max_rpm):
+            ax.annotate(text, (v, v / 60.0), textcoords="offset points", xytext=(8, 4), fontsize=8, color=colour)
     if crit:
         r = np.asarray(crit["forward_synchronous_rpm"], dtype=float)
         r = r[r <= max_rpm]
         ax.plot(r, r / 60.0, "o", mfc="none", mec="tab:red", ms=9, ls="none",
                 label="forward synchronous critical speeds" + (f", {FUSE_STAGES[0]}" if crit.get("fuse_states")
                                                                 else ""))
-        for v in r[:2]:
-            ax.annotate(f"{v:,.0f}".replace(",", " "), (v, v / 60.0), textcoords="offset points", xytext=(8, -12),
-                        fontsize=8, color="tab:red")
+        for v, text in speed_labels(r[:2], max_rpm):
+            ax.annotate(text, (v, v / 60.0), textcoords="offset points", xytext=(8, -12), fontsize=8,
+                        color="tab:red")
     # the operating point: the power turbine at its spin speed, the gas generator at its own (model data)
     pt = m.omega_pt * 30.0 / np.pi
     gg = m.omega_gg * 30.0 / np.pi
@@ -227,6 +226,24 @@ def draw_campbell(path: str, model_file: str = "", max_rpm: float = 30000.0, cri
     fig.tight_layout()
     fig.savefig(path, dpi=120)
     plt.close(fig)
+
+
+#: critical speeds nearer than this share of the diagram's speed axis share one label (one text over another
+#: reads as neither: an installed engine's modes split a few per cent by its mounts)
+LABEL_MERGE = 0.04
+
+
+def speed_labels(rpm, max_rpm: float) -> list[tuple[float, str]]:
+    """``[(speed, text)]``: one label per group of the increasing critical speeds ``rpm`` [rev/min] whose
+    neighbours lie within :data:`LABEL_MERGE` of ``max_rpm``, at the group's first speed, its speeds joined
+    ("4 355 / 4 410")."""
+    groups: list[list[float]] = []
+    for v in rpm:
+        if groups and v - groups[-1][-1] < LABEL_MERGE * max_rpm:
+            groups[-1].append(float(v))
+        else:
+            groups.append([float(v)])
+    return [(g[0], " / ".join(f"{v:,.0f}".replace(",", " ") for v in g)) for g in groups]
 
 
 def check_figure_path(path: str) -> None:
