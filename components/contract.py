@@ -159,6 +159,12 @@ class Component:
     #: each step by :meth:`indicators`, whose change of sign is an event that the master locates in time
     #: (master/core/events.py) and hands to :meth:`update_discrete`; empty: none, and the master never asks
     event_indicators: tuple[str, ...] = ()
+    #: True for a component whose own steps apply its time events (:meth:`next_event`) at their time, to within its
+    #: step (the rotor's blade release: the unbalance force from the end of the step that holds it): inside a
+    #: coupled interval the master runs its steps as they are (no step split there, no record); a held interval
+    #: still ends at it, and the event is recorded there. False: the master splits the coupled base step that
+    #: holds one and records it (master/core/events.py)
+    time_events_in_steps: bool = False
     #: short description shown by ``rotorcosim`` and written to exported FMUs
     description: str = ""
     #: what the component costs, for the estimate of a run's wall time before it starts
@@ -284,8 +290,9 @@ class Component:
 
     def next_event(self, t: float) -> float | None:
         """The time of this component's next scheduled change of behaviour at or after ``t`` [s] (the spool's fuel
-        cut), or None. The automatic schedule ends a held-phase interval there, so that the change happens in a
-        coupled interval. None by default."""
+        cut, the rotor's blade release), or None. A held-phase interval ends there (the automatic schedule's and a
+        timeline's), so that the change happens in a coupled interval (:attr:`time_events_in_steps`: where it is
+        recorded). None by default."""
         return None
 
     def indicators(self) -> np.ndarray:

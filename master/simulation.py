@@ -120,8 +120,8 @@ class Simulation:
         #: True while an interval runs that the schedule inserted after an event (Timeline.run): no checkpoint
         self.extra_interval = False
         self.engines_used: list[str] = []
-        if any(c.event_indicators for c in system.components.values()) or \
-                events.pending_time_event(self, list(system.components), self.t) is not None:
+        if any(c.event_indicators for c in system.components.values()) or events.pending_time_event(
+                self, [n for n, c in system.components.items() if events.split_in_coupled(c)], self.t) is not None:
             self.report.events = []
 
     # -- helpers ---------------------------------------------------------------------------------------
@@ -240,6 +240,9 @@ class Simulation:
             raise ScheduleError(f"no component takes part in phase {phase}")
         mult = self._multiples(active, step)
         lcm = math.lcm(*mult.values())
+        #: a time event this held interval ends at whose component's steps apply it (time_events_in_steps): recorded
+        #: at the interval's end, as (time [s], names); a coupled interval does not record it
+        at_end = None
         if role == HELD:
             # a held interval ends at a scheduled change (a fuel cut): it happens in the coupled interval after
             nxt = events.pending_time_event(self, list(self.system.components), self.t)
@@ -250,6 +253,9 @@ class Simulation:
                 nxt = events.pending_time_event(self, list(self.system.components), self.t)
             if nxt is not None and self.t + tol < nxt[0] < self.t + duration - tol:
                 duration, reason = nxt[0] - self.t, "event"
+            if nxt is not None and self.t + tol < nxt[0] <= self.t + duration + tol:
+                in_steps = [n for n in nxt[1] if not events.split_in_coupled(self.system.components[n])]
+                at_end = (nxt[0], in_steps) if in_steps else None
         nsteps = max(1, round(duration / step))
         if lcm == 1 and abs(nsteps * step - duration) > 1e-9 * duration:
             # single rate (thermal-only intervals): keep the interval's duration exact with the nearest step
@@ -344,6 +350,10 @@ class Simulation:
                 self.report.timeline.append(used)
             self.report.t_end = self.t
             self.report.component_steps = dict(self.engine.steps_taken)
+        if at_end is not None and events.near(self.t, at_end[0]):
+            # the held interval reached the time event (no earlier event or stop ended it): its components apply it
+            # in their first coupled step from here, and it is recorded here
+            events.record_time(self, at_end[1], at_end[0])
         self.hold.end(role, self.t)
         self.report.hold = self.hold.report
         for obs in self.observers:

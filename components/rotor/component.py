@@ -31,6 +31,9 @@ Conventions:
   712 N case 6 % larger per newton than the 1425 N one (+12 % against +6 %), and in opposition 6 % smaller.
   Eq. (23) divides by the blade-loss force alone (``F_unbalance``, "the unbalance force induced by blade
   loss"), as cases/blade_loss/results.py does;
+* the blade release is a time event (``next_event``, docs/explanation/events.md): a held interval that would span
+  it ends at it (the rotor is frozen there) and records it; inside a coupled interval these steps apply it, from
+  the end of the step that holds ``t_blade_loss`` (``time_events_in_steps``), and the master records nothing;
 * the output ``F_u`` is the total applied rotating force vector (residual + blade loss); it cannot be called
   F_unbalance like the amplitude parameter, since variable names are unique (FMI, contract);
 * the Newmark step map is formed once per step size (sizes equal to 12 significant digits share it, so round-off
@@ -283,6 +286,18 @@ class Rotor(PositionalKernelComponent):
         self.state = {"s": np.concatenate([x0, x0, a0]), "tau": np.array([float(t0)])}
         self._kernel_h = None
         self._write_outputs(self.state["s"], t0)
+
+    # -- the blade release: a time event (master/core/events.py) --------------------------------------------
+    #: the steps apply the release (the unbalance force from the end of the step that holds t_blade_loss): a
+    #: coupled interval runs them as they are; a held interval ends at it and records it
+    time_events_in_steps = True
+
+    def next_event(self, t):
+        """The blade release while it is to come, at ``t`` itself too (as the spool's fuel cut: the step from it
+        on is the first to respond to it, so a held interval starting there would freeze its start); None
+        without a blade-loss force. The 1e-9 s absorbs the round-off of interval ends."""
+        tb = self.p["t_blade_loss"]
+        return float(tb) if self.p["F_unbalance"] != 0.0 and tb >= t - 1e-9 else None
 
     # -- stepping --------------------------------------------------------------------------------------
     def _unbalance(self, t, tau=None):

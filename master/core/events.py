@@ -24,9 +24,11 @@ re-steps (8 for a 20 us step at 0.1 us).
 Time events (a component's ``next_event``: the spool's fuel cut) go through the same locator in coupled intervals:
 the base step that holds one is split at it (a single-rate interval; else it is applied at that step's end), one on
 the grid is taken at the start of its step (the compiled loop runs to it and goes on), ``update_discrete(t, [])``
-is called and the event recorded (``trigger`` "time"). A held interval ends at a
-time event (master/simulation.py) and at a located event of a component that steps in it
-(:attr:`EventLocator.ended_at`); a coupled interval follows (master/schedule).
+is called and the event recorded (``trigger`` "time"). A component whose own steps apply its time events
+(``time_events_in_steps``: a change its steps apply from the end of the step that holds it) is left out of
+this: a coupled interval runs its steps unchanged over its event and records nothing. A held interval ends
+at a time event of any component (master/simulation.py; one of those is recorded there) and at a located event of
+a component that steps in it (:attr:`EventLocator.ended_at`); a coupled interval follows (master/schedule).
 
 In a multi-rate interval only the components at the base step are re-stepped (a slower one steps once per window,
 at its end): the locator saves them and the slower ones whose window ends with the base step, and where an event
@@ -64,6 +66,13 @@ def timed(comp) -> bool:
     return type(comp).next_event is not Component.next_event
 
 
+def split_in_coupled(comp) -> bool:
+    """Does a coupled interval take the component's time events (split the base step that holds one, record it)?
+    Not for a component whose own steps apply them (``time_events_in_steps``): there only a held interval ends at
+    one, and records it (master/simulation.py)."""
+    return timed(comp) and not comp.time_events_in_steps
+
+
 def pending_time_event(sim, names, t: float):
     """The first time event still to come at ``t`` [s] of the components ``names`` (``next_event``, not yet
     recorded in ``sim.report.events``), as (time [s], the names of the components whose event it is), or None."""
@@ -80,10 +89,10 @@ def pending_time_event(sim, names, t: float):
     if not found:
         return None
     first = min(te for te, _ in found)
-    return first, [n for te, n in found if _near(te, first)]
+    return first, [n for te, n in found if near(te, first)]
 
 
-def _near(a: float, b: float) -> bool:
+def near(a: float, b: float) -> bool:
     """Equal up to the round-off of interval ends (sums of steps)."""
     return abs(a - b) <= 1e-9 * max(1.0, abs(b))
 
@@ -99,7 +108,7 @@ class EventLocator:
         comps = sim.system.components
         self.sim, self.engine, self.h, self.role = sim, sim.engine, float(step), role
         self.watched = [(n, comps[n]) for n in active if comps[n].event_indicators]
-        self.timed = [n for n in active if timed(comps[n])] if role == COUPLED else []
+        self.timed = [n for n in active if split_in_coupled(comps[n])] if role == COUPLED else []
         names = ", ".join(n for n, _ in self.watched)
         multi = sorted(n for n in active if mult.get(n, 1) != 1)
         #: base steps can be split at a time event (a single-rate interval with explicit coupling); else the
@@ -148,7 +157,7 @@ class EventLocator:
             return None
         x = (nxt[0] - t0) / self.h
         m = int(round(x))
-        if m >= k and _near(nxt[0], t0 + m * self.h):
+        if m >= k and near(nxt[0], t0 + m * self.h):
             return m, True
         # step j spans (t0 + j h, t0 + (j + 1) h]
         return max(k, int(np.ceil(x - 1e-9)) - 1), False
@@ -156,7 +165,7 @@ class EventLocator:
     def record_due(self, t: float) -> None:
         """Record the time events due at ``t`` [s], the start of a base step (nothing to split)."""
         nxt = pending_time_event(self.sim, self.timed, t)
-        if nxt is not None and (nxt[0] <= t or _near(nxt[0], t)):
+        if nxt is not None and (nxt[0] <= t or near(nxt[0], t)):
             record_time(self.sim, nxt[1], nxt[0])
 
     def _values(self) -> list[list[float]]:
@@ -211,9 +220,9 @@ class EventLocator:
         a, b = t0 + k * h, t0 + (k + 1) * h
         nxt = pending_time_event(self.sim, self.timed, a) if self.timed else None
         # (an event at the step's end is the next step's, at its start: the sample at the end precedes it)
-        if nxt is not None and nxt[0] < b and not _near(nxt[0], b):
+        if nxt is not None and nxt[0] < b and not near(nxt[0], b):
             te, names = nxt
-            if te <= a or _near(te, a):
+            if te <= a or near(te, a):
                 self._record_time(names, te)
                 self._span(a, b, (t0, k))
             elif not self.split:
@@ -348,6 +357,7 @@ def locator(sim, role: str, active, mult, step: float) -> EventLocator | None:
     coupled interval, no time event to come: the engine's base steps run as they are)."""
     comps = sim.system.components
     watched = [n for n in active if comps[n].event_indicators]
-    if not watched and (role != COUPLED or pending_time_event(sim, active, sim.t) is None):
+    if not watched and (role != COUPLED or pending_time_event(
+            sim, [n for n in active if split_in_coupled(comps[n])], sim.t) is None):
         return None
     return EventLocator(sim, role, active, mult, step)
