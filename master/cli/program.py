@@ -148,9 +148,9 @@ def describe_error(exc: BaseException) -> tuple[int, str]:
     if isinstance(exc, MemoryError):
         return 1, "out of memory"
     if isinstance(exc, RuntimeError) and type(exc).__module__.startswith("rotorcosim"):
-        # a run's failure says first what happened (algorithm.SimulationFailed.what: diverged, timed out...)
-        what = getattr(type(exc), "what", None)
-        return 1, f"{what}: {exc}" if what else str(exc)
+        # a run's failure says first what happened (algorithm.SimulationFailed.line: diverged, timed out...)
+        line = getattr(exc, "line", None)
+        return 1, line() if callable(line) else str(exc)
     return 1, f"unexpected {type(exc).__name__}: {exc} (rerun with --debug for the traceback; it may be a bug)"
 
 

@@ -164,7 +164,7 @@ def run(args) -> int:
                        checkpoint_every=args.checkpoint_every, step_timeout=args.step_timeout,
                        engine=args.engine, dpi=args.dpi)
     except SimulationFailed as exc:   # diverged, a component failed, a step timed out, a process crashed
-        print(f"rotorcosim run: {exc.what}: {exc}; what was recorded is in {out} (summary.json has the error)",
+        print(f"rotorcosim run: {exc.line()}; what was recorded is in {out} (summary.json has the error)",
               file=sys.stderr)
         return 1
     except ResultsFailed as exc:   # the steps ended; their results or figures could not be made

@@ -121,6 +121,11 @@ class SimulationFailed(RuntimeError):
     the command line says (each kind below has its own)."""
     what = "the simulation failed"
 
+    def line(self) -> str:
+        """What the command line says: ``what``, then the message without a closing ``what`` of its own (a
+        divergence's message ends so, for summary.json, where no ``what`` precedes it)."""
+        return f"{self.what}: {str(self).removesuffix(': ' + self.what)}"
+
 
 class SimulationDiverged(SimulationFailed):
     """A component produced a non-finite value (NaN or inf) in an output another component reads."""

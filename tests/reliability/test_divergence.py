@@ -60,6 +60,7 @@ def test_overflow_ends_in_the_divergence_message_only(tmp_path, capsys):
     err = capsys.readouterr().err
     assert rc == 1 and err.count("\n") == 1, err
     assert "node.T is not finite at t = 0.002 s" in err and "Warning" not in err, err
+    assert err.count("the simulation diverged") == 1, err   # said first, not again at the message's end
     assert (tmp_path / "o" / "summary.json").exists() and (tmp_path / "o" / "timeseries.h5").exists()
 
 
