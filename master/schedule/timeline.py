@@ -185,12 +185,26 @@ class Timeline(Schedule):
             raise ScheduleError("a schedule with thermal-only intervals needs a cycle (the period over which the "
                                 "held outputs are averaged: the scenario's [schedule] cycle)")
         coupled = [iv.step for iv in self.intervals if sim.phases.role(iv.phase) != HELD]
+        #: the timeline's own end of the last interval [s] where the run went past it (the coupled rest after an
+        #: event completes the slower components' windows: a multi-rate interval is whole windows), else None:
+        #: the next intervals end where the timeline puts them, not that much later
+        past = None
         for i, iv in enumerate(self.intervals[first:], first):
             sim.interval_index = i
-            t_end = sim.t + iv.duration
-            used = sim.run_interval(iv.phase, iv.duration, iv.step)
+            duration, step = iv.duration, iv.step
+            if past is not None:
+                end, past = past + iv.duration, None
+                duration = end - sim.t
+                if duration <= 1e-9 * max(1.0, end):
+                    past = end      # the rest before ran over the whole of this interval
+                    continue
+                step = min(step, duration)
+            t_end = sim.t + duration
+            used = sim.run_interval(iv.phase, duration, step)
             if sim.report.stopped:
                 break
+            if duration != iv.duration and sim.t > t_end + 1e-9 * max(1.0, t_end):
+                past = t_end
             if used.reason == "event" and coupled and t_end - sim.t > 1e-9 * max(1.0, t_end):
                 # an event ended a held interval (master/core/events.py): the rest of it runs coupled, at the
                 # timeline's coupled step; no checkpoint inside it (its position is no interval of the timeline:
@@ -203,6 +217,8 @@ class Timeline(Schedule):
                     sim.extra_interval = False
                 if sim.report.stopped:
                     break
+                if sim.t > t_end + 1e-9 * max(1.0, t_end):
+                    past = t_end
 
 
 @register_schedule("monolithic")

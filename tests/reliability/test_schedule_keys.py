@@ -68,11 +68,13 @@ def test_a_relative_tolerance_above_one_is_refused_from_python_too():
 def test_a_timeline_that_begins_thermal_only(tmp_path, capsys):
     """A thermal-only interval before any thermo-mechanical one holds the mechanics' outputs at the start: with
     the ball bearings' drag law (own engine) it ended in "unexpected AttributeError: 'HandOff' object has no
-    attribute 'cycles' ... it may be a bug" (exit 1)."""
+    attribute 'cycles' ... it may be a bug" (exit 1). The blade release moved into the thermo-mechanical
+    interval: at its 0.01 s it would end the thermal-only one there (a time event)."""
     assert main(["new-engine", str(tmp_path / "X")]) == 0
     f = tmp_path / "X" / "first_to.toml"
     f.write_text('[scenario]\nextends = "blade_loss.toml"\nname = "first_to"\n\n[schedule]\n'
-                 'intervals = [{ phase = "TO", duration = 0.5 }, { phase = "TM", duration = 0.02 }]\n')
+                 'intervals = [{ phase = "TO", duration = 0.5 }, { phase = "TM", duration = 0.02 }]\n\n'
+                 '[components.rotor]\nparameters = { t_blade_loss = 0.505 }\n')
     out = tmp_path / "o"
     assert main(["run", str(f), "--quiet", "--no-figures", "--out", str(out)]) == 0, capsys.readouterr().err
     s = json.loads((out / "summary.json").read_text())
