@@ -128,6 +128,20 @@ def describe(path: str | Path):
 _VERSIONS = "rotorcosim imports FMI 1.0, 2.0 and 3.0 co-simulation FMUs"
 
 
+def parameter_names(path: str | Path) -> set[str] | None:
+    """The parameters an FMU declares, by port name (``X[1]..X[n]`` regrouped as ``X``), read from its model
+    description without loading it; None when the file is no readable FMU (building the component then names the
+    problem). What a scenario's engine values are checked against when an FMU takes a bound component's place."""
+    from rotorcosim.fmus.model_description import AnnotationError, read_annotation
+
+    try:
+        xml, md = describe(path)
+        variables, _ = ports_of(md, str(path), read_annotation(xml, str(path)).hidden)
+    except (FMUError, AnnotationError, OSError):
+        return None
+    return {v.name for v in variables if v.causality == "parameter"}
+
+
 def _imported_version(version: str) -> bool:
     return version in ("1.0", "2.0") or version.startswith("3.")
 

@@ -18,7 +18,8 @@ an ``extends`` chain that writes a plain value replaces the binding of that one 
 
 A quantity the engine file does not give and whose component has its own documented default leaves the parameter
 unset (the component's default applies); a quantity the file must give is refused with the key named. A bound
-parameter that the component's implementation does not declare (a plug-in put in its place) is dropped.
+parameter that the component's implementation does not declare (a plug-in or an FMU put in its place) is
+dropped.
 :attr:`EngineBinding.sources` says where each bound value came from (``summary.json`` provenance).
 """
 from __future__ import annotations
@@ -63,9 +64,17 @@ class EngineBinding:
         return {"file": self.file, "overrides": dict(self.overrides), "bound": dict(self.sources)}
 
 
-def _declared(impl: str | None, folder: str | None) -> set[str] | None:
+def _declared(impl: str | None, folder: str | None, fmu: str | None = None,
+              base: Path | None = None) -> set[str] | None:
+    """The parameters the component's implementation, or its FMU (a relative path read from ``base``, the
+    scenario file's folder, as the build reads it), declares; None when not known (the build names the problem)."""
     if impl is None:
-        return None
+        if not isinstance(fmu, str) or not fmu:
+            return None
+        from rotorcosim.fmus.description import parameter_names
+
+        path = Path(fmu).expanduser()
+        return parameter_names(path if path.is_absolute() or base is None else base / path)
     try:
         cls = registry.lookup(impl, folder)
     except (ContractError, ImportError, AttributeError):
@@ -96,11 +105,12 @@ def bind(data: dict, origins, where: str) -> EngineBinding | None:
             continue
         came = origins.component(cname)
         folder = str(Path(came).parent) if came else None
-        declared = _declared(spec.get("implementation"), folder)
+        declared = _declared(spec.get("implementation"), folder, spec.get("fmu"),
+                             Path(where).parent if where else None)
         for p, v in list(params.items()):
             if is_ref(v):
                 if declared is not None and p not in declared:
-                    del params[p]        # a plug-in in the bound component's place
+                    del params[p]        # a plug-in or an FMU in the bound component's place
                     continue
                 targets[f"{cname}.{p}"] = v[len(PREFIX):]
     sched = data.get("schedule") if isinstance(data.get("schedule"), Mapping) else {}

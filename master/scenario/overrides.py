@@ -205,6 +205,15 @@ def apply_swap(sc, component: str, implementation: str, parameters: Mapping[str,
         if not path.is_file():
             raise FileNotFoundError(f"swap {component}: FMU file {path} not found")
         spec.fmu, spec.implementation = str(path), None
+        if parameters is None:
+            # the engine's values the FMU does not declare, as for a plug-in (an FMU from another tool names its
+            # parameters its own way); an FMU that cannot be read keeps them: building it names the problem
+            from rotorcosim.fmus.description import parameter_names
+
+            declared = parameter_names(path)
+            if declared is not None:
+                drop_undeclared(getattr(out, "engine", None), component, spec.parameters, declared)
+                spec.param_origins = {k: v for k, v in spec.param_origins.items() if k in spec.parameters}
     elif Path(impl).exists() and not registry.is_plugin_path(impl) and impl not in registry.available():
         # a file that is no FMU: said so, not listed against the registry's names
         raise ScenarioError(f"swap {component}: {impl} is a {'folder' if Path(impl).is_dir() else 'file'}, not an "

@@ -186,3 +186,47 @@ def test_iterative_coupling_rolls_fmus_back_through_fmu_state(fmu_dir):
     single.algorithm["iterations"] = 1
     plain = run_intervals(single, intervals)
     assert max_rel_diff(native, plain, ["m1.x"]) > 1e-6
+
+
+@pytest.fixture(scope="module")
+def foreign_rubring_fmu(fmu_dir):
+    """A rub ring FMU with the rub ring's ports whose parameters are named its own way (another tool's): no
+    ``clearance``, ``radius`` or ``omega``, the values the engine gives the native rub ring."""
+    from rotorcosim.fmus.export import export_component
+
+    from tests.helpers.fmus import model_description, with_model_description
+
+    src = fmu_dir / "rubring_native.fmu"
+    if not src.exists():
+        export_component("rubring.contact", src, instance_name="rubring0")
+    xml = model_description(src)
+    for old, new in (("clearance", "gap"), ("radius", "ring_radius"), ("omega", "spin_speed")):
+        assert f'name="{old}"' in xml
+        xml = xml.replace(f'name="{old}"', f'name="{new}"')
+    return with_model_description(src, fmu_dir / "rubring_foreign.fmu", xml)
+
+
+def test_an_fmu_in_a_bound_components_place_drops_the_engine_values_it_does_not_declare(foreign_rubring_fmu,
+                                                                                       tmp_path, monkeypatch):
+    """As for a plug-in: the engine's values a foreign FMU does not declare are dropped (they were passed on,
+    and the build failed: "no parameter 'clearance'"), by --swap and by a scenario's ``fmu = ...`` alike."""
+    from rotorcosim import scenarios
+    base = load_scenario(scenarios.path("blade_loss"))
+    assert {"clearance", "radius", "omega"} <= set(base.components["rubring0"].parameters)
+    swapped = base.swap("rubring0", str(foreign_rubring_fmu))
+    assert not {"clearance", "radius", "omega"} & set(swapped.components["rubring0"].parameters)
+    assert "rubring0.clearance" not in swapped.engine.targets
+    assert "rubring5.clearance" in swapped.engine.targets          # the other ring keeps its engine values
+    assert base.swap("rubring0", str(foreign_rubring_fmu), parameters={"gap": 1e-3}) \
+        .components["rubring0"].parameters == {"gap": 1e-3}
+    # our own FMU declares them: they stay (its engine values reach it as parameters)
+    own = base.swap("rubring0", str(foreign_rubring_fmu.with_name("rubring_native.fmu")))
+    assert {"clearance", "radius", "omega"} <= set(own.components["rubring0"].parameters)
+    # a scenario file putting the FMU in its place (relative to the file)
+    (tmp_path / "rub.fmu").write_bytes(foreign_rubring_fmu.read_bytes())
+    sc_file = tmp_path / "foreign.toml"
+    sc_file.write_text(f'[scenario]\nextends = "{scenarios.path("blade_loss").as_posix()}"\n'
+                       '[components.rubring0]\nfmu = "rub.fmu"\n')
+    monkeypatch.chdir(tmp_path.parent)
+    sc = load_scenario(sc_file)
+    assert not {"clearance", "radius", "omega"} & set(sc.components["rubring0"].parameters)
