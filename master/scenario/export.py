@@ -45,6 +45,14 @@ def export_scenario(sc, dest_dir: str | Path, only: str | None = None) -> dict[s
             problems.append(f"{n} ({spec.implementation}: {type(exc).__name__}: {exc})")   # the user's code
     if problems:
         raise ExportError(f"scenario {sc.name!r}: cannot export component(s): " + "; ".join(problems))
+    # a name taken by something that is not a file (a folder NAME.fmu) fails before anything is written: it
+    # failed after the FMUs before it were, with the rename's bare "[Errno 21] Is a directory: '.NAME.fmu...'"
+    taken = [dest_dir / f"{n}.fmu" for n in names
+             if (dest_dir / f"{n}.fmu").exists() and not (dest_dir / f"{n}.fmu").is_file()]
+    if taken:
+        raise ExportError(f"output folder {dest_dir}: {', '.join(str(t) for t in taken)} "
+                          f"{'is not a file' if len(taken) == 1 else 'are not files'} (a folder?): remove "
+                          f"{'it' if len(taken) == 1 else 'them'} or give another --out")
     try:
         dest_dir.mkdir(parents=True, exist_ok=True)
     except OSError as exc:  # a file on the path, no permission: one line naming the folder
@@ -53,10 +61,16 @@ def export_scenario(sc, dest_dir: str | Path, only: str | None = None) -> dict[s
     for n in names:
         spec = sc.components[n]
         target = dest_dir / f"{n}.fmu"
-        if spec.fmu is not None:
-            write_deterministic_zip(fmu_entries(Path(spec.fmu)), target)
-        else:
-            export_component(spec.implementation, target, instance_name=n, parameters=spec.parameters,
-                             model_identifier=n)
+        try:
+            if spec.fmu is not None:
+                write_deterministic_zip(fmu_entries(Path(spec.fmu)), target)
+            else:
+                export_component(spec.implementation, target, instance_name=n, parameters=spec.parameters,
+                                 model_identifier=n)
+        except OSError as exc:   # no space left, no permission: the FMUs of this export are not left half done
+            for path in out.values():
+                path.unlink(missing_ok=True)
+            raise ExportError(f"{target}: cannot write the FMU ({exc.strerror or exc}); nothing of this export "
+                              "is left in the folder") from None
         out[n] = target
     return out

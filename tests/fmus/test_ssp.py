@@ -109,6 +109,36 @@ def test_cli_errors_name_the_problem(tmp_path, capsys, monkeypatch):
                                        "(FILE.ssp)\n")
 
 
+def test_export_fmus_leaves_no_half_written_folder(tmp_path, capsys, monkeypatch):
+    """A name in the folder taken by a folder is refused before anything is written (it failed after the FMUs
+    before it were, with a bare "[Errno 21] Is a directory: '.node.fmu.xxxx.part' -> ..."); a write that fails
+    (no space left) removes what the export wrote."""
+    import errno
+
+    from rotorcosim.master.cli import main
+    from rotorcosim.master.scenario import export
+
+    out = tmp_path / "fmus"
+    (out / "node.fmu").mkdir(parents=True)
+    assert main(["export-fmus", str(out), "--scenario", str(TOY)]) == 2
+    assert capsys.readouterr().err == (f"rotorcosim export-fmus: error: output folder {out}: {out / 'node.fmu'} is "
+                                       "not a file (a folder?): remove it or give another --out\n")
+    assert sorted(p.name for p in out.iterdir()) == ["node.fmu"]
+    (out / "node.fmu").rmdir()
+    real = export.export_component
+
+    def full_disk(implementation, target, **kw):
+        if kw.get("instance_name") == "node":
+            raise OSError(errno.ENOSPC, "No space left on device")
+        return real(implementation, target, **kw)
+
+    monkeypatch.setattr(export, "export_component", full_disk)
+    assert main(["export-fmus", str(out), "--scenario", str(TOY)]) == 2
+    assert capsys.readouterr().err == (f"rotorcosim export-fmus: error: {out / 'node.fmu'}: cannot write the FMU "
+                                       "(No space left on device); nothing of this export is left in the folder\n")
+    assert list(out.iterdir()) == []
+
+
 def test_bad_ssp_archives(tmp_path, toy_ssp):
     bad = tmp_path / "text.ssp"
     bad.write_text("no zip")
