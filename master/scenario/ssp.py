@@ -552,7 +552,10 @@ def _scenario_of(path: Path, folder: Path) -> Scenario:
             raise SSPError(f"{where}: connection {sc_} -> {ec} touches the system's own connectors: "
                            "only component-to-component connections are supported")
         for e, n in ((se, sc_), (ee, ec)):
-            if e not in scalars or n not in scalars[e]:
+            if e not in scalars:   # it said "bearing9.X[1] is not a variable of its FMU": there is no such FMU
+                raise SSPError(f"{where}: connection {se}.{sc_} -> {ee}.{ec}: the system has no component {e!r} "
+                               f"(its components: {', '.join(scalars)})")
+            if n not in scalars[e]:
                 raise SSPError(f"{where}: connection {se}.{sc_} -> {ee}.{ec}: {e}.{n} is not a variable of "
                                f"its FMU")
         (sv, si), (dv, di) = scalars[se][sc_], scalars[ee][ec]

@@ -167,6 +167,30 @@ def test_bad_ssp_archives(tmp_path, toy_ssp):
         read_ssp(outside)
 
 
+
+def test_ssp_connection_to_a_component_the_system_does_not_have(tmp_path, toy_ssp):
+    """A dangling connection names the missing component and the system's components (it said "nodeX.P is not a
+    variable of its FMU", as if an FMU nodeX were there); an unknown connector of a component keeps its message."""
+    def edited(name, old, new):
+        dst = tmp_path / name
+        with zipfile.ZipFile(toy_ssp) as zin, zipfile.ZipFile(dst, "w") as zout:
+            for i in zin.infolist():
+                data = zin.read(i)
+                if i.filename == "SystemStructure.ssd":
+                    assert old in data
+                    data = data.replace(old, new)
+                zout.writestr(i, data)
+        return dst
+
+    dangling = edited("dangling.ssp", b'endElement="node" endConnector="P"', b'endElement="nodeX" endConnector="P"')
+    with pytest.raises(SSPError) as exc:
+        read_ssp(dangling)
+    assert str(exc.value) == (f"{dangling}: connection osc.P -> nodeX.P: the system has no component 'nodeX' (its "
+                              "components: osc, node)")
+    unknown = edited("unknown.ssp", b'endElement="node" endConnector="P"', b'endElement="node" endConnector="Q"')
+    with pytest.raises(SSPError, match=r"connection osc.P -> node.Q: node.Q is not a variable of its FMU$"):
+        read_ssp(unknown)
+
 # -- Ecos ---------------------------------------------------------------------------------------------------
 @pytest.fixture
 def ecospy_loaded():
