@@ -324,7 +324,7 @@ def read_calibration(path: str | Path) -> CalibrationSpec:
     for name, over in cases.items():
         check_parameters(sc, over, f"{w} cases.{name}")
     out = []
-    for pw, name, p in _parameter_tables(w, t, "calibrate", taken=()):
+    for pw, name, p in _parameter_tables(w, t, "calibrate", taken=(), sc=sc):
         _unknown_keys(pw, p, ("name", "lower", "upper", "start", "scale"))
         for c, over in cases.items():
             if name in over:
@@ -362,9 +362,10 @@ def read_calibration(path: str | Path) -> CalibrationSpec:
                            residual, nmax, step, tol)
 
 
-def _parameter_tables(w: str, t: dict, section: str, taken):
+def _parameter_tables(w: str, t: dict, section: str, taken, sc: Scenario):
     """The ``[[SECTION.parameter]]`` tables of a spec as (where, name, table), each a table with a ``name``
-    written 'component.parameter' that no earlier table, nor ``taken``, gives."""
+    written 'component.parameter' that no earlier table, nor ``taken``, gives, of a parameter that takes a real
+    number (:func:`check_real`)."""
     params = t.get("parameter", [])
     if not isinstance(params, list) or not params:
         raise SpecError(f"{w}: no [[{section}.parameter]] given")
@@ -380,7 +381,36 @@ def _parameter_tables(w: str, t: dict, section: str, taken):
         if name in seen:
             raise SpecError(f"{pw}: given twice")
         seen.add(name)
+        check_real(sc, name, pw, section)
         yield pw, name, p
+
+
+#: where a study fixes a parameter it cannot vary, by the SPEC's section
+FIXED_IN = {"calibrate": "give each value a case of its own, [calibrate.cases.NAME]",
+            "uq": "fix its value in [uq.set], or run one study per value"}
+
+
+def check_real(sc: Scenario, name: str, where: str, section: str) -> None:
+    """The parameter ``name`` (``comp.param``) takes one real number, as a study's search or sampling gives it: an
+    integer, Boolean, string or vector parameter (a bearing's ball count, a switch) is a SpecError naming it (its
+    runs would all be refused but the start's). A component or parameter the scenario lacks is left to
+    :func:`check_parameters` to name; an FMU's parameters are checked by its runs."""
+    from rotorcosim.components.contract import ContractError
+    from rotorcosim.master.scenario.overrides import declared_parameters
+
+    comp, _, param = name.partition(".")
+    if comp not in sc.components:
+        return
+    try:
+        var = (declared_parameters(sc.components[comp]) or {}).get(param)
+    except (ContractError, ImportError, AttributeError):
+        return
+    if var is None or (var.type == "Real" and var.size == 1):
+        return
+    kind = f"{var.size} values" if var.size != 1 else {"Integer": "an integer", "Boolean": "a Boolean (true/false)",
+                                                      "String": "a string"}.get(var.type, f"a {var.type} value")
+    raise SpecError(f"{where}: {name} takes {kind}, not a real number: a {section} study varies real numbers only "
+                    f"({FIXED_IN[section]})")
 
 
 def read_uq(path: str | Path) -> UQSpec:
@@ -411,7 +441,7 @@ def read_uq(path: str | Path) -> UQSpec:
         raise SpecError(f"{w}: set must be a table of \"comp.param\" = value")
     check_parameters(sc, overrides, f"{w} set")
     out = []
-    for pw, name, p in _parameter_tables(w, t, "uq", taken=overrides):
+    for pw, name, p in _parameter_tables(w, t, "uq", taken=overrides, sc=sc):
         kind = p.get("distribution")
         if not isinstance(kind, str) or kind not in DISTRIBUTIONS:
             raise SpecError(f"{pw}: distribution {kind!r} not in {tuple(DISTRIBUTIONS)}")

@@ -123,3 +123,30 @@ def test_an_unreachable_scheduler_is_one_line_and_writes_nothing(tmp_path, capsy
     err = capsys.readouterr().err.strip()
     assert status == 2 and "tcp://127.0.0.1:9" in err and "cannot reach" in err and len(err.splitlines()) == 1, err
     assert not (tmp_path / "out").exists()
+
+
+@pytest.mark.parametrize("command, body, words", [
+    ("calibrate", '[calibrate]\nscenario = "blade_loss"\ntargets = "targets.csv"\n[[calibrate.parameter]]\n'
+                  'name = "bearing0.balls"\nlower = 15\nupper = 25\nstart = 21\n',
+     ["parameter bearing0.balls", "takes an integer, not a real number", "[calibrate.cases.NAME]"]),
+    ("calibrate", '[calibrate]\nscenario = "blade_loss"\ntargets = "targets.csv"\n[[calibrate.parameter]]\n'
+                  'name = "damper0.cavitation"\nlower = 0.0\nupper = 1.0\nstart = 0.5\n',
+     ["parameter damper0.cavitation", "takes a Boolean (true/false), not a real number"]),
+    ("uq", '[uq]\nscenario = "blade_loss"\nsamples = 8\nresults = ["bearings.0.whirl_amplitude_mm"]\n'
+           '[[uq.parameter]]\nname = "bearing0.balls"\ndistribution = "uniform"\nlower = 15\nupper = 25\n',
+     ["parameter bearing0.balls", "takes an integer, not a real number", "[uq.set]"]),
+    ("uq", '[uq]\nscenario = "blade_loss"\nsamples = 8\nresults = ["bearings.0.whirl_amplitude_mm"]\n'
+           '[[uq.parameter]]\nname = "bearing0.inner_motion"\ndistribution = "uniform"\nlower = 0\nupper = 1\n',
+     ["parameter bearing0.inner_motion", "takes a string, not a real number"]),
+])
+def test_a_parameter_that_takes_no_real_number_is_refused(tmp_path, capsys, command, body, words):
+    """A study varies real numbers: an integer parameter (a bearing's ball count: its calibration ran, every point
+    but the start refused by its runs, and reported 'converged' at the start, exit 0), a Boolean or a string one
+    is refused before anything runs, naming it and where such a value goes instead."""
+    status, err = _run(tmp_path, command, body, targets="case,result,value\n,bearings.0.whirl_amplitude_mm,0.05\n",
+                       capsys=capsys)
+    assert status == 2, err
+    assert len(err.splitlines()) == 1 and "Traceback" not in err
+    for w in words:
+        assert w in err, err
+    assert not (tmp_path / "out").exists()
