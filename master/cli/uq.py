@@ -19,6 +19,7 @@ def add_arguments(p):
 
 def run(args) -> int:
     """Run the command ``args`` (parsed); returns the exit status (1 when a sample failed)."""
+    from rotorcosim.master.study.statistics import RBD_FAST_MIN_SAMPLES
     from rotorcosim.master.study.uncertainty import uq
 
     rep = uq(args.spec, args.out, scheduler=args.scheduler, workers=args.workers, serial=args.serial,
@@ -37,6 +38,8 @@ def run(args) -> int:
             key = "ST" if "ST" in next(iter(idx.values())) else "S1"
             top = max(idx, key=lambda n: idx[n][key])
             line += f"; largest {key}: {top} {idx[top][key]:.2f}"
+        elif (r.get("sobol") or {}).get("note"):
+            line += f"; no sensitivity indices (fewer than {RBD_FAST_MIN_SAMPLES} successful samples)"
         print(line)
     failed = rep["failed"]
     for s in failed["samples"]:

@@ -238,6 +238,13 @@ def recorded_value(summary: dict, ref: str):
     return params.get(param)
 
 
+def too_few_for_indices(n: int) -> str:
+    """Why a sample of ``n`` successful runs (mc or lhs) gives no first-order indices, and what to do."""
+    return (f"no sensitivity indices from {n} successful samples: RBD-FAST needs "
+            f"{statistics.RBD_FAST_MIN_SAMPLES} at least ({statistics.RBD_FAST_HARMONICS} harmonics, its confidence "
+            "a bootstrap on half the sample): give more samples, or sampler = \"sobol\"")
+
+
 def analyse(spec: UQSpec, u: np.ndarray, rows: list[dict]) -> dict:
     """The statistics of the finished samples ``rows`` (one per design row of ``u``): see the module's docstring."""
     names = [p.name for p in spec.parameters]
@@ -266,7 +273,9 @@ def analyse(spec: UQSpec, u: np.ndarray, rows: list[dict]) -> dict:
                 yb = y_all.reshape(-1, d + 2)[blocks_ok].ravel()
                 entry["sobol"] = {"method": "saltelli", "blocks": int(blocks_ok.sum()),
                                   "indices": statistics.sobol_indices(names, yb, spec.seed)}
-        elif len(yo) > 2 * statistics.RBD_FAST_HARMONICS and np.ptp(yo) > 0:
+        elif len(yo) >= statistics.RBD_FAST_MIN_SAMPLES and np.ptp(yo) > 0:
             entry["sobol"] = {"method": "rbd_fast", "indices": statistics.first_order_indices(names, uo, yo, spec.seed)}
+        elif np.ptp(yo) > 0:
+            entry["sobol"] = {"method": "rbd_fast", "note": too_few_for_indices(len(yo))}
         out[res] = entry
     return {"results": out, "failed": failed}

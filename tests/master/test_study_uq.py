@@ -214,3 +214,24 @@ upper = 0.15
         assert rep["executed_on"] == f"{cluster.scheduler_address}, 1 workers"
         assert rep["failed"]["count"] == 0 and rep["results"]["final_outputs.m1.x"]["n"] == 4
         assert len(cluster.scheduler_info["workers"]) == 1
+
+
+@pytest.mark.parametrize("samples", [24, 40, 44])
+def test_first_order_indices_only_from_enough_samples(tmp_path, samples):
+    """RBD-FAST's indices (an lhs sample) are reported from 44 samples on, each with a confidence half-width above 0;
+    below, uq.json says why there are none. Before: 24 samples gave indices summing to about 2 with half-widths 0,
+    and 40 samples ended the study, all its runs done, in SALib's ZeroDivisionError (uq.json left 'running')."""
+    body = f'samples = {samples}\nsampler = "lhs"\nseed = 1\nresults = ["y"]\n'
+    for name in ("m1.x0", "m1.v0", "m2.x0"):
+        body += f'[[uq.parameter]]\nname = "{name}"\ndistribution = "uniform"\nlower = {-math.pi}\nupper = {math.pi}\n'
+    spec = write_spec(tmp_path, body)
+    from tests.helpers.study_tasks import ishigami
+
+    rep = rotorcosim.uq(spec, tmp_path / "out", serial=True, quiet=True, task=ishigami)
+    assert rep["status"] == "complete"
+    sobol = rep["results"]["y"]["sobol"]
+    if samples < 44:
+        assert "indices" not in sobol and f"from {samples} successful samples" in sobol["note"], sobol
+        assert "needs 44 at least" in sobol["note"]
+    else:
+        assert all(i["S1_conf"] > 0 for i in sobol["indices"].values()), sobol
