@@ -415,7 +415,7 @@ def check_real(sc: Scenario, name: str, where: str, section: str) -> None:
 
 def read_uq(path: str | Path) -> UQSpec:
     """Read and check the UQ SPEC ``path`` (see the module's docstring): the scenario loads, every parameter
-    exists, every distribution has its keys with std > 0 and lower < upper, samples >= 1."""
+    exists, every distribution has its keys with std > 0 and lower < upper, samples >= 2 (a spread needs two)."""
     path = Path(path)
     t = _read(path, "uq")
     w = f"SPEC {path} [uq]"
@@ -423,8 +423,10 @@ def read_uq(path: str | Path) -> UQSpec:
     scenario = resolve_scenario(t.get("scenario", ""), path.parent, w)
     sc = load_scenario(scenario)
     n = t.get("samples")
-    if isinstance(n, bool) or not isinstance(n, int) or n < 1:
-        raise SpecError(f"{w}: samples must be an integer >= 1, got {n!r}")
+    if isinstance(n, bool) or not isinstance(n, int) or n < 2:
+        # one sample has no spread (no standard deviation, no interval, no sensitivity): a run, not a study
+        raise SpecError(f"{w}: samples must be an integer >= 2, got {n!r} (one sample has no spread: for one run "
+                        "use rotorcosim run --set)")
     sampler = t.get("sampler", "lhs")
     if not isinstance(sampler, str) or sampler not in SAMPLERS:
         raise SpecError(f"{w}: sampler {sampler!r} not in {SAMPLERS}")

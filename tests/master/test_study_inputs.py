@@ -83,7 +83,8 @@ def test_a_target_result_no_run_has(tmp_path, capsys):
 
 @pytest.mark.parametrize("change, words", [
     (("std = 0.02", "std = -0.02"), ["m1.x0", "std must be > 0"]),
-    (("samples = 8", "samples = 0"), ["samples must be an integer >= 1, got 0"]),
+    (("samples = 8", "samples = 0"), ["samples must be an integer >= 2, got 0"]),
+    (("samples = 8", "samples = 1"), ["samples must be an integer >= 2, got 1", "one sample has no spread"]),
     (("distribution = \"normal\"", "distribution = \"gamma\""), ["distribution 'gamma'"]),
     (("distribution = \"normal\"", "distribution = \"uniform\""), ["needs lower, upper; lower is missing"]),
     (("name = \"m1.x0\"", "name = \"m1.nothing\""), ["m1.nothing", "no parameter 'nothing'"]),

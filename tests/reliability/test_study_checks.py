@@ -162,7 +162,7 @@ def test_spec_mistakes_refused_before_the_first_run(tmp_path, capsys, command, t
 # -- item: wrong TOML shapes in a SPEC ------------------------------------------------------------------------------
 @pytest.mark.parametrize("command, old, new, message", [
     ("uq", "[uq]\nscenario", "uq = 5\n[x]\nscenario", None),
-    ("uq", "samples = 4", "samples = [4]", "samples must be an integer >= 1, got [4]"),
+    ("uq", "samples = 4", "samples = [4]", "samples must be an integer >= 2, got [4]"),
     ("uq", "seed = 1", "seed = {a = 1}", "seed must be an integer >= 0, got {'a': 1}"),
     ("uq", 'results = ["final_outputs.m1.x"]', 'results = "final_outputs.m1.x"', "results must be a list"),
     ("uq", 'results = ["final_outputs.m1.x"]', "results = [1]", "results must be a list"),
