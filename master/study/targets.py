@@ -96,6 +96,9 @@ def read_targets(path: str | Path, cases: dict[str, dict], residual: str = "log"
     if not rows:
         raise TargetError(f"targets file {path}: empty")
     head = [h.strip() for h in rows[0]]
+    twice = sorted({h for h in head if head.count(h) > 1})
+    if twice:   # the row's last cell of that name would be read, the others dropped without a word
+        raise TargetError(f"targets file {path}: column(s) {', '.join(map(repr, twice))} given twice in its header")
     for col in ("case", "result", "value"):
         if col not in head:
             raise TargetError(f"targets file {path}: no column {col!r} (columns: case, result, value[, weight]"
@@ -136,6 +139,9 @@ def read_targets(path: str | Path, cases: dict[str, dict], residual: str = "log"
             raise TargetError(f"{where}: {r['result']} of case {case!r} is given twice")
         seen.add((case, r["result"]))
         out.append(Target(case, r["result"], value, weight, hold == "1"))
+    if not out:
+        raise TargetError(f"targets file {path}: no targets, only its header: give one measured value a row (case, "
+                          "result, value)")
     if not any(not t.holdout for t in out):
         raise TargetError(f"targets file {path}: every target is a holdout: nothing to fit")
     return out

@@ -65,6 +65,8 @@ def test_bad_calibration_spec(tmp_path, capsys, change, words):
     ("case,result,value\n,final_outputs.m1.x,-0.05\n", ["log residuals need positive values"]),
     ("case,result\n,final_outputs.m1.x\n", ["no column 'value'"]),
     ("case,result,value,holdout\n,final_outputs.m1.x,0.05,1\n", ["every target is a holdout"]),
+    ("case,result,value\n", ["no targets, only its header"]),
+    ("case,result,value,value\n,final_outputs.m1.x,0.05,0.06\n", ["column(s) 'value' given twice"]),
 ])
 def test_bad_targets(tmp_path, capsys, targets, words):
     status, err = _run(tmp_path, "calibrate", CAL, targets=targets, capsys=capsys)
