@@ -43,7 +43,8 @@ from rotorcosim.master.run.outputs import write_json
 from rotorcosim.master.schedule import budget
 from rotorcosim.master.study import evaluate, statistics, store
 from rotorcosim.master.study.spec import CalibrationSpec, read_calibration
-from rotorcosim.master.study.targets import Target, TargetError, read_targets, residual, score, value_of
+from rotorcosim.master.study.targets import (Target, TargetError, read_targets, residual, score, unit_warnings,
+                                             value_of)
 
 REPORT = "calibration.json"
 TABLE = "evaluations.csv"
@@ -204,6 +205,9 @@ def calibrate(spec: str | Path | CalibrationSpec, out: str | Path, *, scheduler:
             # the start, every case (fit and holdout): the scores before, and a check that every target exists
             fit.run([fit.u0], fit.all_cases)
             _check_results(fit, targets)
+            slips = unit_warnings(targets, fit.ours(fit.u0, targets))
+            for line in slips:
+                say(f"warning: {line}")
             r_start = fit.residuals(fit.u0)
             say(f"start: cost {0.5 * float(r_start @ r_start):.6g} over {len(r_start)} fit targets")
             n_it = [0]
@@ -222,6 +226,7 @@ def calibrate(spec: str | Path | CalibrationSpec, out: str | Path, *, scheduler:
             fit.run([u], fit.all_cases)
             status = "converged" if res.status > 0 else ("max_evaluations" if res.status == 0 else "failed")
             report.update(_report(spec, fit, targets, u, fit.residuals(u), fit.jacobian(u), status, res.message))
+            report["warnings"] = slips + report["warnings"]
         except KeyboardInterrupt:
             report.update(status="interrupted", message="interrupted: run again with the same SPEC and --out to "
                                                         "resume (no stored run is repeated)")

@@ -147,6 +147,29 @@ def read_targets(path: str | Path, cases: dict[str, dict], residual: str = "log"
     return out
 
 
+#: the unit of a summary.json result by the end of its name (bearings.0.whirl_amplitude_mm: mm)
+UNITS = {"_mm": "mm", "_C": "degC", "_W": "W", "_MPa": "MPa", "_N": "N", "_s": "s", "_K": "K", "_m": "m"}
+#: a target this many times ours at the start (or ours this many times the target) is likely in another unit
+UNIT_SLIP = 10.0
+
+
+def unit_warnings(targets: list[Target], ours: list[float | None]) -> list[str]:
+    """A line for each target that looks written in another unit than summary.json's, from ours at the start
+    (``ours``, one per target): a factor :data:`UNIT_SLIP` or more apart, of the other sign, or a ``_C`` result
+    nearer ours + 273.15 than ours (kelvin). A warning, not a refusal: a start may be that far off."""
+    out = []
+    for t, v in zip(targets, ours):
+        if v is None or v == 0 or t.value == 0:
+            continue
+        unit = next((u for s, u in UNITS.items() if t.result.endswith(s)), None)
+        ratio = t.value / v
+        kelvin = unit == "degC" and abs(t.value - 273.15 - v) < abs(t.value - v)
+        if kelvin or ratio < 0 or not 1 / UNIT_SLIP < ratio < UNIT_SLIP:
+            out.append(f"target {t.label}: {t.value:g} is {ratio:.3g} times ours at the start ({v:g}): is it in "
+                       f"summary.json's unit{f' ({unit})' if unit else ''}?" + (" (it reads as kelvin)" if kelvin else ""))
+    return out
+
+
 def _float(where: str, col: str, text: str) -> float:
     try:
         v = float(text)

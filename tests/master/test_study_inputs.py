@@ -153,3 +153,25 @@ def test_a_parameter_that_takes_no_real_number_is_refused(tmp_path, capsys, comm
     for w in words:
         assert w in err, err
     assert not (tmp_path / "out").exists()
+
+
+def test_a_target_in_another_unit_is_warned_at_the_start(tmp_path):
+    """A target a factor 10 or more from ours at the start (m for mm), or a degC result given in kelvin, is named
+    in calibration.json's warnings (and on stderr at the start): before, the fit ran on and ended with three
+    'not identifiable' warnings that said nothing of the cause."""
+    from rotorcosim.master.study.targets import Target, unit_warnings
+
+    ts = [Target("", "bearings.0.whirl_amplitude_mm", 5.8e-5), Target("", "bearings.0.T_sfd_oil_C", 307.1),
+          Target("", "bearings.0.drag_power_W", 1400.0), Target("low", "bearings.0.T_ball_C", 35.0)]
+    lines = unit_warnings(ts, [0.055, 30.5, 1133.0, 31.0])
+    assert len(lines) == 2, lines
+    assert "bearings.0.whirl_amplitude_mm: 5.8e-05 is 0.00105 times ours at the start (0.055)" in lines[0]
+    assert "(mm)" in lines[0] and "kelvin" in lines[1] and "(degC)" in lines[1]
+    shutil.copy(TOY, tmp_path / "toy.toml")
+    (tmp_path / "targets.csv").write_text("case,result,value\n,final_outputs.m1.x,50.0\npushed,final_outputs.m1.x,0.1\n")
+    (tmp_path / "spec.toml").write_text(CAL.replace('targets = "targets.csv"', 'targets = "targets.csv"\nmax_evaluations = 1'))
+    import rotorcosim
+
+    rep = rotorcosim.calibrate(tmp_path / "spec.toml", tmp_path / "out", serial=True, quiet=True)
+    assert any(w.startswith("target final_outputs.m1.x: 50 is ") and "times ours at the start" in w
+               for w in rep["warnings"]), rep["warnings"]
