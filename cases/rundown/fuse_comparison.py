@@ -11,6 +11,9 @@ set on it, ``{ "rotor.F_unbalance" = 14252.0 }``) names the comparison: after th
 same duration (no files, no figures, its casing force recorded too) and ``fuse_comparison`` holds
 
 * ``without_fuse_scenario``, ``duration_s``;
+* ``settings_carried``: what was set on this run (``--set``, ``--unbalance``) and set on the comparison too, so
+  that both runs differ by the fuse alone; ``settings_not_carried``: those of components the comparison lacks
+  (the fuse's own);
 * ``bearings`` -> bearing id -> per quantity ``{"with_fuse": ..., "without_fuse": ...}``: ``casing_force_peak_N``,
   ``max_contact_load_peak_N``, ``max_contact_stress_peak_MPa`` and ``rub_power_peak_W`` (the blade-loss results
   of that name);
@@ -91,10 +94,27 @@ def _crossings(summary: dict) -> list[dict]:
     return out
 
 
+def run_settings(sc) -> dict[str, object]:
+    """``{"component.parameter": value}``: what was set on ``sc`` since it was loaded (``--set``, ``--unbalance``,
+    ``Scenario.set``; its ``edits``, in order, the last value of each), which the comparison takes too: a
+    release moved to 24 s or another unbalance is compared with the same release, the same unbalance."""
+    out: dict[str, object] = {}
+    for e in sc.edits:
+        if "set" in e:
+            out[e["set"]] = e["value"]
+        elif "parameter" in e:   # a level (master/case.py): {<level name>: value, "parameter": ..., "origin": ...}
+            values = [v for k, v in e.items() if k not in ("parameter", "origin")]
+            if len(values) == 1:
+                out[e["parameter"]] = values[0]
+    return out
+
+
 def comparison_scenario(sc):
-    """The scenario ``[results] without_fuse`` names, with ``without_fuse_set`` set on it; a one-line ValueError
-    naming the key when it cannot be loaded or set. :func:`check` calls it before the run: the comparison runs it
-    only after the run, which a wrong name would otherwise fail at its end."""
+    """The scenario ``[results] without_fuse`` names, with ``without_fuse_set`` set on it, then what was set on
+    ``sc`` itself (:func:`run_settings`) where the comparison has that component; a one-line ValueError naming
+    the key when it cannot be loaded or set. Returns ``(scenario, {"component.parameter": value} carried over,
+    [names the comparison lacks the component of])``. :func:`check` calls it before the run: the comparison runs
+    it only after the run, which a wrong name would otherwise fail at its end."""
     from rotorcosim.master.api import load_scenario
 
     res = sc.extra.get("results", {})
@@ -107,7 +127,18 @@ def comparison_scenario(sc):
             plain = plain.set(dict(res["without_fuse_set"]))
         except (ContractError, ValueError, OSError) as exc:
             raise ValueError(f"[results] without_fuse_set: {exc}") from None
-    return plain
+    carried, lacking = {}, []
+    for ref, value in run_settings(sc).items():
+        if ref.partition(".")[0] not in plain.components:   # the fuse's own parameters
+            lacking.append(ref)
+            continue
+        try:
+            plain = plain.set({ref: value})
+        except (ContractError, ValueError, OSError) as exc:
+            raise ValueError(f"[results] without_fuse: the run's setting {ref} = {value!r} does not apply to "
+                             f"{res['without_fuse']}: {exc}") from None
+        carried[ref] = value
+    return plain, carried, lacking
 
 
 def check(sc) -> None:
@@ -126,7 +157,7 @@ def compare(sc, duration: float, fused: dict) -> dict:
     from rotorcosim.master.api import simulate
 
     res = sc.extra["results"]
-    plain = comparison_scenario(sc)
+    plain, carried, lacking = comparison_scenario(sc)
     plain.extra.setdefault("results", {})["casing_force_peak"] = True
     other = simulate(plain, duration=duration, figures=False, progress=False).summary
     bearings = {}
@@ -136,5 +167,6 @@ def compare(sc, duration: float, fused: dict) -> dict:
         for k in RESULTS:
             row[k] = {"with_fuse": fused["bearings"][b].get(k), "without_fuse": other["bearings"][b].get(k)}
         bearings[b] = row
-    return {"without_fuse_scenario": str(res["without_fuse"]), "duration_s": duration, "bearings": bearings,
+    return {"without_fuse_scenario": str(res["without_fuse"]), "duration_s": duration,
+            "settings_carried": carried, "settings_not_carried": lacking, "bearings": bearings,
             "crossings": {"with_fuse": _crossings(fused), "without_fuse": _crossings(other)}}

@@ -98,3 +98,22 @@ def test_an_s_n_slope_whose_load_powers_overflow_is_refused_before_the_run(tmp_p
     err = [line for line in capsys.readouterr().err.splitlines() if line.strip()]
     assert rc == 2 and len(err) == 1 and "[results] woehler_exponent: must be at most 50" in err[0], err
     assert not (tmp_path / "o").exists()
+
+
+def test_the_fuse_comparison_takes_what_was_set_on_the_run():
+    """blade_loss_fuse with its release moved and another unbalance: the comparison without the fuse ran at the
+    shipped release and its own 14 252 N (its without_fuse_set), unlike the run it is set beside; it takes the
+    run's settings (after without_fuse_set), those of the fuse itself listed as not carried."""
+    from rotorcosim.cases.blade_loss.results import apply_unbalance
+    from rotorcosim.cases.rundown import fuse_comparison
+
+    sc = load_scenario(scenarios.path("blade_loss_fuse")).set({"rotor.t_blade_loss": 24.0,
+                                                                "fuse0.break_load": 6000.0})
+    apply_unbalance(sc, 5700.0)
+    plain, carried, lacking = fuse_comparison.comparison_scenario(sc)
+    assert carried == {"rotor.t_blade_loss": 24.0, "rotor.F_unbalance": 5700.0} and lacking == ["fuse0.break_load"]
+    assert plain.components["rotor"].parameters["t_blade_loss"] == 24.0
+    assert plain.components["rotor"].parameters["F_unbalance"] == 5700.0
+    # nothing set: the comparison as the scenario names it
+    plain, carried, lacking = fuse_comparison.comparison_scenario(load_scenario(scenarios.path("blade_loss_fuse")))
+    assert carried == {} and lacking == [] and plain.components["rotor"].parameters["F_unbalance"] == 14252.0
