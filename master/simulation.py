@@ -108,7 +108,7 @@ class Simulation:
         #: set once the set-up and the first interval's compilations (or loads from the caches) are over
         self.first_compiled = threading.Event()
         self.interval_index = 0
-        #: a schedule's own loop state (the automatic schedule's), saved in checkpoints
+        #: a schedule's own loop state (the automatic schedule's; a timeline's position), saved in checkpoints
         self.schedule_state = None
         #: set by checkpoint.resume: where an interrupted run continues
         self.resume_point = None
@@ -117,8 +117,6 @@ class Simulation:
         #: interval (thermal-only intervals always run the generic loop)
         self.engine_choice = "auto"
         self.engine_note: str | None = None
-        #: True while an interval runs that the schedule inserted after an event (Timeline.run): no checkpoint
-        self.extra_interval = False
         self.engines_used: list[str] = []
         if any(c.event_indicators for c in system.components.values()) or events.pending_time_event(
                 self, [n for n, c in system.components.items() if events.split_in_coupled(c)], self.t) is not None:

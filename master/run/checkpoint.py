@@ -3,7 +3,9 @@
 A checkpoint (``checkpoint.pkl`` in the run's folder, written whole or not at all) holds everything the rest of the
 run depends on: every component's state (the contract's ``get_state``), the master's engine (connection buffers:
 averages, extrapolation history, step counts) and thermal-only hold (hand-off windows, measured laws), the run
-report (the timeline so far) and the observers' states (steady windows, peaks, how many rows the time series had).
+report (the timeline so far), the schedule's position (``sim.schedule_state``: a timeline's
+master/schedule/timeline.py TimelinePosition, the duration and step of the interval it runs, the coupled rest of
+a held interval an event cut) and the observers' states (steady windows, peaks, how many rows the time series had).
 It is taken by :class:`Checkpointer`, an observer placed last, every ``every_s`` seconds of wall time, at the end of
 an interval when the last checkpoint is at least ``min(every_s, END_GAP_S)`` old (with the automatic schedule:
 taken at every interval end, written at that pace, and the last one taken written when the run is interrupted or
@@ -54,9 +56,9 @@ from rotorcosim.master.schedule.timeline import Timeline
 from rotorcosim.master.core.system import System
 
 CHECKPOINT = "checkpoint.pkl"
-#: the layout of what is pickled (the links' state in master/core/links.py's layout, the hold's restart ramps): a
-#: checkpoint of another format is refused by name
-FORMAT = 4
+#: the layout of what is pickled (the links' state in master/core/links.py's layout, the hold's restart ramps, a
+#: timeline's position in schedule_state): a checkpoint of another format is refused by name
+FORMAT = 5
 #: wall time between two checkpoints inside a long interval
 EVERY_S = 180.0
 #: an interval end is checkpointed only when the last checkpoint (or the run's start) is at least this old [s of
@@ -274,11 +276,11 @@ class Checkpointer(Observer):
 
     def step(self, sim, t):
         if self.stop is not None and self.stop.signal:
-            if not self.interval_ends_only and not sim.extra_interval:
+            if not self.interval_ends_only:
                 self.save(sim, round((t - self._t_start) / self._step))
             self.write_pending()
             raise RunInterrupted(f"{self.stop.signal} received: stopped at t = {t:.9g} s")
-        if self.interval_ends_only or sim.extra_interval:
+        if self.interval_ends_only:
             return
         if self.path is not None and time.perf_counter() - self._last >= self.every_s:
             self.save(sim, round((t - self._t_start) / self._step))
@@ -294,9 +296,9 @@ class Checkpointer(Observer):
     def interval_end(self, sim, used):
         # the position is the start of the next interval; the report already holds this one
         self._t_start = sim.t
-        if not self.interval_ends_only and (sim.extra_interval or used.reason == "event"):
-            # a timeline's held interval ended by an event, and the coupled rest of it (Timeline.run): no position
-            # of the timeline's own
+        if not self.interval_ends_only and used.reason == "event":
+            # a timeline's held interval ended by an event: its coupled rest follows (Timeline.run), not the next
+            # interval; the rest's own steps are checkpointed
             return
         due = time.perf_counter() - self._last >= min(self.every_s, END_GAP_S)
         if self.interval_ends_only:

@@ -189,36 +189,68 @@ class Timeline(Schedule):
         #: event completes the slower components' windows: a multi-rate interval is whole windows), else None:
         #: the next intervals end where the timeline puts them, not that much later
         past = None
+        #: the position a resumed run was interrupted at, inside an interval (master/run/checkpoint.py): that
+        #: interval runs as it did then (its duration and step; the coupled rest of a held interval), else None
+        resumed = None
+        pos = sim.schedule_state
+        if sim.resume_point is not None and isinstance(pos, TimelinePosition):
+            if pos.interval < first:   # saved at that interval's end
+                past = pos.past_after(sim.t)
+            else:
+                resumed = pos
         for i, iv in enumerate(self.intervals[first:], first):
             sim.interval_index = i
-            duration, step = iv.duration, iv.step
-            if past is not None:
-                end, past = past + iv.duration, None
-                duration = end - sim.t
-                if duration <= 1e-9 * max(1.0, end):
-                    past = end      # the rest before ran over the whole of this interval
-                    continue
-                step = min(step, duration)
-            t_end = sim.t + duration
-            used = sim.run_interval(iv.phase, duration, step)
-            if sim.report.stopped:
-                break
-            if duration != iv.duration and sim.t > t_end + 1e-9 * max(1.0, t_end):
-                past = t_end
-            if used.reason == "event" and coupled and t_end - sim.t > 1e-9 * max(1.0, t_end):
-                # an event ended a held interval (master/core/events.py): the rest of it runs coupled, at the
-                # timeline's coupled step; no checkpoint inside it (its position is no interval of the timeline:
-                # an interrupted run resumes from the checkpoint before)
-                sim.extra_interval = True
-                try:
-                    sim.run_interval(sim.phases.coupled, t_end - sim.t, min(coupled[0], t_end - sim.t),
-                                     reason="after an event")
-                finally:
-                    sim.extra_interval = False
+            if resumed is None or not resumed.rest:
+                if resumed is not None:
+                    duration, step, resumed = resumed.duration, resumed.step, None
+                else:
+                    duration, step = iv.duration, iv.step
+                    if past is not None:
+                        end, past = past + iv.duration, None
+                        duration = end - sim.t
+                        if duration <= 1e-9 * max(1.0, end):
+                            past = end      # the rest before ran over the whole of this interval
+                            continue
+                        step = min(step, duration)
+                t_end = sim.t + duration
+                pos = sim.schedule_state = TimelinePosition(i, duration, step, t_end, carry=duration != iv.duration)
+                used = sim.run_interval(iv.phase, duration, step)
                 if sim.report.stopped:
                     break
-                if sim.t > t_end + 1e-9 * max(1.0, t_end):
-                    past = t_end
+                past = pos.past_after(sim.t)
+                if not (used.reason == "event" and coupled and t_end - sim.t > 1e-9 * max(1.0, t_end)):
+                    continue
+                # an event ended a held interval (master/core/events.py): the rest of it runs coupled, at the
+                # timeline's coupled step (checkpointed as any coupled interval: this position)
+                pos = TimelinePosition(i, t_end - sim.t, min(coupled[0], t_end - sim.t), t_end, rest=True,
+                                       carry=True)
+            else:
+                pos, resumed = resumed, None
+            sim.schedule_state = pos
+            sim.run_interval(sim.phases.coupled, pos.duration, pos.step, reason="after an event")
+            if sim.report.stopped:
+                break
+            past = pos.past_after(sim.t)
+
+
+@dataclass(frozen=True)
+class TimelinePosition:
+    """Where :meth:`Timeline.run` is, kept in ``sim.schedule_state`` so that a checkpoint carries it and a run
+    resumed inside an interval runs it as the interrupted run did (master/run/checkpoint.py): the ``interval``
+    (its index), the ``duration`` and ``step`` [s] it runs (shortened when the run before went past its start),
+    ``t_end`` [s] where it ends (for the coupled rest, ``rest`` True: the end of the held interval an event cut)
+    and ``carry``: going past ``t_end`` shortens the next interval (a shortened interval, or a rest)."""
+    interval: int
+    duration: float
+    step: float
+    t_end: float
+    rest: bool = False
+    carry: bool = False
+
+    def past_after(self, t: float) -> float | None:
+        """The end [s] the next interval starts from when this one ended at ``t`` [s] past ``t_end`` and
+        ``carry``s it (Timeline.run's ``past``), else None."""
+        return self.t_end if self.carry and t > self.t_end + 1e-9 * max(1.0, self.t_end) else None
 
 
 @register_schedule("monolithic")

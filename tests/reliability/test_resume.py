@@ -6,6 +6,8 @@ import numpy as np
 import pytest
 
 from rotorcosim import scenarios
+from rotorcosim.components.contract import Component, Variable
+from rotorcosim.components.registry import register
 from rotorcosim.master.run import checkpoint
 from rotorcosim.master.cli.run import execute
 from rotorcosim.master.scenario.build import load_scenario
@@ -67,6 +69,18 @@ def test_resume_refuses_other_options(tmp_path, sigint_at):
         execute(toy(), out, duration=DURATION, figures=False)
     with pytest.raises(checkpoint.CheckpointError, match="another scenario or with other options"):
         execute(toy(), out, duration=DURATION + 1, figures=False, resume=True)
+
+
+def test_a_checkpoint_of_another_format_is_refused_by_name(tmp_path, sigint_at, monkeypatch):
+    """A checkpoint of an earlier layout (format 4: no timeline position) is a CheckpointError, not a crash."""
+    out = tmp_path / "run"
+    sigint_at(0.2)
+    monkeypatch.setattr(checkpoint, "FORMAT", 4)
+    with pytest.raises(checkpoint.RunInterrupted):
+        execute(toy(), out, duration=DURATION, figures=False)
+    monkeypatch.undo()
+    with pytest.raises(checkpoint.CheckpointError, match="another version of rotorcosim"):
+        execute(toy(), out, duration=DURATION, figures=False, resume=True)
 
 
 def test_resume_needs_a_checkpoint(tmp_path):
@@ -167,3 +181,107 @@ def test_automatic_schedule_resumes_bit_identically(tmp_path, auto_reference, si
         assert np.array_equal(got[k], want[k]), k
     assert summary["timeline"] == ref["timeline"]
     assert summary["final_outputs"] == ref["final_outputs"]
+
+
+# -- a time event in a held interval: the coupled rest after it, and the intervals it shortens ----------------------
+class Tick(Component):
+    """Schedules one change at ``t_event`` (a time event, as the rotor's blade release): the toy's held interval
+    that spans it ends there and the rest of it runs coupled. Stepped at 2 ms (the scenario's step) in 1 ms
+    intervals: every coupled interval is whole pairs of base steps, so the rest runs past the held interval's end
+    and the next intervals are shortened."""
+
+    variables = (Variable("t_event", "parameter", unit="s", start=1.0, event="the tick"),
+                 Variable("n", "output", unit="1"))
+
+    def do_step(self, t, h):
+        self.time = t + h
+        self.y["n"] = self.y["n"] + 1.0
+
+    def next_event(self, t):
+        return self.p["t_event"] if self.p["t_event"] >= t - 1e-9 else None
+
+
+EVENT_TOML = """
+[scenario]
+name = "toy_time_event"
+extends = "toy_thermomechanical"
+
+[components.tick]
+implementation = "testing.resume_tick"
+step = 2e-3
+parameters = { t_event = 2.0012 }
+"""
+
+
+def toy_event(folder):
+    register("testing.resume_tick")(Tick)
+    path = folder / "toy_time_event.toml"
+    path.write_text(EVENT_TOML)
+    return load_scenario(path)
+
+
+@pytest.fixture(scope="module")
+def event_reference(tmp_path_factory):
+    folder = tmp_path_factory.mktemp("event_ref")
+    summary = execute(toy_event(folder), folder / "out", duration=DURATION, figures=False)
+    # TM 0.3, TO cut at the event, its coupled rest past 5.0 s, TM shortened (past 5.3 s), TO shortened
+    assert [(iv["phase"], iv["reason"]) for iv in summary["timeline"]] == [
+        ("TM", ""), ("TO", "event"), ("TM", "after an event"), ("TM", ""), ("TO", "")]
+    rest, tm, to = summary["timeline"][2:]
+    assert rest["t_end"] > 5.0 + 1e-6 and tm["t_end"] > 5.3 + 1e-6 and to["t_end"] == pytest.approx(DURATION)
+    return folder / "out", summary
+
+
+def _same_as(out, summary, reference):
+    ref_out, ref = reference
+    assert summary["status"] == "complete"
+    got, attrs = series(out)
+    want, _ = series(ref_out)
+    assert attrs["complete"] == True  # noqa: E712 - a numpy bool: `is` would not match
+    assert set(got) == set(want)
+    for k in want:
+        assert got[k].shape == want[k].shape, k
+        assert np.array_equal(got[k], want[k]), k  # bit-identical
+    assert summary["timeline"] == ref["timeline"]
+    assert summary["final_outputs"] == ref["final_outputs"]
+    assert summary["component_steps"] == ref["component_steps"]
+    assert summary["events"] == ref["events"]
+
+
+@pytest.mark.parametrize("t_signal", [3.0, 5.15, 5.45])  # in the coupled rest, in the TM and TO it shortened
+def test_interrupted_after_a_time_event_resumes_bit_identically(tmp_path, event_reference, sigint_at, t_signal):
+    """Interrupted inside the coupled rest of a held interval an event cut (no checkpoint before it: it was
+    refused, 'no checkpoint.pkl'), or inside an interval that rest shortened (resumed at the timeline's duration,
+    other steps), the run resumes where it was and gives the uninterrupted run's bits."""
+    out = tmp_path / "run"
+    fired = sigint_at(t_signal)
+    with pytest.raises(checkpoint.RunInterrupted):
+        execute(toy_event(tmp_path), out, duration=DURATION, figures=False)
+    assert fired
+    s = json.loads((out / "summary.json").read_text())
+    assert s["status"] == "interrupted" and s["checkpoint"] == "checkpoint.pkl"
+    summary = execute(toy_event(tmp_path), out, duration=DURATION, figures=False, resume=True)
+    assert summary["resumed_from_t_s"] is not None and summary["resumed_from_t_s"] <= s["t_end_s"] + 1e-12
+    _same_as(out, summary, event_reference)
+
+
+@pytest.mark.parametrize("last", [2, 3])  # the end of the coupled rest (of interval 1), of the TM it shortened
+def test_a_checkpoint_at_the_end_of_a_shortened_interval_resumes_bit_identically(tmp_path, event_reference,
+                                                                                monkeypatch, sigint_at, last):
+    """The checkpoint an interval end writes (the one a hard kill leaves) after the coupled rest or after an
+    interval it shortened: the next interval is shortened in the resumed run as in the uninterrupted one."""
+    original = checkpoint.Checkpointer.save
+
+    def interval_ends_only(self, sim, k, next_interval=False, write=True):
+        if next_interval and sim.interval_index + 1 <= last:
+            original(self, sim, k, next_interval, write)
+
+    monkeypatch.setattr(checkpoint.Checkpointer, "save", interval_ends_only)
+    out = tmp_path / "run"
+    sigint_at(5.45)
+    with pytest.raises(checkpoint.RunInterrupted):
+        execute(toy_event(tmp_path), out, duration=DURATION, figures=False, checkpoint_every=1e-9)
+    monkeypatch.setattr(checkpoint.Checkpointer, "save", original)
+    summary = execute(toy_event(tmp_path), out, duration=DURATION, figures=False, resume=True)
+    assert summary["resumed_from_t_s"] == pytest.approx(5.0012 if last == 2 else 5.3012, abs=1e-9)
+    _same_as(out, summary, event_reference)
