@@ -38,8 +38,12 @@ sys.path.insert(0, str(ROOT))  # the tests' builders: tests.helpers.fmus
 TYPICAL = {"damper.fast": {"X_journal": [1e-4, 0.0], "V_journal": [0.0, 0.05]},
            "damper.fe": {"X_journal": [1e-4, 0.0], "V_journal": [0.0, 0.05]},
            "testing.mass": {"F": [1.0]}, "testing.thermal_node": {"P": [100.0]}}
-#: the FE damper solves the Reynolds equation at every call: a coarser mesh keeps the bench short
-PARAMS = {"damper.fe": {"n_theta": 32, "n_z": 8}}
+#: the paper's bearing #0 records (a component takes no record unless asked: its engine file gives them); the FE
+#: damper solves the Reynolds equation at every call: a coarser mesh keeps the bench short
+PARAMS = {**{name: {"bearing": 0} for name in ("bearing.hertz", "bearing.hertz_spinning", "rubring.contact",
+                                                "rubring.contact_spinning", "thermal.network",
+                                                "thermal.network_spinning")},
+          "damper.fast": {"damper": 0}, "damper.fe": {"damper": 0, "n_theta": 32, "n_z": 8}}
 
 
 def time_steps(comp, inputs: dict, h: float, n: int) -> float:
@@ -66,16 +70,25 @@ def component_costs(names, steps: int, folder: Path):
             print(f"  {name:28s} skipped: implementation not importable yet ({exc})")
             continue
         params = PARAMS.get(name, {})
-        native = registry.create(name, name, params)
+        try:
+            native = registry.create(name, name, params)
+            path = export_component(name, folder / f"{name.replace('.', '_')}.fmu", parameters=params)
+        except (ValueError, OSError) as exc:   # a component that needs an engine of its kind (an airframe)
+            print(f"  {name:28s} skipped: {str(exc).splitlines()[0]}")
+            continue
         inputs = {v.name: v.start_array() for v in native.variables if v.causality == "input"}
         inputs.update({k: np.asarray(v, dtype=float) for k, v in TYPICAL.get(name, {}).items()})
-        path = export_component(name, folder / f"{name.replace('.', '_')}.fmu", parameters=params)
         fmu = load_fmu_component(path, name)
         h = native.preferred_step
         n = steps if "fe" not in name else max(50, steps // 50)
-        for c in (native, fmu):
-            c.set_inputs(inputs)
-            c.setup(0.0)
+        try:
+            for c in (native, fmu):
+                c.set_inputs(inputs)
+                c.setup(0.0)
+        except (ValueError, RuntimeError) as exc:   # a component that needs its system (a spool, a rotor file)
+            print(f"  {name:28s} skipped: {str(exc).splitlines()[0]}")
+            fmu.terminate()
+            continue
         t_nat = time_steps(native, inputs, h, n)
         t_fmu = time_steps(fmu, inputs, h, n)
         same = all(np.array_equal(native.y[k], fmu.y[k]) for k in native.y)
@@ -110,7 +123,7 @@ def toy_scenario(folder: Path):
 
 def ecos_vs_master(folder: Path):
     try:
-        from test_ssp import ecos_run
+        from tests.fmus.test_ssp import ecos_run
     except Exception as exc:  # pragma: no cover
         print(f"  Ecos: cannot import the helper ({exc})")
         return
@@ -161,24 +174,32 @@ def blade_loss(folder: Path, n: int = 200):
     print(f"  blade_loss TM {n} steps of {h:g} s: native {t_nat:.1f} s, SSP of FMUs in our master {t_fmu:.1f} s "
           f"(both with set-up); max relative difference {max_rel_diff(native, fmu, list(native.rows[0])):.3g}")
     try:
-        from test_ssp import ecos_run
+        from tests.fmus.test_ssp import ecos_run
     except (ImportError, OSError) as exc:
         print(f"  Ecos: not available ({exc})")
         return
-    signals = ["rotor.X_brg0[1]", "bearing0.F_rotor[1]", "damper0.F_journal[1]", "rubring0.P_rub",
-               "thermal0.T_oil"]
+    signals = [f"{s}{k}{i}" for k in (0, 5) for s, i in (("rotor.X_brg", "[1]"), ("bearing", ".F_rotor[1]"),
+                                                          ("damper", ".F_journal[1]"), ("rubring", ".P_rub"),
+                                                          ("thermal", ".T_oil"))]
     signals = [s for s in signals if s.partition("[")[0] in native.rows[0]]
     ecos = ecos_run(ssp, h, n, signals)
-    jac = read_ssp(ssp)
-    jac.algorithm = {"kind": "jacobi", "order": jac.algorithm.get("order")}
-    ours = run_intervals(jac, iv)
-    diffs = []
-    for s in signals:
-        port, _, idx = s.partition("[")
-        mine = ours.series(port)[:, int(idx[:-1]) - 1 if idx else 0]
-        scale = np.max(np.abs(mine))
-        diffs.append(f"{s} {np.max(np.abs(mine - ecos[s])) / scale if scale else 0.0:.2e}")
-    print(f"  Ecos vs our master (jacobi), blade_loss TM {n} steps, max |diff| / max |ours|: " + ", ".join(diffs))
+    # Ecos holds every value over a step; the scenario extrapolates the bearing forces to the step's end
+    # (extrapolation = "linear-end"), which SSP 1.0 cannot say: compared as the archive says, then all held
+    for label, held in (("as the scenario couples", False), ("every connection held, as Ecos", True)):
+        jac = read_ssp(ssp)
+        jac.algorithm = {"kind": "jacobi", "order": jac.algorithm.get("order")}
+        if held:
+            for c in jac.connections:
+                c.extrapolation = "hold"
+        ours = run_intervals(jac, iv)
+        diffs = []
+        for s in signals:
+            port, _, idx = s.partition("[")
+            mine = ours.series(port)[:, int(idx[:-1]) - 1 if idx else 0]
+            scale = np.max(np.abs(mine))
+            diffs.append(f"{s} {np.max(np.abs(mine - ecos[s])) / scale if scale else 0.0:.2e}")
+        print(f"  Ecos vs our master (jacobi, {label}), blade_loss TM {n} steps, max |diff| / max |ours|: "
+              + ", ".join(diffs))
 
 
 _SETUP = """
