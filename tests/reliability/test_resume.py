@@ -33,7 +33,6 @@ def reference(tmp_path_factory):
 
 @pytest.mark.parametrize("t_signal", [0.1502, 2.0, 5.25])  # mid-TM, mid-TO, in the second TM interval
 def test_interrupt_then_resume_is_bit_identical(tmp_path, reference, sigint_at, t_signal):
-    ref_out, ref = reference
     out = tmp_path / "run"
     fired = sigint_at(t_signal)
     with pytest.raises(checkpoint.RunInterrupted):
@@ -47,19 +46,9 @@ def test_interrupt_then_resume_is_bit_identical(tmp_path, reference, sigint_at, 
     assert data["time"][-1] <= s["t_end_s"] + 1e-12
     # the same command with resume
     summary = execute(toy(), out, duration=DURATION, figures=False, resume=True)
-    assert summary["status"] == "complete"
     assert summary["resumed_from_t_s"] is not None and summary["resumed_from_t_s"] <= s["t_end_s"] + 1e-12
     assert not (out / "checkpoint.pkl").exists()
-    got, attrs = series(out)
-    want, _ = series(ref_out)
-    assert attrs["complete"] == True  # noqa: E712 - a numpy bool: `is` would not match
-    assert set(got) == set(want)
-    for k in want:
-        assert got[k].shape == want[k].shape, k
-        assert np.array_equal(got[k], want[k]), k  # bit-identical
-    assert summary["final_outputs"] == ref["final_outputs"]
-    assert summary["timeline"] == ref["timeline"]
-    assert summary["component_steps"] == ref["component_steps"]
+    _same_as(out, summary, reference)
 
 
 def test_resume_refuses_other_options(tmp_path, sigint_at):
@@ -245,7 +234,7 @@ def _same_as(out, summary, reference):
     assert summary["timeline"] == ref["timeline"]
     assert summary["final_outputs"] == ref["final_outputs"]
     assert summary["component_steps"] == ref["component_steps"]
-    assert summary["events"] == ref["events"]
+    assert summary.get("events") == ref.get("events")
 
 
 @pytest.mark.parametrize("t_signal", [3.0, 5.15, 5.45])  # in the coupled rest, in the TM and TO it shortened
