@@ -30,6 +30,7 @@ from rotorcosim.components import registry
 from rotorcosim.fmus.export import export_component
 from rotorcosim.master.scenario.export import export_scenario
 from rotorcosim.fmus.importer import load_fmu_component
+from rotorcosim.master.core.threads import one_thread
 
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))  # the tests' builders: tests.helpers.fmus
@@ -250,7 +251,8 @@ def main(argv=None) -> int:
     with tempfile.TemporaryDirectory(prefix="bench_fmu_") as tmp:
         folder = Path(tmp)
         print("cost of one communication step (set_inputs + do_step), native vs behind the FMU boundary:")
-        component_costs(names, args.steps, folder)
+        with one_thread():   # as a run steps them (BLAS's threads sum in another order: other last bits)
+            component_costs(names, args.steps, folder)
         print("whole scenario:")
         toy_scenario(folder)
         print("another engine:")
