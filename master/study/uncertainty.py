@@ -275,7 +275,7 @@ def analyse(spec: UQSpec, u: np.ndarray, rows: list[dict]) -> dict:
                                   "indices": statistics.sobol_indices(names, yb, spec.seed)}
         elif len(yo) >= statistics.RBD_FAST_MIN_SAMPLES and np.ptp(yo) > 0:
             entry["sobol"] = {"method": "rbd_fast", "indices": statistics.first_order_indices(names, uo, yo, spec.seed)}
-        elif np.ptp(yo) > 0:
+        elif len(yo) > 1 and np.ptp(yo) > 0:   # (none at all: every sample failed, said in "failed")
             entry["sobol"] = {"method": "rbd_fast", "note": too_few_for_indices(len(yo))}
         out[res] = entry
     return {"results": out, "failed": failed}

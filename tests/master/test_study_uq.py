@@ -114,6 +114,25 @@ std = 1.0
     assert again["samples_this_session"] == 0 and again["failed"] == rep["failed"]
 
 
+def test_a_study_whose_every_sample_fails_reports_them(tmp_path):
+    """Every sample failed (a normal of mean -10: all negative): the study reports them all and no statistics;
+    the analysis crashed on the empty set of results (numpy's ptp of a zero-size array)."""
+    spec = write_spec(tmp_path, '''samples = 4
+sampler = "mc"
+seed = 1
+results = ["y"]
+[[uq.parameter]]
+name = "m1.x0"
+distribution = "normal"
+mean = -10.0
+std = 1.0
+''')
+    from tests.helpers.study_tasks import fails_when_negative
+
+    rep = rotorcosim.uq(spec, tmp_path / "out", serial=True, quiet=True, task=fails_when_negative)
+    assert rep["failed"]["count"] == 4 and rep["results"]["y"]["n"] == 0 and "sobol" not in rep["results"]["y"]
+
+
 @pytest.mark.slow   # ~14-18 s (measured; two studies in subprocesses, a worker killed)
 def test_a_worker_that_dies_is_retried_once_then_reported(tmp_path):
     """On a local Dask cluster of one worker (its nanny restarts it after each death): a sample whose worker dies
