@@ -187,18 +187,22 @@ def _is_dispatcher(fn) -> bool:
     return hasattr(fn, "py_func") and hasattr(fn, "overloads")
 
 
-def _end_with_parent(parent: int) -> None:
+def _end_with_parent(parent: int, folders: list[str]) -> None:
     """End this helper when the process that started it is gone: a run killed with SIGKILL (or a sweep's worker)
     left it building on, orphaned (a film table of a huge mesh: 10.8 GB after 56 minutes). A thread polls the
     parent's id (not PR_SET_PDEATHSIG: it fires when the starting *thread* ends, and a sweep case starts the
     helper from a worker thread). ``parent``: the starter's id, given on the command line: read here with
     getppid() it was already the orphan's new parent when the starter died while this helper was still importing
-    (under load, over a second: the helper then built on)."""
+    (under load, over a second: the helper then built on). ``folders``: the claims' folder once the helper has
+    read it, removed on the way out (a killed run never closes its side)."""
 
     def watch() -> None:
         while True:
             time.sleep(PARENT_POLL_S)
             if os.getppid() != parent:
+                # the claims were the dead run's alone: its close() never came to remove them
+                for folder in folders:
+                    shutil.rmtree(folder, ignore_errors=True)
                 os._exit(0)
 
     threading.Thread(target=watch, name="rotorcosim-ahead-parent", daemon=True).start()
@@ -210,9 +214,11 @@ def _helper() -> None:
     from rotorcosim.master.compiled import kernel_args
     from rotorcosim.master.core import threads
 
-    _end_with_parent(int(sys.argv[1]) if len(sys.argv) > 1 else os.getppid())
+    folders: list[str] = []   # the claims' folder, once read: removed if the parent dies first
+    _end_with_parent(int(sys.argv[1]) if len(sys.argv) > 1 else os.getppid(), folders)
     stream = sys.stdin.buffer
     folder, jobs = pickle.load(stream)
+    folders.append(folder)
     with threads.one_thread():
         while True:
             for key, module, qualname, dispatcher, args, generated in jobs:

@@ -84,7 +84,8 @@ def test_no_helper_when_nothing_is_missing_or_it_is_off(monkeypatch):
 
 def test_the_helper_ends_with_the_process_that_started_it():
     """A run killed with SIGKILL left its helper building on, orphaned (found: a film table of a huge mesh,
-    10.8 GB after 56 minutes); the helper now ends within about a second of its parent."""
+    10.8 GB after 56 minutes); the helper now ends within about a second of its parent, its claims folder
+    removed."""
     import subprocess
     import sys
     import textwrap
@@ -93,12 +94,12 @@ def test_the_helper_ends_with_the_process_that_started_it():
         import os, time
         from rotorcosim.master.compiled import ahead
         h = ahead.Ahead([("table/sleep", time.sleep, (120,))])
-        print(h.proc.pid, flush=True)
+        print(h.proc.pid, h.folder, flush=True)
         time.sleep(1)
         os.kill(os.getpid(), 9)
     """)
     res = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True, timeout=60)
-    helper = int(res.stdout.split()[0])
+    helper, folder = int(res.stdout.split()[0]), res.stdout.split()[1]
 
     def alive(pid: int) -> bool:  # a zombie (not reaped by whoever inherited it) has ended
         try:
@@ -113,6 +114,8 @@ def test_the_helper_ends_with_the_process_that_started_it():
     if not ended:
         os.kill(helper, 9)
     assert ended, "the helper outlived the process that started it"
+    # and it took the dead run's claims folder with it (left in the temporary folder for good, before)
+    assert not os.path.exists(folder), folder
 
 
 def test_a_key_this_process_claimed_is_not_waited_for_again(tmp_path):
