@@ -94,13 +94,26 @@ def failed_summary(case: Case, error: str) -> dict:
     return {"scenario": case.name, "status": "failed", "error": error, "bearings": {}}
 
 
+def _work_folder() -> Path:
+    """A case's temporary folder: inside its Dask worker's local directory when it runs on one (a worker killed
+    in the middle of a case cannot remove it; Dask removes a dead worker's directory when the next worker of
+    its machine starts), else in the system's temporary folder."""
+    try:
+        from distributed import get_worker
+
+        base = get_worker().local_directory
+    except (ImportError, ValueError):   # not on a Dask worker: this process's own run
+        base = None
+    return Path(tempfile.mkdtemp(prefix="rotorcosim-case-", dir=base))
+
+
 def run_case(case: Case) -> dict:
     """Run ``case`` where this is called (a Dask worker or this process), in a temporary folder of its own.
 
     Returns ``{"summary": ..., "files": {relative path: bytes}, "host": ...}``. A case that fails (a bad value
     found at set-up, a divergence, an FMU that crashes) returns its summary with its ``error``, and whatever its
     run wrote: one failing case must not lose the others. An interrupt (KeyboardInterrupt) is not caught."""
-    work = Path(tempfile.mkdtemp(prefix="rotorcosim-case-"))
+    work = _work_folder()
     try:
         try:
             summary = simulate(case.scenario_of(), duration=case.duration, schedule=case.schedule, out=work,

@@ -49,10 +49,11 @@ def assert_kept(out: Path, names) -> None:
     assert not left, left
 
 
-def cli(*argv, timeout=180) -> subprocess.CompletedProcess:
-    """``rotorcosim ARGV`` in a process of its own (the way a user runs it)."""
+def cli(*argv, timeout=180, tmpdir=None) -> subprocess.CompletedProcess:
+    """``rotorcosim ARGV`` in a process of its own (the way a user runs it); ``tmpdir``: its temporary folder."""
+    env = None if tmpdir is None else {**os.environ, "TMPDIR": str(tmpdir)}
     return subprocess.run([sys.executable, "-m", "rotorcosim.master.cli", *map(str, argv)], capture_output=True,
-                          text=True, timeout=timeout)
+                          text=True, timeout=timeout, env=env)
 
 
 FOREGROUND = ("import signal, sys\nsignal.signal(signal.SIGINT, signal.default_int_handler)\n"
@@ -122,9 +123,12 @@ def test_worker_death_on_the_local_cluster_from_the_command_line(tmp_path):
     """The same fault through ``rotorcosim sweep`` on its own local cluster: exit status 1, the failed case named
     on stderr, the other case kept."""
     sc = faulty.scenario(tmp_path, kill_at=0.01)
+    tmp = _dir(tmp_path, "tmp")
     r = cli("sweep", sc, "--set", "node.kill_at=-1,0.01", "--duration", "0.05", "--workers", "2", "--quiet",
-            "--out", tmp_path / "out")
+            "--out", tmp_path / "out", tmpdir=tmp)
     assert r.returncode == 1, r.stderr
+    # the killed workers' case folders went with their workers' directories (they stayed in the temporary folder)
+    assert not list(tmp.rglob("rotorcosim-case-*")), list(tmp.rglob("*"))
     lines = r.stderr.splitlines()
     assert lines[0].startswith("sweep: 2 runs of about "), r.stderr       # the estimate, before the first case
     assert lines[1].startswith("  case node.kill_at=0.01 was run again on tcp://") and \
