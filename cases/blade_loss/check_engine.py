@@ -150,7 +150,7 @@ def add_arguments(parser):
 
 def run(args) -> int:
     """Run the command ``args`` (parsed); returns the exit status."""
-    # a figure only where asked: a check wrote FILE_campbell.png into whatever folder it was run from
+    # a figure only where --campbell asks: a check writes nothing into the working folder unasked
     out = check_engine(args.file, args.scenario, args.campbell, args.max_rpm, windmill_rpm=args.windmill_rpm)
     if args.json:
         print(json.dumps(out, default=str))
