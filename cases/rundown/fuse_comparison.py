@@ -26,6 +26,7 @@ import numpy as np
 
 from rotorcosim.components.contract import COUPLED, ContractError
 from rotorcosim.master.observer.observer import Observer
+from rotorcosim.master.scenario.overrides import edited_values
 
 #: the blade-loss results compared, per bearing id
 RESULTS = ("max_contact_load_peak_N", "max_contact_stress_peak_MPa", "rub_power_peak_W")
@@ -94,25 +95,10 @@ def _crossings(summary: dict) -> list[dict]:
     return out
 
 
-def run_settings(sc) -> dict[str, object]:
-    """``{"component.parameter": value}``: what was set on ``sc`` since it was loaded (``--set``, ``--unbalance``,
-    ``Scenario.set``; its ``edits``, in order, the last value of each), which the comparison takes too: a
-    release moved to 24 s or another unbalance is compared with the same release, the same unbalance."""
-    out: dict[str, object] = {}
-    for e in sc.edits:
-        if "set" in e:
-            out[e["set"]] = e["value"]
-        elif "parameter" in e:   # a level (master/case.py): {<level name>: value, "parameter": ..., "origin": ...}
-            values = [v for k, v in e.items() if k not in ("parameter", "origin")]
-            if len(values) == 1:
-                out[e["parameter"]] = values[0]
-    return out
-
-
 def comparison_scenario(sc):
     """The scenario ``[results] without_fuse`` names, with ``without_fuse_set`` set on it, then what was set on
-    ``sc`` itself (:func:`run_settings`) where the comparison has that component; a one-line ValueError naming
-    the key when it cannot be loaded or set. Returns ``(scenario, {"component.parameter": value} carried over,
+    ``sc`` itself (``--set``, ``--unbalance``, ``Scenario.set``: overrides.edited_values) where the comparison
+    has that component; a one-line ValueError naming the key when it cannot be loaded or set. Returns ``(scenario, {"component.parameter": value} carried over,
     [names the comparison lacks the component of])``. :func:`check` calls it before the run: the comparison runs
     it only after the run, which a wrong name would otherwise fail at its end."""
     from rotorcosim.master.api import load_scenario
@@ -128,7 +114,8 @@ def comparison_scenario(sc):
         except (ContractError, ValueError, OSError) as exc:
             raise ValueError(f"[results] without_fuse_set: {exc}") from None
     carried, lacking = {}, []
-    for ref, value in run_settings(sc).items():
+    # a release moved, another unbalance: the comparison differs from the run by the fuse alone
+    for ref, value in edited_values(sc).items():
         if ref.partition(".")[0] not in plain.components:   # the fuse's own parameters
             lacking.append(ref)
             continue

@@ -268,3 +268,17 @@ def set_level(sc, value: float, ref: str | None, *, name: str = "level", option:
     if old is None or float(old) != float(value):
         # the run's name says what was run (a scenario named NAME_<level> becomes NAME_<new level>)
         sc.name = f"{sc.name.rsplit('_', 1)[0] if sc.name.rsplit('_', 1)[-1].isdigit() else sc.name}_{value:g}"
+
+
+def edited_values(sc) -> dict[str, Any]:
+    """``{"comp.param": value}``: the values set on ``sc`` since it was loaded, read from its edits (those of
+    :func:`apply_set` and :func:`set_level`; a swap sets no value), the last of each in their order."""
+    out: dict[str, Any] = {}
+    for e in sc.edits:
+        if "set" in e:
+            out[e["set"]] = e["value"]
+        elif "parameter" in e:   # set_level's {name: value, "parameter": ref, "origin": option}
+            values = [v for k, v in e.items() if k not in ("parameter", "origin")]
+            if len(values) == 1:
+                out[e["parameter"]] = values[0]
+    return out
